@@ -1,0 +1,74 @@
+#pragma once
+/// @file
+/// Child processes for the supervisor (roverctl) and for multi-process tests: spawn in a new
+/// process group with per-process log files, poll, signal the whole group, stop with a grace
+/// period. No DDS.
+
+#include <sys/types.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+#include "rover/base/time.hpp"
+
+namespace rover {
+
+struct ExitInfo {
+  bool signaled = false;  ///< killed by a signal (then `signal` is set), else exited with `code`
+  int code = 0;
+  int signal = 0;
+  bool success() const { return !signaled && code == 0; }
+  /// "exit code 2" or "killed by signal 9 (SIGKILL)".
+  std::string ToString() const;
+};
+
+struct SpawnOptions {
+  std::vector<std::string> argv;             ///< argv[0] is looked up in PATH (of `env`)
+  std::map<std::string, std::string> env;    ///< added to (or replacing in) the environment
+  std::string stdout_path;                   ///< append stdout here; empty = inherit
+  std::string stderr_path;                   ///< append stderr here; empty = inherit
+  std::string working_dir;                   ///< empty = inherit
+  bool die_with_parent = true;               ///< SIGTERM the child if the parent dies
+};
+
+class Process {
+ public:
+  Process() = default;
+  Process(Process&& o) noexcept;
+  Process& operator=(Process&& o) noexcept;
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+  /// Does not kill the child; call Terminate() for that.
+  ~Process() = default;
+
+  /// Starts the child in its own process group. Fails (NotFound) if the program cannot be
+  /// executed, e.g. "no such command 'foo' in PATH".
+  static Result<Process> Spawn(const SpawnOptions& options);
+
+  pid_t pid() const { return pid_; }
+  bool running() const { return pid_ > 0 && !exit_.has_value(); }
+  /// Non-blocking: the exit status if the child has ended.
+  std::optional<ExitInfo> Poll();
+  /// Blocks up to `timeout` (wall time) for the child to end.
+  std::optional<ExitInfo> WaitFor(Duration timeout);
+  /// Sends `sig` to the child's whole process group.
+  void Signal(int sig) const;
+  /// SIGTERM to the group, up to `grace` to end, then SIGKILL to the group. Returns how it ended.
+  ExitInfo Terminate(Duration grace);
+
+ private:
+  pid_t pid_ = -1;
+  std::optional<ExitInfo> exit_;
+};
+
+/// True if any process is in process group `pgid` (used to prove nothing was left behind).
+bool ProcessGroupAlive(pid_t pgid);
+/// True if `pid` exists and is not a zombie.
+bool ProcessAlive(pid_t pid);
+/// Resolves `program` through PATH; empty if not found or not executable.
+std::string FindInPath(const std::string& program, const std::string& path_env);
+
+}  // namespace rover

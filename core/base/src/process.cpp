@@ -1,0 +1,203 @@
+#include "rover/base/process.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <utility>
+
+#include "rover/base/clock.hpp"
+
+extern char** environ;
+
+namespace rover {
+namespace {
+ExitInfo FromWaitStatus(int status) {
+  ExitInfo e;
+  if (WIFSIGNALED(status)) {
+    e.signaled = true;
+    e.signal = WTERMSIG(status);
+  } else if (WIFEXITED(status)) {
+    e.code = WEXITSTATUS(status);
+  }
+  return e;
+}
+}  // namespace
+
+std::string ExitInfo::ToString() const {
+  if (signaled) {
+    const char* abbrev = sigabbrev_np(signal);
+    return "killed by signal " + std::to_string(signal) +
+           (abbrev ? " (SIG" + std::string(abbrev) + ")" : "");
+  }
+  return "exit code " + std::to_string(code);
+}
+
+std::string FindInPath(const std::string& program, const std::string& path_env) {
+  if (program.find('/') != std::string::npos) {
+    return access(program.c_str(), X_OK) == 0 ? program : "";
+  }
+  std::stringstream ss(path_env);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    const std::string candidate = dir + "/" + program;
+    struct stat st {};
+    if (stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        access(candidate.c_str(), X_OK) == 0) {
+      return candidate;
+    }
+  }
+  return "";
+}
+
+Process::Process(Process&& o) noexcept : pid_(std::exchange(o.pid_, -1)), exit_(o.exit_) {}
+
+Process& Process::operator=(Process&& o) noexcept {
+  pid_ = std::exchange(o.pid_, -1);
+  exit_ = o.exit_;
+  return *this;
+}
+
+Result<Process> Process::Spawn(const SpawnOptions& options) {
+  if (options.argv.empty() || options.argv[0].empty()) {
+    return InvalidArgument("empty command");
+  }
+  // Environment: ours, then the overrides.
+  std::map<std::string, std::string> env;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const char* eq = std::strchr(*e, '=');
+    if (eq) env[std::string(*e, static_cast<std::size_t>(eq - *e))] = eq + 1;
+  }
+  for (const auto& [k, v] : options.env) env[k] = v;
+  const std::string path = env.count("PATH") ? env["PATH"] : "/usr/bin:/bin";
+  const std::string exe = FindInPath(options.argv[0], path);
+  if (exe.empty()) {
+    return NotFound("no such command '" + options.argv[0] + "' (searched PATH=" + path + ")");
+  }
+  std::vector<std::string> env_strings;
+  for (const auto& [k, v] : env) env_strings.push_back(k + "=" + v);
+  std::vector<char*> envp, argv;
+  for (auto& s : env_strings) envp.push_back(s.data());
+  envp.push_back(nullptr);
+  std::vector<std::string> args = options.argv;
+  for (auto& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+
+  int err_pipe[2];
+  if (pipe2(err_pipe, O_CLOEXEC) != 0) return Unavailable(std::string("pipe: ") + strerror(errno));
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(err_pipe[0]);
+    close(err_pipe[1]);
+    return Unavailable(std::string("fork: ") + strerror(errno));
+  }
+  if (pid == 0) {
+    // Child: only async-signal-safe calls from here on.
+    setpgid(0, 0);
+    if (options.die_with_parent) {
+      prctl(PR_SET_PDEATHSIG, SIGTERM);
+      if (getppid() != parent) _exit(127);
+    }
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, nullptr);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    signal(SIGPIPE, SIG_DFL);
+    auto redirect = [](const std::string& p, int target) {
+      if (p.empty()) return true;
+      const int fd = open(p.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+      if (fd < 0) return false;
+      if (dup2(fd, target) < 0) return false;
+      return true;
+    };
+    int e = 0;
+    if (!redirect(options.stdout_path, STDOUT_FILENO) ||
+        !redirect(options.stderr_path, STDERR_FILENO)) {
+      e = errno;
+    } else if (!options.working_dir.empty() && chdir(options.working_dir.c_str()) != 0) {
+      e = errno;
+    } else {
+      execve(exe.c_str(), argv.data(), envp.data());
+      e = errno;
+    }
+    (void)!write(err_pipe[1], &e, sizeof e);
+    _exit(127);
+  }
+  // Parent. Also set the group here, to avoid racing with a Signal() right after Spawn().
+  setpgid(pid, pid);
+  close(err_pipe[1]);
+  int child_errno = 0;
+  const ssize_t n = read(err_pipe[0], &child_errno, sizeof child_errno);
+  close(err_pipe[0]);
+  Process p;
+  p.pid_ = pid;
+  if (n == static_cast<ssize_t>(sizeof child_errno)) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return Unavailable("cannot start '" + options.argv[0] + "': " + strerror(child_errno));
+  }
+  return p;
+}
+
+std::optional<ExitInfo> Process::Poll() {
+  if (exit_) return exit_;
+  if (pid_ <= 0) return std::nullopt;
+  int status = 0;
+  const pid_t r = waitpid(pid_, &status, WNOHANG);
+  if (r == pid_) exit_ = FromWaitStatus(status);
+  return exit_;
+}
+
+std::optional<ExitInfo> Process::WaitFor(Duration timeout) {
+  const Time deadline = MonotonicNow() + timeout;
+  while (true) {
+    if (auto e = Poll()) return e;
+    if (MonotonicNow() >= deadline) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+void Process::Signal(int sig) const {
+  if (pid_ > 0) kill(-pid_, sig);
+}
+
+ExitInfo Process::Terminate(Duration grace) {
+  if (auto e = Poll()) {
+    // The leader is gone; make sure nothing else of its group survives.
+    if (pid_ > 0) kill(-pid_, SIGKILL);
+    return *e;
+  }
+  Signal(SIGTERM);
+  auto e = WaitFor(grace);
+  if (pid_ > 0) kill(-pid_, SIGKILL);  // leader or stragglers in its group
+  if (!e) e = WaitFor(std::chrono::seconds(5));
+  return e.value_or(ExitInfo{true, 0, SIGKILL});
+}
+
+bool ProcessGroupAlive(pid_t pgid) {
+  if (pgid <= 0) return false;
+  return kill(-pgid, 0) == 0 || errno == EPERM;
+}
+
+bool ProcessAlive(pid_t pid) {
+  if (pid <= 0 || kill(pid, 0) != 0) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string content;
+  std::getline(stat, content);
+  const auto rparen = content.rfind(')');
+  if (rparen == std::string::npos || rparen + 2 >= content.size()) return true;
+  return content[rparen + 2] != 'Z';
+}
+
+}  // namespace rover

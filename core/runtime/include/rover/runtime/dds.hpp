@@ -1,0 +1,288 @@
+#pragma once
+/// @file
+/// RAII wrappers over Cyclone DDS's C API: Participant, typed Writer<T> and Reader<T> (T is an
+/// idlc-generated C struct registered in <rover/idl/types.hpp>), GuardCondition and WaitSet.
+///
+/// Creation can fail for environmental reasons (bad domain, bad Cyclone configuration), so the
+/// factories return Result<>. Samples with sequences: a writer borrows the caller's memory
+/// (see BorrowSequence); a reader hands out Sample<T>, which owns what DDS allocated.
+///
+/// Every Writer<T>::Write and Reader<T>::Take passes through the fault seam (seam.hpp).
+
+#include <dds/dds.h>
+
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rover/base/check.hpp"
+#include "rover/base/status.hpp"
+#include "rover/idl/types.hpp"
+#include "rover/runtime/qos.hpp"
+#include "rover/runtime/seam.hpp"
+#include "rover/runtime/topic_catalog.hpp"
+
+namespace rover::dds {
+
+/// "dds_create_writer failed: <cyclone's text>".
+Status DdsError(const std::string& what, dds_return_t rc);
+
+/// Owns one DDS entity handle; deleting it deletes its children too.
+class Entity {
+ public:
+  Entity() = default;
+  explicit Entity(dds_entity_t handle) : handle_(handle) {}
+  ~Entity() { Reset(); }
+  Entity(Entity&& o) noexcept : handle_(std::exchange(o.handle_, 0)) {}
+  Entity& operator=(Entity&& o) noexcept {
+    if (this != &o) {
+      Reset();
+      handle_ = std::exchange(o.handle_, 0);
+    }
+    return *this;
+  }
+  Entity(const Entity&) = delete;
+  Entity& operator=(const Entity&) = delete;
+
+  dds_entity_t handle() const { return handle_; }
+  bool valid() const { return handle_ > 0; }
+  void Reset() {
+    if (handle_ > 0) dds_delete(handle_);
+    handle_ = 0;
+  }
+
+ protected:
+  dds_entity_t handle_ = 0;
+};
+
+/// One DDS domain participant. One process = one participant in this stack.
+class Participant : public Entity {
+ public:
+  Participant() = default;
+  /// Creates a participant on `domain` using the Cyclone configuration in CYCLONEDDS_URI.
+  static Result<Participant> Create(dds_domainid_t domain);
+  dds_domainid_t domain() const { return domain_; }
+
+ private:
+  Participant(dds_entity_t h, dds_domainid_t d) : Entity(h), domain_(d) {}
+  dds_domainid_t domain_ = 0;
+};
+
+/// The QoS profile for a topic: the catalog's if the topic is in it (and then the type must
+/// match), else `fallback`. A type mismatch with the catalog is InvalidArgument.
+Result<QosProfile> ResolveProfile(const std::string& topic, const char* type_name,
+                                  std::optional<QosProfile> requested);
+
+namespace internal {
+Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
+                                 const dds_topic_descriptor_t* desc, QosProfile profile);
+Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
+                                    bool writer);
+}  // namespace internal
+
+/// A sample taken from a reader, owning its contents (sequences, unbounded strings).
+template <class T>
+class Sample {
+ public:
+  Sample() : data_(Allocate()) {}
+  Sample(Sample&&) noexcept = default;
+  Sample& operator=(Sample&&) noexcept = default;
+
+  T& data() { return *data_; }
+  const T& data() const { return *data_; }
+  const T* operator->() const { return data_.get(); }
+  T* operator->() { return data_.get(); }
+  const dds_sample_info_t& info() const { return info_; }
+  dds_sample_info_t& mutable_info() { return info_; }
+
+ private:
+  struct Free {
+    void operator()(T* p) const {
+      dds_sample_free(p, TopicType<T>::Descriptor(), DDS_FREE_ALL);
+    }
+  };
+  static T* Allocate() {
+    void* p = dds_alloc(sizeof(T));
+    std::memset(p, 0, sizeof(T));
+    return static_cast<T*>(p);
+  }
+  std::unique_ptr<T, Free> data_;
+  dds_sample_info_t info_{};
+};
+
+/// A typed writer on one topic.
+template <class T>
+class Writer {
+ public:
+  Writer() = default;
+  /// Creates the writer; QoS comes from the topic catalog, or from `profile` for a topic that is
+  /// not in the catalog (a profile that contradicts the catalog is an error).
+  static Result<Writer> Create(const Participant& p, const std::string& topic,
+                               std::optional<QosProfile> profile = std::nullopt) {
+    auto prof = ResolveProfile(topic, TopicType<T>::kTypeName, profile);
+    if (!prof.ok()) return prof.status();
+    auto t = internal::CreateTopic(p, topic, TopicType<T>::Descriptor(), *prof);
+    if (!t.ok()) return t.status();
+    auto w = internal::CreateEndpoint(p, *t, *prof, true);
+    if (!w.ok()) return w.status();
+    Writer out;
+    out.writer_ = Entity(*w);
+    out.topic_ = Entity(*t);
+    out.name_ = topic;
+    out.profile_ = *prof;
+    out.seam_ = SeamFor(topic, Direction::kWrite);
+    return out;
+  }
+
+  /// Publishes one sample (through the fault seam, if any).
+  Status Write(const T& sample) {
+    ROVER_DEMAND(writer_.valid());
+    dds_return_t rc = seam_ ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
+                            : dds_write(writer_.handle(), &sample);
+    if (rc < 0) return DdsError("write on " + name_, rc);
+    return Status::Ok();
+  }
+
+  /// Readers currently matched.
+  int MatchedReaders() const {
+    dds_publication_matched_status_t st{};
+    if (dds_get_publication_matched_status(writer_.handle(), &st) < 0) return 0;
+    return static_cast<int>(st.current_count);
+  }
+
+  const std::string& topic_name() const { return name_; }
+  QosProfile profile() const { return profile_; }
+  dds_entity_t handle() const { return writer_.handle(); }
+  bool valid() const { return writer_.valid(); }
+
+ private:
+  Entity writer_;
+  Entity topic_;
+  std::string name_;
+  QosProfile profile_ = QosProfile::kState;
+  std::shared_ptr<TopicSeam> seam_;
+};
+
+/// A typed reader on one topic.
+template <class T>
+class Reader {
+ public:
+  Reader() = default;
+  static Result<Reader> Create(const Participant& p, const std::string& topic,
+                               std::optional<QosProfile> profile = std::nullopt) {
+    auto prof = ResolveProfile(topic, TopicType<T>::kTypeName, profile);
+    if (!prof.ok()) return prof.status();
+    auto t = internal::CreateTopic(p, topic, TopicType<T>::Descriptor(), *prof);
+    if (!t.ok()) return t.status();
+    auto r = internal::CreateEndpoint(p, *t, *prof, false);
+    if (!r.ok()) return r.status();
+    Reader out;
+    out.reader_ = Entity(*r);
+    out.topic_ = Entity(*t);
+    out.name_ = topic;
+    out.profile_ = *prof;
+    out.seam_ = SeamFor(topic, Direction::kRead);
+    return out;
+  }
+
+  /// Takes up to `max` samples with valid data, oldest first (through the fault seam, if any).
+  std::vector<Sample<T>> Take(std::size_t max = 32) {
+    ROVER_DEMAND(reader_.valid() && max > 0);
+    std::vector<Sample<T>> buf(max);
+    std::vector<void*> ptrs(max);
+    std::vector<dds_sample_info_t> infos(max);
+    for (std::size_t i = 0; i < max; ++i) ptrs[i] = &buf[i].data();
+    const dds_return_t n = dds_take(reader_.handle(), ptrs.data(), infos.data(), max,
+                                    static_cast<uint32_t>(max));
+    std::vector<Sample<T>> out;
+    if (n <= 0) return out;
+    out.reserve(static_cast<std::size_t>(n));
+    for (dds_return_t i = 0; i < n; ++i) {
+      if (!infos[i].valid_data) continue;
+      if (seam_ && !seam_->OnRead(&buf[i].data(), TopicType<T>::Descriptor())) continue;
+      buf[i].mutable_info() = infos[i];
+      out.push_back(std::move(buf[i]));
+    }
+    return out;
+  }
+
+  /// Writers currently matched.
+  int MatchedWriters() const {
+    dds_subscription_matched_status_t st{};
+    if (dds_get_subscription_matched_status(reader_.handle(), &st) < 0) return 0;
+    return static_cast<int>(st.current_count);
+  }
+
+  const std::string& topic_name() const { return name_; }
+  QosProfile profile() const { return profile_; }
+  dds_entity_t handle() const { return reader_.handle(); }
+  bool valid() const { return reader_.valid(); }
+
+ private:
+  Entity reader_;
+  Entity topic_;
+  std::string name_;
+  QosProfile profile_ = QosProfile::kState;
+  std::shared_ptr<TopicSeam> seam_;
+};
+
+/// A condition the program triggers itself (e.g. to wake a WaitSet for shutdown).
+class GuardCondition : public Entity {
+ public:
+  static Result<GuardCondition> Create(const Participant& p);
+  /// Thread-safe.
+  void Trigger();
+  /// Returns whether it was triggered, and clears it.
+  bool TakeTriggered();
+
+ private:
+  using Entity::Entity;
+};
+
+/// Waits for readers with data and guard conditions.
+class WaitSet : public Entity {
+ public:
+  static Result<WaitSet> Create(const Participant& p);
+  /// Attaches a reader (woken on DATA_AVAILABLE) or a guard condition; `token` comes back from
+  /// Wait() when that entity triggers.
+  Status Attach(dds_entity_t entity, dds_attach_t token);
+  Status Detach(dds_entity_t entity);
+  /// Blocks up to `timeout` (wall time); returns the tokens of triggered entities.
+  std::vector<dds_attach_t> Wait(std::int64_t timeout_ns);
+
+ private:
+  using Entity::Entity;
+  std::size_t attached_ = 0;
+};
+
+// ---- sequences ---------------------------------------------------------------------------------
+
+/// Points a DDS sequence at memory the caller keeps alive until Write() returns.
+template <class Seq, class V>
+void BorrowSequence(Seq& seq, V& container) {
+  seq._buffer = container.data();
+  seq._length = static_cast<uint32_t>(container.size());
+  seq._maximum = static_cast<uint32_t>(container.size());
+  seq._release = false;
+}
+
+/// A read-only view of a received sequence.
+template <class Seq>
+auto View(const Seq& seq) {
+  using E = std::remove_pointer_t<decltype(seq._buffer)>;
+  return std::span<const E>(seq._buffer, seq._length);
+}
+
+/// Copies a std::string into a bounded IDL string (char[N]), truncating.
+template <std::size_t N>
+void CopyString(char (&dst)[N], std::string_view src) {
+  const std::size_t n = std::min(src.size(), N - 1);
+  std::memcpy(dst, src.data(), n);
+  dst[n] = '\0';
+}
+
+}  // namespace rover::dds

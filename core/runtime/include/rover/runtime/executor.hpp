@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// A single-threaded event loop: reader callbacks and timers, driven by the run clock.
+///
+/// Run-clock timers fire on the service's Clock (wall or sim/clock): under a simulator they
+/// follow simulated time, so a 8 Hz control loop runs 8 times per simulated second at any
+/// real-time factor. Wall timers are only for liveness (the heartbeat). Callbacks run on the
+/// thread that calls Spin(); an exception thrown by a callback is logged and counted, and the
+/// loop goes on (a bad sample must never take a service down).
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rover/base/clock.hpp"
+#include "rover/base/time.hpp"
+#include "rover/runtime/dds.hpp"
+
+namespace rover {
+
+class Executor {
+ public:
+  using TimerId = int;
+  enum class TimerBase { kRunClock, kWall };
+
+  /// `clock` must outlive the executor.
+  static Result<std::unique_ptr<Executor>> Create(const dds::Participant& participant,
+                                                  const Clock& clock);
+
+  /// Calls `callback` every `period` of the chosen clock. Timers that are not `always` run only
+  /// while the executor is active. Precondition: period > 0.
+  TimerId AddTimer(Duration period, std::function<void()> callback,
+                   TimerBase base = TimerBase::kRunClock, bool always = false);
+  void CancelTimer(TimerId id);
+
+  /// Calls `callback` for each sample the reader receives. The reader must outlive the
+  /// executor. Subscriptions that are not `always` are only served while active; samples that
+  /// arrive meanwhile wait in the reader's history.
+  template <class T>
+  Status Subscribe(dds::Reader<T>& reader, std::function<void(const dds::Sample<T>&)> callback,
+                   bool always = false) {
+    auto drain = [&reader, cb = std::move(callback), this]() {
+      for (auto& s : reader.Take()) Invoke(reader.topic_name(), [&] { cb(s); });
+    };
+    return AddSubscription(reader.handle(), reader.topic_name(), std::move(drain), always);
+  }
+
+  /// Active: every subscription and timer runs. Inactive: only `always` ones.
+  Status SetActive(bool active);
+  bool active() const { return active_; }
+
+  /// Waits at most `max_wait` (wall time) for work, then does all that is due.
+  void SpinOnce(Duration max_wait);
+  /// Spins until Stop().
+  void Spin();
+  /// Thread-safe; makes Spin() return.
+  void Stop();
+  bool stopped() const { return stop_.load(); }
+
+  /// Exceptions thrown by callbacks so far.
+  std::uint64_t callback_errors() const { return callback_errors_; }
+  const Clock& clock() const { return clock_; }
+
+  ~Executor();
+
+ private:
+  struct Timer {
+    TimerId id;
+    Duration period;
+    std::function<void()> callback;
+    TimerBase base;
+    bool always;
+    Time next{0};
+    bool armed = false;
+  };
+  struct Subscription {
+    dds_entity_t handle;
+    std::string topic;
+    std::function<void()> drain;
+    bool always;
+    bool attached = false;
+  };
+
+  Executor(const Clock& clock, dds::WaitSet ws, dds::GuardCondition guard);
+  Status AddSubscription(dds_entity_t handle, const std::string& topic,
+                         std::function<void()> drain, bool always);
+  void Invoke(const std::string& what, const std::function<void()>& fn);
+  void RunDueTimers();
+  Time TimerNow(const Timer& t) const;
+
+  const Clock& clock_;
+  WallClock wall_;
+  dds::WaitSet waitset_;
+  dds::GuardCondition guard_;
+  std::vector<Subscription> subscriptions_;
+  std::vector<Timer> timers_;
+  TimerId next_timer_id_ = 1;
+  bool active_ = false;
+  std::atomic<bool> stop_{false};
+  std::uint64_t callback_errors_ = 0;
+  Time last_run_clock_{0};
+};
+
+}  // namespace rover

@@ -1,0 +1,180 @@
+#pragma once
+/// @file
+/// The service base: every process of the stack is one Service run by RunServiceMain().
+///
+/// Lifecycle (after ROS 2 managed nodes, reduced to what the stack needs):
+///
+///   UNCONFIGURED --Configure--> INACTIVE --Activate--> ACTIVE --Deactivate--> INACTIVE
+///        any state --Shutdown--> FINALIZED
+///
+/// Configure declares, loads and validates the parameters, then calls OnConfigure (create
+/// readers and writers there). A service whose parameters are invalid stays UNCONFIGURED and
+/// refuses to activate, naming the bad parameter. Only while ACTIVE are its subscriptions and
+/// run-clock timers served. A heartbeat on sys/health reports the state once per wall second.
+///
+/// Command line of every service (environment variables in brackets, set by roverctl):
+///   --name NAME [ROVER_SERVICE_NAME]   instance name, the heartbeat key
+///   --domain N [ROVER_DOMAIN]           DDS domain id
+///   --clock wall|sim [ROVER_CLOCK]      run clock: wall time, or sim/clock from the simulator
+///   --params FILE ... [ROVER_PARAMS]    YAML parameter files (ROVER_PARAMS is ':'-separated)
+///   --set key=value ...                 overrides, applied after the files
+///   --validate                          load and validate parameters, then exit (no DDS)
+///   --help-params / --print-params      list declared / effective parameters
+/// Exit codes: 0 clean stop, 1 runtime failure, 2 bad configuration.
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rover/base/clock.hpp"
+#include "rover/base/params.hpp"
+#include "rover/base/status.hpp"
+#include "rover/runtime/dds.hpp"
+#include "rover/runtime/executor.hpp"
+
+namespace rover {
+
+enum class LifecycleState { kUnconfigured, kInactive, kActive, kFinalized };
+const char* LifecycleStateName(LifecycleState s);
+
+struct ServiceOptions {
+  std::string name;                      ///< instance name; defaults to the service kind
+  int domain = 0;                        ///< DDS domain id
+  std::string clock = "wall";            ///< "wall" or "sim"
+  std::vector<std::string> param_files;  ///< YAML files, applied in order
+  std::vector<std::string> overrides;    ///< key=value, applied after the files
+  double heartbeat_period_s = 1.0;       ///< wall seconds between heartbeats
+};
+
+/// Checks the options themselves (clock name, domain range, heartbeat period).
+Status ValidateOptions(const ServiceOptions& options);
+
+/// What a service uses at run time: its participant, clock, executor and topic helpers.
+class ServiceContext {
+ public:
+  /// Creates the DDS participant, the run clock (subscribing to sim/clock for "sim"), the
+  /// executor and the heartbeat writer.
+  static Result<std::unique_ptr<ServiceContext>> Create(const ServiceOptions& options);
+  ~ServiceContext();
+
+  const std::string& name() const { return name_; }
+  const dds::Participant& participant() const { return participant_; }
+  const Clock& clock() const { return *clock_; }
+  Executor& executor() { return *executor_; }
+  Time Now() const { return clock_->Now(); }
+
+  /// A writer; QoS from the topic catalog (or `profile` for a topic outside it).
+  template <class T>
+  Result<dds::Writer<T>> MakeWriter(const std::string& topic,
+                                    std::optional<dds::QosProfile> profile = std::nullopt) {
+    return dds::Writer<T>::Create(participant_, topic, profile);
+  }
+
+  /// Subscribes `callback` to a topic; the context owns the reader. `always` subscriptions are
+  /// served in every lifecycle state.
+  template <class T>
+  Status Subscribe(const std::string& topic, std::function<void(const dds::Sample<T>&)> callback,
+                   std::optional<dds::QosProfile> profile = std::nullopt, bool always = false) {
+    auto r = dds::Reader<T>::Create(participant_, topic, profile);
+    if (!r.ok()) return r.status();
+    auto holder = std::make_shared<dds::Reader<T>>(std::move(*r));
+    readers_.push_back(holder);
+    return executor_->Subscribe<T>(*holder, std::move(callback), always);
+  }
+
+  /// Stamps a header from the run clock with a per-frame-id sequence number.
+  void Stamp(rover_Header& header, std::string_view frame_id);
+
+  /// The service's own health, reported in every heartbeat.
+  void SetHealth(rover_SensorHealth health, std::string message);
+  void SetLifecycleState(LifecycleState state);
+  LifecycleState lifecycle_state() const { return state_; }
+  /// Sends a heartbeat now.
+  void PublishHeartbeat();
+
+ private:
+  ServiceContext() = default;
+
+  std::string name_;
+  dds::Participant participant_;
+  std::unique_ptr<Clock> clock_;
+  ManualClock* sim_clock_ = nullptr;  // == clock_ when simulated
+  std::vector<std::shared_ptr<void>> readers_;
+  std::unique_ptr<dds::Reader<rover_sim_Clock>> clock_reader_;
+  std::unique_ptr<Executor> executor_;
+  dds::Writer<rover_sys_Heartbeat> heartbeat_writer_;
+  dds::Writer<rover_sys_Event> event_writer_;
+  LifecycleState state_ = LifecycleState::kUnconfigured;
+  rover_SensorHealth health_ = rover_HEALTH_OK;
+  std::string health_message_;
+  std::uint64_t heartbeat_count_ = 0;
+  std::map<std::string, std::uint32_t, std::less<>> seq_;
+};
+
+/// Base class of every service. Override OnConfigure at least.
+class Service {
+ public:
+  /// `kind` names the service type (e.g. "smoke-dl"); it is the default instance name.
+  explicit Service(std::string kind) : kind_(std::move(kind)) {}
+  virtual ~Service() = default;
+  Service(const Service&) = delete;
+  Service& operator=(const Service&) = delete;
+
+  const std::string& kind() const { return kind_; }
+
+  /// Declare every parameter the service reads.
+  virtual void DeclareParameters(ParamSet& params) { (void)params; }
+  /// Read parameters, create readers, writers and timers. Parameters are already valid.
+  virtual Status OnConfigure(ServiceContext& ctx, const ParamSet& params) = 0;
+  virtual Status OnActivate(ServiceContext& ctx) {
+    (void)ctx;
+    return Status::Ok();
+  }
+  virtual Status OnDeactivate(ServiceContext& ctx) {
+    (void)ctx;
+    return Status::Ok();
+  }
+  virtual void OnShutdown(ServiceContext& ctx) { (void)ctx; }
+
+ private:
+  std::string kind_;
+};
+
+/// Declares the service's parameters into `params`, loads the option's files and overrides,
+/// and validates. Needs no DDS.
+Status LoadParameters(Service& service, const ServiceOptions& options, ParamSet* params);
+
+/// Drives one Service through its lifecycle and keeps the state machine honest.
+class Lifecycle {
+ public:
+  Lifecycle(Service& service, ServiceContext& ctx, ServiceOptions options);
+
+  LifecycleState state() const { return state_; }
+  /// The error of the last failed transition (empty when none failed).
+  const std::string& last_error() const { return last_error_; }
+
+  Status Configure();
+  Status Activate();
+  Status Deactivate();
+  Status Shutdown();
+  const ParamSet& params() const { return params_; }
+
+ private:
+  void Enter(LifecycleState s);
+  Status Fail(Status s);
+
+  Service& service_;
+  ServiceContext& ctx_;
+  ServiceOptions options_;
+  ParamSet params_;
+  LifecycleState state_ = LifecycleState::kUnconfigured;
+  std::string last_error_;
+};
+
+/// Parses the command line, configures and activates the service, spins until SIGINT or
+/// SIGTERM, then deactivates and shuts it down. Returns the process exit code.
+int RunServiceMain(Service& service, int argc, char** argv);
+
+}  // namespace rover

@@ -1,0 +1,114 @@
+#include "rover/runtime/dds.hpp"
+
+namespace rover::dds {
+
+Status DdsError(const std::string& what, dds_return_t rc) {
+  return Unavailable(what + " failed: " + dds_strretcode(rc));
+}
+
+Result<Participant> Participant::Create(dds_domainid_t domain) {
+  if (domain > 232) {
+    return InvalidArgument("DDS domain " + std::to_string(domain) +
+                           " is out of range [0, 232] (Cyclone's port mapping)");
+  }
+  const dds_entity_t h = dds_create_participant(domain, nullptr, nullptr);
+  if (h < 0) {
+    return DdsError("creating a participant on domain " + std::to_string(domain) +
+                        " (check CYCLONEDDS_URI)",
+                    h);
+  }
+  return Participant(h, domain);
+}
+
+Result<QosProfile> ResolveProfile(const std::string& topic, const char* type_name,
+                                  std::optional<QosProfile> requested) {
+  if (auto info = FindTopic(topic)) {
+    if (info->type_name != type_name) {
+      return InvalidArgument("topic '" + topic + "' carries " + std::string(info->type_name) +
+                             " in the catalog, not " + type_name);
+    }
+    if (requested && *requested != info->profile) {
+      return InvalidArgument("topic '" + topic + "' uses QoS profile '" +
+                             QosProfileName(info->profile) + "' in the catalog, not '" +
+                             QosProfileName(*requested) + "'");
+    }
+    return info->profile;
+  }
+  if (!requested) {
+    return NotFound("topic '" + topic +
+                    "' is not in the topic catalog; give a QoS profile for it explicitly");
+  }
+  return *requested;
+}
+
+namespace internal {
+
+Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
+                                 const dds_topic_descriptor_t* desc, QosProfile profile) {
+  QosPtr qos = MakeQos(profile);
+  const dds_entity_t t = dds_create_topic(p.handle(), desc, name.c_str(), qos.get(), nullptr);
+  if (t < 0) return DdsError("creating topic '" + name + "'", t);
+  return t;
+}
+
+Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
+                                    bool writer) {
+  QosPtr qos = MakeQos(profile);
+  const dds_entity_t e = writer ? dds_create_writer(p.handle(), topic, qos.get(), nullptr)
+                                : dds_create_reader(p.handle(), topic, qos.get(), nullptr);
+  if (e < 0) return DdsError(writer ? "creating a writer" : "creating a reader", e);
+  if (!writer) {
+    const dds_return_t rc = dds_set_status_mask(e, DDS_DATA_AVAILABLE_STATUS);
+    if (rc < 0) {
+      dds_delete(e);
+      return DdsError("setting the reader status mask", rc);
+    }
+  }
+  return e;
+}
+
+}  // namespace internal
+
+Result<GuardCondition> GuardCondition::Create(const Participant& p) {
+  const dds_entity_t g = dds_create_guardcondition(p.handle());
+  if (g < 0) return DdsError("creating a guard condition", g);
+  return GuardCondition(g);
+}
+
+void GuardCondition::Trigger() { dds_set_guardcondition(handle_, true); }
+
+bool GuardCondition::TakeTriggered() {
+  bool triggered = false;
+  dds_take_guardcondition(handle_, &triggered);
+  return triggered;
+}
+
+Result<WaitSet> WaitSet::Create(const Participant& p) {
+  const dds_entity_t w = dds_create_waitset(p.handle());
+  if (w < 0) return DdsError("creating a waitset", w);
+  return WaitSet(w);
+}
+
+Status WaitSet::Attach(dds_entity_t entity, dds_attach_t token) {
+  const dds_return_t rc = dds_waitset_attach(handle_, entity, token);
+  if (rc < 0) return DdsError("attaching to a waitset", rc);
+  ++attached_;
+  return Status::Ok();
+}
+
+Status WaitSet::Detach(dds_entity_t entity) {
+  const dds_return_t rc = dds_waitset_detach(handle_, entity);
+  if (rc < 0) return DdsError("detaching from a waitset", rc);
+  --attached_;
+  return Status::Ok();
+}
+
+std::vector<dds_attach_t> WaitSet::Wait(std::int64_t timeout_ns) {
+  std::vector<dds_attach_t> out(attached_ + 1);
+  const dds_return_t n =
+      dds_waitset_wait(handle_, out.data(), out.size(), timeout_ns < 0 ? 0 : timeout_ns);
+  out.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  return out;
+}
+
+}  // namespace rover::dds

@@ -1,0 +1,161 @@
+#include "rover/runtime/executor.hpp"
+
+#include <algorithm>
+#include <exception>
+
+#include "rover/base/log.hpp"
+
+namespace rover {
+namespace {
+constexpr dds_attach_t kGuardToken = -1;
+// Under a simulated clock the loop cannot sleep until a run-clock deadline (time moves only when
+// sim/clock samples arrive, and they wake the loop); it still wakes this often to notice stops.
+constexpr Duration kMaxIdleWait = std::chrono::milliseconds(200);
+}  // namespace
+
+Result<std::unique_ptr<Executor>> Executor::Create(const dds::Participant& participant,
+                                                   const Clock& clock) {
+  auto ws = dds::WaitSet::Create(participant);
+  if (!ws.ok()) return ws.status();
+  auto guard = dds::GuardCondition::Create(participant);
+  if (!guard.ok()) return guard.status();
+  std::unique_ptr<Executor> e(new Executor(clock, std::move(*ws), std::move(*guard)));
+  ROVER_RETURN_IF_ERROR(e->waitset_.Attach(e->guard_.handle(), kGuardToken));
+  return e;
+}
+
+Executor::Executor(const Clock& clock, dds::WaitSet ws, dds::GuardCondition guard)
+    : clock_(clock), waitset_(std::move(ws)), guard_(std::move(guard)) {}
+
+Executor::~Executor() = default;
+
+Executor::TimerId Executor::AddTimer(Duration period, std::function<void()> callback,
+                                     TimerBase base, bool always) {
+  ROVER_DEMAND(period.count() > 0);
+  Timer t{next_timer_id_++, period, std::move(callback), base, always};
+  timers_.push_back(std::move(t));
+  return timers_.back().id;
+}
+
+void Executor::CancelTimer(TimerId id) {
+  timers_.erase(std::remove_if(timers_.begin(), timers_.end(),
+                               [id](const Timer& t) { return t.id == id; }),
+                timers_.end());
+}
+
+Status Executor::AddSubscription(dds_entity_t handle, const std::string& topic,
+                                 std::function<void()> drain, bool always) {
+  Subscription s{handle, topic, std::move(drain), always};
+  if (always || active_) {
+    ROVER_RETURN_IF_ERROR(
+        waitset_.Attach(handle, static_cast<dds_attach_t>(subscriptions_.size())));
+    s.attached = true;
+  }
+  subscriptions_.push_back(std::move(s));
+  return Status::Ok();
+}
+
+Status Executor::SetActive(bool active) {
+  active_ = active;
+  for (std::size_t i = 0; i < subscriptions_.size(); ++i) {
+    Subscription& s = subscriptions_[i];
+    if (s.always) continue;
+    if (active && !s.attached) {
+      ROVER_RETURN_IF_ERROR(waitset_.Attach(s.handle, static_cast<dds_attach_t>(i)));
+      s.attached = true;
+    } else if (!active && s.attached) {
+      ROVER_RETURN_IF_ERROR(waitset_.Detach(s.handle));
+      s.attached = false;
+    }
+  }
+  for (Timer& t : timers_) {
+    if (!t.always) t.armed = false;  // re-armed from "now" on the next run
+  }
+  return Status::Ok();
+}
+
+void Executor::Invoke(const std::string& what, const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    ++callback_errors_;
+    log::Error("callback threw; sample ignored", {{"source", what}, {"error", e.what()}});
+  } catch (...) {
+    ++callback_errors_;
+    log::Error("callback threw a non-standard exception; sample ignored", {{"source", what}});
+  }
+}
+
+Time Executor::TimerNow(const Timer& t) const {
+  return t.base == TimerBase::kWall ? wall_.Now() : clock_.Now();
+}
+
+void Executor::RunDueTimers() {
+  const Time run_now = clock_.Now();
+  // A simulator reset moves the run clock backwards: re-arm run-clock timers from the new time.
+  const bool went_back = run_now < last_run_clock_;
+  last_run_clock_ = run_now;
+  // Copy ids: callbacks may add or cancel timers.
+  std::vector<TimerId> ids;
+  ids.reserve(timers_.size());
+  for (const Timer& t : timers_) ids.push_back(t.id);
+  for (TimerId id : ids) {
+    auto it = std::find_if(timers_.begin(), timers_.end(), [id](const Timer& t) { return t.id == id; });
+    if (it == timers_.end()) continue;
+    if (!it->always && !active_) continue;
+    if (it->base == TimerBase::kRunClock && !clock_.valid()) continue;
+    const Time now = TimerNow(*it);
+    if (!it->armed || (went_back && it->base == TimerBase::kRunClock)) {
+      it->next = now + it->period;
+      it->armed = true;
+      continue;
+    }
+    if (now < it->next) continue;
+    // Fire once, even if several periods were missed; keep the phase when not overrun.
+    it->next = it->next + it->period;
+    if (it->next <= now) it->next = now + it->period;
+    auto callback = it->callback;  // the timer may be cancelled by its own callback
+    Invoke("timer", callback);
+  }
+}
+
+void Executor::SpinOnce(Duration max_wait) {
+  // How long may we sleep? Until the earliest wall-based deadline, capped by max_wait.
+  Duration wait = max_wait;
+  const Time wall_now = wall_.Now();
+  for (const Timer& t : timers_) {
+    if (!t.always && !active_) continue;
+    if (!t.armed) {
+      wait = Duration::zero();
+      break;
+    }
+    const bool wall_based = t.base == TimerBase::kWall || !clock_.simulated();
+    if (wall_based) {
+      const Time now = t.base == TimerBase::kWall ? wall_now : clock_.Now();
+      wait = std::min(wait, std::max(Duration::zero(), t.next - now));
+    }
+  }
+  if (clock_.simulated()) wait = std::min(wait, kMaxIdleWait);
+
+  const auto tokens = waitset_.Wait(wait.count());
+  for (dds_attach_t token : tokens) {
+    if (token == kGuardToken) {
+      guard_.TakeTriggered();
+      continue;
+    }
+    const auto idx = static_cast<std::size_t>(token);
+    if (idx < subscriptions_.size() && subscriptions_[idx].attached) subscriptions_[idx].drain();
+  }
+  RunDueTimers();
+}
+
+void Executor::Spin() {
+  while (!stop_.load()) SpinOnce(std::chrono::seconds(1));
+}
+
+void Executor::Stop() {
+  stop_.store(true);
+  guard_.Trigger();
+}
+
+}  // namespace rover

@@ -1,0 +1,329 @@
+#include "rover/runtime/service.hpp"
+
+#include <CLI/CLI.hpp>
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "rover/base/log.hpp"
+
+namespace rover {
+
+const char* LifecycleStateName(LifecycleState s) {
+  switch (s) {
+    case LifecycleState::kUnconfigured: return "unconfigured";
+    case LifecycleState::kInactive: return "inactive";
+    case LifecycleState::kActive: return "active";
+    case LifecycleState::kFinalized: return "finalized";
+  }
+  return "?";
+}
+
+namespace {
+rover_sys_LifecycleState ToIdl(LifecycleState s) {
+  switch (s) {
+    case LifecycleState::kUnconfigured: return rover_sys_LIFECYCLE_UNCONFIGURED;
+    case LifecycleState::kInactive: return rover_sys_LIFECYCLE_INACTIVE;
+    case LifecycleState::kActive: return rover_sys_LIFECYCLE_ACTIVE;
+    case LifecycleState::kFinalized: return rover_sys_LIFECYCLE_FINALIZED;
+  }
+  return rover_sys_LIFECYCLE_ERROR;
+}
+
+rover_sys_Severity ToSeverity(log::Level l) {
+  switch (l) {
+    case log::Level::kDebug: return rover_sys_SEVERITY_DEBUG;
+    case log::Level::kInfo: return rover_sys_SEVERITY_INFO;
+    case log::Level::kWarning: return rover_sys_SEVERITY_WARNING;
+    case log::Level::kError: return rover_sys_SEVERITY_ERROR;
+  }
+  return rover_sys_SEVERITY_ERROR;
+}
+}  // namespace
+
+Status ValidateOptions(const ServiceOptions& o) {
+  if (o.clock != "wall" && o.clock != "sim") {
+    return InvalidArgument("--clock: '" + o.clock + "' is not one of: wall, sim");
+  }
+  if (o.domain < 0 || o.domain > 232) {
+    return InvalidArgument("--domain: " + std::to_string(o.domain) +
+                           " is out of range [0, 232]");
+  }
+  if (!(o.heartbeat_period_s > 0.0)) {
+    return InvalidArgument("heartbeat period must be > 0 s");
+  }
+  return Status::Ok();
+}
+
+// ---- ServiceContext ----------------------------------------------------------------------------
+
+Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOptions& options) {
+  ROVER_RETURN_IF_ERROR(ValidateOptions(options));
+  std::unique_ptr<ServiceContext> ctx(new ServiceContext());
+  ctx->name_ = options.name;
+  auto p = dds::Participant::Create(options.domain);
+  if (!p.ok()) return p.status();
+  ctx->participant_ = std::move(*p);
+
+  if (options.clock == "sim") {
+    auto clock = std::make_unique<ManualClock>(Time{0}, /*valid=*/false);
+    ctx->sim_clock_ = clock.get();
+    ctx->clock_ = std::move(clock);
+  } else {
+    ctx->clock_ = std::make_unique<WallClock>();
+  }
+  auto exec = Executor::Create(ctx->participant_, *ctx->clock_);
+  if (!exec.ok()) return exec.status();
+  ctx->executor_ = std::move(*exec);
+
+  if (ctx->sim_clock_ != nullptr) {
+    auto r = dds::Reader<rover_sim_Clock>::Create(ctx->participant_, "sim/clock");
+    if (!r.ok()) return r.status();
+    ctx->clock_reader_ = std::make_unique<dds::Reader<rover_sim_Clock>>(std::move(*r));
+    ManualClock* sim = ctx->sim_clock_;
+    ROVER_RETURN_IF_ERROR(ctx->executor_->Subscribe<rover_sim_Clock>(
+        *ctx->clock_reader_,
+        [sim](const dds::Sample<rover_sim_Clock>& s) { sim->Set(Time{s->sim_time_ns}); },
+        /*always=*/true));
+  }
+
+  auto hb = dds::Writer<rover_sys_Heartbeat>::Create(ctx->participant_, "sys/health");
+  if (!hb.ok()) return hb.status();
+  ctx->heartbeat_writer_ = std::move(*hb);
+  auto ev = dds::Writer<rover_sys_Event>::Create(ctx->participant_, "sys/event");
+  if (!ev.ok()) return ev.status();
+  ctx->event_writer_ = std::move(*ev);
+
+  ServiceContext* raw = ctx.get();
+  ctx->executor_->AddTimer(Seconds(options.heartbeat_period_s),
+                           [raw] { raw->PublishHeartbeat(); }, Executor::TimerBase::kWall,
+                           /*always=*/true);
+  // Warnings and errors also go out on sys/event for operators and the run report.
+  log::SetSink(
+      [raw](log::Level level, std::string_view message, std::string_view fields) {
+        rover_sys_Event e{};
+        raw->Stamp(e.header, "");
+        dds::CopyString(e.service, raw->name_);
+        e.severity = ToSeverity(level);
+        dds::CopyString(e.text, "msg=\"" + std::string(message) + "\"" + std::string(fields));
+        (void)raw->event_writer_.Write(e);
+      },
+      log::Level::kWarning);
+  return ctx;
+}
+
+ServiceContext::~ServiceContext() { log::SetSink(nullptr, log::Level::kError); }
+
+void ServiceContext::Stamp(rover_Header& header, std::string_view frame_id) {
+  header.stamp_ns = clock_->Now().ns;
+  dds::CopyString(header.frame_id, frame_id);
+  auto it = seq_.find(frame_id);
+  if (it == seq_.end()) it = seq_.emplace(std::string(frame_id), 0).first;
+  header.seq = ++it->second;
+}
+
+void ServiceContext::SetHealth(rover_SensorHealth health, std::string message) {
+  const bool changed = health != health_ || message != health_message_;
+  health_ = health;
+  health_message_ = std::move(message);
+  if (changed) PublishHeartbeat();
+}
+
+void ServiceContext::SetLifecycleState(LifecycleState state) {
+  state_ = state;
+  PublishHeartbeat();
+}
+
+void ServiceContext::PublishHeartbeat() {
+  rover_sys_Heartbeat hb{};
+  Stamp(hb.header, "");
+  dds::CopyString(hb.service, name_);
+  hb.pid = static_cast<int32_t>(getpid());
+  hb.state = ToIdl(state_);
+  hb.health = health_;
+  hb.count = ++heartbeat_count_;
+  hb.wall_time_ns = WallNow().ns;
+  dds::CopyString(hb.message, health_message_);
+  (void)heartbeat_writer_.Write(hb);
+}
+
+// ---- parameters and lifecycle ------------------------------------------------------------------
+
+Status LoadParameters(Service& service, const ServiceOptions& options, ParamSet* params) {
+  *params = ParamSet(options.name.empty() ? service.kind() : options.name);
+  service.DeclareParameters(*params);
+  for (const auto& f : options.param_files) ROVER_RETURN_IF_ERROR(params->LoadYamlFile(f));
+  for (const auto& o : options.overrides) ROVER_RETURN_IF_ERROR(params->SetFromString(o));
+  return params->Validate();
+}
+
+Lifecycle::Lifecycle(Service& service, ServiceContext& ctx, ServiceOptions options)
+    : service_(service), ctx_(ctx), options_(std::move(options)) {}
+
+void Lifecycle::Enter(LifecycleState s) {
+  state_ = s;
+  ctx_.SetLifecycleState(s);
+}
+
+Status Lifecycle::Fail(Status s) {
+  last_error_ = s.message();
+  return s;
+}
+
+Status Lifecycle::Configure() {
+  if (state_ != LifecycleState::kUnconfigured) {
+    return Fail(FailedPrecondition("cannot configure '" + ctx_.name() + "' in state " +
+                                   LifecycleStateName(state_)));
+  }
+  Status s = LoadParameters(service_, options_, &params_);
+  if (!s.ok()) return Fail(s);
+  s = service_.OnConfigure(ctx_, params_);
+  if (!s.ok()) return Fail(s.WithPrefix("configure"));
+  last_error_.clear();
+  Enter(LifecycleState::kInactive);
+  return Status::Ok();
+}
+
+Status Lifecycle::Activate() {
+  if (state_ == LifecycleState::kUnconfigured) {
+    return Fail(FailedPrecondition(
+        "cannot activate '" + ctx_.name() + "': not configured" +
+        (last_error_.empty() ? std::string() : " (" + last_error_ + ")")));
+  }
+  if (state_ != LifecycleState::kInactive) {
+    return Fail(FailedPrecondition("cannot activate '" + ctx_.name() + "' in state " +
+                                   LifecycleStateName(state_)));
+  }
+  Status s = service_.OnActivate(ctx_);
+  if (!s.ok()) return Fail(s.WithPrefix("activate"));
+  s = ctx_.executor().SetActive(true);
+  if (!s.ok()) return Fail(s);
+  Enter(LifecycleState::kActive);
+  return Status::Ok();
+}
+
+Status Lifecycle::Deactivate() {
+  if (state_ != LifecycleState::kActive) {
+    return Fail(FailedPrecondition("cannot deactivate '" + ctx_.name() + "' in state " +
+                                   LifecycleStateName(state_)));
+  }
+  Status s = ctx_.executor().SetActive(false);
+  Status t = service_.OnDeactivate(ctx_);
+  Enter(LifecycleState::kInactive);
+  if (!s.ok()) return Fail(s);
+  if (!t.ok()) return Fail(t.WithPrefix("deactivate"));
+  return Status::Ok();
+}
+
+Status Lifecycle::Shutdown() {
+  if (state_ == LifecycleState::kFinalized) return Status::Ok();
+  if (state_ == LifecycleState::kActive) (void)Deactivate();
+  if (state_ == LifecycleState::kInactive) service_.OnShutdown(ctx_);
+  Enter(LifecycleState::kFinalized);
+  return Status::Ok();
+}
+
+// ---- main --------------------------------------------------------------------------------------
+
+namespace {
+
+std::vector<std::string> SplitColon(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ':')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+}  // namespace
+
+int RunServiceMain(Service& service, int argc, char** argv) {
+  ServiceOptions options;
+  if (const char* e = std::getenv("ROVER_SERVICE_NAME")) options.name = e;
+  if (const char* e = std::getenv("ROVER_DOMAIN")) options.domain = std::atoi(e);
+  if (const char* e = std::getenv("ROVER_CLOCK")) options.clock = e;
+  if (const char* e = std::getenv("ROVER_PARAMS")) options.param_files = SplitColon(e);
+
+  CLI::App app{"rover service '" + service.kind() + "'"};
+  bool validate_only = false, help_params = false, print_params = false;
+  app.add_option("--name", options.name, "instance name (heartbeat key)");
+  app.add_option("--domain", options.domain, "DDS domain id");
+  app.add_option("--clock", options.clock, "run clock: wall or sim");
+  app.add_option("--params", options.param_files, "YAML parameter files");
+  app.add_option("--set", options.overrides, "parameter override key=value");
+  app.add_flag("--validate", validate_only, "validate the parameters and exit");
+  app.add_flag("--help-params", help_params, "describe the parameters and exit");
+  app.add_flag("--print-params", print_params, "print the effective parameters at start");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  if (options.name.empty()) options.name = service.kind();
+  log::InitFromEnvironment(options.name);
+
+  ParamSet params;
+  if (help_params) {
+    params = ParamSet(options.name);
+    service.DeclareParameters(params);
+    std::cout << "Parameters of " << service.kind() << ":\n" << params.DescribeAll();
+    return 0;
+  }
+  Status s = ValidateOptions(options);
+  if (s.ok()) s = LoadParameters(service, options, &params);
+  if (!s.ok()) {
+    std::cerr << options.name << ": error: " << s.message() << "\n";
+    return 2;
+  }
+  if (validate_only) return 0;
+  if (print_params) std::cerr << params.DumpYaml();
+
+  // Block SIGINT/SIGTERM in every thread (DDS threads inherit this mask) and wait for them in
+  // one dedicated thread, which stops the executor.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+
+  auto ctx = ServiceContext::Create(options);
+  if (!ctx.ok()) {
+    std::cerr << options.name << ": error: " << ctx.status().message() << "\n";
+    return 1;
+  }
+  Executor& exec = (*ctx)->executor();
+  std::thread signal_thread([&set, &exec] {
+    int sig = 0;
+    sigwait(&set, &sig);
+    if (sig != 0) exec.Stop();
+  });
+
+  Lifecycle lifecycle(service, **ctx, options);
+  int rc = 0;
+  s = lifecycle.Configure();
+  if (s.ok()) s = lifecycle.Activate();
+  if (!s.ok()) {
+    std::cerr << options.name << ": error: " << s.message() << "\n";
+    log::Error("failed to start", {{"error", s.message()}});
+    rc = s.code() == StatusCode::kInvalidArgument || s.code() == StatusCode::kOutOfRange ? 2 : 1;
+  } else {
+    log::Info("active", {{"domain", options.domain}, {"clock", options.clock}});
+    exec.Spin();
+    log::Info("stopping");
+  }
+  (void)lifecycle.Shutdown();
+  // Wake the signal thread if no signal came.
+  pthread_kill(signal_thread.native_handle(), SIGTERM);
+  signal_thread.join();
+  return rc;
+}
+
+}  // namespace rover

@@ -1,0 +1,173 @@
+#include "rover/runtime/dds.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <vector>
+
+#include "rover/testing/test_support.hpp"
+
+namespace rover::dds {
+namespace {
+
+class DdsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    lease_ = testing::IsolatedDomain();
+    auto p = Participant::Create(lease_.domain());
+    ASSERT_TRUE(p.ok()) << p.status().message();
+    participant_ = std::move(*p);
+  }
+  DomainLease lease_;
+  Participant participant_;
+};
+
+TEST_F(DdsTest, ParticipantRejectsBadDomain) {
+  auto p = Participant::Create(400);
+  ASSERT_FALSE(p.ok());
+  EXPECT_NE(p.status().message().find("out of range"), std::string::npos);
+}
+
+TEST_F(DdsTest, WriterAndReaderRoundTripWithSequences) {
+  auto w = Writer<rover_hw_CameraFrame>::Create(participant_, "hw/camera_frame");
+  ASSERT_TRUE(w.ok()) << w.status().message();
+  auto r = Reader<rover_hw_CameraFrame>::Create(participant_, "hw/camera_frame");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(w->profile(), QosProfile::kState);
+  ASSERT_TRUE(testing::WaitFor([&] { return w->MatchedReaders() == 1; }));
+
+  std::vector<uint8_t> left(64 * 32), right(64 * 32);
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    left[i] = static_cast<uint8_t>(i);
+    right[i] = static_cast<uint8_t>(255 - i % 256);
+  }
+  rover_hw_CameraFrame f{};
+  f.request_id = 42;
+  f.camera = rover_CAMERA_NAVCAM;
+  f.width = 64;
+  f.height = 32;
+  CopyString(f.header.frame_id, "navcam_left");
+  BorrowSequence(f.left, left);
+  BorrowSequence(f.right, right);
+  ASSERT_TRUE(w->Write(f).ok());
+
+  std::vector<Sample<rover_hw_CameraFrame>> got;
+  ASSERT_TRUE(testing::WaitFor([&] {
+    for (auto& s : r->Take()) got.push_back(std::move(s));
+    return !got.empty();
+  }));
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0]->request_id, 42u);
+  EXPECT_STREQ(got[0]->header.frame_id, "navcam_left");
+  auto l = View(got[0]->left);
+  auto rr = View(got[0]->right);
+  ASSERT_EQ(l.size(), left.size());
+  EXPECT_TRUE(std::equal(l.begin(), l.end(), left.begin()));
+  EXPECT_TRUE(std::equal(rr.begin(), rr.end(), right.begin()));
+}
+
+TEST_F(DdsTest, CatalogDecidesTypeAndQos) {
+  // Wrong type for a catalog topic.
+  auto bad = Writer<rover_ddl_Imu>::Create(participant_, "dl/pose");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(),
+            "topic 'dl/pose' carries rover_dl_PoseEstimate in the catalog, not rover_ddl_Imu");
+  // A profile contradicting the catalog.
+  auto wrong_qos = Reader<rover_dl_PoseEstimate>::Create(participant_, "dl/pose", QosProfile::kStream);
+  ASSERT_FALSE(wrong_qos.ok());
+  EXPECT_NE(wrong_qos.status().message().find("uses QoS profile 'state'"), std::string::npos);
+  // A topic outside the catalog needs an explicit profile.
+  auto unknown = Writer<rover_ddl_Imu>::Create(participant_, "test/imu");
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.status().code(), StatusCode::kNotFound);
+  auto explicit_ok = Writer<rover_ddl_Imu>::Create(participant_, "test/imu", QosProfile::kStream);
+  EXPECT_TRUE(explicit_ok.ok());
+}
+
+TEST_F(DdsTest, LatchedStatusReachesLateJoiner) {
+  auto w = Writer<rover_dl_DriveStatus>::Create(participant_, "dl/drive_status");
+  ASSERT_TRUE(w.ok());
+  rover_dl_DriveStatus s{};
+  s.command_id = 7;
+  ASSERT_TRUE(w->Write(s).ok());
+  auto r = Reader<rover_dl_DriveStatus>::Create(participant_, "dl/drive_status");
+  ASSERT_TRUE(r.ok());
+  std::vector<Sample<rover_dl_DriveStatus>> got;
+  ASSERT_TRUE(testing::WaitFor([&] {
+    for (auto& x : r->Take()) got.push_back(std::move(x));
+    return !got.empty();
+  }));
+  EXPECT_EQ(got[0]->command_id, 7u);
+}
+
+// A seam that drops every second sample and adds 1 to command_id of the others proves that
+// writers route samples through it.
+class EveryOtherSeam : public TopicSeam {
+ public:
+  dds_return_t OnWrite(dds_entity_t writer, const void* sample,
+                       const dds_topic_descriptor_t*) override {
+    if (++n_ % 2 == 0) return DDS_RETCODE_OK;
+    rover_dl_DriveCommand copy = *static_cast<const rover_dl_DriveCommand*>(sample);
+    copy.command_id += 1000;
+    return dds_write(writer, &copy);
+  }
+  bool OnRead(void* sample, const dds_topic_descriptor_t*) override {
+    static_cast<rover_dl_DriveCommand*>(sample)->distance *= 2;
+    return true;
+  }
+  std::atomic<int> n_{0};
+};
+
+TEST_F(DdsTest, FaultSeamSeesEveryWriteAndRead) {
+  auto seam = std::make_shared<EveryOtherSeam>();
+  InstallSeamFactory([seam](const std::string& topic, Direction) -> std::shared_ptr<TopicSeam> {
+    return topic == "dl/drive_command" ? seam : nullptr;
+  });
+  auto w = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  InstallSeamFactory(nullptr);
+  ASSERT_TRUE(w.ok() && r.ok());
+  ASSERT_TRUE(testing::WaitFor([&] { return w->MatchedReaders() == 1; }));
+  for (uint32_t i = 1; i <= 4; ++i) {
+    rover_dl_DriveCommand c{};
+    c.command_id = i;
+    c.distance = 1.0;
+    ASSERT_TRUE(w->Write(c).ok());
+  }
+  std::vector<Sample<rover_dl_DriveCommand>> got;
+  ASSERT_TRUE(testing::WaitFor([&] {
+    for (auto& x : r->Take()) got.push_back(std::move(x));
+    return got.size() >= 2;
+  }));
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0]->command_id, 1001u);
+  EXPECT_EQ(got[1]->command_id, 1003u);
+  EXPECT_EQ(got[0]->distance, 2.0);
+}
+
+TEST_F(DdsTest, WaitSetWakesOnGuardAndData) {
+  auto ws = WaitSet::Create(participant_);
+  auto g = GuardCondition::Create(participant_);
+  ASSERT_TRUE(ws.ok() && g.ok());
+  ASSERT_TRUE(ws->Attach(g->handle(), 99).ok());
+  EXPECT_TRUE(ws->Wait(DDS_MSECS(10)).empty());
+  g->Trigger();
+  auto tokens = ws->Wait(DDS_SECS(5));
+  ASSERT_EQ(tokens.size(), 1u);
+  EXPECT_EQ(tokens[0], 99);
+  EXPECT_TRUE(g->TakeTriggered());
+  EXPECT_TRUE(ws->Detach(g->handle()).ok());
+  EXPECT_FALSE(ws->Detach(g->handle()).ok());  // not attached any more: an error, not a crash
+}
+
+TEST(DomainLease, ExclusivePerMachine) {
+  auto a = DomainLease::AcquireFree(200, 201);
+  ASSERT_TRUE(a.ok());
+  auto b = DomainLease::Acquire(a->domain());
+  EXPECT_EQ(b.status().code(), StatusCode::kBusy);
+  EXPECT_FALSE(DomainLease::Acquire(999).ok());
+  EXPECT_FALSE(DomainLease::AcquireFree(5, 1).ok());
+}
+
+}  // namespace
+}  // namespace rover::dds

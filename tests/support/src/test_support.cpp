@@ -1,0 +1,56 @@
+#include "rover/testing/test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace rover::testing {
+
+std::string SourceDir() {
+  if (const char* s = std::getenv("ROVER_SOURCE_DIR")) return s;
+  return ROVER_SOURCE_DIR;
+}
+std::string BinaryDir() { return ROVER_BINARY_DIR; }
+std::string BinDir() {
+  if (const char* s = std::getenv("ROVER_BIN_DIR")) return s;
+  return BinaryDir() + "/bin";
+}
+
+dds::DomainLease IsolatedDomain() {
+  setenv("CYCLONEDDS_URI", dds::LoopbackConfigUri(SourceDir()).c_str(), 1);
+  auto lease = dds::DomainLease::AcquireFree();
+  if (!lease.ok()) {
+    ADD_FAILURE() << lease.status().message();
+    return {};
+  }
+  return std::move(*lease);
+}
+
+std::string MakeTempDir(const std::string& prefix) {
+  std::string templ = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  char* p = mkdtemp(templ.data());
+  return p ? std::string(p) : std::string();
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool WaitFor(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return condition();
+}
+
+}  // namespace rover::testing
