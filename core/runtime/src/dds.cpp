@@ -1,5 +1,7 @@
 #include "rover/runtime/dds.hpp"
 
+#include <cstdlib>
+
 namespace rover::dds {
 
 Status DdsError(const std::string& what, dds_return_t rc) {
@@ -20,8 +22,30 @@ Result<Participant> Participant::Create(dds_domainid_t domain) {
   return Participant(h, domain);
 }
 
+namespace {
+// ROVER_QOS_OVERRIDES="topic=profile,topic=profile" (set by roverctl from x-rover.qos).
+std::optional<QosProfile> OverrideFor(const std::string& topic) {
+  const char* env = std::getenv("ROVER_QOS_OVERRIDES");
+  if (env == nullptr) return std::nullopt;
+  const std::string all = env;
+  std::size_t pos = 0;
+  while (pos <= all.size()) {
+    const std::size_t end = std::min(all.find(',', pos), all.size());
+    const std::string item = all.substr(pos, end - pos);
+    const std::size_t eq = item.find('=');
+    if (eq != std::string::npos && item.substr(0, eq) == topic) {
+      auto p = ParseQosProfile(item.substr(eq + 1));
+      if (p.ok()) return *p;
+    }
+    pos = end + 1;
+  }
+  return std::nullopt;
+}
+}  // namespace
+
 Result<QosProfile> ResolveProfile(const std::string& topic, const char* type_name,
                                   std::optional<QosProfile> requested) {
+  if (auto o = OverrideFor(topic)) return *o;
   if (auto info = FindTopic(topic)) {
     if (info->type_name != type_name) {
       return InvalidArgument("topic '" + topic + "' carries " + std::string(info->type_name) +

@@ -1,0 +1,96 @@
+#pragma once
+/// @file
+/// The compose-file subset roverctl understands, and its parser.
+///
+/// A compose file is a Compose Specification file (so `docker-compose config` accepts it, and
+/// the same file runs in containers) whose services roverctl runs natively as supervised
+/// processes. Supported service keys: command, environment, depends_on (list, or map with
+/// condition service_started | service_healthy | service_completed_successfully), restart
+/// (no | always | on-failure[:N] | unless-stopped), stop_grace_period; image, build, network_mode,
+/// working_dir, volumes, container_name and x-* keys are accepted (working_dir is honoured, the
+/// others only matter in containers). Project settings live under the top-level `x-rover` key:
+///
+///   x-rover:
+///     project: smoke             # name (default: file name up to the first '.')
+///     domain: 42                 # DDS domain (default: a free one is leased)
+///     clock: wall                # wall | sim
+///     startup_timeout_s: 30      # wait for service_healthy dependencies
+///     heartbeat_timeout_s: 5     # a heartbeat older than this marks a service stale in `ps`
+///     qos: {dl/pose: stream}     # per-topic QoS profile overrides
+///     sim: {...}                 # simulator settings, passed to the simulator as ROVER_SIM_*
+///     faults: [...]              # fault injection (list of maps; see docs/faults.md)
+///
+/// Every error names the file, line and key: "deploy/x.yaml:12: services.loco: unknown key
+/// 'comand' (did you mean 'command'?)".
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+
+namespace rover::deploy {
+
+enum class DependencyCondition { kStarted, kHealthy, kCompletedSuccessfully };
+const char* DependencyConditionName(DependencyCondition c);
+
+struct Dependency {
+  std::string service;
+  DependencyCondition condition = DependencyCondition::kStarted;
+  int line = 0;
+};
+
+enum class RestartPolicy { kNo, kAlways, kOnFailure, kUnlessStopped };
+const char* RestartPolicyName(RestartPolicy p);
+
+struct ServiceSpec {
+  std::string name;
+  int line = 0;          ///< line of the service's key
+  int command_line = 0;  ///< line of its `command`
+  std::vector<std::string> command;
+  std::map<std::string, std::string> environment;
+  std::vector<Dependency> depends_on;
+  RestartPolicy restart = RestartPolicy::kNo;
+  int max_restarts = -1;  ///< on-failure:N; -1 = unlimited
+  double stop_grace_s = 10.0;
+  std::string working_dir;
+};
+
+struct FaultSpec {
+  std::map<std::string, std::string> fields;  ///< raw key/value pairs, validated by the fault layer
+  int line = 0;
+};
+
+struct RoverSettings {
+  std::string project;
+  std::optional<int> domain;
+  std::string clock = "wall";
+  double startup_timeout_s = 30.0;
+  double heartbeat_timeout_s = 5.0;
+  std::map<std::string, std::string> qos;  ///< topic -> profile name (validated)
+  std::map<std::string, std::string> sim;  ///< flattened simulator settings
+  std::vector<FaultSpec> faults;
+};
+
+struct ComposeProject {
+  std::string file;
+  RoverSettings rover;
+  /// Services in a start order that respects depends_on (dependencies first).
+  std::vector<ServiceSpec> services;
+  const ServiceSpec* Find(const std::string& name) const;
+};
+
+/// Parses and validates a compose file. Nothing is started.
+Result<ComposeProject> LoadComposeFile(const std::string& path);
+/// Same, from text; `file` is the name used in messages.
+Result<ComposeProject> ParseCompose(const std::string& text, const std::string& file);
+
+/// Splits a command string the way a POSIX shell splits words (quotes and backslashes; no
+/// expansion). Unbalanced quotes are an error.
+Result<std::vector<std::string>> SplitCommand(const std::string& command);
+
+/// Parses Compose durations: "10s", "1m30s", "500ms", "2" (seconds).
+Result<double> ParseDuration(const std::string& text);
+
+}  // namespace rover::deploy

@@ -1,0 +1,392 @@
+// roverctl: the one command-line entry point of the rover stack.
+//
+//   roverctl up FILE [--domain N] [--detach] [--for SECONDS]   start a service set
+//   roverctl down [PROJECT]                                     stop it
+//   roverctl ps [PROJECT]                                       state, pid, restarts, heartbeat
+//   roverctl logs SERVICE [-p PROJECT] [-f] [-n LINES]          a service's log
+//   roverctl config FILE                                        validate a compose file
+//
+// See docs/roverctl.md.
+#include <CLI/CLI.hpp>
+#include <signal.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "rover/base/clock.hpp"
+#include "rover/base/log.hpp"
+#include "rover/base/process.hpp"
+#include "rover/deploy/compose.hpp"
+#include "rover/deploy/supervisor.hpp"
+#include "rover/runtime/domain.hpp"
+
+namespace fs = std::filesystem;
+using rover::Status;
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void OnSignal(int) { g_stop.store(true); }
+
+std::string SelfDir() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string(".") : exe.parent_path().string();
+}
+
+// The loopback Cyclone configuration: $ROVER_DDS_CONFIG, the install tree, or the source tree.
+std::string DdsConfigUri() {
+  if (const char* c = std::getenv("ROVER_DDS_CONFIG")) {
+    return std::string(c).rfind("file://", 0) == 0 ? c : "file://" + std::string(c);
+  }
+  const fs::path installed = fs::path(SelfDir()) / "../share/rover/cyclonedds/loopback.xml";
+  if (fs::exists(installed)) return "file://" + fs::canonical(installed).string();
+  return rover::dds::LoopbackConfigUri(ROVER_SOURCE_DIR);
+}
+
+int Fail(const std::string& message, int code = 1) {
+  std::cerr << "roverctl: error: " << message << "\n";
+  return code;
+}
+
+nlohmann::json ReadState(const std::string& dir) {
+  std::ifstream in(dir + "/state.json");
+  if (!in) return nullptr;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return nullptr;
+  }
+}
+
+bool SupervisorAlive(const nlohmann::json& state) {
+  if (state.is_null()) return false;
+  return rover::ProcessAlive(state.value("supervisor_pid", 0));
+}
+
+// Projects with a state file under the state root.
+std::vector<std::string> KnownProjects(const std::string& root) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(root, ec)) {
+    if (fs::exists(e.path() / "state.json")) out.push_back(e.path().filename().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Picks the project: explicit, else the only live one.
+rover::Result<std::string> ResolveProject(const std::string& root, const std::string& given) {
+  if (!given.empty()) {
+    if (!fs::exists(root + "/" + given + "/state.json")) {
+      return rover::NotFound("no project '" + given + "' under " + root);
+    }
+    return given;
+  }
+  std::vector<std::string> live;
+  for (const auto& p : KnownProjects(root)) {
+    if (SupervisorAlive(ReadState(root + "/" + p))) live.push_back(p);
+  }
+  if (live.size() == 1) return live[0];
+  if (live.empty()) return rover::NotFound("no service set is up (state root " + root + ")");
+  std::string names;
+  for (const auto& p : live) names += " " + p;
+  return rover::InvalidArgument("several projects are up; name one of:" + names);
+}
+
+std::string Age(std::int64_t wall_ns) {
+  if (wall_ns <= 0) return "-";
+  const double s = (rover::WallNow().ns - wall_ns) * 1e-9;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1fs ago", s);
+  return buf;
+}
+
+// ---- up --------------------------------------------------------------------------------------
+
+struct UpArgs {
+  std::string file;
+  int domain = -1;
+  bool detach = false;
+  bool no_preflight = false;
+  double run_for_s = 0;
+  std::string state_root;
+  std::string project;
+};
+
+int RunSupervisor(const rover::deploy::ComposeProject& project,
+                  rover::deploy::SupervisorOptions options, const UpArgs& args, int notify_fd) {
+  auto notify = [notify_fd](const std::string& msg) {
+    if (notify_fd < 0) return;
+    const std::string line = msg + "\n";
+    (void)!write(notify_fd, line.data(), line.size());
+    close(notify_fd);
+  };
+  options.abort = &g_stop;
+  auto sup = rover::deploy::Supervisor::Create(project, options);
+  if (!sup.ok()) {
+    notify("error: " + sup.status().message());
+    return Fail(sup.status().message());
+  }
+  std::cout << "roverctl: starting '" << project.rover.project << "' (" << project.services.size()
+            << " services) on DDS domain " << (*sup)->domain() << "\n" << std::flush;
+  const Status s = (*sup)->Start();
+  if (!s.ok()) {
+    notify("error: " + s.message());
+    return Fail(s.message());
+  }
+  for (const auto& st : (*sup)->Snapshot()) {
+    std::cout << "  " << st.name << "  pid " << st.pid << "  log " << st.log_path << "\n";
+  }
+  std::cout << "roverctl: '" << project.rover.project << "' is up on domain " << (*sup)->domain()
+            << "; `roverctl ps`, `roverctl logs SERVICE`, Ctrl-C or `roverctl down` to stop\n"
+            << std::flush;
+  notify("ok " + std::to_string((*sup)->domain()));
+  const rover::Time start = rover::MonotonicNow();
+  while (!g_stop.load()) {
+    (*sup)->Poll();
+    if (args.run_for_s > 0 && rover::ToSeconds(rover::MonotonicNow() - start) >= args.run_for_s) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::cout << "roverctl: stopping '" << project.rover.project << "'\n" << std::flush;
+  (*sup)->Stop();
+  std::cout << "roverctl: stopped\n";
+  return 0;
+}
+
+int Up(const UpArgs& args) {
+  auto project = rover::deploy::LoadComposeFile(args.file);
+  if (!project.ok()) return Fail(project.status().message(), 2);
+  if (!args.project.empty()) project->rover.project = args.project;
+  rover::deploy::SupervisorOptions options;
+  options.bin_dir = SelfDir();
+  options.state_dir = args.state_root + "/" + project->rover.project;
+  options.dds_config_uri = DdsConfigUri();
+  if (args.domain >= 0) options.domain = args.domain;
+
+  const auto existing = ReadState(options.state_dir);
+  if (SupervisorAlive(existing)) {
+    return Fail("project '" + project->rover.project + "' is already up (roverctl pid " +
+                    std::to_string(existing.value("supervisor_pid", 0)) +
+                    "); run `roverctl down " + project->rover.project + "` first",
+                2);
+  }
+  if (!args.no_preflight) {
+    const Status s = rover::deploy::Preflight(*project, options);
+    if (!s.ok()) return Fail(s.message(), 2);
+  }
+  if (!args.detach) return RunSupervisor(*project, options, args, -1);
+
+  // Detached: the supervising process is a new session; we wait for its start-up verdict.
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return Fail("pipe failed");
+  const pid_t pid = fork();
+  if (pid < 0) return Fail("fork failed");
+  if (pid == 0) {
+    close(fds[0]);
+    setsid();
+    const std::string log = options.state_dir + "/roverctl.log";
+    fs::create_directories(options.state_dir);
+    FILE* f = std::freopen(log.c_str(), "a", stdout);
+    (void)f;
+    dup2(fileno(stdout), fileno(stderr));
+    _exit(RunSupervisor(*project, options, args, fds[1]));
+  }
+  close(fds[1]);
+  std::string msg;
+  char buf[512];
+  ssize_t n;
+  while ((n = read(fds[0], buf, sizeof buf)) > 0) msg.append(buf, static_cast<std::size_t>(n));
+  close(fds[0]);
+  if (msg.rfind("ok ", 0) == 0) {
+    std::cout << "roverctl: '" << project->rover.project << "' is up on DDS domain "
+              << msg.substr(3, msg.find('\n') - 3) << " (supervisor pid " << pid << ")\n";
+    return 0;
+  }
+  if (msg.rfind("error: ", 0) == 0) msg = msg.substr(7);
+  while (!msg.empty() && msg.back() == '\n') msg.pop_back();
+  return Fail(msg.empty() ? "the supervisor died during start-up" : msg);
+}
+
+// ---- down / ps / logs ------------------------------------------------------------------------
+
+int Down(const std::string& root, const std::string& given, double timeout_s) {
+  auto project = ResolveProject(root, given);
+  if (!project.ok()) return Fail(project.status().message());
+  const auto state = ReadState(root + "/" + *project);
+  if (!SupervisorAlive(state)) {
+    std::cout << "roverctl: '" << *project << "' is not running\n";
+    return 0;
+  }
+  const int pid = state.value("supervisor_pid", 0);
+  kill(pid, SIGTERM);
+  const rover::Time deadline = rover::MonotonicNow() + rover::Seconds(timeout_s);
+  while (rover::ProcessAlive(pid) && rover::MonotonicNow() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  if (rover::ProcessAlive(pid)) return Fail("supervisor " + std::to_string(pid) + " did not stop");
+  std::cout << "roverctl: '" << *project << "' stopped\n";
+  return 0;
+}
+
+int Ps(const std::string& root, const std::string& given, bool json) {
+  std::vector<std::string> projects;
+  if (!given.empty()) {
+    auto p = ResolveProject(root, given);
+    if (!p.ok()) return Fail(p.status().message());
+    projects.push_back(*p);
+  } else {
+    projects = KnownProjects(root);
+  }
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto& p : projects) {
+    auto state = ReadState(root + "/" + p);
+    if (state.is_null()) continue;
+    const bool alive = SupervisorAlive(state);
+    if (json) {
+      state["supervisor_alive"] = alive;
+      all.push_back(state);
+      continue;
+    }
+    std::printf("%s  (%s, domain %d, %s)\n", p.c_str(),
+                alive ? state.value("phase", "?").c_str() : "not running",
+                state.value("domain", -1), state.value("file", "").c_str());
+    std::printf("  %-22s %-11s %-8s %-8s %-12s %-14s %s\n", "SERVICE", "STATE", "PID", "RESTARTS",
+                "LIFECYCLE", "HEARTBEAT", "LAST EXIT");
+    const double timeout = state.value("heartbeat_timeout_s", 5.0);
+    for (const auto& s : state["services"]) {
+      std::string hb = Age(s.value("last_heartbeat_wall_ns", std::int64_t{0}));
+      const std::int64_t last = s.value("last_heartbeat_wall_ns", std::int64_t{0});
+      if (last > 0 && (rover::WallNow().ns - last) * 1e-9 > timeout && s.value("state", "") == "running") {
+        hb += " STALE";
+      }
+      std::printf("  %-22s %-11s %-8d %-8d %-12s %-14s %s\n", s.value("name", "").c_str(),
+                  alive ? s.value("state", "").c_str() : "-", s.value("pid", 0),
+                  s.value("restarts", 0), s.value("lifecycle", "").c_str(), hb.c_str(),
+                  s.value("last_exit", "").c_str());
+    }
+  }
+  if (json) std::cout << all.dump(2) << "\n";
+  return 0;
+}
+
+int Logs(const std::string& root, const std::string& given, const std::string& service,
+         bool follow, int lines) {
+  auto project = ResolveProject(root, given);
+  if (!project.ok()) return Fail(project.status().message());
+  const std::string path = root + "/" + *project + "/logs/" + service + ".log";
+  std::ifstream in(path);
+  if (!in) {
+    const auto state = ReadState(root + "/" + *project);
+    std::string names;
+    if (!state.is_null()) {
+      for (const auto& s : state["services"]) names += " " + s.value("name", "");
+    }
+    return Fail("no service '" + service + "' in project '" + *project + "' (services:" + names + ")");
+  }
+  std::vector<std::string> all;
+  std::string line;
+  while (std::getline(in, line)) all.push_back(line);
+  const std::size_t from = lines > 0 && all.size() > static_cast<std::size_t>(lines)
+                               ? all.size() - static_cast<std::size_t>(lines) : 0;
+  for (std::size_t i = from; i < all.size(); ++i) std::cout << all[i] << "\n";
+  std::cout << std::flush;
+  if (!follow) return 0;
+  in.clear();
+  while (!g_stop.load()) {
+    if (std::getline(in, line)) {
+      std::cout << line << "\n" << std::flush;
+    } else {
+      in.clear();
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+  }
+  return 0;
+}
+
+int Config(const std::string& file) {
+  auto project = rover::deploy::LoadComposeFile(file);
+  if (!project.ok()) return Fail(project.status().message(), 2);
+  std::cout << "project: " << project->rover.project << "\nclock: " << project->rover.clock
+            << "\ndomain: " << (project->rover.domain ? std::to_string(*project->rover.domain) : "auto")
+            << "\nservices (start order):\n";
+  for (const auto& s : project->services) {
+    std::cout << "  " << s.name << ": ";
+    for (const auto& w : s.command) std::cout << w << " ";
+    std::cout << "[restart " << rover::deploy::RestartPolicyName(s.restart) << "]";
+    for (const auto& d : s.depends_on) {
+      std::cout << " after " << d.service << " (" << rover::deploy::DependencyConditionName(d.condition) << ")";
+    }
+    std::cout << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  rover::log::Init("roverctl", rover::log::Level::kWarning);
+  CLI::App app{"roverctl: run, inspect and stop rover service sets"};
+  app.require_subcommand(1);
+  std::string state_root = rover::deploy::DefaultStateRoot();
+  app.add_option("--state-dir", state_root, "where project state and logs live")
+      ->envname("ROVER_STATE_DIR");
+
+  UpArgs up;
+  auto* up_cmd = app.add_subcommand("up", "start the services of a compose file");
+  up_cmd->add_option("file", up.file, "compose file")->required();
+  up_cmd->add_option("-p,--project", up.project, "project name (default: x-rover.project or the file name)");
+  up_cmd->add_option("--domain", up.domain, "DDS domain (default: x-rover.domain or a free one)")
+      ->check(CLI::Range(0, 232));
+  up_cmd->add_flag("-d,--detach", up.detach, "run in the background");
+  up_cmd->add_flag("--no-preflight", up.no_preflight, "skip parameter validation");
+  up_cmd->add_option("--for", up.run_for_s, "stop by itself after this many seconds");
+
+  std::string project;
+  double down_timeout = 60;
+  auto* down_cmd = app.add_subcommand("down", "stop a running service set");
+  down_cmd->add_option("project", project, "project name (default: the only one up)");
+  down_cmd->add_option("--timeout", down_timeout, "seconds to wait");
+
+  bool json = false;
+  auto* ps_cmd = app.add_subcommand("ps", "list services: state, pid, restarts, last heartbeat");
+  ps_cmd->add_option("project", project, "project name (default: all)");
+  ps_cmd->add_flag("--json", json, "machine-readable output");
+
+  std::string service;
+  bool follow = false;
+  int lines = 0;
+  auto* logs_cmd = app.add_subcommand("logs", "print a service's log");
+  logs_cmd->add_option("service", service, "service name")->required();
+  logs_cmd->add_option("-p,--project", project, "project name");
+  logs_cmd->add_flag("-f,--follow", follow, "keep printing new lines");
+  logs_cmd->add_option("-n,--lines", lines, "only the last N lines");
+
+  std::string config_file;
+  auto* config_cmd = app.add_subcommand("config", "validate a compose file and print the plan");
+  config_cmd->add_option("file", config_file, "compose file")->required();
+
+  CLI11_PARSE(app, argc, argv);
+
+  struct sigaction sa {};
+  sa.sa_handler = OnSignal;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  up.state_root = state_root;
+  if (*up_cmd) return Up(up);
+  if (*down_cmd) return Down(state_root, project, down_timeout);
+  if (*ps_cmd) return Ps(state_root, project, json);
+  if (*logs_cmd) return Logs(state_root, project, service, follow, lines);
+  if (*config_cmd) return Config(config_file);
+  return 1;
+}

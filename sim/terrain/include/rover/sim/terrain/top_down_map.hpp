@@ -1,0 +1,74 @@
+#pragma once
+/// @file
+/// Top-down map of a Terrain as an RGB image / PNG, for reports and for eyeballing scenarios.
+///
+/// Orientation: north (+x) up, west (+y) left, i.e. pixel column c = (max_y - y) * s and row
+/// r = (max_x - x) * s with s pixels per metre. Content:
+///   - terrain hillshade (Lambert, sun from the north-west at 45 deg elevation) of
+///     Terrain::natural, tinted by soil (firm soil ochre, loose sand pale yellow, bedrock
+///     grey-brown) and lightly by elevation;
+///   - rock outlines by height class: height > obstacle_height (0.2 m: a traversability
+///     hazard) red, > half of it orange, smaller ones thin dark (only where at least 3 px wide);
+///   - science targets (cyan, labelled T<id>), the lander (deck, legs, ramps, stripes filled
+///     from Lander::quads, seen from above), the start keep-out circle;
+///   - a scale bar, a north arrow, a legend and optional overlay polylines (planned / driven /
+///     estimated paths) with labels.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+
+namespace rover::sim {
+
+struct Terrain;
+
+struct MapColor {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+
+/// A polyline overlay, e.g. a planned, driven or estimated path (site-frame x, y in metres).
+struct MapPolyline {
+  std::vector<Eigen::Vector2d> points;
+  MapColor color{0, 90, 255};
+  std::string label;      ///< shown in the legend (empty: not listed)
+  int thickness = 2;      ///< [px]
+  bool mark_ends = true;  ///< circle at the start, square at the end
+};
+
+struct MapOptions {
+  /// Pixels per metre; 0 = one pixel per grid cell, reduced if the image would exceed
+  /// max_pixels on its longer side.
+  double pixels_per_metre = 0.0;
+  int max_pixels = 2000;
+  double obstacle_height = 0.2;  ///< [m] rocks higher than this are drawn red
+  bool draw_rocks = true;
+  bool draw_keep_out = true;
+  bool draw_legend = true;
+  std::string title;  ///< drawn top-left when not empty
+  std::vector<MapPolyline> polylines;
+
+  Status Validate() const;
+};
+
+struct MapImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  ///< row-major, 3 bytes per pixel
+  double pixels_per_metre = 0.0;
+  /// Pixel (column, row) of a site-frame point.
+  Eigen::Vector2d ToPixel(double x, double y) const;
+  double max_x = 0.0;
+  double max_y = 0.0;
+  MapColor At(int col, int row) const;
+};
+
+/// Renders the map in memory.
+Result<MapImage> RenderTopDownMap(const Terrain& terrain, const MapOptions& options = {});
+/// Renders the map and writes it as a PNG. Errors: bad options, unwritable path.
+Status WriteTopDownMap(const Terrain& terrain, const std::string& path,
+                       const MapOptions& options = {});
+
+}  // namespace rover::sim

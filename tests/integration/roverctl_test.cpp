@@ -1,0 +1,326 @@
+// roverctl end to end: the smoke set as real processes on loopback.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "rover/base/process.hpp"
+#include "rover/runtime/dds.hpp"
+#include "rover/testing/test_support.hpp"
+
+namespace rover {
+namespace {
+namespace fs = std::filesystem;
+using testing::WaitFor;
+
+// Every process whose environment says it belongs to `project` (roverctl sets ROVER_PROJECT).
+std::vector<int> ProcessesOfProject(const std::string& project) {
+  std::vector<int> pids;
+  const std::string marker = "ROVER_PROJECT=" + project;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(e.path() / "environ", std::ios::binary);
+    std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t pos = 0;
+    while (pos < env.size()) {
+      const std::size_t end = env.find('\0', pos);
+      if (env.compare(pos, (end == std::string::npos ? env.size() : end) - pos, marker) == 0) {
+        if (ProcessAlive(std::stoi(name))) pids.push_back(std::stoi(name));
+        break;
+      }
+      if (end == std::string::npos) break;
+      pos = end + 1;
+    }
+  }
+  return pids;
+}
+
+class RoverctlTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::MakeTempDir("roverctl-test");
+    state_root_ = dir_ + "/state";
+    setenv("CYCLONEDDS_URI", dds::LoopbackConfigUri(testing::SourceDir()).c_str(), 1);
+  }
+  void TearDown() override {
+    for (auto& p : running_) p.Terminate(std::chrono::seconds(10));
+    for (const auto& project : projects_) {
+      for (int pid : ProcessesOfProject(project)) kill(pid, SIGKILL);
+    }
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  // A smoke compose file with a unique project name.
+  std::string WriteSmoke(const std::string& tag, const std::string& extra_service = "") {
+    const std::string project = "t" + std::to_string(getpid()) + "-" + tag;
+    projects_.push_back(project);
+    const std::string path = dir_ + "/" + tag + ".compose.yaml";
+    std::ofstream(path) << "version: \"3.9\"\n"
+                           "x-rover: {project: " << project << "}\n"
+                           "services:\n"
+                           "  smoke-ddl: {command: smoke-ddl --set rate_hz=50, restart: on-failure}\n"
+                           "  smoke-dl:\n"
+                           "    command: smoke-dl\n"
+                           "    restart: on-failure\n"
+                           "    depends_on: {smoke-ddl: {condition: service_healthy}}\n"
+                           "  smoke-apl:\n"
+                           "    command: smoke-apl --set report_every=5\n"
+                           "    restart: on-failure\n"
+                           "    depends_on: {smoke-dl: {condition: service_healthy}}\n"
+                        << extra_service;
+    return path;
+  }
+
+  std::string ProjectOf(const std::string& tag) {
+    return "t" + std::to_string(getpid()) + "-" + tag;
+  }
+
+  Process StartRoverctl(const std::vector<std::string>& args, const std::string& log) {
+    SpawnOptions o;
+    o.argv = {testing::BinDir() + "/roverctl"};
+    o.argv.insert(o.argv.end(), args.begin(), args.end());
+    o.env["ROVER_STATE_DIR"] = state_root_;
+    o.stdout_path = log;
+    o.stderr_path = log;
+    auto p = Process::Spawn(o);
+    EXPECT_TRUE(p.ok()) << p.status().message();
+    return std::move(*p);
+  }
+
+  // Runs roverctl to completion; returns (exit, output).
+  std::pair<ExitInfo, std::string> RunRoverctl(const std::vector<std::string>& args) {
+    const std::string log = dir_ + "/run-" + std::to_string(runs_++) + ".log";
+    Process p = StartRoverctl(args, log);
+    auto e = p.WaitFor(std::chrono::seconds(120));
+    if (!e) e = p.Terminate(std::chrono::seconds(5));
+    return {*e, testing::ReadFile(log)};
+  }
+
+  nlohmann::json State(const std::string& project) {
+    std::ifstream in(state_root_ + "/" + project + "/state.json");
+    if (!in) return nullptr;
+    try {
+      return nlohmann::json::parse(in);
+    } catch (...) {
+      return nullptr;
+    }
+  }
+
+  bool WaitUp(const std::string& project) {
+    return WaitFor([&] {
+      auto s = State(project);
+      return !s.is_null() && s["phase"] == "up";
+    }, std::chrono::seconds(60));
+  }
+
+  int PidOf(const std::string& project, const std::string& service) {
+    const nlohmann::json state = State(project);
+    if (state.is_null()) return 0;
+    for (const auto& s : state["services"]) {
+      if (s["name"] == service) return s["pid"];
+    }
+    return 0;
+  }
+
+  std::string dir_, state_root_;
+  std::vector<std::string> projects_;
+  std::vector<Process> running_;
+  int runs_ = 0;
+};
+
+// Reads apl/mobility_status on `domain` until `n` reports arrive; returns the last command_id.
+long CountStatuses(int domain, int n, std::string* last_message = nullptr) {
+  auto p = dds::Participant::Create(domain);
+  if (!p.ok()) return -1;
+  auto r = dds::Reader<rover_apl_MobilityStatus>::Create(*p, "apl/mobility_status");
+  if (!r.ok()) return -1;
+  int seen = 0;
+  long last = -1;
+  WaitFor([&] {
+    for (auto& s : r->Take()) {
+      ++seen;
+      last = s->command_id;
+      if (last_message) *last_message = s->message;
+    }
+    return seen >= n;
+  }, std::chrono::seconds(30));
+  return seen >= n ? last : -1;
+}
+
+TEST_F(RoverctlTest, SmokeSetPassesDataThroughAllThreeLayersAndCtrlCLeavesNothing) {
+  const std::string file = WriteSmoke("flow");
+  const std::string project = ProjectOf("flow");
+  Process roverctl = StartRoverctl({"up", file}, dir_ + "/flow.log");
+  ASSERT_TRUE(WaitUp(project)) << testing::ReadFile(dir_ + "/flow.log");
+  const int domain = State(project)["domain"];
+
+  // ddl/imu (smoke-ddl) -> dl/pose (smoke-dl) -> apl/mobility_status (smoke-apl): the apl
+  // service counts poses, which exist only if imu samples crossed the dl service.
+  std::string message;
+  const long first = CountStatuses(domain, 3, &message);
+  ASSERT_GT(first, 0) << "no data reached apl/mobility_status";
+  EXPECT_EQ(first % 5, 0);
+  EXPECT_NE(message.find("poses="), std::string::npos) << message;
+
+  // `ps` shows every service running with a heartbeat.
+  auto [ps_exit, ps_out] = RunRoverctl({"ps", project});
+  EXPECT_TRUE(ps_exit.success());
+  for (const char* svc : {"smoke-ddl", "smoke-dl", "smoke-apl"}) {
+    EXPECT_NE(ps_out.find(svc), std::string::npos) << ps_out;
+  }
+  EXPECT_NE(ps_out.find("active"), std::string::npos) << ps_out;
+  EXPECT_EQ(ProcessesOfProject(project).size(), 3u);
+
+  // Ctrl-C: the whole set stops and no process is left.
+  roverctl.Signal(SIGINT);
+  auto e = roverctl.WaitFor(std::chrono::seconds(60));
+  ASSERT_TRUE(e.has_value());
+  EXPECT_TRUE(e->success()) << e->ToString();
+  EXPECT_TRUE(ProcessesOfProject(project).empty());
+  EXPECT_EQ(State(project)["phase"], "stopped");
+}
+
+TEST_F(RoverctlTest, KillNineIsRestartedByPolicyAndDataFlowsAgain) {
+  const std::string file = WriteSmoke("kill");
+  const std::string project = ProjectOf("kill");
+  running_.push_back(StartRoverctl({"up", file}, dir_ + "/kill.log"));
+  ASSERT_TRUE(WaitUp(project));
+  const int domain = State(project)["domain"];
+  const int victim = PidOf(project, "smoke-dl");
+  ASSERT_GT(victim, 0);
+  ASSERT_EQ(kill(victim, SIGKILL), 0);
+  int replacement = 0;
+  ASSERT_TRUE(WaitFor([&] {
+    const nlohmann::json s = State(project);
+    if (s.is_null()) return false;
+    for (const auto& svc : s["services"]) {
+      if (svc["name"] == "smoke-dl" && svc["restarts"] == 1 && svc["state"] == "running" &&
+          svc["pid"] != victim && svc["pid"] != 0) {
+        replacement = svc["pid"];
+        return true;
+      }
+    }
+    return false;
+  }, std::chrono::seconds(30)));
+  EXPECT_TRUE(ProcessAlive(replacement));
+  const nlohmann::json after = State(project);
+  EXPECT_NE(after["services"][1]["last_exit"].get<std::string>().find("signal 9"), std::string::npos);
+  // The restarted link carries data again (its counter restarted from zero at the apl end is
+  // not required: the apl keeps counting poses from the new dl process).
+  EXPECT_GT(CountStatuses(domain, 2), 0);
+  // `roverctl down` stops it; nothing is left.
+  auto [down_exit, down_out] = RunRoverctl({"down", project});
+  EXPECT_TRUE(down_exit.success()) << down_out;
+  EXPECT_TRUE(WaitFor([&] { return ProcessesOfProject(project).empty(); }, std::chrono::seconds(30)));
+}
+
+TEST_F(RoverctlTest, SupervisorKilledHardTakesItsServicesWithIt) {
+  const std::string file = WriteSmoke("hard");
+  const std::string project = ProjectOf("hard");
+  Process roverctl = StartRoverctl({"up", file}, dir_ + "/hard.log");
+  ASSERT_TRUE(WaitUp(project));
+  ASSERT_EQ(ProcessesOfProject(project).size(), 3u);
+  kill(roverctl.pid(), SIGKILL);
+  roverctl.WaitFor(std::chrono::seconds(10));
+  EXPECT_TRUE(WaitFor([&] { return ProcessesOfProject(project).empty(); }, std::chrono::seconds(30)))
+      << "orphans left after the supervisor died";
+}
+
+TEST_F(RoverctlTest, TwoSetsOnDifferentDomainsDoNotSeeEachOther) {
+  const std::string fa = WriteSmoke("a"), fb = WriteSmoke("b");
+  running_.push_back(StartRoverctl({"up", fa}, dir_ + "/a.log"));
+  running_.push_back(StartRoverctl({"up", fb}, dir_ + "/b.log"));
+  ASSERT_TRUE(WaitUp(ProjectOf("a")));
+  ASSERT_TRUE(WaitUp(ProjectOf("b")));
+  const int da = State(ProjectOf("a"))["domain"], db = State(ProjectOf("b"))["domain"];
+  ASSERT_NE(da, db);
+  for (const auto& [project, domain] : {std::pair{ProjectOf("a"), da}, std::pair{ProjectOf("b"), db}}) {
+    std::set<int> expected;
+    const nlohmann::json state = State(project);
+    for (const auto& s : state["services"]) expected.insert(s["pid"].get<int>());
+    auto p = dds::Participant::Create(domain);
+    ASSERT_TRUE(p.ok());
+    auto r = dds::Reader<rover_sys_Heartbeat>::Create(*p, "sys/health");
+    ASSERT_TRUE(r.ok());
+    std::set<int> seen;
+    // Three heartbeat periods: every service of this set is seen, none of the other's.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    while (std::chrono::steady_clock::now() < until) {
+      for (auto& s : r->Take()) seen.insert(s->pid);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    EXPECT_EQ(seen, expected) << "domain " << domain << " matched writers " << r->MatchedWriters();
+  }
+}
+
+TEST_F(RoverctlTest, ServiceExitingAtOnceFailsTheSetAndNothingIsHalfStarted) {
+  const std::string file = WriteSmoke(
+      "quit", "  quitter:\n    command: sh -c \"echo 'cannot open /dev/motor0' >&2; exit 3\"\n"
+              "    depends_on: [smoke-apl]\n");
+  const std::string project = ProjectOf("quit");
+  auto [e, out] = RunRoverctl({"up", file});
+  EXPECT_FALSE(e.success());
+  EXPECT_NE(out.find(file + ":13: service 'quitter' exited at once (exit code 3): cannot open "
+                            "/dev/motor0"),
+            std::string::npos)
+      << out;
+  EXPECT_TRUE(ProcessesOfProject(project).empty());
+  EXPECT_EQ(State(project)["phase"], "failed");
+}
+
+TEST_F(RoverctlTest, OutOfRangeParameterIsCaughtBeforeAnythingStarts) {
+  const std::string file = WriteSmoke("param");
+  std::string text = testing::ReadFile(file);
+  text.replace(text.find("rate_hz=50"), 10, "rate_hz=5000");
+  std::ofstream(file) << text;
+  auto [e, out] = RunRoverctl({"up", file});
+  EXPECT_EQ(e.code, 2);
+  EXPECT_NE(out.find(file + ":4: services.smoke-ddl: --set rate_hz=5000: key 'rate_hz': 5000 is "
+                            "out of range [0.1, 1000]"),
+            std::string::npos)
+      << out;
+  // Nothing was started, so there is not even a log of a start.
+  EXPECT_FALSE(fs::exists(state_root_ + "/" + ProjectOf("param") + "/logs/smoke-ddl.log"));
+}
+
+TEST_F(RoverctlTest, BadComposeFilesAreRejectedWithFileLineAndKey) {
+  const std::string path = dir_ + "/bad.yaml";
+  std::ofstream(path) << "services:\n  a:\n    comand: smoke-ddl\n";
+  auto [e, out] = RunRoverctl({"up", path});
+  EXPECT_EQ(e.code, 2);
+  EXPECT_NE(out.find(path + ":3: services.a: unknown key 'comand' (did you mean 'command'?)"),
+            std::string::npos)
+      << out;
+  auto [e2, out2] = RunRoverctl({"logs", "nope", "-p", "nothing"});
+  EXPECT_FALSE(e2.success());
+}
+
+TEST_F(RoverctlTest, DetachedUpThenPsAndDown) {
+  const std::string file = WriteSmoke("detach");
+  const std::string project = ProjectOf("detach");
+  auto [e, out] = RunRoverctl({"up", "-d", file});
+  ASSERT_TRUE(e.success()) << out;
+  EXPECT_NE(out.find("is up on DDS domain"), std::string::npos) << out;
+  EXPECT_EQ(ProcessesOfProject(project).size(), 3u);
+  const int supervisor = State(project)["supervisor_pid"];
+  EXPECT_TRUE(ProcessAlive(supervisor));
+  auto [e2, out2] = RunRoverctl({"up", file});         // a second `up` is refused
+  EXPECT_EQ(e2.code, 2);
+  EXPECT_NE(out2.find("is already up"), std::string::npos) << out2;
+  auto [e3, logs] = RunRoverctl({"logs", "smoke-apl", "-p", project});
+  EXPECT_TRUE(e3.success());
+  EXPECT_NE(logs.find("msg=\"active\""), std::string::npos) << logs;
+  auto [e4, out4] = RunRoverctl({"down", project});
+  EXPECT_TRUE(e4.success()) << out4;
+  EXPECT_TRUE(ProcessesOfProject(project).empty());
+  EXPECT_FALSE(ProcessAlive(supervisor));
+}
+
+}  // namespace
+}  // namespace rover
