@@ -86,11 +86,11 @@ Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, Qo
 
 /// A sample taken from a reader, owning its contents (sequences, unbounded strings).
 template <class T>
-class Sample {
+class OwnedSample {
  public:
-  Sample() : data_(Allocate()) {}
-  Sample(Sample&&) noexcept = default;
-  Sample& operator=(Sample&&) noexcept = default;
+  OwnedSample() : data_(Allocate()) {}
+  OwnedSample(OwnedSample&&) noexcept = default;
+  OwnedSample& operator=(OwnedSample&&) noexcept = default;
 
   T& data() { return *data_; }
   const T& data() const { return *data_; }
@@ -112,6 +112,20 @@ class Sample {
   }
   std::unique_ptr<T, Free> data_;
   dds_sample_info_t info_{};
+};
+
+/// A read-only view of a sample that DDS lends to a callback; valid only during the callback.
+template <class T>
+class Sample {
+ public:
+  Sample(const T* data, const dds_sample_info_t* info) : data_(data), info_(info) {}
+  const T& data() const { return *data_; }
+  const T* operator->() const { return data_; }
+  const dds_sample_info_t& info() const { return *info_; }
+
+ private:
+  const T* data_;
+  const dds_sample_info_t* info_;
 };
 
 /// A typed writer on one topic.
@@ -189,23 +203,50 @@ class Reader {
     return out;
   }
 
-  /// Takes up to `max` samples with valid data, oldest first (through the fault seam, if any).
-  std::vector<Sample<T>> Take(std::size_t max = 32) {
+  /// Calls `fn(const Sample<T>&)` for every sample with valid data, oldest first, on memory
+  /// DDS lends (no copy); passes each through the fault seam. Returns the number delivered.
+  template <class F>
+  std::size_t TakeEach(F&& fn) {
+    ROVER_DEMAND(reader_.valid());
+    constexpr std::size_t kBatch = 32;
+    void* ptrs[kBatch];
+    dds_sample_info_t infos[kBatch];
+    std::size_t delivered = 0;
+    while (true) {
+      ptrs[0] = nullptr;  // ask DDS to lend its buffers
+      const dds_return_t n = dds_take(reader_.handle(), ptrs, infos, kBatch, kBatch);
+      if (n <= 0) break;
+      for (dds_return_t i = 0; i < n; ++i) {
+        if (!infos[i].valid_data) continue;
+        if (seam_ && !seam_->OnRead(ptrs[i], TopicType<T>::Descriptor())) continue;
+        ++delivered;
+        fn(Sample<T>(static_cast<const T*>(ptrs[i]), &infos[i]));
+      }
+      dds_return_loan(reader_.handle(), ptrs, n);
+      if (static_cast<std::size_t>(n) < kBatch) break;
+    }
+    return delivered;
+  }
+
+  /// Takes up to `max` samples with valid data, oldest first, as owned copies (through the fault
+  /// seam, if any). Buffers are pooled: only samples actually taken cost an allocation.
+  std::vector<OwnedSample<T>> Take(std::size_t max = 32) {
     ROVER_DEMAND(reader_.valid() && max > 0);
-    std::vector<Sample<T>> buf(max);
+    if (pool_.size() < max) pool_.resize(max);
     std::vector<void*> ptrs(max);
     std::vector<dds_sample_info_t> infos(max);
-    for (std::size_t i = 0; i < max; ++i) ptrs[i] = &buf[i].data();
+    for (std::size_t i = 0; i < max; ++i) ptrs[i] = &pool_[i].data();
     const dds_return_t n = dds_take(reader_.handle(), ptrs.data(), infos.data(), max,
                                     static_cast<uint32_t>(max));
-    std::vector<Sample<T>> out;
+    std::vector<OwnedSample<T>> out;
     if (n <= 0) return out;
     out.reserve(static_cast<std::size_t>(n));
     for (dds_return_t i = 0; i < n; ++i) {
       if (!infos[i].valid_data) continue;
-      if (seam_ && !seam_->OnRead(&buf[i].data(), TopicType<T>::Descriptor())) continue;
-      buf[i].mutable_info() = infos[i];
-      out.push_back(std::move(buf[i]));
+      if (seam_ && !seam_->OnRead(&pool_[i].data(), TopicType<T>::Descriptor())) continue;
+      pool_[i].mutable_info() = infos[i];
+      out.push_back(std::move(pool_[i]));
+      pool_[i] = OwnedSample<T>();
     }
     return out;
   }
@@ -228,6 +269,7 @@ class Reader {
   std::string name_;
   QosProfile profile_ = QosProfile::kState;
   std::shared_ptr<TopicSeam> seam_;
+  std::vector<OwnedSample<T>> pool_;
 };
 
 /// A condition the program triggers itself (e.g. to wake a WaitSet for shutdown).

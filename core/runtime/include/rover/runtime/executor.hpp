@@ -42,7 +42,7 @@ class Executor {
   Status Subscribe(dds::Reader<T>& reader, std::function<void(const dds::Sample<T>&)> callback,
                    bool always = false) {
     auto drain = [&reader, cb = std::move(callback), this]() {
-      for (auto& s : reader.Take()) Invoke(reader.topic_name(), [&] { cb(s); });
+      reader.TakeEach([&](const dds::Sample<T>& s) { Invoke(reader.topic_name(), [&] { cb(s); }); });
     };
     return AddSubscription(reader.handle(), reader.topic_name(), std::move(drain), always);
   }

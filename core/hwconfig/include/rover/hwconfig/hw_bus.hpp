@@ -1,0 +1,134 @@
+#pragma once
+/// @file
+/// Plain C++ mirrors of the hw/ topics (idl/rover_hw.idl): the raw hardware bus between the
+/// simulator (or real hardware) and the device-driver layer. Field meanings, units and bit
+/// layouts are exactly the IDL's; a DDS binding copies field by field. The IDL Header is reduced
+/// to `stamp_ns` (run-clock time of validity); frame_id and seq are the writer's business.
+///
+/// Also here: the rover::SensorHealth enum of idl/rover_common.idl, and the helpers both sides
+/// need to treat the int32 encoder counters as free-running (wrapping) counters.
+
+#include <array>
+#include <cstdint>
+
+namespace rover {
+
+/// Health of a sensor or a derived quantity (rover_common.idl).
+enum class SensorHealth : std::uint8_t {
+  kOk = 0,        ///< within range and fresh
+  kDegraded = 1,  ///< usable with care (e.g. saturated axis, low signal)
+  kFailed = 2,    ///< do not use
+  kStale = 3,     ///< the source stopped updating
+};
+
+/// "ok", "degraded", "failed", "stale".
+const char* SensorHealthName(SensorHealth h);
+
+/// The worse of two health values: kFailed > kStale > kDegraded > kOk.
+SensorHealth WorseHealth(SensorHealth a, SensorHealth b);
+
+}  // namespace rover
+
+namespace rover::hw {
+
+/// Motor indices (rover_hw.idl): every array of 12 uses this order.
+inline constexpr int kNumMotors = 12;
+enum MotorIndex : int {
+  kDriveLF = 0, kDriveLM = 1, kDriveLR = 2, kDriveRF = 3, kDriveRM = 4, kDriveRR = 5,
+  kSteerLF = 6, kSteerLR = 7, kSteerRF = 8, kSteerRR = 9,
+  kMastPan = 10, kMastTilt = 11,
+};
+/// "drive_lf", ..., "mast_tilt"; "?" outside 0..11.
+const char* MotorName(int motor);
+
+/// Full scale of the 12-bit ADCs (pots, motor current and temperature, sun intensity).
+inline constexpr int kAdcMax = 4095;
+
+enum class MotorMode : std::uint8_t {
+  kIdle = 0,      ///< leave this motor untouched
+  kPosition = 1,  ///< servo to `position` at up to `velocity`
+  kVelocity = 2,  ///< servo the rate to `velocity`
+  kBrake = 3,     ///< hold the current position
+};
+const char* MotorModeName(MotorMode m);
+
+struct MotorGoal {
+  MotorMode mode = MotorMode::kIdle;
+  std::int32_t position = 0;          ///< [counts] position goal (kPosition)
+  std::int32_t velocity = 0;          ///< [counts/s] rate goal, or rate limit (> 0) for kPosition
+  std::uint16_t current_limit_ma = 0; ///< [mA] over-current trip level; 0 = controller default
+};
+
+/// hw/motor_goals (command, DDL -> controller).
+struct MotorGoals {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t command_id = 0;  ///< echoed in MotorTelemetry once applied
+  std::array<MotorGoal, kNumMotors> goals{};
+};
+
+/// MotorReading::flags bits (latched by the controller).
+inline constexpr std::uint16_t kMotorFlagEnabled = 1;
+inline constexpr std::uint16_t kMotorFlagAtGoal = 2;
+inline constexpr std::uint16_t kMotorFlagStall = 4;
+inline constexpr std::uint16_t kMotorFlagOverCurrent = 8;
+inline constexpr std::uint16_t kMotorFlagOverTemp = 16;
+
+struct MotorReading {
+  std::int32_t position = 0;          ///< [counts] free-running counter (wraps at int32)
+  std::int32_t velocity = 0;          ///< [counts/s]
+  std::uint16_t current_adc = 0;      ///< [ADC counts, 12 bit]
+  std::uint16_t temperature_adc = 0;  ///< [ADC counts, 12 bit]
+  std::uint16_t flags = 0;            ///< kMotorFlag* bits
+};
+
+/// hw/motor_telemetry (stream, 100 Hz, controller -> DDL).
+struct MotorTelemetry {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t command_id = 0;  ///< last MotorGoals::command_id applied
+  std::array<MotorReading, kNumMotors> motors{};
+};
+
+/// Potentiometer order in SuspensionPots::adc.
+enum PotIndex : int { kLeftRocker = 0, kRightRocker = 1, kLeftBogie = 2, kRightBogie = 3 };
+inline constexpr int kNumPots = 4;
+/// "left_rocker", "right_rocker", "left_bogie", "right_bogie"; "?" otherwise.
+const char* PotName(int pot);
+
+/// hw/suspension_pots (stream, 50 Hz).
+struct SuspensionPots {
+  std::int64_t stamp_ns = 0;
+  std::array<std::uint16_t, kNumPots> adc{};  ///< [ADC counts, 12 bit]
+};
+
+/// ImuRaw::status bits.
+inline constexpr std::uint16_t kImuGyroSaturated = 1;
+inline constexpr std::uint16_t kImuAccelSaturated = 2;
+inline constexpr std::uint16_t kImuSelfTestFail = 4;
+/// ImuRaw::temperature scale [deg C per LSB].
+inline constexpr double kImuTemperatureLsb = 0.01;
+
+/// hw/imu (stream, 100 Hz). Raw sample in the IMU case frame.
+struct ImuRaw {
+  std::int64_t stamp_ns = 0;
+  std::array<std::int32_t, 3> gyro{};   ///< [LSB] angular rate
+  std::array<std::int32_t, 3> accel{};  ///< [LSB] specific force
+  std::int16_t temperature = 0;         ///< [0.01 deg C]
+  std::uint16_t status = 0;             ///< kImu* bits
+};
+
+/// hw/sun_sensor (stream, 2 Hz).
+struct SunSensorRaw {
+  std::int64_t stamp_ns = 0;
+  std::array<std::int16_t, 2> spot{};  ///< [detector counts] centroid column, row; 0,0 = centre
+  std::uint16_t intensity = 0;         ///< [ADC counts] integrated spot brightness (0 = no sun)
+};
+
+/// The int32 counter value of an unbounded count: two's-complement wrap (what a 32-bit
+/// hardware counter shows after `count` increments from 0).
+std::int32_t WrapCounter(std::int64_t count);
+
+/// Signed increment from `older` to `newer` of a wrapping int32 counter, assuming the true
+/// increment lies in [-2^31, 2^31). Accumulating these deltas gives a wrap-free count.
+std::int64_t CounterDelta(std::int32_t newer, std::int32_t older);
+
+}  // namespace rover::hw

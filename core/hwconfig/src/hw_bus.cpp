@@ -1,0 +1,80 @@
+#include "rover/hwconfig/hw_bus.hpp"
+
+namespace rover {
+
+const char* SensorHealthName(SensorHealth h) {
+  switch (h) {
+    case SensorHealth::kOk:
+      return "ok";
+    case SensorHealth::kDegraded:
+      return "degraded";
+    case SensorHealth::kFailed:
+      return "failed";
+    case SensorHealth::kStale:
+      return "stale";
+  }
+  return "?";
+}
+
+namespace {
+int Severity(SensorHealth h) {
+  switch (h) {
+    case SensorHealth::kOk:
+      return 0;
+    case SensorHealth::kDegraded:
+      return 1;
+    case SensorHealth::kStale:
+      return 2;
+    case SensorHealth::kFailed:
+      return 3;
+  }
+  return 3;
+}
+}  // namespace
+
+SensorHealth WorseHealth(SensorHealth a, SensorHealth b) {
+  return Severity(a) >= Severity(b) ? a : b;
+}
+
+}  // namespace rover
+
+namespace rover::hw {
+
+const char* MotorName(int motor) {
+  static constexpr const char* kNames[kNumMotors] = {
+      "drive_lf", "drive_lm", "drive_lr", "drive_rf", "drive_rm", "drive_rr",
+      "steer_lf", "steer_lr", "steer_rf", "steer_rr", "mast_pan", "mast_tilt"};
+  return (motor >= 0 && motor < kNumMotors) ? kNames[motor] : "?";
+}
+
+const char* MotorModeName(MotorMode m) {
+  switch (m) {
+    case MotorMode::kIdle:
+      return "idle";
+    case MotorMode::kPosition:
+      return "position";
+    case MotorMode::kVelocity:
+      return "velocity";
+    case MotorMode::kBrake:
+      return "brake";
+  }
+  return "?";
+}
+
+const char* PotName(int pot) {
+  static constexpr const char* kNames[kNumPots] = {"left_rocker", "right_rocker", "left_bogie",
+                                                   "right_bogie"};
+  return (pot >= 0 && pot < kNumPots) ? kNames[pot] : "?";
+}
+
+std::int32_t WrapCounter(std::int64_t count) {
+  // Conversion of an out-of-range value to a signed type is modular since C++20.
+  return static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(count)));
+}
+
+std::int64_t CounterDelta(std::int32_t newer, std::int32_t older) {
+  const std::uint32_t d = static_cast<std::uint32_t>(newer) - static_cast<std::uint32_t>(older);
+  return static_cast<std::int64_t>(static_cast<std::int32_t>(d));
+}
+
+}  // namespace rover::hw
