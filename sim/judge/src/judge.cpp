@@ -1,0 +1,267 @@
+#include "rover/sim/judge/judge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace rover::sim {
+namespace {
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+double Yaw(const Eigen::Isometry3d& p) {
+  const Eigen::Vector3d x = p.linear().col(0);
+  return std::atan2(x.y(), x.x());
+}
+
+double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+
+std::string Fmt(const char* f, double a, double b) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, f, a, b);
+  return buf;
+}
+}  // namespace
+
+RoverFootprint RoverFootprint::MerDefault() {
+  RoverFootprint f;
+  for (double x : {0.625, 0.0, -0.625}) {
+    for (double y : {0.5, -0.5}) f.wheels.emplace_back(x, y);
+  }
+  return f;
+}
+
+Status JudgeCriteria::Validate() const {
+  auto positive = [](double v, const char* name) -> Status {
+    if (!(v > 0) || !std::isfinite(v)) {
+      return InvalidArgument(std::string("criteria.") + name + ": " + std::to_string(v) +
+                             " must be a positive finite number");
+    }
+    return Status::Ok();
+  };
+  ROVER_RETURN_IF_ERROR(positive(position_tolerance, "position_tolerance"));
+  ROVER_RETURN_IF_ERROR(positive(heading_tolerance, "heading_tolerance"));
+  ROVER_RETURN_IF_ERROR(positive(traversable_height, "traversable_height"));
+  if (!(max_tilt > 0 && max_tilt < std::numbers::pi / 2)) {
+    return InvalidArgument("criteria.max_tilt: " + std::to_string(max_tilt * kRadToDeg) +
+                           " deg must be in (0, 90)");
+  }
+  if (max_estimate_error) ROVER_RETURN_IF_ERROR(positive(*max_estimate_error, "max_estimate_error"));
+  if (max_estimate_error_fraction) {
+    ROVER_RETURN_IF_ERROR(positive(*max_estimate_error_fraction, "max_estimate_error_fraction"));
+  }
+  if (min_distance && (*min_distance < 0 || !std::isfinite(*min_distance))) {
+    return InvalidArgument("criteria.min_distance must be >= 0");
+  }
+  if (target_xy && !target_xy->allFinite()) return InvalidArgument("criteria.target: not finite");
+  return Status::Ok();
+}
+
+Result<Judge> Judge::Create(JudgeCriteria criteria, std::vector<JudgeRock> rocks,
+                            RoverFootprint footprint) {
+  ROVER_RETURN_IF_ERROR(criteria.Validate());
+  if (footprint.wheels.empty()) return InvalidArgument("rover footprint has no wheels");
+  Judge j;
+  j.criteria_ = criteria;
+  j.footprint_ = std::move(footprint);
+  for (const auto& r : rocks) {
+    if (r.height > criteria.traversable_height) j.rocks_.push_back(r);
+  }
+  j.hit_.assign(j.rocks_.size(), false);
+  if (!j.rocks_.empty()) {
+    Eigen::Vector2d lo = j.rocks_[0].xy, hi = lo;
+    for (const auto& r : j.rocks_) {
+      lo = lo.cwiseMin(r.xy);
+      hi = hi.cwiseMax(r.xy);
+      j.max_rock_radius_ = std::max(j.max_rock_radius_, r.diameter / 2);
+    }
+    j.grid_min_ = lo;
+    j.grid_nx_ = static_cast<int>((hi.x() - lo.x()) / j.cell_) + 1;
+    j.grid_ny_ = static_cast<int>((hi.y() - lo.y()) / j.cell_) + 1;
+    j.grid_.resize(static_cast<std::size_t>(j.grid_nx_) * static_cast<std::size_t>(j.grid_ny_));
+    for (std::size_t i = 0; i < j.rocks_.size(); ++i) {
+      const int cx = static_cast<int>((j.rocks_[i].xy.x() - lo.x()) / j.cell_);
+      const int cy = static_cast<int>((j.rocks_[i].xy.y() - lo.y()) / j.cell_);
+      j.grid_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(j.grid_nx_) +
+              static_cast<std::size_t>(cx)]
+          .push_back(i);
+    }
+  }
+  return j;
+}
+
+void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
+  if (rocks_.empty()) return;
+  const Eigen::Matrix2d r2 = pose.linear().topLeftCorner<2, 2>();
+  const Eigen::Vector2d t2 = pose.translation().head<2>();
+  const Eigen::Matrix2d r2_inv = r2.inverse();
+  // Candidate rocks near the rover.
+  const double reach = 1.2 + max_rock_radius_;
+  const int x0 = std::max(0, static_cast<int>((t2.x() - reach - grid_min_.x()) / cell_));
+  const int x1 = std::min(grid_nx_ - 1, static_cast<int>((t2.x() + reach - grid_min_.x()) / cell_));
+  const int y0 = std::max(0, static_cast<int>((t2.y() - reach - grid_min_.y()) / cell_));
+  const int y1 = std::min(grid_ny_ - 1, static_cast<int>((t2.y() + reach - grid_min_.y()) / cell_));
+  for (int cy = y0; cy <= y1; ++cy) {
+    for (int cx = x0; cx <= x1; ++cx) {
+      for (std::size_t i : grid_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(grid_nx_) +
+                                 static_cast<std::size_t>(cx)]) {
+        if (hit_[i]) continue;
+        const JudgeRock& rock = rocks_[i];
+        const double radius = rock.diameter / 2;
+        bool hit = false;
+        for (const auto& w : footprint_.wheels) {
+          const Eigen::Vector2d wp = r2 * w + t2;
+          if ((wp - rock.xy).norm() < radius + footprint_.wheel_contact_radius) {
+            hit = true;
+            break;
+          }
+        }
+        if (!hit && rock.height > footprint_.belly_clearance) {
+          // Rock disc against the belly box, in the rover frame.
+          const Eigen::Vector2d local = r2_inv * (rock.xy - t2);
+          const Eigen::Vector2d nearest =
+              local.cwiseMax(footprint_.belly_min).cwiseMin(footprint_.belly_max);
+          hit = (local - nearest).norm() < radius;
+        }
+        if (hit) hit_[i] = true;
+      }
+    }
+  }
+}
+
+void Judge::AddTruth(Time t, const Eigen::Isometry3d& pose) {
+  if (!truth_.empty() && t <= truth_.back().t) {
+    ++out_of_order_;
+    return;
+  }
+  if (!truth_.empty()) {
+    distance_ += (pose.translation().head<2>() - truth_.back().pose.translation().head<2>()).norm();
+  }
+  const double tilt = std::acos(std::clamp(pose.linear()(2, 2), -1.0, 1.0));
+  max_tilt_ = std::max(max_tilt_, tilt);
+  CheckRocks(pose);
+  truth_.push_back({t, pose});
+}
+
+void Judge::AddEstimate(Time t, const Eigen::Isometry3d& pose) {
+  if (!estimates_.empty() && t <= estimates_.back().t) {
+    ++out_of_order_;
+    return;
+  }
+  estimates_.push_back({t, pose});
+}
+
+std::optional<Eigen::Isometry3d> Judge::TruthAt(Time t) const {
+  if (truth_.empty() || t < truth_.front().t || t > truth_.back().t) return std::nullopt;
+  auto it = std::lower_bound(truth_.begin(), truth_.end(), t,
+                             [](const Stamped& s, Time v) { return s.t < v; });
+  if (it == truth_.begin()) return it->pose;
+  const Stamped& b = *it;
+  const Stamped& a = *(it - 1);
+  const double u = ToSeconds(t - a.t) / std::max(1e-12, ToSeconds(b.t - a.t));
+  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+  p.translation() = (1 - u) * a.pose.translation() + u * b.pose.translation();
+  p.linear() = Eigen::Quaterniond(a.pose.linear())
+                   .slerp(u, Eigen::Quaterniond(b.pose.linear()))
+                   .toRotationMatrix();
+  return p;
+}
+
+const Criterion* Verdict::Find(const std::string& name) const {
+  for (const auto& c : criteria) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+std::string Verdict::FailureSummary() const {
+  std::string out;
+  for (const auto& c : criteria) {
+    if (c.pass) continue;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%s: %.4g %s (limit %.4g)%s%s", c.name.c_str(), c.measured,
+                  c.unit.c_str(), c.limit, c.detail.empty() ? "" : "; ", c.detail.c_str());
+    out += (out.empty() ? "" : "\n") + std::string(buf);
+  }
+  return out;
+}
+
+Verdict Judge::Evaluate() const {
+  Verdict v;
+  v.distance_driven = distance_;
+  v.max_tilt = max_tilt_;
+  if (truth_.empty()) {
+    v.criteria.push_back({"truth_received", 0, 1, "count", false, "no ground truth was recorded"});
+    return v;
+  }
+  const Eigen::Isometry3d& final_pose = truth_.back().pose;
+  if (criteria_.target_xy) {
+    const double e = (final_pose.translation().head<2>() - *criteria_.target_xy).norm();
+    v.criteria.push_back({"final_position_error", e, criteria_.position_tolerance, "m",
+                          e <= criteria_.position_tolerance,
+                          Fmt("ended at (%.3f, %.3f)", final_pose.translation().x(),
+                              final_pose.translation().y())});
+  }
+  if (criteria_.target_heading) {
+    const double e = std::abs(WrapAngle(Yaw(final_pose) - *criteria_.target_heading));
+    v.criteria.push_back({"final_heading_error", e * kRadToDeg,
+                          criteria_.heading_tolerance * kRadToDeg, "deg",
+                          e <= criteria_.heading_tolerance,
+                          Fmt("final heading %.2f deg, goal %.2f deg", Yaw(final_pose) * kRadToDeg,
+                              *criteria_.target_heading * kRadToDeg)});
+  }
+  v.criteria.push_back({"max_tilt", max_tilt_ * kRadToDeg, criteria_.max_tilt * kRadToDeg, "deg",
+                        max_tilt_ <= criteria_.max_tilt, ""});
+  for (std::size_t i = 0; i < rocks_.size(); ++i) {
+    if (hit_[i]) v.rocks_hit.push_back(rocks_[i].id);
+  }
+  {
+    std::string detail;
+    for (std::size_t i = 0; i < v.rocks_hit.size() && i < 5; ++i) {
+      detail += (i ? ", " : "rocks ") + std::to_string(v.rocks_hit[i]);
+    }
+    char taller[64];
+    std::snprintf(taller, sizeof taller, "rocks taller than %.2f m", criteria_.traversable_height);
+    v.criteria.push_back({"rock_contacts", static_cast<double>(v.rocks_hit.size()), 0, "count",
+                          v.rocks_hit.empty(),
+                          detail.empty() ? std::string(taller) : detail + " (" + taller + ")"});
+  }
+  if (criteria_.min_distance) {
+    v.criteria.push_back({"distance_driven", distance_, *criteria_.min_distance, "m",
+                          distance_ >= *criteria_.min_distance, "at least"});
+  }
+  // Estimate error over time.
+  double max_err = 0;
+  for (const auto& e : estimates_) {
+    const auto truth = TruthAt(e.t);
+    if (!truth) continue;
+    ErrorSample s;
+    s.t = e.t;
+    s.position_error = (e.pose.translation().head<2>() - truth->translation().head<2>()).norm();
+    s.heading_error = WrapAngle(Yaw(e.pose) - Yaw(*truth));
+    max_err = std::max(max_err, s.position_error);
+    v.estimate_error.push_back(s);
+  }
+  if (criteria_.max_estimate_error || criteria_.max_estimate_error_fraction) {
+    if (v.estimate_error.empty()) {
+      v.criteria.push_back({"estimate_received", 0, 1, "count", false,
+                            "no pose estimate overlapped the truth record"});
+    }
+  }
+  if (criteria_.max_estimate_error && !v.estimate_error.empty()) {
+    v.criteria.push_back({"max_estimate_error", max_err, *criteria_.max_estimate_error, "m",
+                          max_err <= *criteria_.max_estimate_error, ""});
+  }
+  if (criteria_.max_estimate_error_fraction && !v.estimate_error.empty()) {
+    const double final_err = v.estimate_error.back().position_error;
+    const double pct = distance_ > 0 ? 100.0 * final_err / distance_ : 0.0;
+    v.criteria.push_back({"final_estimate_error_percent", pct,
+                          100.0 * *criteria_.max_estimate_error_fraction, "%",
+                          pct <= 100.0 * *criteria_.max_estimate_error_fraction,
+                          Fmt("%.3f m over %.2f m driven", final_err, distance_)});
+  }
+  v.pass = std::all_of(v.criteria.begin(), v.criteria.end(), [](const Criterion& c) { return c.pass; });
+  return v;
+}
+
+}  // namespace rover::sim
