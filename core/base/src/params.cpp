@@ -280,6 +280,28 @@ Status ParamSet::LoadYamlString(const std::string& text, const std::string& sour
   return AssignTree("", source_name, &root);
 }
 
+Status ParamSet::LoadYamlSections(const std::string& text, const std::string& source_name,
+                                  const std::vector<std::string>& sections) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    return InvalidArgument(source_name + ":" + std::to_string(e.mark.line + 1) +
+                           ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) return Status::Ok();
+  for (const auto& kv : root) {
+    const std::string key = kv.first.Scalar();
+    if (std::find(sections.begin(), sections.end(), key) == sections.end()) continue;
+    if (kv.second.IsMap() && specs_.count(key) == 0) {
+      ROVER_RETURN_IF_ERROR(AssignTree(key, source_name, &kv.second));
+    } else {
+      ROVER_RETURN_IF_ERROR(Assign(key, ParamOrigin{source_name, kv.first.Mark().line + 1}, &kv.second));
+    }
+  }
+  return Status::Ok();
+}
+
 Status ParamSet::LoadYamlFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) return NotFound(path + ": cannot open parameter file");

@@ -115,6 +115,20 @@ TEST(Params, DuplicateDeclarationIsAProgrammingError) {
   EXPECT_DEATH(p.Declare("a", 2.0, ""), "invariant broken");
 }
 
+TEST(Params, LoadsOnlyTheNamedSectionsWithTheirLines) {
+  ParamSet p("sim");
+  p.Declare("terrain.size_x", 50.0, "size").Range(1, 500);
+  p.Declare("terrain.seed", 1, "seed");
+  p.Declare("lander.x", 0.0, "x");
+  const std::string text = "task: {type: directed}\nterrain:\n  size_x: 20\n  seed: 9\ncriteria: {}\n";
+  ASSERT_TRUE(p.LoadYamlSections(text, "scn.yaml", {"terrain", "lander"}).ok());
+  EXPECT_EQ(p.GetDouble("terrain.size_x"), 20.0);
+  EXPECT_EQ(p.GetInt("terrain.seed"), 9);
+  EXPECT_EQ(p.Origin("terrain.seed").ToString(), "scn.yaml:4");
+  const Status bad = p.LoadYamlSections("terrain:\n  size: 3\n", "scn.yaml", {"terrain"});
+  EXPECT_EQ(bad.message(), "scn.yaml:2: key 'terrain.size': unknown parameter (did you mean 'terrain.size_x'?)");
+}
+
 TEST(Params, EditDistance) {
   EXPECT_EQ(EditDistance("kitten", "sitting"), 3u);
   EXPECT_EQ(EditDistance("", "abc"), 3u);

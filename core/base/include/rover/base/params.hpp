@@ -83,6 +83,11 @@ class ParamSet {
   Status LoadYamlFile(const std::string& path);
   /// Same, from text; `source_name` is used in error messages.
   Status LoadYamlString(const std::string& text, const std::string& source_name);
+  /// Loads only the named top-level sections of a YAML file (e.g. a scenario's `terrain` and
+  /// `lander`); other top-level keys are left alone. Keys inside the sections are checked as
+  /// usual and errors carry the file's own line numbers.
+  Status LoadYamlSections(const std::string& text, const std::string& source_name,
+                          const std::vector<std::string>& sections);
   /// Applies one `key=value` override (value in YAML syntax, e.g. `gains=[1,2,3]`).
   Status SetFromString(const std::string& assignment, const std::string& source = "--set");
   /// Checks ranges, allowed values, list sizes and required parameters.
