@@ -1,0 +1,103 @@
+#pragma once
+/// @file
+/// Scenario files: one end-to-end test of the whole rover (docs/scenarios.md has the schema).
+///
+///   name: drive-flat                     # required
+///   description: ...
+///   compose: ../drive.compose.yaml       # required; the service set, relative to this file
+///   simulator: rover-sim                 # the simulator's service name in that file
+///   seed: 1                              # default seed; `roverctl run --seeds` overrides
+///   sim: {real_time_factor: 0, time_budget_s: 120, wall_budget_s: 300}
+///   rover: {start: {x: 0, y: 0, yaw_deg: 0}}
+///   terrain: {...}  lander: {...}  science_targets: [...]   # for the simulator (see sim/)
+///   task:
+///     type: directed                     # directed | waypoint | autonav | long_traverse |
+///                                        # lander_return | science_target
+///     steps:                             # directed: drive primitives, in order
+///       - {primitive: straight, distance: 5}
+///       - {primitive: turn_in_place, angle_deg: 90}
+///       - {primitive: arc, curvature: 0.5, distance: 3}
+///     goal: {x: 20, y: 5, tolerance: 1}  # waypoint-like tasks
+///   faults: []                           # fault injection (filled by the fault issue)
+///   criteria:
+///     target: {x: 5, y: 0, tolerance: 0.5}
+///     heading: {deg: 90, tolerance_deg: 5}
+///     max_tilt_deg: 30
+///     traversable_height: 0.2
+///     max_estimate_error: 0.5            # [m]
+///     max_estimate_error_percent: 2      # of distance driven
+///     min_distance: 4                    # [m]
+///   params: {dl-pose: {key: value}}      # per-service parameter overrides
+///
+/// Errors are one line naming file, line and key. Sections meant for the simulator (terrain,
+/// lander, science_targets) are validated by a callback, so they too report their lines.
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+#include "rover/sim/judge/judge.hpp"
+
+namespace rover::deploy {
+
+enum class TaskType { kDirected, kWaypoint, kAutonav, kLongTraverse, kLanderReturn, kScienceTarget };
+const char* TaskTypeName(TaskType t);
+
+enum class Primitive { kStraight, kArc, kTurnInPlace, kSteer, kStop };
+const char* PrimitiveName(Primitive p);
+
+struct DriveStep {
+  Primitive primitive = Primitive::kStraight;
+  double distance = 0;   ///< [m]
+  double curvature = 0;  ///< [1/m]
+  double angle = 0;      ///< [rad]
+  double speed = 0;      ///< [m/s], 0 = default
+  int line = 0;
+};
+
+struct TaskSpec {
+  TaskType type = TaskType::kDirected;
+  std::vector<DriveStep> steps;
+  std::optional<Eigen::Vector2d> goal;
+  double goal_tolerance = 1.0;
+  int line = 0;
+};
+
+struct Scenario {
+  std::string file;               ///< path as given
+  std::string name;
+  std::string description;
+  std::string compose_path;       ///< resolved relative to the scenario file
+  std::string simulator = "rover-sim";
+  std::uint32_t seed = 1;
+  double real_time_factor = 0;    ///< 0 = as fast as possible
+  double time_budget_s = 300;     ///< [s] simulated
+  double wall_budget_s = 600;     ///< [s] wall-clock safety net
+  double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]
+  TaskSpec task;
+  std::vector<std::map<std::string, std::string>> faults;
+  sim::JudgeCriteria criteria;
+  /// service -> flattened key -> YAML scalar text
+  std::map<std::string, std::map<std::string, std::string>> params;
+  std::string text;               ///< the file's text (to hand sections to the simulator)
+};
+
+/// Validates the simulator's sections (terrain, lander, science_targets) of a scenario text;
+/// returns the first error with the file's line.
+using SimSectionValidator = std::function<Status(const std::string& text, const std::string& file)>;
+
+/// The top-level keys that belong to the simulator.
+const std::vector<std::string>& SimulatorSections();
+
+Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
+                               const SimSectionValidator& validate_sim = nullptr);
+Result<Scenario> LoadScenarioFile(const std::string& path,
+                                  const SimSectionValidator& validate_sim = nullptr);
+
+/// Parses a seed range "A..B" or a single "A"; A <= B, at most 10000 seeds.
+Result<std::vector<std::uint32_t>> ParseSeedRange(const std::string& text);
+
+}  // namespace rover::deploy

@@ -1,0 +1,129 @@
+#include "rover/deploy/scenario.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace rover::deploy {
+namespace {
+
+class ScenarioTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = ::testing::TempDir() + "/scenario_test";
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ + "/set.compose.yaml") << "services: {a: {command: x}}\n";
+  }
+  Result<Scenario> Parse(const std::string& text, const SimSectionValidator& v = nullptr) {
+    return ParseScenario(text, dir_ + "/s.yaml", v);
+  }
+  std::string Err(const std::string& text) {
+    auto s = Parse(text);
+    EXPECT_FALSE(s.ok());
+    const std::string prefix = dir_ + "/s.yaml:";
+    const std::string m = s.status().message();
+    EXPECT_EQ(m.rfind(prefix, 0), 0u) << m;
+    return m.substr(prefix.size());
+  }
+  std::string dir_;
+};
+
+constexpr const char* kGood = R"(name: drive-turns
+description: a drive with turns
+compose: set.compose.yaml
+seed: 7
+sim: {real_time_factor: 0, time_budget_s: 200}
+rover: {start: {x: 1, y: 2, yaw_deg: 90}}
+terrain: {size_x: 30}
+task:
+  type: directed
+  steps:
+    - {primitive: straight, distance: 5}
+    - {primitive: turn_in_place, angle_deg: -90}
+    - {primitive: arc, curvature: 0.5, distance: 3, speed: 0.04}
+criteria:
+  target: {x: 6, y: 2, tolerance: 0.5}
+  heading: {deg: 0, tolerance_deg: 3}
+  max_tilt_deg: 25
+  max_estimate_error_percent: 2
+params:
+  dl-pose: {ekf: {gyro_noise: 0.001}}
+)";
+
+TEST_F(ScenarioTest, ParsesAFullScenario) {
+  std::string seen_text;
+  auto s = Parse(kGood, [&](const std::string& text, const std::string&) {
+    seen_text = text;
+    return Status::Ok();
+  });
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_EQ(s->name, "drive-turns");
+  EXPECT_EQ(s->compose_path, std::filesystem::path(dir_ + "/set.compose.yaml").lexically_normal().string());
+  EXPECT_EQ(s->seed, 7u);
+  EXPECT_EQ(s->time_budget_s, 200);
+  EXPECT_NEAR(s->start_yaw, M_PI / 2, 1e-12);
+  ASSERT_EQ(s->task.steps.size(), 3u);
+  EXPECT_EQ(s->task.steps[1].primitive, Primitive::kTurnInPlace);
+  EXPECT_NEAR(s->task.steps[1].angle, -M_PI / 2, 1e-12);
+  EXPECT_EQ(s->task.steps[2].speed, 0.04);
+  EXPECT_EQ(s->task.steps[2].line, 13);
+  ASSERT_TRUE(s->criteria.target_xy.has_value());
+  EXPECT_EQ(s->criteria.position_tolerance, 0.5);
+  EXPECT_NEAR(*s->criteria.max_estimate_error_fraction, 0.02, 1e-12);
+  EXPECT_EQ(s->params.at("dl-pose").at("ekf.gyro_noise"), "0.001");
+  EXPECT_EQ(seen_text, kGood);  // the simulator's sections are validated by the callback
+}
+
+TEST_F(ScenarioTest, SimulatorSectionErrorsComeFromTheValidator) {
+  auto s = Parse(kGood, [](const std::string&, const std::string& file) {
+    return InvalidArgument(file + ":7: key 'terrain.size_x': 30 is too small");
+  });
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find(":7: key 'terrain.size_x'"), std::string::npos);
+}
+
+TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
+  const std::string base = "name: x\ncompose: set.compose.yaml\n";
+  const std::string task = "task: {type: directed, steps: [{primitive: straight, distance: 1}]}\n";
+  const std::string crit = "criteria: {max_tilt_deg: 30}\n";
+  EXPECT_EQ(Err(base + task + crit + "critera: {}\n"),
+            "5: unknown key 'critera' (did you mean 'criteria'?) (known: name, description, "
+            "compose, simulator, seed, sim, rover, task, faults, criteria, params, terrain, "
+            "lander, science_targets)");
+  EXPECT_EQ(Err(base + crit), "1: missing 'task' (what the rover is to do)");
+  EXPECT_EQ(Err(base + task), "1: missing 'criteria' (how the run is judged)");
+  EXPECT_EQ(Err(base + task + "criteria: {max_tilt_deg: 95}\n"),
+            "4: criteria.max_tilt_deg: 95 is out of range [0.1, 89.9]");
+  EXPECT_EQ(Err(base + task + "criteria: {target: {x: 1, y: 2, tolerance: -1}}\n"),
+            "4: criteria.target.tolerance: -1 is out of range [0.001, 100]");
+  EXPECT_EQ(Err(base + task + "criteria: {target: {x: 1}}\n"),
+            "4: criteria.target: needs both 'x' and 'y'");
+  EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: arc, distance: 1}]}\n" + crit),
+            "3: task.steps[]: 'arc' needs 'curvature'");
+  EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: arc, distance: 1, curvature: 2}]}\n" + crit),
+            "3: task.steps[].curvature: 2 is out of range [-1, 1]");
+  EXPECT_EQ(Err(base + "task: {type: fly}\n" + crit),
+            "3: task.type: 'fly' is not one of: directed, waypoint, autonav, long_traverse, "
+            "lander_return, science_target");
+  EXPECT_EQ(Err(base + "task: {type: autonav}\n" + crit), "3: task: a 'autonav' task needs a 'goal'");
+  EXPECT_EQ(Err("name: x\ncompose: nope.yaml\n" + task + crit).rfind("2: compose: file '", 0), 0u);
+  EXPECT_EQ(Err(base + task + crit + "seed: -3\n"), "5: seed: expected an integer in [0, 2^32)");
+  EXPECT_EQ(Err("name: [x\n"), "2: malformed YAML: end of sequence flow not found");
+}
+
+TEST(SeedRange, ParsesAndRejects) {
+  auto r = ParseSeedRange("1..4");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(*r, (std::vector<std::uint32_t>{1, 2, 3, 4}));
+  EXPECT_EQ(ParseSeedRange("9")->size(), 1u);
+  EXPECT_EQ(ParseSeedRange("5..1").status().message(),
+            "--seeds: '5..1' is empty: the first seed is greater than the last");
+  EXPECT_FALSE(ParseSeedRange("a..b").ok());
+  EXPECT_FALSE(ParseSeedRange("1..").ok());
+  EXPECT_FALSE(ParseSeedRange("0..20000").ok());
+}
+
+}  // namespace
+}  // namespace rover::deploy
