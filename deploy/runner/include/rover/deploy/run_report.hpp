@@ -1,0 +1,83 @@
+#pragma once
+/// @file
+/// Results of scenario runs and campaigns: the per-run JSON (`result.json`), the campaign
+/// summary (`summary.json`, pass rate, mean / 95th percentile / worst of each figure), the JUnit
+/// XML for CI systems (`junit.xml`, one test case per run) and the summary table that
+/// `roverctl run` and `roverctl report` print. No DDS.
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+#include "rover/sim/judge/judge.hpp"
+
+namespace rover::deploy {
+
+struct StepResult {
+  std::string primitive;
+  std::uint32_t command_id = 0;
+  std::string state;        ///< "done", "failed", "rejected", "timeout"
+  std::string termination;  ///< e.g. "nominal", "tilt"
+  std::string message;
+  double sim_start_s = 0, sim_end_s = 0;
+};
+
+struct RunResult {
+  std::string scenario;
+  std::uint32_t seed = 0;
+  int domain = -1;
+  bool pass = false;
+  std::string failure;             ///< one line: why it failed ("" when it passed)
+  std::vector<sim::Criterion> criteria;
+  std::vector<StepResult> steps;
+  double distance_driven = 0;      ///< [m]
+  double sim_time_s = 0;           ///< simulated seconds run
+  double wall_time_s = 0;          ///< wall seconds of the whole run
+  double startup_s = 0;            ///< wall seconds to bring the service set up
+  double teardown_s = 0;           ///< wall seconds to stop it
+  std::vector<sim::ErrorSample> estimate_error;
+  std::vector<std::string> crashes;  ///< "service: how it ended; last log line"
+  std::string run_dir;
+  /// Paths of the truth (x, y) and estimated (x, y) tracks, downsampled, for plots and replay.
+  std::vector<std::array<double, 3>> truth_track;     ///< t, x, y
+  std::vector<std::array<double, 3>> estimate_track;  ///< t, x, y
+};
+
+nlohmann::json ToJson(const RunResult& r);
+Result<RunResult> RunResultFromJson(const nlohmann::json& j);
+
+/// Mean, 95th percentile and worst (max) of one figure across runs.
+struct FigureStats {
+  std::string name, unit;
+  double mean = 0, p95 = 0, worst = 0;
+  int count = 0;
+};
+
+struct CampaignSummary {
+  std::string scenario;
+  int runs = 0, passed = 0;
+  double pass_rate = 0;
+  std::vector<FigureStats> figures;  ///< each criterion's measured value, and run timings
+  double wall_time_s = 0;            ///< of the whole campaign
+  double sim_seconds_per_wall_second = 0;
+  double runs_per_hour = 0;
+};
+
+CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wall_s);
+nlohmann::json ToJson(const CampaignSummary& s);
+
+/// JUnit XML: one <testsuite> per scenario, one <testcase> per run, <failure> for failed runs.
+std::string ToJunitXml(const std::vector<RunResult>& runs, const std::string& suite_name);
+
+/// The human-readable table: one line per run, then the statistics.
+std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s);
+
+/// Reads every `*/result.json` under a run folder (for `roverctl report`).
+Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
+/// True if `dir` looks like a campaign folder written by `roverctl run` (has campaign.json).
+bool IsRunFolder(const std::string& dir);
+
+}  // namespace rover::deploy

@@ -1,0 +1,276 @@
+#include "rover/deploy/run_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace rover::deploy {
+namespace fs = std::filesystem;
+
+namespace {
+std::string XmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        // XML 1.0 forbids most control characters.
+        if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t') out += c;
+    }
+  }
+  return out;
+}
+
+FigureStats Stats(const std::string& name, const std::string& unit, std::vector<double> v) {
+  FigureStats f;
+  f.name = name;
+  f.unit = unit;
+  f.count = static_cast<int>(v.size());
+  if (v.empty()) return f;
+  std::sort(v.begin(), v.end());
+  double sum = 0;
+  for (double x : v) sum += x;
+  f.mean = sum / v.size();
+  // Nearest-rank 95th percentile.
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.95 * v.size()));
+  f.p95 = v[std::max<std::size_t>(1, rank) - 1];
+  f.worst = v.back();
+  return f;
+}
+}  // namespace
+
+nlohmann::json ToJson(const RunResult& r) {
+  nlohmann::json j;
+  j["scenario"] = r.scenario;
+  j["seed"] = r.seed;
+  j["domain"] = r.domain;
+  j["pass"] = r.pass;
+  j["failure"] = r.failure;
+  j["criteria"] = nlohmann::json::array();
+  for (const auto& c : r.criteria) {
+    j["criteria"].push_back({{"name", c.name}, {"measured", c.measured}, {"limit", c.limit},
+                             {"unit", c.unit}, {"pass", c.pass}, {"detail", c.detail}});
+  }
+  j["steps"] = nlohmann::json::array();
+  for (const auto& s : r.steps) {
+    j["steps"].push_back({{"primitive", s.primitive}, {"command_id", s.command_id},
+                          {"state", s.state}, {"termination", s.termination},
+                          {"message", s.message}, {"sim_start_s", s.sim_start_s},
+                          {"sim_end_s", s.sim_end_s}});
+  }
+  j["distance_driven_m"] = r.distance_driven;
+  j["timings"] = {{"sim_time_s", r.sim_time_s}, {"wall_time_s", r.wall_time_s},
+                  {"startup_s", r.startup_s}, {"teardown_s", r.teardown_s},
+                  {"sim_seconds_per_wall_second",
+                   r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0}};
+  j["estimate_error"] = nlohmann::json::array();
+  for (const auto& e : r.estimate_error) {
+    j["estimate_error"].push_back({e.t.seconds(), e.position_error, e.heading_error});
+  }
+  j["estimate_error_columns"] = {"t_s", "position_error_m", "heading_error_rad"};
+  j["crashes"] = r.crashes;
+  j["run_dir"] = r.run_dir;
+  j["truth_track"] = r.truth_track;
+  j["estimate_track"] = r.estimate_track;
+  return j;
+}
+
+Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
+  try {
+    RunResult r;
+    r.scenario = j.at("scenario");
+    r.seed = j.at("seed");
+    r.domain = j.value("domain", -1);
+    r.pass = j.at("pass");
+    r.failure = j.value("failure", "");
+    for (const auto& c : j.at("criteria")) {
+      r.criteria.push_back({c.at("name"), c.at("measured"), c.at("limit"), c.at("unit"),
+                            c.at("pass"), c.value("detail", "")});
+    }
+    for (const auto& s : j.value("steps", nlohmann::json::array())) {
+      r.steps.push_back({s.at("primitive"), s.at("command_id"), s.at("state"),
+                         s.value("termination", ""), s.value("message", ""),
+                         s.value("sim_start_s", 0.0), s.value("sim_end_s", 0.0)});
+    }
+    r.distance_driven = j.value("distance_driven_m", 0.0);
+    const auto& t = j.at("timings");
+    r.sim_time_s = t.value("sim_time_s", 0.0);
+    r.wall_time_s = t.value("wall_time_s", 0.0);
+    r.startup_s = t.value("startup_s", 0.0);
+    r.teardown_s = t.value("teardown_s", 0.0);
+    for (const auto& e : j.value("estimate_error", nlohmann::json::array())) {
+      r.estimate_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
+    }
+    r.crashes = j.value("crashes", std::vector<std::string>{});
+    r.run_dir = j.value("run_dir", "");
+    r.truth_track = j.value("truth_track", std::vector<std::array<double, 3>>{});
+    r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    return InvalidArgument(std::string("result.json: ") + e.what());
+  }
+}
+
+CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wall_s) {
+  CampaignSummary s;
+  s.runs = static_cast<int>(runs.size());
+  if (!runs.empty()) s.scenario = runs.front().scenario;
+  std::map<std::string, std::pair<std::string, std::vector<double>>> by_name;
+  std::vector<std::string> order;
+  std::vector<double> wall, startup, teardown, distance, sim_time;
+  double sim_total = 0;
+  for (const auto& r : runs) {
+    if (r.pass) ++s.passed;
+    for (const auto& c : r.criteria) {
+      if (!by_name.count(c.name)) order.push_back(c.name);
+      auto& e = by_name[c.name];
+      e.first = c.unit;
+      e.second.push_back(c.measured);
+    }
+    wall.push_back(r.wall_time_s);
+    startup.push_back(r.startup_s);
+    teardown.push_back(r.teardown_s);
+    distance.push_back(r.distance_driven);
+    sim_time.push_back(r.sim_time_s);
+    sim_total += r.sim_time_s;
+  }
+  s.pass_rate = s.runs ? static_cast<double>(s.passed) / s.runs : 0.0;
+  for (const auto& n : order) s.figures.push_back(Stats(n, by_name[n].first, by_name[n].second));
+  s.figures.push_back(Stats("distance_driven", "m", distance));
+  s.figures.push_back(Stats("sim_time", "s", sim_time));
+  s.figures.push_back(Stats("wall_time", "s", wall));
+  s.figures.push_back(Stats("startup", "s", startup));
+  s.figures.push_back(Stats("teardown", "s", teardown));
+  s.wall_time_s = campaign_wall_s;
+  s.sim_seconds_per_wall_second = campaign_wall_s > 0 ? sim_total / campaign_wall_s : 0;
+  s.runs_per_hour = campaign_wall_s > 0 ? 3600.0 * s.runs / campaign_wall_s : 0;
+  return s;
+}
+
+nlohmann::json ToJson(const CampaignSummary& s) {
+  nlohmann::json j;
+  j["scenario"] = s.scenario;
+  j["runs"] = s.runs;
+  j["passed"] = s.passed;
+  j["pass_rate"] = s.pass_rate;
+  j["wall_time_s"] = s.wall_time_s;
+  j["sim_seconds_per_wall_second"] = s.sim_seconds_per_wall_second;
+  j["runs_per_hour"] = s.runs_per_hour;
+  j["figures"] = nlohmann::json::array();
+  for (const auto& f : s.figures) {
+    j["figures"].push_back({{"name", f.name}, {"unit", f.unit}, {"mean", f.mean}, {"p95", f.p95},
+                            {"worst", f.worst}, {"count", f.count}});
+  }
+  return j;
+}
+
+std::string ToJunitXml(const std::vector<RunResult>& runs, const std::string& suite_name) {
+  int failures = 0;
+  double total = 0;
+  for (const auto& r : runs) {
+    if (!r.pass) ++failures;
+    total += r.wall_time_s;
+  }
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  char head[256];
+  std::snprintf(head, sizeof head, "<testsuites tests=\"%zu\" failures=\"%d\" time=\"%.3f\">\n",
+                runs.size(), failures, total);
+  x << head;
+  std::snprintf(head, sizeof head, "  <testsuite name=\"%s\" tests=\"%zu\" failures=\"%d\" time=\"%.3f\">\n",
+                XmlEscape(suite_name).c_str(), runs.size(), failures, total);
+  x << head;
+  for (const auto& r : runs) {
+    char tc[512];
+    std::snprintf(tc, sizeof tc, "    <testcase classname=\"%s\" name=\"seed-%u\" time=\"%.3f\"",
+                  XmlEscape(r.scenario).c_str(), r.seed, r.wall_time_s);
+    x << tc;
+    if (r.pass) {
+      x << "/>\n";
+      continue;
+    }
+    x << ">\n      <failure message=\"" << XmlEscape(r.failure) << "\">";
+    for (const auto& c : r.criteria) {
+      if (!c.pass) {
+        char line[256];
+        std::snprintf(line, sizeof line, "%s: %.4g %s (limit %.4g) %s\n", c.name.c_str(),
+                      c.measured, c.unit.c_str(), c.limit, c.detail.c_str());
+        x << XmlEscape(line);
+      }
+    }
+    for (const auto& c : r.crashes) x << XmlEscape("crash: " + c + "\n");
+    x << "</failure>\n";
+    x << "      <system-out>" << XmlEscape("run folder: " + r.run_dir) << "</system-out>\n";
+    x << "    </testcase>\n";
+  }
+  x << "  </testsuite>\n</testsuites>\n";
+  return x.str();
+}
+
+std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s) {
+  std::ostringstream o;
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%-8s %-6s %9s %9s %9s  %s\n", "seed", "result", "dist m",
+                "sim s", "wall s", "failure");
+  o << buf;
+  for (const auto& r : runs) {
+    std::snprintf(buf, sizeof buf, "%-8u %-6s %9.2f %9.1f %9.1f  %s\n", r.seed,
+                  r.pass ? "PASS" : "FAIL", r.distance_driven, r.sim_time_s, r.wall_time_s,
+                  r.failure.c_str());
+    o << buf;
+  }
+  std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)\n\n", s.scenario.c_str(), s.passed,
+                s.runs, 100.0 * s.pass_rate);
+  o << buf;
+  std::snprintf(buf, sizeof buf, "%-30s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
+                "worst");
+  o << buf;
+  for (const auto& f : s.figures) {
+    std::snprintf(buf, sizeof buf, "%-30s %-6s %11.4g %11.4g %11.4g\n", f.name.c_str(),
+                  f.unit.c_str(), f.mean, f.p95, f.worst);
+    o << buf;
+  }
+  std::snprintf(buf, sizeof buf,
+                "\ncampaign: %.1f s wall, %.2f simulated s per wall s, %.0f runs/hour\n",
+                s.wall_time_s, s.sim_seconds_per_wall_second, s.runs_per_hour);
+  o << buf;
+  return o.str();
+}
+
+bool IsRunFolder(const std::string& dir) { return fs::exists(fs::path(dir) / "campaign.json"); }
+
+Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir) {
+  if (!fs::is_directory(dir)) return NotFound(dir + ": no such folder");
+  if (!IsRunFolder(dir)) {
+    return InvalidArgument(dir + ": not a run folder (no campaign.json; made by `roverctl run`)");
+  }
+  std::vector<RunResult> out;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.is_directory() && fs::exists(e.path() / "result.json")) files.push_back(e.path() / "result.json");
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    std::ifstream in(f);
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      return InvalidArgument(f.string() + ": " + e.what());
+    }
+    auto r = RunResultFromJson(j);
+    if (!r.ok()) return r.status().WithPrefix(f.string());
+    out.push_back(std::move(*r));
+  }
+  std::sort(out.begin(), out.end(), [](const RunResult& a, const RunResult& b) { return a.seed < b.seed; });
+  return out;
+}
+
+}  // namespace rover::deploy

@@ -1,0 +1,96 @@
+#include "rover/deploy/run_report.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace rover::deploy {
+namespace {
+
+RunResult MakeRun(std::uint32_t seed, bool pass, double err) {
+  RunResult r;
+  r.scenario = "drive-flat";
+  r.seed = seed;
+  r.pass = pass;
+  r.failure = pass ? "" : "final_position_error: 0.8 m (limit 0.5) <&>";
+  r.criteria.push_back({"final_position_error", err, 0.5, "m", err <= 0.5, "ended at (1, 2)"});
+  r.distance_driven = 20;
+  r.sim_time_s = 400;
+  r.wall_time_s = 40;
+  r.startup_s = 3;
+  r.teardown_s = 1;
+  r.estimate_error.push_back({Time::FromSeconds(1.5), 0.1, 0.01});
+  r.steps.push_back({"straight", 1, "done", "nominal", "", 0, 390});
+  r.truth_track.push_back({0, 0, 0});
+  return r;
+}
+
+TEST(RunReport, JsonRoundTrip) {
+  const RunResult r = MakeRun(3, false, 0.8);
+  auto back = RunResultFromJson(ToJson(r));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(back->seed, 3u);
+  EXPECT_FALSE(back->pass);
+  ASSERT_EQ(back->criteria.size(), 1u);
+  EXPECT_EQ(back->criteria[0].measured, 0.8);
+  EXPECT_EQ(back->steps[0].termination, "nominal");
+  EXPECT_EQ(back->estimate_error[0].t.seconds(), 1.5);
+  EXPECT_FALSE(RunResultFromJson(nlohmann::json{{"seed", 1}}).ok());
+}
+
+TEST(RunReport, SummaryStatistics) {
+  std::vector<RunResult> runs;
+  for (int i = 0; i < 20; ++i) runs.push_back(MakeRun(i, i != 7, 0.01 * (i + 1)));
+  const CampaignSummary s = Summarize(runs, 100.0);
+  EXPECT_EQ(s.runs, 20);
+  EXPECT_EQ(s.passed, 19);
+  EXPECT_NEAR(s.pass_rate, 0.95, 1e-12);
+  const FigureStats& f = s.figures[0];
+  EXPECT_EQ(f.name, "final_position_error");
+  EXPECT_NEAR(f.mean, 0.105, 1e-12);
+  EXPECT_NEAR(f.p95, 0.19, 1e-12);  // nearest rank 19 of 20
+  EXPECT_NEAR(f.worst, 0.20, 1e-12);
+  EXPECT_NEAR(s.sim_seconds_per_wall_second, 80.0, 1e-9);
+  EXPECT_NEAR(s.runs_per_hour, 720.0, 1e-9);
+  const std::string table = FormatSummaryTable(runs, s);
+  EXPECT_NE(table.find("drive-flat: 19/20 passed (95%)"), std::string::npos) << table;
+}
+
+// The JUnit file must be well-formed XML with one test case per run; checked with xmllint
+// (libxml2-utils, installed by scripts/setup.sh).
+TEST(RunReport, JunitIsValidXmlWithOneCasePerRun) {
+  std::vector<RunResult> runs = {MakeRun(1, true, 0.1), MakeRun(2, false, 0.8), MakeRun(3, true, 0.2)};
+  const std::string xml = ToJunitXml(runs, "drive-flat");
+  const std::string path = ::testing::TempDir() + "/junit_test.xml";
+  std::ofstream(path) << xml;
+  ASSERT_EQ(std::system(("xmllint --noout " + path).c_str()), 0) << xml;
+  std::size_t cases = 0, pos = 0;
+  while ((pos = xml.find("<testcase ", pos)) != std::string::npos) {
+    ++cases;
+    ++pos;
+  }
+  EXPECT_EQ(cases, 3u);
+  EXPECT_NE(xml.find("failures=\"1\""), std::string::npos);
+  EXPECT_NE(xml.find("&lt;&amp;&gt;"), std::string::npos);  // escaped
+  std::remove(path.c_str());
+}
+
+TEST(RunReport, RunFolderDetection) {
+  const std::string dir = ::testing::TempDir() + "/runfolder_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/drive-flat-seed1");
+  EXPECT_FALSE(IsRunFolder(dir));
+  EXPECT_FALSE(LoadRunFolder(dir).ok());
+  std::ofstream(dir + "/campaign.json") << "{}";
+  std::ofstream(dir + "/drive-flat-seed1/result.json") << ToJson(MakeRun(1, true, 0.1)).dump();
+  auto runs = LoadRunFolder(dir);
+  ASSERT_TRUE(runs.ok()) << runs.status().message();
+  EXPECT_EQ(runs->size(), 1u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rover::deploy
