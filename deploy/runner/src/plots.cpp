@@ -1,0 +1,113 @@
+#include "rover/deploy/plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "rover/sim/terrain/terrain.hpp"
+#include "rover/sim/terrain/top_down_map.hpp"
+
+namespace rover::deploy {
+namespace {
+
+std::vector<Eigen::Vector2d> Track(const std::vector<std::array<double, 3>>& t) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(t.size());
+  for (const auto& p : t) out.emplace_back(p[1], p[2]);
+  return out;
+}
+
+// A "nice" tick step for a range (1, 2 or 5 times a power of ten).
+double TickStep(double range, int target_ticks) {
+  const double raw = range / std::max(1, target_ticks);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (m * mag >= raw) return m * mag;
+  }
+  return 10 * mag;
+}
+
+// One panel: y(t) as a polyline with axes, ticks and labels.
+void Panel(cv::Mat& img, cv::Rect area, const std::vector<double>& t, const std::vector<double>& y,
+           const std::string& ylabel, const cv::Scalar& color) {
+  const int left = 70, bottom = 40, top = 25, right = 20;
+  const cv::Rect plot(area.x + left, area.y + top, area.width - left - right,
+                      area.height - top - bottom);
+  cv::rectangle(img, plot, cv::Scalar(0, 0, 0), 1);
+  cv::putText(img, ylabel, {area.x + 8, area.y + 17}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1,
+              cv::LINE_AA);
+  if (t.empty()) {
+    cv::putText(img, "no estimate overlapped the truth record", {plot.x + 20, plot.y + plot.height / 2},
+                cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 200}, 1, cv::LINE_AA);
+    return;
+  }
+  const double t0 = t.front(), t1 = std::max(t.back(), t0 + 1e-6);
+  double y0 = *std::min_element(y.begin(), y.end()), y1 = *std::max_element(y.begin(), y.end());
+  y0 = std::min(y0, 0.0);
+  if (y1 - y0 < 1e-9) y1 = y0 + 1.0;
+  const double ys = TickStep(y1 - y0, 5);
+  y0 = std::floor(y0 / ys) * ys;
+  y1 = std::ceil(y1 / ys) * ys;
+  auto px = [&](double tv, double yv) {
+    return cv::Point(plot.x + static_cast<int>((tv - t0) / (t1 - t0) * plot.width),
+                     plot.y + plot.height - static_cast<int>((yv - y0) / (y1 - y0) * plot.height));
+  };
+  char buf[32];
+  for (double v = y0; v <= y1 + ys * 0.5; v += ys) {
+    const cv::Point p = px(t0, v);
+    cv::line(img, p, {plot.x + plot.width, p.y}, {225, 225, 225}, 1);
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    cv::putText(img, buf, {area.x + 8, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {0, 0, 0}, 1, cv::LINE_AA);
+  }
+  const double ts = TickStep(t1 - t0, 8);
+  for (double v = std::ceil(t0 / ts) * ts; v <= t1; v += ts) {
+    const cv::Point p = px(v, y0);
+    cv::line(img, p, {p.x, plot.y}, {225, 225, 225}, 1);
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    cv::putText(img, buf, {p.x - 10, plot.y + plot.height + 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                {0, 0, 0}, 1, cv::LINE_AA);
+  }
+  cv::putText(img, "simulated time [s]", {plot.x + plot.width / 2 - 60, area.y + area.height - 6},
+              cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0}, 1, cv::LINE_AA);
+  std::vector<cv::Point> pts;
+  for (std::size_t i = 0; i < t.size(); ++i) pts.push_back(px(t[i], y[i]));
+  cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
+}
+
+}  // namespace
+
+Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
+                     const std::vector<Eigen::Vector2d>& planned, const std::string& path) {
+  sim::MapOptions o;
+  o.title = run.scenario + " seed " + std::to_string(run.seed) + (run.pass ? "  PASS" : "  FAIL");
+  if (planned.size() >= 2) o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true});
+  const auto truth = Track(run.truth_track);
+  if (truth.size() >= 2) o.polylines.push_back({truth, {20, 170, 40}, "driven (truth)", 2, true});
+  const auto est = Track(run.estimate_track);
+  if (est.size() >= 2) o.polylines.push_back({est, {255, 140, 0}, "estimated", 2, true});
+  return sim::WriteTopDownMap(terrain, path, o);
+}
+
+Status WriteErrorPlot(const RunResult& run, const std::string& path) {
+  cv::Mat img(520, 900, CV_8UC3, cv::Scalar(255, 255, 255));
+  std::vector<double> t, pos, head;
+  for (const auto& e : run.estimate_error) {
+    t.push_back(e.t.seconds());
+    pos.push_back(e.position_error);
+    head.push_back(e.heading_error * 180.0 / M_PI);
+  }
+  cv::putText(img, run.scenario + " seed " + std::to_string(run.seed) + ": pose estimate - truth",
+              {10, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.55, {0, 0, 0}, 1, cv::LINE_AA);
+  Panel(img, cv::Rect(0, 25, 900, 245), t, pos, "position error [m]", {200, 90, 20});
+  Panel(img, cv::Rect(0, 270, 900, 245), t, head, "heading error [deg]", {20, 110, 230});
+  try {
+    if (!cv::imwrite(path, img)) return Unavailable(path + ": cannot write PNG");
+  } catch (const cv::Exception& e) {
+    return Unavailable(path + ": " + e.what());
+  }
+  return Status::Ok();
+}
+
+}  // namespace rover::deploy
