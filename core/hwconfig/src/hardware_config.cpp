@@ -1,5 +1,6 @@
 #include "rover/hwconfig/hardware_config.hpp"
 
+#include <Eigen/LU>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -47,9 +48,8 @@ struct Checker {
     return Finite(k, v) && (v >= lo || Fail(k, Num(v) + " must be >= " + Num(lo)));
   }
   bool InRange(const std::string& k, double v, double lo, double hi) {
-    return Finite(k, v) &&
-           ((v >= lo && v <= hi) ||
-            Fail(k, Num(v) + " is out of range [" + Num(lo) + ", " + Num(hi) + "]"));
+    return Finite(k, v) && ((v >= lo && v <= hi) || Fail(k, Num(v) + " is out of range [" +
+                                                                Num(lo) + ", " + Num(hi) + "]"));
   }
 };
 
@@ -57,8 +57,7 @@ void CheckInertial(Checker& c, const std::string& base, const InertialSensorSpec
   c.Positive(base + ".lsb", s.lsb);
   c.Positive(base + ".range", s.range);
   if (c.status.ok() && s.range / s.lsb >= 2147483647.0) {
-    c.Fail(base + ".range", Num(s.range) + " is not representable in int32 LSB of " +
-                                Num(s.lsb));
+    c.Fail(base + ".range", Num(s.range) + " is not representable in int32 LSB of " + Num(s.lsb));
   }
   for (int i = 0; i < 3; ++i) {
     c.Finite(base + ".bias", s.bias[i]);
@@ -70,7 +69,8 @@ void CheckInertial(Checker& c, const std::string& base, const InertialSensorSpec
                                          "; must be 0 (scale factors go in 'scale')");
     }
   }
-  for (int i = 0; i < 9; ++i) c.InRange(base + ".misalignment", s.misalignment(i / 3, i % 3), -0.1, 0.1);
+  for (int i = 0; i < 9; ++i)
+    c.InRange(base + ".misalignment", s.misalignment(i / 3, i % 3), -0.1, 0.1);
   c.AtLeast(base + ".noise_density", s.noise_density, 0.0);
   c.AtLeast(base + ".bias_random_walk", s.bias_random_walk, 0.0);
 }
@@ -246,9 +246,7 @@ HardwareConfig::HardwareConfig() {
   pots.offset_counts = {2041.0, 2057.0, 2036.0, 2060.0};
 }
 
-Status HardwareConfig::Validate() const {
-  return internal::ValidateHardwareConfig(*this, nullptr);
-}
+Status HardwareConfig::Validate() const { return internal::ValidateHardwareConfig(*this, nullptr); }
 
 Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::string* bad_key) {
   const auto& motors = config.motors;
@@ -265,8 +263,7 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
     c.Positive(base + ".max_rate", m.max_rate);
     c.Positive(base + ".default_rate", m.default_rate);
     if (c.status.ok() && m.default_rate > m.max_rate) {
-      c.Fail(base + ".default_rate",
-             Num(m.default_rate) + " exceeds max_rate " + Num(m.max_rate));
+      c.Fail(base + ".default_rate", Num(m.default_rate) + " exceeds max_rate " + Num(m.max_rate));
     }
     c.Positive(base + ".max_acceleration", m.max_acceleration);
     c.Positive(base + ".current_limit", m.current_limit);
@@ -309,10 +306,10 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
     }
     const double tc = t.CountsFromTemperature(m.max_temperature);
     if (c.status.ok() && (tc <= 0.0 || tc >= hw::kAdcMax)) {
-      c.Fail(base + ".max_temperature",
-             Num(m.max_temperature) + " degC is outside the temperature ADC's range [" +
-                 Num(t.TemperatureFromCounts(0)) + ", " +
-                 Num(t.TemperatureFromCounts(hw::kAdcMax)) + "]");
+      c.Fail(base + ".max_temperature", Num(m.max_temperature) +
+                                            " degC is outside the temperature ADC's range [" +
+                                            Num(t.TemperatureFromCounts(0)) + ", " +
+                                            Num(t.TemperatureFromCounts(hw::kAdcMax)) + "]");
     }
   }
 
@@ -340,6 +337,9 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
   CheckInertial(c, "imu.accel", imu.accel);
   if (c.status.ok() && std::abs(imu.gyro.ScaleMisalignment().determinant()) < 0.5) {
     c.Fail("imu.gyro.misalignment", "scale/misalignment matrix is (nearly) singular");
+  }
+  if (c.status.ok() && std::abs(imu.accel.ScaleMisalignment().determinant()) < 0.5) {
+    c.Fail("imu.accel.misalignment", "scale/misalignment matrix is (nearly) singular");
   }
   c.AtLeast("imu.temperature_noise", imu.temperature_noise, 0.0);
 
@@ -396,8 +396,7 @@ void DeclareHardwareParams(ParamSet& ps, const std::string& prefix) {
     }
     ps.Declare(key(b + "current_limit"), m.current_limit, "[A] over-current trip level")
         .Range(0.01, 60.0);
-    ps.Declare(key(b + "max_temperature"), m.max_temperature,
-               "[degC] over-temperature trip level")
+    ps.Declare(key(b + "max_temperature"), m.max_temperature, "[degC] over-temperature trip level")
         .Range(-150.0, 300.0);
     ps.Declare(key(b + "position_tolerance"), m.position_tolerance,
                "[rad] band around a position goal that counts as reached")
@@ -494,8 +493,7 @@ void DeclareHardwareParams(ParamSet& ps, const std::string& prefix) {
              "[counts] spot of a sun on the boresight (column, row)")
       .Size(2)
       .Range(-30000.0, 30000.0);
-  ps.Declare(key("sun_sensor.fov_deg"), s.fov / kDeg,
-             "[deg] half angle of the field of view")
+  ps.Declare(key("sun_sensor.fov_deg"), s.fov / kDeg, "[deg] half angle of the field of view")
       .Range(1.0, 85.0);
   ps.Declare(key("sun_sensor.full_scale_intensity"), s.full_scale_intensity,
              "[counts] intensity of the zenith sun on the boresight")

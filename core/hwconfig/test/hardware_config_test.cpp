@@ -8,7 +8,8 @@
 namespace rover {
 namespace {
 
-const std::string kDefaultFile = std::string(ROVER_SOURCE_DIR) + "/deploy/config/rover_hardware.yaml";
+const std::string kDefaultFile =
+    std::string(ROVER_SOURCE_DIR) + "/deploy/config/rover_hardware.yaml";
 
 TEST(HardwareConfig, DefaultsAreValid) {
   const HardwareConfig c;
@@ -54,12 +55,12 @@ TEST(HardwareConfig, ConversionsInvertEachOther) {
   EXPECT_LT((c.imu.rover_from_case * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm(),
             1e-12);
   // Sun sensor boresight up, columns to the right.
-  EXPECT_LT((c.sun_sensor.rover_from_sensor * Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitZ())
-                .norm(),
-            1e-12);
-  EXPECT_LT((c.sun_sensor.rover_from_sensor * Eigen::Vector3d::UnitX() + Eigen::Vector3d::UnitY())
-                .norm(),
-            1e-12);
+  EXPECT_LT(
+      (c.sun_sensor.rover_from_sensor * Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitZ()).norm(),
+      1e-12);
+  EXPECT_LT(
+      (c.sun_sensor.rover_from_sensor * Eigen::Vector3d::UnitX() + Eigen::Vector3d::UnitY()).norm(),
+      1e-12);
   EXPECT_TRUE(c.sun_sensor.SpotInFieldOfView(0.0, 0.0));
   EXPECT_TRUE(c.sun_sensor.SpotInFieldOfView(2000.0 * std::tan(1.04), 0.0));
   EXPECT_FALSE(c.sun_sensor.SpotInFieldOfView(2000.0 * std::tan(1.06), 0.0));
@@ -78,8 +79,8 @@ TEST(HardwareConfig, RangeErrorsNameFileLineAndKey) {
 TEST(HardwareConfig, CrossFieldErrorsNameFileLineAndKeyWithPrefix) {
   ParamSet ps("ddl_motor");
   DeclareHardwareParams(ps, "hardware");
-  ASSERT_TRUE(ps.LoadYamlString("hardware:\n  motors:\n    steer:\n      min_angle: 2.0\n", "x.yaml")
-                  .ok());
+  ASSERT_TRUE(
+      ps.LoadYamlString("hardware:\n  motors:\n    steer:\n      min_angle: 2.0\n", "x.yaml").ok());
   auto c = HardwareConfigFromParams(ps, "hardware");
   ASSERT_FALSE(c.ok());
   EXPECT_EQ(c.status().message(),
@@ -87,13 +88,12 @@ TEST(HardwareConfig, CrossFieldErrorsNameFileLineAndKeyWithPrefix) {
 
   ParamSet ps2("hardware");
   DeclareHardwareParams(ps2);
-  ASSERT_TRUE(ps2.LoadYamlString("imu:\n  gyro:\n    misalignment: [0.01, 0, 0, 0, 0, 0, 0, 0, 0]\n",
-                                 "m.yaml")
+  ASSERT_TRUE(ps2.LoadYamlString(
+                     "imu:\n  gyro:\n    misalignment: [0.01, 0, 0, 0, 0, 0, 0, 0, 0]\n", "m.yaml")
                   .ok());
   auto c2 = HardwareConfigFromParams(ps2);
   ASSERT_FALSE(c2.ok());
-  EXPECT_NE(c2.status().message().find("m.yaml:3: key 'imu.gyro.misalignment'"),
-            std::string::npos)
+  EXPECT_NE(c2.status().message().find("m.yaml:3: key 'imu.gyro.misalignment'"), std::string::npos)
       << c2.status().message();
 
   ParamSet ps3("hardware");

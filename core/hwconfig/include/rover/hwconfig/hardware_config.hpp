@@ -26,11 +26,10 @@
 ///   spot = focal_counts (s_x / s_z, s_y / s_z) + principal_point     [detector counts]
 /// and is visible while the angle off the boresight is <= fov_deg.
 
+#include <Eigen/Core>
 #include <array>
 #include <limits>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
@@ -54,8 +53,8 @@ struct MotorSpec {
   double max_acceleration = 2.0;  ///< [rad/s^2] the controller's profile acceleration
   double min_angle = -std::numeric_limits<double>::infinity();  ///< [rad]; -inf for wheels
   double max_angle = std::numeric_limits<double>::infinity();   ///< [rad]; +inf for wheels
-  double current_limit = 1.3;       ///< [A] over-current trip level
-  double max_temperature = 110.0;   ///< [deg C] over-temperature trip level
+  double current_limit = 1.3;                                   ///< [A] over-current trip level
+  double max_temperature = 110.0;     ///< [deg C] over-temperature trip level
   double position_tolerance = 0.005;  ///< [rad] "at goal" band used by the driver
 
   /// counts_per_rev * gear_ratio / (2 pi) [counts/rad].
@@ -99,13 +98,13 @@ struct PotSpec {
 
 /// One inertial sensor triad (gyro or accelerometer) of the IMU.
 struct InertialSensorSpec {
-  double lsb = 1.0e-6;    ///< [rad/s or m/s^2 per LSB]
-  double range = 17.45;   ///< [rad/s or m/s^2] full scale; beyond it the output saturates
-  Eigen::Vector3d bias = Eigen::Vector3d::Zero();   ///< nominal bias, case frame
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones();  ///< scale factors (1 = ideal)
+  double lsb = 1.0e-6;   ///< [rad/s or m/s^2 per LSB]
+  double range = 17.45;  ///< [rad/s or m/s^2] full scale; beyond it the output saturates
+  Eigen::Vector3d bias = Eigen::Vector3d::Zero();          ///< nominal bias, case frame
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();         ///< scale factors (1 = ideal)
   Eigen::Matrix3d misalignment = Eigen::Matrix3d::Zero();  ///< zero diagonal, small [rad]
-  double noise_density = 2.0e-5;     ///< white noise [unit/sqrt(Hz)]
-  double bias_random_walk = 5.0e-8;  ///< [unit/sqrt(s)]
+  double noise_density = 2.0e-5;                           ///< white noise [unit/sqrt(Hz)]
+  double bias_random_walk = 5.0e-8;                        ///< [unit/sqrt(s)]
 
   /// K = (I + misalignment) diag(scale).
   Eigen::Matrix3d ScaleMisalignment() const;
@@ -132,7 +131,7 @@ struct SunSensorSpec {
   Eigen::Matrix3d rover_from_sensor = Eigen::Matrix3d::Identity();
   double focal_counts = 2000.0;  ///< [detector counts per unit tangent]
   Eigen::Vector2d principal_point = Eigen::Vector2d::Zero();  ///< [counts] boresight spot
-  double fov = 60.0 * 3.14159265358979323846 / 180.0;  ///< [rad] half angle of the cone
+  double fov = 60.0 * 3.14159265358979323846 / 180.0;         ///< [rad] half angle of the cone
   double full_scale_intensity = 3500.0;  ///< [ADC counts] sun at the zenith on the boresight
   double min_intensity = 300.0;          ///< [ADC counts] dimmer spots are not the sun
   double spot_noise_counts = 0.5;        ///< [counts] 1-sigma centroid noise

@@ -34,9 +34,18 @@ namespace rover::hw {
 /// Motor indices (rover_hw.idl): every array of 12 uses this order.
 inline constexpr int kNumMotors = 12;
 enum MotorIndex : int {
-  kDriveLF = 0, kDriveLM = 1, kDriveLR = 2, kDriveRF = 3, kDriveRM = 4, kDriveRR = 5,
-  kSteerLF = 6, kSteerLR = 7, kSteerRF = 8, kSteerRR = 9,
-  kMastPan = 10, kMastTilt = 11,
+  kDriveLF = 0,
+  kDriveLM = 1,
+  kDriveLR = 2,
+  kDriveRF = 3,
+  kDriveRM = 4,
+  kDriveRR = 5,
+  kSteerLF = 6,
+  kSteerLR = 7,
+  kSteerRF = 8,
+  kSteerRR = 9,
+  kMastPan = 10,
+  kMastTilt = 11,
 };
 /// "drive_lf", ..., "mast_tilt"; "?" outside 0..11.
 const char* MotorName(int motor);
@@ -54,9 +63,9 @@ const char* MotorModeName(MotorMode m);
 
 struct MotorGoal {
   MotorMode mode = MotorMode::kIdle;
-  std::int32_t position = 0;          ///< [counts] position goal (kPosition)
-  std::int32_t velocity = 0;          ///< [counts/s] rate goal, or rate limit (> 0) for kPosition
-  std::uint16_t current_limit_ma = 0; ///< [mA] over-current trip level; 0 = controller default
+  std::int32_t position = 0;           ///< [counts] position goal (kPosition)
+  std::int32_t velocity = 0;           ///< [counts/s] rate goal, or rate limit (> 0) for kPosition
+  std::uint16_t current_limit_ma = 0;  ///< [mA] over-current trip level; 0 = controller default
 };
 
 /// hw/motor_goals (command, DDL -> controller).

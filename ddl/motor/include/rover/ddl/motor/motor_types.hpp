@@ -1,0 +1,114 @@
+#pragma once
+/// @file
+/// Plain C++ mirrors of ddl/motor_command and ddl/motor_status (idl/rover_ddl.idl), the typed
+/// reasons for rejecting a command, the options of the motor-group manager, and the conversion
+/// of hw/motor_telemetry into engineering units.
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "rover/base/params.hpp"
+#include "rover/base/status.hpp"
+#include "rover/hwconfig/hardware_config.hpp"
+#include "rover/hwconfig/hw_bus.hpp"
+
+namespace rover::ddl {
+
+enum class GroupMode : int { kPosition = 0, kVelocity = 1, kStop = 2 };
+enum class GroupState : int { kIdle = 0, kRunning = 1, kDone = 2, kFault = 3, kRejected = 4 };
+/// Same order and meaning as the IDL's MotorFault.
+enum class MotorFault : int {
+  kNone = 0,
+  kStall,
+  kOverCurrent,
+  kOverTemp,
+  kTimeout,
+  kNoTelemetry,
+  kBadCommand,
+  kStopped
+};
+
+/// Why a command was rejected (GROUP_REJECTED); kNone for accepted commands.
+enum class CommandError : int {
+  kNone = 0,
+  kUnknownMode,      ///< mode is not one of GroupMode
+  kEmptyMask,        ///< no motor selected (position / velocity)
+  kUnknownMotor,     ///< a mask bit beyond motor 11
+  kNonFiniteGoal,    ///< NaN or infinite goal
+  kBadRate,          ///< NaN, infinite or negative max_rate
+  kRateAboveLimit,   ///< max_rate (position) or |goal| (velocity) above the motor's max_rate
+  kGoalOutOfRange,   ///< position goal beyond the joint limits (or the encoder range)
+  kBadTimeout,       ///< NaN, infinite or negative timeout_s
+  kTimeoutTooShort,  ///< timeout_s shorter than the planned synchronised move
+  kNoTelemetry,      ///< no fresh telemetry to plan from
+};
+
+const char* GroupModeName(GroupMode m);
+const char* GroupStateName(GroupState s);
+const char* MotorFaultName(MotorFault f);
+const char* CommandErrorName(CommandError e);
+
+/// ddl/motor_command.
+struct MotorCommand {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t command_id = 0;
+  std::uint16_t motor_mask = 0;  ///< bit i selects motor i (hw order)
+  GroupMode mode = GroupMode::kPosition;
+  std::array<double, hw::kNumMotors> goal{};      ///< [rad] or [rad/s]
+  std::array<double, hw::kNumMotors> max_rate{};  ///< [rad/s]; 0 = MotorSpec::default_rate
+  double timeout_s = 0.0;                         ///< [s]; 0 = default
+};
+
+/// ddl/motor_status.
+struct MotorStatus {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t command_id = 0;
+  GroupState state = GroupState::kIdle;
+  MotorFault fault = MotorFault::kNone;
+  std::int8_t fault_motor = -1;                      ///< motor (or mask bit) at fault, -1 if none
+  std::string message;                               ///< <= 127 characters
+  CommandError error = CommandError::kNone;          ///< typed reason of kRejected (not in the IDL)
+  std::array<double, hw::kNumMotors> position{};     ///< [rad]
+  std::array<double, hw::kNumMotors> velocity{};     ///< [rad/s]
+  std::array<double, hw::kNumMotors> current{};      ///< [A]
+  std::array<double, hw::kNumMotors> temperature{};  ///< [deg C]
+};
+
+/// Telemetry in engineering units (position straight from the int32 register: wheels are
+/// absolute within +-2^31 counts, i.e. +-140,000 rad).
+struct MotorReadings {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t command_id = 0;
+  std::array<double, hw::kNumMotors> position{};     ///< [rad]
+  std::array<double, hw::kNumMotors> velocity{};     ///< [rad/s]
+  std::array<double, hw::kNumMotors> current{};      ///< [A]
+  std::array<double, hw::kNumMotors> temperature{};  ///< [deg C]
+  std::array<std::uint16_t, hw::kNumMotors> flags{};
+};
+MotorReadings DecodeMotorTelemetry(const HardwareConfig& config, const hw::MotorTelemetry& t);
+
+/// Tuning of the motor-group manager (MER's MOT). Times on the run clock.
+struct MotorManagerOptions {
+  double stall_window_s = 1.0;       ///< progress is judged over this window
+  double stall_fraction = 0.25;      ///< stall if progress < fraction of the planned progress
+  double stall_min_motion = 0.01;    ///< [rad] windows planning less motion are not judged
+  double overcurrent_time_s = 0.1;   ///< current above MotorSpec::current_limit this long
+  double overtemp_time_s = 0.2;      ///< temperature above MotorSpec::max_temperature this long
+  double telemetry_timeout_s = 0.5;  ///< no telemetry this long while running: NO_TELEMETRY
+  double apply_timeout_s = 0.5;      ///< goals not echoed by the controller this long: NO_TELEMETRY
+  double timeout_factor = 1.5;       ///< default timeout = factor * planned duration + margin
+  double timeout_margin_s = 2.0;
+  double velocity_timeout_s = 10.0;  ///< default run time of velocity groups
+  double settle_rate = 0.02;         ///< [rad/s] "at goal" also needs |rate| below this
+  bool brake_when_done = true;       ///< brake the group's motors once it is done
+  /// Positive finite times, fraction in (0, 1], factor >= 1.
+  Status Validate() const;
+};
+
+/// Keys `<prefix>.stall_window_s`, ... (defaults and ranges as above).
+void DeclareMotorManagerParams(ParamSet& params, const std::string& prefix = "motor_manager");
+Result<MotorManagerOptions> MotorManagerOptionsFromParams(
+    const ParamSet& params, const std::string& prefix = "motor_manager");
+
+}  // namespace rover::ddl
