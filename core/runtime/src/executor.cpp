@@ -150,7 +150,15 @@ void Executor::SpinOnce(Duration max_wait) {
 }
 
 void Executor::Spin() {
-  while (!stop_.load()) SpinOnce(std::chrono::seconds(1));
+  while (!stop_.load()) {
+    Duration wait = std::chrono::seconds(1);
+    if (work_ && active_) {
+      Duration next = wait;
+      Invoke("work", [&] { next = work_(); });
+      wait = std::clamp(next, Duration::zero(), wait);
+    }
+    SpinOnce(wait);
+  }
 }
 
 void Executor::Stop() {

@@ -99,6 +99,19 @@ TEST_F(ExecutorTest, CallbackExceptionsAreContained) {
   EXPECT_EQ(exec->callback_errors(), 1u);
 }
 
+TEST_F(ExecutorTest, WorkRunsBetweenPollsOnlyWhileActive) {
+  WallClock clock;
+  auto exec = Make(clock);
+  int calls = 0;
+  exec->SetWork([&]() -> Duration {
+    if (++calls == 50) exec->Stop();
+    return Duration::zero();
+  });
+  ASSERT_TRUE(exec->SetActive(true).ok());
+  exec->Spin();  // returns because the work function stops it after 50 calls
+  EXPECT_EQ(calls, 50);
+}
+
 TEST_F(ExecutorTest, StopWakesSpinFromAnotherThread) {
   WallClock clock;
   auto exec = Make(clock);

@@ -51,6 +51,11 @@ class Executor {
   Status SetActive(bool active);
   bool active() const { return active_; }
 
+  /// Sets a function Spin() calls between polls while active, for a loop that produces time
+  /// itself (the simulator). It returns how long (wall time) until it wants to run again;
+  /// zero means at once, after incoming samples and due timers have been served.
+  void SetWork(std::function<Duration()> work) { work_ = std::move(work); }
+
   /// Waits at most `max_wait` (wall time) for work, then does all that is due.
   void SpinOnce(Duration max_wait);
   /// Spins until Stop().
@@ -101,6 +106,7 @@ class Executor {
   std::atomic<bool> stop_{false};
   std::uint64_t callback_errors_ = 0;
   Time last_run_clock_{0};
+  std::function<Duration()> work_;
 };
 
 }  // namespace rover

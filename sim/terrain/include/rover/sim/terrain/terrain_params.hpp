@@ -66,7 +66,7 @@ struct RockParams {
   double EffectiveK() const;
 };
 
-struct SoilParams {
+struct SoilPatchParams {
   double sand_fraction = 0.15;     ///< share of cells that are loose sand, [0, 1]
   double bedrock_fraction = 0.10;  ///< share of cells that are bedrock, [0, 1]
   double patch_scale = 6.0;        ///< [m] typical patch size (noise wavelength)
@@ -90,7 +90,7 @@ struct TerrainParams {
   HillParams hills;
   CraterParams craters;
   RockParams rocks;
-  SoilParams soil;
+  SoilPatchParams soil;
   StartParams start;
 
   /// Checks every field; the message starts with the offending key, e.g.

@@ -1,0 +1,105 @@
+#pragma once
+/// @file
+/// The simulator's engine, without DDS: the world (terrain, lander, targets), the Simbody rover
+/// and the sensor suite, advanced one fixed period at a time. The rover-sim service binds it to
+/// hw/ and sim/ topics and paces it against the wall clock.
+///
+/// Time: the engine's clock starts at 0 when created or reset and advances exactly `period_s`
+/// per Step(). Motor goals arrive in hw units (encoder counts) and are handed to the simulated
+/// motor controllers, whose parameters (gear ratios, encoder resolution, limits) are set from
+/// the same HardwareConfig the device drivers use, so counts mean the same on both sides.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "rover/base/params.hpp"
+#include "rover/base/status.hpp"
+#include "rover/hwconfig/hardware_config.hpp"
+#include "rover/hwconfig/hw_bus.hpp"
+#include "rover/sim/physics/rover_simulation.hpp"
+#include "rover/sim/sensors/sensor_suite.hpp"
+#include "rover/sim/world/world.hpp"
+
+namespace rover::sim {
+
+struct EngineOptions {
+  double period_s = 0.01;        ///< one Step(): the sim/clock period [s]
+  double truth_rate_hz = 50.0;   ///< sim/truth publication rate
+  std::uint64_t seed = 1;        ///< sensor noise seed
+  double traversable_height = 0.20;  ///< [m] rocks taller than this count as contacts in truth
+  Status Validate() const;
+};
+
+/// Ground truth of one instant, for sim/truth (the judge and tests only).
+struct TruthSample {
+  double time_s = 0;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< rover in site
+  Eigen::Vector3d velocity_site = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_body = Eigen::Vector3d::Zero();
+  std::array<WheelReading, kNumWheels> wheels;
+  double rocker_angle[2] = {0, 0};
+  double bogie_angle[2] = {0, 0};
+  double odometer = 0;  ///< [m] horizontal path length of the rover origin
+  std::uint32_t rock_contacts = 0;
+  double max_contact_rock_height = 0;
+};
+
+/// What one Step() produced.
+struct StepOutput {
+  double time_s = 0;
+  SensorSamples sensors;
+  std::optional<TruthSample> truth;
+};
+
+class SimEngine {
+ public:
+  /// Declares the engine's parameters: world (terrain.*, lander.*, science_targets,
+  /// rover.start.*), sensors (sensors.*), hardware (hardware.*), engine (sim.*).
+  static void DeclareParams(ParamSet& params);
+  static Result<std::unique_ptr<SimEngine>> Create(const ParamSet& params);
+  static Result<std::unique_ptr<SimEngine>> Create(World world, const HardwareConfig& hw,
+                                                   const SimSensorOptions& sensors,
+                                                   const EngineOptions& options);
+
+  /// Applies hw/motor_goals: each non-idle goal clears the motor's latched faults and becomes
+  /// its new goal. A goal the controller refuses (beyond its speed or joint range) is reported
+  /// and that motor is braked; the others are still applied.
+  Status ApplyMotorGoals(const hw::MotorGoals& goals);
+  /// Advances one period.
+  Result<StepOutput> Step();
+  /// Puts the rover back at its start; time restarts at 0.
+  Status Reset();
+
+  double time() const { return time_s_; }
+  const World& world() const { return world_; }
+  const RoverSimulation& physics() const { return *physics_; }
+  const EngineOptions& options() const { return options_; }
+  const HardwareConfig& hardware() const { return hw_; }
+  /// The true sun direction in the site frame now (for rendering).
+  Eigen::Vector3d SunDirectionSite() const;
+
+ private:
+  SimEngine() = default;
+  TruthSample MakeTruth(const RoverReadings& r);
+
+  World world_;
+  std::shared_ptr<const HeightField> ground_;
+  HardwareConfig hw_;
+  EngineOptions options_;
+  std::unique_ptr<RoverSimulation> physics_;
+  std::unique_ptr<SensorSuite> sensors_;
+  SimSensorOptions sensor_options_;
+  double time_s_ = 0;
+  int step_ = 0;
+  int truth_every_ = 2;
+  std::uint32_t applied_command_id_ = 0;
+  double odometer_ = 0;
+  std::optional<Eigen::Vector2d> last_xy_;
+  std::vector<bool> rock_touched_;
+  std::uint32_t rock_contacts_ = 0;
+  double max_contact_height_ = 0;
+};
+
+}  // namespace rover::sim

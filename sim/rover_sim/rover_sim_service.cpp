@@ -1,0 +1,262 @@
+// rover-sim: the simulated rover and Mars surface, standing in for the hardware. Binds the
+// SimEngine (world + Simbody rover + sensors) to topics:
+//   in:  hw/motor_goals, hw/camera_request, sim/control
+//   out: sim/clock, hw/motor_telemetry, hw/suspension_pots, hw/imu, hw/sun_sensor,
+//        hw/camera_frame, sim/truth (judge and tests only)
+// Pacing: `sim.real_time_factor` simulated seconds per wall second, 0 = as fast as it can.
+// Its run clock is its own simulated time; it never follows sim/clock itself.
+// See docs/services/rover-sim.md.
+#include <cmath>
+#include <cstdlib>
+
+#include "rover/base/log.hpp"
+#include "rover/runtime/service.hpp"
+#include "rover/sim/rover_sim/sim_engine.hpp"
+
+namespace {
+using rover::Duration;
+using rover::Status;
+namespace dds = rover::dds;
+namespace hw = rover::hw;
+
+
+void ToIdl(const Eigen::Isometry3d& p, rover_Pose3* out) {
+  const Eigen::Quaterniond q(p.linear());
+  out->position = {p.translation().x(), p.translation().y(), p.translation().z()};
+  out->orientation = {q.w(), q.x(), q.y(), q.z()};
+}
+
+class RoverSim final : public rover::Service {
+ public:
+  RoverSim() : Service("rover-sim") {}
+
+  void DeclareParameters(rover::ParamSet& p) override {
+    rover::sim::SimEngine::DeclareParams(p);
+    p.Declare("sim.real_time_factor", 1.0,
+              "simulated seconds per wall second; 0 = as fast as possible").Range(0.0, 1000.0);
+    p.Declare("sim.start_paused", false, "wait for a SIM_RESUME on sim/control before running");
+  }
+
+  Status OnConfigure(rover::ServiceContext& ctx, const rover::ParamSet& p) override {
+    auto engine = rover::sim::SimEngine::Create(p);
+    if (!engine.ok()) return engine.status();
+    engine_ = std::move(*engine);
+    rtf_ = p.GetDouble("sim.real_time_factor");
+    paused_ = p.GetBool("sim.start_paused");
+    ctx_ = &ctx;
+    ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "sim/truth", &truth_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/motor_telemetry", &telemetry_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/suspension_pots", &pots_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/imu", &imu_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/sun_sensor", &sun_w_));
+    ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MotorGoals>(
+        "hw/motor_goals", [this](const dds::Sample<rover_hw_MotorGoals>& s) { OnGoals(s.data()); }));
+    ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_sim_Control>(
+        "sim/control", [this](const dds::Sample<rover_sim_Control>& s) { OnControl(s.data()); }));
+    ctx.executor().SetWork([this] { return Work(); });
+    rover::log::Info("world ready",
+                     {{"rocks", engine_->world().terrain.rocks.size()},
+                      {"start_x", engine_->world().start_x}, {"start_y", engine_->world().start_y},
+                      {"real_time_factor", rtf_}, {"paused", paused_}});
+    return Status::Ok();
+  }
+
+  Status OnActivate(rover::ServiceContext&) override {
+    Anchor();
+    PublishClock();
+    return Status::Ok();
+  }
+
+ private:
+  template <class T>
+  Status Make(rover::ServiceContext& ctx, const char* topic, dds::Writer<T>* w) {
+    auto r = ctx.MakeWriter<T>(topic);
+    if (!r.ok()) return r.status();
+    *w = std::move(*r);
+    return Status::Ok();
+  }
+
+  void Anchor() {
+    wall_anchor_ = rover::MonotonicNow();
+    sim_anchor_ = engine_->time();
+  }
+
+  rover::Time SimTime() const { return rover::Time::FromSeconds(engine_->time()); }
+
+  void Stamp(rover_Header& h, const char* frame) {
+    ctx_->Stamp(h, frame);
+    h.stamp_ns = SimTime().ns;  // the simulator's run clock is its own simulated time
+  }
+
+  void PublishClock() {
+    rover_sim_Clock c{};
+    Stamp(c.header, "sim");
+    c.sim_time_ns = SimTime().ns;
+    const double wall = rover::ToSeconds(rover::MonotonicNow() - wall_anchor_);
+    c.real_time_factor = wall > 0 ? (engine_->time() - sim_anchor_) / wall : 0.0;
+    c.paused = paused_;
+    (void)clock_w_.Write(c);
+  }
+
+  // Called by the executor between polls: one step when one is due.
+  Duration Work() {
+    if (paused_) {
+      // Keep late joiners' clocks valid while paused.
+      if (rover::MonotonicNow() - last_paused_clock_ > rover::Seconds(0.2)) {
+        PublishClock();
+        last_paused_clock_ = rover::MonotonicNow();
+      }
+      return std::chrono::milliseconds(50);
+    }
+    if (rtf_ > 0) {
+      const rover::Time due = wall_anchor_ + rover::Seconds((engine_->time() - sim_anchor_) / rtf_);
+      const rover::Time now = rover::MonotonicNow();
+      if (now < due) return due - now;
+    }
+    auto out = engine_->Step();
+    if (!out.ok()) {
+      rover::log::Error("simulation step failed; pausing", {{"error", out.status().message()}});
+      ctx_->SetHealth(rover_HEALTH_FAILED, out.status().message());
+      paused_ = true;
+      return std::chrono::milliseconds(50);
+    }
+    Publish(*out);
+    return Duration::zero();
+  }
+
+  void Publish(const rover::sim::StepOutput& o) {
+    PublishClock();
+    const auto& s = o.sensors;
+    if (s.motor_telemetry) {
+      rover_hw_MotorTelemetry m{};
+      Stamp(m.header, "rover");
+      m.command_id = s.motor_telemetry->command_id;
+      for (int i = 0; i < hw::kNumMotors; ++i) {
+        const auto& r = s.motor_telemetry->motors[static_cast<std::size_t>(i)];
+        m.motors[i] = {r.position, r.velocity, r.current_adc, r.temperature_adc, r.flags};
+      }
+      (void)telemetry_w_.Write(m);
+    }
+    if (s.suspension_pots) {
+      rover_hw_SuspensionPots m{};
+      Stamp(m.header, "rover");
+      for (int i = 0; i < hw::kNumPots; ++i) m.adc[i] = s.suspension_pots->adc[static_cast<std::size_t>(i)];
+      (void)pots_w_.Write(m);
+    }
+    if (s.imu) {
+      rover_hw_ImuRaw m{};
+      Stamp(m.header, "imu");
+      for (int i = 0; i < 3; ++i) {
+        m.gyro[i] = s.imu->gyro[static_cast<std::size_t>(i)];
+        m.accel[i] = s.imu->accel[static_cast<std::size_t>(i)];
+      }
+      m.temperature = s.imu->temperature;
+      m.status = s.imu->status;
+      (void)imu_w_.Write(m);
+    }
+    if (s.sun_sensor) {
+      rover_hw_SunSensorRaw m{};
+      Stamp(m.header, "sun_sensor");
+      m.spot[0] = s.sun_sensor->spot[0];
+      m.spot[1] = s.sun_sensor->spot[1];
+      m.intensity = s.sun_sensor->intensity;
+      (void)sun_w_.Write(m);
+    }
+    if (o.truth) {
+      const auto& t = *o.truth;
+      rover_sim_Truth m{};
+      Stamp(m.header, "site");
+      ToIdl(t.pose, &m.pose);
+      m.velocity = {t.velocity_site.x(), t.velocity_site.y(), t.velocity_site.z()};
+      m.angular_velocity = {t.angular_velocity_body.x(), t.angular_velocity_body.y(),
+                            t.angular_velocity_body.z()};
+      for (int i = 0; i < 6; ++i) {
+        const auto& w = t.wheels[static_cast<std::size_t>(i)];
+        m.wheels[i] = {w.slip_ratio, w.normal_force_n, w.in_contact, w.sinkage_m};
+      }
+      for (int i = 0; i < 2; ++i) {
+        m.rocker_angle[i] = t.rocker_angle[i];
+        m.bogie_angle[i] = t.bogie_angle[i];
+      }
+      m.odometer = t.odometer;
+      m.rock_contacts = t.rock_contacts;
+      m.max_contact_rock_height = t.max_contact_rock_height;
+      (void)truth_w_.Write(m);
+    }
+  }
+
+  void OnGoals(const rover_hw_MotorGoals& in) {
+    hw::MotorGoals g;
+    g.stamp_ns = in.header.stamp_ns;
+    g.command_id = in.command_id;
+    for (int i = 0; i < hw::kNumMotors; ++i) {
+      const auto& src = in.goals[i];
+      auto& dst = g.goals[static_cast<std::size_t>(i)];
+      if (src.mode < rover_hw_MOTOR_IDLE || src.mode > rover_hw_MOTOR_BRAKE) {
+        rover::log::Warn("motor goal with an unknown mode ignored", {{"motor", i}, {"mode", static_cast<int>(src.mode)}});
+        continue;
+      }
+      dst.mode = static_cast<hw::MotorMode>(src.mode);
+      dst.position = src.position;
+      dst.velocity = src.velocity;
+      dst.current_limit_ma = src.current_limit_ma;
+    }
+    const Status s = engine_->ApplyMotorGoals(g);
+    if (!s.ok()) rover::log::Warn("motor goal refused by the controller", {{"error", s.message()}});
+  }
+
+  void OnControl(const rover_sim_Control& c) {
+    switch (c.command) {
+      case rover_sim_SIM_PAUSE:
+        paused_ = true;
+        break;
+      case rover_sim_SIM_RESUME:
+        paused_ = false;
+        Anchor();
+        break;
+      case rover_sim_SIM_RESET: {
+        const Status s = engine_->Reset();
+        if (!s.ok()) rover::log::Error("reset failed", {{"error", s.message()}});
+        Anchor();
+        break;
+      }
+      case rover_sim_SIM_SET_SPEED:
+        if (!(c.real_time_factor >= 0 && c.real_time_factor <= 1000)) {
+          rover::log::Warn("sim/control: real_time_factor out of range [0, 1000]; ignored",
+                           {{"value", c.real_time_factor}});
+          break;
+        }
+        rtf_ = c.real_time_factor;
+        Anchor();
+        break;
+      default:
+        rover::log::Warn("sim/control: unknown command ignored", {{"command", static_cast<int>(c.command)}});
+    }
+    PublishClock();
+    rover::log::Info("control", {{"command", static_cast<int>(c.command)}, {"paused", paused_},
+                                 {"real_time_factor", rtf_}, {"sim_time", engine_->time()}});
+  }
+
+  std::unique_ptr<rover::sim::SimEngine> engine_;
+  rover::ServiceContext* ctx_ = nullptr;
+  double rtf_ = 1.0;
+  bool paused_ = false;
+  rover::Time wall_anchor_{0}, last_paused_clock_{0};
+  double sim_anchor_ = 0;
+  dds::Writer<rover_sim_Clock> clock_w_;
+  dds::Writer<rover_sim_Truth> truth_w_;
+  dds::Writer<rover_hw_MotorTelemetry> telemetry_w_;
+  dds::Writer<rover_hw_SuspensionPots> pots_w_;
+  dds::Writer<rover_hw_ImuRaw> imu_w_;
+  dds::Writer<rover_hw_SunSensorRaw> sun_w_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // The simulator is the source of simulated time; its own timers run on wall time.
+  setenv("ROVER_CLOCK", "wall", 1);
+  RoverSim service;
+  return rover::RunServiceMain(service, argc, argv);
+}
