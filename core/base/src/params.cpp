@@ -184,8 +184,16 @@ Status ParamSet::Assign(const std::string& key, const ParamOrigin& origin, const
   if (it == specs_.end()) {
     std::string known;
     if (Suggest(key).empty()) {
-      known = " (known keys:";
-      for (const auto& n : order_) known += " " + n;
+      // List the keys of the same section (e.g. "terrain.rocks."), at most a dozen.
+      const std::string section = key.substr(0, key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
+      std::vector<std::string> same;
+      for (const auto& n : order_) {
+        if (n.rfind(section, 0) == 0) same.push_back(n);
+      }
+      if (same.empty()) same = order_;
+      known = " (known keys" + (section.empty() ? std::string() : " under '" + section + "'") + ":";
+      for (std::size_t i = 0; i < same.size() && i < 12; ++i) known += " " + same[i];
+      if (same.size() > 12) known += " ... (" + std::to_string(same.size()) + " in all; --help-params lists them)";
       known += ")";
     }
     return InvalidArgument(where + ": unknown parameter" + Suggest(key) + known);

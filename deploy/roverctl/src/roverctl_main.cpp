@@ -5,6 +5,8 @@
 //   roverctl ps [PROJECT]                                       state, pid, restarts, heartbeat
 //   roverctl logs SERVICE [-p PROJECT] [-f] [-n LINES]          a service's log
 //   roverctl config FILE                                        validate a compose file
+//   roverctl run SCENARIO [--seeds A..B] [--jobs J] [--out DIR] end-to-end scenario campaign
+//   roverctl report DIR                                         re-print a campaign's summary
 //
 // See docs/roverctl.md.
 #include <CLI/CLI.hpp>
@@ -14,6 +16,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -24,7 +27,10 @@
 #include "rover/base/clock.hpp"
 #include "rover/base/log.hpp"
 #include "rover/base/process.hpp"
+#include "rover/deploy/campaign.hpp"
 #include "rover/deploy/compose.hpp"
+#include "rover/deploy/run_report.hpp"
+#include "rover/deploy/scenario.hpp"
 #include "rover/deploy/supervisor.hpp"
 #include "rover/runtime/domain.hpp"
 
@@ -330,6 +336,81 @@ int Config(const std::string& file) {
   return 0;
 }
 
+// ---- run / report ------------------------------------------------------------------------------
+
+std::string NowStamp() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  char b[32];
+  std::strftime(b, sizeof b, "%Y%m%d-%H%M%S", &tm);
+  return b;
+}
+
+int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out) {
+  auto scenario = rover::deploy::LoadScenarioFile(file, rover::deploy::ValidateSimulatorSections);
+  if (!scenario.ok()) return Fail(scenario.status().message(), 2);
+  std::vector<std::uint32_t> seeds = {scenario->seed};
+  if (!seeds_text.empty()) {
+    auto s = rover::deploy::ParseSeedRange(seeds_text);
+    if (!s.ok()) return Fail(s.status().message(), 2);
+    seeds = *s;
+  }
+  if (out.empty()) out = "runs/" + scenario->name + "-" + NowStamp();
+  if (const Status s = rover::deploy::CheckOutputFolder(out); !s.ok()) return Fail(s.message(), 2);
+  rover::deploy::CampaignOptions o;
+  o.seeds = seeds;
+  o.jobs = jobs;
+  o.out_dir = out;
+  o.bin_dir = SelfDir();
+  o.dds_config_uri = DdsConfigUri();
+  o.tty = isatty(STDERR_FILENO) != 0;
+  o.abort = &g_stop;
+  {
+    // Everything that can be checked before a process starts, checked once for the campaign.
+    rover::deploy::RunOptions ro;
+    ro.out_dir = out + "/.preflight";
+    ro.bin_dir = o.bin_dir;
+    ro.dds_config_uri = o.dds_config_uri;
+    const Status s = rover::deploy::PreflightScenario(*scenario, seeds.front(), ro);
+    std::error_code ec;
+    std::filesystem::remove_all(ro.out_dir, ec);
+    if (std::filesystem::exists(out) && std::filesystem::is_empty(out)) std::filesystem::remove(out, ec);
+    if (!s.ok()) return Fail(s.message(), 2);
+  }
+  std::printf("roverctl: running '%s' for %zu seed%s, %d at a time, into %s\n",
+              scenario->name.c_str(), seeds.size(), seeds.size() == 1 ? "" : "s", jobs, out.c_str());
+  std::fflush(stdout);
+  auto r = rover::deploy::RunCampaign(*scenario, o);
+  if (!r.ok()) return Fail(r.status().message(), 2);
+  std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary).c_str());
+  for (const auto& e : r->errors) std::printf("error: %s\n", e.c_str());
+  if (r->interrupted) std::printf("interrupted: %zu of %zu runs finished and were kept\n", r->runs.size(), seeds.size());
+  std::printf("\nreport: %s/summary.json  junit: %s/junit.xml\n", out.c_str(), out.c_str());
+  if (!r->runs.empty()) {
+    const auto& first = r->runs.front();
+    std::printf("plots:  %s/map.png  %s/estimate_error.png  (one folder per run, with logs/)\n",
+                first.run_dir.c_str(), first.run_dir.c_str());
+  }
+  return r->all_passed() ? 0 : 1;
+}
+
+int Report(const std::string& dir) {
+  auto runs = rover::deploy::LoadRunFolder(dir);
+  if (!runs.ok()) return Fail(runs.status().message(), 2);
+  double wall = 0;
+  std::ifstream in(dir + "/summary.json");
+  if (in) {
+    try {
+      wall = nlohmann::json::parse(in).value("wall_time_s", 0.0);
+    } catch (const nlohmann::json::exception&) {
+    }
+  }
+  auto summary = rover::deploy::Summarize(*runs, wall);
+  std::printf("%s", rover::deploy::FormatSummaryTable(*runs, summary).c_str());
+  return summary.passed == summary.runs && summary.runs > 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -374,6 +455,16 @@ int main(int argc, char** argv) {
   auto* config_cmd = app.add_subcommand("config", "validate a compose file and print the plan");
   config_cmd->add_option("file", config_file, "compose file")->required();
 
+  std::string scenario_file, seeds, out_dir, report_dir;
+  int jobs = 1;
+  auto* run_cmd = app.add_subcommand("run", "run a scenario end to end over a range of seeds");
+  run_cmd->add_option("scenario", scenario_file, "scenario file")->required();
+  run_cmd->add_option("--seeds", seeds, "seed or range A..B (default: the scenario's seed)");
+  run_cmd->add_option("--jobs", jobs, "runs at a time")->check(CLI::Range(1, 16));
+  run_cmd->add_option("--out", out_dir, "campaign folder (default: runs/<scenario>-<time>)");
+  auto* report_cmd = app.add_subcommand("report", "print the summary of a campaign folder");
+  report_cmd->add_option("dir", report_dir, "campaign folder")->required();
+
   CLI11_PARSE(app, argc, argv);
 
   struct sigaction sa {};
@@ -388,5 +479,7 @@ int main(int argc, char** argv) {
   if (*ps_cmd) return Ps(state_root, project, json);
   if (*logs_cmd) return Logs(state_root, project, service, follow, lines);
   if (*config_cmd) return Config(config_file);
+  if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir);
+  if (*report_cmd) return Report(report_dir);
   return 1;
 }

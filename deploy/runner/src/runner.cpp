@@ -72,11 +72,13 @@ std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
   if (!out["terrain"]) out["terrain"] = YAML::Node(YAML::NodeType::Map);
   // A scenario that fixes terrain.seed keeps its terrain; otherwise each run seed is a new one.
   if (!out["terrain"]["seed"]) out["terrain"]["seed"] = seed;
-  out["terrain"]["start"]["x"] = s.start_x;
-  out["terrain"]["start"]["y"] = s.start_y;
+  out["rover"]["start"]["x"] = s.start_x;
+  out["rover"]["start"]["y"] = s.start_y;
   out["rover"]["start"]["yaw_deg"] = s.start_yaw * 180.0 / M_PI;
   out["sim"]["seed"] = seed;
   out["sim"]["real_time_factor"] = s.real_time_factor;
+  // Simulated time starts when the runner says so, once every service is up.
+  out["sim"]["start_paused"] = true;
   YAML::Emitter e;
   e << out;
   return std::string(e.c_str()) + "\n";
@@ -132,20 +134,21 @@ Status ValidateSimulatorSections(const std::string& text, const std::string& fil
   return w.ok() ? Status::Ok() : w.status();
 }
 
-Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options) {
-  const Time wall_start = MonotonicNow();
-  RunResult result;
-  result.scenario = scenario.name;
-  result.seed = seed;
+namespace {
+struct Prepared {
+  std::string run_dir;
+  sim::World world;
+  ComposeProject project;
+  SupervisorOptions sup_opts;
+};
+
+// Builds the run folder, the world, the service set and its parameters; validates it all.
+Result<Prepared> Prepare(const Scenario& scenario, std::uint32_t seed, const RunOptions& options) {
   const std::string run_dir = options.out_dir + "/" + scenario.name + "-seed" + std::to_string(seed);
-  result.run_dir = run_dir;
   std::error_code ec;
   fs::remove_all(run_dir, ec);
   fs::create_directories(run_dir + "/params", ec);
   if (ec) return Unavailable("cannot create " + run_dir + ": " + ec.message());
-  auto note = [&](const std::string& n, double t) {
-    if (options.progress) options.progress(n, t);
-  };
 
   // The world, exactly as the simulator will build it.
   const std::string sim_yaml = SimParamsYaml(scenario, seed);
@@ -198,8 +201,34 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   sup_opts.dds_config_uri = options.dds_config_uri;
   sup_opts.abort = options.abort;
   ROVER_RETURN_IF_ERROR(Preflight(*project, sup_opts));
+  return Prepared{run_dir, std::move(*world), std::move(*project), sup_opts};
+}
+}  // namespace
+
+Status PreflightScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options) {
+  auto p = Prepare(scenario, seed, options);
+  if (!p.ok()) return p.status();
+  std::error_code ec;
+  fs::remove_all(p->run_dir, ec);
+  return Status::Ok();
+}
+
+Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options) {
+  const Time wall_start = MonotonicNow();
+  RunResult result;
+  result.scenario = scenario.name;
+  result.seed = seed;
+  auto note = [&](const std::string& n, double t) {
+    if (options.progress) options.progress(n, t);
+  };
+  auto prepared = Prepare(scenario, seed, options);
+  if (!prepared.ok()) return prepared.status();
+  const std::string run_dir = prepared->run_dir;
+  result.run_dir = run_dir;
+  const sim::World* world = &prepared->world;
+  ComposeProject* project = &prepared->project;
   note("starting", 0);
-  auto sup = Supervisor::Create(*project, sup_opts);
+  auto sup = Supervisor::Create(*project, prepared->sup_opts);
   if (!sup.ok()) return sup.status();
   result.domain = (*sup)->domain();
   const Status started = (*sup)->Start();
@@ -226,7 +255,9 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   auto pose_r = dds::Reader<rover_dl_PoseEstimate>::Create(*participant, "dl/pose");
   auto status_r = dds::Reader<rover_dl_DriveStatus>::Create(*participant, "dl/drive_status");
   auto cmd_w = dds::Writer<rover_dl_DriveCommand>::Create(*participant, "dl/drive_command");
-  if (!clock_r.ok() || !truth_r.ok() || !pose_r.ok() || !status_r.ok() || !cmd_w.ok()) {
+  auto control_w = dds::Writer<rover_sim_Control>::Create(*participant, "sim/control");
+  if (!clock_r.ok() || !truth_r.ok() || !pose_r.ok() || !status_r.ok() || !cmd_w.ok() ||
+      !control_w.ok()) {
     return finish("cannot create the runner's DDS endpoints");
   }
 
@@ -297,9 +328,22 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     }
   };
 
+  // Start simulated time once the simulator and the drive service hear us.
+  std::string failure = wait_until([&] {
+    return control_w->MatchedReaders() > 0 && cmd_w->MatchedReaders() > 0;
+  });
+  if (!failure.empty()) return finish(failure);
+  {
+    rover_sim_Control resume{};
+    dds::CopyString(resume.header.frame_id, "sim");
+    resume.command_id = 1;
+    resume.command = rover_sim_SIM_RESUME;
+    if (!control_w->Write(resume).ok()) return finish("cannot resume the simulator");
+  }
+  note("running", 0);
   // Wait for the simulator's clock and the first pose estimate.
   bool have_pose = false;
-  std::string failure = wait_until([&] {
+  failure = wait_until([&] {
     if (!have_pose) have_pose = !result.estimate_track.empty();
     return sim_now > 0 && have_pose && cmd_w->MatchedReaders() > 0;
   });

@@ -16,6 +16,8 @@ void DeclareWorldParams(ParamSet& params) {
   DeclareTerrainParams(params, "terrain");
   DeclareLanderParams(params, "lander");
   DeclareScienceTargets(params, "science_targets");
+  params.Declare("rover.start.x", 0.0, "[m] rover start, site frame").Range(-1e4, 1e4);
+  params.Declare("rover.start.y", 0.0, "[m] rover start, site frame").Range(-1e4, 1e4);
   params.Declare("rover.start.yaw_deg", 0.0, "[deg] initial heading, from +x towards +y")
       .Range(-360.0, 360.0);
 }
@@ -23,6 +25,16 @@ void DeclareWorldParams(ParamSet& params) {
 Result<World> BuildWorld(const ParamSet& params) {
   auto tp = TerrainParamsFromParamSet(params, "terrain");
   if (!tp.ok()) return tp.status();
+  // The rover start is rover.start.x/y; the terrain's rock-free disc is centred there.
+  for (const char* axis : {"x", "y"}) {
+    const std::string key = std::string("terrain.start.") + axis;
+    if (params.Origin(key).source != "default") {
+      return InvalidArgument(params.Origin(key).ToString() + ": key '" + key +
+                             "': set the start with rover.start." + axis + " instead");
+    }
+  }
+  tp->start.x = params.GetDouble("rover.start.x");
+  tp->start.y = params.GetDouble("rover.start.y");
   auto terrain = GenerateTerrain(*tp);
   if (!terrain.ok()) return terrain.status();
   ROVER_RETURN_IF_ERROR(PlaceScenarioObjects(&*terrain, params, "lander", "science_targets"));

@@ -10,7 +10,7 @@ namespace {
 TEST(World, SameParametersSameWorld) {
   const std::string text =
       "task: ignored\nterrain: {size_x: 20, size_y: 16, resolution: 0.05, seed: 11, "
-      "start: {x: 2, y: -1}, rocks: {preset: vl2}}\nrover: {start: {yaw_deg: 90}}\n";
+      "rocks: {preset: vl2}}\nrover: {start: {x: 2, y: -1, yaw_deg: 90}}\n";
   ParamSet a("sim"), b("sim");
   DeclareWorldParams(a);
   DeclareWorldParams(b);
@@ -27,6 +27,15 @@ TEST(World, SameParametersSameWorld) {
   ASSERT_EQ(wa->terrain.rocks.size(), wb->terrain.rocks.size());
   EXPECT_EQ(wa->terrain.rocks[0].position, wb->terrain.rocks[0].position);
   EXPECT_EQ(wa->terrain.ground.heights(), wb->terrain.ground.heights());
+}
+
+TEST(World, TheStartBelongsToTheRoverSection) {
+  ParamSet p("sim");
+  DeclareWorldParams(p);
+  ASSERT_TRUE(p.LoadYamlSections("terrain:\n  start: {x: 3}\n", "s.yaml", WorldSections()).ok());
+  auto w = BuildWorld(p);
+  ASSERT_FALSE(w.ok());
+  EXPECT_EQ(w.status().message(), "s.yaml:2: key 'terrain.start.x': set the start with rover.start.x instead");
 }
 
 TEST(World, ErrorsNameTheKeyAndLine) {

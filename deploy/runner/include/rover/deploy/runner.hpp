@@ -36,6 +36,11 @@ struct RunOptions {
 /// simulator's own parameter declarations, reporting the scenario file's lines.
 Status ValidateSimulatorSections(const std::string& text, const std::string& file);
 
+/// Everything RunScenario does before starting a process, for one seed: builds the world, checks
+/// the service set and runs every service's parameter validation. An error here means no run of
+/// the campaign could start; nothing is left behind but the run folder's params/.
+Status PreflightScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options);
+
 /// Runs one seed. A failed run is a RunResult with pass == false; an error Status means the run
 /// could not be made at all (bad scenario, unwritable folder).
 Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options);

@@ -6,10 +6,11 @@
 /// same declarations, so a seed gives both exactly the same world.
 ///
 /// Parameters (all under these top-level sections of a scenario or parameter file):
-///   terrain.*          sim/terrain's TerrainParams (terrain.start.x/y is the rover start and the
-///                      centre of the rock-free keep-out disc)
+///   terrain.*          sim/terrain's TerrainParams (its rock-free keep-out disc is centred on
+///                      the rover start; terrain.start.x/y may not be set)
 ///   lander.*           the lander (lander.enabled, x, y, yaw_deg, ...)
 ///   science_targets    [x, y, diameter, texture_id, ...]
+///   rover.start.x/y    [m] rover start in the site frame
 ///   rover.start.yaw_deg  initial heading (site frame, from +x towards +y)
 
 #include <string>

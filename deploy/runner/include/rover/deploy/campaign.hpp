@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// A campaign: one scenario over a range of seeds, `jobs` runs at a time, each on its own DDS
+/// domain. On a terminal it shows a progress bar with ETA and one live line per running job;
+/// otherwise (CI) plain lines. The campaign folder holds campaign.json, summary.json,
+/// junit.xml and one folder per run. Ctrl-C stops the running jobs, keeps finished results and
+/// writes the summary of what finished.
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+#include "rover/deploy/run_report.hpp"
+#include "rover/deploy/runner.hpp"
+#include "rover/deploy/scenario.hpp"
+
+namespace rover::deploy {
+
+struct CampaignOptions {
+  std::vector<std::uint32_t> seeds;
+  int jobs = 1;
+  std::string out_dir;
+  std::string bin_dir;
+  std::string dds_config_uri;
+  bool tty = false;                      ///< draw a progress bar (stderr is a terminal)
+  const std::atomic<bool>* abort = nullptr;
+};
+
+struct CampaignResult {
+  std::vector<RunResult> runs;           ///< finished runs, by seed
+  CampaignSummary summary;
+  bool interrupted = false;
+  std::vector<std::string> errors;       ///< runs that could not be made at all
+  bool all_passed() const;
+};
+
+/// Checks the output folder: it may not exist, be empty, or be an earlier campaign folder.
+Status CheckOutputFolder(const std::string& dir);
+
+Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptions& options);
+
+}  // namespace rover::deploy

@@ -1,0 +1,162 @@
+#include "rover/deploy/campaign.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "rover/base/clock.hpp"
+
+namespace rover::deploy {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Slot {
+  std::uint32_t seed = 0;
+  std::string note = "idle";
+  double sim_s = 0;
+  bool busy = false;
+};
+
+std::string Eta(double s) {
+  if (s < 0 || !std::isfinite(s)) return "--:--";
+  char b[32];
+  std::snprintf(b, sizeof b, "%02d:%02d", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
+  return b;
+}
+
+}  // namespace
+
+bool CampaignResult::all_passed() const {
+  if (interrupted || !errors.empty() || runs.empty()) return false;
+  return std::all_of(runs.begin(), runs.end(), [](const RunResult& r) { return r.pass; });
+}
+
+Status CheckOutputFolder(const std::string& dir) {
+  if (!fs::exists(dir)) return Status::Ok();
+  if (!fs::is_directory(dir)) return InvalidArgument("--out " + dir + ": exists and is not a folder");
+  if (fs::is_empty(dir) || IsRunFolder(dir)) return Status::Ok();
+  return InvalidArgument("--out " + dir +
+                         ": exists and is not a run folder (no campaign.json); choose another "
+                         "folder so nothing of yours is overwritten");
+}
+
+Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptions& options) {
+  ROVER_RETURN_IF_ERROR(CheckOutputFolder(options.out_dir));
+  if (options.seeds.empty()) return InvalidArgument("no seeds to run");
+  if (options.jobs < 1 || options.jobs > 16) return InvalidArgument("--jobs must be in [1, 16]");
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec) return Unavailable("cannot create " + options.out_dir + ": " + ec.message());
+  {
+    nlohmann::json c;
+    c["scenario"] = scenario.name;
+    c["scenario_file"] = fs::absolute(scenario.file).string();
+    c["seeds"] = options.seeds;
+    c["jobs"] = options.jobs;
+    std::ofstream(options.out_dir + "/campaign.json") << c.dump(2) << "\n";
+  }
+
+  const Time start = MonotonicNow();
+  std::mutex mu;
+  std::size_t next = 0;
+  std::vector<RunResult> done;
+  std::vector<std::string> errors;
+  std::vector<Slot> slots(static_cast<std::size_t>(options.jobs));
+  const std::size_t total = options.seeds.size();
+
+  auto draw = [&](bool final_draw) {
+    // Callers hold `mu`.
+    const double elapsed = ToSeconds(MonotonicNow() - start);
+    const std::size_t finished = done.size() + errors.size();
+    const double eta = finished ? elapsed / finished * (total - finished) : -1;
+    int passed = 0;
+    for (const auto& r : done) passed += r.pass;
+    if (options.tty) {
+      const int width = 30;
+      const int fill = static_cast<int>(width * static_cast<double>(finished) / total);
+      std::string bar(static_cast<std::size_t>(fill), '#');
+      bar += std::string(static_cast<std::size_t>(width - fill), '.');
+      std::fprintf(stderr, "\r\033[K%s [%s] %zu/%zu  pass %d  fail %zu  elapsed %s  eta %s\n",
+                   scenario.name.c_str(), bar.c_str(), finished, total, passed,
+                   finished - static_cast<std::size_t>(passed), Eta(elapsed).c_str(), Eta(eta).c_str());
+      for (const auto& s : slots) {
+        if (s.busy) {
+          std::fprintf(stderr, "\033[K  seed %-6u %-28s sim %7.1f s\n", s.seed, s.note.c_str(), s.sim_s);
+        } else {
+          std::fprintf(stderr, "\033[K  %s\n", "(idle)");
+        }
+      }
+      if (!final_draw) std::fprintf(stderr, "\033[%zuA", slots.size() + 1);
+      std::fflush(stderr);
+    }
+  };
+
+  auto worker = [&](std::size_t slot_index) {
+    while (true) {
+      std::uint32_t seed = 0;
+      {
+        std::lock_guard lock(mu);
+        if (next >= total || (options.abort && options.abort->load())) return;
+        seed = options.seeds[next++];
+        slots[slot_index] = {seed, "starting", 0, true};
+        draw(false);
+      }
+      RunOptions ro;
+      ro.out_dir = options.out_dir;
+      ro.bin_dir = options.bin_dir;
+      ro.dds_config_uri = options.dds_config_uri;
+      ro.abort = options.abort;
+      ro.progress = [&, slot_index](const std::string& note, double sim_s) {
+        std::lock_guard lock(mu);
+        slots[slot_index].note = note;
+        slots[slot_index].sim_s = sim_s;
+        draw(false);
+      };
+      auto r = RunScenario(scenario, seed, ro);
+      std::lock_guard lock(mu);
+      slots[slot_index].busy = false;
+      if (!r.ok()) {
+        errors.push_back("seed " + std::to_string(seed) + ": " + r.status().message());
+        if (!options.tty) std::printf("seed %u: ERROR %s\n", seed, r.status().message().c_str());
+      } else {
+        if (!options.tty) {
+          std::printf("seed %u: %s  %.2f m  %.1f sim s  %.1f wall s%s%s\n", seed,
+                      r->pass ? "PASS" : "FAIL", r->distance_driven, r->sim_time_s,
+                      r->wall_time_s, r->failure.empty() ? "" : "  ", r->failure.c_str());
+          std::fflush(stdout);
+        }
+        done.push_back(std::move(*r));
+      }
+      draw(false);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < options.jobs; ++j) threads.emplace_back(worker, static_cast<std::size_t>(j));
+  for (auto& t : threads) t.join();
+  {
+    std::lock_guard lock(mu);
+    if (options.tty) draw(true);
+  }
+
+  CampaignResult out;
+  out.interrupted = options.abort && options.abort->load();
+  std::sort(done.begin(), done.end(), [](const RunResult& a, const RunResult& b) { return a.seed < b.seed; });
+  out.runs = std::move(done);
+  out.errors = std::move(errors);
+  out.summary = Summarize(out.runs, ToSeconds(MonotonicNow() - start));
+  out.summary.scenario = scenario.name;
+  nlohmann::json sj = ToJson(out.summary);
+  sj["interrupted"] = out.interrupted;
+  sj["errors"] = out.errors;
+  std::ofstream(options.out_dir + "/summary.json") << sj.dump(2) << "\n";
+  std::ofstream(options.out_dir + "/junit.xml") << ToJunitXml(out.runs, scenario.name);
+  return out;
+}
+
+}  // namespace rover::deploy
