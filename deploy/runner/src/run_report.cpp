@@ -77,6 +77,8 @@ nlohmann::json ToJson(const RunResult& r) {
   j["estimate_error_columns"] = {"t_s", "position_error_m", "heading_error_rad"};
   j["crashes"] = r.crashes;
   j["run_dir"] = r.run_dir;
+  j["truth_publishers"] = r.truth_publishers;
+  j["terrain_digest"] = r.terrain_digest;
   j["truth_track"] = r.truth_track;
   j["estimate_track"] = r.estimate_track;
   return j;
@@ -110,6 +112,8 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     }
     r.crashes = j.value("crashes", std::vector<std::string>{});
     r.run_dir = j.value("run_dir", "");
+    r.truth_publishers = j.value("truth_publishers", 0);
+    r.terrain_digest = j.value("terrain_digest", "");
     r.truth_track = j.value("truth_track", std::vector<std::array<double, 3>>{});
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
     return r;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <thread>
 #include <unistd.h>
 
@@ -112,6 +113,23 @@ std::vector<Eigen::Vector2d> PlannedPath(const Scenario& s) {
   }
   if (s.task.goal) pts.push_back(*s.task.goal);
   return pts;
+}
+
+std::string TerrainDigest(const sim::Terrain& t) {
+  std::uint64_t h = 1469598103934665603ULL;
+  auto mix = [&h](const void* data, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ULL;
+  };
+  const auto& heights = t.ground.heights();
+  mix(heights.data(), heights.size() * sizeof(float));
+  for (const auto& r : t.rocks) {
+    mix(r.position.data(), 3 * sizeof(double));
+    mix(&r.diameter, sizeof r.diameter);
+  }
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
 }
 
 std::string UniqueProject(const Scenario& s, std::uint32_t seed) {
@@ -226,6 +244,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   const std::string run_dir = prepared->run_dir;
   result.run_dir = run_dir;
   const sim::World* world = &prepared->world;
+  result.terrain_digest = TerrainDigest(world->terrain);
   ComposeProject* project = &prepared->project;
   note("starting", 0);
   auto sup = Supervisor::Create(*project, prepared->sup_opts);
@@ -270,9 +289,12 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
 
   double sim_now = 0;
   double last_truth_track = -1, last_est_track = -1;
+  std::set<dds_instance_handle_t> truth_writers;
   auto pump = [&] {
     for (auto& c : clock_r->Take()) sim_now = std::max(sim_now, Time{c->sim_time_ns}.seconds());
     truth_r->TakeEach([&](const dds::Sample<rover_sim_Truth>& s) {
+      truth_writers.insert(s.info().publication_handle);
+      result.truth_publishers = static_cast<int>(truth_writers.size());
       const Time t{s->header.stamp_ns};
       judge->AddTruth(t, ToIsometry(s->pose));
       if (t.seconds() - last_truth_track >= 0.2) {
@@ -305,6 +327,10 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
       }
     }
     if (options.abort && options.abort->load()) return "interrupted";
+    if (truth_writers.size() > 1) {
+      return "cross-talk: " + std::to_string(truth_writers.size()) + " simulators heard on domain " +
+             std::to_string(result.domain);
+    }
     if (sim_now > scenario.time_budget_s) {
       char b[128];
       std::snprintf(b, sizeof b, "time budget of %.0f simulated s exceeded", scenario.time_budget_s);

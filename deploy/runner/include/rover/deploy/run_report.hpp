@@ -41,6 +41,10 @@ struct RunResult {
   std::vector<sim::ErrorSample> estimate_error;
   std::vector<std::string> crashes;  ///< "service: how it ended; last log line"
   std::string run_dir;
+  /// Distinct sim/truth writers heard: 1 unless another run's simulator leaked into this one.
+  int truth_publishers = 0;
+  /// FNV-1a digest of the world's heights and rock list (same seed -> same digest).
+  std::string terrain_digest;
   /// Paths of the truth (x, y) and estimated (x, y) tracks, downsampled, for plots and replay.
   std::vector<std::array<double, 3>> truth_track;     ///< t, x, y
   std::vector<std::array<double, 3>> estimate_track;  ///< t, x, y

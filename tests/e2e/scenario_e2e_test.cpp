@@ -1,0 +1,151 @@
+// `roverctl run` end to end with the real service set: pass, fail on purpose, parallel runs that
+// must not cross-talk, Ctrl-C, and same seed -> same outcome.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "rover/base/process.hpp"
+#include "rover/deploy/run_report.hpp"
+#include "rover/testing/test_support.hpp"
+
+namespace rover {
+namespace {
+namespace fs = std::filesystem;
+
+// Every live process whose environment carries ROVER_PROJECT=<prefix>...
+std::vector<int> ProcessesWithProjectPrefix(const std::string& prefix) {
+  std::vector<int> pids;
+  const std::string marker = "ROVER_PROJECT=" + prefix;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(e.path() / "environ", std::ios::binary);
+    std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (env.find(marker) != std::string::npos && ProcessAlive(std::stoi(name))) {
+      pids.push_back(std::stoi(name));
+    }
+  }
+  return pids;
+}
+
+class ScenarioE2e : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testing::MakeTempDir("scenario-e2e"); }
+  void TearDown() override {
+    for (int pid : ProcessesWithProjectPrefix("short-drive")) kill(pid, SIGKILL);
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string Scenario(const std::string& name) {
+    return testing::SourceDir() + "/tests/e2e/scenarios/" + name;
+  }
+  Process Start(const std::vector<std::string>& args, const std::string& log) {
+    SpawnOptions o;
+    o.argv = {testing::BinDir() + "/roverctl"};
+    o.argv.insert(o.argv.end(), args.begin(), args.end());
+    o.stdout_path = log;
+    o.stderr_path = log;
+    auto p = Process::Spawn(o);
+    EXPECT_TRUE(p.ok()) << p.status().message();
+    return std::move(*p);
+  }
+  std::pair<ExitInfo, std::string> Run(const std::vector<std::string>& args) {
+    const std::string log = dir_ + "/roverctl-" + std::to_string(n_++) + ".log";
+    Process p = Start(args, log);
+    auto e = p.WaitFor(std::chrono::minutes(10));
+    if (!e) e = p.Terminate(std::chrono::seconds(10));
+    return {*e, testing::ReadFile(log)};
+  }
+  static nlohmann::json Json(const std::string& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+  }
+  std::string dir_;
+  int n_ = 0;
+};
+
+TEST_F(ScenarioE2e, PassingAndDeliberatelyFailingScenarios) {
+  auto [ok_exit, ok_out] = Run({"run", Scenario("short_drive.yaml"), "--out", dir_ + "/pass"});
+  EXPECT_EQ(ok_exit.code, 0) << ok_out;
+  const auto pass = Json(dir_ + "/pass/short-drive-seed1/result.json");
+  EXPECT_TRUE(pass["pass"].get<bool>()) << pass.dump(2);
+  for (const char* f : {"map.png", "estimate_error.png", "logs/rover-sim.log", "logs/dl-pose.log"}) {
+    EXPECT_TRUE(fs::exists(dir_ + "/pass/short-drive-seed1/" + f)) << f;
+  }
+  EXPECT_EQ(std::system(("xmllint --noout " + dir_ + "/pass/junit.xml").c_str()), 0);
+
+  auto [bad_exit, bad_out] =
+      Run({"run", Scenario("short_drive_wrong_target.yaml"), "--out", dir_ + "/fail"});
+  EXPECT_EQ(bad_exit.code, 1) << bad_out;
+  const auto fail = Json(dir_ + "/fail/short-drive-wrong-target-seed1/result.json");
+  EXPECT_FALSE(fail["pass"].get<bool>());
+  // The JSON says which criterion failed and by how much (about 2 m beyond its 0.3 m limit).
+  bool found = false;
+  for (const auto& c : fail["criteria"]) {
+    if (c["name"] == "final_position_error") {
+      found = true;
+      EXPECT_FALSE(c["pass"].get<bool>());
+      EXPECT_NEAR(c["measured"].get<double>(), 2.0, 0.4);
+      EXPECT_EQ(c["limit"].get<double>(), 0.3);
+    }
+  }
+  EXPECT_TRUE(found) << fail.dump(2);
+  EXPECT_NE(fail["failure"].get<std::string>().find("final_position_error"), std::string::npos);
+  // `roverctl report` re-prints the table.
+  auto [rep_exit, rep_out] = Run({"report", dir_ + "/fail"});
+  EXPECT_EQ(rep_exit.code, 1);
+  EXPECT_NE(rep_out.find("0/1 passed"), std::string::npos) << rep_out;
+}
+
+TEST_F(ScenarioE2e, ParallelRunsDoNotCrossTalkAndSameSeedSameOutcome) {
+  auto [e, out] = Run({"run", Scenario("short_drive.yaml"), "--seeds", "1..2", "--jobs", "2",
+                       "--out", dir_ + "/par"});
+  EXPECT_EQ(e.code, 0) << out;
+  auto runs = deploy::LoadRunFolder(dir_ + "/par");
+  ASSERT_TRUE(runs.ok()) << runs.status().message();
+  ASSERT_EQ(runs->size(), 2u);
+  EXPECT_NE((*runs)[0].domain, (*runs)[1].domain);
+  for (const auto& r : *runs) {
+    const auto j = Json(r.run_dir + "/result.json");
+    // Each run heard exactly one simulator: no cross-talk between the parallel sets.
+    EXPECT_EQ(j["truth_publishers"].get<int>(), 1) << r.run_dir;
+    EXPECT_TRUE(r.pass) << r.failure;
+  }
+  // Same seed again: same terrain and the same outcome.
+  auto [e2, out2] = Run({"run", Scenario("short_drive.yaml"), "--seeds", "1", "--out", dir_ + "/again"});
+  EXPECT_EQ(e2.code, 0) << out2;
+  const auto a = Json(dir_ + "/par/short-drive-seed1/result.json");
+  const auto b = Json(dir_ + "/again/short-drive-seed1/result.json");
+  EXPECT_EQ(a["pass"], b["pass"]);
+  EXPECT_EQ(a["terrain_digest"], b["terrain_digest"]);
+  EXPECT_NE(a["terrain_digest"], Json(dir_ + "/par/short-drive-seed2/result.json")["terrain_digest"]);
+}
+
+TEST_F(ScenarioE2e, CtrlCStopsEverythingAndKeepsFinishedRuns) {
+  Process p = Start({"run", Scenario("short_drive.yaml"), "--seeds", "1..3", "--jobs", "1", "--out",
+                     dir_ + "/int"},
+                    dir_ + "/int.log");
+  ASSERT_TRUE(testing::WaitFor([&] { return fs::exists(dir_ + "/int/short-drive-seed1/result.json"); },
+                               std::chrono::minutes(5)))
+      << testing::ReadFile(dir_ + "/int.log");
+  // Let the second run get under way, then interrupt.
+  testing::WaitFor([&] { return fs::exists(dir_ + "/int/short-drive-seed2/logs"); }, std::chrono::seconds(60));
+  p.Signal(SIGINT);
+  auto e = p.WaitFor(std::chrono::minutes(2));
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->code, 1);
+  EXPECT_TRUE(testing::WaitFor([] { return ProcessesWithProjectPrefix("short-drive").empty(); },
+                               std::chrono::seconds(30)));
+  const auto summary = Json(dir_ + "/int/summary.json");
+  EXPECT_TRUE(summary["interrupted"].get<bool>());
+  EXPECT_GE(summary["runs"].get<int>(), 1);
+  EXPECT_TRUE(Json(dir_ + "/int/short-drive-seed1/result.json")["pass"].get<bool>());
+  EXPECT_FALSE(fs::exists(dir_ + "/int/short-drive-seed3/result.json"));
+}
+
+}  // namespace
+}  // namespace rover
