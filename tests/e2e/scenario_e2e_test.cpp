@@ -101,6 +101,21 @@ TEST_F(ScenarioE2e, PassingAndDeliberatelyFailingScenarios) {
   EXPECT_NE(rep_out.find("0/1 passed"), std::string::npos) << rep_out;
 }
 
+// Each off-nominal termination of the drive primitives, triggered in the simulator: the scenario
+// passes only if its step ends with the termination it expects.
+TEST_F(ScenarioE2e, OffNominalTerminationsInTheSimulator) {
+  for (const char* name : {"terminate_tilt", "terminate_stall", "terminate_timeout", "terminate_stop"}) {
+    const std::string out = dir_ + "/" + name;
+    auto [e, log] = Run({"run", Scenario(std::string(name) + ".yaml"), "--out", out});
+    EXPECT_EQ(e.code, 0) << name << "\n" << log;
+    auto runs = deploy::LoadRunFolder(out);
+    ASSERT_TRUE(runs.ok()) << runs.status().message();
+    ASSERT_EQ(runs->size(), 1u);
+    ASSERT_FALSE((*runs)[0].steps.empty()) << name;
+    EXPECT_EQ((*runs)[0].steps[0].state, "failed") << name;
+  }
+}
+
 TEST_F(ScenarioE2e, ParallelRunsDoNotCrossTalkAndSameSeedSameOutcome) {
   auto [e, out] = Run({"run", Scenario("short_drive.yaml"), "--seeds", "1..2", "--jobs", "2",
                        "--out", dir_ + "/par"});

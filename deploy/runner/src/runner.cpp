@@ -390,6 +390,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     c.distance = step.distance;
     c.angle = step.angle;
     c.speed = step.speed;
+    c.timeout_s = step.timeout_s;
     StepResult sr;
     sr.primitive = PrimitiveName(step.primitive);
     sr.command_id = c.command_id;
@@ -401,7 +402,15 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
       break;
     }
     bool terminal = false;
+    bool stop_sent = false;
     failure = wait_until([&] {
+      if (step.stop_after_s > 0 && !stop_sent && sim_now - sr.sim_start_s >= step.stop_after_s) {
+        rover_dl_DriveCommand stop{};
+        stop.header.stamp_ns = Time::FromSeconds(sim_now).ns;
+        stop.command_id = c.command_id + 1000;
+        stop.primitive = rover_dl_PRIMITIVE_STOP;
+        stop_sent = cmd_w->Write(stop).ok();
+      }
       status_r->TakeEach([&](const dds::Sample<rover_dl_DriveStatus>& s) {
         if (s->command_id != c.command_id) return;
         if (s->state == rover_dl_DRIVE_DONE || s->state == rover_dl_DRIVE_FAILED ||
@@ -419,9 +428,14 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     sr.sim_end_s = sim_now;
     if (!failure.empty()) sr.state = "interrupted";
     result.steps.push_back(sr);
-    if (failure.empty() && sr.state != "done") {
+    if (failure.empty() && sr.termination != step.expect) {
       failure = "step " + std::to_string(i + 1) + " (" + sr.primitive + ") ended " + sr.state +
-                " (" + sr.termination + ")" + (sr.message.empty() ? "" : ": " + sr.message);
+                " (" + sr.termination + ")" + (step.expect == "nominal" ? "" : ", expected " + step.expect) +
+                (sr.message.empty() ? "" : ": " + sr.message);
+    }
+    if (failure.empty() && step.expect != "nominal") {
+      // An expected fault ends the sequence: the rover is safe and stopped, as on MER.
+      break;
     }
   }
   // Let the last truth and estimate samples arrive (half a simulated second).

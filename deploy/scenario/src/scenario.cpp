@@ -93,7 +93,23 @@ Status OptNumber(const YAML::Node& parent, const char* name, const std::string& 
 Status ParseStep(const YAML::Node& n, const Ctx& c, DriveStep* s) {
   s->line = Line(n);
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "task.steps[]",
-                                  {"primitive", "distance", "curvature", "angle_deg", "speed"}, c));
+                                  {"primitive", "distance", "curvature", "angle_deg", "speed",
+                                   "timeout_s", "stop_after_s", "expect"},
+                                  c));
+  if (const YAML::Node e = n["expect"]) {
+    static const std::vector<std::string> kTerminations = {
+        "nominal", "tilt", "suspension", "motor_stall", "motor_current", "motor_fault", "timeout",
+        "stop_command", "rejected_busy", "rejected_invalid", "stale_sensor"};
+    s->expect = e.Scalar();
+    if (std::find(kTerminations.begin(), kTerminations.end(), s->expect) == kTerminations.end()) {
+      std::string list;
+      for (const auto& t : kTerminations) list += (list.empty() ? "" : ", ") + t;
+      return c.Err(e, "task.steps[].expect: '" + s->expect + "' is not one of: " + list +
+                          Suggest(s->expect, kTerminations));
+    }
+  }
+  ROVER_RETURN_IF_ERROR(OptNumber(n, "timeout_s", "task.steps[]", 0, 86400, c, &s->timeout_s));
+  ROVER_RETURN_IF_ERROR(OptNumber(n, "stop_after_s", "task.steps[]", 0, 86400, c, &s->stop_after_s));
   const YAML::Node p = n["primitive"];
   if (!p) return c.Err(n, "task.steps[]: missing 'primitive'");
   const std::string name = p.Scalar();

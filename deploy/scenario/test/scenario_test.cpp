@@ -104,6 +104,10 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
             "3: task.steps[]: 'arc' needs 'curvature'");
   EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: arc, distance: 1, curvature: 2}]}\n" + crit),
             "3: task.steps[].curvature: 2 is out of range [-1, 1]");
+  EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: stop, expect: tilted}]}\n" + crit),
+            "3: task.steps[].expect: 'tilted' is not one of: nominal, tilt, suspension, motor_stall, "
+            "motor_current, motor_fault, timeout, stop_command, rejected_busy, rejected_invalid, "
+            "stale_sensor (did you mean 'tilt'?)");
   EXPECT_EQ(Err(base + "task: {type: fly}\n" + crit),
             "3: task.type: 'fly' is not one of: directed, waypoint, autonav, long_traverse, "
             "lander_return, science_target");

@@ -17,6 +17,7 @@
 ///       - {primitive: straight, distance: 5}
 ///       - {primitive: turn_in_place, angle_deg: 90}
 ///       - {primitive: arc, curvature: 0.5, distance: 3}
+///       - {primitive: straight, distance: 9, timeout_s: 20, expect: timeout}
 ///     goal: {x: 20, y: 5, tolerance: 1}  # waypoint-like tasks
 ///   faults: []                           # fault injection (filled by the fault issue)
 ///   criteria:
@@ -55,6 +56,12 @@ struct DriveStep {
   double curvature = 0;  ///< [1/m]
   double angle = 0;      ///< [rad]
   double speed = 0;      ///< [m/s], 0 = default
+  double timeout_s = 0;  ///< [s] the command's own time-out; 0 = the drive service's default
+  double stop_after_s = 0;  ///< [s] send STOP this long (simulated) after the step starts; 0 = never
+  /// The termination this step must end with ("nominal" unless a test wants a fault: "tilt",
+  /// "suspension", "motor_stall", "motor_current", "motor_fault", "timeout", "stop_command",
+  /// "rejected_busy", "rejected_invalid", "stale_sensor").
+  std::string expect = "nominal";
   int line = 0;
 };
 
