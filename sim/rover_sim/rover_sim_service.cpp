@@ -6,11 +6,14 @@
 // Pacing: `sim.real_time_factor` simulated seconds per wall second, 0 = as fast as it can.
 // Its run clock is its own simulated time; it never follows sim/clock itself.
 // See docs/services/rover-sim.md.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
 #include "rover/base/log.hpp"
 #include "rover/runtime/service.hpp"
+#include "rover/sim/render/cameras.hpp"
+#include "rover/sim/render/renderer.hpp"
 #include "rover/sim/rover_sim/sim_engine.hpp"
 
 namespace {
@@ -35,6 +38,9 @@ class RoverSim final : public rover::Service {
     p.Declare("sim.real_time_factor", 1.0,
               "simulated seconds per wall second; 0 = as fast as possible").Range(0.0, 1000.0);
     p.Declare("sim.start_paused", false, "wait for a SIM_RESUME on sim/control before running");
+    p.Declare("camera.image_size", 1024, "[px] side of the rendered camera images (MER: 1024)")
+        .Range(64, 2048);
+    p.Declare("camera.render_seed", 1, "seed of the rendered textures and image noise").Min(0);
   }
 
   Status OnConfigure(rover::ServiceContext& ctx, const rover::ParamSet& p) override {
@@ -42,6 +48,10 @@ class RoverSim final : public rover::Service {
     if (!engine.ok()) return engine.status();
     engine_ = std::move(*engine);
     rtf_ = p.GetDouble("sim.real_time_factor");
+    image_size_ = static_cast<int>(p.GetInt("camera.image_size"));
+    render_seed_ = static_cast<std::uint64_t>(p.GetInt("camera.render_seed"));
+    cameras_ = rover::sim::DefaultStereoCameras(image_size_);
+    terrain_ = std::make_shared<const rover::sim::Terrain>(engine_->world().terrain);
     paused_ = p.GetBool("sim.start_paused");
     ctx_ = &ctx;
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
@@ -50,6 +60,9 @@ class RoverSim final : public rover::Service {
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/suspension_pots", &pots_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/imu", &imu_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/sun_sensor", &sun_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/camera_frame", &frame_w_));
+    ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_CameraRequest>(
+        "hw/camera_request", [this](const dds::Sample<rover_hw_CameraRequest>& s) { OnCamera(s.data()); }));
     ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MotorGoals>(
         "hw/motor_goals", [this](const dds::Sample<rover_hw_MotorGoals>& s) { OnGoals(s.data()); }));
     ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_sim_Control>(
@@ -238,7 +251,92 @@ class RoverSim final : public rover::Service {
                                  {"real_time_factor", rtf_}, {"sim_time", engine_->time()}});
   }
 
+  static const char* CameraName(rover_CameraId id) {
+    switch (id) {
+      case rover_CAMERA_NAVCAM: return "navcam";
+      case rover_CAMERA_FRONT_HAZCAM: return "front_hazcam";
+      case rover_CAMERA_REAR_HAZCAM: return "rear_hazcam";
+    }
+    return nullptr;
+  }
+
+  // Takes a stereo pair now, as on MER: the rover holds still (simulated time does not advance
+  // while the images are made).
+  void OnCamera(const rover_hw_CameraRequest& req) {
+    const char* name = CameraName(req.camera);
+    if (name == nullptr) {
+      rover::log::Warn("camera request for a camera that does not exist; ignored",
+                       {{"camera", static_cast<int>(req.camera)}, {"request_id", req.request_id}});
+      return;
+    }
+    if (!renderer_) {
+      rover::sim::RenderOptions o;
+      o.seed = render_seed_;
+      auto r = rover::sim::Renderer::Create(terrain_, o);
+      if (!r.ok()) {
+        rover::log::Error("cannot render camera images", {{"error", r.status().message()}});
+        ctx_->SetHealth(rover_HEALTH_DEGRADED, "cameras unavailable: " + r.status().message());
+        return;
+      }
+      renderer_ = std::move(*r);
+    }
+    // The true sun; shadows are recomputed only when it has moved noticeably (0.5 deg).
+    const Eigen::Vector3d sun = engine_->SunDirectionSite();
+    if (!sun_set_ || std::acos(std::clamp(sun.dot(last_sun_), -1.0, 1.0)) > 0.5 * M_PI / 180) {
+      rover::sim::SunOptions so;
+      so.azimuth_deg = std::atan2(sun.y(), sun.x()) * 180.0 / M_PI;
+      // Below the horizon the cameras would see nothing; light the scene from just above it.
+      so.elevation_deg = std::max(2.0, std::asin(std::clamp(sun.z(), -1.0, 1.0)) * 180.0 / M_PI);
+      if (renderer_->SetSun(so).ok()) {
+        last_sun_ = sun;
+        sun_set_ = true;
+      }
+    }
+    auto def = rover::sim::FindStereoCamera(cameras_, name);
+    if (!def.ok()) return;
+    const auto readings = engine_->physics().Readings();
+    rover::sim::MastState mast{readings.joint_angle_rad[rover::hw::kMastPan],
+                               readings.joint_angle_rad[rover::hw::kMastTilt]};
+    auto spec = rover::sim::MakeCameraPairSpec(*def, mast);
+    if (!spec.ok()) {
+      rover::log::Error("camera pair", {{"error", spec.status().message()}});
+      return;
+    }
+    const rover::Time t0 = rover::MonotonicNow();
+    auto images = renderer_->RenderStereoPair(readings.chassis.pose_site, *spec, ++frames_);
+    if (!images.ok()) {
+      rover::log::Error("rendering failed", {{"error", images.status().message()}});
+      return;
+    }
+    rover_hw_CameraFrame f{};
+    Stamp(f.header, name);
+    f.request_id = req.request_id;
+    f.camera = req.camera;
+    f.exposure_us = static_cast<uint32_t>(std::lround(images->left.exposure * 1e6));
+    f.width = static_cast<uint16_t>(images->left.image.cols);
+    f.height = static_cast<uint16_t>(images->left.image.rows);
+    const cv::Mat& l = images->left.image;
+    const cv::Mat& r = images->right.image;
+    f.left._buffer = const_cast<uint8_t*>(l.ptr<uint8_t>());
+    f.left._length = f.left._maximum = static_cast<uint32_t>(l.total());
+    f.right._buffer = const_cast<uint8_t*>(r.ptr<uint8_t>());
+    f.right._length = f.right._maximum = static_cast<uint32_t>(r.total());
+    (void)frame_w_.Write(f);
+    rover::log::Info("stereo pair", {{"camera", name}, {"request_id", req.request_id},
+                                     {"render_ms", rover::ToSeconds(rover::MonotonicNow() - t0) * 1e3},
+                                     {"sim_time", engine_->time()}});
+  }
+
   std::unique_ptr<rover::sim::SimEngine> engine_;
+  std::shared_ptr<const rover::sim::Terrain> terrain_;
+  std::unique_ptr<rover::sim::Renderer> renderer_;
+  std::vector<rover::sim::StereoCameraDefinition> cameras_;
+  int image_size_ = 1024;
+  std::uint64_t render_seed_ = 1;
+  std::uint64_t frames_ = 0;
+  Eigen::Vector3d last_sun_ = Eigen::Vector3d::UnitZ();
+  bool sun_set_ = false;
+  dds::Writer<rover_hw_CameraFrame> frame_w_;
   rover::ServiceContext* ctx_ = nullptr;
   double rtf_ = 1.0;
   bool paused_ = false;

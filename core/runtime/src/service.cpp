@@ -159,7 +159,8 @@ Status LoadParameters(Service& service, const ServiceOptions& options, ParamSet*
   service.DeclareParameters(*params);
   for (const auto& f : options.param_files) ROVER_RETURN_IF_ERROR(params->LoadYamlFile(f));
   for (const auto& o : options.overrides) ROVER_RETURN_IF_ERROR(params->SetFromString(o));
-  return params->Validate();
+  ROVER_RETURN_IF_ERROR(params->Validate());
+  return service.ValidateParameters(*params);
 }
 
 Lifecycle::Lifecycle(Service& service, ServiceContext& ctx, ServiceOptions options)

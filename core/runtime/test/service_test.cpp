@@ -87,6 +87,30 @@ TEST_F(ServiceTest, RefusesToActivateWithInvalidParameterAndNamesIt) {
   EXPECT_EQ(svc.activated, 0);
 }
 
+class CrossCheckedService : public CountingService {
+ public:
+  void DeclareParameters(ParamSet& p) override {
+    CountingService::DeclareParameters(p);
+    p.Declare("min_hz", 1.0, "lower bound").Range(0.1, 100.0);
+  }
+  Status ValidateParameters(const ParamSet& p) const override {
+    if (p.GetDouble("min_hz") > p.GetDouble("rate_hz")) {
+      return InvalidArgument(p.Origin("min_hz").ToString() + ": key 'min_hz': above rate_hz");
+    }
+    return Status::Ok();
+  }
+};
+
+TEST_F(ServiceTest, CrossParameterRulesAreCheckedWithTheRanges) {
+  CrossCheckedService svc;
+  ServiceOptions o = Options();
+  o.overrides = {"min_hz=20"};
+  ParamSet p;
+  const Status s = LoadParameters(svc, o, &p);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("key 'min_hz': above rate_hz"), std::string::npos) << s.message();
+}
+
 TEST_F(ServiceTest, BadOptionsAreRejected) {
   ServiceOptions o = Options();
   o.clock = "sundial";

@@ -192,10 +192,23 @@ Result<Prepared> Prepare(const Scenario& scenario, std::uint32_t seed, const Run
       has_sim = true;
       files.push_back(sim_params_path);
     }
+    std::map<std::string, std::string> overrides;
+    if (svc.name == scenario.estimator) {
+      char b[64];
+      std::snprintf(b, sizeof b, "%.9g", scenario.start_x);
+      overrides["start.x"] = b;
+      std::snprintf(b, sizeof b, "%.9g", scenario.start_y);
+      overrides["start.y"] = b;
+      std::snprintf(b, sizeof b, "%.9g", scenario.start_yaw * 180.0 / M_PI);
+      overrides["start.yaw_deg"] = b;
+    }
     auto it = scenario.params.find(svc.name);
     if (it != scenario.params.end()) {
+      for (const auto& [k, v] : it->second) overrides[k] = v;
+    }
+    if (!overrides.empty()) {
       const std::string path = run_dir + "/params/" + svc.name + ".overrides.yaml";
-      std::ofstream(path) << ParamsYaml(it->second);
+      std::ofstream(path) << ParamsYaml(overrides);
       files.push_back(path);
     }
     std::string joined;

@@ -283,7 +283,7 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
     return c.Err(e.mark.line + 1, "malformed YAML: " + e.msg);
   }
   if (!root.IsMap()) return c.Err(1, "expected a map (a scenario)");
-  std::vector<std::string> known = {"name", "description", "compose", "simulator", "seed", "sim",
+  std::vector<std::string> known = {"name", "description", "compose", "simulator", "estimator", "seed", "sim",
                                     "rover", "task", "faults", "criteria", "params"};
   for (const auto& s : SimulatorSections()) known.push_back(s);
   ROVER_RETURN_IF_ERROR(CheckKeys(root, "", known, c));
@@ -308,6 +308,7 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
     }
   }
   if (root["simulator"]) s.simulator = root["simulator"].Scalar();
+  if (root["estimator"]) s.estimator = root["estimator"].Scalar();
   if (const YAML::Node seed = root["seed"]) {
     auto v = Number(seed, "seed", c);
     if (!v.ok()) return v.status();

@@ -90,7 +90,7 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
   const std::string crit = "criteria: {max_tilt_deg: 30}\n";
   EXPECT_EQ(Err(base + task + crit + "critera: {}\n"),
             "5: unknown key 'critera' (did you mean 'criteria'?) (known: name, description, "
-            "compose, simulator, seed, sim, rover, task, faults, criteria, params, terrain, "
+            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, terrain, "
             "lander, science_targets)");
   EXPECT_EQ(Err(base + crit), "1: missing 'task' (what the rover is to do)");
   EXPECT_EQ(Err(base + task), "1: missing 'criteria' (how the run is judged)");

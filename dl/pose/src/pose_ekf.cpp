@@ -561,8 +561,8 @@ std::vector<EstimatorEvent> PoseEkf::TakeEvents() {
 
 // ---- parameters -------------------------------------------------------------------------------
 
-void DeclareEkfParams(ParamSet& params, const std::string& prefix) {
-  const EkfOptions d;
+void DeclareEkfParams(ParamSet& params, const std::string& prefix, const EkfOptions& defaults) {
+  const EkfOptions& d = defaults;
   auto decl = [&](const char* key, double v, const char* doc, double lo, double hi) {
     params.Declare(prefix + key, v, doc).Range(lo, hi);
   };

@@ -44,7 +44,7 @@ SensorSamples SensorSuite::Step(const SensorTruth& truth) {
   }
   if (imu_clock_.Due(truth.stamp)) out.imu = imu_.Sample(truth.imu, truth.stamp);
   if (sun_clock_.Due(truth.stamp)) {
-    const SunState sun = ephemeris_.At(truth.stamp.seconds());
+    const geometry::SunState sun = ephemeris_.At(truth.stamp.seconds());
     out.sun_sensor = sun_.Sample(sun.direction_site, truth.site_from_rover, truth.stamp);
     out.sun = sun;
   }

@@ -148,7 +148,7 @@ void DeclareSimSensorParams(ParamSet& ps, const std::string& prefix) {
   ps.Declare(key("sun_sensor.optical_depth"), d.sun_sensor.optical_depth,
              "atmospheric dust optical depth tau (0.3 clear .. 5 dust storm)")
       .Range(0.0, 10.0);
-  const SunEphemerisOptions& e = d.ephemeris;
+  const geometry::SunEphemerisOptions& e = d.ephemeris;
   ps.Declare(key("ephemeris.mode"), "season",
              "'season': Ls and local true solar time given at t = 0; 'date': J2000 TT days")
       .OneOf({"season", "date"});
@@ -196,8 +196,8 @@ Result<SimSensorOptions> SimSensorOptionsFromParams(const ParamSet& ps, const st
   o.sun_sensor.focal_error = d("sun_sensor.focal_error");
   o.sun_sensor.optical_depth = d("sun_sensor.optical_depth");
   o.ephemeris.mode = ps.GetString(key("ephemeris.mode")) == "date"
-                         ? SunEphemerisOptions::Mode::kDate
-                         : SunEphemerisOptions::Mode::kSeason;
+                         ? geometry::SunEphemerisOptions::Mode::kDate
+                         : geometry::SunEphemerisOptions::Mode::kSeason;
   o.ephemeris.latitude_deg = d("ephemeris.latitude_deg");
   o.ephemeris.east_longitude_deg = d("ephemeris.east_longitude_deg");
   o.ephemeris.ls_deg = d("ephemeris.ls_deg");

@@ -29,7 +29,7 @@ TEST(SimSensorOptions, ParamsRoundTripTheDefaults) {
   EXPECT_LT((o->imu.mounting_error_rpy - d.imu.mounting_error_rpy).norm(), 1e-15);
   EXPECT_LT((o->sun_sensor.mounting_error_rpy - d.sun_sensor.mounting_error_rpy).norm(), 1e-15);
   EXPECT_EQ(o->pots.offset_error_counts, d.pots.offset_error_counts);
-  EXPECT_EQ(o->ephemeris.mode, SunEphemerisOptions::Mode::kSeason);
+  EXPECT_EQ(o->ephemeris.mode, geometry::SunEphemerisOptions::Mode::kSeason);
 }
 
 TEST(SimSensorOptions, YamlValuesAreRead) {
@@ -50,7 +50,7 @@ TEST(SimSensorOptions, YamlValuesAreRead) {
   EXPECT_EQ(o->seed, 9u);
   EXPECT_EQ(o->noise_scale, 0.0);
   EXPECT_EQ(o->imu.gyro_bias_error.x(), 1.0e-5);
-  EXPECT_EQ(o->ephemeris.mode, SunEphemerisOptions::Mode::kDate);
+  EXPECT_EQ(o->ephemeris.mode, geometry::SunEphemerisOptions::Mode::kDate);
   EXPECT_EQ(o->ephemeris.j2000_tt_days, 8000.0);
 }
 

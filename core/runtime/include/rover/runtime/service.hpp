@@ -126,6 +126,12 @@ class Service {
 
   /// Declare every parameter the service reads.
   virtual void DeclareParameters(ParamSet& params) { (void)params; }
+  /// Checks rules that span several parameters (ranges are already checked). Runs in
+  /// `--validate`, so `roverctl up` reports these errors before anything starts. No DDS here.
+  virtual Status ValidateParameters(const ParamSet& params) const {
+    (void)params;
+    return Status::Ok();
+  }
   /// Read parameters, create readers, writers and timers. Parameters are already valid.
   virtual Status OnConfigure(ServiceContext& ctx, const ParamSet& params) = 0;
   virtual Status OnActivate(ServiceContext& ctx) {

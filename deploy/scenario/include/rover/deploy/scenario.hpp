@@ -6,6 +6,7 @@
 ///   description: ...
 ///   compose: ../drive.compose.yaml       # required; the service set, relative to this file
 ///   simulator: rover-sim                 # the simulator's service name in that file
+///   estimator: dl-pose                   # the pose estimator, told the start pose
 ///   seed: 1                              # default seed; `roverctl run --seeds` overrides
 ///   sim: {real_time_factor: 0, time_budget_s: 120, wall_budget_s: 300}
 ///   rover: {start: {x: 0, y: 0, yaw_deg: 0}}
@@ -79,6 +80,9 @@ struct Scenario {
   std::string description;
   std::string compose_path;       ///< resolved relative to the scenario file
   std::string simulator = "rover-sim";
+  /// The pose estimator's service name: the runner tells it the start pose (start.x, start.y,
+  /// start.yaw_deg), as operators tell a rover where it is.
+  std::string estimator = "dl-pose";
   std::uint32_t seed = 1;
   double real_time_factor = 0;    ///< 0 = as fast as possible
   double time_budget_s = 300;     ///< [s] simulated

@@ -257,8 +257,10 @@ class PoseEkf {
   double odometer_ = 0.0;
 };
 
-/// Declares the EKF parameters under `prefix` ("ekf." by default).
-void DeclareEkfParams(ParamSet& params, const std::string& prefix = "ekf.");
+/// Declares the EKF parameters under `prefix` ("ekf." by default) with `defaults` as their
+/// default values (a service on Mars passes gravity 3.711).
+void DeclareEkfParams(ParamSet& params, const std::string& prefix = "ekf.",
+                      const EkfOptions& defaults = EkfOptions{});
 Result<EkfOptions> EkfOptionsFromParams(const ParamSet& params, const std::string& prefix = "ekf.");
 
 }  // namespace rover::dl

@@ -14,7 +14,7 @@
 #include "rover/base/time.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/sim/sensors/imu_model.hpp"
-#include "rover/sim/sensors/mars_sun.hpp"
+#include "rover/geometry/mars_sun.hpp"
 #include "rover/sim/sensors/motor_telemetry_model.hpp"
 #include "rover/sim/sensors/pot_model.hpp"
 #include "rover/sim/sensors/sampling.hpp"
@@ -40,7 +40,7 @@ struct SensorSamples {
   std::optional<hw::SuspensionPots> suspension_pots;
   std::optional<hw::ImuRaw> imu;
   std::optional<hw::SunSensorRaw> sun_sensor;
-  std::optional<SunState> sun;  ///< the true sun when sun_sensor sampled (for the judge)
+  std::optional<geometry::SunState> sun;  ///< the true sun when sun_sensor sampled (for the judge)
 };
 
 class SensorSuite {
@@ -58,7 +58,7 @@ class SensorSuite {
   const SimSensorOptions& options() const { return options_; }
   const ImuModel& imu() const { return imu_; }
   const SunSensorModel& sun_sensor() const { return sun_; }
-  const SunEphemeris& ephemeris() const { return ephemeris_; }
+  const geometry::SunEphemeris& ephemeris() const { return ephemeris_; }
 
  private:
   SensorSuite(const HardwareConfig& config, const SimSensorOptions& options);
@@ -69,7 +69,7 @@ class SensorSuite {
   SuspensionPotModel pots_;
   ImuModel imu_;
   SunSensorModel sun_;
-  SunEphemeris ephemeris_;
+  geometry::SunEphemeris ephemeris_;
   SampleClock motor_clock_, pot_clock_, imu_clock_, sun_clock_;
 };
 

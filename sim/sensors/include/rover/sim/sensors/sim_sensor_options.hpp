@@ -11,7 +11,7 @@
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
 #include "rover/sim/sensors/imu_model.hpp"
-#include "rover/sim/sensors/mars_sun.hpp"
+#include "rover/geometry/mars_sun.hpp"
 #include "rover/sim/sensors/motor_telemetry_model.hpp"
 #include "rover/sim/sensors/pot_model.hpp"
 #include "rover/sim/sensors/sun_sensor_model.hpp"
@@ -25,7 +25,7 @@ struct SimSensorOptions {
   PotErrors pots;
   MotorTelemetryErrors motors;
   SunSensorErrors sun_sensor;
-  SunEphemerisOptions ephemeris;
+  geometry::SunEphemerisOptions ephemeris;
 
   SimSensorOptions();  ///< small realistic errors (see sim/sensors/README.md)
   /// No errors, no noise, clear sky: hw values are the ideal quantised ones.

@@ -1,4 +1,4 @@
-#include "rover/sim/sensors/mars_sun.hpp"
+#include "rover/geometry/mars_sun.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::geometry {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -120,4 +120,4 @@ SunState SunEphemeris::At(double t) const {
   return s;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::geometry

@@ -1,10 +1,10 @@
-#include "rover/sim/sensors/mars_sun.hpp"
+#include "rover/geometry/mars_sun.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::geometry {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -112,4 +112,4 @@ TEST(MarsSun, OptionsAreValidated) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::geometry

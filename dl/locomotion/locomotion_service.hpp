@@ -1,0 +1,82 @@
+#pragma once
+/// @file
+/// dl-locomotion: the service that binds the drive executor (library dl_locomotion) to topics.
+///
+///   in:  dl/drive_command (command)  -> DriveExecutor::Submit at the run-clock time of arrival
+///        ddl/joint_state  (stream)   -> DriveExecutor::OnJointState (wheel/steer/suspension)
+///        ddl/motor_status (latched)  -> DriveExecutor::OnMotorStatus
+///        dl/pose          (state)    -> DriveExecutor::OnAttitude: ZYX roll, pitch, yaw of the
+///                                       EKF quaternion, so turns in place close the loop on the
+///                                       estimated heading (as FIDO did)
+///   out: ddl/motor_command (command) every motor-group command the executor returns, in order
+///        dl/drive_status   (latched) every status the executor returns (acceptance, phase
+///                                       changes, the terminal one, rejections) and one per check
+///                                       cycle (8 Hz) while a primitive runs
+/// A run-clock timer at drive.check_rate_hz (8 Hz) steps the executor; nothing sleeps.
+///
+/// Bad commands never crash the service and never move the rover: NaN/inf fields, unknown
+/// primitive values, out-of-range values -> REJECTED / REJECTED_INVALID with the reason in the
+/// message; a command while one runs -> REJECTED_BUSY; stale inputs -> REJECTED / STALE_SENSOR.
+/// When idle, a rejection also commands GROUP_STOP so the rover stays braked.
+///
+/// Run-clock resets (a simulator reset moves sim/clock back): a running primitive is stopped and
+/// the executor restarts with empty inputs. Deactivation stops a running primitive too.
+///
+/// Parameters: geometry.* (DeclareRoverGeometryParams) and drive.* (DeclareDriveParams).
+/// The IDL conversions are free functions so tests can check them without DDS.
+
+#include <optional>
+
+#include "rover/dl/locomotion/drive_executor.hpp"
+#include "rover/runtime/service.hpp"
+
+namespace rover::dl {
+
+/// dl/drive_command -> DriveCommand. The primitive value is copied as is (an unknown value is
+/// rejected INVALID by the executor).
+DriveCommand DriveCommandFromIdl(const rover_dl_DriveCommand& m);
+/// ddl/joint_state -> JointSample; healthy unless the driver marked it FAILED or STALE.
+JointSample JointSampleFromIdl(const rover_ddl_JointState& m);
+/// ddl/motor_status -> MotorGroupStatus.
+MotorGroupStatus MotorGroupStatusFromIdl(const rover_ddl_MotorStatus& m);
+/// dl/pose -> attitude (ZYX roll, pitch, yaw of the quaternion). nullopt for a non-finite or
+/// degenerate quaternion (norm outside [0.5, 2]).
+std::optional<AttitudeSample> AttitudeFromPose(const rover_dl_PoseEstimate& m);
+/// MotorGroupCommand -> ddl/motor_command (header stamp = the command's run-clock time).
+rover_ddl_MotorCommand MotorCommandToIdl(const MotorGroupCommand& c);
+/// DriveStatus -> dl/drive_status. An unknown primitive value (only possible in a rejection) is
+/// reported as PRIMITIVE_STOP, since the wire enum cannot carry it; the message names it.
+rover_dl_DriveStatus DriveStatusToIdl(const DriveStatus& s);
+
+class LocomotionService final : public Service {
+ public:
+  LocomotionService() : Service("dl-locomotion") {}
+
+  void DeclareParameters(ParamSet& params) override;
+  Status ValidateParameters(const ParamSet& params) const override;
+  Status OnConfigure(ServiceContext& ctx, const ParamSet& params) override;
+  Status OnDeactivate(ServiceContext& ctx) override;
+
+  /// The executor (for tests); null before configuration.
+  const DriveExecutor* drive_executor() const {
+    return executor_.has_value() ? &*executor_ : nullptr;
+  }
+
+ private:
+  void Publish(const DriveOutput& out);
+  void OnTimer();
+  void StopRunning(const char* why);
+  void UpdateHealth(Time now);
+
+  ServiceContext* ctx_ = nullptr;
+  RoverGeometry geometry_;
+  DriveOptions options_;
+  std::optional<DriveExecutor> executor_;
+  dds::Writer<rover_ddl_MotorCommand> motor_writer_;
+  dds::Writer<rover_dl_DriveStatus> status_writer_;
+  std::optional<Time> last_joint_;     // run-clock stamp of the latest healthy joint state
+  std::optional<Time> last_attitude_;  // ... of the latest usable dl/pose
+  std::optional<Time> last_timer_;     // run-clock time of the previous timer tick
+};
+
+}  // namespace rover::dl

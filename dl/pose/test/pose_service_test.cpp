@@ -1,0 +1,389 @@
+// dl-pose in-process on an isolated DDS domain, driven by a sim clock the test publishes, with
+// ddl/imu (100 Hz), ddl/joint_state (50 Hz), ddl/sun_sensor and dl/relative_pose written by
+// the test: rate on the sim clock, levelling, gyro heading integration, sun heading updates with
+// the shared ephemeris, gating of a corrupted relative pose (event published).
+#include "pose_service.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "rover/dl/pose/chi_square.hpp"
+#include "rover/geometry/transforms.hpp"
+#include "rover/testing/test_support.hpp"
+
+namespace rover::dl {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kStep = 0.01;  // 100 Hz IMU and sim/clock
+constexpr std::int64_t kStepNs = 10'000'000;
+
+Eigen::Vector3d RpyOf(const rover_dl_PoseEstimate& p) {
+  const auto& q = p.pose.orientation;
+  return geometry::RpyFromQuaternion(Eigen::Quaterniond(q.w, q.x, q.y, q.z));
+}
+
+class PoseServiceTest : public ::testing::Test {
+ protected:
+  void TearDown() override {
+    if (lifecycle_) (void)lifecycle_->Shutdown();
+  }
+
+  void Start(std::vector<std::string> overrides = {}) {
+    lease_ = testing::IsolatedDomain();
+    options_.name = "dl-pose-test";
+    options_.domain = lease_.domain();
+    options_.clock = "sim";
+    options_.overrides = std::move(overrides);
+    auto ctx = ServiceContext::Create(options_);
+    ASSERT_TRUE(ctx.ok()) << ctx.status().message();
+    ctx_ = std::move(*ctx);
+    lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
+    ASSERT_TRUE(lifecycle_->Configure().ok()) << lifecycle_->last_error();
+    ASSERT_TRUE(lifecycle_->Activate().ok()) << lifecycle_->last_error();
+    auto p = dds::Participant::Create(lease_.domain());
+    ASSERT_TRUE(p.ok());
+    participant_ = std::move(*p);
+    ASSERT_TRUE(Make(clock_w_, "sim/clock"));
+    ASSERT_TRUE(Make(imu_w_, "ddl/imu"));
+    ASSERT_TRUE(Make(joint_w_, "ddl/joint_state"));
+    ASSERT_TRUE(Make(sun_w_, "ddl/sun_sensor"));
+    ASSERT_TRUE(Make(relpose_w_, "dl/relative_pose"));
+    ASSERT_TRUE(Make(pose_r_, "dl/pose"));
+    ASSERT_TRUE(Make(event_r_, "dl/estimator_event"));
+    ASSERT_TRUE(testing::WaitFor([&] {
+      return clock_w_.MatchedReaders() >= 1 && imu_w_.MatchedReaders() >= 1 &&
+             joint_w_.MatchedReaders() >= 1 && sun_w_.MatchedReaders() >= 1 &&
+             relpose_w_.MatchedReaders() >= 1 && pose_r_.MatchedWriters() >= 1 &&
+             event_r_.MatchedWriters() >= 1;
+    }));
+  }
+
+  /// Advances the run clock by `seconds` in 10 ms steps: IMU (yaw rate `yaw_rate_`, specific
+  /// force `f_`) every step, joint state every other step, optional per-step hook, then sim/clock;
+  /// waits until the service has seen the new time and collects its output.
+  void Advance(double seconds, const std::function<void()>& each_step = nullptr) {
+    const int steps = static_cast<int>(std::lround(seconds / kStep));
+    for (int i = 0; i < steps; ++i) {
+      ++step_;
+      now_ = Time{step_ * kStepNs};
+      // The rate holds over the last step; gravity turns with the rover about its own z axis.
+      body_yaw_ += yaw_rate_ * kStep;
+      const Eigen::Vector3d f =
+          Eigen::AngleAxisd(-body_yaw_, Eigen::Vector3d::UnitZ()).toRotationMatrix() * f_;
+      rover_ddl_Imu imu{};
+      imu.header.stamp_ns = now_.ns;
+      imu.angular_velocity = {0.0, 0.0, yaw_rate_};
+      imu.linear_acceleration = {f.x(), f.y(), f.z()};
+      imu.health = rover_HEALTH_OK;
+      EXPECT_TRUE(imu_w_.Write(imu).ok());
+      wheel_angle_ += wheel_rate_ * kStep;
+      if (step_ % 2 == 0) {
+        rover_ddl_JointState j{};
+        j.header.stamp_ns = now_.ns;
+        for (double& w : j.wheel_angle) w = wheel_angle_;
+        for (double& w : j.wheel_rate) w = wheel_rate_;
+        j.health = rover_HEALTH_OK;
+        EXPECT_TRUE(joint_w_.Write(j).ok());
+      }
+      if (each_step) each_step();
+      rover_sim_Clock c{};
+      c.sim_time_ns = now_.ns;
+      EXPECT_TRUE(clock_w_.Write(c).ok());
+      EXPECT_TRUE(testing::WaitFor([&] {
+        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+        return ctx_->Now().ns == now_.ns;
+      }));
+      Collect();
+    }
+  }
+
+  void Collect() {
+    for (auto& s : pose_r_.Take(64)) poses_.push_back({now_, s.data()});
+    for (auto& e : event_r_.Take(64)) events_.push_back(e.data());
+  }
+
+  /// Writes a relative pose and lets the service take it.
+  void SendRelativePose(const rover_dl_RelativePose& m) {
+    const std::size_t before = events_.size();
+    ASSERT_TRUE(relpose_w_.Write(m).ok());
+    // Converged samples always produce an event (processed now: t_to <= filter time).
+    if (m.status == rover_dl_RELPOSE_CONVERGED) {
+      ASSERT_TRUE(testing::WaitFor([&] {
+        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+        Collect();
+        return events_.size() > before;
+      }));
+    } else {
+      for (int i = 0; i < 5; ++i) ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+      Collect();
+    }
+  }
+
+  static rover_dl_RelativePose RelativePose(double t_from, double t_to, double dx) {
+    rover_dl_RelativePose m{};
+    m.source = rover_dl_SOURCE_VISUAL_ODOMETRY;
+    m.t_from_ns = Time::FromSeconds(t_from).ns;
+    m.t_to_ns = Time::FromSeconds(t_to).ns;
+    m.delta.position = {dx, 0.0, 0.0};
+    m.delta.orientation = {1.0, 0.0, 0.0, 0.0};
+    for (int i = 0; i < 6; ++i) m.covariance[i * 7] = i < 3 ? 1e-4 : 1e-6;  // 1 cm, 1 mrad
+    m.status = rover_dl_RELPOSE_CONVERGED;
+    m.features = 100;
+    return m;
+  }
+
+  template <class E>
+  bool Make(E& out, const std::string& topic) {
+    auto e = E::Create(participant_, topic);
+    if (!e.ok()) {
+      ADD_FAILURE() << e.status().message();
+      return false;
+    }
+    out = std::move(*e);
+    return true;
+  }
+
+  struct Received {
+    Time when;  // run-clock time the test had published when it arrived
+    rover_dl_PoseEstimate pose;
+  };
+
+  dds::DomainLease lease_;
+  ServiceOptions options_;
+  std::unique_ptr<ServiceContext> ctx_;
+  PoseService service_;
+  std::unique_ptr<Lifecycle> lifecycle_;
+  dds::Participant participant_;
+  dds::Writer<rover_sim_Clock> clock_w_;
+  dds::Writer<rover_ddl_Imu> imu_w_;
+  dds::Writer<rover_ddl_JointState> joint_w_;
+  dds::Writer<rover_ddl_SunSensor> sun_w_;
+  dds::Writer<rover_dl_RelativePose> relpose_w_;
+  dds::Reader<rover_dl_PoseEstimate> pose_r_;
+  dds::Reader<rover_dl_EstimatorEvent> event_r_;
+  std::int64_t step_ = 0;
+  Time now_;
+  double yaw_rate_ = 0.0;
+  double body_yaw_ = 0.0;    // rotation about the rover z axis since the start
+  double wheel_rate_ = 0.0;  // [rad/s] all six wheels, steering straight
+  double wheel_angle_ = 0.0;
+  Eigen::Vector3d f_{0.0, 0.0, 3.711};  // specific force at body_yaw_ = 0 (Mars, the default)
+  std::vector<Received> poses_;
+  std::vector<rover_dl_EstimatorEvent> events_;
+};
+
+TEST_F(PoseServiceTest, PublishesAtTheConfiguredRateOnTheSimClock) {
+  Start({"publish_rate_hz=20"});
+  EXPECT_EQ(lifecycle_->params().GetDouble("ekf.gravity"), 3.711);  // Mars, as the simulator
+  Advance(1.0);
+  ASSERT_FALSE(poses_.empty()) << "no dl/pose after levelling";
+  const std::size_t before = poses_.size();
+  Advance(3.0);
+  // 20 Hz of simulated time, whatever the wall-clock speed of the test.
+  EXPECT_EQ(poses_.size() - before, 60u);
+  for (std::size_t i = before; i < poses_.size(); ++i) {
+    const rover_dl_PoseEstimate& p = poses_[i].pose;
+    EXPECT_STREQ(p.header.frame_id, "site");
+    EXPECT_LE(p.header.stamp_ns, poses_[i].when.ns);  // the filter's time, never ahead
+    EXPECT_GE(p.header.stamp_ns, poses_[i].when.ns - Time::FromSeconds(0.011).ns);
+    if (i > before) {
+      EXPECT_GT(p.header.stamp_ns, poses_[i - 1].pose.header.stamp_ns);
+    }
+    EXPECT_TRUE(p.stationary);
+    for (int r = 0; r < 6; ++r) {
+      EXPECT_GT(p.covariance[r * 7], 0.0);
+      for (int c = 0; c < 6; ++c) {
+        EXPECT_DOUBLE_EQ(p.covariance[r * 6 + c], p.covariance[c * 6 + r]);
+      }
+    }
+  }
+}
+
+TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate) {
+  Start({"start.yaw_deg=10", "start.x=2", "start.y=-3"});
+  const double roll = 4.0 * kDeg, pitch = -3.0 * kDeg, g = 3.711;
+  f_ = g * Eigen::Vector3d(-std::sin(pitch), std::sin(roll) * std::cos(pitch),
+                           std::cos(roll) * std::cos(pitch));
+  Advance(1.0);  // at rest: levels after 50 samples (0.5 s)
+  ASSERT_FALSE(poses_.empty());
+  const rover_dl_PoseEstimate start = poses_.back().pose;
+  Eigen::Vector3d rpy = RpyOf(start);
+  EXPECT_NEAR(rpy.x(), roll, 1e-6);
+  EXPECT_NEAR(rpy.y(), pitch, 1e-6);
+  EXPECT_NEAR(rpy.z(), 10.0 * kDeg, 1e-6);
+  EXPECT_NEAR(start.pose.position.x, 2.0, 1e-9);
+  EXPECT_NEAR(start.pose.position.y, -3.0, 1e-9);
+  EXPECT_NEAR(start.gyro_bias.z, 0.0, 1e-12);
+  const double yaw_var0 = start.covariance[35];
+
+  // 0.2 rad/s about the rover z axis for 5 s: +1 rad of rotation about body z. On a tilted rover
+  // that is not exactly +1 rad of ZYX yaw; compare rotations instead.
+  yaw_rate_ = 0.2;
+  Advance(5.0);
+  EXPECT_FALSE(poses_.back().pose.stationary);  // turning
+  yaw_rate_ = 0.0;
+  Advance(0.1);
+  const rover_dl_PoseEstimate end = poses_.back().pose;
+  const auto q = [](const rover_dl_PoseEstimate& p) {
+    return Eigen::Quaterniond(p.pose.orientation.w, p.pose.orientation.x, p.pose.orientation.y,
+                              p.pose.orientation.z);
+  };
+  const Eigen::Quaterniond expected = q(start) * Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ());
+  EXPECT_LT(expected.angularDistance(q(end)), 1e-5);
+  rpy = RpyOf(end);
+  EXPECT_NEAR(rpy.z(), 10.0 * kDeg + 1.0, 0.02);
+  EXPECT_GT(end.covariance[35], yaw_var0);  // heading uncertainty grows with gyro propagation
+  EXPECT_TRUE(end.stationary);
+  EXPECT_EQ(end.rejected_measurements, 0u);
+}
+
+TEST_F(PoseServiceTest, WheelOdometryFromJointStatesMovesThePositionAlongTheHeading) {
+  Start({"start.yaw_deg=90"});  // facing west (site +y)
+  Advance(1.0);
+  const double var_y0 = poses_.back().pose.covariance[7];
+  wheel_rate_ = 0.4;  // 0.05 m/s with the 0.125 m default wheels
+  Advance(4.0);
+  wheel_rate_ = 0.0;
+  const rover_dl_PoseEstimate moving = poses_.back().pose;
+  EXPECT_FALSE(moving.stationary);
+  EXPECT_NEAR(moving.velocity.x, 0.05, 1e-6);
+  Advance(1.0);
+  const rover_dl_PoseEstimate p = poses_.back().pose;
+  EXPECT_NEAR(p.pose.position.x, 0.0, 1e-6);
+  EXPECT_NEAR(p.pose.position.y, 0.2, 1e-6);  // 4 s at 0.05 m/s
+  EXPECT_NEAR(p.odometer, 0.2, 1e-6);
+  // Along-track variance grew by odometry.along_variance_per_m (1e-3 m^2/m) * 0.2 m.
+  EXPECT_NEAR(p.covariance[7] - var_y0, 1e-3 * 0.2, 2e-5);
+  EXPECT_TRUE(p.stationary);
+}
+
+TEST_F(PoseServiceTest, SunSensorCorrectsAWrongStartHeadingWithTheSharedEphemeris) {
+  Start({"start.yaw_deg=6"});  // the rover really faces north (yaw 0)
+  const geometry::SunEphemeris sun{geometry::SunEphemerisOptions{}};  // the simulator's defaults
+  Advance(1.0);
+  ASSERT_NEAR(RpyOf(poses_.back().pose).z(), 6.0 * kDeg, 1e-6);
+  Advance(5.0, [&] {
+    if (step_ % 50 != 0) return;  // 2 Hz
+    rover_ddl_SunSensor s{};
+    s.header.stamp_ns = now_.ns;
+    const Eigen::Vector3d d = sun.At(now_.seconds()).direction_site;  // level, yaw 0: rover = site
+    s.sun_vector = {d.x(), d.y(), d.z()};
+    s.valid = true;
+    s.intensity = 1.0;
+    s.health = rover_HEALTH_OK;
+    EXPECT_TRUE(sun_w_.Write(s).ok());
+  });
+  EXPECT_NEAR(RpyOf(poses_.back().pose).z(), 0.0, 0.5 * kDeg);
+  int sun_events = 0;
+  for (const auto& e : events_) {
+    if (e.source != rover_dl_SOURCE_SUN_SENSOR) continue;
+    ++sun_events;
+    EXPECT_TRUE(e.accepted) << e.message;
+    EXPECT_NEAR(e.gate, ChiSquareQuantile(0.999, 2), 1e-9);
+  }
+  EXPECT_GE(sun_events, 9);
+}
+
+TEST_F(PoseServiceTest, CorruptedRelativePoseIsGatedAndReported) {
+  Start();
+  Advance(3.0);  // at rest: clones from ~0.5 s on
+  ASSERT_FALSE(poses_.empty());
+  const std::size_t accel_events = events_.size();
+  // Consistent with the rover at rest: accepted.
+  SendRelativePose(RelativePose(1.0, 2.0, 0.0));
+  ASSERT_EQ(events_.size(), accel_events + 1);
+  EXPECT_TRUE(events_.back().accepted) << events_.back().message;
+  EXPECT_EQ(events_.back().source, rover_dl_SOURCE_VISUAL_ODOMETRY);
+  // Corrupted: a 1 m jump with a 1 cm sigma while the rover stood still: gated.
+  SendRelativePose(RelativePose(1.5, 2.5, 1.0));
+  ASSERT_EQ(events_.size(), accel_events + 2);
+  const rover_dl_EstimatorEvent& e = events_.back();
+  EXPECT_FALSE(e.accepted);
+  EXPECT_EQ(e.source, rover_dl_SOURCE_VISUAL_ODOMETRY);
+  EXPECT_NEAR(e.gate, ChiSquareQuantile(0.999, 6), 1e-9);
+  EXPECT_GT(e.mahalanobis_sq, e.gate);
+  EXPECT_EQ(e.header.stamp_ns, Time::FromSeconds(2.5).ns);
+  EXPECT_NE(std::string(e.message).find("rejected"), std::string::npos) << e.message;
+  // Not converged: not a measurement, no event, even with a wild value.
+  rover_dl_RelativePose nc = RelativePose(1.0, 2.0, 50.0);
+  nc.status = rover_dl_RELPOSE_TOO_FEW_FEATURES;
+  SendRelativePose(nc);
+  EXPECT_EQ(events_.size(), accel_events + 2);
+  // Bad input (NaN, non-unit quaternion): refused before gating, reported with d2 NaN.
+  rover_dl_RelativePose bad = RelativePose(1.0, 2.0, 0.0);
+  bad.delta.position.y = std::numeric_limits<double>::quiet_NaN();
+  SendRelativePose(bad);
+  ASSERT_EQ(events_.size(), accel_events + 3);
+  EXPECT_FALSE(events_.back().accepted);
+  EXPECT_TRUE(std::isnan(events_.back().mahalanobis_sq));
+  bad = RelativePose(1.0, 2.0, 0.0);
+  bad.delta.orientation = {0.5, 0.0, 0.0, 0.0};
+  SendRelativePose(bad);
+  ASSERT_EQ(events_.size(), accel_events + 4);
+  EXPECT_NE(std::string(events_.back().message).find("quaternion has norm 0.5"), std::string::npos)
+      << events_.back().message;
+  // The state was not moved by the rejected jump, and the count is on dl/pose.
+  Advance(0.2);
+  const rover_dl_PoseEstimate p = poses_.back().pose;
+  EXPECT_NEAR(p.pose.position.x, 0.0, 1e-3);
+  EXPECT_EQ(p.rejected_measurements, 1u);
+}
+
+TEST_F(PoseServiceTest, InvalidParametersKeepTheServiceUnconfigured) {
+  lease_ = testing::IsolatedDomain();
+  options_.name = "dl-pose-bad";
+  options_.domain = lease_.domain();
+  options_.overrides = {"ephemeris.mode=calendar"};
+  auto ctx = ServiceContext::Create(options_);
+  ASSERT_TRUE(ctx.ok());
+  ctx_ = std::move(*ctx);
+  lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
+  const Status s = lifecycle_->Configure();
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("ephemeris.mode"), std::string::npos) << s.message();
+  EXPECT_EQ(lifecycle_->state(), LifecycleState::kUnconfigured);
+}
+
+TEST(PoseConversions, LevelAndRelativePoseAndEstimate) {
+  const double roll = 0.1, pitch = -0.2;
+  const Eigen::Matrix3d r = geometry::RotationFromRpy(roll, pitch, 1.0);
+  const Eigen::Vector2d rp = LevelFromSpecificForce(r.transpose() * Eigen::Vector3d(0, 0, 3.71));
+  EXPECT_NEAR(rp.x(), roll, 1e-12);
+  EXPECT_NEAR(rp.y(), pitch, 1e-12);
+
+  rover_dl_RelativePose m{};
+  m.source = static_cast<rover_dl_MotionSource>(9);
+  EXPECT_FALSE(RelativePoseFromIdl(m).ok());
+  m.source = rover_dl_SOURCE_VISUAL_ODOMETRY;
+  m.t_from_ns = 1;
+  m.t_to_ns = 2;
+  m.delta.position = {1, 2, 3};
+  m.delta.orientation = {1, 0, 0, 0};
+  m.covariance[1] = 7.0;  // row 0, column 1
+  const auto rel = RelativePoseFromIdl(m);
+  ASSERT_TRUE(rel.ok());
+  EXPECT_EQ(rel->covariance(0, 1), 7.0);
+  EXPECT_EQ(rel->covariance(1, 0), 0.0);
+  EXPECT_EQ(rel->delta.translation(), Eigen::Vector3d(1, 2, 3));
+
+  PoseEstimate e;
+  e.covariance(2, 4) = 5.0;
+  e.odometer = 3.5;
+  e.rejected_measurements = 4;
+  const rover_dl_PoseEstimate w = PoseEstimateToIdl(e);
+  EXPECT_EQ(w.covariance[2 * 6 + 4], 5.0);
+  EXPECT_EQ(w.odometer, 3.5);
+  EXPECT_EQ(w.rejected_measurements, 4u);
+  EXPECT_EQ(w.pose.orientation.w, 1.0);
+}
+
+}  // namespace
+}  // namespace rover::dl
