@@ -169,6 +169,9 @@ void PoseService::DeclareParameters(ParamSet& p) {
             "[s] run-clock time of the run start (0 = sim/clock zero, as the simulator)")
       .Range(-1e11, 1e11);
   p.Declare("sun.enabled", true, "apply ddl/sun_sensor heading updates");
+  p.Declare("odometry_only.enabled", true,
+            "also run an IMU + wheel odometry filter (no sun, no visual odometry) and publish "
+            "it on dl/pose_odometry, the dead-reckoning baseline");
   p.Declare("sun.min_elevation_deg", 0.0,
             "[deg] ignore sun samples when the ephemeris sun is lower than this")
       .Range(-90.0, 90.0);
@@ -198,6 +201,11 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   auto ekf = PoseEkf::Create(ekf_options_);
   if (!ekf.ok()) return ekf.status();
   ekf_.emplace(std::move(*ekf));
+  if (p.GetBool("odometry_only.enabled")) {
+    auto reference = PoseEkf::Create(ekf_options_);
+    if (!reference.ok()) return reference.status();
+    odometry_only_.emplace(std::move(*reference));
+  }
 
   start_.position = {p.GetDouble("start.x"), p.GetDouble("start.y"), p.GetDouble("start.z")};
   start_.yaw = p.GetDouble("start.yaw_deg") * kDeg;
@@ -230,6 +238,11 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   auto ew = ctx.MakeWriter<rover_dl_EstimatorEvent>("dl/estimator_event");
   if (!ew.ok()) return ew.status();
   event_writer_ = std::move(*ew);
+  if (odometry_only_) {
+    auto ow = ctx.MakeWriter<rover_dl_PoseEstimate>("dl/pose_odometry");
+    if (!ow.ok()) return ow.status();
+    odometry_only_writer_ = std::move(*ow);
+  }
 
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_Imu>(
       "ddl/imu", [this](const dds::Sample<rover_ddl_Imu>& s) { OnImu(s.data()); }));
@@ -259,6 +272,11 @@ void PoseService::Restart(const std::string& why) {
   auto ekf = PoseEkf::Create(ekf_options_);
   ROVER_DEMAND(ekf.ok());  // the options were valid at configuration
   ekf_.emplace(std::move(*ekf));
+  if (odometry_only_) {
+    auto reference = PoseEkf::Create(ekf_options_);
+    ROVER_DEMAND(reference.ok());
+    odometry_only_.emplace(std::move(*reference));
+  }
   odometry_->Reset();
   levelling_ = Levelling{};
 }
@@ -292,6 +310,10 @@ void PoseService::OnImu(const rover_ddl_Imu& m) {
   }
   const Status a = ekf_->UpdateAccelerometer(t, f);
   if (!a.ok()) WarnCounted("accelerometer update failed", a.message());
+  if (odometry_only_ && odometry_only_->initialized() && odometry_only_->PropagateGyro(t, w).ok()) {
+    (void)odometry_only_->UpdateAccelerometer(t, f);
+    (void)odometry_only_->TakeEvents();  // its events are not published
+  }
   PublishEvents();
 }
 
@@ -346,6 +368,10 @@ void PoseService::Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vect
     levelling_ = Levelling{};
     return;
   }
+  if (odometry_only_) {
+    const Status r = odometry_only_->Initialize(init);
+    ROVER_DEMAND(r.ok());  // the same initial state was just accepted by ekf_
+  }
   log::Info("pose estimator started", {{"how", how},
                                        {"t_s", t.seconds()},
                                        {"roll_deg", rp.x() / kDeg},
@@ -369,6 +395,9 @@ void PoseService::OnJointState(const rover_ddl_JointState& m) {
   if (!ekf_->initialized() || !inc->has_value()) return;
   const Status s = ekf_->AddWheelOdometry(**inc);
   if (!s.ok()) WarnCounted("wheel odometry increment rejected", s.message());
+  if (odometry_only_ && odometry_only_->initialized()) {
+    (void)odometry_only_->AddWheelOdometry(**inc);
+  }
 }
 
 void PoseService::OnSunSensor(const rover_ddl_SunSensor& m) {
@@ -440,6 +469,13 @@ void PoseService::OnTimer() {
   m.header.stamp_ns = ekf_->time().ns;  // the filter's time of validity
   const Status s = pose_writer_.Write(m);
   if (!s.ok()) WarnCounted("dl/pose write failed", s.message());
+  if (odometry_only_ && odometry_only_->initialized()) {
+    rover_dl_PoseEstimate o = PoseEstimateToIdl(odometry_only_->Estimate());
+    ctx_->Stamp(o.header, "site");
+    o.header.stamp_ns = odometry_only_->time().ns;
+    const Status w = odometry_only_writer_.Write(o);
+    if (!w.ok()) WarnCounted("dl/pose_odometry write failed", w.message());
+  }
   const double age = ToSeconds(ctx_->Now() - ekf_->time());
   if (age > imu_stale_s_) {
     ctx_->SetHealth(rover_HEALTH_DEGRADED, "no ddl/imu for " + Num(age) + " s");

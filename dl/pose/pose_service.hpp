@@ -15,6 +15,11 @@
 ///                          stationary flag, rejected count, odometer
 ///        dl/estimator_event one per gated measurement (accepted or rejected, d^2 and gate), and
 ///                          one (rejected, d^2 NaN) per relative pose refused as bad input
+///        dl/pose_odometry  (odometry_only.enabled) the same rate and layout from a second filter
+///                          fed only the IMU and wheel odometry (no sun, no visual odometry):
+///                          MER's "IMU + wheel odometry" dead reckoning. The difference from
+///                          dl/pose is the slip that the sun sensor and visual odometry removed;
+///                          the scenario judge reports both errors side by side.
 ///
 /// Start-up: the position and heading come from parameters (start.*; the site frame's origin is
 /// the rover's start, so x = y = 0 by default). Roll and pitch are levelled from the mean of the
@@ -62,6 +67,10 @@ class PoseService final : public Service {
 
   /// The filter (for tests); null before configuration.
   const PoseEkf* ekf() const { return ekf_.has_value() ? &*ekf_ : nullptr; }
+  /// The IMU + wheel odometry filter (for tests); null before configuration or when disabled.
+  const PoseEkf* odometry_only() const {
+    return odometry_only_.has_value() ? &*odometry_only_ : nullptr;
+  }
 
  private:
   struct StartOptions {
@@ -106,11 +115,14 @@ class PoseService final : public Service {
   double sun_min_elevation_ = 0.0;
   double imu_stale_s_ = 0.5;
   std::optional<PoseEkf> ekf_;
+  /// IMU + wheel odometry only (dl/pose_odometry); empty when odometry_only.enabled is false.
+  std::optional<PoseEkf> odometry_only_;
   std::optional<WheelOdometry> odometry_;
   std::optional<geometry::SunEphemeris> ephemeris_;
   Levelling levelling_;
   dds::Writer<rover_dl_PoseEstimate> pose_writer_;
   dds::Writer<rover_dl_EstimatorEvent> event_writer_;
+  dds::Writer<rover_dl_PoseEstimate> odometry_only_writer_;
   std::map<std::string, std::uint64_t> warn_counts_;
 };
 

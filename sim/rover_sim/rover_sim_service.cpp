@@ -22,6 +22,9 @@ using rover::Status;
 namespace dds = rover::dds;
 namespace hw = rover::hw;
 
+// Integration time of the sensor model's relative exposure 1 (MER NAVCAM exposures are tens to
+// hundreds of milliseconds in daylight).
+constexpr double kExposureUnitUs = 100000.0;
 
 void ToIdl(const Eigen::Isometry3d& p, rover_Pose3* out) {
   const Eigen::Quaterniond q(p.linear());
@@ -302,6 +305,17 @@ class RoverSim final : public rover::Service {
       rover::log::Error("camera pair", {{"error", spec.status().message()}});
       return;
     }
+    // Exposure: the sensor model's relative exposure 1 (radiance 1 fills the well) is
+    // kExposureUnitUs of integration time; exposure_us 0 asks for auto-exposure.
+    rover::sim::SensorOptions sensor = renderer_->options().sensor;
+    sensor.auto_exposure = req.exposure_us == 0;
+    if (req.exposure_us != 0) sensor.exposure = req.exposure_us / kExposureUnitUs;
+    if (auto st = renderer_->SetSensor(sensor); !st.ok()) {
+      rover::log::Warn("hw/camera_request: exposure rejected; using auto-exposure",
+                       {{"exposure_us", req.exposure_us}, {"error", st.message()}});
+      sensor.auto_exposure = true;
+      (void)renderer_->SetSensor(sensor);
+    }
     const rover::Time t0 = rover::MonotonicNow();
     auto images = renderer_->RenderStereoPair(readings.chassis.pose_site, *spec, ++frames_);
     if (!images.ok()) {
@@ -312,7 +326,8 @@ class RoverSim final : public rover::Service {
     Stamp(f.header, name);
     f.request_id = req.request_id;
     f.camera = req.camera;
-    f.exposure_us = static_cast<uint32_t>(std::lround(images->left.exposure * 1e6));
+    f.exposure_us = static_cast<uint32_t>(
+        std::clamp(std::lround(images->left.exposure * kExposureUnitUs), 1L, 4000000000L));
     f.width = static_cast<uint16_t>(images->left.image.cols);
     f.height = static_cast<uint16_t>(images->left.image.rows);
     const cv::Mat& l = images->left.image;

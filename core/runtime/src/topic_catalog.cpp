@@ -12,7 +12,7 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"hw/imu", "rover_hw_ImuRaw", P::kStream},
       {"hw/sun_sensor", "rover_hw_SunSensorRaw", P::kStream},
       {"hw/camera_request", "rover_hw_CameraRequest", P::kCommand},
-      {"hw/camera_frame", "rover_hw_CameraFrame", P::kState},
+      {"hw/camera_frame", "rover_hw_CameraFrame", P::kCommand},
       // ddl/: engineering units (DDL <-> DL)
       {"ddl/motor_command", "rover_ddl_MotorCommand", P::kCommand},
       {"ddl/motor_status", "rover_ddl_MotorStatus", P::kLatched},
@@ -20,11 +20,12 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"ddl/imu", "rover_ddl_Imu", P::kStream},
       {"ddl/sun_sensor", "rover_ddl_SunSensor", P::kState},
       {"ddl/camera_request", "rover_ddl_StereoRequest", P::kCommand},
-      {"ddl/stereo_frame", "rover_ddl_StereoFrame", P::kState},
+      {"ddl/stereo_frame", "rover_ddl_StereoFrame", P::kCommand},
       // dl/: rover-level state and primitives (DL <-> APL)
       {"dl/drive_command", "rover_dl_DriveCommand", P::kCommand},
       {"dl/drive_status", "rover_dl_DriveStatus", P::kLatched},
       {"dl/pose", "rover_dl_PoseEstimate", P::kState},
+      {"dl/pose_odometry", "rover_dl_PoseEstimate", P::kState},
       {"dl/relative_pose", "rover_dl_RelativePose", P::kCommand},
       {"dl/estimator_event", "rover_dl_EstimatorEvent", P::kCommand},
       {"dl/range_request", "rover_dl_RangeRequest", P::kCommand},

@@ -33,7 +33,7 @@ TEST_F(DdsTest, WriterAndReaderRoundTripWithSequences) {
   ASSERT_TRUE(w.ok()) << w.status().message();
   auto r = Reader<rover_hw_CameraFrame>::Create(participant_, "hw/camera_frame");
   ASSERT_TRUE(r.ok()) << r.status().message();
-  EXPECT_EQ(w->profile(), QosProfile::kState);
+  EXPECT_EQ(w->profile(), QosProfile::kCommand);  // images: reliable, keep-all
   ASSERT_TRUE(testing::WaitFor([&] { return w->MatchedReaders() == 1; }));
 
   std::vector<uint8_t> left(64 * 32), right(64 * 32);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rover/base/check.hpp"
 #include "rover/ddl/motor/sync_planner.hpp"
 
 namespace rover::ddl {
@@ -308,6 +309,12 @@ ManagerOutput MotorGroupManager::StopAll(Time now, const std::string& reason) {
   return out;
 }
 
+void MotorGroupManager::ForgetTelemetry() {
+  ROVER_DEMAND(groups_.empty());
+  latest_.reset();
+  latest_rx_.reset();
+}
+
 // ---- telemetry --------------------------------------------------------------------------------
 
 ManagerOutput MotorGroupManager::HandleTelemetry(const hw::MotorTelemetry& t, Time now) {
@@ -336,7 +343,8 @@ ManagerOutput MotorGroupManager::HandleTelemetry(const hw::MotorTelemetry& t, Ti
       const std::uint16_t flags = latest_->flags[k];
       const double current = latest_->current[k];
       const double temp = latest_->temperature[k];
-      g.overcurrent_s[k] = current > spec.current_limit ? g.overcurrent_s[k] + dt : 0.0;
+      const double trip = spec.current_limit * (1.0 + options_.overcurrent_margin);
+      g.overcurrent_s[k] = current > trip ? g.overcurrent_s[k] + dt : 0.0;
       g.overtemp_s[k] = temp > spec.max_temperature ? g.overtemp_s[k] + dt : 0.0;
       motor = m;
       if (flags & hw::kMotorFlagOverCurrent) {
@@ -350,8 +358,9 @@ ManagerOutput MotorGroupManager::HandleTelemetry(const hw::MotorTelemetry& t, Ti
         msg = MotorLabel(m) + " stalled (controller trip)";
       } else if (g.overcurrent_s[k] >= options_.overcurrent_time_s) {
         fault = MotorFault::kOverCurrent;
-        msg = MotorLabel(m) + " over-current: " + Num(current) + " A > " + Num(spec.current_limit) +
-              " A for " + Num(g.overcurrent_s[k]) + " s";
+        msg = MotorLabel(m) + " over-current: " + Num(current) + " A > " +
+              Num(spec.current_limit * (1.0 + options_.overcurrent_margin)) + " A for " +
+              Num(g.overcurrent_s[k]) + " s";
       } else if (g.overtemp_s[k] >= options_.overtemp_time_s) {
         fault = MotorFault::kOverTemp;
         msg = MotorLabel(m) + " over-temperature: " + Num(temp) + " degC > " +

@@ -113,6 +113,10 @@ Status MotorManagerOptions::Validate() const {
                            " must be <= 1");
   }
   ROVER_RETURN_IF_ERROR(positive("stall_min_motion", stall_min_motion));
+  if (!(overcurrent_margin >= 0.0 && overcurrent_margin <= 2.0)) {
+    return InvalidArgument("motor_manager.overcurrent_margin: " +
+                           std::to_string(overcurrent_margin) + " must be in [0, 2]");
+  }
   ROVER_RETURN_IF_ERROR(positive("overcurrent_time_s", overcurrent_time_s));
   ROVER_RETURN_IF_ERROR(positive("overtemp_time_s", overtemp_time_s));
   ROVER_RETURN_IF_ERROR(positive("telemetry_timeout_s", telemetry_timeout_s));
@@ -147,6 +151,10 @@ void DeclareMotorManagerParams(ParamSet& ps, const std::string& prefix) {
   ps.Declare(key("stall_min_motion"), d.stall_min_motion,
              "[rad] windows with less planned motion are not judged")
       .Range(1e-5, 1.0);
+  ps.Declare(key("overcurrent_margin"), d.overcurrent_margin,
+             "the over-current monitor trips above current_limit * (1 + margin); the controller "
+             "itself saturates at current_limit (a motor held there is a stall)")
+      .Range(0.0, 2.0);
   ps.Declare(key("overcurrent_time_s"), d.overcurrent_time_s,
              "[s] current above the limit this long trips the group")
       .Range(0.001, 10.0);
@@ -180,6 +188,7 @@ Result<MotorManagerOptions> MotorManagerOptionsFromParams(const ParamSet& ps,
   o.stall_window_s = d("stall_window_s");
   o.stall_fraction = d("stall_fraction");
   o.stall_min_motion = d("stall_min_motion");
+  o.overcurrent_margin = d("overcurrent_margin");
   o.overcurrent_time_s = d("overcurrent_time_s");
   o.overtemp_time_s = d("overtemp_time_s");
   o.telemetry_timeout_s = d("telemetry_timeout_s");

@@ -479,6 +479,30 @@ TEST(MotorGroupManager, RunningStatusAt8HzCarriesTelemetry) {
   EXPECT_NEAR(h.statuses.back().temperature[0], 20.0, 0.1);
 }
 
+TEST(MotorGroupManager, ForgetTelemetryAfterAClockResetKeepsTheCommandIds) {
+  Harness h;
+  ASSERT_NE(h.Command(PositionCommand(1, {{hw::kSteerLF, 0.2}})).goals, std::nullopt);
+  ASSERT_TRUE(h.RunUntil(5.0, [&] { return h.Final(1) != nullptr; }));
+  const std::uint32_t old_id = h.last_goals.command_id;
+  h.Absorb(h.manager->StopAll(h.now, "run clock went back"));
+  h.manager->ForgetTelemetry();
+  // The run clock restarts at 0; the controller still echoes the old hardware id.
+  h.now = Time{0};
+  const Time t0 = Time::FromSeconds(0.01);
+  h.Absorb(h.manager->HandleTelemetry(h.plant.Telemetry(t0), t0));
+  ASSERT_TRUE(h.manager->latest().has_value());
+  EXPECT_EQ(h.manager->latest()->stamp_ns, t0.ns);  // accepted although older than before
+  h.now = t0;
+  h.plant.drop_goals = true;  // the controller does not apply the new goals
+  ManagerOutput out = h.Command(PositionCommand(2, {{hw::kSteerLF, -0.2}}));
+  ASSERT_TRUE(out.goals.has_value());
+  EXPECT_GT(out.goals->command_id, old_id);  // the id sequence continues
+  // The stale echo of the old id does not count as applying the new goals.
+  ASSERT_TRUE(h.RunUntil(2.0, [&] { return h.Final(2) != nullptr; }));
+  EXPECT_EQ(h.Final(2)->fault, MotorFault::kNoTelemetry);
+  EXPECT_NE(h.Final(2)->message.find("did not acknowledge"), std::string::npos);
+}
+
 TEST(MotorGroupManager, CreateRejectsBadOptions) {
   MotorManagerOptions o;
   o.stall_window_s = -1.0;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>  // cross()
 #include <cmath>
 
 #ifdef ROVER_HAVE_SIM_SENSORS

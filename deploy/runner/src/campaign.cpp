@@ -156,6 +156,7 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
   sj["errors"] = out.errors;
   std::ofstream(options.out_dir + "/summary.json") << sj.dump(2) << "\n";
   std::ofstream(options.out_dir + "/junit.xml") << ToJunitXml(out.runs, scenario.name);
+  std::ofstream(options.out_dir + "/summary.txt") << FormatSummaryTable(out.runs, out.summary);
   return out;
 }
 

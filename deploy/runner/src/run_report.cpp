@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace rover::deploy {
@@ -75,6 +76,15 @@ nlohmann::json ToJson(const RunResult& r) {
     j["estimate_error"].push_back({e.t.seconds(), e.position_error, e.heading_error});
   }
   j["estimate_error_columns"] = {"t_s", "position_error_m", "heading_error_rad"};
+  j["odometry_only_error"] = nlohmann::json::array();
+  for (const auto& e : r.odometry_only_error) {
+    j["odometry_only_error"].push_back({e.t.seconds(), e.position_error, e.heading_error});
+  }
+  j["figures"] = nlohmann::json::array();
+  for (const auto& f : r.figures) {
+    j["figures"].push_back(
+        {{"name", f.name}, {"measured", f.measured}, {"unit", f.unit}, {"detail", f.detail}});
+  }
   j["crashes"] = r.crashes;
   j["run_dir"] = r.run_dir;
   j["truth_publishers"] = r.truth_publishers;
@@ -110,6 +120,13 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     for (const auto& e : j.value("estimate_error", nlohmann::json::array())) {
       r.estimate_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
     }
+    for (const auto& e : j.value("odometry_only_error", nlohmann::json::array())) {
+      r.odometry_only_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
+    }
+    for (const auto& f : j.value("figures", nlohmann::json::array())) {
+      r.figures.push_back({f.at("name"), f.at("measured"), std::numeric_limits<double>::quiet_NaN(),
+                           f.at("unit"), true, f.value("detail", "")});
+    }
     r.crashes = j.value("crashes", std::vector<std::string>{});
     r.run_dir = j.value("run_dir", "");
     r.truth_publishers = j.value("truth_publishers", 0);
@@ -132,11 +149,13 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   double sim_total = 0;
   for (const auto& r : runs) {
     if (r.pass) ++s.passed;
-    for (const auto& c : r.criteria) {
-      if (!by_name.count(c.name)) order.push_back(c.name);
-      auto& e = by_name[c.name];
-      e.first = c.unit;
-      e.second.push_back(c.measured);
+    for (const auto* list : {&r.criteria, &r.figures}) {
+      for (const auto& c : *list) {
+        if (!by_name.count(c.name)) order.push_back(c.name);
+        auto& e = by_name[c.name];
+        e.first = c.unit;
+        e.second.push_back(c.measured);
+      }
     }
     wall.push_back(r.wall_time_s);
     startup.push_back(r.startup_s);
@@ -147,7 +166,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   }
   s.pass_rate = s.runs ? static_cast<double>(s.passed) / s.runs : 0.0;
   for (const auto& n : order) s.figures.push_back(Stats(n, by_name[n].first, by_name[n].second));
-  s.figures.push_back(Stats("distance_driven", "m", distance));
+  if (!by_name.count("distance_driven")) s.figures.push_back(Stats("distance_driven", "m", distance));
   s.figures.push_back(Stats("sim_time", "s", sim_time));
   s.figures.push_back(Stats("wall_time", "s", wall));
   s.figures.push_back(Stats("startup", "s", startup));
@@ -233,11 +252,11 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
   std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)\n\n", s.scenario.c_str(), s.passed,
                 s.runs, 100.0 * s.pass_rate);
   o << buf;
-  std::snprintf(buf, sizeof buf, "%-30s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
+  std::snprintf(buf, sizeof buf, "%-36s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
                 "worst");
   o << buf;
   for (const auto& f : s.figures) {
-    std::snprintf(buf, sizeof buf, "%-30s %-6s %11.4g %11.4g %11.4g\n", f.name.c_str(),
+    std::snprintf(buf, sizeof buf, "%-36s %-6s %11.4g %11.4g %11.4g\n", f.name.c_str(),
                   f.unit.c_str(), f.mean, f.p95, f.worst);
     o << buf;
   }

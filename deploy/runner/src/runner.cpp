@@ -285,10 +285,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   auto clock_r = dds::Reader<rover_sim_Clock>::Create(*participant, "sim/clock");
   auto truth_r = dds::Reader<rover_sim_Truth>::Create(*participant, "sim/truth");
   auto pose_r = dds::Reader<rover_dl_PoseEstimate>::Create(*participant, "dl/pose");
+  auto odo_r = dds::Reader<rover_dl_PoseEstimate>::Create(*participant, "dl/pose_odometry");
   auto status_r = dds::Reader<rover_dl_DriveStatus>::Create(*participant, "dl/drive_status");
   auto cmd_w = dds::Writer<rover_dl_DriveCommand>::Create(*participant, "dl/drive_command");
   auto control_w = dds::Writer<rover_sim_Control>::Create(*participant, "sim/control");
-  if (!clock_r.ok() || !truth_r.ok() || !pose_r.ok() || !status_r.ok() || !cmd_w.ok() ||
+  if (!clock_r.ok() || !truth_r.ok() || !pose_r.ok() || !odo_r.ok() || !status_r.ok() || !cmd_w.ok() ||
       !control_w.ok()) {
     return finish("cannot create the runner's DDS endpoints");
   }
@@ -322,6 +323,9 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
         result.estimate_track.push_back({t.seconds(), s->pose.position.x, s->pose.position.y});
         last_est_track = t.seconds();
       }
+    });
+    odo_r->TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
+      judge->AddOdometryOnlyEstimate(Time{s->header.stamp_ns}, ToIsometry(s->pose));
     });
   };
   // Returns a failure line, or "" while all is well.
@@ -462,6 +466,8 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   result.criteria = v.criteria;
   result.distance_driven = v.distance_driven;
   result.estimate_error = v.estimate_error;
+  result.odometry_only_error = v.odometry_only_error;
+  result.figures = v.figures;
   if (failure.empty() && !v.pass) {
     std::string first = v.FailureSummary();
     failure = first.substr(0, first.find('\n'));

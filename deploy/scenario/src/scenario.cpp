@@ -189,7 +189,7 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "criteria",
                                   {"target", "heading", "max_tilt_deg", "traversable_height",
                                    "max_estimate_error", "max_estimate_error_percent",
-                                   "min_distance"},
+                                   "max_estimate_heading_error_deg", "min_distance"},
                                   c));
   if (const YAML::Node t = n["target"]) {
     ROVER_RETURN_IF_ERROR(CheckKeys(t, "criteria.target", {"x", "y", "tolerance"}, c));
@@ -224,6 +224,9 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
   ROVER_RETURN_IF_ERROR(
       OptNumber(n, "max_estimate_error_percent", "criteria", 1e-3, 100, c, &v, &has));
   if (has) cr->max_estimate_error_fraction = v / 100.0;
+  ROVER_RETURN_IF_ERROR(
+      OptNumber(n, "max_estimate_heading_error_deg", "criteria", 0.001, 180, c, &v, &has));
+  if (has) cr->max_estimate_heading_error = v * kDegToRad;
   ROVER_RETURN_IF_ERROR(OptNumber(n, "min_distance", "criteria", 0, 1e5, c, &v, &has));
   if (has) cr->min_distance = v;
   return cr->Validate();

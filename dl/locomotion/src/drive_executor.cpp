@@ -188,7 +188,10 @@ MotorGroupCommand DriveExecutor::SteerCommand(Time now) {
     c.goal[m] = plan_.steer_angle[static_cast<std::size_t>(j)];
     c.max_rate[m] = options_.steer_rate;
   }
-  c.timeout_s = RemainingTimeout(now);
+  // Position groups: the motor driver derives its own hardware time-out from the synchronised
+  // move it plans; the drive's time-out is this executor's (TIMEOUT termination), so a command
+  // time-out shorter than the move ends the drive here instead of being refused by the driver.
+  c.timeout_s = 0.0;
   return c;
 }
 
@@ -198,7 +201,7 @@ MotorGroupCommand DriveExecutor::DrivePositionCommand(Time now) {
     c.goal[i] = wheel_start_[i] + plan_.wheel_rotation[i];
     c.max_rate[i] = std::abs(plan_.wheel_rate[i]);
   }
-  c.timeout_s = RemainingTimeout(now);
+  c.timeout_s = 0.0;  // see SteerCommand
   return c;
 }
 

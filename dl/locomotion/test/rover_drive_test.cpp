@@ -65,7 +65,8 @@ TEST_F(RoverDriveTest, ArcRunsToDoneAndExitsZero) {
   EXPECT_TRUE(exit->success()) << exit->ToString() << "\n" << Out() << Err();
   const std::string out = Out();
   EXPECT_NE(out.find("sent ARC #4242"), std::string::npos) << out;
-  EXPECT_NE(out.find("#4242 ARC STEERING"), std::string::npos) << out;
+  // Intermediate states (STEERING, DRIVING) are printed when the tool sees them; dl/drive_status
+  // keeps only the latest sample per command, so a loaded machine may skip one. Not checked.
   EXPECT_NE(out.find("#4242 ARC DONE (NOMINAL)"), std::string::npos) << out;
 }
 

@@ -282,6 +282,11 @@ TEST_F(PoseServiceTest, SunSensorCorrectsAWrongStartHeadingWithTheSharedEphemeri
     EXPECT_TRUE(sun_w_.Write(s).ok());
   });
   EXPECT_NEAR(RpyOf(poses_.back().pose).z(), 0.0, 0.5 * kDeg);
+  // The dl/pose_odometry baseline takes no sun updates: it keeps the wrong start heading.
+  ASSERT_NE(service_.odometry_only(), nullptr);
+  ASSERT_TRUE(service_.odometry_only()->initialized());
+  EXPECT_NEAR(geometry::RpyFromQuaternion(service_.odometry_only()->Estimate().orientation).z(),
+              6.0 * kDeg, 1e-3 * kDeg);
   int sun_events = 0;
   for (const auto& e : events_) {
     if (e.source != rover_dl_SOURCE_SUN_SENSOR) continue;

@@ -1,6 +1,7 @@
 #include "rover/sim/judge/judge.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -19,6 +20,11 @@ double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 std::string Fmt(const char* f, double a, double b) {
   char buf[160];
   std::snprintf(buf, sizeof buf, f, a, b);
+  return buf;
+}
+std::string Fmt1(const char* f, double a) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, f, a);
   return buf;
 }
 }  // namespace
@@ -49,6 +55,9 @@ Status JudgeCriteria::Validate() const {
   if (max_estimate_error) ROVER_RETURN_IF_ERROR(positive(*max_estimate_error, "max_estimate_error"));
   if (max_estimate_error_fraction) {
     ROVER_RETURN_IF_ERROR(positive(*max_estimate_error_fraction, "max_estimate_error_fraction"));
+  }
+  if (max_estimate_heading_error) {
+    ROVER_RETURN_IF_ERROR(positive(*max_estimate_heading_error, "max_estimate_heading_error"));
   }
   if (min_distance && (*min_distance < 0 || !std::isfinite(*min_distance))) {
     return InvalidArgument("criteria.min_distance must be >= 0");
@@ -151,6 +160,29 @@ void Judge::AddEstimate(Time t, const Eigen::Isometry3d& pose) {
   estimates_.push_back({t, pose});
 }
 
+void Judge::AddOdometryOnlyEstimate(Time t, const Eigen::Isometry3d& pose) {
+  if (!odometry_only_.empty() && t <= odometry_only_.back().t) {
+    ++out_of_order_;
+    return;
+  }
+  odometry_only_.push_back({t, pose});
+}
+
+std::vector<ErrorSample> Judge::ErrorsOf(const std::vector<Stamped>& estimates) const {
+  std::vector<ErrorSample> out;
+  out.reserve(estimates.size());
+  for (const auto& e : estimates) {
+    const auto truth = TruthAt(e.t);
+    if (!truth) continue;
+    ErrorSample s;
+    s.t = e.t;
+    s.position_error = (e.pose.translation().head<2>() - truth->translation().head<2>()).norm();
+    s.heading_error = WrapAngle(Yaw(e.pose) - Yaw(*truth));
+    out.push_back(s);
+  }
+  return out;
+}
+
 std::optional<Eigen::Isometry3d> Judge::TruthAt(Time t) const {
   if (truth_.empty() || t < truth_.front().t || t > truth_.back().t) return std::nullopt;
   auto it = std::lower_bound(truth_.begin(), truth_.end(), t,
@@ -231,18 +263,41 @@ Verdict Judge::Evaluate() const {
                           distance_ >= *criteria_.min_distance, "at least"});
   }
   // Estimate error over time.
-  double max_err = 0;
-  for (const auto& e : estimates_) {
-    const auto truth = TruthAt(e.t);
-    if (!truth) continue;
-    ErrorSample s;
-    s.t = e.t;
-    s.position_error = (e.pose.translation().head<2>() - truth->translation().head<2>()).norm();
-    s.heading_error = WrapAngle(Yaw(e.pose) - Yaw(*truth));
+  v.estimate_error = ErrorsOf(estimates_);
+  v.odometry_only_error = ErrorsOf(odometry_only_);
+  double max_err = 0, max_heading_err = 0;
+  for (const auto& s : v.estimate_error) {
     max_err = std::max(max_err, s.position_error);
-    v.estimate_error.push_back(s);
+    max_heading_err = std::max(max_heading_err, std::abs(s.heading_error));
   }
-  if (criteria_.max_estimate_error || criteria_.max_estimate_error_fraction) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto add_figures = [&](const std::string& prefix, const std::vector<ErrorSample>& errors,
+                         const char* source) {
+    if (errors.empty()) return;
+    double worst = 0, worst_heading = 0;
+    for (const auto& s : errors) {
+      worst = std::max(worst, s.position_error);
+      worst_heading = std::max(worst_heading, std::abs(s.heading_error));
+    }
+    const ErrorSample& last = errors.back();
+    const std::string vs = std::string(source) + " vs sim/truth";
+    v.figures.push_back({prefix + "final_error", last.position_error, nan, "m", true,
+                         vs + Fmt1(", horizontal, at t = %.1f s", last.t.seconds())});
+    if (distance_ > 0.05) {  // a percentage of a few centimetres says nothing
+      v.figures.push_back({prefix + "final_error_percent", 100.0 * last.position_error / distance_,
+                           nan, "%", true,
+                           vs + Fmt(": %.3f m over %.2f m driven", last.position_error, distance_)});
+    }
+    v.figures.push_back({prefix + "max_error", worst, nan, "m", true, vs});
+    v.figures.push_back({prefix + "final_heading_error", std::abs(last.heading_error) * kRadToDeg,
+                         nan, "deg", true, vs});
+    v.figures.push_back({prefix + "max_heading_error", worst_heading * kRadToDeg, nan, "deg", true,
+                         vs});
+  };
+  add_figures("estimate_", v.estimate_error, "dl/pose");
+  add_figures("odometry_only_", v.odometry_only_error, "dl/pose_odometry");
+  if (criteria_.max_estimate_error || criteria_.max_estimate_error_fraction ||
+      criteria_.max_estimate_heading_error) {
     if (v.estimate_error.empty()) {
       v.criteria.push_back({"estimate_received", 0, 1, "count", false,
                             "no pose estimate overlapped the truth record"});
@@ -259,6 +314,12 @@ Verdict Judge::Evaluate() const {
                           100.0 * *criteria_.max_estimate_error_fraction, "%",
                           pct <= 100.0 * *criteria_.max_estimate_error_fraction,
                           Fmt("%.3f m over %.2f m driven", final_err, distance_)});
+  }
+  if (criteria_.max_estimate_heading_error && !v.estimate_error.empty()) {
+    v.criteria.push_back({"max_estimate_heading_error", max_heading_err * kRadToDeg,
+                          *criteria_.max_estimate_heading_error * kRadToDeg, "deg",
+                          max_heading_err <= *criteria_.max_estimate_heading_error,
+                          "dl/pose yaw vs sim/truth over the run"});
   }
   v.pass = std::all_of(v.criteria.begin(), v.criteria.end(), [](const Criterion& c) { return c.pass; });
   return v;

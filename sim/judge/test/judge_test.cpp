@@ -105,6 +105,42 @@ TEST(Judge, EstimateErrorAgainstInterpolatedTruth) {
   EXPECT_FALSE(v.Find("final_estimate_error_percent")->pass);      // 1.98 % > 1 %
 }
 
+TEST(Judge, OdometryOnlyBaselineAndHeadingAreFiguresBesideTheEstimate) {
+  JudgeCriteria c;
+  c.max_estimate_heading_error = 1.0 * std::numbers::pi / 180.0;
+  auto j = Judge::Create(c, {});
+  ASSERT_TRUE(j.ok());
+  DriveStraight(*j, 10.0);
+  for (int i = 0; i < 100; ++i) {
+    const double t = i * 1.0 + 0.05;
+    const double x = t * 0.1;
+    // Fused estimate: 0.5 % short, heading 0.5 deg off; baseline: 10 % long (slip), 3 deg off.
+    j->AddEstimate(Time::FromSeconds(t), Pose(0.995 * x, 0, 0.5 * std::numbers::pi / 180.0));
+    j->AddOdometryOnlyEstimate(Time::FromSeconds(t), Pose(1.1 * x, 0, 3 * std::numbers::pi / 180.0));
+  }
+  const Verdict v = j->Evaluate();
+  ASSERT_EQ(v.odometry_only_error.size(), 100u);
+  auto figure = [&](const std::string& name) -> const Criterion* {
+    for (const auto& f : v.figures) {
+      if (f.name == name) return &f;
+    }
+    return nullptr;
+  };
+  ASSERT_NE(figure("estimate_final_error_percent"), nullptr);
+  ASSERT_NE(figure("odometry_only_final_error_percent"), nullptr);
+  EXPECT_NEAR(figure("estimate_final_error_percent")->measured, 0.5, 0.01);
+  EXPECT_NEAR(figure("odometry_only_final_error_percent")->measured, 10.0, 0.1);
+  EXPECT_NEAR(figure("odometry_only_max_heading_error")->measured, 3.0, 1e-6);
+  EXPECT_NE(figure("odometry_only_final_error")->detail.find("dl/pose_odometry vs sim/truth"),
+            std::string::npos);
+  for (const auto& f : v.figures) EXPECT_TRUE(std::isnan(f.limit)) << f.name;
+  ASSERT_NE(v.Find("max_estimate_heading_error"), nullptr);
+  EXPECT_NEAR(v.Find("max_estimate_heading_error")->measured, 0.5, 1e-6);
+  EXPECT_TRUE(v.Find("max_estimate_heading_error")->pass);
+  // The baseline is never judged: its 3 deg does not fail the run.
+  EXPECT_TRUE(v.pass) << v.FailureSummary();
+}
+
 TEST(Judge, RejectsBadCriteriaAndReportsMissingTruth) {
   JudgeCriteria c;
   c.max_tilt = 2.0;  // rad: over 90 deg

@@ -18,8 +18,9 @@ constexpr double kNavcamHalfBaseline = 0.10;
 constexpr double kNavcamForward = 0.05;  // [m] in front of the tilt axis
 constexpr double kNavcamR1 = -0.01;      // mild barrel distortion
 
-// HAZCAM (MER: 124 deg FOV, 10 cm baseline, ~0.5 m high, 45 deg down).
-constexpr double kHazcamFovDeg = 124.0;
+// HAZCAM (MER: 124 deg FOV, 10 cm baseline, ~0.5 m high, 45 deg down). CAHVOR with 120 deg
+// across the width, as deploy/config/cameras.yaml (what ddl-camera attaches to its frames).
+constexpr double kHazcamFovDeg = 120.0;
 constexpr double kHazcamHalfBaseline = 0.05;
 constexpr double kHazcamR1 = -0.01;
 const Eigen::Vector3d kFrontHazcam(0.52, 0.0, 0.50);
@@ -54,19 +55,17 @@ CameraModel MakeNavcam(const Eigen::Vector3d& c) {
 
 CameraModel MakeHazcam(const Eigen::Vector3d& c, const Eigen::Matrix3d& r) {
   const double centre = 0.5 * (kDefinitionSize - 1);
-  const double theta_edge = Deg(0.5 * kHazcamFovDeg);
-  // Equidistant fisheye with radial term: radius = hs * theta * (1 + r1 theta^2).
-  const double hs = 0.5 * kDefinitionSize / (theta_edge * (1.0 + kHazcamR1 * theta_edge * theta_edge));
+  // CAHVOR radial term: a point at angle theta off O images at f tan(theta) (1 + r1 tan^2).
+  const double t_edge = std::tan(Deg(0.5 * kHazcamFovDeg));
+  const double f = 0.5 * kDefinitionSize / (t_edge * (1.0 + kHazcamR1 * t_edge * t_edge));
   const Axes ax = AxesOf(r);
-  geometry::Cahvore m;
+  geometry::Cahvor m;
   m.c = c;
   m.a = ax.a;
-  m.h = hs * ax.h + centre * ax.a;
-  m.v = hs * ax.v + centre * ax.a;
+  m.h = f * ax.h + centre * ax.a;
+  m.v = f * ax.v + centre * ax.a;
   m.o = ax.a;
   m.r = Eigen::Vector3d(0.0, kHazcamR1, 0.0);
-  m.e = Eigen::Vector3d::Zero();
-  m.type = geometry::CahvoreType::kFisheye;
   auto model = CameraModel::Create(m, kDefinitionSize, kDefinitionSize);
   ROVER_DEMAND(model.ok());
   return *model;

@@ -32,13 +32,13 @@ TEST(CamerasTest, DefaultsAreMerLike) {
   auto haz = FindStereoCamera(cams, "front_hazcam");
   ASSERT_TRUE(haz.ok());
   EXPECT_EQ(haz->mount, CameraMount::kBody);
-  EXPECT_EQ(haz->left.kind(), geometry::CameraModel::Kind::kCahvore);
+  EXPECT_EQ(haz->left.kind(), geometry::CameraModel::Kind::kCahvor);
   EXPECT_NEAR((haz->left.Center() - haz->right.Center()).norm(), 0.10, 1e-12);
   EXPECT_NEAR(haz->left.Center().z(), 0.50, 1e-12);
   l = haz->left.Unproject(Eigen::Vector2d(-0.5, 511.5));
   r = haz->left.Unproject(Eigen::Vector2d(1023.5, 511.5));
   ASSERT_TRUE(l && r);
-  EXPECT_NEAR(AngleDeg(l->direction, r->direction), 124.0, 0.5);
+  EXPECT_NEAR(AngleDeg(l->direction, r->direction), 120.0, 0.5);
   // Boresight 45 deg below horizontal, forward; the left camera is on the +y side.
   auto axis = haz->left.Unproject(Eigen::Vector2d(511.5, 511.5));
   ASSERT_TRUE(axis);

@@ -39,6 +39,9 @@ struct RunResult {
   double startup_s = 0;            ///< wall seconds to bring the service set up
   double teardown_s = 0;           ///< wall seconds to stop it
   std::vector<sim::ErrorSample> estimate_error;
+  std::vector<sim::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
+  /// Measured, not judged (sim::Verdict::figures): estimate and odometry-only errors.
+  std::vector<sim::Criterion> figures;
   std::vector<std::string> crashes;  ///< "service: how it ended; last log line"
   std::string run_dir;
   /// Distinct sim/truth writers heard: 1 unless another run's simulator leaked into this one.

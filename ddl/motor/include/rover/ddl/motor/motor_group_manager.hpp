@@ -65,6 +65,13 @@ class MotorGroupManager {
   /// Brakes every motor and stops every running group (FAULT/STOPPED with `reason`).
   ManagerOutput StopAll(Time now, const std::string& reason);
 
+  /// Forgets the telemetry and its run-clock times, for when the run clock went back (a
+  /// simulator reset): later telemetry, stamped before the old, is accepted again. The
+  /// hardware command-id sequence continues, so a controller that still echoes an old id is
+  /// never taken to have applied a new group's goals. Precondition: no group runs (StopAll
+  /// first).
+  void ForgetTelemetry();
+
   /// Command validation alone (no telemetry freshness check). `motor` gets the offending motor
   /// (or mask bit), -1 if none.
   CommandError Check(const MotorCommand& command, std::string* message, int* motor) const;

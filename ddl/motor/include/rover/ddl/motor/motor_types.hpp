@@ -93,7 +93,13 @@ struct MotorManagerOptions {
   double stall_window_s = 1.0;       ///< progress is judged over this window
   double stall_fraction = 0.25;      ///< stall if progress < fraction of the planned progress
   double stall_min_motion = 0.01;    ///< [rad] windows planning less motion are not judged
-  double overcurrent_time_s = 0.1;   ///< current above MotorSpec::current_limit this long
+  /// The goals ask the controller to saturate at MotorSpec::current_limit; a motor held at that
+  /// saturation (a wheel against an obstacle) is a stall, not an over-current. The driver's own
+  /// over-current monitor is the backstop for a controller that fails to limit: it trips above
+  /// current_limit * (1 + overcurrent_margin) (the margin covers current-sense gain and offset
+  /// errors and the no-load current).
+  double overcurrent_margin = 0.15;
+  double overcurrent_time_s = 0.1;   ///< current above that level this long
   double overtemp_time_s = 0.2;      ///< temperature above MotorSpec::max_temperature this long
   double telemetry_timeout_s = 0.5;  ///< no telemetry this long while running: NO_TELEMETRY
   double apply_timeout_s = 0.5;      ///< goals not echoed by the controller this long: NO_TELEMETRY
@@ -102,7 +108,7 @@ struct MotorManagerOptions {
   double velocity_timeout_s = 10.0;  ///< default run time of velocity groups
   double settle_rate = 0.02;         ///< [rad/s] "at goal" also needs |rate| below this
   bool brake_when_done = true;       ///< brake the group's motors once it is done
-  /// Positive finite times, fraction in (0, 1], factor >= 1.
+  /// Positive finite times, fraction in (0, 1], factor >= 1, margin in [0, 2].
   Status Validate() const;
 };
 

@@ -6,6 +6,8 @@
 /// Inputs, all in the site frame (x north, y west, z up; metres, radians, run-clock time):
 ///  - truth samples: the rover body pose over time (from sim/truth);
 ///  - estimate samples: the stack's own pose estimate over time (from dl/pose), optional;
+///  - odometry-only samples: the stack's IMU + wheel odometry baseline (dl/pose_odometry),
+///    optional, reported beside the fused estimate (never judged);
 ///  - the terrain's rock list and the rover's footprint (wheel contact points and belly box);
 ///  - pass criteria.
 /// Output: one Criterion per check with the measured value, the limit, pass/fail and a detail
@@ -15,7 +17,12 @@
 /// hit when, at any truth sample, its footprint disc (diameter D) overlaps a wheel's ground
 /// contact disc, or lies under the belly box while taller than the belly clearance. Tilt is the
 /// angle between the body z axis and the site z axis. Estimate error at an estimate sample is
-/// the distance between the estimated and the (linearly interpolated) true position.
+/// the horizontal distance between the estimated and the (linearly interpolated) true position;
+/// heading error is the estimated minus the true yaw, wrapped to (-pi, pi].
+///
+/// Figures (Verdict::figures) are measurements reported with the verdict but not judged: the
+/// final and worst estimate errors (m, % of the distance driven, heading deg) and the same for
+/// the odometry-only baseline, so every number printed names the truth comparison behind it.
 
 #include <Eigen/Geometry>
 #include <optional>
@@ -53,6 +60,7 @@ struct JudgeCriteria {
   double traversable_height = 0.20;          ///< [m] taller rocks must not be touched
   std::optional<double> max_estimate_error;  ///< [m] largest |estimate - truth| allowed
   std::optional<double> max_estimate_error_fraction;  ///< of distance driven (e.g. 0.01 = 1%)
+  std::optional<double> max_estimate_heading_error;  ///< [rad] largest |heading error| allowed
   std::optional<double> min_distance;        ///< [m] the rover must have driven at least this
   Status Validate() const;
 };
@@ -79,6 +87,9 @@ struct Verdict {
   double max_tilt = 0;               ///< [rad]
   std::vector<int> rocks_hit;        ///< ids of rocks over the traversable height touched
   std::vector<ErrorSample> estimate_error;  ///< over time
+  std::vector<ErrorSample> odometry_only_error;  ///< over time (empty without such samples)
+  /// Not judged (limit NaN, pass true): see the file comment.
+  std::vector<Criterion> figures;
   const Criterion* Find(const std::string& name) const;
   /// The failed criteria as "name: measured > limit unit" lines.
   std::string FailureSummary() const;
@@ -93,6 +104,7 @@ class Judge {
   /// Truth and estimate samples must arrive in time order (older ones are ignored and counted).
   void AddTruth(Time t, const Eigen::Isometry3d& pose);
   void AddEstimate(Time t, const Eigen::Isometry3d& pose);
+  void AddOdometryOnlyEstimate(Time t, const Eigen::Isometry3d& pose);
   std::size_t out_of_order() const { return out_of_order_; }
 
   /// Scores what was added so far. Without any truth sample the verdict fails with a criterion
@@ -119,6 +131,8 @@ class Judge {
   double max_rock_radius_ = 0;
   std::vector<Stamped> truth_;
   std::vector<Stamped> estimates_;
+  std::vector<Stamped> odometry_only_;
+  std::vector<ErrorSample> ErrorsOf(const std::vector<Stamped>& estimates) const;
   std::vector<bool> hit_;
   double distance_ = 0;
   double max_tilt_ = 0;

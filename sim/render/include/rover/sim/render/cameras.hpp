@@ -16,9 +16,11 @@
 ///   navcam:       CAHVOR, 45.0 deg square field, f = 1236.1 px, mild barrel distortion
 ///                 (r1 = -0.01), 0.20 m baseline, 1024 x 1024, on the mast head 0.05 m in front
 ///                 of the tilt axis; head 1.50 m above the rover origin (the ground).
-///   front_hazcam: CAHVORE fisheye (L = 0, E = 0), 124 deg across the width (about 170 deg
-///                 over the diagonal), 0.10 m baseline, 1024 x 1024, 0.50 m above the ground at
-///                 x = +0.52 m, boresight 45 deg below horizontal; rigid on the body.
+///   front_hazcam: CAHVOR, 120 deg across the width (about 137 deg over the diagonal),
+///                 f = 304.75 px with r1 = -0.01, 0.10 m baseline, 1024 x 1024, 0.50 m above the
+///                 ground at x = +0.52 m, boresight 45 deg below horizontal; rigid on the body.
+///                 (MER's flight HAZCAM models were CAHVOR too; the DDS CameraModel carries
+///                 CAHVOR, and these equal deploy/config/cameras.yaml, checked by a test.)
 ///   rear_hazcam:  the same looking backwards from x = -0.52 m.
 /// These follow MER (Maki et al. 2003): NAVCAM 45 deg FOV, 20 cm baseline, 1024 x 1024 CCD on
 /// a mast ~1.5 m high; HAZCAMs 124 deg FOV, 10 cm baseline, ~0.5 m high, 45 deg down.

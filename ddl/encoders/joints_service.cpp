@@ -1,0 +1,137 @@
+#include "joints_service.hpp"
+
+#include "joints_idl.hpp"
+#include "rover/base/check.hpp"
+#include "rover/base/log.hpp"
+#include "rover/ddl/driver_support/driver_params.hpp"
+
+namespace rover::ddl {
+namespace {
+
+void WarnDropped(const InputMonitor& m, const Status& s) {
+  if (IsLogWorthy(m.rejected())) {
+    log::Warn("input sample dropped",
+              {{"topic", m.name()}, {"reason", s.message()}, {"dropped_so_far", m.rejected()}});
+  }
+}
+
+}  // namespace
+
+void JointsService::DeclareParameters(ParamSet& p) {
+  DeclareDriverHardwareParams(p);
+  const JointReaderOptions d;
+  p.Declare("rate_hz", 50.0, "[Hz] ddl/joint_state publication rate (run clock)")
+      .Range(1.0, 1000.0);
+  p.Declare("joint_reader.rate_window_s", d.rate_window_s,
+            "[s] least-squares window of the wheel-rate estimate")
+      .Range(0.01, 5.0);
+  p.Declare("joint_reader.stale_after_s", d.stale_after_s,
+            "[s] an input older than this makes ddl/joint_state STALE")
+      .Range(0.005, 60.0);
+  p.Declare("joint_reader.pot_limit_margin", d.pot_limit_margin,
+            "[rad] a rocker/bogie pot beyond its mechanical stop by more than this: DEGRADED")
+      .Range(0.001, 1.0);
+  p.Declare("joint_reader.joint_limit_margin", d.joint_limit_margin,
+            "[rad] a steering/mast angle beyond its limits by more than this: DEGRADED")
+      .Range(0.001, 1.0);
+  p.Declare("max_future_s", 1.0,
+            "[s] input samples stamped further ahead of the run clock are dropped as corrupt")
+      .Range(0.001, 60.0);
+}
+
+namespace {
+JointReaderOptions ReaderOptions(const ParamSet& p) {
+  JointReaderOptions o;
+  o.rate_window_s = p.GetDouble("joint_reader.rate_window_s");
+  o.stale_after_s = p.GetDouble("joint_reader.stale_after_s");
+  o.pot_limit_margin = p.GetDouble("joint_reader.pot_limit_margin");
+  o.joint_limit_margin = p.GetDouble("joint_reader.joint_limit_margin");
+  return o;
+}
+}  // namespace
+
+Status JointsService::ValidateParameters(const ParamSet& p) const {
+  auto hw = DriverHardwareConfig(p);
+  if (!hw.ok()) return hw.status();
+  return JointReader::Create(*hw, ReaderOptions(p)).status();
+}
+
+Status JointsService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
+  ctx_ = &ctx;
+  auto hw = DriverHardwareConfig(p);
+  if (!hw.ok()) return hw.status();
+  hardware_ = *hw;
+  options_ = ReaderOptions(p);
+  auto reader = JointReader::Create(hardware_, options_);
+  if (!reader.ok()) return reader.status();
+  reader_.emplace(std::move(*reader));
+  const double max_future = p.GetDouble("max_future_s");
+  telemetry_.emplace("hw/motor_telemetry", options_.stale_after_s, max_future);
+  pots_.emplace("hw/suspension_pots", options_.stale_after_s, max_future);
+
+  auto w = ctx.MakeWriter<rover_ddl_JointState>("ddl/joint_state");
+  if (!w.ok()) return w.status();
+  writer_ = std::move(*w);
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MotorTelemetry>(
+      "hw/motor_telemetry",
+      [this](const dds::Sample<rover_hw_MotorTelemetry>& s) { OnTelemetry(s.data()); }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_SuspensionPots>(
+      "hw/suspension_pots",
+      [this](const dds::Sample<rover_hw_SuspensionPots>& s) { OnPots(s.data()); }));
+  ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("rate_hz")), [this] { OnTimer(); });
+  ctx.SetHealth(rover_HEALTH_STALE, telemetry_->StaleReason(ctx.Now()));
+  return Status::Ok();
+}
+
+Time JointsService::Now() {
+  const Time now = ctx_->Now();
+  if (clock_jump_.WentBack(now, ctx_->clock().valid())) {
+    log::Warn("run clock went back (simulator reset): joint reader restarted",
+              {{"now_s", now.seconds()}});
+    auto fresh = JointReader::Create(hardware_, options_);
+    ROVER_DEMAND(fresh.ok());  // accepted at configure time
+    reader_.emplace(std::move(*fresh));
+    telemetry_->Reset();
+    pots_->Reset();
+  }
+  return now;
+}
+
+void JointsService::OnTelemetry(const rover_hw_MotorTelemetry& t) {
+  const Time now = Now();
+  const Status s = telemetry_->Accept(t.header.stamp_ns, now, ctx_->clock().valid());
+  if (!s.ok()) {
+    WarnDropped(*telemetry_, s);
+    return;
+  }
+  reader_->OnMotorTelemetry(JointTelemetryFromIdl(t));
+}
+
+void JointsService::OnPots(const rover_hw_SuspensionPots& p) {
+  const Time now = Now();
+  const Status s = pots_->Accept(p.header.stamp_ns, now, ctx_->clock().valid());
+  if (!s.ok()) {
+    WarnDropped(*pots_, s);
+    return;
+  }
+  reader_->OnSuspensionPots(SuspensionPotsFromIdl(p));
+}
+
+void JointsService::OnTimer() {
+  const Time now = Now();
+  JointState js = reader_->State(now);
+  HealthSummary h;
+  h.Worsen(js.health, js.health_reason);
+  for (const InputMonitor* m : {&*telemetry_, &*pots_}) {
+    if (m->Stale(now)) h.Worsen(SensorHealth::kStale, m->StaleReason(now));
+  }
+  js.health = h.health;
+  rover_ddl_JointState out{};
+  ctx_->Stamp(out.header, "rover");
+  if (js.stamp_ns > 0) out.header.stamp_ns = js.stamp_ns;
+  JointStateToIdl(js, &out);
+  (void)writer_.Write(out);
+  ctx_->SetHealth(JointHealthToIdl(h.health), h.reason);
+}
+
+}  // namespace rover::ddl

@@ -1,0 +1,7 @@
+// ddl-sun: the sun-sensor driver service. See sun_service.hpp and docs/services/ddl-sun.md.
+#include "sun_service.hpp"
+
+int main(int argc, char** argv) {
+  rover::ddl::SunService service;
+  return rover::RunServiceMain(service, argc, argv);
+}

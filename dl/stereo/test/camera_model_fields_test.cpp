@@ -1,0 +1,222 @@
+#include "rover/dl/stereo/camera_model_fields.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "rover/idl/types.hpp"
+
+namespace rover::dl::stereo {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Camera (x right, y down, z forward) at `position` in the rover frame, pitched down by `pitch`.
+Eigen::Isometry3d MountPose(double pitch, const Eigen::Vector3d& position) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d z(std::cos(pitch), 0.0, -std::sin(pitch));
+  const Eigen::Vector3d x(0.0, -1.0, 0.0);
+  t.linear().col(0) = x;
+  t.linear().col(1) = z.cross(x);
+  t.linear().col(2) = z;
+  t.translation() = position;
+  return t;
+}
+
+geometry::PinholeRadial HazcamPinhole(double k1 = 0.0) {
+  geometry::PinholeRadial p;
+  p.fx = 150.0;
+  p.fy = 151.0;
+  p.cx = 127.5 + 1.3;
+  p.cy = 95.5 - 0.7;
+  p.k1 = k1;
+  p.pose = MountPose(45.0 * kDeg, {0.52, 0.05, 0.5});
+  p.width = 256;
+  p.height = 192;
+  return p;
+}
+
+geometry::CameraModel CahvCamera() {
+  auto cahv = geometry::ToCahv(HazcamPinhole());
+  EXPECT_TRUE(cahv.ok());
+  auto m = geometry::CameraModel::Create(*cahv, 256, 192);
+  EXPECT_TRUE(m.ok()) << m.status().ToString();
+  return *m;
+}
+
+geometry::CameraModel CahvorCamera() {
+  geometry::Cahvor m;
+  const Eigen::Isometry3d pose = MountPose(30.0 * kDeg, {0.2, -0.1, 1.5});
+  const Eigen::Vector3d x = pose.linear().col(0), y = pose.linear().col(1);
+  m.c = pose.translation();
+  m.a = pose.linear().col(2);
+  m.h = 300.0 * x + 130.2 * m.a;
+  m.v = 300.0 * y + 94.1 * m.a;
+  m.o = (m.a + 0.003 * x - 0.002 * y).normalized();
+  m.r = Eigen::Vector3d(0.0, -0.03, 0.005);
+  auto model = geometry::CameraModel::Create(m, 256, 192);
+  EXPECT_TRUE(model.ok()) << model.status().ToString();
+  return *model;
+}
+
+// Largest pixel distance between two models' projections of points in front of `a`.
+double MaxProjectionDifference(const geometry::CameraModel& a, const geometry::CameraModel& b) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> px(0.0, 255.0), py(0.0, 191.0), depth(0.5, 20.0);
+  double worst = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const auto ray = a.Unproject({px(rng), py(rng)});
+    EXPECT_TRUE(ray.has_value());
+    if (!ray) continue;
+    const Eigen::Vector3d p = ray->origin + depth(rng) * ray->direction;
+    const auto pa = a.Project(p);
+    const auto pb = b.Project(p);
+    EXPECT_TRUE(pa.has_value() && pb.has_value());
+    if (pa && pb) worst = std::max(worst, (*pa - *pb).norm());
+  }
+  return worst;
+}
+
+TEST(CameraModelFields, CahvRoundTripsExactlyThroughTheIdlStruct) {
+  const geometry::CameraModel cam = CahvCamera();
+  auto fields = FieldsFromCameraModel(cam);
+  ASSERT_TRUE(fields.ok()) << fields.status().ToString();
+  EXPECT_TRUE(fields->HasCahvor());
+  EXPECT_TRUE(fields->HasPinhole());
+  EXPECT_EQ(fields->r, (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(fields->o, fields->a);  // CAHV: O = A
+  EXPECT_EQ(fields->width, 256);
+  EXPECT_EQ(fields->height, 192);
+
+  rover_ddl_CameraModel msg{};
+  FieldsToMessage(*fields, &msg);
+  EXPECT_EQ(msg.width, 256);
+  EXPECT_DOUBLE_EQ(msg.h[1], fields->h[1]);
+  EXPECT_DOUBLE_EQ(msg.pose.orientation.w, fields->orientation[0]);
+  const CameraModelFields back = FieldsFromMessage(msg);
+  EXPECT_EQ(back, *fields);
+
+  auto model = CameraModelFromFields(back);
+  ASSERT_TRUE(model.ok()) << model.status().ToString();
+  EXPECT_EQ(model->kind(), geometry::CameraModel::Kind::kCahv);
+  EXPECT_LT(MaxProjectionDifference(cam, *model), 1e-9);
+  // The pinhole part is the same camera: its pose is the mount.
+  const Eigen::Isometry3d mount = HazcamPinhole().pose;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(back.position[static_cast<std::size_t>(i)], mount.translation()[i], 1e-12);
+  EXPECT_NEAR(back.fx, 150.0, 1e-9);
+  EXPECT_NEAR(back.fy, 151.0, 1e-9);
+}
+
+TEST(CameraModelFields, CahvorKeepsItsDistortion) {
+  const geometry::CameraModel cam = CahvorCamera();
+  auto fields = FieldsFromCameraModel(cam);
+  ASSERT_TRUE(fields.ok()) << fields.status().ToString();
+  EXPECT_NE(fields->r[1], 0.0);
+  auto model = CameraModelFromFields(*fields);
+  ASSERT_TRUE(model.ok()) << model.status().ToString();
+  EXPECT_EQ(model->kind(), geometry::CameraModel::Kind::kCahvor);
+  EXPECT_LT(MaxProjectionDifference(cam, *model), 1e-9);
+}
+
+TEST(CameraModelFields, PinholePartAloneIsUsedWhenTheCahvorVectorsAreZero) {
+  const geometry::PinholeRadial pin = HazcamPinhole(-0.05);
+  auto cam = geometry::CameraModel::Create(pin);
+  ASSERT_TRUE(cam.ok());
+  auto fields = FieldsFromCameraModel(*cam);
+  ASSERT_TRUE(fields.ok()) << fields.status().ToString();
+  // The CAHVOR part of a distorted pinhole is ToCahvor's (exact with k3 = 0).
+  auto from_cahvor = CameraModelFromFields(*fields);
+  ASSERT_TRUE(from_cahvor.ok()) << from_cahvor.status().ToString();
+  EXPECT_EQ(from_cahvor->kind(), geometry::CameraModel::Kind::kCahvor);
+  EXPECT_LT(MaxProjectionDifference(*cam, *from_cahvor), 1e-6);
+
+  CameraModelFields only_pinhole = *fields;
+  only_pinhole.c = only_pinhole.a = only_pinhole.h = only_pinhole.v = only_pinhole.o =
+      only_pinhole.r = {0.0, 0.0, 0.0};
+  EXPECT_FALSE(only_pinhole.HasCahvor());
+  auto from_pinhole = CameraModelFromFields(only_pinhole);
+  ASSERT_TRUE(from_pinhole.ok()) << from_pinhole.status().ToString();
+  EXPECT_EQ(from_pinhole->kind(), geometry::CameraModel::Kind::kPinholeRadial);
+  EXPECT_LT(MaxProjectionDifference(*cam, *from_pinhole), 1e-9);
+}
+
+TEST(CameraModelFields, MissingModelIsAnError) {
+  CameraModelFields f;
+  f.width = 256;
+  f.height = 192;
+  const auto r = CameraModelFromFields(f);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("missing"), std::string::npos) << r.status().message();
+}
+
+TEST(CameraModelFields, SingularNonFiniteAndEmptyModelsAreErrorsNamingTheProblem) {
+  auto good = FieldsFromCameraModel(CahvCamera());
+  ASSERT_TRUE(good.ok());
+
+  CameraModelFields singular = *good;  // H along A: H, V, A coplanar
+  singular.h = singular.a;
+  singular.fx = singular.fy = 0.0;  // CAHVOR part only
+  auto r = CameraModelFromFields(singular);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("CAHVOR part"), std::string::npos) << r.status().message();
+
+  CameraModelFields nan = *good;
+  nan.v[2] = std::numeric_limits<double>::quiet_NaN();
+  r = CameraModelFromFields(nan);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("'v'"), std::string::npos) << r.status().message();
+
+  CameraModelFields inf = *good;
+  inf.k2 = std::numeric_limits<double>::infinity();
+  r = CameraModelFromFields(inf);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("'k2'"), std::string::npos) << r.status().message();
+
+  CameraModelFields empty = *good;
+  empty.height = 0;
+  r = CameraModelFromFields(empty);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("256x0"), std::string::npos) << r.status().message();
+
+  CameraModelFields not_unit = *good;
+  not_unit.a = {0.0, 0.0, 0.0};
+  not_unit.h = not_unit.v = {0.0, 0.0, 0.0};  // pinhole only, with a bad quaternion
+  not_unit.orientation = {0.9, 0.1, 0.0, 0.0};
+  r = CameraModelFromFields(not_unit);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("unit quaternion"), std::string::npos)
+      << r.status().message();
+}
+
+TEST(CameraModelFields, DisagreeingPartsAreRejectedAsCorrupt) {
+  auto good = FieldsFromCameraModel(CahvCamera());
+  ASSERT_TRUE(good.ok());
+  CameraModelFields moved = *good;
+  moved.position[0] += 0.01;  // 1 cm: more than 1 mm
+  auto r = CameraModelFromFields(moved);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("disagree"), std::string::npos) << r.status().message();
+
+  CameraModelFields turned = *good;  // pinhole pose turned 1 deg about its x axis
+  const Eigen::Quaterniond q(turned.orientation[0], turned.orientation[1], turned.orientation[2],
+                             turned.orientation[3]);
+  const Eigen::Quaterniond q2 =
+      q * Eigen::Quaterniond(Eigen::AngleAxisd(kDeg, Eigen::Vector3d::UnitX()));
+  turned.orientation = {q2.w(), q2.x(), q2.y(), q2.z()};
+  r = CameraModelFromFields(turned);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("disagree"), std::string::npos) << r.status().message();
+
+  CameraModelFields small = *good;  // 0.1 mm is within tolerance
+  small.position[2] += 1e-4;
+  EXPECT_TRUE(CameraModelFromFields(small).ok());
+}
+
+}  // namespace
+}  // namespace rover::dl::stereo

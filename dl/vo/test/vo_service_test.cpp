@@ -1,0 +1,354 @@
+// dl-vo in-process on an isolated DDS domain, on a sim clock the test publishes. The test plays
+// dl-pose (a wheel-odometry-like estimate that slips: 10 % long and drifting in heading) and
+// the camera driver (fake_camera_driver.hpp: textured ground rendered from the TRUE rover pose
+// with known CAHV models in the rover frame). It checks MER's cadence (first pair at rest, a pair
+// every step_distance of odometer, one at the end of the drive), that each dl/relative_pose
+// matches the true motion between the two capture stamps far better than the odometry prior,
+// and that a featureless pair or a bad frame is published with a failure status, not a motion.
+#include "vo_service.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "fake_camera_driver.hpp"
+#include "rover/testing/test_support.hpp"
+
+namespace rover::dl::vo {
+namespace {
+
+constexpr double kStep = 0.1;  // [s] sim/clock and dl/pose period
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Eigen::Isometry3d Delta(const rover_Pose3& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() =
+      Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)
+          .normalized()
+          .toRotationMatrix();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  return t;
+}
+
+class VoServiceTest : public ::testing::Test {
+ protected:
+  void TearDown() override {
+    if (lifecycle_) (void)lifecycle_->Shutdown();
+  }
+
+  /// The front HAZCAM (the default camera) as the simulator has it: 0.5 m high, 45 deg down,
+  /// 0.10 m baseline, 120 deg across (a pinhole here: 74 px focal length at 256 px).
+  static fake::Rig Hazcam() {
+    fake::Rig rig;
+    rig.rover_from_left = fake::CameraMount(0.785, {0.52, 0.05, 0.5});
+    rig.baseline = 0.1;
+    rig.focal_at_256 = 74.0;
+    return rig;
+  }
+  /// A NAVCAM pointed down at the terrain as MER did for VO (25 deg, 1.5 m, 0.3 m baseline).
+  static fake::Rig Navcam() {
+    fake::Rig rig;
+    rig.rover_from_left = fake::CameraMount(0.44, {0.3, 0.15, 1.5});
+    rig.baseline = 0.3;
+    rig.focal_at_256 = 200.0;
+    return rig;
+  }
+
+  void Start(std::vector<std::string> overrides = {}, const fake::Rig& rig = Navcam()) {
+    driver_.rig = rig;
+    lease_ = rover::testing::IsolatedDomain();
+    options_.name = "dl-vo-test";
+    options_.domain = lease_.domain();
+    options_.clock = "sim";
+    options_.overrides = std::move(overrides);
+    auto ctx = ServiceContext::Create(options_);
+    ASSERT_TRUE(ctx.ok()) << ctx.status().message();
+    ctx_ = std::move(*ctx);
+    lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
+    ASSERT_TRUE(lifecycle_->Configure().ok()) << lifecycle_->last_error();
+    ASSERT_TRUE(lifecycle_->Activate().ok()) << lifecycle_->last_error();
+    auto p = dds::Participant::Create(lease_.domain());
+    ASSERT_TRUE(p.ok());
+    participant_ = std::move(*p);
+    ASSERT_TRUE(driver_.Create(participant_).ok());
+    ASSERT_TRUE(Make(clock_w_, "sim/clock"));
+    ASSERT_TRUE(Make(pose_w_, "dl/pose"));
+    ASSERT_TRUE(Make(relpose_r_, "dl/relative_pose"));
+    ASSERT_TRUE(Make(health_r_, "sys/health"));
+    ASSERT_TRUE(rover::testing::WaitFor([&] {
+      return driver_.Matched() && clock_w_.MatchedReaders() >= 1 && pose_w_.MatchedReaders() >= 1 &&
+             relpose_r_.MatchedWriters() >= 1 && health_r_.MatchedWriters() >= 1;
+    }));
+  }
+
+  /// Drives for `seconds` at `speed` [m/s] and `yaw_rate` [rad/s] (true motion), in kStep steps.
+  /// dl/pose carries the slipping estimate; the driver renders from the truth.
+  void Drive(double seconds, double speed, double yaw_rate) {
+    const int steps = static_cast<int>(std::lround(seconds / kStep));
+    for (int i = 0; i < steps; ++i) {
+      ++step_;
+      now_ = Time{step_ * 100'000'000};
+      Integrate(&truth_, speed, yaw_rate);
+      const bool moving = speed != 0.0 || yaw_rate != 0.0;
+      Integrate(&estimate_, speed * kOdometryScale, moving ? yaw_rate + kHeadingDrift : 0.0);
+      odometer_ += std::abs(speed) * kOdometryScale * kStep;
+      truth_at_[now_.ns] = truth_;
+      rover_dl_PoseEstimate pose{};
+      pose.header.stamp_ns = now_.ns;
+      const Eigen::Vector3d t = estimate_.translation();
+      const Eigen::Quaterniond q(estimate_.linear());
+      pose.pose.position = {t.x(), t.y(), t.z()};
+      pose.pose.orientation = {q.w(), q.x(), q.y(), q.z()};
+      pose.velocity = {speed * kOdometryScale, 0.0, 0.0};
+      pose.odometer = odometer_;
+      pose.stationary = !moving;
+      if (publish_pose_) {
+        EXPECT_TRUE(pose_w_.Write(pose).ok());
+      }
+      rover_sim_Clock c{};
+      c.sim_time_ns = now_.ns;
+      EXPECT_TRUE(clock_w_.Write(c).ok());
+      EXPECT_TRUE(rover::testing::WaitFor([&] {
+        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+        return ctx_->Now().ns == now_.ns;
+      }));
+      for (int k = 0; k < 2; ++k) ctx_->executor().SpinOnce(std::chrono::milliseconds(2));
+      // A request sent at this tick reaches the driver before it serves (deterministic steps).
+      EXPECT_TRUE(rover::testing::WaitFor([&] {
+        driver_.Poll();
+        return driver_.seen.size() >= service_.stats().camera_requests;
+      }));
+      const std::uint64_t frames = service_.stats().frames;
+      const int answered = driver_.Serve(now_, truth_);
+      for (int k = 0; k < answered; ++k) captures_.push_back(now_);
+      if (answered > 0) {
+        EXPECT_TRUE(rover::testing::WaitFor([&] {
+          ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+          return service_.stats().frames >= frames + static_cast<std::uint64_t>(answered);
+        }));
+      }
+      Collect();
+    }
+  }
+
+  static void Integrate(Eigen::Isometry3d* pose, double speed, double yaw_rate) {
+    // Constant speed and turn rate over the step: move along the chord at the mid heading.
+    const Eigen::Isometry3d step =
+        fake::RoverPose(speed * kStep * std::cos(yaw_rate * kStep / 2),
+                        speed * kStep * std::sin(yaw_rate * kStep / 2), yaw_rate * kStep);
+    *pose = *pose * step;
+  }
+
+  void Collect() {
+    for (int k = 0; k < 3; ++k) ctx_->executor().SpinOnce(std::chrono::milliseconds(1));
+    for (auto& s : relpose_r_.Take()) relposes_.push_back(s.data());
+    for (auto& h : health_r_.Take()) {
+      if (std::string(h->service) == options_.name) {
+        health_ = h->health;
+        health_message_ = h->message;
+      }
+    }
+  }
+
+  /// True motion between two run-clock times (rover frame at `from`).
+  Eigen::Isometry3d TrueDelta(std::int64_t from, std::int64_t to) const {
+    return truth_at_.at(from).inverse() * truth_at_.at(to);
+  }
+
+  template <class E>
+  bool Make(E& out, const std::string& topic) {
+    auto e = E::Create(participant_, topic);
+    if (!e.ok()) {
+      ADD_FAILURE() << e.status().message();
+      return false;
+    }
+    out = std::move(*e);
+    return true;
+  }
+
+  static constexpr double kOdometryScale = 1.10;  // wheel odometry 10 % long (slip)
+  static constexpr double kHeadingDrift = 0.01;   // [rad/s] heading error while driving
+
+  dds::DomainLease lease_;
+  ServiceOptions options_;
+  std::unique_ptr<ServiceContext> ctx_;
+  VoService service_;
+  std::unique_ptr<Lifecycle> lifecycle_;
+  dds::Participant participant_;
+  fake::FakeCameraDriver driver_;
+  dds::Writer<rover_sim_Clock> clock_w_;
+  dds::Writer<rover_dl_PoseEstimate> pose_w_;
+  dds::Reader<rover_dl_RelativePose> relpose_r_;
+  dds::Reader<rover_sys_Heartbeat> health_r_;
+  std::int64_t step_ = 0;
+  Time now_;
+  Eigen::Isometry3d truth_ = fake::RoverPose(0.0, 0.0, 0.0);
+  Eigen::Isometry3d estimate_ = fake::RoverPose(0.0, 0.0, 0.0);
+  double odometer_ = 0.0;
+  bool publish_pose_ = true;
+  std::map<std::int64_t, Eigen::Isometry3d> truth_at_;
+  std::vector<Time> captures_;
+  std::vector<rover_dl_RelativePose> relposes_;
+  rover_SensorHealth health_ = rover_HEALTH_OK;
+  std::string health_message_;
+
+  /// Drives 0.7 m on an arc and stops; checks the pairs, the steps against the truth and the
+  /// odometry prior, and the cadence.
+  void CheckMerCadence(rover_CameraId camera, int width) {
+    Drive(1.0, 0.0, 0.0);  // at rest: the first pair, the reference
+    ASSERT_EQ(captures_.size(), 1u);
+    EXPECT_EQ(service_.stats().references, 1u);
+    EXPECT_TRUE(relposes_.empty());
+    ASSERT_EQ(driver_.seen.size(), 1u);
+    EXPECT_EQ(driver_.seen[0].camera, camera);
+    EXPECT_EQ(driver_.seen[0].width, width);
+    EXPECT_EQ(driver_.seen[0].request_id >> 24, 2u);
+    Drive(7.0, 0.1, 0.04);  // 0.7 m (odometer 0.77 m) on a left arc: one pair at 0.5 m odometer
+    EXPECT_EQ(captures_.size(), 2u);
+    Drive(3.0, 0.0, 0.0);  // stop: one pair once settled
+    ASSERT_EQ(captures_.size(), 3u);
+    EXPECT_EQ(service_.stats().camera_requests, 3u);
+    ASSERT_EQ(relposes_.size(), 2u) << service_.last_problem();
+
+    for (std::size_t i = 0; i < relposes_.size(); ++i) {
+      SCOPED_TRACE("step " + std::to_string(i));
+      const rover_dl_RelativePose& r = relposes_[i];
+      EXPECT_EQ(r.status, rover_dl_RELPOSE_CONVERGED);
+      EXPECT_EQ(r.source, rover_dl_SOURCE_VISUAL_ODOMETRY);
+      EXPECT_STREQ(r.header.frame_id, "rover");
+      EXPECT_EQ(r.header.stamp_ns, r.t_to_ns);
+      EXPECT_EQ(r.t_from_ns, captures_[i].ns);
+      EXPECT_EQ(r.t_to_ns, captures_[i + 1].ns);
+      EXPECT_GE(r.features, 10u);
+      const Eigen::Isometry3d truth = TrueDelta(r.t_from_ns, r.t_to_ns);
+      const Eigen::Isometry3d vo = Delta(r.delta);
+      const double t_err = (vo.translation() - truth.translation()).norm();
+      const double r_err = RotationAngle(vo.linear().transpose() * truth.linear());
+      // What the odometry prior said (10 % long, drifting heading).
+      const double prior_err = 0.10 * truth.translation().norm();
+      std::printf(
+          "step %zu: true %.3f m / %.2f deg; VO error %.1f mm, %.3f deg; %u inliers; "
+          "odometry error ~%.0f mm\n",
+          i, truth.translation().norm(), RotationAngle(truth.linear()) / kDeg, 1e3 * t_err,
+          r_err / kDeg, r.features, 1e3 * prior_err);
+      EXPECT_GT(truth.translation().norm(), 0.2);
+      // Measured (0.46 m and 0.24 m steps): HAZCAM 512 x 384: 1.0 mm / 0.006 deg, 0.5 mm /
+      // 0.010 deg; NAVCAM 256 x 192: 1.5 mm / 0.004 deg, 0.3 mm / 0.016 deg. (HAZCAM at 256 px:
+      // 6.5 mm / 0.15 deg with only 14 inliers, hence the default width 512.)
+      EXPECT_LT(t_err, 0.01);
+      EXPECT_LT(r_err, 0.1 * kDeg);
+      EXPECT_LT(t_err, prior_err / 3.0) << "VO must be much closer to the truth than odometry";
+      // Covariance: symmetric, positive, consistent in scale with the error.
+      Eigen::Matrix<double, 6, 6> cov;
+      for (int a = 0; a < 6; ++a) {
+        for (int b = 0; b < 6; ++b) cov(a, b) = r.covariance[a * 6 + b];
+      }
+      EXPECT_LT((cov - cov.transpose()).norm(), 1e-12 * cov.norm());
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(cov);
+      EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+      EXPECT_LT(std::sqrt(cov(0, 0)), 0.05);
+    }
+    EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+    // Parked: nothing more to measure.
+    Drive(3.0, 0.0, 0.0);
+    EXPECT_EQ(captures_.size(), 3u);
+  }
+};
+
+TEST_F(VoServiceTest, MeasuresTheTrueMotionAtMerCadenceWithTheDefaultHazcam) {
+  Start({}, Hazcam());
+  CheckMerCadence(rover_CAMERA_FRONT_HAZCAM, 512);
+}
+
+TEST_F(VoServiceTest, MeasuresTheTrueMotionWithANavcamAt256) {
+  Start({"camera=navcam", "width=256"}, Navcam());
+  CheckMerCadence(rover_CAMERA_NAVCAM, 256);
+}
+
+TEST_F(VoServiceTest, FeaturelessPairIsPublishedAsAFailureNotAMotion) {
+  Start({"width=256"});
+  driver_.scene.flat = true;
+  Drive(1.0, 0.0, 0.0);
+  Drive(6.0, 0.1, 0.0);
+  ASSERT_EQ(captures_.size(), 2u);
+  ASSERT_EQ(relposes_.size(), 1u);
+  const rover_dl_RelativePose& r = relposes_[0];
+  EXPECT_EQ(r.status, rover_dl_RELPOSE_TOO_FEW_FEATURES);
+  EXPECT_EQ(r.t_from_ns, captures_[0].ns);
+  EXPECT_EQ(r.t_to_ns, captures_[1].ns);
+  EXPECT_LT(r.features, 10u);
+  EXPECT_EQ(service_.stats().converged, 0u);
+  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  EXPECT_NE(health_message_.find("visual odometry step failed"), std::string::npos)
+      << health_message_;
+}
+
+TEST_F(VoServiceTest, BadFrameIsReportedAndTheReferenceKept) {
+  Start({"retry_delay_s=1", "width=256"});
+  Drive(1.0, 0.0, 0.0);
+  ASSERT_EQ(captures_.size(), 1u);
+  // The next frame (first step while driving) has a singular model pair.
+  driver_.corrupt = [](rover_ddl_StereoFrame& m, std::vector<std::uint8_t>&,
+                       std::vector<std::uint8_t>&) { m.right_model = m.left_model; };
+  Drive(5.0, 0.1, 0.0);  // odometer 0.55 m: a pair is due
+  ASSERT_EQ(captures_.size(), 2u);
+  ASSERT_EQ(relposes_.size(), 1u);
+  EXPECT_EQ(relposes_[0].status, rover_dl_RELPOSE_BAD_INPUT);
+  EXPECT_EQ(relposes_[0].t_from_ns, captures_[0].ns);
+  EXPECT_EQ(service_.stats().bad_frames, 1u);
+  EXPECT_NE(service_.last_problem().find("stereo rectification"), std::string::npos)
+      << service_.last_problem();
+  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  // After retry_delay_s the next pair measures from the kept reference.
+  driver_.corrupt = nullptr;
+  Drive(1.5, 0.1, 0.0);
+  ASSERT_EQ(captures_.size(), 3u);
+  EXPECT_GE(captures_[2] - captures_[1], Seconds(1.0));  // retry_delay_s of run-clock time
+  EXPECT_LE(captures_[2] - captures_[1], Seconds(1.0) + Seconds(kStep));
+  ASSERT_EQ(relposes_.size(), 2u);
+  const rover_dl_RelativePose& r = relposes_[1];
+  EXPECT_EQ(r.status, rover_dl_RELPOSE_CONVERGED) << service_.last_problem();
+  EXPECT_EQ(r.t_from_ns, captures_[0].ns);
+  EXPECT_EQ(r.t_to_ns, captures_[2].ns);
+  const Eigen::Isometry3d truth = TrueDelta(r.t_from_ns, r.t_to_ns);
+  EXPECT_LT((Delta(r.delta).translation() - truth.translation()).norm(), 0.015);
+  EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+}
+
+TEST_F(VoServiceTest, TimeoutIsReportedOnTheRunClockAndTheRequestRepeated) {
+  Start({"request_timeout_s=1.5", "width=256"});
+  driver_.answer = false;
+  Drive(0.2, 0.0, 0.0);
+  ASSERT_EQ(service_.stats().camera_requests, 1u);
+  Drive(1.3, 0.0, 0.0);
+  EXPECT_EQ(service_.stats().timeouts, 0u);
+  Drive(0.4, 0.0, 0.0);  // > 1.5 s of run-clock time since the request
+  EXPECT_EQ(service_.stats().timeouts, 1u);
+  EXPECT_NE(service_.last_problem().find("timed out"), std::string::npos);
+  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  EXPECT_EQ(service_.stats().camera_requests, 2u);  // asked again at once (still no reference)
+}
+
+TEST_F(VoServiceTest, StalePosePausesTheCadence) {
+  Start({"pose_max_age_s=0.5", "width=256"});
+  Drive(1.0, 0.0, 0.0);
+  ASSERT_EQ(captures_.size(), 1u);
+  publish_pose_ = false;  // dl-pose stops while the rover drives on
+  Drive(8.0, 0.1, 0.0);
+  EXPECT_EQ(captures_.size(), 1u) << "no pair may be requested on a stale pose";
+  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  EXPECT_NE(health_message_.find("stale"), std::string::npos) << health_message_;
+  publish_pose_ = true;  // back: the odometer has moved on, so a pair is due at once
+  Drive(0.3, 0.1, 0.0);
+  EXPECT_EQ(captures_.size(), 2u);
+}
+
+}  // namespace
+}  // namespace rover::dl::vo
