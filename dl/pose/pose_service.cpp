@@ -175,6 +175,10 @@ void PoseService::DeclareParameters(ParamSet& p) {
   p.Declare("sun.min_elevation_deg", 0.0,
             "[deg] ignore sun samples when the ephemeris sun is lower than this")
       .Range(-90.0, 90.0);
+  p.Declare("sun.max_rate_deg_s", 0.2,
+            "[deg/s] ignore sun samples while the rover turns faster than this (a sample's "
+            "latency times the turn rate would be a heading error; MER took sun images at rest)")
+      .Range(0.0, 100.0);
 }
 
 Status PoseService::ValidateParameters(const ParamSet& p) const {
@@ -230,6 +234,7 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   run_start_s_ = p.GetDouble("ephemeris.run_start_s");
   sun_enabled_ = p.GetBool("sun.enabled");
   sun_min_elevation_ = p.GetDouble("sun.min_elevation_deg") * kDeg;
+  sun_max_rate_ = p.GetDouble("sun.max_rate_deg_s") * kDeg;
   imu_stale_s_ = p.GetDouble("imu_stale_s");
 
   auto pw = ctx.MakeWriter<rover_dl_PoseEstimate>("dl/pose");
@@ -308,6 +313,7 @@ void PoseService::OnImu(const rover_ddl_Imu& m) {
     WarnCounted("ddl/imu sample dropped", s.message());
     return;
   }
+  last_rate_ = (w - ekf_->Estimate().gyro_bias).norm();
   const Status a = ekf_->UpdateAccelerometer(t, f);
   if (!a.ok()) WarnCounted("accelerometer update failed", a.message());
   if (odometry_only_ && odometry_only_->initialized() && odometry_only_->PropagateGyro(t, w).ok()) {
@@ -328,6 +334,7 @@ void PoseService::Level(Time t, const Eigen::Vector3d& w, const Eigen::Vector3d&
     ++l.count_all;
   }
   if (still) {
+    if (l.count == 0) l.still_since = t;
     l.f_sum += f;
     l.w_sum += w;
     ++l.count;
@@ -338,21 +345,22 @@ void PoseService::Level(Time t, const Eigen::Vector3d& w, const Eigen::Vector3d&
   }
   if (l.count >= start_.level_samples) {
     const double n = static_cast<double>(l.count);
+    const double span = ToSeconds(t - l.still_since);
     Start(t, l.f_sum / n,
           start_.estimate_gyro_bias ? Eigen::Vector3d(l.w_sum / n) : Eigen::Vector3d::Zero(),
-          "levelled at rest");
+          start_.estimate_gyro_bias ? span : 0.0, "levelled at rest");
   } else if (ToSeconds(t - *l.first) >= start_.level_timeout_s) {
     const Eigen::Vector3d mean = l.count_all > 0
                                      ? Eigen::Vector3d(l.f_all / static_cast<double>(l.count_all))
                                      : Eigen::Vector3d(0.0, 0.0, ekf_options_.gravity);
     log::Warn("no stationary stretch to level on; starting from the mean accelerometer sample",
               {{"samples", l.count_all}, {"waited_s", ToSeconds(t - *l.first)}});
-    Start(t, mean, Eigen::Vector3d::Zero(), "not levelled at rest");
+    Start(t, mean, Eigen::Vector3d::Zero(), 0.0, "not levelled at rest");
   }
 }
 
 void PoseService::Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vector3d& bias,
-                        const char* how) {
+                        double bias_span_s, const char* how) {
   const Eigen::Vector2d rp = LevelFromSpecificForce(f_mean);
   EkfInitialState init;
   init.stamp = t;
@@ -362,6 +370,11 @@ void PoseService::Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vect
   init.position_sigma = Eigen::Vector3d::Constant(start_.position_sigma);
   init.rpy_sigma = Eigen::Vector3d(start_.tilt_sigma, start_.tilt_sigma, start_.yaw_sigma);
   init.gyro_bias_sigma = start_.gyro_bias_sigma;
+  if (bias_span_s > 0.0) {
+    init.gyro_bias_sigma = std::min(
+        start_.gyro_bias_sigma,
+        std::max(ekf_options_.gyro_noise_density / std::sqrt(bias_span_s), 1e-7));
+  }
   const Status s = ekf_->Initialize(init);
   if (!s.ok()) {
     WarnCounted("pose estimator could not start", s.message());
@@ -377,7 +390,8 @@ void PoseService::Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vect
                                        {"roll_deg", rp.x() / kDeg},
                                        {"pitch_deg", rp.y() / kDeg},
                                        {"yaw_deg", start_.yaw / kDeg},
-                                       {"gyro_bias_z", bias.z()}});
+                                       {"gyro_bias_z", bias.z()},
+                                       {"gyro_bias_sigma", init.gyro_bias_sigma}});
   levelling_ = Levelling{};
 }
 
@@ -405,6 +419,7 @@ void PoseService::OnSunSensor(const rover_ddl_SunSensor& m) {
   const Time t{m.header.stamp_ns};
   const geometry::SunState sun = ephemeris_->At(t.seconds() - run_start_s_);
   if (sun.elevation_rad < sun_min_elevation_) return;
+  if (last_rate_ > sun_max_rate_) return;  // turning: wait for a steadier sample
   const Status s = ekf_->UpdateSunSensor(t, Vec(m.sun_vector), sun.direction_site);
   if (!s.ok()) {
     WarnCounted("ddl/sun_sensor sample rejected", s.message());

@@ -80,8 +80,11 @@ class PoseService final : public Service {
     double tilt_sigma = 0.017453292519943295;  // 1 deg
     double yaw_sigma = 0.08726646259971647;    // 5 deg
     double gyro_bias_sigma = 0.002;
-    int level_samples = 50;
-    double level_timeout_s = 5.0;
+    // 10 s at 100 Hz: the mean gyro rate of a stationary stretch is the initial bias, and its
+    // error (noise density / sqrt(duration): 6e-6 rad/s for the LN-200-like IMU) integrates
+    // into heading drift (0.4 deg over a 1100 s drive; 0.5 s of levelling gave 1.8 deg).
+    int level_samples = 1000;
+    double level_timeout_s = 30.0;
     bool estimate_gyro_bias = true;
   };
   struct Levelling {
@@ -89,6 +92,7 @@ class PoseService final : public Service {
     Eigen::Vector3d f_sum = Eigen::Vector3d::Zero();  // current stationary stretch
     Eigen::Vector3d w_sum = Eigen::Vector3d::Zero();
     int count = 0;
+    Time still_since;                                 // first sample of the current stretch
     Eigen::Vector3d f_all = Eigen::Vector3d::Zero();  // every plausible sample (fallback)
     int count_all = 0;
   };
@@ -99,7 +103,11 @@ class PoseService final : public Service {
   void OnRelativePose(const rover_dl_RelativePose& m);
   void OnTimer();
   void Level(Time t, const Eigen::Vector3d& w, const Eigen::Vector3d& f);
-  void Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vector3d& bias, const char* how);
+  /// `bias_span_s` > 0: `bias` is the mean gyro rate over that many seconds at rest, and its
+  /// initial sigma is the standard error of that mean (ekf.gyro_noise_density / sqrt(span)),
+  /// capped by start.gyro_bias_sigma.
+  void Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vector3d& bias,
+             double bias_span_s, const char* how);
   void Restart(const std::string& why);
   void PublishEvents();
   void PublishRejectedInput(MotionSource source, Time t, const std::string& message);
@@ -113,6 +121,8 @@ class PoseService final : public Service {
   double run_start_s_ = 0.0;
   bool sun_enabled_ = true;
   double sun_min_elevation_ = 0.0;
+  double sun_max_rate_ = 0.0;       // [rad/s] no sun updates while turning faster
+  double last_rate_ = 0.0;          // [rad/s] |bias-corrected gyro| of the last IMU sample
   double imu_stale_s_ = 0.5;
   std::optional<PoseEkf> ekf_;
   /// IMU + wheel odometry only (dl/pose_odometry); empty when odometry_only.enabled is false.

@@ -41,6 +41,8 @@ class PoseServiceTest : public ::testing::Test {
     options_.name = "dl-pose-test";
     options_.domain = lease_.domain();
     options_.clock = "sim";
+    // Level on 0.5 s (the service's default of 10 s is for real drives).
+    overrides.insert(overrides.begin(), "start.level_samples=50");
     options_.overrides = std::move(overrides);
     auto ctx = ServiceContext::Create(options_);
     ASSERT_TRUE(ctx.ok()) << ctx.status().message();

@@ -174,7 +174,17 @@ Result<StepOutput> SimEngine::Step() {
     p.over_temp = (m.faults & kMotorFaultOverTemperature) != 0;
   }
   st.suspension = {r.rocker_left_rad, r.rocker_right_rad, r.bogie_left_rad, r.bogie_right_rad};
-  st.imu.angular_velocity_rover = r.chassis.angular_velocity_body;
+  // The gyro integrates over its sample period, as the LN-200's delta-angle output does: its
+  // rate is the mean over the period, taken from the attitude change, so the chassis' contact
+  // vibration above the 50 Hz Nyquist rate cannot alias into a heading drift.
+  const Eigen::Matrix3d attitude = r.chassis.pose_site.linear();
+  if (last_attitude_) {
+    const Eigen::AngleAxisd turned(last_attitude_->transpose() * attitude);
+    st.imu.angular_velocity_rover = turned.axis() * (turned.angle() / options_.period_s);
+  } else {
+    st.imu.angular_velocity_rover = r.chassis.angular_velocity_body;
+  }
+  last_attitude_ = attitude;
   st.imu.specific_force_rover = r.chassis.specific_force_body;
   st.site_from_rover = r.chassis.pose_site.linear();
 
@@ -195,6 +205,7 @@ Status SimEngine::Reset() {
   step_ = 0;
   odometer_ = 0;
   last_xy_.reset();
+  last_attitude_.reset();
   rock_touched_.assign(world_.terrain.rocks.size(), false);
   rock_contacts_ = 0;
   max_contact_height_ = 0;

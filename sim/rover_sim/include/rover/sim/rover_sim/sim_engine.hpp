@@ -97,6 +97,8 @@ class SimEngine {
   std::uint32_t applied_command_id_ = 0;
   double odometer_ = 0;
   std::optional<Eigen::Vector2d> last_xy_;
+  /// Attitude at the previous IMU sample: the gyro reports the mean rate over the sample period.
+  std::optional<Eigen::Matrix3d> last_attitude_;
   std::vector<bool> rock_touched_;
   std::uint32_t rock_contacts_ = 0;
   double max_contact_height_ = 0;
