@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
   int size = 1024;
   std::uint64_t seed = 1, frame = 0;
   bool help_params = false, no_noise = false, range = false, no_map = false;
-  app.add_option("--params", files, "scenario YAML file(s) (terrain.*, lander.*, science_targets)");
+  app.add_option("--params", files, "scenario or parameter YAML file(s); their terrain, lander and science_targets sections are read");
   app.add_option("--set", sets, "override key=value (YAML value), e.g. terrain.rocks.preset=vl2");
   app.add_option("--x", x, "rover position north [m], site frame");
   app.add_option("--y", y, "rover position west [m], site frame");
@@ -80,8 +81,17 @@ int main(int argc, char** argv) {
     std::printf("%s", ps.DescribeAll().c_str());
     return 0;
   }
+  // A scenario file or a plain parameter file: only its world sections are read, so a whole
+  // scenario (name, task, criteria, ...) can be given as it is.
   for (const auto& f : files) {
-    if (auto s = ps.LoadYamlFile(f); !s.ok()) return Fail(s.message());
+    std::ifstream in(f);
+    if (!in) return Fail(f + ": cannot open");
+    std::stringstream text;
+    text << in.rdbuf();
+    if (auto s = ps.LoadYamlSections(text.str(), f, {"terrain", "lander", "science_targets"});
+        !s.ok()) {
+      return Fail(s.message());
+    }
   }
   for (const auto& a : sets) {
     if (auto s = ps.SetFromString(a); !s.ok()) return Fail(s.message());
