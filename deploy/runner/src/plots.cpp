@@ -85,6 +85,8 @@ Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
   if (planned.size() >= 2) o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true});
   const auto truth = Track(run.truth_track);
   if (truth.size() >= 2) o.polylines.push_back({truth, {20, 170, 40}, "driven (truth)", 2, true});
+  const auto odo = Track(run.odometry_only_track);
+  if (odo.size() >= 2) o.polylines.push_back({odo, {170, 60, 200}, "odometry only", 2, true});
   const auto est = Track(run.estimate_track);
   if (est.size() >= 2) o.polylines.push_back({est, {255, 140, 0}, "estimated", 2, true});
   return sim::WriteTopDownMap(terrain, path, o);

@@ -91,6 +91,7 @@ nlohmann::json ToJson(const RunResult& r) {
   j["terrain_digest"] = r.terrain_digest;
   j["truth_track"] = r.truth_track;
   j["estimate_track"] = r.estimate_track;
+  j["odometry_only_track"] = r.odometry_only_track;
   return j;
 }
 
@@ -133,6 +134,8 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.terrain_digest = j.value("terrain_digest", "");
     r.truth_track = j.value("truth_track", std::vector<std::array<double, 3>>{});
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
+    r.odometry_only_track =
+        j.value("odometry_only_track", std::vector<std::array<double, 3>>{});
     return r;
   } catch (const nlohmann::json::exception& e) {
     return InvalidArgument(std::string("result.json: ") + e.what());

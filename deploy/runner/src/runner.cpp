@@ -302,7 +302,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   if (!judge.ok()) return finish(judge.status().message());
 
   double sim_now = 0;
-  double last_truth_track = -1, last_est_track = -1;
+  double last_truth_track = -1, last_est_track = -1, last_odo_track = -1;
   std::set<dds_instance_handle_t> truth_writers;
   auto pump = [&] {
     for (auto& c : clock_r->Take()) sim_now = std::max(sim_now, Time{c->sim_time_ns}.seconds());
@@ -325,7 +325,13 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
       }
     });
     odo_r->TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
-      judge->AddOdometryOnlyEstimate(Time{s->header.stamp_ns}, ToIsometry(s->pose));
+      const Time t{s->header.stamp_ns};
+      judge->AddOdometryOnlyEstimate(t, ToIsometry(s->pose));
+      if (t.seconds() - last_odo_track >= 0.2) {
+        result.odometry_only_track.push_back(
+            {t.seconds(), s->pose.position.x, s->pose.position.y});
+        last_odo_track = t.seconds();
+      }
     });
   };
   // Returns a failure line, or "" while all is well.

@@ -51,6 +51,7 @@ struct RunResult {
   /// Paths of the truth (x, y) and estimated (x, y) tracks, downsampled, for plots and replay.
   std::vector<std::array<double, 3>> truth_track;     ///< t, x, y
   std::vector<std::array<double, 3>> estimate_track;  ///< t, x, y
+  std::vector<std::array<double, 3>> odometry_only_track;  ///< t, x, y (dl/pose_odometry)
 };
 
 nlohmann::json ToJson(const RunResult& r);
