@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 
 #include "rover/base/log.hpp"
 #include "rover/runtime/service.hpp"
@@ -21,6 +22,11 @@ using rover::Duration;
 using rover::Status;
 namespace dds = rover::dds;
 namespace hw = rover::hw;
+
+// Lock-step: smallest lead (the services acknowledge every 25 ms of simulated time), and how
+// long (wall) a service may go without acknowledging before the simulator stops waiting for it.
+constexpr double kMinLockstepLeadS = 0.05;
+constexpr double kAckStallS = 2.0;
 
 // Integration time of the sensor model's relative exposure 1 (MER NAVCAM exposures are tens to
 // hundreds of milliseconds in daylight).
@@ -41,9 +47,24 @@ class RoverSim final : public rover::Service {
     p.Declare("sim.real_time_factor", 1.0,
               "simulated seconds per wall second; 0 = as fast as possible").Range(0.0, 1000.0);
     p.Declare("sim.start_paused", false, "wait for a SIM_RESUME on sim/control before running");
+    p.Declare("sim.lockstep_lead_s", 0.0,
+              "[s] run at most this far ahead of the slowest service's sim/clock_ack (0 = free "
+              "running); a service silent for 2 s of wall time is not waited for")
+        .Range(0.0, 10.0);
     p.Declare("camera.image_size", 1024, "[px] side of the rendered camera images (MER: 1024)")
         .Range(64, 2048);
     p.Declare("camera.render_seed", 1, "seed of the rendered textures and image noise").Min(0);
+  }
+
+  Status ValidateParameters(const rover::ParamSet& p) const override {
+    const double lead = p.GetDouble("sim.lockstep_lead_s");
+    if (lead > 0.0 && lead < kMinLockstepLeadS) {
+      return rover::InvalidArgument("sim.lockstep_lead_s: " + std::to_string(lead) +
+                                    " s is below the services' acknowledgement granularity; use 0 "
+                                    "(free running) or at least " +
+                                    std::to_string(kMinLockstepLeadS) + " s");
+    }
+    return Status::Ok();
   }
 
   Status OnConfigure(rover::ServiceContext& ctx, const rover::ParamSet& p) override {
@@ -56,6 +77,7 @@ class RoverSim final : public rover::Service {
     cameras_ = rover::sim::DefaultStereoCameras(image_size_);
     terrain_ = std::make_shared<const rover::sim::Terrain>(engine_->world().terrain);
     paused_ = p.GetBool("sim.start_paused");
+    lockstep_lead_s_ = p.GetDouble("sim.lockstep_lead_s");
     ctx_ = &ctx;
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/truth", &truth_w_));
@@ -70,6 +92,10 @@ class RoverSim final : public rover::Service {
         "hw/motor_goals", [this](const dds::Sample<rover_hw_MotorGoals>& s) { OnGoals(s.data()); }));
     ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_sim_Control>(
         "sim/control", [this](const dds::Sample<rover_sim_Control>& s) { OnControl(s.data()); }));
+    if (lockstep_lead_s_ > 0.0) {
+      ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_sim_ClockAck>(
+          "sim/clock_ack", [this](const dds::Sample<rover_sim_ClockAck>& s) { OnAck(s.data()); }));
+    }
     ctx.executor().SetWork([this] { return Work(); });
     rover::log::Info("world ready",
                      {{"rocks", engine_->world().terrain.rocks.size()},
@@ -125,6 +151,7 @@ class RoverSim final : public rover::Service {
       }
       return std::chrono::milliseconds(50);
     }
+    if (lockstep_lead_s_ > 0.0 && !StackKeepsUp()) return std::chrono::microseconds(200);
     if (rtf_ > 0) {
       const rover::Time due = wall_anchor_ + rover::Seconds((engine_->time() - sim_anchor_) / rtf_);
       const rover::Time now = rover::MonotonicNow();
@@ -139,6 +166,46 @@ class RoverSim final : public rover::Service {
     }
     Publish(*out);
     return Duration::zero();
+  }
+
+  // Lock-step: a service's acknowledged sim time, and when (wall) it last moved.
+  struct AckState {
+    std::int64_t sim_time_ns = 0;
+    rover::Time changed;
+    bool waited_on = true;  // false while it is considered gone (silent too long)
+  };
+
+  void OnAck(const rover_sim_ClockAck& a) {
+    const std::string name(a.service);
+    if (name == ctx_->name()) return;
+    AckState& s = acks_[name];
+    if (a.sim_time_ns != s.sim_time_ns || s.changed.ns == 0) {
+      s.sim_time_ns = a.sim_time_ns;
+      s.changed = rover::MonotonicNow();
+      if (!s.waited_on) {
+        rover::log::Info("lock-step: service is keeping up again", {{"service", name}});
+        s.waited_on = true;
+      }
+    }
+  }
+
+  // True when every live service has acknowledged sim time within the lead of the next step.
+  bool StackKeepsUp() {
+    const std::int64_t need = rover::Time::FromSeconds(engine_->time() - lockstep_lead_s_).ns;
+    const rover::Time now = rover::MonotonicNow();
+    for (auto& [name, s] : acks_) {
+      if (!s.waited_on || s.sim_time_ns >= need) continue;
+      if (now - s.changed > rover::Seconds(kAckStallS)) {
+        rover::log::Warn("lock-step: not waiting for a service that stopped acknowledging",
+                         {{"service", name},
+                          {"acknowledged_s", rover::Time{s.sim_time_ns}.seconds()},
+                          {"sim_time_s", engine_->time()}});
+        s.waited_on = false;
+        continue;
+      }
+      return false;
+    }
+    return true;
   }
 
   void Publish(const rover::sim::StepOutput& o) {
@@ -343,6 +410,8 @@ class RoverSim final : public rover::Service {
   }
 
   std::unique_ptr<rover::sim::SimEngine> engine_;
+  double lockstep_lead_s_ = 0.0;
+  std::map<std::string, AckState> acks_;
   std::shared_ptr<const rover::sim::Terrain> terrain_;
   std::unique_ptr<rover::sim::Renderer> renderer_;
   std::vector<rover::sim::StereoCameraDefinition> cameras_;

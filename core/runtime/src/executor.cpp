@@ -147,6 +147,7 @@ void Executor::SpinOnce(Duration max_wait) {
     if (idx < subscriptions_.size() && subscriptions_[idx].attached) subscriptions_[idx].drain();
   }
   RunDueTimers();
+  if (after_spin_) Invoke("after-spin", after_spin_);
 }
 
 void Executor::Spin() {

@@ -90,6 +90,11 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
         *ctx->clock_reader_,
         [sim](const dds::Sample<rover_sim_Clock>& s) { sim->Set(Time{s->sim_time_ns}); },
         /*always=*/true));
+    auto ack = dds::Writer<rover_sim_ClockAck>::Create(ctx->participant_, "sim/clock_ack");
+    if (!ack.ok()) return ack.status();
+    ctx->clock_ack_writer_ = std::move(*ack);
+    ServiceContext* self = ctx.get();
+    ctx->executor_->SetAfterSpin([self] { self->AcknowledgeClock(); });
   }
 
   auto hb = dds::Writer<rover_sys_Heartbeat>::Create(ctx->participant_, "sys/health");
@@ -118,6 +123,23 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
 }
 
 ServiceContext::~ServiceContext() { log::SetSink(nullptr, log::Level::kError); }
+
+void ServiceContext::AcknowledgeClock() {
+  // Every 25 ms of simulated time at most: the simulator's lead (sim.lockstep_lead_s, at least
+  // 50 ms) covers the granularity.
+  constexpr std::int64_t kClockAckPeriodNs = 25'000'000;
+  if (!sim_clock_->valid()) return;
+  const Time now = sim_clock_->Now();
+  if (acked_once_ && now.ns - last_ack_.ns < kClockAckPeriodNs && now.ns >= last_ack_.ns) return;
+  rover_sim_ClockAck a{};
+  a.header.stamp_ns = now.ns;
+  dds::CopyString(a.service, name_);
+  a.sim_time_ns = now.ns;
+  if (clock_ack_writer_.Write(a).ok()) {
+    last_ack_ = now;
+    acked_once_ = true;
+  }
+}
 
 void ServiceContext::Stamp(rover_Header& header, std::string_view frame_id) {
   header.stamp_ns = clock_->Now().ns;

@@ -49,6 +49,7 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"sys/fault_event", "rover_sys_FaultEvent", P::kCommand},
       // sim/: simulator (sim/truth: judge and tests only)
       {"sim/clock", "rover_sim_Clock", P::kState},
+      {"sim/clock_ack", "rover_sim_ClockAck", P::kState},
       {"sim/truth", "rover_sim_Truth", P::kStream},
       {"sim/control", "rover_sim_Control", P::kCommand},
   };

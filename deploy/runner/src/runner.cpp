@@ -78,6 +78,7 @@ std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
   out["rover"]["start"]["yaw_deg"] = s.start_yaw * 180.0 / M_PI;
   out["sim"]["seed"] = seed;
   out["sim"]["real_time_factor"] = s.real_time_factor;
+  out["sim"]["lockstep_lead_s"] = s.lockstep_lead_s;
   // Simulated time starts when the runner says so, once every service is up.
   out["sim"]["start_paused"] = true;
   YAML::Emitter e;

@@ -321,7 +321,13 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
     s.seed = static_cast<std::uint32_t>(*v);
   }
   if (const YAML::Node sim = root["sim"]) {
-    ROVER_RETURN_IF_ERROR(CheckKeys(sim, "sim", {"real_time_factor", "time_budget_s", "wall_budget_s"}, c));
+    ROVER_RETURN_IF_ERROR(CheckKeys(
+        sim, "sim", {"real_time_factor", "lockstep_lead_s", "time_budget_s", "wall_budget_s"}, c));
+    ROVER_RETURN_IF_ERROR(OptNumber(sim, "lockstep_lead_s", "sim", 0, 10, c, &s.lockstep_lead_s));
+    if (s.lockstep_lead_s > 0 && s.lockstep_lead_s < 0.05) {
+      return c.Err(sim["lockstep_lead_s"],
+                   "sim.lockstep_lead_s: use 0 (free running) or at least 0.05 s");
+    }
     ROVER_RETURN_IF_ERROR(OptNumber(sim, "real_time_factor", "sim", 0, 1000, c, &s.real_time_factor));
     ROVER_RETURN_IF_ERROR(OptNumber(sim, "time_budget_s", "sim", 1, 1e6, c, &s.time_budget_s));
     ROVER_RETURN_IF_ERROR(OptNumber(sim, "wall_budget_s", "sim", 1, 1e6, c, &s.wall_budget_s));

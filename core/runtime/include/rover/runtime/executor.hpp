@@ -55,6 +55,9 @@ class Executor {
   /// itself (the simulator). It returns how long (wall time) until it wants to run again;
   /// zero means at once, after incoming samples and due timers have been served.
   void SetWork(std::function<Duration()> work) { work_ = std::move(work); }
+  /// Sets a function SpinOnce() calls last, after the samples and timers it served (the
+  /// service context acknowledges the simulated time there).
+  void SetAfterSpin(std::function<void()> after) { after_spin_ = std::move(after); }
 
   /// Waits at most `max_wait` (wall time) for work, then does all that is due.
   void SpinOnce(Duration max_wait);
@@ -107,6 +110,7 @@ class Executor {
   std::uint64_t callback_errors_ = 0;
   Time last_run_clock_{0};
   std::function<Duration()> work_;
+  std::function<void()> after_spin_;
 };
 
 }  // namespace rover

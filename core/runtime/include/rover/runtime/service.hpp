@@ -106,6 +106,12 @@ class ServiceContext {
   std::unique_ptr<Executor> executor_;
   dds::Writer<rover_sys_Heartbeat> heartbeat_writer_;
   dds::Writer<rover_sys_Event> event_writer_;
+  // Under sim/clock: sim/clock_ack after each executor pass that saw the clock advance by
+  // kClockAckPeriod (or stand still after an advance).
+  void AcknowledgeClock();
+  dds::Writer<rover_sim_ClockAck> clock_ack_writer_;
+  Time last_ack_;
+  bool acked_once_ = false;
   LifecycleState state_ = LifecycleState::kUnconfigured;
   rover_SensorHealth health_ = rover_HEALTH_OK;
   std::string health_message_;

@@ -85,6 +85,9 @@ struct Scenario {
   std::string estimator = "dl-pose";
   std::uint32_t seed = 1;
   double real_time_factor = 0;    ///< 0 = as fast as possible
+  /// [s] the simulator runs at most this far ahead of the slowest service (sim/clock_ack), so a
+  /// loaded machine slows the run instead of making the stack late; 0 = free running.
+  double lockstep_lead_s = 0.1;
   double time_budget_s = 300;     ///< [s] simulated
   double wall_budget_s = 600;     ///< [s] wall-clock safety net
   double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]
