@@ -170,8 +170,10 @@ Result<YAML::Node> ResolveMergeKeys(const YAML::Node& map, const std::string& wh
                                     const Errors& err) {
   if (!map["<<"]) return map;
   YAML::Node out(YAML::NodeType::Map);
+  // String keys throughout: yaml-cpp looks Node keys up by identity, and a non-const
+  // operator[] inserts a null entry for a key it does not find.
   for (const auto& kv : map) {
-    if (kv.first.Scalar() != "<<") out[kv.first] = kv.second;
+    if (kv.first.Scalar() != "<<") out[kv.first.Scalar()] = kv.second;
   }
   const YAML::Node merge = map["<<"];
   std::vector<YAML::Node> sources;
@@ -183,7 +185,8 @@ Result<YAML::Node> ResolveMergeKeys(const YAML::Node& map, const std::string& wh
   for (const auto& src : sources) {
     if (!src.IsMap()) return err.At(merge, where + ".<<: can only merge maps");
     for (const auto& kv : src) {
-      if (!out[kv.first.Scalar()]) out[kv.first] = kv.second;
+      const std::string key = kv.first.Scalar();
+      if (!static_cast<const YAML::Node&>(out)[key]) out[key] = kv.second;
     }
   }
   return out;

@@ -65,6 +65,34 @@ TEST(Compose, ParsesTheSupportedSubset) {
   EXPECT_EQ(p->Find("ddl")->restart, RestartPolicy::kAlways);
 }
 
+TEST(Compose, MergeKeysFillWhatTheServiceDoesNotSet) {
+  constexpr const char* kMerged = R"(version: "3.9"
+x-rover: {project: merged}
+x-service: &service
+  image: rover-stack:latest
+  restart: on-failure:3
+  environment: {A: "1"}
+services:
+  first:
+    <<: *service
+    command: smoke-ddl
+  second:
+    <<: *service
+    command: smoke-dl
+    restart: "no"
+)";
+  auto p = ParseCompose(kMerged, "merged.yaml");
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  const ServiceSpec* first = p->Find("first");
+  const ServiceSpec* second = p->Find("second");
+  ASSERT_NE(first, nullptr);
+  ASSERT_NE(second, nullptr);
+  EXPECT_EQ(first->restart, RestartPolicy::kOnFailure);  // from the anchor
+  EXPECT_EQ(first->max_restarts, 3);
+  EXPECT_EQ(first->environment.at("A"), "1");
+  EXPECT_EQ(second->restart, RestartPolicy::kNo);  // its own setting wins
+}
+
 TEST(Compose, ProjectNameDefaultsToFileName) {
   auto p = ParseCompose("services: {a: {command: x}}", "deploy/drive.compose.yaml");
   ASSERT_TRUE(p.ok());

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <random>
 #include <set>
 #include <thread>
@@ -304,6 +306,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
 
   double sim_now = 0;
   double last_truth_track = -1, last_est_track = -1, last_odo_track = -1;
+  std::optional<double> rejected_measurements;  // dl/pose's count, last sample
   std::set<dds_instance_handle_t> truth_writers;
   auto pump = [&] {
     for (auto& c : clock_r->Take()) sim_now = std::max(sim_now, Time{c->sim_time_ns}.seconds());
@@ -320,6 +323,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     pose_r->TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
       const Time t{s->header.stamp_ns};
       judge->AddEstimate(t, ToIsometry(s->pose));
+      rejected_measurements = static_cast<double>(s->rejected_measurements);
       if (t.seconds() - last_est_track >= 0.2) {
         result.estimate_track.push_back({t.seconds(), s->pose.position.x, s->pose.position.y});
         last_est_track = t.seconds();
@@ -475,6 +479,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
   result.estimate_error = v.estimate_error;
   result.odometry_only_error = v.odometry_only_error;
   result.figures = v.figures;
+  if (rejected_measurements) {
+    result.figures.push_back({"estimator_rejected_measurements", *rejected_measurements,
+                              std::numeric_limits<double>::quiet_NaN(), "count", true,
+                              "measurements dl-pose gated out or refused (dl/pose)"});
+  }
   if (failure.empty() && !v.pass) {
     std::string first = v.FailureSummary();
     failure = first.substr(0, first.find('\n'));
