@@ -7,7 +7,7 @@
 
 #ifdef ROVER_HAVE_SIM_SENSORS
 #include "rover/geometry/transforms.hpp"
-#include "rover/sim/sensors/mars_sun.hpp"
+#include "rover/geometry/mars_sun.hpp"
 #include "rover/sim/sensors/sim_sensor_options.hpp"
 #include "rover/sim/sensors/sun_sensor_model.hpp"
 #endif
@@ -80,12 +80,12 @@ TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {
   sim::SunSensorErrors clear;
   clear.optical_depth = 0.0;
   sim::SunSensorModel ideal(spec, clear, 0.0, 1);
-  sim::SunEphemerisOptions eo;  // Gusev, Ls 330
-  const sim::SunEphemeris eph(eo);
+  geometry::SunEphemerisOptions eo;  // Gusev, Ls 330
+  const geometry::SunEphemeris eph(eo);
   const Eigen::Matrix3d attitude = geometry::RotationFromRpy(0.05, -0.1, 1.3);
   int seen = 0;
   for (double h = 0.0; h < 24.0; h += 0.5) {
-    const sim::SunState sun = eph.At((h - eo.ltst_hours + 24.0) * sim::kMarsSolSeconds / 24.0);
+    const geometry::SunState sun = eph.At((h - eo.ltst_hours + 24.0) * geometry::kMarsSolSeconds / 24.0);
     const SunSensor s = driver->Convert(ideal.Sample(sun.direction_site, attitude, Time{}));
     const Eigen::Vector3d truth_rover = attitude.transpose() * sun.direction_site;
     const bool visible = ideal.SunVisible(sun.direction_site, attitude);
@@ -104,7 +104,7 @@ TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {
   // With the simulator's default mounting and principal-point errors the nominal driver is off
   // by a fraction of a degree.
   sim::SunSensorModel real(spec, sim::SimSensorOptions().sun_sensor, 0.0, 1);
-  const sim::SunState noon = eph.At((12.0 - eo.ltst_hours) * sim::kMarsSolSeconds / 24.0);
+  const geometry::SunState noon = eph.At((12.0 - eo.ltst_hours) * geometry::kMarsSolSeconds / 24.0);
   const SunSensor s = driver->Convert(real.Sample(noon.direction_site, attitude, Time{}));
   ASSERT_TRUE(s.valid);
   const double err = Angle(s.sun_vector, attitude.transpose() * noon.direction_site);
