@@ -395,11 +395,14 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     if (!control_w->Write(resume).ok()) return finish("cannot resume the simulator");
   }
   note("running", 0);
-  // Wait for the simulator's clock and the first pose estimate.
-  bool have_pose = false;
+  // Wait for the simulator's clock and the pose estimate, then half a simulated second more:
+  // the runner hearing dl/pose does not mean that the drive service has (it would reject the
+  // command for want of an attitude, as MER's would).
+  std::optional<double> first_pose_at;
   failure = wait_until([&] {
-    if (!have_pose) have_pose = !result.estimate_track.empty();
-    return sim_now > 0 && have_pose && cmd_w->MatchedReaders() > 0;
+    if (!first_pose_at && !result.estimate_track.empty()) first_pose_at = sim_now;
+    return sim_now > 0 && first_pose_at && sim_now >= *first_pose_at + 0.5 &&
+           cmd_w->MatchedReaders() > 0;
   });
   if (!failure.empty()) return finish(failure);
 
