@@ -313,7 +313,7 @@ void PoseService::OnImu(const rover_ddl_Imu& m) {
     WarnCounted("ddl/imu sample dropped", s.message());
     return;
   }
-  last_rate_ = (w - ekf_->Estimate().gyro_bias).norm();
+  last_rate_ = (w - ekf_->gyro_bias()).norm();
   const Status a = ekf_->UpdateAccelerometer(t, f);
   if (!a.ok()) WarnCounted("accelerometer update failed", a.message());
   if (odometry_only_ && odometry_only_->initialized() && odometry_only_->PropagateGyro(t, w).ok()) {

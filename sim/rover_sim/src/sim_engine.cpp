@@ -174,9 +174,11 @@ Result<StepOutput> SimEngine::Step() {
     p.over_temp = (m.faults & kMotorFaultOverTemperature) != 0;
   }
   st.suspension = {r.rocker_left_rad, r.rocker_right_rad, r.bogie_left_rad, r.bogie_right_rad};
-  // The gyro integrates over its sample period, as the LN-200's delta-angle output does: its
-  // rate is the mean over the period, taken from the attitude change, so the chassis' contact
-  // vibration above the 50 Hz Nyquist rate cannot alias into a heading drift.
+  // The gyro integrates, as the LN-200's delta-angle output does: its rate is the mean over the
+  // engine step, taken from the attitude change, so the chassis' contact vibration cannot alias
+  // into a heading drift. This is the mean over the IMU's sample period when the IMU samples
+  // every step (the default: 100 Hz IMU, 10 ms step); at a lower IMU rate it is the mean over
+  // the last step only.
   const Eigen::Matrix3d attitude = r.chassis.pose_site.linear();
   if (last_attitude_) {
     const Eigen::AngleAxisd turned(last_attitude_->transpose() * attitude);
