@@ -140,6 +140,18 @@ ParamSet::Spec& ParamSet::DeclareValue(const std::string& name, ParamType type, 
   return s;
 }
 
+ParamSet::Spec& ParamSet::DeclareVariant(const std::string& n, ParamType type, ParamValue v,
+                                         std::string d) {
+  const bool matches = (type == ParamType::kBool && std::holds_alternative<bool>(v)) ||
+                       (type == ParamType::kInt && std::holds_alternative<std::int64_t>(v)) ||
+                       (type == ParamType::kDouble && std::holds_alternative<double>(v)) ||
+                       (type == ParamType::kString && std::holds_alternative<std::string>(v)) ||
+                       (type == ParamType::kDoubleList &&
+                        std::holds_alternative<std::vector<double>>(v));
+  ROVER_DEMAND_MSG(matches, n.c_str());
+  return DeclareValue(n, type, std::move(v), std::move(d));
+}
+
 ParamSet::Spec& ParamSet::Declare(const std::string& n, bool v, std::string d) {
   return DeclareValue(n, ParamType::kBool, v, std::move(d));
 }
@@ -403,6 +415,12 @@ ROVER_PARAM_GET(GetDouble, double, ParamType::kDouble)
 ROVER_PARAM_GET(GetString, const std::string&, ParamType::kString)
 ROVER_PARAM_GET(GetDoubleList, const std::vector<double>&, ParamType::kDoubleList)
 #undef ROVER_PARAM_GET
+
+const ParamValue& ParamSet::Value(const std::string& name) const {
+  auto it = entries_.find(name);
+  ROVER_DEMAND_MSG(it != entries_.end(), ("undeclared parameter " + name).c_str());
+  return it->second.value;
+}
 
 const ParamOrigin& ParamSet::Origin(const std::string& name) const {
   auto it = entries_.find(name);

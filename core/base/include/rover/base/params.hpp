@@ -78,6 +78,9 @@ class ParamSet {
   Spec& Declare(const std::string& name, const char* default_value, std::string doc);
   Spec& Declare(const std::string& name, std::string default_value, std::string doc);
   Spec& Declare(const std::string& name, std::vector<double> default_value, std::string doc);
+  /// Declares with a run-time type; `default_value` must hold that type (param_binder.hpp).
+  Spec& DeclareVariant(const std::string& name, ParamType type, ParamValue default_value,
+                       std::string doc);
 
   /// Loads values from a YAML file. Unknown keys, wrong types and malformed YAML are errors.
   Status LoadYamlFile(const std::string& path);
@@ -100,6 +103,8 @@ class ParamSet {
   double GetDouble(const std::string& name) const;
   const std::string& GetString(const std::string& name) const;
   const std::vector<double>& GetDoubleList(const std::string& name) const;
+  /// The value whatever its type. Reading an undeclared name is a programming error.
+  const ParamValue& Value(const std::string& name) const;
 
   const ParamOrigin& Origin(const std::string& name) const;
   /// Names in declaration order.

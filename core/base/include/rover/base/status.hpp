@@ -96,3 +96,19 @@ class [[nodiscard]] Result {
     ::rover::Status rover_status_tmp_ = (expr);     \
     if (!rover_status_tmp_.ok()) return rover_status_tmp_; \
   } while (false)
+
+/// Evaluates `rexpr` (a Result<T>); returns its Status from the enclosing function if it is an
+/// error, else moves the value into `lhs`, which may declare a variable:
+///   ROVER_ASSIGN_OR_RETURN(auto writer, ctx.MakeWriter<rover_dl_PoseEstimate>("dl/pose"));
+///   ROVER_ASSIGN_OR_RETURN(options_, DriveOptions::FromParams(params, "drive."));
+/// The enclosing function must return Status or a Result<U>. `lhs` may not contain a
+/// top-level comma (wrap such a type in a using-declaration).
+#define ROVER_ASSIGN_OR_RETURN(lhs, rexpr) \
+  ROVER_ASSIGN_OR_RETURN_IMPL_(ROVER_STATUS_CONCAT_(rover_result_, __LINE__), lhs, rexpr)
+
+#define ROVER_STATUS_CONCAT_INNER_(a, b) a##b
+#define ROVER_STATUS_CONCAT_(a, b) ROVER_STATUS_CONCAT_INNER_(a, b)
+#define ROVER_ASSIGN_OR_RETURN_IMPL_(tmp, lhs, rexpr) \
+  auto tmp = (rexpr);                                 \
+  if (!tmp.ok()) return tmp.status();                 \
+  lhs = std::move(tmp).value()

@@ -1,0 +1,19 @@
+#pragma once
+/// @file
+/// Number formatting for messages, logs and reports: one form everywhere, so that an error about
+/// a value reads the same whichever module raised it.
+
+#include <span>
+#include <string>
+
+namespace rover {
+
+/// `v` with `significant` significant digits in the shortest of fixed or exponent form, as
+/// printf's %g does ("0.125", "1e-06", "nan", "inf", "-inf"). Preconditions: 1 <= significant
+/// <= 17.
+std::string FormatNumber(double v, int significant = 6);
+
+/// "[a, b, c]" with FormatNumber for each element.
+std::string FormatList(std::span<const double> values, int significant = 6);
+
+}  // namespace rover
