@@ -11,6 +11,8 @@
 #include "rover/base/check.hpp"
 #include "rover/base/log.hpp"
 #include "rover/geometry/transforms.hpp"
+#include "rover/msg/pose_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::dl {
 namespace {
@@ -21,30 +23,6 @@ constexpr double kMarsGravity = 3.711;
 // A sample this much older than the filter means the run clock went back (simulator reset).
 constexpr double kClockResetS = 1.0;
 
-bool UsableHealth(rover_SensorHealth h) {
-  return h == rover_HEALTH_OK || h == rover_HEALTH_DEGRADED;
-}
-
-Eigen::Vector3d Vec(const rover_Vector3& v) { return {v.x, v.y, v.z}; }
-rover_Vector3 Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
-template <class A, std::size_t N>
-void CopyArray(const double (&src)[N], A& dst) {
-  for (std::size_t i = 0; i < N && i < dst.size(); ++i) dst[i] = src[i];
-}
-
-JointSample JointFromIdl(const rover_ddl_JointState& m) {
-  JointSample j;
-  j.stamp = Time{m.header.stamp_ns};
-  CopyArray(m.wheel_angle, j.wheel_angle);
-  CopyArray(m.wheel_rate, j.wheel_rate);
-  CopyArray(m.steer_angle, j.steer_angle);
-  CopyArray(m.rocker_angle, j.rocker_angle);
-  CopyArray(m.bogie_angle, j.bogie_angle);
-  j.healthy = UsableHealth(m.health);
-  return j;
-}
-
 std::string Num(double v) {
   std::ostringstream os;
   os << v;
@@ -52,60 +30,6 @@ std::string Num(double v) {
 }
 
 }  // namespace
-
-// ---- conversions ------------------------------------------------------------------------------
-
-rover_dl_PoseEstimate PoseEstimateToIdl(const PoseEstimate& e) {
-  rover_dl_PoseEstimate m{};
-  m.header.stamp_ns = e.stamp.ns;
-  m.pose.position = Vec(e.position);
-  m.pose.orientation = {e.orientation.w(), e.orientation.x(), e.orientation.y(), e.orientation.z()};
-  for (int r = 0; r < 6; ++r) {
-    for (int c = 0; c < 6; ++c) m.covariance[r * 6 + c] = e.covariance(r, c);
-  }
-  m.velocity = Vec(e.velocity);
-  m.gyro_bias = Vec(e.gyro_bias);
-  m.stationary = e.stationary;
-  m.rejected_measurements = e.rejected_measurements;
-  m.odometer = e.odometer;
-  return m;
-}
-
-rover_dl_EstimatorEvent EstimatorEventToIdl(const EstimatorEvent& e) {
-  rover_dl_EstimatorEvent m{};
-  m.header.stamp_ns = e.stamp.ns;
-  m.source = static_cast<rover_dl_MotionSource>(static_cast<std::int32_t>(e.source));
-  m.accepted = e.accepted;
-  m.mahalanobis_sq = e.mahalanobis_sq;
-  m.gate = e.gate;
-  dds::CopyString(m.message, e.message);
-  return m;
-}
-
-Result<RelativePoseMeasurement> RelativePoseFromIdl(const rover_dl_RelativePose& m) {
-  const auto source = static_cast<std::int32_t>(m.source);
-  if (source < static_cast<std::int32_t>(MotionSource::kWheelOdometry) ||
-      source > static_cast<std::int32_t>(MotionSource::kExternal)) {
-    return InvalidArgument("dl/relative_pose: unknown source " + std::to_string(source));
-  }
-  RelativePoseMeasurement r;
-  r.source = static_cast<MotionSource>(source);
-  r.t_from = Time{m.t_from_ns};
-  r.t_to = Time{m.t_to_ns};
-  const rover_Quaternion& q = m.delta.orientation;
-  Eigen::Quaterniond quat(q.w, q.x, q.y, q.z);
-  const double norm = quat.norm();
-  if (!(std::abs(norm - 1.0) <= 1e-6)) {  // also NaN
-    return InvalidArgument("dl/relative_pose: delta orientation quaternion has norm " + Num(norm) +
-                           " (must be 1)");
-  }
-  quat.normalize();  // rounding only
-  r.delta = Eigen::Isometry3d::Identity();
-  r.delta.linear() = quat.toRotationMatrix();
-  r.delta.translation() = Vec(m.delta.position);
-  r.covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(m.covariance);
-  return r;
-}
 
 Eigen::Vector2d LevelFromSpecificForce(const Eigen::Vector3d& f) {
   // At rest f = R^T (0, 0, g) = g (-sin pitch, sin roll cos pitch, cos roll cos pitch) for
@@ -289,13 +213,14 @@ void PoseService::Restart(const std::string& why) {
 // ---- inputs -----------------------------------------------------------------------------------
 
 void PoseService::OnImu(const rover_ddl_Imu& m) {
-  if (!UsableHealth(m.health)) {
+  const auto imu = msg::ImuFromIdl(m);
+  if (!imu.ok() || !msg::IsUsable(imu->health)) {
     WarnCounted("ddl/imu sample dropped: health FAILED or STALE", "");
     return;
   }
-  const Time t{m.header.stamp_ns};
-  const Eigen::Vector3d w = Vec(m.angular_velocity);
-  const Eigen::Vector3d f = Vec(m.linear_acceleration);
+  const Time t = imu->stamp;
+  const Eigen::Vector3d& w = imu->angular_velocity;
+  const Eigen::Vector3d& f = imu->linear_acceleration;
   if (!w.allFinite() || !f.allFinite()) {
     WarnCounted("ddl/imu sample dropped: non-finite value", "");
     return;
@@ -396,12 +321,12 @@ void PoseService::Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vect
 }
 
 void PoseService::OnJointState(const rover_ddl_JointState& m) {
-  const JointSample j = JointFromIdl(m);
-  if (!j.healthy) {
+  const auto j = msg::JointStateFromIdl(m);
+  if (!j.ok() || !msg::IsUsable(j->health)) {
     WarnCounted("ddl/joint_state sample dropped: health FAILED or STALE", "");
     return;
   }
-  auto inc = odometry_->Add(j);
+  auto inc = odometry_->Add(*j);
   if (!inc.ok()) {
     WarnCounted("ddl/joint_state sample rejected by wheel odometry", inc.status().message());
     return;
@@ -415,12 +340,16 @@ void PoseService::OnJointState(const rover_ddl_JointState& m) {
 }
 
 void PoseService::OnSunSensor(const rover_ddl_SunSensor& m) {
-  if (!sun_enabled_ || !m.valid || !UsableHealth(m.health) || !ekf_->initialized()) return;
-  const Time t{m.header.stamp_ns};
+  const auto sample = msg::SunSensorFromIdl(m);
+  if (!sun_enabled_ || !sample.ok() || !sample->valid || !msg::IsUsable(sample->health) ||
+      !ekf_->initialized()) {
+    return;
+  }
+  const Time t = sample->stamp;
   const geometry::SunState sun = ephemeris_->At(t.seconds() - run_start_s_);
   if (sun.elevation_rad < sun_min_elevation_) return;
   if (last_rate_ > sun_max_rate_) return;  // turning: wait for a steadier sample
-  const Status s = ekf_->UpdateSunSensor(t, Vec(m.sun_vector), sun.direction_site);
+  const Status s = ekf_->UpdateSunSensor(t, sample->sun_vector, sun.direction_site);
   if (!s.ok()) {
     WarnCounted("ddl/sun_sensor sample rejected", s.message());
     return;
@@ -430,12 +359,11 @@ void PoseService::OnSunSensor(const rover_ddl_SunSensor& m) {
 
 void PoseService::OnRelativePose(const rover_dl_RelativePose& m) {
   if (m.status != rover_dl_RELPOSE_CONVERGED) return;  // not a measurement
-  auto r = RelativePoseFromIdl(m);
+  auto r = msg::RelativePoseFromIdl(m);
   if (!r.ok()) {
-    const auto source = static_cast<std::int32_t>(m.source);
-    const bool known = source >= 0 && source <= static_cast<std::int32_t>(MotionSource::kExternal);
-    PublishRejectedInput(known ? static_cast<MotionSource>(source) : MotionSource::kExternal,
-                         Time{m.t_to_ns}, r.status().message());
+    const auto source = msg::MotionSourceFromIdl(m.source);
+    PublishRejectedInput(source.ok() ? *source : MotionSource::kExternal, Time{m.t_to_ns},
+                         r.status().message());
     return;
   }
   const Status s = ekf_->AddRelativePose(*r);
@@ -450,9 +378,9 @@ void PoseService::OnRelativePose(const rover_dl_RelativePose& m) {
 
 void PoseService::PublishEvents() {
   for (const EstimatorEvent& e : ekf_->TakeEvents()) {
-    rover_dl_EstimatorEvent m = EstimatorEventToIdl(e);
+    rover_dl_EstimatorEvent m{};
     ctx_->Stamp(m.header, "site");
-    m.header.stamp_ns = e.stamp.ns;
+    msg::EstimatorEventToIdl(e, &m);
     const Status s = event_writer_.Write(m);
     if (!s.ok()) WarnCounted("dl/estimator_event write failed", s.message());
   }
@@ -467,9 +395,9 @@ void PoseService::PublishRejectedInput(MotionSource source, Time t, const std::s
   e.mahalanobis_sq = std::numeric_limits<double>::quiet_NaN();
   e.gate = 0.0;
   e.message = "relative pose rejected: " + message;
-  rover_dl_EstimatorEvent m = EstimatorEventToIdl(e);
+  rover_dl_EstimatorEvent m{};
   ctx_->Stamp(m.header, "site");
-  m.header.stamp_ns = t.ns;
+  msg::EstimatorEventToIdl(e, &m);
   const Status s = event_writer_.Write(m);
   if (!s.ok()) WarnCounted("dl/estimator_event write failed", s.message());
 }
@@ -479,15 +407,15 @@ void PoseService::OnTimer() {
     ctx_->SetHealth(rover_HEALTH_DEGRADED, "levelling: waiting for stationary ddl/imu samples");
     return;
   }
-  rover_dl_PoseEstimate m = PoseEstimateToIdl(ekf_->Estimate());
+  rover_dl_PoseEstimate m{};
   ctx_->Stamp(m.header, "site");
-  m.header.stamp_ns = ekf_->time().ns;  // the filter's time of validity
+  msg::PoseEstimateToIdl(ekf_->Estimate(), &m);  // stamp = the filter's time of validity
   const Status s = pose_writer_.Write(m);
   if (!s.ok()) WarnCounted("dl/pose write failed", s.message());
   if (odometry_only_ && odometry_only_->initialized()) {
-    rover_dl_PoseEstimate o = PoseEstimateToIdl(odometry_only_->Estimate());
+    rover_dl_PoseEstimate o{};
     ctx_->Stamp(o.header, "site");
-    o.header.stamp_ns = odometry_only_->time().ns;
+    msg::PoseEstimateToIdl(odometry_only_->Estimate(), &o);
     const Status w = odometry_only_writer_.Write(o);
     if (!w.ok()) WarnCounted("dl/pose_odometry write failed", w.message());
   }

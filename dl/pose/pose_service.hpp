@@ -30,6 +30,8 @@
 /// plausible accelerometer samples seen (level if none) and says so in a warning. Until then
 /// nothing is published on dl/pose and the heartbeat reports DEGRADED.
 ///
+/// The IDL conversions are core/msg's (rover/msg/pose_idl.hpp, sensors_idl.hpp).
+///
 /// Bad samples never crash the service: FAILED/STALE or non-finite samples are dropped (counted
 /// in warnings), library errors are logged, and a run-clock reset (a sample more than 1 s older
 /// than the filter, e.g. after a simulator reset) restarts the filter and the levelling.
@@ -46,14 +48,6 @@
 
 namespace rover::dl {
 
-/// dl/pose from the library's estimate (covariance row-major).
-rover_dl_PoseEstimate PoseEstimateToIdl(const PoseEstimate& e);
-/// dl/estimator_event from the library's event.
-rover_dl_EstimatorEvent EstimatorEventToIdl(const EstimatorEvent& e);
-/// dl/relative_pose -> measurement. Errors: unknown source value, a delta quaternion whose norm
-/// is not 1 within 1e-6 (or NaN). Other non-finite values and a covariance that is not symmetric
-/// positive definite are left for PoseEkf::AddRelativePose to reject.
-Result<RelativePoseMeasurement> RelativePoseFromIdl(const rover_dl_RelativePose& m);
 /// ZYX roll and pitch [rad] of the rover from a specific-force vector measured at rest.
 Eigen::Vector2d LevelFromSpecificForce(const Eigen::Vector3d& f);
 

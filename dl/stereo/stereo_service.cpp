@@ -10,6 +10,9 @@
 #include <vector>
 
 #include "rover/base/check.hpp"
+#include "rover/dl/stereo/frame_images.hpp"
+#include "rover/msg/camera_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
 
 namespace rover::dl::stereo {
 namespace {
@@ -231,7 +234,7 @@ void StereoService::SendNext() {
 }
 
 void StereoService::OnPose(const rover_dl_PoseEstimate& m) {
-  auto sample = PoseSampleFromMessage(m);
+  auto sample = msg::PoseSampleFromIdl(m);
   if (!sample.ok()) {
     log::Warn("dl/pose sample dropped", {{"reason", sample.status().message()}});
     return;
@@ -297,8 +300,9 @@ Status StereoService::Process(const Outstanding& o, const rover_ddl_StereoFrame&
     return InvalidArgument("frame health is " +
                            std::string(m.health == rover_HEALTH_FAILED ? "FAILED" : "STALE"));
   }
-  auto pair = RawStereoPairFromMessage(m);
+  auto pair = msg::StereoFrameFromIdl(m);
   if (!pair.ok()) return pair.status();
+  const FrameImages images = ViewFrameImages(*pair);
   if (o.request.width != 0 && pair->width != o.request.width) {
     return InvalidArgument("frame is " + std::to_string(pair->width) + " px wide, requested " +
                            std::to_string(o.request.width));
@@ -335,8 +339,8 @@ Status StereoService::Process(const Outstanding& o, const rover_ddl_StereoFrame&
   auto pipe = PipelineFor(st);
   if (!pipe.ok()) return pipe.status();
   StereoInput in;
-  in.left = pair->left;
-  in.right = pair->right;
+  in.left = images.left;
+  in.right = images.right;
   in.rectification = &st.maps;
   ROVER_RETURN_IF_ERROR((*pipe)->Process(in, &output_));
   const RectifiedStereoModel level_model = st.camera.model.Downsampled(output_.level);

@@ -17,9 +17,9 @@
 ///                           rover frame (NaN where invalid), valid (1/0), disparity [px of the
 ///                           processed image] (-1 where invalid)
 ///
-/// Per frame: the models are converted (CameraModelFromFields) and rectified once per model pair
-/// (StereoSetupCache, rectification_cache_size pairs); the raw pair is remapped, correlated and
-/// filtered by StereoPipeline; the disparities are reprojected with the rectified left camera's
+/// Per frame: the models are converted (msg::CameraModelFromFields) and rectified once per model
+/// pair (StereoSetupCache, rectification_cache_size pairs); the raw pair is remapped, correlated
+/// and filtered by StereoPipeline; the disparities are reprojected with the rectified left camera's
 /// pose in the rover frame. The disparity search range is num_disparities, or with 0 derived
 /// from the nearest range of interest: ceil(f B / min_range_m) + 2 at the processing level,
 /// clamped to [16, max_disparities].
@@ -44,7 +44,6 @@
 #include "rover/base/log.hpp"
 #include "rover/dl/stereo/pipeline.hpp"
 #include "rover/dl/stereo/pose_history.hpp"
-#include "rover/dl/stereo/raw_stereo_pair.hpp"
 #include "rover/dl/stereo/setup_cache.hpp"
 #include "rover/runtime/service.hpp"
 

@@ -8,7 +8,10 @@
 #include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/dl/stereo/frame_images.hpp"
 #include "rover/dl/stereo/rectification.hpp"
+#include "rover/msg/camera_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
 
 namespace rover::dl::vo {
 namespace {
@@ -265,7 +268,7 @@ Status VoService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
 // ---- inputs -----------------------------------------------------------------------------------
 
 void VoService::OnPose(const rover_dl_PoseEstimate& m) {
-  auto sample = stereo::PoseSampleFromMessage(m);
+  auto sample = msg::PoseSampleFromIdl(m);
   if (!sample.ok()) {
     log::Warn("dl/pose sample dropped", {{"reason", sample.status().message()}});
     return;
@@ -348,7 +351,7 @@ void VoService::OnStereoFrame(const rover_ddl_StereoFrame& m) {
 
 // ---- processing -------------------------------------------------------------------------------
 
-MotionPrior VoService::PriorTo(const std::optional<stereo::PoseSample>& to) const {
+MotionPrior VoService::PriorTo(const std::optional<msg::PoseSample>& to) const {
   if (!reference_.has_value() || !reference_->pose.has_value() || !to.has_value()) {
     return VaguePrior(prior_options_);
   }
@@ -364,8 +367,9 @@ Status VoService::Process(const Outstanding& o, const rover_ddl_StereoFrame& m) 
     return InvalidArgument("frame health is " +
                            std::string(m.health == rover_HEALTH_FAILED ? "FAILED" : "STALE"));
   }
-  auto pair = stereo::RawStereoPairFromMessage(m);
+  auto pair = msg::StereoFrameFromIdl(m);
   if (!pair.ok()) return pair.status();
+  const stereo::FrameImages images = stereo::ViewFrameImages(*pair);
   if (width_ != 0 && pair->width != width_) {
     return InvalidArgument("frame is " + std::to_string(pair->width) + " px wide, requested " +
                            std::to_string(width_));
@@ -388,7 +392,7 @@ Status VoService::Process(const Outstanding& o, const rover_ddl_StereoFrame& m) 
                            " px apart; visual odometry needs equal ones");
   }
   ROVER_RETURN_IF_ERROR(
-      stereo::Rectify(st.maps, pair->left, pair->right, &rect_left_, &rect_right_));
+      stereo::Rectify(st.maps, images.left, images.right, &rect_left_, &rect_right_));
 
   StereoCamera cam;
   cam.width = rect_left_.cols;
@@ -416,7 +420,7 @@ Status VoService::Process(const Outstanding& o, const rover_ddl_StereoFrame& m) 
     reference_.reset();
   }
 
-  std::optional<stereo::PoseSample> pose;
+  std::optional<msg::PoseSample> pose;
   if (auto p = poses_.At(pair->stamp, Seconds(pose_max_age_s_)); p.ok()) pose = *p;
   const MotionPrior body_prior = PriorTo(pose);
   if (reference_.has_value() && !pose.has_value()) {
@@ -431,7 +435,7 @@ Status VoService::Process(const Outstanding& o, const rover_ddl_StereoFrame& m) 
   if (!est.ok()) return est.status().WithPrefix("visual odometry");
 
   last_frame_stamp_ = pair->stamp;
-  const std::optional<stereo::PoseSample> mark = pose.has_value() ? pose : poses_.Latest();
+  const std::optional<msg::PoseSample> mark = pose.has_value() ? pose : poses_.Latest();
   if (mark.has_value()) {
     cadence_->MarkCaptured(pair->stamp, mark->odometer,
                            Eigen::Quaterniond(mark->site_from_rover.linear()));
@@ -494,7 +498,7 @@ void VoService::Publish(const MotionEstimate& body, rover_dl_RelativePoseStatus 
 }
 
 void VoService::PublishBadInput(Time t_to, const std::string& why) {
-  std::optional<stereo::PoseSample> pose;
+  std::optional<msg::PoseSample> pose;
   if (auto p = poses_.At(t_to, Seconds(pose_max_age_s_)); p.ok()) pose = *p;
   const MotionPrior prior = PriorTo(pose);
   MotionEstimate e;

@@ -43,7 +43,6 @@
 
 #include "rover/base/log.hpp"
 #include "rover/dl/stereo/pose_history.hpp"
-#include "rover/dl/stereo/raw_stereo_pair.hpp"
 #include "rover/dl/stereo/setup_cache.hpp"
 #include "rover/dl/vo/cadence.hpp"
 #include "rover/dl/vo/odometry_prior.hpp"
@@ -86,8 +85,8 @@ class VoService final : public Service {
   };
   struct Reference {
     Time stamp;
-    std::optional<stereo::PoseSample> pose;  // rover pose at capture, if known
-    Eigen::Isometry3d rover_from_camera;     // rectified left camera
+    std::optional<msg::PoseSample> pose;  // rover pose at capture, if known
+    Eigen::Isometry3d rover_from_camera;  // rectified left camera
   };
 
   void OnPose(const rover_dl_PoseEstimate& m);
@@ -102,7 +101,7 @@ class VoService final : public Service {
   void Problem(const std::string& problem, std::initializer_list<log::Field> fields);
   void UpdateHealth();
   void ResetAll(const std::string& why);
-  MotionPrior PriorTo(const std::optional<stereo::PoseSample>& to) const;
+  MotionPrior PriorTo(const std::optional<msg::PoseSample>& to) const;
 
   ServiceContext* ctx_ = nullptr;
   // Parameters.

@@ -8,8 +8,8 @@
 namespace rover::dl::stereo {
 namespace {
 
-PoseSample Sample(double t, double x, double yaw, double odometer) {
-  PoseSample s;
+msg::PoseSample Sample(double t, double x, double yaw, double odometer) {
+  msg::PoseSample s;
   s.stamp = Time{std::llround(t * 1e9)};
   s.site_from_rover.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   s.site_from_rover.translation() = Eigen::Vector3d(x, 0.0, 0.0);
@@ -59,10 +59,10 @@ TEST(PoseHistory, RejectsOutOfOrderAndBadSamplesAndDropsTheOldest) {
   PoseHistory h(3);
   ASSERT_TRUE(h.Add(Sample(1.0, 0.0, 0.0, 0.0)).ok());
   EXPECT_EQ(h.Add(Sample(0.5, 0.0, 0.0, 0.0)).code(), StatusCode::kOutOfRange);
-  PoseSample nan = Sample(2.0, 0.0, 0.0, 0.0);
+  msg::PoseSample nan = Sample(2.0, 0.0, 0.0, 0.0);
   nan.odometer = std::nan("");
   EXPECT_EQ(h.Add(nan).code(), StatusCode::kInvalidArgument);
-  PoseSample skew = Sample(2.0, 0.0, 0.0, 0.0);
+  msg::PoseSample skew = Sample(2.0, 0.0, 0.0, 0.0);
   skew.site_from_rover.linear()(0, 1) = 0.3;
   EXPECT_EQ(h.Add(skew).code(), StatusCode::kInvalidArgument);
   // Same stamp replaces.
@@ -74,41 +74,7 @@ TEST(PoseHistory, RejectsOutOfOrderAndBadSamplesAndDropsTheOldest) {
   EXPECT_FALSE(h.At(Time::FromSeconds(1.0), Seconds(0.5)).ok());  // dropped
 }
 
-struct FakePoseMsg {
-  struct {
-    std::int64_t stamp_ns;
-  } header;
-  struct {
-    struct {
-      double x, y, z;
-    } position;
-    struct {
-      double w, x, y, z;
-    } orientation;
-  } pose;
-  double odometer;
-  struct {
-    double x, y, z;
-  } velocity;
-  bool stationary;
-};
-
-TEST(PoseHistory, ReadsPoseMessagesAndRejectsANonUnitQuaternion) {
-  FakePoseMsg m{{7'000'000'000},
-                {{1.0, 2.0, 3.0}, {std::cos(0.25), 0.0, 0.0, std::sin(0.25)}},
-                4.5,
-                {0.05, 0.0, 0.0},
-                false};
-  auto s = PoseSampleFromMessage(m);
-  ASSERT_TRUE(s.ok()) << s.status().ToString();
-  EXPECT_EQ(s->stamp.ns, 7'000'000'000);
-  EXPECT_NEAR(Yaw(s->site_from_rover), 0.5, 1e-12);
-  EXPECT_DOUBLE_EQ(s->site_from_rover.translation().z(), 3.0);
-  EXPECT_DOUBLE_EQ(s->odometer, 4.5);
-  EXPECT_DOUBLE_EQ(s->velocity.x(), 0.05);
-  m.pose.orientation = {0.0, 0.0, 0.0, 0.0};
-  EXPECT_FALSE(PoseSampleFromMessage(m).ok());
-}
+// Reading dl/pose messages: core/msg/test/pose_idl_test.cpp (PoseSampleFromIdl).
 
 }  // namespace
 }  // namespace rover::dl::stereo
