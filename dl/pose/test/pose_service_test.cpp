@@ -359,15 +359,8 @@ TEST_F(PoseServiceTest, InvalidParametersKeepTheServiceUnconfigured) {
   EXPECT_EQ(lifecycle_->state(), LifecycleState::kUnconfigured);
 }
 
-// The conversions (RelativePoseFromIdl, PoseEstimateToIdl) are tested in
-// core/msg/test/pose_idl_test.cpp.
-TEST(PoseConversions, Level) {
-  const double roll = 0.1, pitch = -0.2;
-  const Eigen::Matrix3d r = geometry::RotationFromRpy(roll, pitch, 1.0);
-  const Eigen::Vector2d rp = LevelFromSpecificForce(r.transpose() * Eigen::Vector3d(0, 0, 3.71));
-  EXPECT_NEAR(rp.x(), roll, 1e-12);
-  EXPECT_NEAR(rp.y(), pitch, 1e-12);
-}
+// The conversions (RelativePoseFromIdl, PoseEstimateToIdl): core/msg/test/pose_idl_test.cpp;
+// the levelling (LevelFromSpecificForce, Leveller): test/pose_startup_test.cpp.
 
 }  // namespace
 }  // namespace rover::dl

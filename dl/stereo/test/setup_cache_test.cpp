@@ -5,27 +5,12 @@
 #include <cmath>
 #include <string>
 
+#include "test_cameras.hpp"
+
 namespace rover::dl::stereo {
 namespace {
 
-// Fields of a distortion-free 128x96 camera looking along rover +x, at lateral offset y [m].
-msg::CameraModelFields Camera(double y, double f = 100.0) {
-  geometry::PinholeRadial p;
-  p.fx = p.fy = f;
-  p.cx = 63.5;
-  p.cy = 47.5;
-  p.width = 128;
-  p.height = 96;
-  p.pose.linear().col(0) = Eigen::Vector3d(0, -1, 0);
-  p.pose.linear().col(1) = Eigen::Vector3d(0, 0, -1);
-  p.pose.linear().col(2) = Eigen::Vector3d(1, 0, 0);
-  p.pose.translation() = Eigen::Vector3d(0.5, y, 1.0);
-  auto m = geometry::CameraModel::Create(p);
-  EXPECT_TRUE(m.ok());
-  auto fields = msg::CameraModelFieldsFromModel(*m);
-  EXPECT_TRUE(fields.ok());
-  return *fields;
-}
+msg::CameraModelFields Camera(double y, double f = 100.0) { return testing::ForwardCamera(y, f); }
 
 TEST(StereoSetupCache, ComputesOncePerModelPair) {
   StereoSetupCache cache(2);

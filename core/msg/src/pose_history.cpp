@@ -1,4 +1,4 @@
-#include "rover/dl/stereo/pose_history.hpp"
+#include "rover/msg/pose_history.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::dl::stereo {
+namespace rover::msg {
 namespace {
 
 std::string Seconds(Time t) {
@@ -23,7 +23,7 @@ PoseHistory::PoseHistory(std::size_t capacity) : capacity_(capacity) {
   ROVER_DEMAND(capacity_ >= 2);
 }
 
-Status PoseHistory::Add(const msg::PoseSample& s) {
+Status PoseHistory::Add(const PoseSample& s) {
   if (!s.site_from_rover.matrix().allFinite() || !std::isfinite(s.odometer) ||
       !s.velocity.allFinite()) {
     return InvalidArgument("pose sample at " + Seconds(s.stamp) + " has a non-finite value");
@@ -49,26 +49,26 @@ Status PoseHistory::Add(const msg::PoseSample& s) {
   return Status::Ok();
 }
 
-Result<msg::PoseSample> PoseHistory::At(Time t, Duration max_gap) const {
+Result<PoseSample> PoseHistory::At(Time t, Duration max_gap) const {
   if (samples_.empty()) return NotFound("no pose estimate received yet");
   // First sample with stamp >= t.
   const auto after =
       std::lower_bound(samples_.begin(), samples_.end(), t,
-                       [](const msg::PoseSample& s, Time value) { return s.stamp < value; });
-  const msg::PoseSample* lo = after == samples_.begin() ? nullptr : &*(after - 1);
-  const msg::PoseSample* hi = after == samples_.end() ? nullptr : &*after;
+                       [](const PoseSample& s, Time value) { return s.stamp < value; });
+  const PoseSample* lo = after == samples_.begin() ? nullptr : &*(after - 1);
+  const PoseSample* hi = after == samples_.end() ? nullptr : &*after;
   const Duration gap_lo = lo != nullptr ? t - lo->stamp : Duration::max();
   const Duration gap_hi = hi != nullptr ? hi->stamp - t : Duration::max();
   const Duration gap = std::min(gap_lo, gap_hi);
   if (gap > max_gap) {
-    const msg::PoseSample* nearest = gap_lo <= gap_hi ? lo : hi;
+    const PoseSample* nearest = gap_lo <= gap_hi ? lo : hi;
     return NotFound("no pose estimate within " + std::to_string(ToSeconds(max_gap)) + " s of " +
                     Seconds(t) + " (nearest at " + Seconds(nearest->stamp) + ")");
   }
   if (lo == nullptr) return *hi;
   if (hi == nullptr || hi->stamp == t) return hi != nullptr ? *hi : *lo;
   const double f = ToSeconds(t - lo->stamp) / ToSeconds(hi->stamp - lo->stamp);
-  msg::PoseSample out = f < 0.5 ? *lo : *hi;  // flags from the nearer sample
+  PoseSample out = f < 0.5 ? *lo : *hi;  // flags from the nearer sample
   out.stamp = t;
   const Eigen::Quaterniond qa(lo->site_from_rover.linear());
   const Eigen::Quaterniond qb(hi->site_from_rover.linear());
@@ -81,9 +81,13 @@ Result<msg::PoseSample> PoseHistory::At(Time t, Duration max_gap) const {
   return out;
 }
 
-std::optional<msg::PoseSample> PoseHistory::Latest() const {
+bool PoseHistory::WentBackBy(Time t, Duration by) const {
+  return !samples_.empty() && samples_.back().stamp - t > by;
+}
+
+std::optional<PoseSample> PoseHistory::Latest() const {
   if (samples_.empty()) return std::nullopt;
   return samples_.back();
 }
 
-}  // namespace rover::dl::stereo
+}  // namespace rover::msg

@@ -1,15 +1,15 @@
-#include "rover/dl/stereo/pose_history.hpp"
+#include "rover/msg/pose_history.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-namespace rover::dl::stereo {
+namespace rover::msg {
 namespace {
 
-msg::PoseSample Sample(double t, double x, double yaw, double odometer) {
-  msg::PoseSample s;
+PoseSample Sample(double t, double x, double yaw, double odometer) {
+  PoseSample s;
   s.stamp = Time{std::llround(t * 1e9)};
   s.site_from_rover.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   s.site_from_rover.translation() = Eigen::Vector3d(x, 0.0, 0.0);
@@ -59,10 +59,10 @@ TEST(PoseHistory, RejectsOutOfOrderAndBadSamplesAndDropsTheOldest) {
   PoseHistory h(3);
   ASSERT_TRUE(h.Add(Sample(1.0, 0.0, 0.0, 0.0)).ok());
   EXPECT_EQ(h.Add(Sample(0.5, 0.0, 0.0, 0.0)).code(), StatusCode::kOutOfRange);
-  msg::PoseSample nan = Sample(2.0, 0.0, 0.0, 0.0);
+  PoseSample nan = Sample(2.0, 0.0, 0.0, 0.0);
   nan.odometer = std::nan("");
   EXPECT_EQ(h.Add(nan).code(), StatusCode::kInvalidArgument);
-  msg::PoseSample skew = Sample(2.0, 0.0, 0.0, 0.0);
+  PoseSample skew = Sample(2.0, 0.0, 0.0, 0.0);
   skew.site_from_rover.linear()(0, 1) = 0.3;
   EXPECT_EQ(h.Add(skew).code(), StatusCode::kInvalidArgument);
   // Same stamp replaces.
@@ -74,7 +74,16 @@ TEST(PoseHistory, RejectsOutOfOrderAndBadSamplesAndDropsTheOldest) {
   EXPECT_FALSE(h.At(Time::FromSeconds(1.0), Seconds(0.5)).ok());  // dropped
 }
 
+TEST(PoseHistory, TellsARunClockResetFromAReorderedSample) {
+  PoseHistory h(8);
+  EXPECT_FALSE(h.WentBackBy(Time::FromSeconds(0.0), Seconds(1.0)));  // empty
+  ASSERT_TRUE(h.Add(Sample(10.0, 0.0, 0.0, 0.0)).ok());
+  EXPECT_FALSE(h.WentBackBy(Time::FromSeconds(9.5), Seconds(1.0)));  // reordered
+  EXPECT_EQ(h.Add(Sample(9.5, 0.0, 0.0, 0.0)).code(), StatusCode::kOutOfRange);
+  EXPECT_TRUE(h.WentBackBy(Time::FromSeconds(0.2), Seconds(1.0)));  // a new run
+}
+
 // Reading dl/pose messages: core/msg/test/pose_idl_test.cpp (PoseSampleFromIdl).
 
 }  // namespace
-}  // namespace rover::dl::stereo
+}  // namespace rover::msg

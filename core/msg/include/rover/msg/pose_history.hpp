@@ -1,8 +1,9 @@
 #pragma once
 /// @file
-/// A short history of the rover's pose estimates (dl/pose) to look up the pose at an image's
-/// capture time: the stereo service stamps each range image with it and visual odometry takes
-/// its wheel-odometry prior from the change between two capture times.
+/// A short history of the rover's pose estimates (dl/pose, as PoseSample) to look up the pose at
+/// a past time: the stereo service stamps each range image with the pose at its capture time,
+/// visual odometry takes its wheel-odometry prior from the change between two capture times, and
+/// application code can ask where the rover was when a measurement was taken.
 ///
 /// Frames: `site_from_rover` is the rover frame (x forward, y left, z up) in the site frame
 /// (x north, y west, z up), metres. At(t) interpolates between the two samples around t
@@ -20,7 +21,7 @@
 #include "rover/base/time.hpp"
 #include "rover/msg/pose.hpp"
 
-namespace rover::dl::stereo {
+namespace rover::msg {
 
 class PoseHistory {
  public:
@@ -30,20 +31,23 @@ class PoseHistory {
   /// Appends a sample (the oldest is dropped when full). A sample with the newest stamp
   /// replaces it. Errors (history unchanged): non-finite values, a rotation that is not
   /// orthonormal (1e-6), a stamp older than the newest (out of order).
-  Status Add(const msg::PoseSample& sample);
+  Status Add(const PoseSample& sample);
 
   /// The pose at `t` (see the file comment). Errors: NotFound if empty or if the nearest sample
   /// is more than `max_gap` away, naming both times.
-  Result<msg::PoseSample> At(Time t, Duration max_gap) const;
+  Result<PoseSample> At(Time t, Duration max_gap) const;
 
-  std::optional<msg::PoseSample> Latest() const;
+  std::optional<PoseSample> Latest() const;
+  /// Whether `t` is more than `by` older than the newest sample: the run clock went back (a
+  /// simulator reset) rather than a sample arriving out of order. False when empty.
+  bool WentBackBy(Time t, Duration by) const;
   std::size_t size() const { return samples_.size(); }
   bool empty() const { return samples_.empty(); }
   void Clear() { samples_.clear(); }
 
  private:
   std::size_t capacity_;
-  std::deque<msg::PoseSample> samples_;  // oldest first
+  std::deque<PoseSample> samples_;  // oldest first
 };
 
-}  // namespace rover::dl::stereo
+}  // namespace rover::msg
