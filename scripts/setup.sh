@@ -17,6 +17,8 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libsimbody-dev libnlopt-cxx-dev
   # configuration, CLI, logging
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  # MCAP recordings: chunk compression
+  libzstd-dev liblz4-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # headless rendering (EGL surfaceless on Mesa llvmpipe)
