@@ -28,15 +28,15 @@ Result<RecordingInfo> Summarize(const Reader& reader) {
     info.start_time = stats->message_start_time;
     info.end_time = stats->message_end_time;
   } else {
+    Statistics counted;
     ROVER_RETURN_IF_ERROR(reader.ForEachMessage({}, [&](const MessageEvent& e) {
-      const Timestamp t = e.message.log_time;
-      if (info.message_count == 0) info.start_time = info.end_time = t;
-      info.start_time = std::min(info.start_time, t);
-      info.end_time = std::max(info.end_time, t);
-      ++info.message_count;
-      ++counts[e.message.channel_id];
+      CountMessage(counted, e.message.channel_id, e.message.log_time);
       return Status::Ok();
     }));
+    counts = counted.channel_message_counts;
+    info.message_count = counted.message_count;
+    info.start_time = counted.message_start_time;
+    info.end_time = counted.message_end_time;
   }
 
   for (const auto& [id, channel] : reader.channels()) {

@@ -662,13 +662,7 @@ Status Reader::Scan(bool scan_mode) {
                                       " is not defined before the message"));
         }
         loose_.push_back({m->log_time, pos, kRecordPrefixBytes + length, m->channel_id});
-        if (counted.message_count == 0) {
-          counted.message_start_time = counted.message_end_time = m->log_time;
-        }
-        counted.message_start_time = std::min(counted.message_start_time, m->log_time);
-        counted.message_end_time = std::max(counted.message_end_time, m->log_time);
-        ++counted.message_count;
-        ++counted.channel_message_counts[m->channel_id];
+        CountMessage(counted, m->channel_id, m->log_time);
         break;
       }
       case Opcode::kChunk: {
@@ -710,13 +704,7 @@ Status Reader::Scan(bool scan_mode) {
           return LearnChannel(std::move(ch), Opcode::kChunk, pos);
         };
         visitor.message = [&](const MessageView& m, std::uint64_t) {
-          if (counted.message_count == 0) {
-            counted.message_start_time = counted.message_end_time = m.log_time;
-          }
-          counted.message_start_time = std::min(counted.message_start_time, m.log_time);
-          counted.message_end_time = std::max(counted.message_end_time, m.log_time);
-          ++counted.message_count;
-          ++counted.channel_message_counts[m.channel_id];
+          CountMessage(counted, m.channel_id, m.log_time);
           return Status::Ok();
         };
         ROVER_RETURN_IF_ERROR(WalkChunk(decompressed, v, pos, visitor));
@@ -812,13 +800,6 @@ Status Reader::Verify(bool data_crc) const {
   }
 
   Statistics counted;
-  auto count = [&](std::uint16_t channel, Timestamp t) {
-    if (counted.message_count == 0) counted.message_start_time = counted.message_end_time = t;
-    counted.message_start_time = std::min(counted.message_start_time, t);
-    counted.message_end_time = std::max(counted.message_end_time, t);
-    ++counted.message_count;
-    ++counted.channel_message_counts[channel];
-  };
 
   for (const ChunkIndex& index : chunk_indexes_) {
     Loaded loaded;
@@ -826,7 +807,7 @@ Status Reader::Verify(bool data_crc) const {
     ROVER_RETURN_IF_ERROR(LoadChunk(
         index,
         [&](const MessageView& m) {
-          count(m.channel_id, m.log_time);
+          CountMessage(counted, m.channel_id, m.log_time);
           return true;
         },
         loaded));
@@ -876,7 +857,7 @@ Status Reader::Verify(bool data_crc) const {
       }
     }
   }
-  for (const LooseMessage& m : loose_) count(m.channel_id, m.log_time);
+  for (const LooseMessage& m : loose_) CountMessage(counted, m.channel_id, m.log_time);
   for (const AttachmentIndex& a : attachment_indexes_) {
     ROVER_RETURN_IF_ERROR(ReadAttachment(a).status());
   }

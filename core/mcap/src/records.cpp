@@ -1,5 +1,6 @@
 #include "rover/mcap/records.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -237,6 +238,14 @@ std::uint64_t MapSize(const StringMap& m) {
 }
 
 }  // namespace
+
+void CountMessage(Statistics& s, std::uint16_t channel, Timestamp log_time) {
+  if (s.message_count == 0) s.message_start_time = s.message_end_time = log_time;
+  s.message_start_time = std::min(s.message_start_time, log_time);
+  s.message_end_time = std::max(s.message_end_time, log_time);
+  ++s.message_count;
+  ++s.channel_message_counts[channel];
+}
 
 // ---- writing ------------------------------------------------------------------------------------
 

@@ -169,7 +169,15 @@ Status Writer::Admit(const Extra& extra, const std::string& what) {
                     " bytes reached: " + what + " not written");
 }
 
-Status Writer::EmitDefinition(const Bytes& record) {
+Status Writer::AddDefinition(const Bytes& record, std::uint64_t summary_extra,
+                             const std::string& what) {
+  Extra e;
+  (options_.chunked ? e.chunk_bytes : e.data_bytes) = record.size();
+  e.summary_bytes = record.size() + summary_extra;  // the summary repeats every definition
+  const Status admitted = Admit(e, what);
+  // A definition refused by the cap ends the recording: its messages could not follow.
+  if (admitted.code() == StatusCode::kOutOfRange) capped_ = true;
+  ROVER_RETURN_IF_ERROR(admitted);
   if (options_.chunked) {
     chunk_.insert(chunk_.end(), record.begin(), record.end());
     return Status::Ok();
@@ -190,17 +198,10 @@ Result<std::uint16_t> Writer::AddSchema(const std::string& name, const std::stri
     return InvalidArgument(sink_->name() + ": schema '" + name + "': all 65535 schema ids are used");
   }
   s.id = static_cast<std::uint16_t>(schemas_.size() + 1);
-  const std::uint64_t size = RecordSize(s);
-  Extra e;
-  (options_.chunked ? e.chunk_bytes : e.data_bytes) = size;
-  e.summary_bytes = size;
-  Status admitted = Admit(e, "schema '" + name + "'");
-  if (admitted.code() == StatusCode::kOutOfRange) capped_ = true;
-  ROVER_RETURN_IF_ERROR(admitted);
-  scratch_.clear();
-  AppendRecord(scratch_, s);
-  ROVER_RETURN_IF_ERROR(EmitDefinition(scratch_));
-  schema_bytes_ += size;
+  Bytes record;
+  AppendRecord(record, s);
+  ROVER_RETURN_IF_ERROR(AddDefinition(record, 0, "schema '" + name + "'"));
+  schema_bytes_ += record.size();
   schemas_.push_back(std::move(s));
   return schemas_.back().id;
 }
@@ -225,17 +226,11 @@ Result<std::uint16_t> Writer::AddChannel(const std::string& topic,
                            "': all 65535 channel ids are used");
   }
   c.id = static_cast<std::uint16_t>(channels_.size() + 1);
-  const std::uint64_t size = RecordSize(c);
-  Extra e;
-  (options_.chunked ? e.chunk_bytes : e.data_bytes) = size;
-  e.summary_bytes = size + 10;  // and its entry in the Statistics' channel counts
-  Status admitted = Admit(e, "channel '" + topic + "'");
-  if (admitted.code() == StatusCode::kOutOfRange) capped_ = true;
-  ROVER_RETURN_IF_ERROR(admitted);
-  scratch_.clear();
-  AppendRecord(scratch_, c);
-  ROVER_RETURN_IF_ERROR(EmitDefinition(scratch_));
-  channel_bytes_ += size;
+  Bytes record;
+  AppendRecord(record, c);
+  // 10 more summary bytes: the channel's entry in the Statistics' channel counts.
+  ROVER_RETURN_IF_ERROR(AddDefinition(record, 10, "channel '" + topic + "'"));
+  channel_bytes_ += record.size();
   statistics_.channel_message_counts[c.id] = 0;
   channels_.push_back(std::move(c));
   return channels_.back().id;
@@ -291,13 +286,7 @@ Status Writer::WriteMessage(const MessageView& m) {
     ROVER_RETURN_IF_ERROR(Emit(scratch_));
   }
 
-  if (statistics_.message_count == 0) {
-    statistics_.message_start_time = statistics_.message_end_time = m.log_time;
-  }
-  statistics_.message_start_time = std::min(statistics_.message_start_time, m.log_time);
-  statistics_.message_end_time = std::max(statistics_.message_end_time, m.log_time);
-  ++statistics_.message_count;
-  ++statistics_.channel_message_counts[m.channel_id];
+  CountMessage(statistics_, m.channel_id, m.log_time);
   ++stats_.messages;
 
   if (options_.chunked && chunk_.size() >= options_.chunk_bytes) return FlushChunk();

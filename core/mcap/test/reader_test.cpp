@@ -304,11 +304,16 @@ TEST(Reader, ATruncatedRecordingSaysSo) {
             "version '0')");
 }
 
-TEST(Reader, CorruptChunksNameTheChunkAndTheirOffset) {
+/// A sample in uncompressed chunks of 400 bytes, so that tests can edit bytes in place.
+Bytes UncompressedSmallChunks() {
   WriterOptions o;
   o.chunk_bytes = 400;
   o.compression = Compression::kNone;
-  const Bytes good = SampleFile(o, {});
+  return SampleFile(o, {});
+}
+
+TEST(Reader, CorruptChunksNameTheChunkAndTheirOffset) {
+  const Bytes good = UncompressedSmallChunks();
   auto reference = OpenBytes(good);
   ASSERT_TRUE(reference.ok());
   const ChunkIndex chunk = (*reference)->chunk_indexes()[3];
@@ -371,10 +376,7 @@ TEST(Reader, WithoutADataCrcEveryChunkIsCheckedAtOpen) {
 }
 
 TEST(Reader, FullVerificationComparesStatisticsAndMessageIndexes) {
-  WriterOptions o;
-  o.chunk_bytes = 400;
-  o.compression = Compression::kNone;
-  const Bytes good = SampleFile(o, {});
+  const Bytes good = UncompressedSmallChunks();
   auto reference = OpenBytes(good);
   ASSERT_TRUE(reference.ok());
   ASSERT_TRUE((*reference)->VerifyFull().ok());

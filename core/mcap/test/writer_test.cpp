@@ -170,27 +170,29 @@ TEST(Writer, OneChunkLayoutAndItsIndexes) {
   ExpectCrcsHold(file);
 }
 
-TEST(Writer, UnchunkedRecordsGoStraightIntoTheDataSection) {
+// A file of one channel and one message.
+Bytes OneMessage(const WriterOptions& o) {
   Bytes file;
-  WriterOptions o;
-  o.chunked = false;
   auto w = MemoryWriter(&file, o);
   const std::uint16_t c = w->AddChannel("t", "cdr", 0).value();
-  ASSERT_TRUE(w->WriteMessage({c, 0, 5, 5, Bytes{1}}).ok());
-  ASSERT_TRUE(w->Close().ok());
+  EXPECT_TRUE(w->WriteMessage({c, 0, 5, 5, Bytes{1}}).ok());
+  EXPECT_TRUE(w->Close().ok());
+  return file;
+}
+
+TEST(Writer, UnchunkedRecordsGoStraightIntoTheDataSection) {
+  WriterOptions o;
+  o.chunked = false;
+  const Bytes file = OneMessage(o);
   EXPECT_EQ(Opcodes(Records(file)),
             (std::vector<std::uint8_t>{0x01, 0x04, 0x05, 0x0F, 0x04, 0x0B, 0x0E, 0x0E, 0x02}));
   ExpectCrcsHold(file);
 }
 
 TEST(Writer, WithoutSummaryTheFooterIsZeros) {
-  Bytes file;
   WriterOptions o;
   o.summary = false;
-  auto w = MemoryWriter(&file, o);
-  const std::uint16_t c = w->AddChannel("t", "cdr", 0).value();
-  ASSERT_TRUE(w->WriteMessage({c, 0, 5, 5, Bytes{1}}).ok());
-  ASSERT_TRUE(w->Close().ok());
+  const Bytes file = OneMessage(o);
   const std::vector<Rec> recs = Records(file);
   EXPECT_EQ(Opcodes(recs), (std::vector<std::uint8_t>{0x01, 0x06, 0x07, 0x0F, 0x02}));
   EXPECT_EQ(ParseFooter(recs.back().content).value(), Footer{});

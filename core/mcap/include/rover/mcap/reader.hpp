@@ -19,7 +19,7 @@
 ///   "run.mcap: no Footer record and trailing magic at offset 91223 (the file is truncated or
 ///    was not closed)"
 /// and a file that fails is never half-returned: Open fails, or a cursor's Next fails and keeps
-/// failing.
+/// failing. A Reader and its cursors are not thread-safe (they share one decompressor).
 
 #include <cstdint>
 #include <functional>

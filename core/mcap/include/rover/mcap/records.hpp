@@ -177,6 +177,10 @@ struct Statistics {
   bool operator==(const Statistics&) const = default;
 };
 
+/// Adds one message of `channel` at `log_time` to the message count, the channel's count and
+/// the time span.
+void CountMessage(Statistics& s, std::uint16_t channel, Timestamp log_time);
+
 struct Metadata {
   std::string name;
   StringMap metadata;

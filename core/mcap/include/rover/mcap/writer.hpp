@@ -121,8 +121,9 @@ class Writer {
   Status Start();
   /// Writes bytes to the sink (and the data CRC while the data section is open).
   Status Emit(ByteSpan bytes);
-  /// Appends a Schema or Channel record to the open chunk or the data section.
-  Status EmitDefinition(const Bytes& record);
+  /// Appends a whole Schema or Channel record to the open chunk (or the data section) if it
+  /// fits under the cap, with `summary_extra` more summary bytes than its copy there.
+  Status AddDefinition(const Bytes& record, std::uint64_t summary_extra, const std::string& what);
   Status FlushChunk();
   /// What an operation adds, for the size-cap arithmetic.
   struct Extra {
