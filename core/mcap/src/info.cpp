@@ -168,8 +168,8 @@ std::string FormatRecordingInfo(const RecordingInfo& info) {
   }
   for (const TopicInfo& t : info.topics) {
     const std::string count = std::to_string(t.message_count);
-    out += "  " + Pad(t.topic, topic_w) + "  " + std::string(count_w - count.size(), ' ') +
-           count + " msgs  " + Pad(t.schema_name.empty() ? "-" : t.schema_name, type_w) + "  " +
+    out += "  " + Pad(t.topic, topic_w) + "  " + std::string(count_w - count.size(), ' ') + count +
+           " msgs  " + Pad(t.schema_name.empty() ? "-" : t.schema_name, type_w) + "  " +
            t.message_encoding + (t.schema_encoding.empty() ? "" : "/" + t.schema_encoding) + "\n";
   }
   return out;

@@ -48,9 +48,8 @@ Status FileSink::WriteAll(const std::uint8_t* data, std::size_t size) {
     if (n < 0) {
       const int err = errno;
       if (err == EINTR) continue;
-      return Unavailable(path_ + ": write of " + std::to_string(size - done) +
-                         " bytes at offset " + std::to_string(flushed_ + done) +
-                         " failed: " + Reason(err));
+      return Unavailable(path_ + ": write of " + std::to_string(size - done) + " bytes at offset " +
+                         std::to_string(flushed_ + done) + " failed: " + Reason(err));
     }
     done += static_cast<std::size_t>(n);
   }
@@ -118,21 +117,21 @@ FileSource::~FileSource() {
 
 Status FileSource::Read(std::uint64_t offset, std::span<std::uint8_t> out) const {
   if (offset > size_ || out.size() > size_ - offset) {
-    return InvalidArgument(ReadFailure(path_, out.size(), offset,
-                                       "the file ends at " + std::to_string(size_)));
+    return InvalidArgument(
+        ReadFailure(path_, out.size(), offset, "the file ends at " + std::to_string(size_)));
   }
   std::size_t done = 0;
   while (done < out.size()) {
-    const ssize_t n = ::pread(fd_, out.data() + done, out.size() - done,
-                              static_cast<off_t>(offset + done));
+    const ssize_t n =
+        ::pread(fd_, out.data() + done, out.size() - done, static_cast<off_t>(offset + done));
     if (n < 0) {
       const int err = errno;
       if (err == EINTR) continue;
       return Unavailable(ReadFailure(path_, out.size(), offset, Reason(err)));
     }
     if (n == 0) {
-      return Unavailable(ReadFailure(path_, out.size(), offset,
-                                     "the file shrank while being read"));
+      return Unavailable(
+          ReadFailure(path_, out.size(), offset, "the file shrank while being read"));
     }
     done += static_cast<std::size_t>(n);
   }

@@ -127,8 +127,8 @@ Status Reader::Init() {
     ROVER_RETURN_IF_ERROR(Scan(false));
   }
   const bool full = options_.verification == Verification::kFull;
-  const bool no_data_crc = options_.verification == Verification::kDataSection &&
-                           has_summary() && data_section_crc_ == 0;
+  const bool no_data_crc = options_.verification == Verification::kDataSection && has_summary() &&
+                           data_section_crc_ == 0;
   if (full || no_data_crc) ROVER_RETURN_IF_ERROR(Verify(/*data_crc=*/false));  // Scan did it
   return Status::Ok();
 }
@@ -173,8 +173,10 @@ Status Reader::ReadHeaderAndFooter() {
 
   const std::uint64_t tail = kFooterRecordBytes + kMagic.size();
   if (size < header_end_ + tail) {
-    return Error(header_end_, "no Footer record and trailing magic after the Header (the file "
-                              "of " + Num(size) + " bytes is truncated or was not closed)");
+    return Error(header_end_,
+                 "no Footer record and trailing magic after the Header (the file "
+                 "of " +
+                     Num(size) + " bytes is truncated or was not closed)");
   }
   footer_offset_ = size - tail;
   Bytes footer(tail);
@@ -183,8 +185,9 @@ Status Reader::ReadHeaderAndFooter() {
   const bool footer_ok = footer[0] == static_cast<std::uint8_t>(Opcode::kFooter) &&
                          LoadLe(footer, 1, 8) == kFooterRecordBytes - kRecordPrefixBytes;
   if (!magic_ok || !footer_ok) {
-    return Error(footer_offset_, "no Footer record and trailing magic at the end (the file is "
-                                 "truncated or was not closed)");
+    return Error(footer_offset_,
+                 "no Footer record and trailing magic at the end (the file is "
+                 "truncated or was not closed)");
   }
   Result<Footer> parsed =
       ParseFooter(ByteSpan(footer).subspan(kRecordPrefixBytes, kFooterRecordBytes - 9));
@@ -195,9 +198,8 @@ Status Reader::ReadHeaderAndFooter() {
                  "summary_offset_start " + Num(footer_.summary_offset_start) +
                      " without a summary (summary_start is 0)");
   }
-  if (footer_.summary_start != 0 &&
-      (footer_.summary_start < header_end_ + kDataEndRecordBytes ||
-       footer_.summary_start > footer_offset_)) {
+  if (footer_.summary_start != 0 && (footer_.summary_start < header_end_ + kDataEndRecordBytes ||
+                                     footer_.summary_start > footer_offset_)) {
     return Error(Opcode::kFooter, footer_offset_,
                  "summary_start " + Num(footer_.summary_start) + " is outside [" +
                      Num(header_end_ + kDataEndRecordBytes) + ", " + Num(footer_offset_) + "]");
@@ -210,6 +212,12 @@ Status Reader::ReadHeaderAndFooter() {
 Status Reader::ReadSummary() {
   const std::uint64_t start = footer_.summary_start;
   data_end_offset_ = start - kDataEndRecordBytes;
+  if (footer_offset_ - start > options_.max_record_bytes) {
+    return Error(Opcode::kFooter, footer_offset_,
+                 "a summary of " + Num(footer_offset_ - start) +
+                     " bytes exceeds the reader's limit of " + Num(options_.max_record_bytes) +
+                     " bytes");
+  }
   // DataEnd, the summary, and the footer up to its crc field (which the summary CRC covers).
   Bytes bytes(footer_offset_ + (kFooterRecordBytes - 4) - data_end_offset_);
   ROVER_RETURN_IF_ERROR(source_->Read(data_end_offset_, bytes));
@@ -247,8 +255,7 @@ Status Reader::ReadSummary() {
     const std::uint64_t at = start + pos;
     Result<RecordView> rec = SplitRecord(summary, pos);
     if (!rec.ok()) {
-      return Error(at, "summary section: " + rec.status().message() +
-                           " (the summary is corrupt)");
+      return Error(at, "summary section: " + rec.status().message() + " (the summary is corrupt)");
     }
     const std::uint8_t op = rec->opcode;
     const ByteSpan c = rec->content;
@@ -287,8 +294,8 @@ Status Reader::ReadSummary() {
         }
         for (const auto& [channel, offset] : x.message_index_offsets) {
           if (offset < end || offset >= end + x.message_index_length) {
-            return fail(InvalidArgument("the message index of channel " + Num(channel) +
-                                        " at " + Num(offset) + " is not after the chunk"));
+            return fail(InvalidArgument("the message index of channel " + Num(channel) + " at " +
+                                        Num(offset) + " is not after the chunk"));
           }
         }
         if (x.uncompressed_size > options_.max_record_bytes) {
@@ -355,7 +362,8 @@ Status Reader::ReadSummary() {
   }
   for (const auto& [at, so] : summary_offsets) {
     const auto first = record_at.find(so.group_start);
-    if (so.group_start < start || so.group_length > offsets_at - std::min(so.group_start, offsets_at) ||
+    if (so.group_start < start ||
+        so.group_length > offsets_at - std::min(so.group_start, offsets_at) ||
         first == record_at.end() || first->second != so.group_opcode) {
       return Error(Opcode::kSummaryOffset, at,
                    "the group of " + OpcodeName(so.group_opcode) + " records at " +
@@ -387,9 +395,9 @@ Status Reader::CheckSchema(const Schema& s, Opcode where, std::uint64_t offset) 
   if (s.id == 0) return Status::Ok();  // invalid id: ignored, as the specification says
   const auto it = schemas_.find(s.id);
   if (it != schemas_.end() && it->second != s) {
-    return Error(where, offset, "schema " + Num(s.id) + " ('" + s.name +
-                                    "') differs from its earlier definition ('" +
-                                    it->second.name + "')");
+    return Error(where, offset,
+                 "schema " + Num(s.id) + " ('" + s.name +
+                     "') differs from its earlier definition ('" + it->second.name + "')");
   }
   return Status::Ok();
 }
@@ -397,13 +405,13 @@ Status Reader::CheckSchema(const Schema& s, Opcode where, std::uint64_t offset) 
 Status Reader::CheckChannel(const Channel& c, Opcode where, std::uint64_t offset) const {
   const auto it = channels_.find(c.id);
   if (it == channels_.end()) {
-    return Error(where, offset, "channel " + Num(c.id) + " ('" + c.topic +
-                                    "') is missing from the summary");
+    return Error(where, offset,
+                 "channel " + Num(c.id) + " ('" + c.topic + "') is missing from the summary");
   }
   if (it->second != c) {
-    return Error(where, offset, "channel " + Num(c.id) + " ('" + c.topic +
-                                    "') differs from its earlier definition ('" +
-                                    it->second.topic + "')");
+    return Error(where, offset,
+                 "channel " + Num(c.id) + " ('" + c.topic +
+                     "') differs from its earlier definition ('" + it->second.topic + "')");
   }
   return Status::Ok();
 }
@@ -416,8 +424,9 @@ Status Reader::LearnSchema(Schema s, Opcode where, std::uint64_t offset) {
 
 Status Reader::LearnChannel(Channel c, Opcode where, std::uint64_t offset) {
   if (c.schema_id != 0 && !schemas_.contains(c.schema_id)) {
-    return Error(where, offset, "channel " + Num(c.id) + " ('" + c.topic + "') uses schema " +
-                                    Num(c.schema_id) + ", which is not defined before it");
+    return Error(where, offset,
+                 "channel " + Num(c.id) + " ('" + c.topic + "') uses schema " + Num(c.schema_id) +
+                     ", which is not defined before it");
   }
   if (channels_.contains(c.id)) return CheckChannel(c, where, offset);
   channels_.emplace(c.id, std::move(c));
@@ -438,9 +447,9 @@ Status Reader::ReadRecordAt(std::uint64_t offset, std::uint64_t length, Opcode e
                              OpcodeName(buffer[0]));
   }
   if (LoadLe(buffer, 1, 8) != length - kRecordPrefixBytes) {
-    return Error(expected, offset, "content length " + Num(LoadLe(buffer, 1, 8)) +
-                                       " does not match the index's " +
-                                       Num(length - kRecordPrefixBytes));
+    return Error(expected, offset,
+                 "content length " + Num(LoadLe(buffer, 1, 8)) + " does not match the index's " +
+                     Num(length - kRecordPrefixBytes));
   }
   content = ByteSpan(buffer).subspan(kRecordPrefixBytes);
   return Status::Ok();
@@ -452,8 +461,8 @@ Status Reader::DecompressChunk(const ChunkView& chunk, std::uint64_t offset, Byt
                  "uncompressed_size " + Num(chunk.uncompressed_size) +
                      " exceeds the reader's limit of " + Num(options_.max_record_bytes) + " bytes");
   }
-  Status s = decompressor_.Decompress(chunk.compression, chunk.records, chunk.uncompressed_size,
-                                      out);
+  Status s =
+      decompressor_.Decompress(chunk.compression, chunk.records, chunk.uncompressed_size, out);
   if (!s.ok()) return Error(Opcode::kChunk, offset, s.message() + " (the chunk is corrupt)");
   if (chunk.uncompressed_crc != 0) {
     const std::uint32_t actual = ComputeCrc32(out);
@@ -527,8 +536,7 @@ Status Reader::LoadChunk(const ChunkIndex& index,
   if (!chunk.ok()) return Error(Opcode::kChunk, at, chunk.status().message());
   const ChunkView& c = chunk.value();
   if (c.message_start_time != index.message_start_time ||
-      c.message_end_time != index.message_end_time ||
-      c.records.size() != index.compressed_size ||
+      c.message_end_time != index.message_end_time || c.records.size() != index.compressed_size ||
       c.uncompressed_size != index.uncompressed_size || c.compression != index.compression) {
     return Error(Opcode::kChunk, at, "its times, sizes or compression differ from its ChunkIndex");
   }
@@ -679,8 +687,8 @@ Status Reader::Scan(bool scan_mode) {
           }
           if (it->chunk_length != kRecordPrefixBytes + length ||
               it->message_start_time != v.message_start_time ||
-              it->message_end_time != v.message_end_time ||
-              it->compression != v.compression || it->compressed_size != v.records.size() ||
+              it->message_end_time != v.message_end_time || it->compression != v.compression ||
+              it->compressed_size != v.records.size() ||
               it->uncompressed_size != v.uncompressed_size) {
             return fail(InvalidArgument(
                 "its length, times, sizes or compression differ from its ChunkIndex"));
@@ -812,7 +820,8 @@ Status Reader::Verify(bool data_crc) const {
         },
         loaded));
     for (const auto& [t, offset] : loaded.entries) {
-      const std::uint16_t channel = static_cast<std::uint16_t>(LoadLe(loaded.records, offset + 9, 2));
+      const std::uint16_t channel =
+          static_cast<std::uint16_t>(LoadLe(loaded.records, offset + 9, 2));
       actual[channel].emplace_back(t, offset);
     }
     if (index.message_index_length == 0) continue;  // written without message indexes
@@ -834,10 +843,9 @@ Status Reader::Verify(bool data_crc) const {
       std::sort(entries.begin(), entries.end());
       if (entries != actual[mi->channel_id]) {
         return Error(Opcode::kMessageIndex, at + pos,
-                     "its " + Num(entries.size()) + " entries for channel " +
-                         Num(mi->channel_id) + " do not match the " +
-                         Num(actual[mi->channel_id].size()) + " messages of the chunk at " +
-                         Num(index.chunk_start_offset));
+                     "its " + Num(entries.size()) + " entries for channel " + Num(mi->channel_id) +
+                         " do not match the " + Num(actual[mi->channel_id].size()) +
+                         " messages of the chunk at " + Num(index.chunk_start_offset));
       }
       const auto named = index.message_index_offsets.find(mi->channel_id);
       if (!index.message_index_offsets.empty() &&
@@ -906,8 +914,8 @@ Status Reader::Verify(bool data_crc) const {
 Result<Metadata> Reader::ReadMetadata(const MetadataIndex& index) const {
   Bytes buffer;
   ByteSpan content;
-  ROVER_RETURN_IF_ERROR(ReadRecordAt(index.offset, index.length, Opcode::kMetadata, buffer,
-                                     content));
+  ROVER_RETURN_IF_ERROR(
+      ReadRecordAt(index.offset, index.length, Opcode::kMetadata, buffer, content));
   Result<Metadata> m = ParseMetadata(content);
   if (!m.ok()) return Error(Opcode::kMetadata, index.offset, m.status().message());
   if (m->name != index.name) {
@@ -929,8 +937,8 @@ Result<std::vector<Metadata>> Reader::ReadAllMetadata() const {
 Result<Attachment> Reader::ReadAttachment(const AttachmentIndex& index) const {
   Bytes buffer;
   ByteSpan content;
-  ROVER_RETURN_IF_ERROR(ReadRecordAt(index.offset, index.length, Opcode::kAttachment, buffer,
-                                     content));
+  ROVER_RETURN_IF_ERROR(
+      ReadRecordAt(index.offset, index.length, Opcode::kAttachment, buffer, content));
   Result<Attachment> a = ParseAttachment(content);
   if (!a.ok()) return Error(Opcode::kAttachment, index.offset, a.status().message());
   if (a->name != index.name || a->data.size() != index.data_size) {
@@ -955,7 +963,7 @@ struct MessageCursor::State {
     std::size_t next = 0;
   };
   std::vector<Stream> streams;
-  std::vector<std::size_t> heap;  ///< min-heap of stream indexes by Key
+  std::vector<std::size_t> heap;         ///< min-heap of stream indexes by Key
   std::shared_ptr<Reader::Loaded> hold;  ///< keeps the last message's bytes alive
   Bytes loose_buffer;
   Status error;
@@ -972,9 +980,7 @@ struct MessageCursor::State {
     const auto& e = s.data->entries[s.next];
     return {e.first, s.chunk->chunk_start_offset, e.second};
   }
-  bool Later(std::size_t a, std::size_t b) const {
-    return KeyOf(streams[a]) > KeyOf(streams[b]);
-  }
+  bool Later(std::size_t a, std::size_t b) const { return KeyOf(streams[a]) > KeyOf(streams[b]); }
   void Push(std::size_t i) {
     heap.push_back(i);
     std::push_heap(heap.begin(), heap.end(), [this](auto a, auto b) { return Later(a, b); });
@@ -1048,8 +1054,8 @@ Result<std::optional<MessageEvent>> MessageCursor::Next() {
     State::Stream& s = st.streams[i];
     if (!s.loaded) {
       s.data = std::make_shared<Reader::Loaded>();
-      Status loaded =
-          r.LoadChunk(*s.chunk, [&st](const MessageView& m) { return st.Keep(m); }, *s.data);
+      Status loaded = r.LoadChunk(
+          *s.chunk, [&st](const MessageView& m) { return st.Keep(m); }, *s.data);
       if (!loaded.ok()) {
         st.error = loaded;
         return loaded;

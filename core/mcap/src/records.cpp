@@ -10,11 +10,22 @@
 namespace rover::mcap {
 
 std::string OpcodeName(std::uint8_t opcode) {
-  static const char* const kNames[] = {
-      "invalid record 0x00", "Header",          "Footer",     "Schema",
-      "Channel",             "Message",         "Chunk",      "MessageIndex",
-      "ChunkIndex",          "Attachment",      "AttachmentIndex", "Statistics",
-      "Metadata",            "MetadataIndex",   "SummaryOffset",   "DataEnd"};
+  static const char* const kNames[] = {"invalid record 0x00",
+                                       "Header",
+                                       "Footer",
+                                       "Schema",
+                                       "Channel",
+                                       "Message",
+                                       "Chunk",
+                                       "MessageIndex",
+                                       "ChunkIndex",
+                                       "Attachment",
+                                       "AttachmentIndex",
+                                       "Statistics",
+                                       "Metadata",
+                                       "MetadataIndex",
+                                       "SummaryOffset",
+                                       "DataEnd"};
   if (opcode <= 0x0F) return kNames[opcode];
   char buf[32];
   std::snprintf(buf, sizeof buf, "%s record 0x%02x", opcode >= 0x80 ? "private" : "unknown",
@@ -166,8 +177,9 @@ class In {
       std::string v;
       Status s = body.Str("key", k);
       if (s.ok()) s = body.Str("value", v);
-      if (!s.ok()) return InvalidArgument(Field(field) + "entry " + std::to_string(m.size()) +
-                                          ": " + s.message());
+      if (!s.ok())
+        return InvalidArgument(Field(field) + "entry " + std::to_string(m.size()) + ": " +
+                               s.message());
       m[std::move(k)] = std::move(v);
     }
     return Status::Ok();

@@ -43,9 +43,10 @@ std::uint64_t TruncationNoticeReserve() {
 Status WriterOptions::Validate() const {
   const LevelRange r = CompressionLevels(compression);
   ROVER_RETURN_IF_ERROR(CheckIntRange("compression_level", compression_level, r.lo, r.hi));
-  ROVER_RETURN_IF_ERROR(CheckIntRange("chunk_bytes", static_cast<long long>(std::min<std::uint64_t>(
-                                                         chunk_bytes, kMaxChunkBytes + 1)),
-                                      1, static_cast<long long>(kMaxChunkBytes)));
+  ROVER_RETURN_IF_ERROR(CheckIntRange(
+      "chunk_bytes",
+      static_cast<long long>(std::min<std::uint64_t>(chunk_bytes, kMaxChunkBytes + 1)), 1,
+      static_cast<long long>(kMaxChunkBytes)));
   if (size_cap_bytes != 0 && size_cap_bytes < kMinSizeCap) {
     return InvalidArgument("size_cap_bytes = " + std::to_string(size_cap_bytes) +
                            " is below the smallest cap, " + std::to_string(kMinSizeCap) +
@@ -55,10 +56,10 @@ Status WriterOptions::Validate() const {
 }
 
 void WriterOptions::BindParams(ParamBinder<WriterOptions>& b) {
-  b.BindEnum("compression", &WriterOptions::compression,
-             {{"none", Compression::kNone}, {"zstd", Compression::kZstd},
-              {"lz4", Compression::kLz4}},
-             "chunk compression");
+  b.BindEnum(
+      "compression", &WriterOptions::compression,
+      {{"none", Compression::kNone}, {"zstd", Compression::kZstd}, {"lz4", Compression::kLz4}},
+      "chunk compression");
   b.Bind("compression_level", &WriterOptions::compression_level, "",
          "0 = the library's default; zstd -7..22, lz4 0..12");
   b.Bind("chunk_bytes", &WriterOptions::chunk_bytes, "bytes",
@@ -104,10 +105,9 @@ Status Writer::Start() {
   if (options_.size_cap_bytes != 0 && empty > options_.size_cap_bytes) {
     closed_ = true;
     (void)sink_->Close();
-    return InvalidArgument(sink_->name() + ": size_cap_bytes = " +
-                           std::to_string(options_.size_cap_bytes) +
-                           " is smaller than an empty recording (" + std::to_string(empty) +
-                           " bytes)");
+    return InvalidArgument(
+        sink_->name() + ": size_cap_bytes = " + std::to_string(options_.size_cap_bytes) +
+        " is smaller than an empty recording (" + std::to_string(empty) + " bytes)");
   }
   return Emit(b);
 }
@@ -195,7 +195,8 @@ Result<std::uint16_t> Writer::AddSchema(const std::string& name, const std::stri
     }
   }
   if (schemas_.size() >= kMaxIds) {
-    return InvalidArgument(sink_->name() + ": schema '" + name + "': all 65535 schema ids are used");
+    return InvalidArgument(sink_->name() + ": schema '" + name +
+                           "': all 65535 schema ids are used");
   }
   s.id = static_cast<std::uint16_t>(schemas_.size() + 1);
   Bytes record;
@@ -256,8 +257,8 @@ Status Writer::WriteMessage(const MessageView& m) {
   } else {
     e.data_bytes = size;
   }
-  Status admitted = Admit(e, "message on '" + channel.topic + "' at log time " +
-                                 std::to_string(m.log_time));
+  Status admitted =
+      Admit(e, "message on '" + channel.topic + "' at log time " + std::to_string(m.log_time));
   if (admitted.code() == StatusCode::kOutOfRange) {
     capped_ = true;
     first_dropped_ = m.log_time;
@@ -438,8 +439,8 @@ Status Writer::WriteSummaryAndFooter() {
       const std::size_t from = summary.size();
       append_all();
       if (summary.size() > from) {
-        groups.push_back({static_cast<std::uint8_t>(op), footer.summary_start + from,
-                          summary.size() - from});
+        groups.push_back(
+            {static_cast<std::uint8_t>(op), footer.summary_start + from, summary.size() - from});
       }
     };
     group(Opcode::kSchema, [&] {

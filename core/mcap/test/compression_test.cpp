@@ -13,7 +13,8 @@ using Bytes = std::vector<std::uint8_t>;
 
 Bytes Compressible(std::size_t n) {
   Bytes b(n);
-  for (std::size_t i = 0; i < n; ++i) b[i] = static_cast<std::uint8_t>("rover"[i % 5] + (i / 997) % 3);
+  for (std::size_t i = 0; i < n; ++i)
+    b[i] = static_cast<std::uint8_t>("rover"[i % 5] + (i / 997) % 3);
   return b;
 }
 

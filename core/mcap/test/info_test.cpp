@@ -94,7 +94,8 @@ TEST(Info, ReportsACapThatCutTheRecording) {
     const std::uint16_t c = w->AddChannel("t", "cdr", 0).value();
     for (std::uint32_t i = 0; i < 10000; ++i) {
       Bytes d(100);
-      for (std::size_t k = 0; k < d.size(); ++k) d[k] = static_cast<std::uint8_t>(k * i * 2654435761u >> 7);
+      for (std::size_t k = 0; k < d.size(); ++k)
+        d[k] = static_cast<std::uint8_t>(k * i * 2654435761u >> 7);
       if (!w->WriteMessage({c, i, 2'000'000'000ull + i * 10'000'000ull, 0, d}).ok()) break;
     }
     ASSERT_TRUE(w->Close().ok());

@@ -86,10 +86,11 @@ struct OurLayout {
 TEST(Interop, TheReferenceReaderReadsEveryRecordOfOurFiles) {
   if (const std::string why = MissingTool(); !why.empty()) GTEST_SKIP() << why;
   const std::string dir = testing::MakeTempDir("mcap-interop");
-  const std::vector<OurLayout> layouts = {
-      {"zstd", Compression::kZstd, true, true},   {"lz4", Compression::kLz4, true, true},
-      {"none", Compression::kNone, true, true},   {"unchunked", Compression::kNone, false, true},
-      {"no-summary", Compression::kZstd, true, false}};
+  const std::vector<OurLayout> layouts = {{"zstd", Compression::kZstd, true, true},
+                                          {"lz4", Compression::kLz4, true, true},
+                                          {"none", Compression::kNone, true, true},
+                                          {"unchunked", Compression::kNone, false, true},
+                                          {"no-summary", Compression::kZstd, true, false}};
   for (const OurLayout& l : layouts) {
     SCOPED_TRACE(l.name);
     const std::string path = dir + "/ours-" + l.name + ".mcap";
@@ -117,12 +118,15 @@ TEST(Interop, TheReferenceReaderReadsEveryRecordOfOurFiles) {
     Crc32 ordered;
     std::uint32_t sum_of_crcs = 0;
     std::map<std::string, int> per_topic;
-    ASSERT_TRUE((*ours)->ForEachMessage({}, [&](const MessageEvent& e) {
-      ordered.Update(e.message.data);
-      sum_of_crcs += ComputeCrc32(e.message.data);
-      ++per_topic[e.channel->topic];
-      return Status::Ok();
-    }).ok());
+    ASSERT_TRUE((*ours)
+                    ->ForEachMessage({},
+                                     [&](const MessageEvent& e) {
+                                       ordered.Update(e.message.data);
+                                       sum_of_crcs += ComputeCrc32(e.message.data);
+                                       ++per_topic[e.channel->topic];
+                                       return Status::Ok();
+                                     })
+                    .ok());
     const std::size_t chunks = (*ours)->chunk_indexes().size();
 
     const json got = RunNode(dir, "read.mjs", {path});
@@ -195,18 +199,22 @@ TEST(Interop, TheReferenceReaderReadsEveryRecordOfOurFiles) {
     ASSERT_EQ(indexed["metadata"].size(), 1u);
     EXPECT_EQ(indexed["metadata"][0]["name"], "run");
     EXPECT_EQ(indexed["metadata"][0]["metadata"]["scenario"], "drive_flat");
-    std::cout << "[ interop ] ours-" << l.name << " -> @mcap/core indexed reader: "
-              << indexed["messages"] << " messages from " << indexed["chunkIndexes"]
-              << " chunks, summary groups " << indexed["summaryOffsets"].dump() << "\n";
+    std::cout << "[ interop ] ours-" << l.name
+              << " -> @mcap/core indexed reader: " << indexed["messages"] << " messages from "
+              << indexed["chunkIndexes"] << " chunks, summary groups "
+              << indexed["summaryOffsets"].dump() << "\n";
   }
 }
 
 // ---- the reference writer, our reader -----------------------------------------------------------
 
-Timestamp LogTimeOf(int i) { return 1'000'000'000ull + static_cast<Timestamp>((i * 7919) % 500) * 1'000'000ull; }
+Timestamp LogTimeOf(int i) {
+  return 1'000'000'000ull + static_cast<Timestamp>((i * 7919) % 500) * 1'000'000ull;
+}
 Bytes DataOf(int i) {
   Bytes d(static_cast<std::size_t>((i * 37) % 200));
-  for (std::size_t k = 0; k < d.size(); ++k) d[k] = static_cast<std::uint8_t>((i * 31 + static_cast<int>(k) * 17) & 0xff);
+  for (std::size_t k = 0; k < d.size(); ++k)
+    d[k] = static_cast<std::uint8_t>((i * 31 + static_cast<int>(k) * 17) & 0xff);
   return d;
 }
 
@@ -224,7 +232,8 @@ TEST(Interop, OurReaderReadsTheReferenceWritersFiles) {
       const json wrote = RunNode(dir, "write.mjs", args);
       ASSERT_FALSE(wrote.is_null());
 
-      for (Verification v : {Verification::kFull, Verification::kDataSection, Verification::kSummary}) {
+      for (Verification v :
+           {Verification::kFull, Verification::kDataSection, Verification::kSummary}) {
         auto r = Reader::Open(path, {v});
         ASSERT_TRUE(r.ok()) << r.status().ToString();
         EXPECT_TRUE((*r)->has_summary());

@@ -50,10 +50,12 @@ TEST(FileSinkAndSource, ErrorsNameThePathAndTheReason) {
   const auto sink = FileSink::Create("/nonexistent-dir/x.mcap");
   ASSERT_FALSE(sink.ok());
   EXPECT_EQ(sink.status().code(), StatusCode::kUnavailable);
-  EXPECT_EQ(sink.status().message(), "/nonexistent-dir/x.mcap: cannot create: No such file or directory");
+  EXPECT_EQ(sink.status().message(),
+            "/nonexistent-dir/x.mcap: cannot create: No such file or directory");
   const auto source = FileSource::Open("/nonexistent-dir/x.mcap");
   EXPECT_EQ(source.status().code(), StatusCode::kNotFound);
-  EXPECT_EQ(source.status().message(), "/nonexistent-dir/x.mcap: cannot open: No such file or directory");
+  EXPECT_EQ(source.status().message(),
+            "/nonexistent-dir/x.mcap: cannot open: No such file or directory");
   EXPECT_EQ(FileSource::Open("/").status().code(), StatusCode::kInvalidArgument);
 }
 
@@ -64,7 +66,8 @@ TEST(FileSinkAndSource, AFullDiskIsReportedWithTheOffset) {
   ASSERT_TRUE((*sink)->Write(std::vector<std::uint8_t>(100, 1)).ok());  // still buffered
   const Status s = (*sink)->Close();
   EXPECT_EQ(s.code(), StatusCode::kUnavailable);
-  EXPECT_EQ(s.message(), "/dev/full: write of 100 bytes at offset 0 failed: No space left on device");
+  EXPECT_EQ(s.message(),
+            "/dev/full: write of 100 bytes at offset 0 failed: No space left on device");
 }
 
 TEST(BufferSinkAndSource, HoldBytesInMemory) {

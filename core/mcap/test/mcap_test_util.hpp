@@ -93,11 +93,10 @@ inline Sample WriteSample(Writer& w, const SampleSpec& spec) {
     m.topic = std::get<0>(topics[c]);
     m.sequence = seq[c]++;
     const std::int64_t base = 1'000'000'000 + static_cast<std::int64_t>(i) * 1'000'000;
-    const std::int64_t jitter =
-        spec.jitter_ns == 0
-            ? 0
-            : static_cast<std::int64_t>(rng() % (2 * spec.jitter_ns + 1)) -
-                  static_cast<std::int64_t>(spec.jitter_ns);
+    const std::int64_t jitter = spec.jitter_ns == 0
+                                    ? 0
+                                    : static_cast<std::int64_t>(rng() % (2 * spec.jitter_ns + 1)) -
+                                          static_cast<std::int64_t>(spec.jitter_ns);
     m.log_time = static_cast<Timestamp>(base + jitter);
     m.publish_time = m.log_time - 1000;
     m.data.resize(rng() % (spec.max_data_bytes + 1));
@@ -105,8 +104,7 @@ inline Sample WriteSample(Writer& w, const SampleSpec& spec) {
       b = spec.compressible ? static_cast<std::uint8_t>('a' + rng() % 4)
                             : static_cast<std::uint8_t>(rng());
     }
-    EXPECT_TRUE(
-        w.WriteMessage({ids[c], m.sequence, m.log_time, m.publish_time, m.data}).ok());
+    EXPECT_TRUE(w.WriteMessage({ids[c], m.sequence, m.log_time, m.publish_time, m.data}).ok());
     s.written.push_back(std::move(m));
     if (spec.attachment && i == spec.messages / 2) {
       Attachment a{2'000'000'000, 1'500'000'000, "calibration.yaml", "application/x-yaml",
@@ -118,7 +116,8 @@ inline Sample WriteSample(Writer& w, const SampleSpec& spec) {
 }
 
 /// Writes a sample recording into memory.
-inline Bytes SampleFile(const WriterOptions& options, const SampleSpec& spec, Sample* out = nullptr) {
+inline Bytes SampleFile(const WriterOptions& options, const SampleSpec& spec,
+                        Sample* out = nullptr) {
   Bytes bytes;
   auto w = Writer::Create(std::make_unique<BufferSink>(&bytes), options);
   EXPECT_TRUE(w.ok()) << w.status().ToString();
@@ -140,15 +139,16 @@ inline std::vector<Msg> InLogTimeOrder(std::vector<Msg> v) {
 inline Result<std::vector<Msg>> ReadAll(const Reader& r, const MessageFilter& filter = {}) {
   std::vector<Msg> out;
   Status s = r.ForEachMessage(filter, [&](const MessageEvent& e) {
-    out.push_back({e.channel->topic, e.message.sequence, e.message.log_time,
-                   e.message.publish_time, Bytes(e.message.data.begin(), e.message.data.end())});
+    out.push_back({e.channel->topic, e.message.sequence, e.message.log_time, e.message.publish_time,
+                   Bytes(e.message.data.begin(), e.message.data.end())});
     return Status::Ok();
   });
   if (!s.ok()) return s;
   return out;
 }
 
-inline Result<std::unique_ptr<Reader>> OpenBytes(Bytes bytes, Verification v = Verification::kDataSection,
+inline Result<std::unique_ptr<Reader>> OpenBytes(Bytes bytes,
+                                                 Verification v = Verification::kDataSection,
                                                  std::string name = "test.mcap") {
   ReaderOptions o;
   o.verification = v;

@@ -28,8 +28,8 @@ struct Layout {
 };
 
 std::string LayoutName(const ::testing::TestParamInfo<Layout>& p) {
-  std::string n = std::string(p.param.compression == Compression::kNone ? "none"
-                                                                        : CompressionName(p.param.compression));
+  std::string n = std::string(
+      p.param.compression == Compression::kNone ? "none" : CompressionName(p.param.compression));
   n += p.param.chunked ? "_chunked" : "_unchunked";
   n += p.param.summary ? "_summary" : "_scan";
   return n;
@@ -124,13 +124,15 @@ TEST_P(EachLayout, FiltersByTopicTimeAndChannel) {
   EXPECT_TRUE(ReadAll(**r, none).value().empty());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Layouts, EachLayout,
-    ::testing::Values(Layout{Compression::kNone, true, true}, Layout{Compression::kZstd, true, true},
-                      Layout{Compression::kLz4, true, true}, Layout{Compression::kZstd, true, false},
-                      Layout{Compression::kLz4, true, false}, Layout{Compression::kNone, false, true},
-                      Layout{Compression::kNone, false, false}),
-    LayoutName);
+INSTANTIATE_TEST_SUITE_P(Layouts, EachLayout,
+                         ::testing::Values(Layout{Compression::kNone, true, true},
+                                           Layout{Compression::kZstd, true, true},
+                                           Layout{Compression::kLz4, true, true},
+                                           Layout{Compression::kZstd, true, false},
+                                           Layout{Compression::kLz4, true, false},
+                                           Layout{Compression::kNone, false, true},
+                                           Layout{Compression::kNone, false, false}),
+                         LayoutName);
 
 TEST(Reader, ScanningAndTheSummaryAgree) {
   WriterOptions with;
@@ -338,11 +340,11 @@ TEST(Reader, CorruptChunksNameTheChunkAndTheirOffset) {
     ASSERT_TRUE(e->has_value()) << "the corrupt chunk was not noticed";
     ++yielded;
   }
-  EXPECT_EQ(failed.message().rfind("test.mcap: Chunk record at offset " +
-                                       std::to_string(chunk.chunk_start_offset) +
-                                       ": uncompressed_crc 0x",
-                                   0),
-            0u)
+  EXPECT_EQ(
+      failed.message().rfind("test.mcap: Chunk record at offset " +
+                                 std::to_string(chunk.chunk_start_offset) + ": uncompressed_crc 0x",
+                             0),
+      0u)
       << failed.message();
   EXPECT_NE(failed.message().find("(the chunk is corrupt)"), std::string::npos);
   EXPECT_EQ(cursor->Next().status().message(), failed.message()) << "the error is final";
@@ -368,9 +370,8 @@ TEST(Reader, WithoutADataCrcEveryChunkIsCheckedAtOpen) {
   bad[chunk.chunk_start_offset + chunk.chunk_length - 3] ^= 0x40;
   const auto r = OpenBytes(bad);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().message().rfind("test.mcap: Chunk record at offset " +
-                                           std::to_string(chunk.chunk_start_offset),
-                                       0),
+  EXPECT_EQ(r.status().message().rfind(
+                "test.mcap: Chunk record at offset " + std::to_string(chunk.chunk_start_offset), 0),
             0u)
       << r.status().message();
 }
@@ -456,8 +457,9 @@ TEST(Reader, RefusesWhatTheSpecificationForbids) {
     FileBuilder b;
     b.Data(MessageView{4, 0, 1, 1, {}});
     b.EndData();
-    EXPECT_EQ(OpenBytes(b.Finish(false)).status().message(),
-              "test.mcap: Message record at offset 29: channel 4 is not defined before the message");
+    EXPECT_EQ(
+        OpenBytes(b.Finish(false)).status().message(),
+        "test.mcap: Message record at offset 29: channel 4 is not defined before the message");
   }
   {  // a channel redefined differently
     FileBuilder b;
@@ -472,8 +474,10 @@ TEST(Reader, RefusesWhatTheSpecificationForbids) {
     FileBuilder b;
     b.Data(Channel{1, 3, "a", "cdr", {}});
     b.EndData();
-    EXPECT_NE(OpenBytes(b.Finish(false)).status().message().find(
-                  "uses schema 3, which is not defined before it"),
+    EXPECT_NE(OpenBytes(b.Finish(false))
+                  .status()
+                  .message()
+                  .find("uses schema 3, which is not defined before it"),
               std::string::npos);
   }
   {  // no DataEnd
@@ -487,8 +491,10 @@ TEST(Reader, RefusesWhatTheSpecificationForbids) {
     FileBuilder b;
     b.Data(Statistics{});
     b.EndData();
-    EXPECT_NE(OpenBytes(b.Finish(false)).status().message().find(
-                  "Statistics record at offset 29: a summary record is not allowed"),
+    EXPECT_NE(OpenBytes(b.Finish(false))
+                  .status()
+                  .message()
+                  .find("Statistics record at offset 29: a summary record is not allowed"),
               std::string::npos);
   }
   {  // an attachment inside a chunk
@@ -497,8 +503,10 @@ TEST(Reader, RefusesWhatTheSpecificationForbids) {
     FileBuilder b;
     b.Raw(testing::ChunkOf(inner, 0, 0));
     b.EndData();
-    EXPECT_NE(OpenBytes(b.Finish(false)).status().message().find(
-                  "Attachment record is not allowed inside a chunk"),
+    EXPECT_NE(OpenBytes(b.Finish(false))
+                  .status()
+                  .message()
+                  .find("Attachment record is not allowed inside a chunk"),
               std::string::npos);
   }
   {  // a message outside its chunk's time range
@@ -508,8 +516,10 @@ TEST(Reader, RefusesWhatTheSpecificationForbids) {
     FileBuilder b;
     b.Raw(testing::ChunkOf(inner, 10, 20));
     b.EndData();
-    EXPECT_NE(OpenBytes(b.Finish(false)).status().message().find(
-                  "Message log_time 99 is outside the chunk's [10, 20]"),
+    EXPECT_NE(OpenBytes(b.Finish(false))
+                  .status()
+                  .message()
+                  .find("Message log_time 99 is outside the chunk's [10, 20]"),
               std::string::npos);
   }
 }
@@ -550,8 +560,10 @@ TEST(Reader, SummaryChecksNameTheirRecord) {
     ci.chunk_start_offset = 5000;
     ci.chunk_length = 100;
     b.Data(ci);
-    EXPECT_NE(OpenBytes(b.Finish(true)).status().message().find(
-                  "ChunkIndex record at offset 42: the chunk [5000, +100)"),
+    EXPECT_NE(OpenBytes(b.Finish(true))
+                  .status()
+                  .message()
+                  .find("ChunkIndex record at offset 42: the chunk [5000, +100)"),
               std::string::npos);
   }
   {  // a wrong summary CRC
@@ -560,9 +572,9 @@ TEST(Reader, SummaryChecksNameTheirRecord) {
     b.Data(Statistics{});
     Bytes file = b.Finish(true);
     file[45] ^= 1;  // inside the Statistics record
-    EXPECT_NE(OpenBytes(file, Verification::kSummary).status().message().find(
-                  "Footer record at offset"),
-              std::string::npos);
+    EXPECT_NE(
+        OpenBytes(file, Verification::kSummary).status().message().find("Footer record at offset"),
+        std::string::npos);
   }
 }
 

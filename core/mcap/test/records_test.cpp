@@ -65,8 +65,8 @@ TEST(Records, HeaderLayout) {
 TEST(Records, FooterLayout) {
   const Footer f{0x1122334455667788ull, 0x0102030405060708ull, 0xCAFEBABEu};
   const Bytes e = Encode(f);
-  EXPECT_EQ(e, Le::Record(0x02, Le().u64(f.summary_start).u64(f.summary_offset_start).u32(
-                                    f.summary_crc)));
+  EXPECT_EQ(e, Le::Record(
+                   0x02, Le().u64(f.summary_start).u64(f.summary_offset_start).u32(f.summary_crc)));
   EXPECT_EQ(e.size(), kFooterRecordBytes);
   EXPECT_EQ(ParseFooter(ContentOf(e)).value(), f);
 }
@@ -74,8 +74,11 @@ TEST(Records, FooterLayout) {
 TEST(Records, SchemaLayout) {
   const Schema s{7, "rover::dl::PoseEstimate", "omgidl", Bytes{'s', 't', 'r'}};
   const Bytes e = Encode(s);
-  EXPECT_EQ(e, Le::Record(0x03, Le().u16(7).str("rover::dl::PoseEstimate").str("omgidl").u32(3).raw(
-                                    Bytes{'s', 't', 'r'})));
+  EXPECT_EQ(e, Le::Record(0x03, Le().u16(7)
+                                    .str("rover::dl::PoseEstimate")
+                                    .str("omgidl")
+                                    .u32(3)
+                                    .raw(Bytes{'s', 't', 'r'})));
   EXPECT_EQ(RecordSize(s), e.size());
   EXPECT_EQ(ParseSchema(ContentOf(e)).value(), s);
 }
@@ -85,8 +88,12 @@ TEST(Records, ChannelLayoutWithAMapSortedByKey) {
   const Bytes e = Encode(c);
   Le map;
   map.str("a").str("1").str("b").str("2");
-  EXPECT_EQ(e, Le::Record(0x04, Le().u16(3).u16(7).str("dl/pose").str("cdr").u32(
-                                    static_cast<std::uint32_t>(map.b.size())).raw(map.b)));
+  EXPECT_EQ(e, Le::Record(0x04, Le().u16(3)
+                                    .u16(7)
+                                    .str("dl/pose")
+                                    .str("cdr")
+                                    .u32(static_cast<std::uint32_t>(map.b.size()))
+                                    .raw(map.b)));
   EXPECT_EQ(RecordSize(c), e.size());
   EXPECT_EQ(ParseChannel(ContentOf(e)).value(), c);
 }
@@ -95,7 +102,8 @@ TEST(Records, MessageLayoutDataIsTheRestOfTheRecord) {
   const Bytes data{0x00, 0x01, 0x00, 0x00, 0xAB};
   const MessageView m{3, 42, 1'000'000'123, 1'000'000'000, data};
   const Bytes e = Encode(m);
-  EXPECT_EQ(e, Le::Record(0x05, Le().u16(3).u32(42).u64(1'000'000'123).u64(1'000'000'000).raw(data)));
+  EXPECT_EQ(e,
+            Le::Record(0x05, Le().u16(3).u32(42).u64(1'000'000'123).u64(1'000'000'000).raw(data)));
   EXPECT_EQ(MessageRecordSize(data.size()), e.size());
   const MessageView back = ParseMessage(ContentOf(e)).value();
   EXPECT_EQ(back.channel_id, 3);
@@ -109,8 +117,9 @@ TEST(Records, ChunkLayoutHasAUint64LengthBeforeItsRecords) {
   const Bytes records{1, 2, 3, 4};
   const ChunkView c{10, 20, 4, 0xDEADBEEFu, "zstd", records};
   const Bytes e = Encode(c);
-  EXPECT_EQ(e, Le::Record(0x06, Le().u64(10).u64(20).u64(4).u32(0xDEADBEEFu).str("zstd").u64(4).raw(
-                                    records)));
+  EXPECT_EQ(
+      e, Le::Record(0x06,
+                    Le().u64(10).u64(20).u64(4).u32(0xDEADBEEFu).str("zstd").u64(4).raw(records)));
   EXPECT_EQ(ChunkRecordSize(records.size(), "zstd"), e.size());
   const ChunkView back = ParseChunk(ContentOf(e)).value();
   EXPECT_EQ(back.compression, "zstd");
@@ -138,8 +147,19 @@ TEST(Records, ChunkIndexLayout) {
   ci.compressed_size = 350;
   ci.uncompressed_size = 1000;
   const Bytes e = Encode(ci);
-  EXPECT_EQ(e, Le::Record(0x08, Le().u64(1).u64(2).u64(30).u64(400).u32(20).u16(1).u64(430).u16(4).u64(
-                                    470).u64(80).str("lz4").u64(350).u64(1000)));
+  EXPECT_EQ(e, Le::Record(0x08, Le().u64(1)
+                                    .u64(2)
+                                    .u64(30)
+                                    .u64(400)
+                                    .u32(20)
+                                    .u16(1)
+                                    .u64(430)
+                                    .u16(4)
+                                    .u64(470)
+                                    .u64(80)
+                                    .str("lz4")
+                                    .u64(350)
+                                    .u64(1000)));
   EXPECT_EQ(ChunkIndexRecordSize(2, "lz4"), e.size());
   EXPECT_EQ(ParseChunkIndex(ContentOf(e)).value(), ci);
 }
@@ -168,8 +188,9 @@ TEST(Records, AttachmentLayoutEndsWithTheCrcOfEveryFieldBeforeIt) {
 TEST(Records, AttachmentIndexLayout) {
   const AttachmentIndex ai{100, 80, 5, 4, 2, "cal.yaml", "text/plain"};
   const Bytes e = Encode(ai);
-  EXPECT_EQ(e, Le::Record(0x0A, Le().u64(100).u64(80).u64(5).u64(4).u64(2).str("cal.yaml").str(
-                                    "text/plain")));
+  EXPECT_EQ(
+      e, Le::Record(0x0A,
+                    Le().u64(100).u64(80).u64(5).u64(4).u64(2).str("cal.yaml").str("text/plain")));
   EXPECT_EQ(RecordSize(ai), e.size());
   EXPECT_EQ(ParseAttachmentIndex(ContentOf(e)).value(), ai);
 }
@@ -186,8 +207,19 @@ TEST(Records, StatisticsLayout) {
   s.message_end_time = 99;
   s.channel_message_counts = {{1, 6}, {2, 3}};
   const Bytes e = Encode(s);
-  EXPECT_EQ(e, Le::Record(0x0B, Le().u64(9).u16(2).u32(3).u32(1).u32(4).u32(5).u64(11).u64(99).u32(
-                                    20).u16(1).u64(6).u16(2).u64(3)));
+  EXPECT_EQ(e, Le::Record(0x0B, Le().u64(9)
+                                    .u16(2)
+                                    .u32(3)
+                                    .u32(1)
+                                    .u32(4)
+                                    .u32(5)
+                                    .u64(11)
+                                    .u64(99)
+                                    .u32(20)
+                                    .u16(1)
+                                    .u64(6)
+                                    .u16(2)
+                                    .u64(3)));
   EXPECT_EQ(StatisticsRecordSize(2), e.size());
   EXPECT_EQ(ParseStatistics(ContentOf(e)).value(), s);
 }
@@ -266,8 +298,8 @@ TEST(Records, ErrorsSayWhatRanPastTheEnd) {
   EXPECT_EQ(ParseFooter(Bytes{1, 2, 3}).status().message(),
             "field 'summary_start': needs 8 bytes, 3 are left in the record");
   // A (uint16, uint64) map whose byte length is no multiple of 10.
-  const Bytes stats = Le().u64(0).u16(0).u32(0).u32(0).u32(0).u32(0).u64(0).u64(0).u32(3).raw(
-                              Bytes{1, 2, 3}).b;
+  const Bytes stats =
+      Le().u64(0).u16(0).u32(0).u32(0).u32(0).u32(0).u64(0).u64(0).u32(3).raw(Bytes{1, 2, 3}).b;
   EXPECT_EQ(ParseStatistics(stats).status().message(),
             "field 'channel_message_counts': a map of (uint16, uint64) entries has 3 bytes, not a "
             "multiple of 10");

@@ -98,7 +98,8 @@ TEST(Writer, OneChunkLayoutAndItsIndexes) {
   o.compression = Compression::kNone;
   auto w = MemoryWriter(&file, o);
   const std::string idl = testing::SampleIdl("dl", "PoseEstimate");
-  const std::uint16_t schema = w->AddSchema("rover::dl::PoseEstimate", "omgidl", AsBytes(idl)).value();
+  const std::uint16_t schema =
+      w->AddSchema("rover::dl::PoseEstimate", "omgidl", AsBytes(idl)).value();
   const std::uint16_t channel = w->AddChannel("dl/pose", "cdr", schema, {{"k", "v"}}).value();
   EXPECT_EQ(schema, 1);
   EXPECT_EQ(channel, 1);
@@ -133,12 +134,13 @@ TEST(Writer, OneChunkLayoutAndItsIndexes) {
   const MessageIndex mi = ParseMessageIndex(recs[2].content).value();
   EXPECT_EQ(mi.channel_id, channel);
   EXPECT_EQ(mi.records, (std::vector<std::pair<Timestamp, std::uint64_t>>{{2000, inner_at[2]},
-                                                                           {1000, inner_at[3]}}));
+                                                                          {1000, inner_at[3]}}));
 
   const ChunkIndex ci = ParseChunkIndex(recs[7].content).value();
   EXPECT_EQ(ci.chunk_start_offset, recs[1].offset);
   EXPECT_EQ(ci.chunk_length, recs[2].offset - recs[1].offset);
-  EXPECT_EQ(ci.message_index_offsets, (std::map<std::uint16_t, std::uint64_t>{{1, recs[2].offset}}));
+  EXPECT_EQ(ci.message_index_offsets,
+            (std::map<std::uint16_t, std::uint64_t>{{1, recs[2].offset}}));
   EXPECT_EQ(ci.message_index_length, recs[3].offset - recs[2].offset);
   EXPECT_EQ(ci.compressed_size, chunk.records.size());
   EXPECT_EQ(ci.uncompressed_size, chunk.uncompressed_size);
@@ -156,10 +158,9 @@ TEST(Writer, OneChunkLayoutAndItsIndexes) {
   EXPECT_EQ(st.message_end_time, 2000u);
   EXPECT_EQ(st.channel_message_counts, (std::map<std::uint16_t, std::uint64_t>{{1, 2}}));
   // The summary offsets name each group in order.
-  const std::vector<SummaryOffset> groups = {ParseSummaryOffset(recs[8].content).value(),
-                                             ParseSummaryOffset(recs[9].content).value(),
-                                             ParseSummaryOffset(recs[10].content).value(),
-                                             ParseSummaryOffset(recs[11].content).value()};
+  const std::vector<SummaryOffset> groups = {
+      ParseSummaryOffset(recs[8].content).value(), ParseSummaryOffset(recs[9].content).value(),
+      ParseSummaryOffset(recs[10].content).value(), ParseSummaryOffset(recs[11].content).value()};
   EXPECT_EQ(groups[0], (SummaryOffset{0x03, recs[4].offset, recs[5].offset - recs[4].offset}));
   EXPECT_EQ(groups[1], (SummaryOffset{0x04, recs[5].offset, recs[6].offset - recs[5].offset}));
   EXPECT_EQ(groups[2], (SummaryOffset{0x0B, recs[6].offset, recs[7].offset - recs[6].offset}));
@@ -287,7 +288,8 @@ TEST(Writer, OptionsAreValidatedNamingTheField) {
   EXPECT_FALSE(o.Validate().ok());
   o = {};
   o.chunk_bytes = 0;
-  EXPECT_EQ(o.Validate().message().rfind("chunk_bytes = 0 is outside", 0), 0u) << o.Validate().message();
+  EXPECT_EQ(o.Validate().message().rfind("chunk_bytes = 0 is outside", 0), 0u)
+      << o.Validate().message();
   o = {};
   o.size_cap_bytes = 100;
   EXPECT_EQ(o.Validate().message(),
@@ -439,7 +441,8 @@ TEST(Writer, ADiskErrorIsStickyAndLeavesNoFooter) {
 TEST(Writer, AnUnwritablePathIsAClearError) {
   const auto w = Writer::Create("/nonexistent-dir/run.mcap", {});
   ASSERT_FALSE(w.ok());
-  EXPECT_EQ(w.status().message(), "/nonexistent-dir/run.mcap: cannot create: No such file or directory");
+  EXPECT_EQ(w.status().message(),
+            "/nonexistent-dir/run.mcap: cannot create: No such file or directory");
 }
 
 TEST(Writer, WritesAFileThatTheReaderOpens) {

@@ -62,8 +62,8 @@ struct MessageFilter {
   std::vector<std::string> topics;
   /// Further channels to drop (e.g. a glob); null = keep all that `topics` kept.
   std::function<bool(const Channel&)> channel;
-  Timestamp start_time = 0;                     ///< inclusive
-  Timestamp end_time = ~Timestamp{0};           ///< inclusive
+  Timestamp start_time = 0;            ///< inclusive
+  Timestamp end_time = ~Timestamp{0};  ///< inclusive
 };
 
 /// One message with its channel and schema (null when the channel has none). `message.data`
@@ -163,8 +163,8 @@ class Reader {
   Status Verify(bool data_crc) const;
 
   /// Reads the whole record at `offset` and checks its opcode and length.
-  Status ReadRecordAt(std::uint64_t offset, std::uint64_t length, Opcode expected,
-                      Bytes& buffer, ByteSpan& content) const;
+  Status ReadRecordAt(std::uint64_t offset, std::uint64_t length, Opcode expected, Bytes& buffer,
+                      ByteSpan& content) const;
   /// Decompresses a Chunk record's records (checking sizes and the CRC) into `out`.
   Status DecompressChunk(const ChunkView& chunk, std::uint64_t offset, Bytes& out) const;
   /// Walks a chunk's decompressed records: definitions, then messages (channel known, log

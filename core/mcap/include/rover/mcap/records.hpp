@@ -90,10 +90,10 @@ struct Footer {
 };
 
 struct Schema {
-  std::uint16_t id = 0;   ///< 1..65535; 0 is invalid
-  std::string name;       ///< omgidl: the scoped type name, "rover::dl::PoseEstimate"
-  std::string encoding;   ///< "omgidl" here; "" = no schema
-  Bytes data;             ///< omgidl: one self-contained IDL text without directives
+  std::uint16_t id = 0;  ///< 1..65535; 0 is invalid
+  std::string name;      ///< omgidl: the scoped type name, "rover::dl::PoseEstimate"
+  std::string encoding;  ///< "omgidl" here; "" = no schema
+  Bytes data;            ///< omgidl: one self-contained IDL text without directives
   bool operator==(const Schema&) const = default;
 };
 

@@ -35,7 +35,7 @@ namespace rover::mcap {
 
 /// The Metadata record this library writes about the recording itself, and its keys.
 inline constexpr const char* kRecordingMetadataName = "rover_recording";
-inline constexpr const char* kTruncatedKey = "truncated";          ///< "size_cap" when cut
+inline constexpr const char* kTruncatedKey = "truncated";  ///< "size_cap" when cut
 inline constexpr const char* kSizeCapKey = "size_cap_bytes";
 inline constexpr const char* kFirstDroppedKey = "first_dropped_log_time";  ///< ns
 inline constexpr const char* kDroppedKey = "dropped_messages";
@@ -127,10 +127,10 @@ class Writer {
   Status FlushChunk();
   /// What an operation adds, for the size-cap arithmetic.
   struct Extra {
-    std::uint64_t chunk_bytes = 0;  ///< records into the open chunk
+    std::uint64_t chunk_bytes = 0;                 ///< records into the open chunk
     std::optional<std::uint16_t> message_channel;  ///< a message of this channel among them
-    std::uint64_t data_bytes = 0;     ///< records straight into the data section
-    std::uint64_t summary_bytes = 0;  ///< records into the summary
+    std::uint64_t data_bytes = 0;                  ///< records straight into the data section
+    std::uint64_t summary_bytes = 0;               ///< records into the summary
   };
   /// The size of the file if it were closed after `extra` (an upper bound: the open chunk is
   /// counted uncompressed, the truncation notice and every summary group are reserved).
@@ -145,7 +145,7 @@ class Writer {
   std::unique_ptr<Sink> sink_;
   WriterOptions options_;
   Compressor compressor_;
-  Status failed_;          ///< the first sink or library error (sticky)
+  Status failed_;  ///< the first sink or library error (sticky)
   bool closed_ = false;
   Status close_status_;
   bool capped_ = false;
@@ -155,9 +155,9 @@ class Writer {
   Crc32 data_crc_;
   bool data_open_ = true;
 
-  std::vector<Schema> schemas_;    ///< id = index + 1
-  std::vector<Channel> channels_;  ///< id = index + 1
-  std::uint64_t schema_bytes_ = 0;   ///< their records' sizes (repeated in the summary)
+  std::vector<Schema> schemas_;     ///< id = index + 1
+  std::vector<Channel> channels_;   ///< id = index + 1
+  std::uint64_t schema_bytes_ = 0;  ///< their records' sizes (repeated in the summary)
   std::uint64_t channel_bytes_ = 0;
 
   // The open chunk.
