@@ -48,7 +48,8 @@ Status CheckKeys(const YAML::Node& map, std::string_view where,
   std::set<std::string> seen;
   for (const auto& kv : map) {
     const std::string key = kv.first.Scalar();
-    if (!seen.insert(key).second) return err.At(kv.first, Prefixed(where, "duplicate key '" + key + "'"));
+    if (!seen.insert(key).second)
+      return err.At(kv.first, Prefixed(where, "duplicate key '" + key + "'"));
     if (rules.allow_extensions && key.rfind("x-", 0) == 0) continue;
     if (std::find(known.begin(), known.end(), key) == known.end()) {
       return err.At(kv.first, Prefixed(where, "unknown key '" + key + "'" + DidYouMean(key, known) +
@@ -104,7 +105,8 @@ void Flatten(const YAML::Node& n, const std::string& prefix,
              std::map<std::string, std::string>* out) {
   if (n.IsMap()) {
     for (const auto& kv : n) {
-      Flatten(kv.second, prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar(), out);
+      Flatten(kv.second, prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar(),
+              out);
     }
   } else if (n.IsScalar()) {
     (*out)[prefix] = n.Scalar();

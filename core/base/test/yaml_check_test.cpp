@@ -74,8 +74,9 @@ TEST(YamlCheck, NumbersAreFiniteAndInRange) {
 TEST(YamlCheck, OneOfListsTheChoices) {
   const YAML::Node n = Parse("clock: sim\nexpect: tilted\nlist: [a]\n");
   EXPECT_EQ(*OneOf(n["clock"], "clock", {"wall", "sim"}, kErr), "sim");
-  EXPECT_EQ(OneOf(n["expect"], "steps[].expect", {"nominal", "tilt"}, kErr).status().message(),
-            "f.yaml:2: steps[].expect: 'tilted' is not one of: nominal, tilt (did you mean 'tilt'?)");
+  EXPECT_EQ(
+      OneOf(n["expect"], "steps[].expect", {"nominal", "tilt"}, kErr).status().message(),
+      "f.yaml:2: steps[].expect: 'tilted' is not one of: nominal, tilt (did you mean 'tilt'?)");
   EXPECT_EQ(OneOf(n["list"], "list", {"no", "always"}, kErr).status().message(),
             "f.yaml:3: list: '' is not one of: no, always");
 }

@@ -68,11 +68,11 @@ Status ParseDependsOn(const YAML::Node& n, const std::string& where, const Error
       ROVER_RETURN_IF_ERROR(
           CheckKeys(kv.second, w, {"condition", "restart", "required"}, err, kComposeKeys));
       if (const auto c = kv.second["condition"]) {
-        ROVER_ASSIGN_OR_RETURN(const std::string cond,
-                               yaml::OneOf(c, w + ".condition",
-                                           {"service_started", "service_healthy",
-                                            "service_completed_successfully"},
-                                           err));
+        ROVER_ASSIGN_OR_RETURN(
+            const std::string cond,
+            yaml::OneOf(c, w + ".condition",
+                        {"service_started", "service_healthy", "service_completed_successfully"},
+                        err));
         d.condition = cond == "service_started"   ? DependencyCondition::kStarted
                       : cond == "service_healthy" ? DependencyCondition::kHealthy
                                                   : DependencyCondition::kCompletedSuccessfully;
@@ -147,12 +147,12 @@ Status ParseService(const std::string& name, const YAML::Node& key, const YAML::
   auto merged = ResolveMergeKeys(raw, where, err);
   if (!merged.ok()) return merged.status();
   const YAML::Node n = *merged;
-  ROVER_RETURN_IF_ERROR(CheckKeys(n, where,
-                                  {"command", "environment", "depends_on", "restart",
-                                   "stop_grace_period", "image", "build", "network_mode",
-                                   "working_dir", "volumes", "container_name", "stop_signal",
-                                   "healthcheck", "init"},
-                                  err, kComposeKeys));
+  ROVER_RETURN_IF_ERROR(
+      CheckKeys(n, where,
+                {"command", "environment", "depends_on", "restart", "stop_grace_period", "image",
+                 "build", "network_mode", "working_dir", "volumes", "container_name", "stop_signal",
+                 "healthcheck", "init"},
+                err, kComposeKeys));
   const YAML::Node cmd = n["command"];
   if (!cmd || cmd.IsNull()) {
     return err.At(key, where + ": no 'command' (roverctl runs each service's command natively)");
@@ -211,8 +211,8 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   }
   ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "startup_timeout_s", "x-rover",
                                              Bounds::OpenLow(0, 3600), err, &r->startup_timeout_s));
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "heartbeat_timeout_s", "x-rover",
-                                             Bounds::OpenLow(0, 3600), err, &r->heartbeat_timeout_s));
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(
+      n, "heartbeat_timeout_s", "x-rover", Bounds::OpenLow(0, 3600), err, &r->heartbeat_timeout_s));
   if (const auto q = n["qos"]) {
     if (!q.IsMap()) return err.At(q, "x-rover.qos: expected a map of topic: profile");
     for (const auto& kv : q) {
@@ -249,8 +249,8 @@ Status OrderServices(std::vector<ServiceSpec>* services, const Errors& err) {
       if (!by_name.count(d.service)) {
         std::vector<std::string> names;
         for (const auto& [n, _] : by_name) names.push_back(n);
-        return err.At(d.line, "services." + s.name + ".depends_on: unknown service '" +
-                                  d.service + "'" + DidYouMean(d.service, names));
+        return err.At(d.line, "services." + s.name + ".depends_on: unknown service '" + d.service +
+                                  "'" + DidYouMean(d.service, names));
       }
       if (d.service == s.name) {
         return err.At(d.line, "services." + s.name + ".depends_on: a service cannot depend on itself");
@@ -267,7 +267,8 @@ Status OrderServices(std::vector<ServiceSpec>* services, const Errors& err) {
       auto it = std::find(stack.begin(), stack.end(), s.name);
       std::vector<std::string> cycle(it, stack.end());
       cycle.push_back(s.name);
-      return err.At(s.line, "services." + s.name + ": dependency cycle: " + JoinNames(cycle, " -> "));
+      return err.At(s.line,
+                    "services." + s.name + ": dependency cycle: " + JoinNames(cycle, " -> "));
     }
     mark[s.name] = kVisiting;
     stack.push_back(s.name);
@@ -386,9 +387,9 @@ Result<ComposeProject> ParseCompose(const std::string& text, const std::string& 
   const Errors err(file);
   ROVER_ASSIGN_OR_RETURN(const YAML::Node root, yaml::Load(text, err));
   if (!root.IsMap()) return err.At(1, "expected a map with a 'services' key");
-  ROVER_RETURN_IF_ERROR(
-      CheckKeys(root, "top level", {"version", "name", "services", "networks", "volumes"}, err,
-                kComposeKeys));
+  ROVER_RETURN_IF_ERROR(CheckKeys(root, "top level",
+                                  {"version", "name", "services", "networks", "volumes"}, err,
+                                  kComposeKeys));
   ComposeProject project;
   project.file = file;
   if (const auto r = root["x-rover"]) ROVER_RETURN_IF_ERROR(ParseRover(r, err, &project.rover));

@@ -23,9 +23,10 @@ Result<std::unique_ptr<Recorder>> Recorder::Create(const dds::Participant& parti
                                                    sim::Judge* judge, RunResult* result) {
   std::unique_ptr<Recorder> r(new Recorder(participant, judge, result));
   ROVER_ASSIGN_OR_RETURN(r->truth_, dds::Reader<rover_sim_Truth>::Create(participant, "sim/truth"));
-  ROVER_ASSIGN_OR_RETURN(r->pose_, dds::Reader<rover_dl_PoseEstimate>::Create(participant, "dl/pose"));
-  ROVER_ASSIGN_OR_RETURN(r->odometry_,
-                         dds::Reader<rover_dl_PoseEstimate>::Create(participant, "dl/pose_odometry"));
+  ROVER_ASSIGN_OR_RETURN(r->pose_,
+                         dds::Reader<rover_dl_PoseEstimate>::Create(participant, "dl/pose"));
+  ROVER_ASSIGN_OR_RETURN(
+      r->odometry_, dds::Reader<rover_dl_PoseEstimate>::Create(participant, "dl/pose_odometry"));
   return r;
 }
 

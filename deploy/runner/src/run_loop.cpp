@@ -9,7 +9,8 @@ namespace rover::deploy::runner {
 
 Result<std::unique_ptr<RunLoop>> RunLoop::Create(const dds::Participant& participant,
                                                  LoopLimits limits) {
-  ROVER_ASSIGN_OR_RETURN(auto clock, dds::Reader<rover_sim_Clock>::Create(participant, "sim/clock"));
+  ROVER_ASSIGN_OR_RETURN(auto clock,
+                         dds::Reader<rover_sim_Clock>::Create(participant, "sim/clock"));
   return std::unique_ptr<RunLoop>(new RunLoop(std::move(clock), limits));
 }
 

@@ -39,7 +39,8 @@ Status PreflightScenario(const Scenario& scenario, std::uint32_t seed, const Run
   return Status::Ok();
 }
 
-Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options) {
+Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
+                              const RunOptions& options) {
   const Time wall_start = MonotonicNow();
   // Declared first so that it is destroyed last: the task's, recorder's and loop's DDS entities
   // belong to its participant.
@@ -67,7 +68,8 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     set->Stop();
     result.teardown_s = ToSeconds(MonotonicNow() - t0);
     result.wall_time_s = ToSeconds(MonotonicNow() - wall_start);
-    ROVER_RETURN_IF_ERROR(WriteRunOutputs(&result, failure, prepared.world.terrain, task->PlannedPath()));
+    ROVER_RETURN_IF_ERROR(
+        WriteRunOutputs(&result, failure, prepared.world.terrain, task->PlannedPath()));
     return result;
   };
   if (!started.ok()) return finish("service set did not start: " + started.message());
@@ -77,10 +79,15 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
 
   // (b) Recording, and the loop every wait goes through.
   auto recorder = Recorder::Create(set->participant(), &*judge, &result);
-  if (!recorder.ok()) return finish("cannot create the runner's DDS endpoints: " + recorder.status().message());
-  auto loop = RunLoop::Create(set->participant(), LoopLimits{scenario.time_budget_s, scenario.wall_budget_s,
-                                                             wall_start, options.abort});
-  if (!loop.ok()) return finish("cannot create the runner's DDS endpoints: " + loop.status().message());
+  if (!recorder.ok()) {
+    return finish("cannot create the runner's DDS endpoints: " + recorder.status().message());
+  }
+  auto loop = RunLoop::Create(
+      set->participant(),
+      LoopLimits{scenario.time_budget_s, scenario.wall_budget_s, wall_start, options.abort});
+  if (!loop.ok()) {
+    return finish("cannot create the runner's DDS endpoints: " + loop.status().message());
+  }
   RunLoop& run_loop = **loop;
   run_loop.AddPump([&] { (*recorder)->Pump(); });
   run_loop.AddCheck([&] { return set->CheckServices(&result.crashes); });
@@ -93,7 +100,8 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed, cons
     return finish("cannot create the runner's DDS endpoints: " + s.message());
   }
   // Start simulated time once the simulator and the services the task commands hear us.
-  std::string failure = run_loop.WaitUntil([&] { return set->SimulatorHearsUs() && task->Ready(); });
+  std::string failure =
+      run_loop.WaitUntil([&] { return set->SimulatorHearsUs() && task->Ready(); });
   if (!failure.empty()) return finish(failure);
   if (const Status s = set->ResumeSimulator(); !s.ok()) return finish(s.message());
   progress("running", 0);

@@ -1,5 +1,6 @@
 #include "rover/deploy/runner/service_set.hpp"
 
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <map>
 #include <random>
-#include <unistd.h>
 
 #include "rover/base/format.hpp"
 
@@ -101,8 +101,10 @@ std::string TerrainDigest(const sim::Terrain& t) {
   return buf;
 }
 
-Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed, const RunOptions& options) {
-  const std::string run_dir = options.out_dir + "/" + scenario.name + "-seed" + std::to_string(seed);
+Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
+                               const RunOptions& options) {
+  const std::string run_dir =
+      options.out_dir + "/" + scenario.name + "-seed" + std::to_string(seed);
   std::error_code ec;
   fs::remove_all(run_dir, ec);
   fs::create_directories(run_dir + "/params", ec);
@@ -114,7 +116,8 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed, con
   std::ofstream(sim_params_path) << sim_yaml;
   ParamSet world_params("world");
   sim::DeclareWorldParams(world_params);
-  ROVER_RETURN_IF_ERROR(world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::WorldSections()));
+  ROVER_RETURN_IF_ERROR(
+      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::WorldSections()));
   ROVER_RETURN_IF_ERROR(world_params.Validate());
   ROVER_ASSIGN_OR_RETURN(sim::World world, sim::BuildWorld(world_params));
 
@@ -160,11 +163,14 @@ Status ServiceSet::Start() { return supervisor_->Start(); }
 
 Status ServiceSet::OpenOperator() {
   ROVER_ASSIGN_OR_RETURN(participant_, dds::Participant::Create(domain()));
-  ROVER_ASSIGN_OR_RETURN(control_, dds::Writer<rover_sim_Control>::Create(participant_, "sim/control"));
+  ROVER_ASSIGN_OR_RETURN(control_,
+                         dds::Writer<rover_sim_Control>::Create(participant_, "sim/control"));
   return Status::Ok();
 }
 
-bool ServiceSet::SimulatorHearsUs() const { return control_.valid() && control_.MatchedReaders() > 0; }
+bool ServiceSet::SimulatorHearsUs() const {
+  return control_.valid() && control_.MatchedReaders() > 0;
+}
 
 Status ServiceSet::ResumeSimulator() {
   rover_sim_Control resume{};

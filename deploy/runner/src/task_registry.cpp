@@ -68,8 +68,10 @@ Result<std::optional<TaskGoal>> ParseTaskGoal(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(yaml::CheckKeys(g, "task.goal", {"x", "y", "tolerance"}, err));
   TaskGoal goal;
   bool hx = false, hy = false;
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(g, "x", "task.goal", -1e4, 1e4, err, &goal.xy.x(), &hx));
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(g, "y", "task.goal", -1e4, 1e4, err, &goal.xy.y(), &hy));
+  ROVER_RETURN_IF_ERROR(
+      yaml::OptionalNumber(g, "x", "task.goal", -1e4, 1e4, err, &goal.xy.x(), &hx));
+  ROVER_RETURN_IF_ERROR(
+      yaml::OptionalNumber(g, "y", "task.goal", -1e4, 1e4, err, &goal.xy.y(), &hy));
   if (!hx || !hy) return err.At(g, "task.goal: needs both 'x' and 'y'");
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(g, "tolerance", "task.goal", 0.01, 100, err, &goal.tolerance));

@@ -45,7 +45,8 @@ class CampaignTest : public ::testing::Test {
       r.seed = seed;
       r.pass = seed % 2 == 1;
       r.failure = r.pass ? "" : "final_position_error: 0.8 > 0.5 m";
-      r.criteria.push_back({"final_position_error", r.pass ? 0.1 * seed : 0.8, 0.5, "m", r.pass, ""});
+      r.criteria.push_back(
+          {"final_position_error", r.pass ? 0.1 * seed : 0.8, 0.5, "m", r.pass, ""});
       r.distance_driven = 4;
       r.sim_time_s = 100;
       r.wall_time_s = 10;

@@ -26,7 +26,8 @@ class FakeDrive {
  public:
   FakeDrive(int domain, ScriptedClock* clock) : clock_(clock) {
     participant_ = dds::Participant::Create(domain).value();
-    commands_ = dds::Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command").value();
+    commands_ =
+        dds::Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command").value();
     status_ = dds::Writer<rover_dl_DriveStatus>::Create(participant_, "dl/drive_status").value();
   }
 
@@ -110,6 +111,13 @@ class DirectedTaskTest : public ::testing::Test {
     EXPECT_EQ(ctx.WaitUntil([&] { return task.Ready(); }), "");
     return task.Run(ctx);
   }
+  // Runs ThreeSteps() with step `index` expecting `expect`.
+  TaskOutcome RunExpecting(std::size_t index, const std::string& expect) {
+    DirectedTaskSpec spec = ThreeSteps();
+    spec.steps[index].expect = expect;
+    DirectedTask task(spec, 0, 0, 0);
+    return Run(task);
+  }
   RunFixture run_;
   ScriptedClock clock_;
   FakeDrive drive_;
@@ -156,20 +164,14 @@ TEST_F(DirectedTaskTest, AnUnexpectedFaultFailsTheRunAndEndsTheSequence) {
 
 TEST_F(DirectedTaskTest, AnExpectedFaultPassesAndEndsTheSequence) {
   drive_.script[2] = {rover_dl_DRIVE_FAILED, rover_dl_TERMINATION_TILT, "", 0.5};
-  DirectedTaskSpec spec = ThreeSteps();
-  spec.steps[1].expect = "tilt";
-  DirectedTask task(spec, 0, 0, 0);
-  const TaskOutcome out = Run(task);
+  const TaskOutcome out = RunExpecting(1, "tilt");
   EXPECT_EQ(out.failure, "");
   EXPECT_EQ(out.steps.size(), 2u);
   EXPECT_EQ(drive_.received.size(), 2u);
 }
 
 TEST_F(DirectedTaskTest, ExpectingAFaultThatDoesNotComeFails) {
-  DirectedTaskSpec spec = ThreeSteps();
-  spec.steps[0].expect = "timeout";
-  DirectedTask task(spec, 0, 0, 0);
-  const TaskOutcome out = Run(task);
+  const TaskOutcome out = RunExpecting(0, "timeout");
   EXPECT_EQ(out.failure, "step 1 (straight) ended done (nominal), expected timeout");
   EXPECT_EQ(out.steps.size(), 1u);
 }
@@ -234,7 +236,8 @@ TEST(DirectedTaskParse, StepsAndTheirErrors) {
   auto err_of = [&](const std::string& steps) {
     return parse("task: {type: directed, steps: [" + steps + "]}\n").status().message();
   };
-  EXPECT_EQ(err_of("{primitive: arc, distance: 1}"), "s.yaml:2: task.steps[]: 'arc' needs 'curvature'");
+  EXPECT_EQ(err_of("{primitive: arc, distance: 1}"),
+            "s.yaml:2: task.steps[]: 'arc' needs 'curvature'");
   EXPECT_EQ(err_of("{primitive: arc, distance: 1, curvature: 2}"),
             "s.yaml:2: task.steps[].curvature: 2 is out of range [-1, 1]");
   EXPECT_EQ(err_of("{primitive: stop, expect: tilted}"),

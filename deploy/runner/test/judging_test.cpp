@@ -15,8 +15,10 @@ namespace fs = std::filesystem;
 sim::World SmallWorld(const std::string& rocks) {
   ParamSet p("world");
   sim::DeclareWorldParams(p);
-  const std::string text = "terrain: {size_x: 8, size_y: 8, resolution: 0.05, seed: 5, hills: {amplitude: 0}, "
-                           "craters: {count: 0}, rocks: {preset: " + rocks + "}}\n";
+  const std::string text =
+      "terrain: {size_x: 8, size_y: 8, resolution: 0.05, seed: 5, hills: {amplitude: 0}, "
+      "craters: {count: 0}, rocks: {preset: " +
+      rocks + "}}\n";
   EXPECT_TRUE(p.LoadYamlSections(text, "w.yaml", sim::WorldSections()).ok());
   EXPECT_TRUE(p.Validate().ok());
   auto w = sim::BuildWorld(p);
@@ -30,15 +32,22 @@ Eigen::Isometry3d At(double x) {
   return t;
 }
 
-// 2 m straight along x, the estimate 5 cm to the side.
-void Drive(sim::Judge& j) {
+// A judge of a 2 m straight along x to the target (2, 0), after the drive, with the estimate
+// 5 cm to the side.
+sim::Judge JudgedDrive(double max_estimate_error) {
+  sim::JudgeCriteria criteria;
+  criteria.target_xy = Eigen::Vector2d(2, 0);
+  criteria.max_estimate_error = max_estimate_error;
+  auto j = sim::Judge::Create(criteria, {});
+  EXPECT_TRUE(j.ok()) << j.status().message();
   for (int i = 0; i <= 20; ++i) {
     const Time t = Time::FromSeconds(i);
-    j.AddTruth(t, At(0.1 * i));
+    j->AddTruth(t, At(0.1 * i));
     Eigen::Isometry3d e = At(0.1 * i);
     e.translation().y() = 0.05;
-    j.AddEstimate(t, e);
+    j->AddEstimate(t, e);
   }
+  return std::move(*j);
 }
 
 TEST(Judging, TheJudgeKnowsTheWorldsRocks) {
@@ -61,41 +70,30 @@ TEST(Judging, TheJudgeKnowsTheWorldsRocks) {
 }
 
 TEST(Judging, ScoreFillsTheResultAndNamesTheFirstFailedCriterion) {
-  sim::JudgeCriteria criteria;
-  criteria.target_xy = Eigen::Vector2d(2, 0);
-  criteria.max_estimate_error = 0.01;
-  auto judge = sim::Judge::Create(criteria, {});
-  ASSERT_TRUE(judge.ok());
-  Drive(*judge);
+  const sim::Judge judge = JudgedDrive(0.01);
   RunResult r;
   std::string failure;
   const sim::Criterion extra{"estimator_rejected_measurements", 3, 0, "count", true, ""};
-  ScoreRun(*judge, {extra}, &r, &failure);
+  ScoreRun(judge, {extra}, &r, &failure);
   EXPECT_NEAR(r.distance_driven, 2.0, 1e-9);
   EXPECT_FALSE(r.estimate_error.empty());
   ASSERT_FALSE(r.figures.empty());
   EXPECT_EQ(r.figures.back().name, "estimator_rejected_measurements");  // after the judge's
   EXPECT_GT(r.figures.size(), 1u);
   // The estimate is 5 cm off with a 1 cm limit: the failure is the judge's first failed line.
-  const std::string summary = judge->Evaluate().FailureSummary();
+  const std::string summary = judge.Evaluate().FailureSummary();
   EXPECT_EQ(failure, summary.substr(0, summary.find('\n')));
   EXPECT_NE(failure.find("estimate"), std::string::npos) << failure;
   // An earlier failure (a crash, a step) is kept.
   std::string earlier = "service 'x' crashed (exit 1)";
-  ScoreRun(*judge, {}, &r, &earlier);
+  ScoreRun(judge, {}, &r, &earlier);
   EXPECT_EQ(earlier, "service 'x' crashed (exit 1)");
 }
 
 TEST(Judging, APassingRunHasNoFailure) {
-  sim::JudgeCriteria criteria;
-  criteria.target_xy = Eigen::Vector2d(2, 0);
-  criteria.max_estimate_error = 0.1;
-  auto judge = sim::Judge::Create(criteria, {});
-  ASSERT_TRUE(judge.ok());
-  Drive(*judge);
   RunResult r;
   std::string failure;
-  ScoreRun(*judge, {}, &r, &failure);
+  ScoreRun(JudgedDrive(0.1), {}, &r, &failure);
   EXPECT_EQ(failure, "");
   for (const auto& c : r.criteria) EXPECT_TRUE(c.pass) << c.name;
 }
@@ -110,9 +108,9 @@ TEST(Judging, OutputsAreWrittenAndTheFirstFailureWins) {
   r.truth_track = {{0, 0, 0}, {1, 1, 0}};
   r.estimate_track = {{0, 0, 0}, {1, 1, 0.1}};
   r.estimate_error.push_back({Time::FromSeconds(1), 0.1, 0.01});
-  ASSERT_TRUE(WriteRunOutputs(&r, "step 1 (straight) ended failed (tilt)", world.terrain,
-                              {{0, 0}, {2, 0}})
-                  .ok());
+  ASSERT_TRUE(
+      WriteRunOutputs(&r, "step 1 (straight) ended failed (tilt)", world.terrain, {{0, 0}, {2, 0}})
+          .ok());
   EXPECT_FALSE(r.pass);
   EXPECT_EQ(r.failure, "step 1 (straight) ended failed (tilt)");
   std::ifstream in(dir + "/result.json");

@@ -7,30 +7,26 @@
 namespace rover::deploy::runner {
 namespace {
 
-Scenario WithTask(const std::string& task_yaml) {
-  Scenario s;
-  s.file = "s.yaml";
-  s.text = "name: x\n" + task_yaml;
-  s.start_x = 1;
-  s.start_y = 2;
-  return s;
-}
+using testing::ScenarioWithTask;
 
 TEST(PlannedTasks, ValidateTheirSection) {
-  EXPECT_EQ(ValidateTask(WithTask("task: {type: autonav}\n")).message(),
+  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: autonav}\n")).message(),
             "s.yaml:2: task: a 'autonav' task needs a 'goal'");
-  EXPECT_EQ(ValidateTask(WithTask("task: {type: long_traverse}\n")).message(),
+  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: long_traverse}\n")).message(),
             "s.yaml:2: task: a 'long_traverse' task needs a 'goal'");
-  EXPECT_TRUE(ValidateTask(WithTask("task: {type: lander_return}\n")).ok());
-  EXPECT_TRUE(ValidateTask(WithTask("task: {type: science_target}\n")).ok());
-  EXPECT_EQ(ValidateTask(WithTask("task: {type: waypoint, goal: {x: 1, y: 1}, steps: []}\n")).message(),
-            "s.yaml:2: task: unknown key 'steps' (known: type, goal)");
-  EXPECT_EQ(ValidateTask(WithTask("task: {type: waypoint, goal: {x: 1}}\n")).message(),
+  EXPECT_TRUE(ValidateTask(ScenarioWithTask("task: {type: lander_return}\n")).ok());
+  EXPECT_TRUE(ValidateTask(ScenarioWithTask("task: {type: science_target}\n")).ok());
+  EXPECT_EQ(
+      ValidateTask(ScenarioWithTask("task: {type: waypoint, goal: {x: 1, y: 1}, steps: []}\n"))
+          .message(),
+      "s.yaml:2: task: unknown key 'steps' (known: type, goal)");
+  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: waypoint, goal: {x: 1}}\n")).message(),
             "s.yaml:2: task.goal: needs both 'x' and 'y'");
 }
 
 TEST(PlannedTasks, ARunFailsSayingWhichServicesAreMissing) {
-  auto t = TaskRegistry::Builtin().Make(WithTask("task: {type: waypoint, goal: {x: 5, y: 6}}\n"));
+  auto t = TaskRegistry::Builtin().Make(
+      ScenarioWithTask("task: {type: waypoint, goal: {x: 5, y: 6}}\n"));
   ASSERT_TRUE(t.ok()) << t.status().message();
   EXPECT_EQ((*t)->PlannedPath(), (std::vector<Eigen::Vector2d>{{1, 2}, {5, 6}}));
   testing::RunFixture run;
@@ -42,7 +38,7 @@ TEST(PlannedTasks, ARunFailsSayingWhichServicesAreMissing) {
   EXPECT_EQ(out.failure,
             "task type 'waypoint' needs the autonomous-navigation services, which this stack does "
             "not have yet");
-  auto home = TaskRegistry::Builtin().Make(WithTask("task: {type: lander_return}\n"));
+  auto home = TaskRegistry::Builtin().Make(ScenarioWithTask("task: {type: lander_return}\n"));
   ASSERT_TRUE(home.ok());
   EXPECT_EQ((*home)->PlannedPath(), (std::vector<Eigen::Vector2d>{{1, 2}}));
 }

@@ -54,7 +54,8 @@ TEST(Recorder, TracksAreDownsampledAndTheJudgeGetsEverySample) {
   for (int i = 0; i <= 40; ++i) {
     const double t = 0.05 * i;
     ASSERT_TRUE(truth->Write(TruthAt(t, 0.1 * t)).ok());
-    ASSERT_TRUE(pose->Write(EstimateAt(t, 0.1 * t + 0.01, static_cast<std::uint32_t>(i / 10))).ok());
+    ASSERT_TRUE(
+        pose->Write(EstimateAt(t, 0.1 * t + 0.01, static_cast<std::uint32_t>(i / 10))).ok());
     ASSERT_TRUE(odo->Write(EstimateAt(t, 0.1 * t + 0.02, 0)).ok());
     (*rec)->Pump();  // as the run loop does while samples arrive
   }
@@ -66,7 +67,8 @@ TEST(Recorder, TracksAreDownsampledAndTheJudgeGetsEverySample) {
            result.odometry_only_track.back()[0] >= 1.75;
   }));
   EXPECT_TRUE((*rec)->has_estimate());
-  for (const auto* track : {&result.truth_track, &result.estimate_track, &result.odometry_only_track}) {
+  for (const auto* track :
+       {&result.truth_track, &result.estimate_track, &result.odometry_only_track}) {
     ASSERT_GE(track->size(), 9u);
     EXPECT_EQ((*track)[0][0], 0.0);
     for (std::size_t i = 1; i < track->size(); ++i) {
@@ -98,7 +100,8 @@ TEST(Recorder, TwoSimulatorsOnOneDomainAreCrossTalk) {
   auto a = dds::Writer<rover_sim_Truth>::Create(run.participant(), "sim/truth");
   auto b = dds::Writer<rover_sim_Truth>::Create(*other, "sim/truth");
   ASSERT_TRUE(a.ok() && b.ok());
-  ASSERT_TRUE(rover::testing::WaitFor([&] { return a->MatchedReaders() > 0 && b->MatchedReaders() > 0; }));
+  ASSERT_TRUE(
+      rover::testing::WaitFor([&] { return a->MatchedReaders() > 0 && b->MatchedReaders() > 0; }));
   ASSERT_TRUE(PumpUntil(run.recorder(), [&] {
     (void)a->Write(TruthAt(1, 0));
     (void)b->Write(TruthAt(1, 5));

@@ -14,6 +14,17 @@
 
 namespace rover::deploy::runner::testing {
 
+// A scenario "s.yaml" whose text is `task_yaml` from line 2 on, starting at (1, 2).
+inline Scenario ScenarioWithTask(const std::string& task_yaml) {
+  Scenario s;
+  s.file = "s.yaml";
+  s.text = "name: x\n" + task_yaml;
+  s.task.line = 2;
+  s.start_x = 1;
+  s.start_y = 2;
+  return s;
+}
+
 // Publishes sim/clock as the simulator would, one step each time it is told to.
 class ScriptedClock {
  public:
@@ -47,8 +58,7 @@ inline LoopLimits Limits(double time_budget_s = 1e4, const std::atomic<bool>* ab
 // The runner's side of a run: its participant, loop, recorder, result and task context.
 class RunFixture {
  public:
-  explicit RunFixture(LoopLimits limits = Limits())
-      : lease_(rover::testing::IsolatedDomain()) {
+  explicit RunFixture(LoopLimits limits = Limits()) : lease_(rover::testing::IsolatedDomain()) {
     auto p = dds::Participant::Create(lease_.domain());
     EXPECT_TRUE(p.ok()) << p.status().message();
     participant_ = std::move(*p);

@@ -97,7 +97,8 @@ TEST(RunReport, CampaignReportReprintsTheTable) {
   const std::string dir = ::testing::TempDir() + "/report_test";
   std::filesystem::remove_all(dir);
   EXPECT_EQ(LoadCampaignReport(dir).status().code(), StatusCode::kNotFound);
-  std::vector<RunResult> runs = {MakeRun(1, true, 0.1), MakeRun(2, false, 0.8), MakeRun(3, true, 0.2)};
+  std::vector<RunResult> runs = {MakeRun(1, true, 0.1), MakeRun(2, false, 0.8),
+                                 MakeRun(3, true, 0.2)};
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/campaign.json") << "{}";
   for (const auto& r : runs) {

@@ -30,8 +30,9 @@ TEST_F(RunnerTest, LoadScenarioChecksTheTaskWithItsOwnKeysAndLines) {
   std::string text = runner::testing::kSmallScenario;
   text.replace(text.find("type: directed"), 14, "type: directd");
   EXPECT_EQ(Load(text).status().message(),
-            dir_ + "/s.yaml:13: task.type: 'directd' is not one of: directed, waypoint, autonav, "
-                   "long_traverse, lander_return, science_target (did you mean 'directed'?)");
+            dir_ +
+                "/s.yaml:13: task.type: 'directd' is not one of: directed, waypoint, autonav, "
+                "long_traverse, lander_return, science_target (did you mean 'directed'?)");
   text = runner::testing::kSmallScenario;
   text.replace(text.find("distance: 2"), 11, "distance: 200");
   EXPECT_EQ(Load(text).status().message(),
@@ -55,7 +56,9 @@ TEST_F(RunnerTest, PreflightRejectsAnUnknownTaskBeforeAnythingIsMade) {
   ASSERT_TRUE(s.ok()) << s.status().message();
   s->text.replace(s->text.find("type: directed"), 14, "type: teleport");
   s->task.type = "teleport";
-  EXPECT_EQ(PreflightScenario(*s, 1, Options()).message().rfind(dir_ + "/s.yaml:13: task.type: 'teleport'", 0),
+  EXPECT_EQ(PreflightScenario(*s, 1, Options())
+                .message()
+                .rfind(dir_ + "/s.yaml:13: task.type: 'teleport'", 0),
             0u);
   EXPECT_FALSE(fs::exists(dir_ + "/out"));
   // RunScenario refuses it the same way: nothing is started.
@@ -68,8 +71,9 @@ TEST_F(RunnerTest, PreflightReportsABadServiceSet) {
   auto s = Load(runner::testing::kSmallScenario);
   ASSERT_TRUE(s.ok()) << s.status().message();
   Compose("services:\n  rover-sim: {command: \"true\"}\n  dl-pose: {command: no-such-rover-exe}\n");
-  EXPECT_EQ(PreflightScenario(*s, 1, Options()).message(),
-            dir_ + "/set.compose.yaml:3: services.dl-pose.command: no such command 'no-such-rover-exe'");
+  EXPECT_EQ(
+      PreflightScenario(*s, 1, Options()).message(),
+      dir_ + "/set.compose.yaml:3: services.dl-pose.command: no such command 'no-such-rover-exe'");
 }
 
 }  // namespace

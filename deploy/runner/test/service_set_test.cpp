@@ -49,14 +49,16 @@ TEST_F(PrepareRunTest, ErrorsNameTheFileAndWhatIsWrong) {
   auto s = Load(testing::kSmallScenario);
   ASSERT_TRUE(s.ok()) << s.status().message();
   Compose("services:\n  sim: {command: \"true\"}\n  dl-pose: {command: \"true\"}\n");
-  EXPECT_EQ(PrepareRun(*s, 1, Options()).status().message(),
-            dir_ + "/s.yaml: simulator service 'rover-sim' is not in " + dir_ + "/set.compose.yaml");
+  EXPECT_EQ(
+      PrepareRun(*s, 1, Options()).status().message(),
+      dir_ + "/s.yaml: simulator service 'rover-sim' is not in " + dir_ + "/set.compose.yaml");
   Compose("services:\n  rover-sim: {command: \"true\"}\n");
   EXPECT_EQ(PrepareRun(*s, 1, Options()).status().message(),
             dir_ + "/s.yaml: params.dl-pose: no such service in " + dir_ + "/set.compose.yaml");
   Compose("services:\n  rover-sim: {command: \"true\"}\n  dl-pose: {command: no-such-rover-exe}\n");
-  EXPECT_EQ(PrepareRun(*s, 1, Options()).status().message(),
-            dir_ + "/set.compose.yaml:3: services.dl-pose.command: no such command 'no-such-rover-exe'");
+  EXPECT_EQ(
+      PrepareRun(*s, 1, Options()).status().message(),
+      dir_ + "/set.compose.yaml:3: services.dl-pose.command: no such command 'no-such-rover-exe'");
 }
 
 TEST_F(PrepareRunTest, AServiceSetLeasesItsOwnDomain) {

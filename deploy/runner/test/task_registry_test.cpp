@@ -1,19 +1,12 @@
 #include <gtest/gtest.h>
 
 #include "rover/deploy/runner/task.hpp"
+#include "run_fixture.hpp"
 
 namespace rover::deploy::runner {
 namespace {
 
-Scenario WithTask(const std::string& task_yaml) {
-  Scenario s;
-  s.file = "s.yaml";
-  s.text = "name: x\n" + task_yaml;
-  s.task.line = 2;
-  s.start_x = 1;
-  s.start_y = 2;
-  return s;
-}
+using testing::ScenarioWithTask;
 
 class NullTask : public Task {
  public:
@@ -33,13 +26,13 @@ TEST(TaskRegistry, BuiltinTypesInOrder) {
 }
 
 TEST(TaskRegistry, UnknownTypeNamesFileLineAndTheKnownTypes) {
-  const Scenario s = WithTask("task:\n  type: directd\n");
+  const Scenario s = ScenarioWithTask("task:\n  type: directd\n");
   auto t = TaskRegistry::Builtin().Make(s);
   ASSERT_FALSE(t.ok());
   EXPECT_EQ(t.status().message(),
             "s.yaml:3: task.type: 'directd' is not one of: directed, waypoint, autonav, "
             "long_traverse, lander_return, science_target (did you mean 'directed'?)");
-  EXPECT_EQ(ValidateTask(WithTask("task: {type: fly}\n")).message(),
+  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: fly}\n")).message(),
             "s.yaml:2: task.type: 'fly' is not one of: directed, waypoint, autonav, long_traverse, "
             "lander_return, science_target");
 }
@@ -48,19 +41,19 @@ TEST(TaskRegistry, AFactoryGetsItsSectionAndOwnsItsKeys) {
   TaskRegistry r;
   r.Register("probe", "a test task", [](const TaskSource& src) -> Result<std::unique_ptr<Task>> {
     ROVER_RETURN_IF_ERROR(yaml::CheckKeys(src.section, "task", {"type", "label"}, src.errors));
-    return std::unique_ptr<Task>(std::make_unique<NullTask>(yaml::ScalarText(src.section["label"])));
+    return std::unique_ptr<Task>(
+        std::make_unique<NullTask>(yaml::ScalarText(src.section["label"])));
   });
   EXPECT_EQ(r.Types(), std::vector<std::string>{"probe"});
-  auto ok = r.Make(WithTask("task: {type: probe, label: hello}\n"));
+  auto ok = r.Make(ScenarioWithTask("task: {type: probe, label: hello}\n"));
   ASSERT_TRUE(ok.ok()) << ok.status().message();
   EXPECT_EQ(static_cast<NullTask&>(**ok).label_, "hello");
   // A key of another task type is the task's own error, with its line.
-  auto bad = r.Make(WithTask("task:\n  type: probe\n  steps: []\n"));
+  auto bad = r.Make(ScenarioWithTask("task:\n  type: probe\n  steps: []\n"));
   ASSERT_FALSE(bad.ok());
-  EXPECT_EQ(bad.status().message(),
-            "s.yaml:4: task: unknown key 'steps' (known: type, label)");
+  EXPECT_EQ(bad.status().message(), "s.yaml:4: task: unknown key 'steps' (known: type, label)");
   // The built-in registry does not know it.
-  EXPECT_FALSE(TaskRegistry::Builtin().Make(WithTask("task: {type: probe}\n")).ok());
+  EXPECT_FALSE(TaskRegistry::Builtin().Make(ScenarioWithTask("task: {type: probe}\n")).ok());
 }
 
 TEST(TaskRegistryDeathTest, RegisteringATypeTwiceIsABug) {
@@ -75,7 +68,7 @@ TEST(TaskRegistryDeathTest, RegisteringATypeTwiceIsABug) {
 TEST(TaskGoal, ParsedWithItsChecks) {
   const yaml::FileErrors err("s.yaml");
   auto goal_of = [&](const std::string& text) {
-    const Scenario s = WithTask(text);
+    const Scenario s = ScenarioWithTask(text);
     const YAML::Node root = YAML::Load(s.text);
     const YAML::Node section = root["task"];
     return ParseTaskGoal(TaskSource{s, section, err});

@@ -54,7 +54,8 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
     bool has = false;
     ROVER_RETURN_IF_ERROR(OptionalNumber(h, "deg", "criteria.heading", -360, 360, c, &deg, &has));
     if (!has) return c.At(h, "criteria.heading: needs 'deg'");
-    ROVER_RETURN_IF_ERROR(OptionalNumber(h, "tolerance_deg", "criteria.heading", 0.01, 180, c, &tol));
+    ROVER_RETURN_IF_ERROR(
+        OptionalNumber(h, "tolerance_deg", "criteria.heading", 0.01, 180, c, &tol));
     cr->target_heading = deg * kDegToRad;
     cr->heading_tolerance = tol * kDegToRad;
   }
@@ -65,7 +66,8 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
       OptionalNumber(n, "traversable_height", "criteria", 0.01, 2.0, c, &cr->traversable_height));
   double v = 0;
   bool has = false;
-  ROVER_RETURN_IF_ERROR(OptionalNumber(n, "max_estimate_error", "criteria", 1e-4, 1e4, c, &v, &has));
+  ROVER_RETURN_IF_ERROR(
+      OptionalNumber(n, "max_estimate_error", "criteria", 1e-4, 1e4, c, &v, &has));
   if (has) cr->max_estimate_error = v;
   ROVER_RETURN_IF_ERROR(
       OptionalNumber(n, "max_estimate_error_percent", "criteria", 1e-3, 100, c, &v, &has));
@@ -127,12 +129,14 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
   if (const YAML::Node sim = root["sim"]) {
     ROVER_RETURN_IF_ERROR(CheckKeys(
         sim, "sim", {"real_time_factor", "lockstep_lead_s", "time_budget_s", "wall_budget_s"}, c));
-    ROVER_RETURN_IF_ERROR(OptionalNumber(sim, "lockstep_lead_s", "sim", 0, 10, c, &s.lockstep_lead_s));
+    ROVER_RETURN_IF_ERROR(
+        OptionalNumber(sim, "lockstep_lead_s", "sim", 0, 10, c, &s.lockstep_lead_s));
     if (s.lockstep_lead_s > 0 && s.lockstep_lead_s < 0.05) {
       return c.At(sim["lockstep_lead_s"],
                   "sim.lockstep_lead_s: use 0 (free running) or at least 0.05 s");
     }
-    ROVER_RETURN_IF_ERROR(OptionalNumber(sim, "real_time_factor", "sim", 0, 1000, c, &s.real_time_factor));
+    ROVER_RETURN_IF_ERROR(
+        OptionalNumber(sim, "real_time_factor", "sim", 0, 1000, c, &s.real_time_factor));
     ROVER_RETURN_IF_ERROR(OptionalNumber(sim, "time_budget_s", "sim", 1, 1e6, c, &s.time_budget_s));
     ROVER_RETURN_IF_ERROR(OptionalNumber(sim, "wall_budget_s", "sim", 1, 1e6, c, &s.wall_budget_s));
   }
@@ -171,7 +175,8 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
   if (const YAML::Node p = root["params"]) {
     if (!p.IsMap()) return c.At(p, "params: expected a map of service: {key: value}");
     for (const auto& kv : p) {
-      if (!kv.second.IsMap()) return c.At(kv.second, "params." + kv.first.Scalar() + ": expected a map");
+      if (!kv.second.IsMap())
+        return c.At(kv.second, "params." + kv.first.Scalar() + ": expected a map");
       yaml::Flatten(kv.second, "", &s.params[kv.first.Scalar()]);
     }
   }

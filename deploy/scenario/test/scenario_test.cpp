@@ -116,7 +116,8 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
     return InvalidArgument(sc.file + ":" + std::to_string(sc.task.type_line) + ": task.type: '" +
                            sc.task.type + "' is not known here");
   };
-  EXPECT_EQ(Err(base + "task: {type: fly}\n" + crit, reject), "3: task.type: 'fly' is not known here");
+  EXPECT_EQ(Err(base + "task: {type: fly}\n" + crit, reject),
+            "3: task.type: 'fly' is not known here");
   EXPECT_EQ(Err(base + "task: {type: fly}\n" + "criteria: {max_tilt_deg: 95}\n", reject),
             "4: criteria.max_tilt_deg: 95 is out of range [0.1, 89.9]");
   EXPECT_EQ(Err("name: x\ncompose: nope.yaml\n" + task + crit).rfind("2: compose: file '", 0), 0u);

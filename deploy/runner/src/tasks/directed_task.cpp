@@ -13,9 +13,10 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr const char* kStep = "task.steps[]";
 
 const std::vector<std::string>& Terminations() {
-  static const std::vector<std::string> k = {
-      "nominal", "tilt", "suspension", "motor_stall", "motor_current", "motor_fault", "timeout",
-      "stop_command", "rejected_busy", "rejected_invalid", "stale_sensor"};
+  static const std::vector<std::string> k = {"nominal",          "tilt",          "suspension",
+                                             "motor_stall",      "motor_current", "motor_fault",
+                                             "timeout",          "stop_command",  "rejected_busy",
+                                             "rejected_invalid", "stale_sensor"};
   return k;
 }
 
@@ -23,8 +24,8 @@ Result<DriveStep> ParseStep(const YAML::Node& n, const yaml::FileErrors& err) {
   DriveStep s;
   s.line = yaml::Line(n);
   ROVER_RETURN_IF_ERROR(yaml::CheckKeys(n, kStep,
-                                        {"primitive", "distance", "curvature", "angle_deg",
-                                         "speed", "timeout_s", "stop_after_s", "expect"},
+                                        {"primitive", "distance", "curvature", "angle_deg", "speed",
+                                         "timeout_s", "stop_after_s", "expect"},
                                         err));
   if (const YAML::Node e = n["expect"]) {
     ROVER_ASSIGN_OR_RETURN(s.expect, yaml::OneOf(e, "task.steps[].expect", Terminations(), err));
@@ -39,9 +40,12 @@ Result<DriveStep> ParseStep(const YAML::Node& n, const yaml::FileErrors& err) {
   s.primitive = static_cast<Primitive>(std::find(names.begin(), names.end(), name) - names.begin());
   bool has_d = false, has_k = false, has_a = false;
   double angle_deg = 0;
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "distance", kStep, -100, 100, err, &s.distance, &has_d));
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "curvature", kStep, -1, 1, err, &s.curvature, &has_k));
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "angle_deg", kStep, -360, 360, err, &angle_deg, &has_a));
+  ROVER_RETURN_IF_ERROR(
+      yaml::OptionalNumber(n, "distance", kStep, -100, 100, err, &s.distance, &has_d));
+  ROVER_RETURN_IF_ERROR(
+      yaml::OptionalNumber(n, "curvature", kStep, -1, 1, err, &s.curvature, &has_k));
+  ROVER_RETURN_IF_ERROR(
+      yaml::OptionalNumber(n, "angle_deg", kStep, -360, 360, err, &angle_deg, &has_a));
   ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "speed", kStep, 0, 0.5, err, &s.speed));
   s.angle = angle_deg * kDegToRad;
   auto need = [&](bool has, const char* what) -> Status {
@@ -49,14 +53,21 @@ Result<DriveStep> ParseStep(const YAML::Node& n, const yaml::FileErrors& err) {
                : err.At(n, std::string(kStep) + ": '" + name + "' needs '" + what + "'");
   };
   switch (s.primitive) {
-    case Primitive::kStraight: ROVER_RETURN_IF_ERROR(need(has_d, "distance")); break;
+    case Primitive::kStraight:
+      ROVER_RETURN_IF_ERROR(need(has_d, "distance"));
+      break;
     case Primitive::kArc:
       ROVER_RETURN_IF_ERROR(need(has_d, "distance"));
       ROVER_RETURN_IF_ERROR(need(has_k, "curvature"));
       break;
-    case Primitive::kTurnInPlace: ROVER_RETURN_IF_ERROR(need(has_a, "angle_deg")); break;
-    case Primitive::kSteer: ROVER_RETURN_IF_ERROR(need(has_k, "curvature")); break;
-    case Primitive::kStop: break;
+    case Primitive::kTurnInPlace:
+      ROVER_RETURN_IF_ERROR(need(has_a, "angle_deg"));
+      break;
+    case Primitive::kSteer:
+      ROVER_RETURN_IF_ERROR(need(has_k, "curvature"));
+      break;
+    case Primitive::kStop:
+      break;
   }
   return s;
 }
@@ -73,11 +84,16 @@ const char* StateName(rover_dl_DriveState s) {
 
 const char* PrimitiveName(Primitive p) {
   switch (p) {
-    case Primitive::kStraight: return "straight";
-    case Primitive::kArc: return "arc";
-    case Primitive::kTurnInPlace: return "turn_in_place";
-    case Primitive::kSteer: return "steer";
-    case Primitive::kStop: return "stop";
+    case Primitive::kStraight:
+      return "straight";
+    case Primitive::kArc:
+      return "arc";
+    case Primitive::kTurnInPlace:
+      return "turn_in_place";
+    case Primitive::kSteer:
+      return "steer";
+    case Primitive::kStop:
+      return "stop";
   }
   return "?";
 }

@@ -12,9 +12,10 @@ class UnavailableTask : public Task {
   Status Open(TaskContext&) override { return Status::Ok(); }
   bool Ready() const override { return true; }
   TaskOutcome Run(TaskContext&) override {
-    return {{}, "task type '" + type_ +
-                    "' needs the autonomous-navigation services, which this stack does not have "
-                    "yet"};
+    return {{},
+            "task type '" + type_ +
+                "' needs the autonomous-navigation services, which this stack does not have "
+                "yet"};
   }
   std::vector<Eigen::Vector2d> PlannedPath() const override {
     std::vector<Eigen::Vector2d> path{start_};
@@ -46,7 +47,8 @@ TaskFactory Factory(std::string type, bool needs_goal) {
 void RegisterPlannedTasks(TaskRegistry& registry) {
   registry.Register("waypoint", "drive to `goal` (planned: needs the application layer)",
                     Factory("waypoint", true));
-  registry.Register("autonav", "navigate autonomously to `goal` (planned)", Factory("autonav", true));
+  registry.Register("autonav", "navigate autonomously to `goal` (planned)",
+                    Factory("autonav", true));
   registry.Register("long_traverse", "a long autonomous traverse to `goal` (planned)",
                     Factory("long_traverse", true));
   registry.Register("lander_return", "return to the lander (planned)",

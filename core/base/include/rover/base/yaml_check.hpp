@@ -50,8 +50,7 @@ struct KeyRules {
 /// "<where>: unknown key 'k' (did you mean 'kk'?) (known: a, b, c)",
 /// "<where>: duplicate key 'k'".
 Status CheckKeys(const YAML::Node& map, std::string_view where,
-                 const std::vector<std::string>& known, const FileErrors& err,
-                 KeyRules rules = {});
+                 const std::vector<std::string>& known, const FileErrors& err, KeyRules rules = {});
 
 /// `map` has `key`; else "<where>: missing 'key'" at the map's line.
 Status RequireKey(const YAML::Node& map, std::string_view where, const std::string& key,

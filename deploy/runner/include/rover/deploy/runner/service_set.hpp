@@ -21,9 +21,9 @@ namespace rover::deploy::runner {
 
 /// Everything a run needs before a process starts.
 struct PreparedRun {
-  std::string run_dir;          ///< <out>/<scenario>-seed<N>
-  sim::World world;             ///< exactly as the simulator will build it
-  ComposeProject project;       ///< the set, each service given its parameter files
+  std::string run_dir;     ///< <out>/<scenario>-seed<N>
+  sim::World world;        ///< exactly as the simulator will build it
+  ComposeProject project;  ///< the set, each service given its parameter files
   SupervisorOptions supervisor;
 };
 
@@ -33,7 +33,8 @@ struct PreparedRun {
 /// params.<service>); builds the world; loads the set and runs the supervisor's preflight (every
 /// command exists, every rover service accepts its parameters). Errors name the scenario or
 /// compose file.
-Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed, const RunOptions& options);
+Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
+                               const RunOptions& options);
 
 /// FNV-1a digest of a terrain's heights and rock list, 16 hex digits (same seed, same digest).
 std::string TerrainDigest(const sim::Terrain& terrain);
@@ -63,7 +64,8 @@ class ServiceSet {
   void Stop();
 
  private:
-  explicit ServiceSet(std::unique_ptr<Supervisor> supervisor) : supervisor_(std::move(supervisor)) {}
+  explicit ServiceSet(std::unique_ptr<Supervisor> supervisor)
+      : supervisor_(std::move(supervisor)) {}
 
   std::unique_ptr<Supervisor> supervisor_;
   dds::Participant participant_;

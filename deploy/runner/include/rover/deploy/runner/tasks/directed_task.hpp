@@ -34,20 +34,21 @@ const char* PrimitiveName(Primitive p);
 
 struct DriveStep {
   Primitive primitive = Primitive::kStraight;
-  double distance = 0;      ///< [m]
-  double curvature = 0;     ///< [1/m]
-  double angle = 0;         ///< [rad]
-  double speed = 0;         ///< [m/s], 0 = default
-  double timeout_s = 0;     ///< [s] the command's own time-out; 0 = the drive service's default
-  double stop_after_s = 0;  ///< [s] send STOP this long (simulated) after the step starts; 0 = never
+  double distance = 0;   ///< [m]
+  double curvature = 0;  ///< [1/m]
+  double angle = 0;      ///< [rad]
+  double speed = 0;      ///< [m/s], 0 = default
+  double timeout_s = 0;  ///< [s] the command's own time-out; 0 = the drive service's default
+  double stop_after_s =
+      0;  ///< [s] send STOP this long (simulated) after the step starts; 0 = never
   /// The termination this step must end with (see the file comment).
   std::string expect = "nominal";
   int line = 0;
 };
 
 struct DirectedTaskSpec {
-  std::vector<DriveStep> steps;   ///< at least one
-  std::optional<TaskGoal> goal;   ///< drawn on the map only
+  std::vector<DriveStep> steps;  ///< at least one
+  std::optional<TaskGoal> goal;  ///< drawn on the map only
 };
 
 /// Parses a directed task's section; errors name file, line and key
