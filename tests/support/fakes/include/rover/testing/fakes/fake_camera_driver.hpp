@@ -1,13 +1,14 @@
 #pragma once
-// Test helper (header only) shared by the dl-stereo and dl-vo service tests: plays the DDL camera
-// driver. It answers ddl/camera_request with ddl/stereo_frame: a stereo pair rendered by dl/vo's
-// synthetic textured-ground scene (test/synthetic_scene.hpp) from the rover pose the test says,
-// with the two camera models (CAHVOR vectors + pinhole part, rover frame) the driver would send.
-//
-// Frames. Site frame S (x north, y west, z up) = the rover frame at the start; the renderer's
-// world frame W is camera-like (x right, y down, z forward) with the ground at y = ground_y:
-//   W x = -S y,  W y = -S z,  W z = S x,  S origin at W (0, ground_y, 0)
-// so the site ground plane is z = 0 and the scene's back wall is at site x = wall_z.
+/// @file
+/// Fake DDL camera driver (header only; target rover_fake_camera), used by the dl-stereo and
+/// dl-vo service tests: it answers ddl/camera_request with ddl/stereo_frame, a stereo pair of
+/// the textured scene (textured_scene.hpp) rendered from the rover pose the test says, with the
+/// two camera models (CAHVOR vectors + pinhole part, rover frame) the driver would send.
+///
+/// Frames. Site frame S (x north, y west, z up) = the rover frame at the start; the renderer's
+/// world frame W is camera-like (x right, y down, z forward) with the ground at y = ground_y:
+///   W x = -S y,  W y = -S z,  W z = S x,  S origin at W (0, ground_y, 0)
+/// so the site ground plane is z = 0 and the scene's back wall is at site x = wall_z.
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -19,9 +20,9 @@
 
 #include "rover/dl/stereo/camera_model_fields.hpp"
 #include "rover/runtime/dds.hpp"
-#include "synthetic_scene.hpp"
+#include "rover/testing/fakes/textured_scene.hpp"
 
-namespace rover::dl::fake {
+namespace rover::testing {
 
 /// World (renderer) from site, for a scene with the ground at W y = ground_y.
 inline Eigen::Isometry3d WorldFromSite(double ground_y) {
@@ -60,8 +61,8 @@ struct Rig {
   double focal_at_256 = 200.0;  ///< [px] focal length of a 256 px wide image
 
   /// The renderer's camera for an image `width` wide (height 3/4 of it, centred).
-  vo::StereoCamera Camera(int width) const {
-    vo::StereoCamera c;
+  PinholeStereo Camera(int width) const {
+    PinholeStereo c;
     c.width = width;
     c.height = width * 3 / 4;
     c.fx = c.fy = focal_at_256 * width / 256.0;
@@ -71,8 +72,8 @@ struct Rig {
     return c;
   }
   /// The message fields of the left (right = false) or right camera model for `width`.
-  stereo::CameraModelFields Model(int width, bool right) const {
-    const vo::StereoCamera c = Camera(width);
+  dl::stereo::CameraModelFields Model(int width, bool right) const {
+    const PinholeStereo c = Camera(width);
     geometry::PinholeRadial p;
     p.fx = c.fx;
     p.fy = c.fy;
@@ -84,7 +85,7 @@ struct Rig {
     if (right) p.pose = rover_from_left * Eigen::Translation3d(baseline, 0.0, 0.0);
     auto cahv = geometry::ToCahv(p);
     auto model = geometry::CameraModel::Create(*cahv, c.width, c.height);
-    auto fields = stereo::FieldsFromCameraModel(*model);
+    auto fields = dl::stereo::FieldsFromCameraModel(*model);
     return *fields;
   }
 };
@@ -131,12 +132,12 @@ class FakeCameraDriver {
   void Answer(const rover_ddl_StereoRequest& req, Time now,
               const Eigen::Isometry3d& site_from_rover) {
     const int width = req.width != 0 ? req.width : 512;
-    const vo::StereoCamera cam = rig.Camera(width);
+    const PinholeStereo cam = rig.Camera(width);
     const Eigen::Isometry3d world_from_left =
         WorldFromSite(scene.ground_y) * site_from_rover * rig.rover_from_left;
     ++renders_;
-    cv::Mat left = vo::testing::RenderView(cam, scene, world_from_left, false, 100 + 2 * renders_);
-    cv::Mat right = vo::testing::RenderView(cam, scene, world_from_left, true, 101 + 2 * renders_);
+    cv::Mat left = RenderView(cam, scene, world_from_left, false, 100 + 2 * renders_);
+    cv::Mat right = RenderView(cam, scene, world_from_left, true, 101 + 2 * renders_);
     std::vector<std::uint8_t> l(left.datastart, left.dataend), r(right.datastart, right.dataend);
     rover_ddl_StereoFrame m{};
     m.header.stamp_ns = now.ns;
@@ -147,8 +148,8 @@ class FakeCameraDriver {
     m.exposure_us = req.exposure_us;
     m.width = static_cast<std::uint16_t>(cam.width);
     m.height = static_cast<std::uint16_t>(cam.height);
-    stereo::FieldsToMessage(rig.Model(width, false), &m.left_model);
-    stereo::FieldsToMessage(rig.Model(width, true), &m.right_model);
+    dl::stereo::FieldsToMessage(rig.Model(width, false), &m.left_model);
+    dl::stereo::FieldsToMessage(rig.Model(width, true), &m.right_model);
     m.health = rover_HEALTH_OK;
     dds::BorrowSequence(m.left, l);
     dds::BorrowSequence(m.right, r);
@@ -157,7 +158,7 @@ class FakeCameraDriver {
     (void)s;
   }
 
-  vo::testing::SyntheticScene scene;
+  SyntheticScene scene;
   Rig rig;
   bool answer = true;
   /// Edits a frame before it is sent (the image vectors are borrowed by the message: re-borrow
@@ -174,4 +175,4 @@ class FakeCameraDriver {
   int renders_ = 0;
 };
 
-}  // namespace rover::dl::fake
+}  // namespace rover::testing
