@@ -11,11 +11,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/ddl/camera/camera_calibration.hpp"
 #include "rover/dl/locomotion/rover_geometry.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/hwconfig/rover_description.hpp"
-#include "rover/base/param_binder.hpp"
 #include "rover/sim/physics/rover_simulation.hpp"
 #include "rover/sim/render/cameras.hpp"
 #include "rover/sim/rover_sim/sim_engine.hpp"
@@ -118,7 +118,8 @@ TEST_F(RoverDescriptionConsistency, WheelsPivotsAndSteeringAxesAtZeroAngles) {
   // Steering joints: steer_height above the corner wheel centres, on a vertical axis.
   for (int j = 0; j < hwconfig::kNumSteered; ++j) {
     const int w = hwconfig::kSteeredWheel[static_cast<std::size_t>(j)];
-    const Eigen::Vector3d joint = stack_.WheelCentre(w) + Eigen::Vector3d(0, 0, stack_.steer_height);
+    const Eigen::Vector3d joint =
+        stack_.WheelCentre(w) + Eigen::Vector3d(0, 0, stack_.steer_height);
     EXPECT_LT((m.steer_brackets[static_cast<std::size_t>(j)].translation() - joint).norm(), kTol)
         << hwconfig::WheelName(w);
   }
@@ -165,7 +166,8 @@ TEST_F(RoverDescriptionConsistency, SteeringTurnsTheWheelFrontLeftAboutItsCentre
 }
 
 TEST_F(RoverDescriptionConsistency, MastHeadAndCameraMounts) {
-  for (const auto& [pan, tilt] : {std::pair{0.0, 0.0}, std::pair{0.7, -0.4}, std::pair{-2.0, 0.9}}) {
+  for (const auto& [pan, tilt] :
+       {std::pair{0.0, 0.0}, std::pair{0.7, -0.4}, std::pair{-2.0, 0.9}}) {
     sim::ModelJointAngles q;
     q.pan = pan;
     q.tilt = tilt;
@@ -214,7 +216,8 @@ TEST_F(RoverDescriptionConsistency, CamerasAreMountedWhereTheDescriptionSays) {
   EXPECT_NEAR(file->mast.head_height, stack_.mast.head_height, kTol);
   const auto rendered = sim::DefaultStereoCameras(1024, engine_->rover());
   const std::pair<const char*, const hwconfig::StereoMount*> mounts[] = {
-      {"navcam", &stack_.navcam}, {"front_hazcam", &stack_.front_hazcam},
+      {"navcam", &stack_.navcam},
+      {"front_hazcam", &stack_.front_hazcam},
       {"rear_hazcam", &stack_.rear_hazcam}};
   for (const auto& [name, mount] : mounts) {
     SCOPED_TRACE(name);

@@ -20,7 +20,9 @@ using Binder = ParamBinder<RoverDescription>;
 std::span<const double> Span(const Eigen::Vector3d& v) { return {v.data(), 3}; }
 
 // "name = 1.2 m" for the other side of a cross-field rule.
-std::string Ref(const char* name, double v) { return std::string(name) + " (" + FormatNumber(v) + ")"; }
+std::string Ref(const char* name, double v) {
+  return std::string(name) + " (" + FormatNumber(v) + ")";
+}
 
 // A number reached through `field` (a generic lambda returning a reference to the member),
 // given in the key's unit: member = value * scale.
@@ -54,14 +56,18 @@ Binder::Binding BindPoint(Binder& b, std::string key, Field field, std::string d
 
 void BindMount(Binder& b, const std::string& name, StereoMount RoverDescription::*m,
                const std::string& what) {
-  BindPoint(b, name + ".position", [m](auto& d) -> auto& { return (d.*m).position; },
-            what + ": pair centre (midway between the optical centres)");
-  BindNumber(b, name + ".yaw_deg", [m](auto& d) -> auto& { return (d.*m).yaw; }, kDegree, "deg",
-             name + " boresight azimuth about the parent z (180 = backwards)");
-  BindNumber(b, name + ".depression_deg", [m](auto& d) -> auto& { return (d.*m).depression; },
-             kDegree, "deg", name + " boresight below the parent x-y plane");
-  BindNumber(b, name + ".baseline", [m](auto& d) -> auto& { return (d.*m).baseline; }, 1.0, "m",
-             name + " distance between the two optical centres");
+  BindPoint(
+      b, name + ".position", [m](auto& d) -> auto& { return (d.*m).position; },
+      what + ": pair centre (midway between the optical centres)");
+  BindNumber(
+      b, name + ".yaw_deg", [m](auto& d) -> auto& { return (d.*m).yaw; }, kDegree, "deg",
+      name + " boresight azimuth about the parent z (180 = backwards)");
+  BindNumber(
+      b, name + ".depression_deg", [m](auto& d) -> auto& { return (d.*m).depression; }, kDegree,
+      "deg", name + " boresight below the parent x-y plane");
+  BindNumber(
+      b, name + ".baseline", [m](auto& d) -> auto& { return (d.*m).baseline; }, 1.0, "m",
+      name + " distance between the two optical centres");
 }
 
 // Points whose distance from `c` bounds the rectangle [x0, x1] x [y0, y1].
@@ -97,8 +103,7 @@ Status StereoMount::Validate(const std::string& name) const {
   ROVER_RETURN_IF_ERROR(
       CheckAllInRange(name + ".position", Span(position), Bounds::Closed(-10, 10), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(name + ".yaw", yaw / kDegree, -360.0, 360.0, "deg"));
-  ROVER_RETURN_IF_ERROR(
-      CheckRange(name + ".depression", depression / kDegree, -90.0, 90.0, "deg"));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".depression", depression / kDegree, -90.0, 90.0, "deg"));
   return CheckRange(name + ".baseline", baseline, Bounds::OpenLow(0.0, 5.0), "m");
 }
 
@@ -133,22 +138,29 @@ void RoverDescription::BindParams(Binder& b) {
   b.Bind("bogie_pivot_z", &D::bogie_pivot_z, "m", "z of the bogie pivots at zero angles");
   b.Bind("rocker_limit", &D::rocker_limit, "rad", "rocker mechanical stops at +-limit");
   b.Bind("bogie_limit", &D::bogie_limit, "rad", "bogie mechanical stops at +-limit");
-  BindPoint(b, "body_size", [](auto& d) -> auto& { return d.body_size; },
-            "body box extents along x, y, z");
-  BindPoint(b, "body_centre", [](auto& d) -> auto& { return d.body_centre; },
-            "body box centre (and centre of mass)");
-  BindPoint(b, "imu_position", [](auto& d) -> auto& { return d.imu_position; },
-            "IMU reference point");
-  BindPoint(b, "mast.pan_joint", [](auto& d) -> auto& { return d.mast.pan_joint; },
-            "mast pan joint (the pan axis is vertical through it)");
-  BindNumber(b, "mast.head_height", [](auto& d) -> auto& { return d.mast.head_height; }, 1.0, "m",
-             "tilt axis (mast-head frame origin) above the pan joint");
+  BindPoint(
+      b, "body_size", [](auto& d) -> auto& { return d.body_size; },
+      "body box extents along x, y, z");
+  BindPoint(
+      b, "body_centre", [](auto& d) -> auto& { return d.body_centre; },
+      "body box centre (and centre of mass)");
+  BindPoint(
+      b, "imu_position", [](auto& d) -> auto& { return d.imu_position; }, "IMU reference point");
+  BindPoint(
+      b, "mast.pan_joint", [](auto& d) -> auto& { return d.mast.pan_joint; },
+      "mast pan joint (the pan axis is vertical through it)");
+  BindNumber(
+      b, "mast.head_height", [](auto& d) -> auto& { return d.mast.head_height; }, 1.0, "m",
+      "tilt axis (mast-head frame origin) above the pan joint");
   BindMount(b, "navcam", &D::navcam, "NAVCAM, mast-head frame");
   BindMount(b, "front_hazcam", &D::front_hazcam, "front HAZCAM, rover frame");
   BindMount(b, "rear_hazcam", &D::rear_hazcam, "rear HAZCAM, rover frame");
-  b.BindDegrees("max_steer_angle_deg", &D::max_steer_angle, "corner-wheel steering limit for driving");
-  b.Bind("min_turn_radius", &D::min_turn_radius, "m", "tightest arc radius (middle-axle centre point)");
-  b.Bind("max_wheel_speed", &D::max_wheel_speed, "m/s", "fastest rim speed commanded to a drive motor");
+  b.BindDegrees("max_steer_angle_deg", &D::max_steer_angle,
+                "corner-wheel steering limit for driving");
+  b.Bind("min_turn_radius", &D::min_turn_radius, "m",
+         "tightest arc radius (middle-axle centre point)");
+  b.Bind("max_wheel_speed", &D::max_wheel_speed, "m/s",
+         "fastest rim speed commanded to a drive motor");
 }
 
 Status RoverDescription::Validate() const {
@@ -158,8 +170,8 @@ Status RoverDescription::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("middle_wheel_x", middle_wheel_x, -5.0, 5.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("rear_wheel_x", rear_wheel_x, -5.0, 5.0, "m"));
   if (!(middle_wheel_x < front_wheel_x)) {
-    return InvalidArgument(Describe("middle_wheel_x", middle_wheel_x, "m") +
-                           " must be behind " + Ref("front_wheel_x", front_wheel_x));
+    return InvalidArgument(Describe("middle_wheel_x", middle_wheel_x, "m") + " must be behind " +
+                           Ref("front_wheel_x", front_wheel_x));
   }
   if (!(rear_wheel_x < middle_wheel_x)) {
     return InvalidArgument(Describe("rear_wheel_x", rear_wheel_x, "m") + " must be behind " +
@@ -169,14 +181,14 @@ Status RoverDescription::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("steer_height", steer_height, 0.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("bogie_pivot_x", bogie_pivot_x, -5.0, 5.0, "m"));
   if (!(bogie_pivot_x > rear_wheel_x && bogie_pivot_x < middle_wheel_x)) {
-    return InvalidArgument(Describe("bogie_pivot_x", bogie_pivot_x, "m") +
-                           " must lie between " + Ref("rear_wheel_x", rear_wheel_x) + " and " +
+    return InvalidArgument(Describe("bogie_pivot_x", bogie_pivot_x, "m") + " must lie between " +
+                           Ref("rear_wheel_x", rear_wheel_x) + " and " +
                            Ref("middle_wheel_x", middle_wheel_x));
   }
   ROVER_RETURN_IF_ERROR(CheckRange("rocker_pivot_x", rocker_pivot_x, -5.0, 5.0, "m"));
   if (!(rocker_pivot_x > bogie_pivot_x && rocker_pivot_x < front_wheel_x)) {
-    return InvalidArgument(Describe("rocker_pivot_x", rocker_pivot_x, "m") +
-                           " must lie between " + Ref("bogie_pivot_x", bogie_pivot_x) + " and " +
+    return InvalidArgument(Describe("rocker_pivot_x", rocker_pivot_x, "m") + " must lie between " +
+                           Ref("bogie_pivot_x", bogie_pivot_x) + " and " +
                            Ref("front_wheel_x", front_wheel_x));
   }
   ROVER_RETURN_IF_ERROR(CheckRange("rocker_pivot_y", rocker_pivot_y, 0.0, half_track, "m"));
@@ -184,7 +196,8 @@ Status RoverDescription::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("bogie_pivot_z", bogie_pivot_z, wheel_radius, 5.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("rocker_limit", rocker_limit, 0.01, 1.5, "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("bogie_limit", bogie_limit, 0.01, 1.5, "rad"));
-  ROVER_RETURN_IF_ERROR(CheckAllInRange("body_size", Span(body_size), Bounds::Closed(0.01, 10), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckAllInRange("body_size", Span(body_size), Bounds::Closed(0.01, 10), "m"));
   ROVER_RETURN_IF_ERROR(
       CheckAllInRange("body_centre", Span(body_centre), Bounds::Closed(-10, 10), "m"));
   if (!(BellyClearance() > 0.0)) {
@@ -274,14 +287,14 @@ TurnCircle RoverDescription::TurnInPlaceCircle() const {
   }
   // Middle wheels (never steered) and the body: their rectangles.
   const double hw = 0.5 * wheel_width;
-  c.radius = std::max(c.radius, FarthestCorner(c.centre, middle_wheel_x - wheel_radius,
-                                               middle_wheel_x + wheel_radius, -half_track - hw,
-                                               half_track + hw));
+  c.radius = std::max(
+      c.radius, FarthestCorner(c.centre, middle_wheel_x - wheel_radius,
+                               middle_wheel_x + wheel_radius, -half_track - hw, half_track + hw));
   const Eigen::Vector3d half_body = 0.5 * body_size;
-  c.radius = std::max(c.radius, FarthestCorner(c.centre, body_centre.x() - half_body.x(),
-                                               body_centre.x() + half_body.x(),
-                                               body_centre.y() - half_body.y(),
-                                               body_centre.y() + half_body.y()));
+  c.radius = std::max(
+      c.radius,
+      FarthestCorner(c.centre, body_centre.x() - half_body.x(), body_centre.x() + half_body.x(),
+                     body_centre.y() - half_body.y(), body_centre.y() + half_body.y()));
   // Whatever else the footprint holds (mast, camera mounts) as points.
   c.radius = std::max(c.radius, (mast.pan_joint.head<2>() - c.centre).norm());
   for (const StereoMount* m : {&front_hazcam, &rear_hazcam}) {

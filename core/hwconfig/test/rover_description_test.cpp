@@ -115,9 +115,8 @@ TEST(RoverDescription, CameraMountsAndMast) {
   const Eigen::Isometry3d up = d.mast.HeadPose(0.0, 0.4);
   EXPECT_NEAR(up.linear().col(0).z(), std::sin(0.4), 1e-12);
   EXPECT_TRUE(d.NavcamPose(0, 0).translation().isApprox(Eigen::Vector3d(0.40, 0.0, 1.5)));
-  EXPECT_TRUE(d.mast.HeadPose(0.3, -0.2)
-                  .translation()
-                  .isApprox(d.mast.pan_joint + Eigen::Vector3d(0, 0, d.mast.head_height)));
+  EXPECT_TRUE(d.mast.HeadPose(0.3, -0.2).translation().isApprox(
+      d.mast.pan_joint + Eigen::Vector3d(0, 0, d.mast.head_height)));
 }
 
 TEST(RoverDescription, ValidateNamesTheField) {
@@ -145,9 +144,10 @@ TEST(RoverDescription, ValidateNamesTheField) {
   EXPECT_EQ(message(d).rfind("mast.pan_joint[1] is nan", 0), 0u) << message(d);
   d = RoverDescription();
   d.min_turn_radius = 0.45;  // inside the track
-  EXPECT_EQ(message(d), "min_turn_radius = 0.45 m must exceed the largest wheel |y|, half_track (0.5)");
+  EXPECT_EQ(message(d),
+            "min_turn_radius = 0.45 m must exceed the largest wheel |y|, half_track (0.5)");
   d = RoverDescription();
-  d.min_turn_radius = 2.0;        // the tightest arc needs 22.6 deg
+  d.min_turn_radius = 2.0;           // the tightest arc needs 22.6 deg
   d.max_steer_angle = 45 * kDegree;  // but turning in place needs 51.3 deg
   EXPECT_EQ(message(d),
             "max_steer_angle = 45 deg is below the 51.3 deg the inner corner wheels need to turn "
@@ -184,9 +184,9 @@ TEST(RoverDescription, ParamsDefaultsEqualTheStructAndRoundTripExactly) {
 TEST(RoverDescription, ParamErrorsNameFileLineAndKey) {
   ParamSet p("rover");
   DeclareParams<RoverDescription>(p, "geometry.");
-  ASSERT_TRUE(p.LoadYamlString("geometry:\n  wheel_radius: 0.2\n  min_turn_radius: 0.45\n",
-                               "rover.yaml")
-                  .ok());
+  ASSERT_TRUE(
+      p.LoadYamlString("geometry:\n  wheel_radius: 0.2\n  min_turn_radius: 0.45\n", "rover.yaml")
+          .ok());
   auto d = ReadParams<RoverDescription>(p, "geometry.");
   ASSERT_FALSE(d.ok());
   EXPECT_EQ(d.status().message(),
@@ -195,8 +195,8 @@ TEST(RoverDescription, ParamErrorsNameFileLineAndKey) {
 
   ParamSet q("rover");
   DeclareParams<RoverDescription>(q, "geometry.");
-  ASSERT_TRUE(q.LoadYamlString("geometry:\n  front_hazcam:\n    depression_deg: 120\n", "c.yaml")
-                  .ok());
+  ASSERT_TRUE(
+      q.LoadYamlString("geometry:\n  front_hazcam:\n    depression_deg: 120\n", "c.yaml").ok());
   d = ReadParams<RoverDescription>(q, "geometry.");
   ASSERT_FALSE(d.ok());
   EXPECT_EQ(d.status().message().rfind("c.yaml:3: key 'geometry.front_hazcam.depression_deg'", 0),
@@ -209,7 +209,8 @@ TEST(RoverDescription, ParamErrorsNameFileLineAndKey) {
                ReadParams<RoverDescription>(r, "geometry.").ok());
   ParamSet u("rover");
   DeclareParams<RoverDescription>(u, "geometry.");
-  ASSERT_TRUE(u.LoadYamlString("geometry:\n  mast:\n    pan_joint: [0.2, 0, 0.7]\n", "m.yaml").ok());
+  ASSERT_TRUE(
+      u.LoadYamlString("geometry:\n  mast:\n    pan_joint: [0.2, 0, 0.7]\n", "m.yaml").ok());
   d = ReadParams<RoverDescription>(u, "geometry.");
   ASSERT_TRUE(d.ok()) << d.status().ToString();
   EXPECT_TRUE(d->mast.pan_joint.isApprox(Eigen::Vector3d(0.2, 0, 0.7)));

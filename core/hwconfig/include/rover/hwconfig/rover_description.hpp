@@ -163,17 +163,17 @@ struct RoverDescription {
 
   // Suspension: rocker pivot on the body (x, |y|, z); bogie pivot on the rocker, in the wheel
   // plane y = +-half_track (x, z). Mechanical stops at +-limit.
-  double rocker_pivot_x = 0.0;      ///< [m] (the front wheel : bogie pivot lever is 2 : 1)
-  double rocker_pivot_y = 0.42;     ///< [m]
-  double rocker_pivot_z = 0.45;     ///< [m]
-  double bogie_pivot_x = -0.3125;   ///< [m] midway between middle and rear wheels
-  double bogie_pivot_z = 0.30;      ///< [m]
-  double rocker_limit = 0.6;        ///< [rad]
-  double bogie_limit = 0.8;         ///< [rad]
+  double rocker_pivot_x = 0.0;     ///< [m] (the front wheel : bogie pivot lever is 2 : 1)
+  double rocker_pivot_y = 0.42;    ///< [m]
+  double rocker_pivot_z = 0.45;    ///< [m]
+  double bogie_pivot_x = -0.3125;  ///< [m] midway between middle and rear wheels
+  double bogie_pivot_z = 0.30;     ///< [m]
+  double rocker_limit = 0.6;       ///< [rad]
+  double bogie_limit = 0.8;        ///< [rad]
 
   // Body (the warm electronics box): a box with sides along the rover axes.
-  Eigen::Vector3d body_size{1.0, 0.7, 0.30};    ///< [m] x, y, z extents
-  Eigen::Vector3d body_centre{0.0, 0.0, 0.50};  ///< [m] (also the body's centre of mass)
+  Eigen::Vector3d body_size{1.0, 0.7, 0.30};     ///< [m] x, y, z extents
+  Eigen::Vector3d body_centre{0.0, 0.0, 0.50};   ///< [m] (also the body's centre of mass)
   Eigen::Vector3d imu_position{0.0, 0.0, 0.45};  ///< [m] the IMU's reference point
 
   // Mast and cameras (MER-like: NAVCAM 20 cm baseline on a 1.5 m mast, HAZCAMs 10 cm at 0.5 m
@@ -186,8 +186,8 @@ struct RoverDescription {
 
   // Driving limits (locomotion enforces them; planners choose within them).
   double max_steer_angle = 70.0 * kDegree;  ///< [rad] corner-wheel steering limit for driving
-  double min_turn_radius = 1.0;  ///< [m] tightest arc (of the middle-axle centre point)
-  double max_wheel_speed = 0.1;  ///< [m/s] fastest rim speed a drive motor is asked for
+  double min_turn_radius = 1.0;             ///< [m] tightest arc (of the middle-axle centre point)
+  double max_wheel_speed = 0.1;             ///< [m/s] fastest rim speed a drive motor is asked for
 
   /// Ranges, the wheel and pivot layout (front > middle > rear; bogie pivot between rear and
   /// middle wheels, rocker pivot between bogie pivot and front wheel; pivots above the wheel
