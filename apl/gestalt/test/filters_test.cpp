@@ -112,16 +112,17 @@ TEST(StepFilter, FollowsItsRampOverStepHeights) {
 }
 
 TEST(StepFilter, TallThinRocksCountThroughTheCellSpread) {
-  // A 0.35 m post 8 cm square in one cell: it barely moves the cell's mean elevation.
+  // A 0.45 m post 8 cm square in one cell (16 % of it): it barely moves the cell's mean
+  // elevation, 0.07 m, but spreads its heights by 0.17 m.
   auto post = [](double x, double y) {
-    return (std::abs(x - 0.2) < 0.04 && std::abs(y) < 0.04) ? 0.35 : 0.0;
+    return (std::abs(x - 0.2) < 0.04 && std::abs(y) < 0.04) ? 0.45 : 0.0;
   };
   GestaltOptions mean_only;
   mean_only.step_sigma_k = 0.0;
   const CellAssessment blind = AssessCentre(Sample(post, 10), mean_only);
-  EXPECT_LT(blind.step, 0.08);  // 16 % of 0.35 m
+  EXPECT_LT(blind.step, 0.08);  // 16 % of 0.45 m
   EXPECT_GT(blind.step_goodness, 200);
-  const CellAssessment seen = AssessCentre(Sample(post, 10), GestaltOptions{});  // k = 2
+  const CellAssessment seen = AssessCentre(Sample(post, 10), GestaltOptions{});  // k = 1
   EXPECT_GT(seen.step, 0.2);
   EXPECT_EQ(seen.step_goodness, 0);
   EXPECT_EQ(seen.goodness, 0);

@@ -26,6 +26,7 @@ TEST(GestaltOptions, DefaultsAreMersAndValid) {
   EXPECT_EQ(o.min_vote_goodness, 26);
   EXPECT_EQ(o.waypoint_certainty, 192);
   EXPECT_EQ(o.num_layers, 7);
+  EXPECT_DOUBLE_EQ(o.step_sigma_k, 1.0);
   EXPECT_DOUBLE_EQ(o.arc_vote_variance, 3.2);
   EXPECT_NEAR(o.turn_vote_variance / (kDeg * kDeg), 97.0, 1e-9);
 }

@@ -13,7 +13,7 @@ HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map, const sim::Terr
     const Eigen::Vector2d c = rock.position.head<2>();
     if ((c - rover_xy).norm() > check.radius) continue;
     const nav_core::CellValue v = map.AtPoint(c.x(), c.y());
-    if (!v.known()) continue;
+    if (!v.known() || (check.seen && !check.seen(rock))) continue;
     ++q.hazards_seen;
     if (v.goodness < o.min_allowed_goodness) ++q.hazards_marked;
   }

@@ -4,13 +4,15 @@
 /// quality figures the judge will report, in their simplest form).
 ///
 ///  - recall: of the truth hazards (rocks at least `hazard_height` tall) whose centre lies within
-///    `radius` of the rover and whose centre cell is known in the map, the share whose centre
-///    cell is an obstacle (goodness below min_allowed_goodness: no path may cross it);
+///    `radius` of the rover, whose centre cell is known in the map and which the rover saw (the
+///    `seen` predicate; by default every hazard with a known centre cell), the share whose
+///    centre cell is an obstacle (goodness below min_allowed_goodness: no path may cross it);
 ///  - false obstacles: of the known cells within `radius` marked obstacle, the share with no
 ///    reason to be: no rock at least `excuse_height` tall whose footprint reaches into the
 ///    cell's rover disc, and a bare-ground slope under max_tilt there.
 
 #include <Eigen/Geometry>
+#include <functional>
 
 #include "rover/apl/gestalt/options.hpp"
 #include "rover/apl/nav_core/goodness_map.hpp"
@@ -33,6 +35,8 @@ struct TruthCheckOptions {
   double radius = 5.0;          ///< [m] around the rover
   double hazard_height = 0.25;  ///< [m] rocks this tall must be marked
   double excuse_height = 0.10;  ///< [m] rocks this tall may cause an obstacle around them
+  /// Whether the rover saw a rock (empty: every rock with a known centre cell counts).
+  std::function<bool(const sim::Rock&)> seen;
 };
 
 HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map, const sim::Terrain& terrain,

@@ -31,7 +31,7 @@ struct GestaltOptions {
   // ---- filters -----------------------------------------------------------------------------
   double rover_disc_diameter = 2.6;  ///< [m] the rover modelled by its turn-in-place disc
   double step_disc_diameter = 0.8;   ///< [m] belly-sized disc the step search runs in
-  double step_sigma_k = 2.0;         ///< cell top = mean + k sigma (tall thin obstacles)
+  double step_sigma_k = 1.0;         ///< cell top = mean + k sigma (tall thin obstacles)
   double step_safe = 0.2 / 3.0;      ///< [m] steps up to this are perfect (255)
   double max_step = 0.20;            ///< [m] steps from this on are obstacles (0)
   double tilt_safe = 5.0 * kDeg;     ///< [rad] tilts up to this are perfect
