@@ -1,6 +1,5 @@
-// The nav_core headers on their own: each compiles alone (they are included first, one per
-// block below), the inline helpers index the map as the topic does, and RangeScan::Validate
-// names the field that is wrong.
+// The nav_core headers: they compile, the inline helpers index the map as the topic does,
+// RangeScan::Validate names the field that is wrong, and the interfaces can be implemented.
 #include "rover/apl/nav_core/arc_selector.hpp"
 #include "rover/apl/nav_core/global_planner.hpp"
 #include "rover/apl/nav_core/goodness_map.hpp"

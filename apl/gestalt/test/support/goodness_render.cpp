@@ -92,6 +92,13 @@ void DrawArcs(const nav_core::GoodnessMap& map, const Eigen::Isometry3d& site_fr
   }
 }
 
+void DrawPath(const nav_core::GoodnessMap& map, const std::vector<Eigen::Vector2d>& path,
+              const RenderOptions& o, cv::Mat* image) {
+  std::vector<cv::Point> pts;
+  for (const auto& p : path) pts.push_back(Pixel(map, o, p.x(), p.y()));
+  if (pts.size() >= 2) cv::polylines(*image, pts, false, cv::Scalar(255, 160, 60), 2, cv::LINE_AA);
+}
+
 Status WritePng(const cv::Mat& image, const std::string& path) {
   try {
     if (cv::imwrite(path, image)) return Status::Ok();

@@ -62,6 +62,8 @@ class TerrainMap final : public nav_core::TerrainAssessor {
 
  private:
   explicit TerrainMap(const GestaltOptions& options);
+  // Recentre and forget; returns whether anything changed (not yet published).
+  bool Move(const Eigen::Isometry3d& site_from_rover);
   // Scrolls the grids so the rover's cell is the centre one; returns whether anything moved.
   bool Recentre(const Eigen::Vector2d& rover_xy);
   // Forgets cells farther than forget_radius; returns whether anything was forgotten.
@@ -90,6 +92,12 @@ class TerrainMap final : public nav_core::TerrainAssessor {
   std::vector<std::uint8_t> used_px_, edge_px_;
   std::vector<std::int32_t> cell_of_px_;
   std::vector<Eigen::Vector3d> point_of_px_;
+  Grid<std::uint8_t> dirty_, conservative_;
+  Grid<CellStats> cell_stats_;
+  Grid<int> covered_;
+  RowPrefix<Moments> moment_sums_;
+  RowPrefix<int> covered_sums_;
+  Grid<std::int16_t> fresh_;
 };
 
 }  // namespace rover::apl::gestalt
