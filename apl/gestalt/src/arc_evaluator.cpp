@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "rover/apl/gestalt/arc_geometry.hpp"
-#include "rover/base/format.hpp"
+#include "rover/apl/nav_core/range_scan.hpp"
 #include "rover/base/range_check.hpp"
 
 namespace rover::apl::gestalt {
@@ -29,16 +29,7 @@ double WrapPi(double a) {
 int Round255(double v) { return std::clamp(static_cast<int>(std::lround(v)), 0, 255); }
 
 Status CheckRequest(const ArcRequest& r) {
-  const Eigen::Matrix4d m = r.site_from_rover.matrix();
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      if (!std::isfinite(m(i, j))) {
-        return InvalidArgument("ArcRequest.site_from_rover(" + std::to_string(i) + ", " +
-                               std::to_string(j) + ") is " + FormatNumber(m(i, j)) +
-                               " (must be finite)");
-      }
-    }
-  }
+  ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
   ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.x", r.goal.x()));
   ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.y", r.goal.y()));
   return CheckNonNegative("ArcRequest.goal_tolerance", r.goal_tolerance, "m");

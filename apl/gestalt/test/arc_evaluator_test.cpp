@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "test_maps.hpp"
+
 namespace rover::apl::gestalt {
 namespace {
 
@@ -16,19 +18,7 @@ using nav_core::GoodnessMap;
 using nav_core::MotionKind;
 using nav_core::Vote;
 
-// A 10 m map centred on the origin, every cell known with goodness `g`.
-GoodnessMap KnownMap(int g = 255) {
-  GoodnessMap m;
-  m.resolution = 0.2;
-  m.width = m.height = 50;
-  m.origin_x = m.origin_y = -5.0;
-  m.goodness.assign(m.cell_count(), static_cast<std::uint8_t>(g));
-  m.certainty.assign(m.cell_count(), 255);
-  m.flags.assign(m.cell_count(), nav_core::kCellKnown);
-  m.unknown_goodness = 11;
-  m.unknown_certainty = 0;
-  return m;
-}
+using testing::KnownMap;  // a 10 m map centred on the origin, every cell known
 void SetRect(GoodnessMap* m, double x0, double x1, double y0, double y1, int g, int c = 255,
              std::uint8_t flags = nav_core::kCellKnown) {
   for (int j = 0; j < m->height; ++j) {

@@ -104,11 +104,19 @@ TEST(TerrainMap, FlatGroundIsPerfectAndTheRestUnknown) {
   EXPECT_FALSE(At(m, 20.0, 0.0).known());  // off the map
 }
 
-TEST(TerrainMap, ARockIsAnObstacleBlobTheSizeOfTheRoverDisc) {
+// Flat ground with a 0.3 m rock 2.5 m ahead, seen once.
+struct OneRock {
   sim::Terrain world = FlatWorld(14.0);
-  AddRock(&world, 2.5, 0.0, 0.5, 0.3);
-  TerrainMap m = Make();
-  ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
+  TerrainMap map = Make();
+  OneRock() {
+    AddRock(&world, 2.5, 0.0, 0.5, 0.3);
+    EXPECT_TRUE(map.Update(Look(world, 0, 0, 0)).ok());
+  }
+};
+
+TEST(TerrainMap, ARockIsAnObstacleBlobTheSizeOfTheRoverDisc) {
+  OneRock scene;
+  const TerrainMap& m = scene.map;
   EXPECT_EQ(At(m, 2.5, 0.0).goodness, 0);
   const CellAssessment& a = AssessmentAt(m, 2.5, 0.0);
   EXPECT_EQ(a.step_goodness, 0);
@@ -195,10 +203,9 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
 }
 
 TEST(TerrainMap, NewDataOverridesOld) {
-  sim::Terrain world = FlatWorld(14.0);
-  AddRock(&world, 2.5, 0.0, 0.5, 0.3);
-  TerrainMap m = Make();
-  ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
+  OneRock scene;
+  sim::Terrain& world = scene.world;
+  TerrainMap& m = scene.map;
   ASSERT_EQ(At(m, 2.5, 0.0).goodness, 0);
   // The "rock" was a stereo artefact (or a pose error): the next look shows flat ground.
   world.rocks.clear();
