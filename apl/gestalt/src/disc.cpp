@@ -107,14 +107,16 @@ void DilateMask(const Grid<std::uint8_t>& mask, const DiscSpans& disc, Grid<std:
 
 void DiscMax(const Grid<std::int16_t>& v, const DiscSpans& disc, std::int16_t absent,
              Grid<std::int16_t>* out) {
-  DiscExtreme(v, disc, absent, std::numeric_limits<std::int16_t>::min(),
-              [](std::int16_t a, std::int16_t b) { return a > b ? a : b; }, out);
+  DiscExtreme(
+      v, disc, absent, std::numeric_limits<std::int16_t>::min(),
+      [](std::int16_t a, std::int16_t b) { return a > b ? a : b; }, out);
 }
 
 void DiscMin(const Grid<std::int16_t>& v, const DiscSpans& disc, std::int16_t absent,
              Grid<std::int16_t>* out) {
-  DiscExtreme(v, disc, absent, std::numeric_limits<std::int16_t>::max(),
-              [](std::int16_t a, std::int16_t b) { return a < b ? a : b; }, out);
+  DiscExtreme(
+      v, disc, absent, std::numeric_limits<std::int16_t>::max(),
+      [](std::int16_t a, std::int16_t b) { return a < b ? a : b; }, out);
 }
 
 }  // namespace rover::apl::gestalt

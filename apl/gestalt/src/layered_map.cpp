@@ -13,7 +13,8 @@ LayeredGoodness::LayeredGoodness(int width, int height, int num_layers) {
   combined_ = Grid<std::int16_t>(width, height, kAbsent);
 }
 
-void LayeredGoodness::Merge(const Grid<std::int16_t>& fresh, const Grid<std::uint8_t>& conservative) {
+void LayeredGoodness::Merge(const Grid<std::int16_t>& fresh,
+                            const Grid<std::uint8_t>& conservative) {
   ROVER_DEMAND(fresh.width() == combined_.width() && fresh.height() == combined_.height());
   ROVER_DEMAND(conservative.size() == fresh.size());
   Grid<std::int16_t> shrunk;

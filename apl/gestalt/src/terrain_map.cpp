@@ -118,7 +118,8 @@ void TerrainMap::Follow(const Eigen::Isometry3d& site_from_rover) {
 
 Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
   if (Status s = scan.Validate(); !s.ok()) {
-    return Status(s.code(), s.message() + (scan.camera.empty() ? "" : " (camera " + scan.camera + ")"));
+    return Status(s.code(),
+                  s.message() + (scan.camera.empty() ? "" : " (camera " + scan.camera + ")"));
   }
   const Eigen::Isometry3d& pose = scan.site_from_rover;
   const Eigen::Vector2d rover_xy = pose.translation().head<2>();

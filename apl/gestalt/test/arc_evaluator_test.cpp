@@ -207,7 +207,8 @@ TEST(ArcEvaluator, ReachedGoalChoosesNothing) {
 TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
   const ArcEvaluator ev = Make();
   GoodnessMap unknown_patch = KnownMap();
-  SetRect(&unknown_patch, 2.0, 3.0, 1.0, 2.0, 11, 0, 0);  // off to the left: the k = 1 arcs cross it
+  SetRect(&unknown_patch, 2.0, 3.0, 1.0, 2.0, 11, 0,
+          0);  // off to the left: the k = 1 arcs cross it
   auto a = ev.Evaluate(unknown_patch, Toward(4.0, 0.0));
   ASSERT_TRUE(a.ok());
   ASSERT_TRUE(a->has_choice());
@@ -227,7 +228,8 @@ TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
 TEST(ArcEvaluator, RejectsBadRequests) {
   const ArcEvaluator ev = Make();
   ArcRequest r = Toward(std::numeric_limits<double>::quiet_NaN(), 0.0);
-  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(), "ArcRequest.goal.x is nan (must be finite)");
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
+            "ArcRequest.goal.x is nan (must be finite)");
   r = Toward(1.0, 0.0, 0.0, -1.0);
   EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
             "ArcRequest.goal_tolerance = -1 m is outside [0, inf)");
@@ -237,7 +239,8 @@ TEST(ArcEvaluator, RejectsBadRequests) {
             "ArcRequest.site_from_rover(1, 3) is inf (must be finite)");
   GestaltOptions bad;
   bad.num_forward_arcs = 0;
-  EXPECT_EQ(ArcEvaluator::Create(bad).status().message(), "num_forward_arcs = 0 is outside [1, 99]");
+  EXPECT_EQ(ArcEvaluator::Create(bad).status().message(),
+            "num_forward_arcs = 0 is outside [1, 99]");
 }
 
 TEST(MergeVotes, MinimumBelowTheThresholdWeightedSumAbove) {

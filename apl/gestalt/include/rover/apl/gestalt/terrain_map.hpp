@@ -21,7 +21,8 @@
 ///      within fov_edge_margin_cells of a FOV-edge cell keep min(old, new).
 ///   6. Publish: the combined layers become the goodness map; known cells next to an unknown
 ///      cell are border cells (goodness capped at border_goodness, certainty border_certainty),
-///      unknown cells read (unknown_goodness, unknown_certainty); assessed cells have certainty 255.
+///      unknown cells read (unknown_goodness, unknown_certainty); assessed cells have certainty
+///      255.
 ///
 /// Internally moments are kept relative to a fixed origin (the rover's position at the first
 /// update) so their sums stay well conditioned; Clear() drops it.

@@ -32,8 +32,8 @@ inline Status CheckPoseFinite(const std::string& name, const Eigen::Isometry3d& 
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) {
       if (!std::isfinite(m(r, c))) {
-        return InvalidArgument(name + "(" + std::to_string(r) + ", " + std::to_string(c) +
-                               ") is " + FormatNumber(m(r, c)) + " (must be finite)");
+        return InvalidArgument(name + "(" + std::to_string(r) + ", " + std::to_string(c) + ") is " +
+                               FormatNumber(m(r, c)) + " (must be finite)");
       }
     }
   }
@@ -83,8 +83,9 @@ struct RangeScan {
     const Eigen::Matrix3d rot = site_from_rover.linear();
     const double err = (rot.transpose() * rot - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     if (err > 1e-6 || rot.determinant() < 0.0) {
-      return InvalidArgument("RangeScan.site_from_rover: rotation is not orthonormal (|R^T R - I| = " +
-                             FormatNumber(err) + ", det = " + FormatNumber(rot.determinant()) + ")");
+      return InvalidArgument(
+          "RangeScan.site_from_rover: rotation is not orthonormal (|R^T R - I| = " +
+          FormatNumber(err) + ", det = " + FormatNumber(rot.determinant()) + ")");
     }
     return Status::Ok();
   }
