@@ -93,8 +93,11 @@ void FaultAgent::Publish(const FaultRecord& r) {
   e.header.seq = ++seq_;
   ToIdl(r, &e);
   (void)events_.Write(e);
-  log::Info("fault", {{"event", FaultEventName(r.event)}, {"id", r.fault_id},
-                      {"seen", r.seen}, {"hit", r.hit}, {"detail", r.detail}});
+  log::Write(r.event == FaultRecord::Event::kCount || r.event == FaultRecord::Event::kListed
+                 ? log::Level::kDebug
+                 : log::Level::kInfo,
+             "fault", {{"event", FaultEventName(r.event)}, {"id", r.fault_id}, {"seen", r.seen},
+                       {"hit", r.hit}, {"detail", r.detail}});
 }
 
 void FaultAgent::Reject(std::uint32_t id, rover_sys_FaultKind kind, const std::string& why) {

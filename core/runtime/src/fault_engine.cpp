@@ -266,6 +266,7 @@ struct Fault {
   bool ended = false;
   Time last_report{0};
   std::uint64_t reported_hit = 0;
+  std::uint64_t endpoints_checked = 0;  // EngineCore::seams_made_ when last looked for one
 
   bool Active(Time now) const { return now >= start && now < end; }
   std::optional<Time> End() const {
@@ -377,6 +378,7 @@ class EngineCore final : public dds::SeamPump, public std::enable_shared_from_th
   std::shared_ptr<const FaultSet> set_;
   std::vector<std::shared_ptr<Fault>> history_;
   std::vector<std::weak_ptr<EndpointSeam>> seams_;
+  std::uint64_t seams_made_ = 0;  // guarded by mu_
   std::mutex sink_mu_;
   FaultEngine::RecordSink sink_;
 };
@@ -406,10 +408,12 @@ class EndpointSeam final : public dds::TopicSeam {
     if (bindings_.empty()) return dds_write(writer, sample);
     const Time now = core_->Now();
     dds_return_t rc = DDS_RETCODE_OK;
-    for (const Emission& e : Process(sample, dds_sample_info_t{}, now)) {
+    Process(sample, dds_sample_info_t{}, now, &scratch_);
+    for (const Emission& e : scratch_) {
       const dds_return_t r = dds_write(writer, e.sample);
       if (r < 0) rc = r;
     }
+    scratch_.clear();  // keeps its capacity: no allocation per sample
     return rc;
   }
 
@@ -426,7 +430,7 @@ class EndpointSeam final : public dds::TopicSeam {
       if (bindings_.empty()) {
         now_list.push_back({sample, nullptr, Time{0}, info});
       } else {
-        now_list = Process(sample, info, core_->Now());
+        Process(sample, info, core_->Now(), &now_list);
       }
     }
     for (const Emission& e : now_list) out.Deliver(e.sample, e.info);  // copies live in now_list
@@ -519,9 +523,10 @@ class EndpointSeam final : public dds::TopicSeam {
     state_.store(gen * 2 + (bindings_.empty() ? 1 : 0), std::memory_order_release);
   }
 
-  // Runs the sample through the active faults; queues what is due later, returns what is due now.
-  std::vector<Emission> Process(const void* sample, const dds_sample_info_t& info, Time now) {
-    std::vector<Emission> list;
+  // Runs the sample through the active faults; queues what is due later and leaves in `out`
+  // (empty on entry) what is due now.
+  void Process(const void* sample, const dds_sample_info_t& info, Time now, std::vector<Emission>* out) {
+    std::vector<Emission>& list = *out;
     list.push_back({sample, nullptr, now, info});
     for (Binding& b : bindings_) {
       Fault& f = *b.fault;
@@ -616,15 +621,17 @@ class EndpointSeam final : public dds::TopicSeam {
       }
       if (hit) f.hit.fetch_add(1, std::memory_order_relaxed);
     }
-    std::vector<Emission> now_list;
-    for (Emission& e : list) {
-      if (e.due <= now) {
-        now_list.push_back(std::move(e));
+    // Keep what is due now in order; queue the rest.
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (list[i].due <= now) {
+        if (kept != i) list[kept] = std::move(list[i]);
+        ++kept;
       } else {
-        Queue(std::move(e));
+        Queue(std::move(list[i]));
       }
     }
-    return now_list;
+    list.erase(list.begin() + static_cast<std::ptrdiff_t>(kept), list.end());
   }
 
   // Changes the field once per distinct sample storage in `list`.
@@ -692,7 +699,8 @@ class EndpointSeam final : public dds::TopicSeam {
   std::mutex mu_;
   dds_entity_t writer_ = 0;
   std::vector<Binding> bindings_;
-  std::vector<Emission> queue_;  // held samples, by due time
+  std::vector<Emission> queue_;    // held samples, by due time
+  std::vector<Emission> scratch_;  // writer side: the samples of the current write
 };
 
 std::shared_ptr<dds::TopicSeam> EngineCore::MakeSeam(const std::string& topic, dds::Direction d) {
@@ -706,6 +714,7 @@ std::shared_ptr<dds::TopicSeam> EngineCore::MakeSeam(const std::string& topic, d
   seams_.erase(std::remove_if(seams_.begin(), seams_.end(), [](const auto& w) { return w.expired(); }),
                seams_.end());
   seams_.push_back(seam);
+  ++seams_made_;
   return seam;
 }
 
@@ -802,9 +811,11 @@ bool EngineCore::HasEndpoint(const Fault& f,
 void EngineCore::Pump() {
   const Time now = Now();
   std::vector<std::shared_ptr<EndpointSeam>> seams;
+  std::uint64_t made = 0;  // seams_made_ for this snapshot
   {
     std::lock_guard lock(mu_);
     if (set_->faults.empty() && next_due_.load(std::memory_order_relaxed) == kNever) return;
+    made = seams_made_;
     for (const auto& w : seams_) {
       if (auto s = w.lock()) seams.push_back(std::move(s));
     }
@@ -823,7 +834,10 @@ void EngineCore::Pump() {
     std::vector<std::shared_ptr<Fault>> keep;
     bool changed = false;
     for (const auto& f : set_->faults) {
-      if (f->applies && !f->started && f->Active(now) && HasEndpoint(*f, seams)) {
+      // Started in this service once it has a matching endpoint (looked for again only when
+      // the endpoints change).
+      if (f->applies && !f->started && f->Active(now) && f->endpoints_checked != made &&
+          (f->endpoints_checked = made, HasEndpoint(*f, seams))) {
         f->started = true;
         f->last_report = now;
         records.push_back(Record(FaultRecord::Event::kStarted, *f, now));

@@ -69,19 +69,6 @@ std::optional<E> Lookup(const Named<E> (&table)[N], std::string_view text) {
   return std::nullopt;
 }
 
-std::string Suggestion(const std::string& bad, const std::vector<std::string>& known) {
-  std::string best;
-  std::size_t best_d = 3;
-  for (const auto& k : known) {
-    const std::size_t d = EditDistance(bad, k);
-    if (d < best_d) {
-      best_d = d;
-      best = k;
-    }
-  }
-  return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
-
 template <class E, std::size_t N>
 std::vector<std::string> NameList(const Named<E> (&table)[N]) {
   std::vector<std::string> out;
@@ -472,7 +459,7 @@ class FaultReader {
     ROVER_RETURN_IF_ERROR(Text(n, key, &t));
     auto v = Lookup(table, t);
     if (!v) {
-      return KeyError(s_, key, "'" + t + "' is not a " + what + Suggestion(t, NameList(table)) +
+      return KeyError(s_, key, "'" + t + "' is not a " + what + DidYouMean(t, NameList(table)) +
                                    "; one of: " + AllNames(table));
     }
     *out = *v;
@@ -537,7 +524,7 @@ Result<FaultSpec> ParseOne(const YAML::Node& node, std::string_view source, std:
     const std::string key = kv.first.Scalar();
     s.key_lines[key] = kv.first.Mark().line + 1;
     if (std::find(KnownKeys().begin(), KnownKeys().end(), key) == KnownKeys().end()) {
-      return KeyError(s, key, "unknown key" + Suggestion(key, KnownKeys()));
+      return KeyError(s, key, "unknown key" + DidYouMean(key, KnownKeys()));
     }
     keys[key] = kv.second;
   }

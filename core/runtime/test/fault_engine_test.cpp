@@ -67,6 +67,15 @@ class FaultEngineTest : public ::testing::Test {
     return std::move(*r);
   }
 
+  struct Commands {
+    Writer<Cmd> w;
+    Reader<Cmd> r;
+  };
+  // A writer and a reader of dl/drive_command (reliable, keep-all) in this process.
+  Commands OpenCommands() {
+    return {MakeWriter<Cmd>("dl/drive_command"), MakeReader<Cmd>("dl/drive_command")};
+  }
+
   static Cmd Command(std::uint32_t id) {
     Cmd c{};
     c.command_id = id;
@@ -137,8 +146,7 @@ class FaultEngineTest : public ::testing::Test {
 };
 
 TEST_F(FaultEngineTest, EveryEndpointHasASeamAndPassesSamplesUntouchedWithoutFaults) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   EXPECT_NE(w.seam(), nullptr);
   EXPECT_NE(r.seam(), nullptr);
   Send(w, 1, 10);
@@ -156,8 +164,7 @@ TEST_F(FaultEngineTest, EveryEndpointHasASeamAndPassesSamplesUntouchedWithoutFau
 }
 
 TEST_F(FaultEngineTest, EndpointsCreatedBeforeAFaultAreAffected) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Send(w, 1, 3);
   Add("{kind: drop, topic: dl/drive_command}");
   Send(w, 4, 6);
@@ -202,8 +209,7 @@ TEST_F(FaultEngineTest, DropHitsTheSameSamplesForTheSameSeed) {
 }
 
 TEST_F(FaultEngineTest, WindowsFollowTheRunClockAndAreRecorded) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: drop, topic: dl/drive_command, start_s: 5, duration_s: 3}", 7);
   ASSERT_EQ(Records(FaultRecord::Event::kAdded).size(), 1u);
   for (int t = 0; t <= 10; ++t) {
@@ -233,8 +239,7 @@ TEST_F(FaultEngineTest, WindowsFollowTheRunClockAndAreRecorded) {
 }
 
 TEST_F(FaultEngineTest, WriterDelayWritesTheSampleLaterOnTheRunClock) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: delay, topic: dl/drive_command, delay: 2}");
   At(1);
   Send(w, 1, 1);
@@ -255,8 +260,7 @@ TEST_F(FaultEngineTest, WriterDelayWritesTheSampleLaterOnTheRunClock) {
 }
 
 TEST_F(FaultEngineTest, DistributedDelaysReorderAndAreSeeded) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: delay, topic: dl/drive_command, delay: {distribution: uniform, min: 0.1, max: 1.0}}");
   At(0);
   Send(w, 1, 20);
@@ -268,8 +272,7 @@ TEST_F(FaultEngineTest, DistributedDelaysReorderAndAreSeeded) {
 }
 
 TEST_F(FaultEngineTest, ReaderDelayHoldsSamplesUntilDueThroughTheExecutor) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: delay, topic: dl/drive_command, side: reader, delay: 0.5}");
   auto exec = Executor::Create(participant_, clock_);
   ASSERT_TRUE(exec.ok());
@@ -289,8 +292,7 @@ TEST_F(FaultEngineTest, ReaderDelayHoldsSamplesUntilDueThroughTheExecutor) {
 }
 
 TEST_F(FaultEngineTest, WriterDelayIsFlushedByTheExecutorPump) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: delay, topic: dl/drive_command, delay: 1}");
   auto exec = Executor::Create(participant_, clock_);
   ASSERT_TRUE(exec.ok());
@@ -306,8 +308,7 @@ TEST_F(FaultEngineTest, WriterDelayIsFlushedByTheExecutorPump) {
 }
 
 TEST_F(FaultEngineTest, DuplicateSendsExtraCopies) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: duplicate, topic: dl/drive_command, copies: 2}");
   Send(w, 1, 2);
   EXPECT_EQ(Ids(Drain(w, r)), (std::vector<std::uint32_t>{1, 1, 1, 2, 2, 2}));
@@ -318,8 +319,7 @@ TEST_F(FaultEngineTest, DuplicateSendsExtraCopies) {
 }
 
 TEST_F(FaultEngineTest, ReorderSwapsNeighboursAndReleasesALoneSampleAfterItsHold) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: reorder, topic: dl/drive_command, delay: 0.5}");
   Send(w, 1, 6);
   At(0.2);
@@ -331,8 +331,7 @@ TEST_F(FaultEngineTest, ReorderSwapsNeighboursAndReleasesALoneSampleAfterItsHold
 }
 
 TEST_F(FaultEngineTest, FreezeRepeatsTheLastSampleBeforeTheWindow) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: freeze, topic: dl/drive_command, start_s: 5, duration_s: 2}");
   At(1);
   Send(w, 1, 4);
@@ -345,16 +344,14 @@ TEST_F(FaultEngineTest, FreezeRepeatsTheLastSampleBeforeTheWindow) {
 }
 
 TEST_F(FaultEngineTest, FreezeWithoutAnEarlierSampleRepeatsTheFirstOne) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: freeze, topic: dl/drive_command, side: reader}");
   Send(w, 1, 3);
   EXPECT_EQ(Ids(Drain(w, r)), (std::vector<std::uint32_t>{1, 1, 1}));
 }
 
 TEST_F(FaultEngineTest, CorruptChangesTheNamedFieldOfACopy) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: corrupt, topic: dl/drive_command, field: curvature, mode: nan}", 1);
   Add("{kind: corrupt, topic: dl/drive_command, field: distance, mode: -inf}", 2);
   // DDS refuses to send an enum outside its literals: that one is corrupted where it is read.
@@ -403,8 +400,7 @@ TEST_F(FaultEngineTest, CorruptOnAReaderChangesSequenceElementsInPlace) {
 }
 
 TEST_F(FaultEngineTest, NoiseAndBiasOnNumbers) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: bias, topic: dl/drive_command, field: curvature, value: 0.5}", 1);
   Add("{kind: noise, topic: dl/drive_command, field: distance, sigma: 1, seed: 11}", 2);
   Add("{kind: bias, topic: dl/drive_command, field: header.seq, value: -3}", 3);
@@ -432,8 +428,7 @@ TEST_F(FaultEngineTest, PartitionCutsTheServiceOffBothWays) {
   auto remote_r = MakeReader<Cmd>("dl/drive_command");
   EXPECT_EQ(remote_w.seam(), nullptr);
   engine_ = MakeEngine("svc");
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: partition, service: other}", 1);  // not this service: no effect
   Send(remote_w, 1, 1);
   Send(w, 2, 2);
@@ -460,8 +455,7 @@ TEST_F(FaultEngineTest, PartitionCutsTheServiceOffBothWays) {
 }
 
 TEST_F(FaultEngineTest, SidesAndServicesSelectEndpoints) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: drop, topic: dl/drive_command, service: 'other-*'}", 1);
   Send(w, 1, 1);
   EXPECT_EQ(Ids(TakeNow(r)), (std::vector<std::uint32_t>{1}));
@@ -475,8 +469,7 @@ TEST_F(FaultEngineTest, SidesAndServicesSelectEndpoints) {
 }
 
 TEST_F(FaultEngineTest, RemoveAndClearEndFaultsWithTheirCounts) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: drop, topic: dl/drive_command}", 3);
   Add("{kind: drop, topic: dl/drive_command, start_s: 100}", 4);
   At(0);
@@ -496,8 +489,7 @@ TEST_F(FaultEngineTest, RemoveAndClearEndFaultsWithTheirCounts) {
 }
 
 TEST_F(FaultEngineTest, AddingTheSameIdReplacesTheFault) {
-  auto w = MakeWriter<Cmd>("dl/drive_command");
-  auto r = MakeReader<Cmd>("dl/drive_command");
+  auto [w, r] = OpenCommands();
   Add("{kind: drop, topic: dl/drive_command}", 1);
   Add("{kind: duplicate, topic: dl/drive_command}", 1);
   Send(w, 1, 1);

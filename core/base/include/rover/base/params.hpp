@@ -136,5 +136,7 @@ class ParamSet {
 
 /// Levenshtein distance, for "did you mean" hints.
 std::size_t EditDistance(const std::string& a, const std::string& b);
+/// " (did you mean 'x'?)" for the entry of `known` within edit distance 2 of `key`, else "".
+std::string DidYouMean(const std::string& key, const std::vector<std::string>& known);
 
 }  // namespace rover
