@@ -161,7 +161,7 @@ void Executor::SpinOnce(Duration max_wait) {
 void Executor::RunSeams() {
   if (auto pump = dds::CurrentSeamPump()) Invoke("fault seam", [&] { pump->Pump(); });
   for (auto& s : subscriptions_) {
-    if (s.attached && s.seam != nullptr && s.seam->HasDue()) s.drain();
+    if (s.attached && s.seam != nullptr && s.seam->Holding() && s.seam->HasDue()) s.drain();
   }
 }
 

@@ -290,6 +290,7 @@ class EngineCore final : public dds::SeamPump, public std::enable_shared_from_th
     return c != nullptr ? c->Now() : Time{0};
   }
   std::uint64_t generation() const { return generation_.load(std::memory_order_acquire); }
+  const std::atomic<std::uint64_t>& generation_counter() const { return generation_; }
   std::shared_ptr<const FaultSet> Snapshot(std::uint64_t* gen) const {
     std::lock_guard lock(mu_);
     *gen = generation_.load(std::memory_order_relaxed);
@@ -392,7 +393,9 @@ class EndpointSeam final : public dds::TopicSeam {
         topic_(std::move(topic)),
         topic_hash_(HashName(topic_)),
         dir_(dir),
-        layout_(std::move(layout)) {}
+        layout_(std::move(layout)) {
+    generation_ = &core_->generation_counter();
+  }
 
   const std::string& topic() const { return topic_; }
   dds::Direction direction() const { return dir_; }
@@ -401,7 +404,7 @@ class EndpointSeam final : public dds::TopicSeam {
   }
 
   dds_return_t OnWrite(dds_entity_t writer, const void* sample, const dds_topic_descriptor_t*) override {
-    if (FastPath()) return dds_write(writer, sample);
+    if (Idle()) return dds_write(writer, sample);
     std::lock_guard lock(mu_);
     writer_ = writer;
     RefreshIfStale();
@@ -419,7 +422,7 @@ class EndpointSeam final : public dds::TopicSeam {
 
   void OnRead(void* sample, const dds_sample_info_t& info, const dds_topic_descriptor_t*,
               dds::SampleSink& out) override {
-    if (FastPath()) {
+    if (Idle()) {
       out.Deliver(sample, info);
       return;
     }
@@ -437,12 +440,12 @@ class EndpointSeam final : public dds::TopicSeam {
   }
 
   bool HasDue() const override {
-    const std::int64_t due = earliest_.load(std::memory_order_acquire);
+    const std::int64_t due = held_due_ns_.load(std::memory_order_acquire);
     return due != kNever && due <= core_->Now().ns;
   }
 
   void ReleaseDue(dds::SampleSink& out) override {
-    if (earliest_.load(std::memory_order_acquire) == kNever) return;
+    if (held_due_ns_.load(std::memory_order_acquire) == kNever) return;
     std::vector<Emission> due;
     {
       std::lock_guard lock(mu_);
@@ -453,11 +456,11 @@ class EndpointSeam final : public dds::TopicSeam {
 
   // Writer side: writes the held samples that are due.
   void FlushDue(Time now) {
-    if (dir_ != dds::Direction::kWrite || earliest_.load(std::memory_order_acquire) > now.ns) return;
+    if (dir_ != dds::Direction::kWrite || held_due_ns_.load(std::memory_order_acquire) > now.ns) return;
     std::lock_guard lock(mu_);
     for (const Emission& e : PopDue(now)) (void)dds_write(writer_, e.sample);
   }
-  std::int64_t earliest() const { return earliest_.load(std::memory_order_acquire); }
+  std::int64_t earliest() const { return held_due_ns_.load(std::memory_order_acquire); }
 
  private:
   struct Emission {
@@ -474,10 +477,6 @@ class EndpointSeam final : public dds::TopicSeam {
     std::shared_ptr<void> frozen;  // freeze: the sample repeated
     std::shared_ptr<void> last;    // freeze pending: the latest sample
   };
-
-  bool FastPath() const {
-    return state_.load(std::memory_order_acquire) == core_->generation() * 2 + 1;
-  }
 
   std::shared_ptr<void> Clone(const void* p) const {
     std::shared_ptr<const dds::TypeLayout> layout = layout_;
@@ -676,7 +675,7 @@ class EndpointSeam final : public dds::TopicSeam {
   }
   void UpdateEarliest() {
     const std::int64_t t = queue_.empty() ? kNever : queue_.front().due.ns;
-    earliest_.store(t, std::memory_order_release);
+    held_due_ns_.store(t, std::memory_order_release);
     if (t != kNever) core_->NoteDue(Time{t});
   }
   std::vector<Emission> PopDue(Time now) {
@@ -694,8 +693,7 @@ class EndpointSeam final : public dds::TopicSeam {
   std::uint64_t topic_hash_;
   dds::Direction dir_;
   std::shared_ptr<const dds::TypeLayout> layout_;
-  std::atomic<std::uint64_t> state_{0};  // generation * 2 + (no fault matches)
-  std::atomic<std::int64_t> earliest_{kNever};
+  // state_ (TopicSeam): generation * 2 + (no fault matches); held_due_ns_: the queue's front.
   std::mutex mu_;
   dds_entity_t writer_ = 0;
   std::vector<Binding> bindings_;

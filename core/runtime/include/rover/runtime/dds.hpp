@@ -168,8 +168,9 @@ class Writer {
   /// Publishes one sample (through the fault seam, if any).
   Status Write(const T& sample) {
     ROVER_DEMAND(writer_.valid());
-    dds_return_t rc = seam_ ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
-                            : dds_write(writer_.handle(), &sample);
+    dds_return_t rc = seam_ && !seam_->Idle()
+                          ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
+                          : dds_write(writer_.handle(), &sample);
     if (rc < 0) return DdsError("write on " + name_, rc);
     return Status::Ok();
   }
@@ -233,14 +234,14 @@ class Reader {
       fn(Sample<T>(static_cast<const T*>(p), &info));
     };
     internal::SinkOf<decltype(deliver)> sink(deliver);
-    if (seam_) seam_->ReleaseDue(sink);
+    if (seam_ && seam_->Holding()) seam_->ReleaseDue(sink);
     while (true) {
       ptrs[0] = nullptr;  // ask DDS to lend its buffers
       const dds_return_t n = dds_take(reader_.handle(), ptrs, infos, kBatch, kBatch);
       if (n <= 0) break;
       for (dds_return_t i = 0; i < n; ++i) {
         if (!infos[i].valid_data) continue;
-        if (seam_) {
+        if (seam_ && !seam_->Idle()) {
           seam_->OnRead(ptrs[i], infos[i], TopicType<T>::Descriptor(), sink);
         } else {
           deliver(ptrs[i], infos[i]);
@@ -276,7 +277,7 @@ class Reader {
       }
     };
     internal::SinkOf<decltype(deliver)> sink(deliver);
-    if (seam_) seam_->ReleaseDue(sink);
+    if (seam_ && seam_->Holding()) seam_->ReleaseDue(sink);
     for (std::size_t i = 0; i < max; ++i) ptrs[i] = &pool_[i].data();
     const dds_return_t n = dds_take(reader_.handle(), ptrs.data(), infos.data(), max,
                                     static_cast<uint32_t>(max));
@@ -285,7 +286,7 @@ class Reader {
     for (dds_return_t i = 0; i < n; ++i) {
       if (!infos[i].valid_data) continue;
       current = static_cast<std::size_t>(i);
-      if (seam_) {
+      if (seam_ && !seam_->Idle()) {
         seam_->OnRead(&pool_[current].data(), infos[i], TopicType<T>::Descriptor(), sink);
       } else {
         deliver(&pool_[current].data(), infos[i]);

@@ -5,8 +5,8 @@
 /// which ones hit it, and reports what it did as records (sys/fault_event in a service).
 ///
 /// Cost: every endpoint gets a seam once the engine is installed, whatever the faults. With no
-/// fault matching an endpoint, a sample costs one virtual call and two atomic loads more than
-/// without the seam (the fast path); faults added later are seen at once because each seam
+/// fault matching an endpoint, the typed wrappers find the seam Idle() (two atomic loads,
+/// inline) and skip it (the fast path); faults added later are seen at once because each seam
 /// compares the engine's generation with the one it last matched against.
 ///
 /// Per sample (slow path, only for endpoints a fault matches), the faults whose window

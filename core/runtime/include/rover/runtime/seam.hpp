@@ -13,7 +13,10 @@
 
 #include <dds/dds.h>
 
+#include <atomic>
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,9 +37,24 @@ class SampleSink {
 
 /// Intercepts the samples of one topic endpoint (one writer or one reader) in one process.
 /// Thread-safe: a writer may be used from several threads.
+///
+/// Fast path: a seam that knows it would pass every sample through unchanged says so through
+/// Idle(), and one that holds no samples back through !Holding(); both are inline atomic loads,
+/// and the typed wrappers then skip the virtual calls, so an endpoint no fault matches costs
+/// next to nothing. A seam that does not maintain them (generation never set) is never idle.
 class TopicSeam {
  public:
   virtual ~TopicSeam() = default;
+
+  /// True when OnWrite/OnRead would pass samples through unchanged right now.
+  bool Idle() const {
+    return generation_ != nullptr &&
+           state_.load(std::memory_order_acquire) ==
+               generation_->load(std::memory_order_acquire) * 2 + 1;
+  }
+  /// True when the seam holds samples back (reader side: ReleaseDue has work, maybe later).
+  bool Holding() const { return held_due_ns_.load(std::memory_order_acquire) != kNotHeld; }
+
   /// Called for each sample a writer is asked to send. The seam sends it (or a modified copy,
   /// or several copies, or none, now or later) with dds_write(writer, ...). Returns the DDS
   /// return code to report to the caller (DDS_RETCODE_OK when it chose to drop or defer).
@@ -51,6 +69,14 @@ class TopicSeam {
   virtual bool HasDue() const { return false; }
   /// Reader side: hands the held samples that are due to `out`, oldest first.
   virtual void ReleaseDue(SampleSink& out) { (void)out; }
+
+ protected:
+  static constexpr std::int64_t kNotHeld = std::numeric_limits<std::int64_t>::max();
+  /// The owner's generation counter: Idle() holds while state_ == generation * 2 + 1.
+  const std::atomic<std::uint64_t>* generation_ = nullptr;
+  std::atomic<std::uint64_t> state_{0};
+  /// Run-clock ns of the earliest held sample, kNotHeld when none.
+  std::atomic<std::int64_t> held_due_ns_{kNotHeld};
 };
 
 /// Returns the seam for (topic, direction), or nullptr for none.
