@@ -35,6 +35,18 @@ Result<Eigen::Quaterniond> PoseOrientation(const rover_dl_PoseEstimate& in) {
 
 }  // namespace
 
+Eigen::Isometry3d IsometryFromIdl(const rover_Pose3& in) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Quat(in.orientation).normalized().toRotationMatrix();
+  t.translation() = Vec(in.position);
+  return t;
+}
+
+void IsometryToIdl(const Eigen::Isometry3d& in, rover_Pose3* out) {
+  out->position = Vec(Eigen::Vector3d(in.translation()));
+  out->orientation = Quat(Eigen::Quaterniond(in.linear()));
+}
+
 static_assert(rover_dl_SOURCE_WHEEL_ODOMETRY == static_cast<int>(MotionSource::kWheelOdometry));
 static_assert(rover_dl_SOURCE_VISUAL_ODOMETRY == static_cast<int>(MotionSource::kVisualOdometry));
 static_assert(rover_dl_SOURCE_SUN_SENSOR == static_cast<int>(MotionSource::kSunSensor));
@@ -116,8 +128,7 @@ void RelativePoseToIdl(const RelativePose& in, rover_dl_RelativePose* out) {
   out->source = internal::EnumToIdl<rover_dl_MotionSource>(in.source);
   out->t_from_ns = in.t_from.ns;
   out->t_to_ns = in.t_to.ns;
-  out->delta.position = Vec(Eigen::Vector3d(in.delta.translation()));
-  out->delta.orientation = Quat(Eigen::Quaterniond(in.delta.linear()));
+  IsometryToIdl(in.delta, &out->delta);
   CovarianceToIdl(in.covariance, out->covariance);
   out->status = internal::EnumToIdl<rover_dl_RelativePoseStatus>(in.status);
   out->features = in.features;
@@ -132,16 +143,12 @@ Result<RelativePose> RelativePoseFromIdl(const rover_dl_RelativePose& in) {
                                                           "RelativePoseStatus"));
   r.t_from = Time{in.t_from_ns};
   r.t_to = Time{in.t_to_ns};
-  Eigen::Quaterniond q = Quat(in.delta.orientation);
-  const double norm = q.norm();
+  const double norm = Quat(in.delta.orientation).norm();
   if (!(std::abs(norm - 1.0) <= 1e-6)) {  // also NaN
     return InvalidArgument("dl/relative_pose: delta orientation quaternion has norm " +
                            FormatNumber(norm) + " (must be 1)");
   }
-  q.normalize();  // rounding only
-  r.delta = Eigen::Isometry3d::Identity();
-  r.delta.linear() = q.toRotationMatrix();
-  r.delta.translation() = Vec(in.delta.position);
+  r.delta = IsometryFromIdl(in.delta);  // normalised: rounding only
   r.covariance = CovarianceFromIdl(in.covariance);
   r.features = in.features;
   return r;

@@ -7,6 +7,7 @@
 #include "idl_enum.hpp"
 #include "rover/base/format.hpp"
 #include "rover/msg/camera_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
 
 namespace rover::msg {
 namespace {
@@ -44,10 +45,7 @@ Status RangeImageToIdl(const RangeImage& in, rover_dl_RangeImage* out) {
   out->camera = CameraIdToIdl(in.camera);
   out->width = ClampSize(in.width);
   out->height = ClampSize(in.height);
-  const Eigen::Vector3d t = in.rover_pose.translation();
-  const Eigen::Quaterniond q(in.rover_pose.linear());
-  out->rover_pose.position = {t.x(), t.y(), t.z()};
-  out->rover_pose.orientation = {q.w(), q.x(), q.y(), q.z()};
+  IsometryToIdl(in.rover_pose, &out->rover_pose);
   idl::BorrowSequence(out->xyz, std::span<const float>(in.xyz));
   idl::BorrowSequence(out->valid, std::span<const std::uint8_t>(in.valid));
   idl::BorrowSequence(out->disparity, std::span<const float>(in.disparity));
@@ -67,10 +65,7 @@ Result<RangeImage> RangeImageFromIdl(const rover_dl_RangeImage& in) {
     return InvalidArgument("dl/range_image rover_pose orientation is not a unit quaternion (norm " +
                            FormatNumber(q.norm()) + ")");
   }
-  r.rover_pose = Eigen::Isometry3d::Identity();
-  r.rover_pose.linear() = q.normalized().toRotationMatrix();
-  r.rover_pose.translation() =
-      Eigen::Vector3d(in.rover_pose.position.x, in.rover_pose.position.y, in.rover_pose.position.z);
+  r.rover_pose = IsometryFromIdl(in.rover_pose);
   r.xyz = Copy<float>(in.xyz);
   r.valid = Copy<std::uint8_t>(in.valid);
   r.disparity = Copy<float>(in.disparity);

@@ -13,6 +13,22 @@
 namespace rover::msg {
 namespace {
 
+TEST(PoseIdl, IsometryRoundTripNormalisesTheQuaternion) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 3).normalized()).toRotationMatrix();
+  t.translation() = Eigen::Vector3d(1.5, -2.0, 0.25);
+  rover_Pose3 wire{};
+  IsometryToIdl(t, &wire);
+  EXPECT_EQ(wire.position.x, 1.5);
+  EXPECT_EQ(wire.position.z, 0.25);
+  EXPECT_TRUE(IsometryFromIdl(wire).isApprox(t, 1e-12));
+  // 90 deg about z, scaled by 2: normalised on the way in.
+  wire.orientation = {2 * std::cos(M_PI / 4), 0, 0, 2 * std::sin(M_PI / 4)};
+  const Eigen::Isometry3d r = IsometryFromIdl(wire);
+  EXPECT_TRUE((r.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(), 1e-12));
+  EXPECT_NEAR(r.linear().determinant(), 1.0, 1e-12);
+}
+
 TEST(PoseIdl, EstimateRoundTripRowMajorCovariance) {
   PoseEstimate e;
   e.stamp = Time{1234};

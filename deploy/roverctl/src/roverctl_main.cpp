@@ -348,7 +348,7 @@ std::string NowStamp() {
 }
 
 int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out) {
-  auto scenario = rover::deploy::LoadScenarioFile(file, rover::deploy::ValidateSimulatorSections);
+  auto scenario = rover::deploy::LoadScenario(file);
   if (!scenario.ok()) return Fail(scenario.status().message(), 2);
   std::vector<std::uint32_t> seeds = {scenario->seed};
   if (!seeds_text.empty()) {
@@ -396,19 +396,10 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
 }
 
 int Report(const std::string& dir) {
-  auto runs = rover::deploy::LoadRunFolder(dir);
-  if (!runs.ok()) return Fail(runs.status().message(), 2);
-  double wall = 0;
-  std::ifstream in(dir + "/summary.json");
-  if (in) {
-    try {
-      wall = nlohmann::json::parse(in).value("wall_time_s", 0.0);
-    } catch (const nlohmann::json::exception&) {
-    }
-  }
-  auto summary = rover::deploy::Summarize(*runs, wall);
-  std::printf("%s", rover::deploy::FormatSummaryTable(*runs, summary).c_str());
-  return summary.passed == summary.runs && summary.runs > 0 ? 0 : 1;
+  auto report = rover::deploy::LoadCampaignReport(dir);
+  if (!report.ok()) return Fail(report.status().message(), 2);
+  std::printf("%s", report->table.c_str());
+  return report->all_passed ? 0 : 1;
 }
 
 }  // namespace

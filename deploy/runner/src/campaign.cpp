@@ -118,7 +118,8 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
         slots[slot_index].sim_s = sim_s;
         draw(false);
       };
-      auto r = RunScenario(scenario, seed, ro);
+      auto r =
+          options.run_one ? options.run_one(scenario, seed, ro) : RunScenario(scenario, seed, ro);
       std::lock_guard lock(mu);
       slots[slot_index].busy = false;
       if (!r.ok()) {

@@ -299,4 +299,21 @@ Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir) {
   return out;
 }
 
+Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
+  CampaignReport report;
+  ROVER_ASSIGN_OR_RETURN(report.runs, LoadRunFolder(dir));
+  double wall = 0;
+  std::ifstream in(dir + "/summary.json");
+  if (in) {
+    try {
+      wall = nlohmann::json::parse(in).value("wall_time_s", 0.0);
+    } catch (const nlohmann::json::exception&) {
+    }
+  }
+  report.summary = Summarize(report.runs, wall);
+  report.table = FormatSummaryTable(report.runs, report.summary);
+  report.all_passed = report.summary.runs > 0 && report.summary.passed == report.summary.runs;
+  return report;
+}
+
 }  // namespace rover::deploy

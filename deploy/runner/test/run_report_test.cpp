@@ -92,5 +92,36 @@ TEST(RunReport, RunFolderDetection) {
   std::filesystem::remove_all(dir);
 }
 
+// `roverctl report`: the table re-printed from the files, with the campaign's wall time.
+TEST(RunReport, CampaignReportReprintsTheTable) {
+  const std::string dir = ::testing::TempDir() + "/report_test";
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(LoadCampaignReport(dir).status().code(), StatusCode::kNotFound);
+  std::vector<RunResult> runs = {MakeRun(1, true, 0.1), MakeRun(2, false, 0.8),
+                                 MakeRun(3, true, 0.2)};
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/campaign.json") << "{}";
+  for (const auto& r : runs) {
+    const std::string run_dir = dir + "/drive-flat-seed" + std::to_string(r.seed);
+    std::filesystem::create_directories(run_dir);
+    std::ofstream(run_dir + "/result.json") << ToJson(r).dump(2);
+  }
+  std::ofstream(dir + "/summary.json") << nlohmann::json{{"wall_time_s", 120.0}}.dump();
+  auto report = LoadCampaignReport(dir);
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  EXPECT_EQ(report->runs.size(), 3u);
+  EXPECT_EQ(report->summary.wall_time_s, 120.0);
+  EXPECT_EQ(report->table, FormatSummaryTable(runs, Summarize(runs, 120.0)));
+  EXPECT_FALSE(report->all_passed);
+  // Without summary.json the wall time is unknown (0); one failed run still fails the report.
+  std::filesystem::remove(dir + "/summary.json");
+  std::filesystem::remove_all(dir + "/drive-flat-seed2");
+  report = LoadCampaignReport(dir);
+  ASSERT_TRUE(report.ok());
+  EXPECT_EQ(report->summary.wall_time_s, 0.0);
+  EXPECT_TRUE(report->all_passed);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace rover::deploy

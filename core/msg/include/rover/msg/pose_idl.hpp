@@ -9,6 +9,13 @@
 
 namespace rover::msg {
 
+/// A catalog pose (rover::Pose3: position [m], orientation w, x, y, z) as a rigid transform, the
+/// quaternion normalised. Precondition: a finite, non-zero quaternion (the FromIdl functions below
+/// check the norm first where the wire may carry a bad one).
+Eigen::Isometry3d IsometryFromIdl(const rover_Pose3& in);
+/// The rigid transform as position and unit quaternion (w >= 0 not enforced).
+void IsometryToIdl(const Eigen::Isometry3d& in, rover_Pose3* out);
+
 /// InvalidArgument "<field> = 9 is not a MotionSource (0..4)".
 Result<MotionSource> MotionSourceFromIdl(const rover_dl_MotionSource& s,
                                          std::string_view field = "source");

@@ -13,12 +13,14 @@
 #include <array>
 
 #include "rover/base/time.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/health.hpp"
 
 namespace rover::msg {
 
-inline constexpr int kNumWheels = 6;
-inline constexpr int kNumSteered = 4;
+// The counts are the rover description's (core/hwconfig rover_description.hpp).
+using hwconfig::kNumSteered;
+using hwconfig::kNumWheels;
 
 /// ddl/imu: calibrated, in the rover frame.
 struct Imu {

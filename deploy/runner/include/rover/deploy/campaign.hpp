@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct CampaignOptions {
   std::string dds_config_uri;
   bool tty = false;                      ///< draw a progress bar (stderr is a terminal)
   const std::atomic<bool>* abort = nullptr;
+  /// Runs one seed; RunScenario unless set (tests run the campaign without processes).
+  std::function<Result<RunResult>(const Scenario&, std::uint32_t seed, const RunOptions&)> run_one;
 };
 
 struct CampaignResult {

@@ -85,6 +85,17 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
 
 /// Reads every `*/result.json` under a run folder (for `roverctl report`).
 Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
+
+/// A campaign folder read back: its runs, their summary (with the campaign's wall time from
+/// summary.json, 0 if that is missing) and the table `roverctl run` printed.
+struct CampaignReport {
+  std::vector<RunResult> runs;
+  CampaignSummary summary;
+  std::string table;
+  /// At least one run, and every run passed (`roverctl report` exits 0 only then).
+  bool all_passed = false;
+};
+Result<CampaignReport> LoadCampaignReport(const std::string& dir);
 /// True if `dir` looks like a campaign folder written by `roverctl run` (has campaign.json).
 bool IsRunFolder(const std::string& dir);
 

@@ -1,0 +1,73 @@
+#include "rover/deploy/runner/recorder.hpp"
+
+#include <limits>
+
+#include "rover/msg/pose_idl.hpp"
+
+namespace rover::deploy::runner {
+namespace {
+
+// One track point per this many simulated seconds.
+constexpr double kTrackStepS = 0.2;
+
+void AddTrackPoint(Time t, const rover_Pose3& pose, double* last_s,
+                   std::vector<std::array<double, 3>>* track) {
+  if (t.seconds() - *last_s < kTrackStepS) return;
+  track->push_back({t.seconds(), pose.position.x, pose.position.y});
+  *last_s = t.seconds();
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Recorder>> Recorder::Create(const dds::Participant& participant,
+                                                   sim::Judge* judge, RunResult* result) {
+  std::unique_ptr<Recorder> r(new Recorder(participant, judge, result));
+  ROVER_ASSIGN_OR_RETURN(r->truth_, dds::Reader<rover_sim_Truth>::Create(participant, "sim/truth"));
+  ROVER_ASSIGN_OR_RETURN(r->pose_,
+                         dds::Reader<rover_dl_PoseEstimate>::Create(participant, "dl/pose"));
+  ROVER_ASSIGN_OR_RETURN(
+      r->odometry_, dds::Reader<rover_dl_PoseEstimate>::Create(participant, "dl/pose_odometry"));
+  return r;
+}
+
+void Recorder::Pump() {
+  truth_.TakeEach([&](const dds::Sample<rover_sim_Truth>& s) {
+    truth_writers_.insert(s.info().publication_handle);
+    result_->truth_publishers = static_cast<int>(truth_writers_.size());
+    const Time t{s->header.stamp_ns};
+    if (judge_) judge_->AddTruth(t, msg::IsometryFromIdl(s->pose));
+    AddTrackPoint(t, s->pose, &last_truth_track_, &result_->truth_track);
+  });
+  pose_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
+    const Time t{s->header.stamp_ns};
+    if (judge_) judge_->AddEstimate(t, msg::IsometryFromIdl(s->pose));
+    has_estimate_ = true;
+    rejected_measurements_ = static_cast<double>(s->rejected_measurements);
+    AddTrackPoint(t, s->pose, &last_estimate_track_, &result_->estimate_track);
+  });
+  odometry_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
+    const Time t{s->header.stamp_ns};
+    if (judge_) judge_->AddOdometryOnlyEstimate(t, msg::IsometryFromIdl(s->pose));
+    AddTrackPoint(t, s->pose, &last_odometry_track_, &result_->odometry_only_track);
+  });
+  for (auto& e : extra_) e();
+}
+
+std::string Recorder::CrossTalk(int domain) const {
+  if (truth_writers_.size() <= 1) return "";
+  return "cross-talk: " + std::to_string(truth_writers_.size()) + " simulators heard on domain " +
+         std::to_string(domain);
+}
+
+std::vector<sim::Criterion> Recorder::Figures() const {
+  std::vector<sim::Criterion> out;
+  if (rejected_measurements_) {
+    out.push_back({"estimator_rejected_measurements", *rejected_measurements_,
+                   std::numeric_limits<double>::quiet_NaN(), "count", true,
+                   "measurements dl-pose gated out or refused (dl/pose)"});
+  }
+  out.insert(out.end(), added_figures_.begin(), added_figures_.end());
+  return out;
+}
+
+}  // namespace rover::deploy::runner
