@@ -195,7 +195,7 @@ std::string DirectedTask::AwaitTerminal(TaskContext& ctx, std::size_t index, Ste
     }
     status_.TakeEach([&](const dds::Sample<rover_dl_DriveStatus>& s) {
       if (s->command_id != sr->command_id) return;
-      const Result<msg::DriveStatus> status = msg::DriveStatusFromIdl(*s);
+      const Result<msg::DriveStatus> status = msg::DriveStatusFromIdl(s.data());
       if (!status.ok()) {
         ctx.Note("unreadable dl/drive_status for command " + std::to_string(sr->command_id) +
                  ": " + status.status().message());
