@@ -124,6 +124,9 @@ struct CameraRequest {
   std::uint32_t exposure_us = 0;  ///< [us] 0 = auto exposure
 };
 
+// rover_description.hpp includes this header into the simulator's C++17 Simbody translation
+// unit, which has no std::span; nothing there uses the camera frame.
+#if __cplusplus >= 202002L
 /// hw/camera_frame (camera head -> DDL): one full-resolution stereo pair, 8-bit mono,
 /// row-major, taken at stamp_ns. The images VIEW the sample's (or the sender's) buffers.
 struct CameraFrame {
@@ -136,6 +139,7 @@ struct CameraFrame {
   std::span<const std::uint8_t> left;  ///< width * height bytes (checked by the receiver)
   std::span<const std::uint8_t> right;
 };
+#endif
 
 /// The int32 counter value of an unbounded count: two's-complement wrap (what a 32-bit
 /// hardware counter shows after `count` increments from 0).
