@@ -105,7 +105,7 @@ TEST(VisionSetE2e, RangeRequestOnSimulatorImagesGivesTheGround) {
   const bool pointed = testing::WaitFor(
       [&] {
         for (auto& s : mast_r->Take()) {
-          if (s->command_id == 31) mast = *s;
+          if (s->command_id == 31) mast = s.data();
         }
         return mast.command_id == 31 && mast.state != rover_dl_MAST_MOVING;
       },
