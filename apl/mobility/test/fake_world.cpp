@@ -26,12 +26,7 @@ FakeWorld::FakeWorld(MobilityManager* manager, WorldOptions options)
 
 void FakeWorld::AddWall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double spacing,
                         double radius, double height) {
-  const double len = (b - a).norm();
-  const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
-  for (int i = 0; i <= n; ++i) {
-    const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / n);
-    rocks_.push_back({p.x(), p.y(), radius, height});
-  }
+  field_.AddWall(a, b, spacing, radius, height);
 }
 
 void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double y0, double y1,
@@ -45,56 +40,26 @@ void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double 
     bool ok = true;
     for (const auto& k : keep_clear) ok = ok && (p - k).norm() > clear;
     if (!ok) continue;
-    rocks_.push_back({p.x(), p.y(), radius, height});
+    field_.rocks().push_back({p.x(), p.y(), radius, height});
     ++placed;
   }
 }
 
-double FakeWorld::HeightAt(double x, double y) const {
-  double z = 0.0;
-  for (const Rock& r : rocks_) {
-    const double d2 = (x - r.x) * (x - r.x) + (y - r.y) * (y - r.y);
-    if (d2 < r.radius * r.radius) z = std::max(z, r.height * std::sqrt(1.0 - d2 / (r.radius * r.radius)));
-  }
-  return z;
-}
+double FakeWorld::HeightAt(double x, double y) const { return field_.HeightAt(x, y); }
 
 nav_core::RangeScan FakeWorld::Capture(Camera camera) const {
+  rover::testing::SyntheticScan img =
+      field_.Capture(pose_.x, pose_.y, pose_.heading, camera == Camera::kRearHazcam, options_.camera);
   nav_core::RangeScan scan;
-  scan.width = options_.cols;
-  scan.height = options_.rows;
-  scan.xyz.assign(3 * scan.pixel_count(), 0.0f);
-  scan.valid.assign(scan.pixel_count(), 0);
+  scan.width = img.width;
+  scan.height = img.height;
+  scan.xyz = std::move(img.xyz);
+  scan.valid = std::move(img.valid);
   scan.capture_time = now_;
   scan.camera = std::string(CameraName(camera));
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
-  scan.site_from_rover = pose;
-  const double facing = camera == Camera::kRearHazcam ? M_PI : 0.0;
-  const double c = std::cos(pose_.heading), s = std::sin(pose_.heading);
-  for (int u = 0; u < options_.cols; ++u) {
-    const double az = facing + options_.fov * (0.5 - (u + 0.5) / options_.cols);
-    double horizon = -1e9;  // steepest elevation tangent seen so far along the ray
-    // Rows run far (v = 0) to near; march near to far for occlusion.
-    for (int r = 0; r < options_.rows; ++r) {
-      const double range = options_.near_range +
-                           (options_.far_range - options_.near_range) * r / (options_.rows - 1);
-      const double xr = range * std::cos(az), yr = range * std::sin(az);
-      const double xs = pose_.x + c * xr - s * yr, ys = pose_.y + s * xr + c * yr;
-      const double z = HeightAt(xs, ys);
-      const double tangent = (z - options_.camera_height) / range;
-      const int v = options_.rows - 1 - r;
-      const std::size_t k = static_cast<std::size_t>(v) * options_.cols + u;
-      if (tangent >= horizon) {
-        scan.valid[k] = 1;
-        scan.xyz[3 * k] = static_cast<float>(xr);
-        scan.xyz[3 * k + 1] = static_cast<float>(yr);
-        scan.xyz[3 * k + 2] = static_cast<float>(z);
-        horizon = tangent;
-      }
-    }
-  }
+  scan.site_from_rover.linear() =
+      Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  scan.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
   return scan;
 }
 
@@ -150,9 +115,7 @@ void FakeWorld::Tick() {
       Absorb(manager_->OnDriveStatus(rep, now_));
     }
   }
-  for (const Rock& r : rocks_) {
-    min_clearance_ = std::min(min_clearance_, std::hypot(pose_.x - r.x, pose_.y - r.y) - r.radius);
-  }
+  min_clearance_ = std::min(min_clearance_, field_.Clearance(pose_.x, pose_.y));
   if (options_.deliver_poses) {
     PoseSample ps;
     ps.stamp = now_;

@@ -1,16 +1,13 @@
 #pragma once
 /// @file
 /// A small kinematic world for driving the MobilityManager in-process (test code only):
-///  - terrain: flat ground at z = 0 with rocks, each a half-ellipsoid of radius r and height h
-///    (z = h sqrt(1 - (d / r)^2) inside the radius);
+///  - terrain: tests/support's RockField (flat ground with half-ellipsoid rocks);
 ///  - locomotion: drive requests are integrated into the rover's planar pose at `speed` [m/s]
 ///    (arcs, straights) or `turn_rate` [rad/s] (turns in place) and reported DONE when finished;
 ///    STOP ends a running drive at once (FAILED / STOP_COMMAND);
 ///  - stereo: a range request is captured at the time and pose it arrives and delivered
-///    `image_latency_s` later: a synthetic HAZCAM image of `cols` azimuths over +-fov/2 by `rows`
-///    ranges (near..far), each pixel the terrain point along that ray from a camera at
-///    `camera_height`; points hidden behind nearer terrain (lower elevation angle than the
-///    horizon so far along the column) are invalid.
+///    `image_latency_s` later: RockField's synthetic HAZCAM image (exact, occluded points
+///    invalid).
 /// Run() steps the world and the manager every `dt` until the manager's command ends.
 /// Deterministic: no randomness but the caller's seeded rock placement.
 
@@ -20,24 +17,18 @@
 #include <vector>
 
 #include "rover/apl/mobility/mobility_manager.hpp"
+#include "rover/testing/fakes/rock_field.hpp"
 
 namespace rover::apl::mobility::testing {
 
-struct Rock {
-  double x = 0.0, y = 0.0;  ///< [m] site frame centre
-  double radius = 0.2;      ///< [m]
-  double height = 0.3;      ///< [m]
-};
+using Rock = rover::testing::FieldRock;
 
 struct WorldOptions {
   double dt = 0.1;               ///< [s] simulation step
   double speed = 0.25;           ///< [m/s] drive speed (faster than MER to keep tests short)
   double turn_rate = 0.5;        ///< [rad/s]
   double image_latency_s = 1.0;  ///< [s] request to delivery
-  double camera_height = 0.8;    ///< [m]
-  double near_range = 0.4, far_range = 4.5;  ///< [m] ground range of the image rows
-  double fov = 2.1;              ///< [rad] horizontal field of view (~120 deg)
-  int cols = 100, rows = 80;
+  rover::testing::HazcamSpec camera;  ///< the synthetic HAZCAMs (tests/support rock_field.hpp)
   bool deliver_images = true;    ///< false: range requests are never answered
   bool deliver_poses = true;     ///< false: dl/pose stops
 };
@@ -46,7 +37,7 @@ class FakeWorld {
  public:
   FakeWorld(MobilityManager* manager, WorldOptions options = {});
 
-  std::vector<Rock>& rocks() { return rocks_; }
+  std::vector<Rock>& rocks() { return field_.rocks(); }
   /// Adds rocks of the given size along the segment a..b, `spacing` apart.
   void AddWall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double spacing, double radius,
                double height);
@@ -92,7 +83,7 @@ class FakeWorld {
 
   MobilityManager* manager_;
   WorldOptions options_;
-  std::vector<Rock> rocks_;
+  rover::testing::RockField field_;
   Pose2 pose_;
   Time now_;
   std::optional<DriveRequest> drive_;
