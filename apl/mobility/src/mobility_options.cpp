@@ -7,7 +7,6 @@
 namespace rover::apl::mobility {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegree = kPi / 180.0;
 }  // namespace
 
 Status MobilityOptions::Validate() const {

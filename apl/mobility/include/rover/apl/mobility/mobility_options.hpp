@@ -15,6 +15,8 @@
 
 namespace rover::apl::mobility {
 
+inline constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
 struct MobilityOptions {
   // ---- command limits ----------------------------------------------------------------------
   bool software_enable = true;      ///< ACM: false refuses every motion command (MER's enable)
@@ -22,13 +24,13 @@ struct MobilityOptions {
   double min_tolerance = 0.1;       ///< [m] goal radius used when the command's is smaller (stack)
   double time_budget_s = 0.0;       ///< [s] default command time-out; 0 = none (MER: per command)
   int max_steps = 500;              ///< autonav steps per command (stack)
-  double max_tilt = 0.5236;         ///< [rad] 30 deg, rover tilt from dl/pose (MER's nominal limit)
+  double max_tilt = 30.0 * kDegree;  ///< [rad], rover tilt from dl/pose (MER's nominal limit)
   // ---- stepping ----------------------------------------------------------------------------
   double step_length = 0.5;           ///< [m] autonav arc per step (stack; seeds give no value)
   double waypoint_step_length = 1.0;  ///< [m] blind go-to-waypoint arc per step (stack)
-  double waypoint_turn_threshold = 0.5236;  ///< [rad] blind: turn in place first beyond 30 deg
+  double waypoint_turn_threshold = 30.0 * kDegree;  ///< [rad] blind: turn in place first beyond 30 deg
   double visodom_max_step = 0.6;      ///< [m] VisOdom steps no longer than this (MER ~60 cm)
-  double visodom_max_turn = 0.2618;   ///< [rad] VisOdom turns no larger than 15 deg (MER)
+  double visodom_max_turn = 15.0 * kDegree;  ///< [rad] VisOdom turns at most this (MER)
   double guard_segment_length = 1.0;  ///< [m] guarded primitives are imaged every this far
   int guard_min_goodness = 10;        ///< a guarded path over a cell below this is vetoed
                                       ///< (MER's min-allowed goodness)
@@ -43,7 +45,7 @@ struct MobilityOptions {
   int image_width = 256;          ///< [px] processing width asked of stereo (MER 256)
   double pose_stale_s = 1.0;      ///< [s] SAPP when the newest pose is older than this
   double pose_jump = 0.5;         ///< [m] SAPP when consecutive poses differ by more
-  double pose_jump_angle = 0.35;  ///< [rad] ... or turn by more than 20 deg
+  double pose_jump_angle = 20.0 * kDegree;  ///< [rad] ... or turn by more than this
   // ---- drive watchdog ----------------------------------------------------------------------
   double drive_speed = 0.0;         ///< [m/s] asked of locomotion; 0 = its default (0.05 m/s)
   double nominal_speed = 0.05;      ///< [m/s] for the watchdog (MER top speed)
