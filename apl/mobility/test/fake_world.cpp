@@ -57,10 +57,17 @@ nav_core::RangeScan FakeWorld::Capture(Camera camera) const {
   scan.valid = std::move(img.valid);
   scan.capture_time = now_;
   scan.camera = std::string(CameraName(camera));
-  scan.site_from_rover.linear() =
-      Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  scan.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
+  scan.site_from_rover = PoseNow().site_from_rover;
   return scan;
+}
+
+PoseSample FakeWorld::PoseNow() const {
+  PoseSample ps;
+  ps.stamp = now_;
+  ps.site_from_rover.linear() =
+      Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  ps.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
+  return ps;
 }
 
 void FakeWorld::Absorb(const MobilityOutput& out) {
@@ -117,11 +124,7 @@ void FakeWorld::Tick() {
   }
   min_clearance_ = std::min(min_clearance_, field_.Clearance(pose_.x, pose_.y));
   if (options_.deliver_poses) {
-    PoseSample ps;
-    ps.stamp = now_;
-    ps.site_from_rover.linear() =
-        Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    ps.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
+    PoseSample ps = PoseNow();
     if (tamper_pose) tamper_pose(&ps);
     Absorb(manager_->OnPose(ps, now_));
   }
@@ -141,12 +144,7 @@ void FakeWorld::Tick() {
 MobilityStatus FakeWorld::Run(const MobilityCommand& command, double max_s) {
   if (options_.deliver_poses) {
     // A current pose so the command is not rejected for want of one.
-    PoseSample ps;
-    ps.stamp = now_;
-    ps.site_from_rover.linear() =
-        Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    ps.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
-    Absorb(manager_->OnPose(ps, now_));
+    Absorb(manager_->OnPose(PoseNow(), now_));
   }
   const std::size_t first = statuses_.size();
   Absorb(manager_->OnCommand(command, now_));

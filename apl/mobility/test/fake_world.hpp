@@ -50,6 +50,8 @@ class FakeWorld {
   double HeightAt(double x, double y) const;
   Pose2& pose() { return pose_; }
   Time now() const { return now_; }
+  /// The rover's exact pose now, as dl/pose would carry it.
+  PoseSample PoseNow() const;
   /// The synthetic scan from the current pose (for tests of the world itself).
   nav_core::RangeScan Capture(Camera camera) const;
 

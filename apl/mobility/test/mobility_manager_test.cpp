@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "fake_world.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
@@ -88,6 +89,11 @@ TEST(MobilityManagerWorld, DriveWhileThinkingStandsStillLessThanStopAndGo) {
       EXPECT_EQ(m.counters().images_while_driving, 0);
     }
   }
+  // The figures, for the record (simulated seconds; the ratio is what is asserted).
+  std::printf("stop-and-go: still %.1f s, moving %.1f s (%.0f %% still); drive while thinking: "
+              "still %.1f s, moving %.1f s (%.0f %% still)\n",
+              still[0], moving[0], 100.0 * still[0] / (still[0] + moving[0]), still[1], moving[1],
+              100.0 * still[1] / (still[1] + moving[1]));
   EXPECT_LT(still[1], 0.5 * still[0]) << "stop-and-go still " << still[0] << " s, moving "
                                       << moving[0] << " s; thinking still " << still[1]
                                       << " s, moving " << moving[1] << " s";
