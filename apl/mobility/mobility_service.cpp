@@ -38,10 +38,10 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
                          ReadParams<gestalt::GestaltOptions>(params, "gestalt."));
   ROVER_ASSIGN_OR_RETURN(gestalt::TerrainMap map, gestalt::TerrainMap::Create(g));
   ROVER_ASSIGN_OR_RETURN(gestalt::ArcEvaluator arcs, gestalt::ArcEvaluator::Create(g));
-  ROVER_ASSIGN_OR_RETURN(MobilityManager manager,
-                         MobilityManager::Create(options,
-                                                 std::make_unique<gestalt::TerrainMap>(std::move(map)),
-                                                 std::make_unique<gestalt::ArcEvaluator>(std::move(arcs))));
+  ROVER_ASSIGN_OR_RETURN(
+      MobilityManager manager,
+      MobilityManager::Create(options, std::make_unique<gestalt::TerrainMap>(std::move(map)),
+                              std::make_unique<gestalt::ArcEvaluator>(std::move(arcs))));
   manager_.emplace(std::move(manager));
 
   ROVER_ASSIGN_OR_RETURN(drive_writer_, ctx.MakeWriter<rover_dl_DriveCommand>("dl/drive_command"));

@@ -14,7 +14,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxCurvature = 1.0;  // [1/m] dl/drive_command's limit (1 m turning radius)
 constexpr double kMaxDistance = 50.0;  // [m] dl/drive_command's limit (locomotion max_distance)
 constexpr double kSteerAllowance_s = 10.0;  // [s] steering before a primitive, for the watchdog
-constexpr double kLegTolerance = 0.5;  // [m] long traverse: intermediate waypoints' radius
+constexpr double kLegTolerance = 0.5;       // [m] long traverse: intermediate waypoints' radius
 
 std::string Xy(const Eigen::Vector2d& p) {
   return "(" + FormatNumber(p.x(), 4) + ", " + FormatNumber(p.y(), 4) + ")";
@@ -23,8 +23,8 @@ std::string Xy(const Eigen::Vector2d& p) {
 std::string DescribePrimitive(const Primitive& p) {
   switch (p.kind) {
     case PrimitiveKind::kArc:
-      return "ARC k = " + FormatNumber(p.curvature, 3) + " 1/m, s = " + FormatNumber(p.distance, 3) +
-             " m";
+      return "ARC k = " + FormatNumber(p.curvature, 3) +
+             " 1/m, s = " + FormatNumber(p.distance, 3) + " m";
     case PrimitiveKind::kStraight:
       return "STRAIGHT s = " + FormatNumber(p.distance, 3) + " m";
     case PrimitiveKind::kTurnInPlace:
@@ -89,10 +89,10 @@ Fault FaultOfTermination(DriveTermination t) {
 
 }  // namespace
 
-Result<MobilityManager> MobilityManager::Create(
-    const MobilityOptions& options, std::unique_ptr<nav_core::TerrainAssessor> assessor,
-    std::unique_ptr<nav_core::ArcSelector> selector,
-    std::unique_ptr<nav_core::GlobalPlanner> planner) {
+Result<MobilityManager> MobilityManager::Create(const MobilityOptions& options,
+                                                std::unique_ptr<nav_core::TerrainAssessor> assessor,
+                                                std::unique_ptr<nav_core::ArcSelector> selector,
+                                                std::unique_ptr<nav_core::GlobalPlanner> planner) {
   ROVER_RETURN_IF_ERROR(options.Validate());
   if (!assessor) return InvalidArgument("assessor is null (a TerrainAssessor is required)");
   if (!selector) return InvalidArgument("selector is null (an ArcSelector is required)");
@@ -160,8 +160,7 @@ Status MobilityManager::ValidateCommand(const MobilityCommand& c) const {
     }
   }
   if (c.keep_out.size() > 8) {
-    return InvalidArgument("keep_out: " + std::to_string(c.keep_out.size()) +
-                           " zones (at most 8)");
+    return InvalidArgument("keep_out: " + std::to_string(c.keep_out.size()) + " zones (at most 8)");
   }
   for (std::size_t i = 0; i < c.keep_out.size(); ++i) {
     ROVER_RETURN_IF_ERROR(CheckSimplePolygon("keep_out[" + std::to_string(i) + "]", c.keep_out[i]));
@@ -176,8 +175,8 @@ bool MobilityManager::PoseFresh(Time now, std::string* why) const {
   }
   const double age = ToSeconds(now - pose_->stamp);
   if (age > options_.pose_stale_s) {
-    *why = "dl/pose is " + FormatNumber(age, 3) + " s old (pose_stale_s = " +
-           FormatNumber(options_.pose_stale_s) + ")";
+    *why = "dl/pose is " + FormatNumber(age, 3) +
+           " s old (pose_stale_s = " + FormatNumber(options_.pose_stale_s) + ")";
     return false;
   }
   return true;
@@ -192,11 +191,19 @@ MobilityOutput MobilityManager::OnCommand(const MobilityCommand& c, Time now) {
   const bool known_mode = mode >= 0 && mode < kModeCount;
   if (known_mode && c.mode == Mode::kStop) {
     // Acknowledge the STOP first, then the stopped command's end (the latched status).
-    status_ = MobilityStatus{now, c.command_id, c.mode, State::kSucceeded, FaultClass::kNone,
-                             Fault::kNone, run_ ? "stopping command " +
-                                                      std::to_string(run_->command.command_id)
-                                                : "nothing running",
-                             -1.0, 0.0, 0, 0, motion_error_latched()};
+    status_ = MobilityStatus{
+        now,
+        c.command_id,
+        c.mode,
+        State::kSucceeded,
+        FaultClass::kNone,
+        Fault::kNone,
+        run_ ? "stopping command " + std::to_string(run_->command.command_id) : "nothing running",
+        -1.0,
+        0.0,
+        0,
+        0,
+        motion_error_latched()};
     out.statuses.push_back(status_);
     if (run_) {
       Finish(now, State::kFailed, Fault::kStopped,
@@ -221,19 +228,27 @@ MobilityOutput MobilityManager::OnCommand(const MobilityCommand& c, Time now) {
   if (c.mode == Mode::kClearFault) {
     const Fault was = latched_;
     latched_ = Fault::kNone;
-    status_ = MobilityStatus{now, c.command_id, c.mode, State::kSucceeded, FaultClass::kNone,
-                             Fault::kNone,
-                             was == Fault::kNone ? "no motion error latched"
-                                                 : "cleared " + std::string(FaultName(was)),
-                             -1.0, 0.0, 0, 0, false};
+    status_ = MobilityStatus{
+        now,
+        c.command_id,
+        c.mode,
+        State::kSucceeded,
+        FaultClass::kNone,
+        Fault::kNone,
+        was == Fault::kNone ? "no motion error latched" : "cleared " + std::string(FaultName(was)),
+        -1.0,
+        0.0,
+        0,
+        0,
+        false};
     out.statuses.push_back(status_);
     return out;
   }
   if (latched_ != Fault::kNone) {
-    Reject(c, now, latched_,
-           "motion error " + std::string(FaultName(latched_)) +
-               " is latched; send CLEAR_FAULT first",
-           &out);
+    Reject(
+        c, now, latched_,
+        "motion error " + std::string(FaultName(latched_)) + " is latched; send CLEAR_FAULT first",
+        &out);
     return out;
   }
   if (!software_enable_) {
@@ -266,8 +281,8 @@ MobilityOutput MobilityManager::OnCommand(const MobilityCommand& c, Time now) {
   if (hit.hit()) {
     Reject(c, now, Fault::kKeepOut,
            "the rover at " + Xy(here.xy()) + " is already within keepout_margin_m = " +
-               FormatNumber(options_.keepout_margin) + " of keep_out[" +
-               std::to_string(hit.zone) + "] ('" + c.keep_out[hit.zone].name + "')",
+               FormatNumber(options_.keepout_margin) + " of keep_out[" + std::to_string(hit.zone) +
+               "] ('" + c.keep_out[hit.zone].name + "')",
            &out);
     return out;
   }
@@ -291,13 +306,14 @@ MobilityOutput MobilityManager::OnPose(const PoseSample& pose, Time now) {
   if (pose_ && pose.stamp < pose_->stamp) return out;
   if (pose_) {
     const Pose2 a = PlanarPose(pose_->site_from_rover), b = PlanarPose(pose.site_from_rover);
-    const double jump = (pose.site_from_rover.translation() -
-                         pose_->site_from_rover.translation()).norm();
+    const double jump =
+        (pose.site_from_rover.translation() - pose_->site_from_rover.translation()).norm();
     const double turn = std::abs(WrapAngle(b.heading - a.heading));
     if (jump > options_.pose_jump || turn > options_.pose_jump_angle) {
-      const std::string msg = "dl/pose jumped by " + FormatNumber(jump, 3) + " m and " +
-                              FormatNumber(turn * 180.0 / kPi, 3) + " deg between samples (pose_jump_m = " +
-                              FormatNumber(options_.pose_jump) + ")";
+      const std::string msg =
+          "dl/pose jumped by " + FormatNumber(jump, 3) + " m and " +
+          FormatNumber(turn * 180.0 / kPi, 3) +
+          " deg between samples (pose_jump_m = " + FormatNumber(options_.pose_jump) + ")";
       pose_ = pose;
       assessor_->Clear();  // the map's registration cannot be trusted any more
       if (run_) Finish(now, State::kFailed, Fault::kSapp, msg, &out);
@@ -363,8 +379,8 @@ MobilityOutput MobilityManager::OnRangeImage(const nav_core::RangeScan& scan, Ca
       if (v.goodness < options_.guard_min_goodness) {
         Finish(now, State::kFailed, Fault::kNoPath,
                "guarded: " + DescribePrimitive(piece) + " vetoed: goodness " +
-                   std::to_string(v.goodness) + " at " + Xy(p) + " (guard_min_goodness = " +
-                   std::to_string(options_.guard_min_goodness) + ")",
+                   std::to_string(v.goodness) + " at " + Xy(p) +
+                   " (guard_min_goodness = " + std::to_string(options_.guard_min_goodness) + ")",
                &out);
         return out;
       }
@@ -428,7 +444,8 @@ MobilityOutput MobilityManager::OnVisOdom(const VisOdomResult& result, Time now)
     run_->vo_failures += 1;
     if (run_->vo_failures > options_.max_visodom_failures) {
       Finish(now, State::kFailed, Fault::kVisOdom,
-             std::to_string(run_->vo_failures) + " visual odometry steps failed (max_visodom_failures = " +
+             std::to_string(run_->vo_failures) +
+                 " visual odometry steps failed (max_visodom_failures = " +
                  std::to_string(options_.max_visodom_failures) + ")",
              &out);
       return out;
@@ -478,8 +495,18 @@ MobilityOutput MobilityManager::Step(Time now) {
 void MobilityManager::Reject(const MobilityCommand& c, Time now, Fault fault,
                              const std::string& message, MobilityOutput* out) {
   if (FaultClassOf(fault) == FaultClass::kMotionError) latched_ = fault;
-  status_ = MobilityStatus{now, c.command_id, c.mode, State::kRejected, FaultClassOf(fault),
-                           fault, message, -1.0, 0.0, 0, 0, motion_error_latched()};
+  status_ = MobilityStatus{now,
+                           c.command_id,
+                           c.mode,
+                           State::kRejected,
+                           FaultClassOf(fault),
+                           fault,
+                           message,
+                           -1.0,
+                           0.0,
+                           0,
+                           0,
+                           motion_error_latched()};
   out->statuses.push_back(status_);
 }
 
@@ -511,8 +538,8 @@ void MobilityManager::Start(const MobilityCommand& c, Time now, MobilityOutput* 
     const double hours_left = std::fmod(c.lmst_end_h - lmst + 24.0, 24.0);
     run.tod_deadline = now + Seconds(hours_left * kSecondsPerMarsHour);
   }
-  const bool guarded = c.mode == Mode::kGuarded || c.mode == Mode::kGuardedVisOdom ||
-                       c.mode == Mode::kGuardedArc;
+  const bool guarded =
+      c.mode == Mode::kGuarded || c.mode == Mode::kGuardedVisOdom || c.mode == Mode::kGuardedArc;
   for (std::size_t i = 0; i < c.primitives.size(); ++i) {
     const Primitive& p = c.primitives[i];
     std::vector<Primitive> pieces;
@@ -617,8 +644,8 @@ bool MobilityManager::CheckLimits(Time now, MobilityOutput* out) {
   }
   if (run_->deadline && now >= *run_->deadline) {
     Finish(now, State::kFailed, Fault::kWaypointTimeout,
-           "time budget of " +
-               FormatNumber(ToSeconds(*run_->deadline - run_->start), 4) + " s ran out",
+           "time budget of " + FormatNumber(ToSeconds(*run_->deadline - run_->start), 4) +
+               " s ran out",
            out);
     return false;
   }
@@ -736,12 +763,13 @@ void MobilityManager::WaypointStep(Time now, MobilityOutput* out) {
   Primitive p;
   if (std::abs(bearing) > options_.waypoint_turn_threshold) {
     p.kind = PrimitiveKind::kTurnInPlace;
-    p.angle = vo ? std::clamp(bearing, -options_.visodom_max_turn, options_.visodom_max_turn)
-                 : bearing;
+    p.angle =
+        vo ? std::clamp(bearing, -options_.visodom_max_turn, options_.visodom_max_turn) : bearing;
   } else {
     const double k = std::clamp(2.0 * g.y() / (dist * dist), -kMaxCurvature, kMaxCurvature);
-    const double arc =
-        std::abs(k) < 1e-9 ? dist : 2.0 * std::asin(std::min(1.0, 0.5 * dist * std::abs(k))) / std::abs(k);
+    const double arc = std::abs(k) < 1e-9
+                           ? dist
+                           : 2.0 * std::asin(std::min(1.0, 0.5 * dist * std::abs(k))) / std::abs(k);
     const double step = vo ? std::min(options_.visodom_max_step, options_.waypoint_step_length)
                            : options_.waypoint_step_length;
     p.kind = std::abs(k) < 1e-9 ? PrimitiveKind::kStraight : PrimitiveKind::kArc;
@@ -756,8 +784,8 @@ Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Tim
   nav_core::ArcRequest req;
   req.site_from_rover = PoseFromPlanar(from, pose_->site_from_rover.translation().z());
   req.goal = CurrentGoal();
-  req.goal_tolerance = run_->goals.size() > 1 ? std::max(kLegTolerance, run_->tolerance)
-                                              : run_->tolerance;
+  req.goal_tolerance =
+      run_->goals.size() > 1 ? std::max(kLegTolerance, run_->tolerance) : run_->tolerance;
   return selector_->Evaluate(assessor_->goodness_map(), req);
 }
 
@@ -883,11 +911,11 @@ bool MobilityManager::SendDrive(const Primitive& p, Time now, MobilityOutput* ou
   d.angle = p.kind == PrimitiveKind::kTurnInPlace ? p.angle : 0.0;
   d.speed = options_.drive_speed;
   d.stamp = now;
-  const double planned = PathLength(p) / options_.nominal_speed +
-                         (p.kind == PrimitiveKind::kTurnInPlace
-                              ? std::abs(p.angle) / options_.nominal_turn_rate
-                              : 0.0) +
-                         kSteerAllowance_s;
+  const double planned =
+      PathLength(p) / options_.nominal_speed +
+      (p.kind == PrimitiveKind::kTurnInPlace ? std::abs(p.angle) / options_.nominal_turn_rate
+                                             : 0.0) +
+      kSteerAllowance_s;
   PendingDrive pd;
   pd.command_id = d.command_id;
   pd.primitive = p;

@@ -76,7 +76,8 @@ CommandMessage& CommandMessage::operator=(const CommandMessage& o) {
 }
 
 void CommandMessage::Repoint() {
-  for (std::size_t i = 0; i < zones.size(); ++i) dds::BorrowSequence(zones[i].vertices, vertices[i]);
+  for (std::size_t i = 0; i < zones.size(); ++i)
+    dds::BorrowSequence(zones[i].vertices, vertices[i]);
   dds::BorrowSequence(msg.primitives, primitives);
   dds::BorrowSequence(msg.keep_out, zones);
 }
@@ -236,8 +237,8 @@ ArcVotesMessage ArcVotesToIdl(const ArcVotesSnapshot& s) {
     v.merged = i < e.merged.size() ? Byte(e.merged[i].goodness) : 0;
     out.votes.push_back(v);
   }
-  out.msg.chosen =
-      static_cast<std::int16_t>(e.chosen >= 0 && static_cast<std::size_t>(e.chosen) < n ? e.chosen : -1);
+  out.msg.chosen = static_cast<std::int16_t>(
+      e.chosen >= 0 && static_cast<std::size_t>(e.chosen) < n ? e.chosen : -1);
   out.Repoint();
   return out;
 }
@@ -255,8 +256,8 @@ Result<nav_core::RangeScan> RangeScanFromIdl(const rover_dl_RangeImage& m) {
                            " pixels (need " + std::to_string(3 * n) + ")");
   }
   if (m.valid._length != n) {
-    return InvalidArgument("RangeImage.valid: " + std::to_string(m.valid._length) +
-                           " bytes for " + std::to_string(n) + " pixels");
+    return InvalidArgument("RangeImage.valid: " + std::to_string(m.valid._length) + " bytes for " +
+                           std::to_string(n) + " pixels");
   }
   const auto xyz = dds::View(m.xyz);
   const auto valid = dds::View(m.valid);

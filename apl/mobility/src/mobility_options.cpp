@@ -11,10 +11,12 @@ constexpr double kPi = 3.14159265358979323846;
 
 Status MobilityOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckPositive("max_goal_distance", max_goal_distance, "m"));
-  ROVER_RETURN_IF_ERROR(CheckRange("min_tolerance", min_tolerance, Bounds::OpenLow(0.0, 10.0), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("min_tolerance", min_tolerance, Bounds::OpenLow(0.0, 10.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckNonNegative("time_budget_s", time_budget_s, "s"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("max_steps", max_steps, 1, 100000));
-  ROVER_RETURN_IF_ERROR(CheckRange("max_tilt", max_tilt, Bounds::OpenLow(0.0, 80.0 * kDegree), "rad"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("max_tilt", max_tilt, Bounds::OpenLow(0.0, 80.0 * kDegree), "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("step_length", step_length, Bounds::OpenLow(0.0, 5.0), "m"));
   ROVER_RETURN_IF_ERROR(
       CheckRange("waypoint_step_length", waypoint_step_length, Bounds::OpenLow(0.0, 50.0), "m"));
@@ -35,7 +37,8 @@ Status MobilityOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckIntRange("image_width", image_width, 0, 4096));
   ROVER_RETURN_IF_ERROR(CheckPositive("pose_stale_s", pose_stale_s, "s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("pose_jump", pose_jump, "m"));
-  ROVER_RETURN_IF_ERROR(CheckRange("pose_jump_angle", pose_jump_angle, Bounds::OpenLow(0.0, kPi), "rad"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("pose_jump_angle", pose_jump_angle, Bounds::OpenLow(0.0, kPi), "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("drive_speed", drive_speed, 0.0, 1.0, "m/s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("nominal_speed", nominal_speed, "m/s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("nominal_turn_rate", nominal_turn_rate, "rad/s"));
@@ -79,8 +82,7 @@ void MobilityOptions::BindParams(ParamBinder<MobilityOptions>& b) {
       .Range(0, 255);
   b.Bind("drive_while_thinking", &O::drive_while_thinking,
          "image and assess the next step while driving (false = MER's stop-and-go)");
-  b.Bind("progress_steps", &O::progress_steps, "", "NOPROGRESS window in steps (stack 10)")
-      .Min(1);
+  b.Bind("progress_steps", &O::progress_steps, "", "NOPROGRESS window in steps (stack 10)").Min(1);
   b.Bind("min_progress_m", &O::min_progress, "m",
          "the distance to the goal must shrink this much per window (stack 0.5)")
       .Min(0.0);

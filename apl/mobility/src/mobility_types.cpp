@@ -6,14 +6,15 @@ namespace rover::apl::mobility {
 namespace {
 
 constexpr std::array<std::string_view, kFaultCount> kFaultNames = {
-    "NONE",     "ARB",  "ACM",  "POT", "TOD",           "STOPPED", "WAYPT_TIMEOUT",
-    "NOPATH",   "NOPROGRESS",   "BUSY", "VISODOM",       "KEEPOUT", "BAD_COMMAND",
-    "IMG",      "SAPP", "MOT",  "DRIVE_TIMEOUT", "TILT",   "SUSPENSION", "NORTH"};
+    "NONE",    "ARB",           "ACM",         "POT",        "TOD",
+    "STOPPED", "WAYPT_TIMEOUT", "NOPATH",      "NOPROGRESS", "BUSY",
+    "VISODOM", "KEEPOUT",       "BAD_COMMAND", "IMG",        "SAPP",
+    "MOT",     "DRIVE_TIMEOUT", "TILT",        "SUSPENSION", "NORTH"};
 
 constexpr std::array<std::string_view, kModeCount> kModeNames = {
-    "DIRECTED", "VISODOM",         "GO_TO_WAYPOINT", "VISODOM_GO_TO_WAYPOINT",
-    "GUARDED",  "GUARDED_VISODOM", "AUTONAV",        "AUTONAV_VISODOM",
-    "GUARDED_ARC", "LONG_TRAVERSE", "STOP",          "CLEAR_FAULT"};
+    "DIRECTED",    "VISODOM",         "GO_TO_WAYPOINT", "VISODOM_GO_TO_WAYPOINT",
+    "GUARDED",     "GUARDED_VISODOM", "AUTONAV",        "AUTONAV_VISODOM",
+    "GUARDED_ARC", "LONG_TRAVERSE",   "STOP",           "CLEAR_FAULT"};
 
 }  // namespace
 

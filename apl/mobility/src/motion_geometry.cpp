@@ -102,7 +102,8 @@ Status CheckSimplePolygon(const std::string& field, const KeepOutZone& zone) {
   for (int i = 0; i < n; ++i) {
     if (v[i] == v[(i + 1) % n]) {
       return InvalidArgument(name + ": vertices " + std::to_string(i) + " and " +
-                             std::to_string((i + 1) % n) + " are equal (the polygon is not simple)");
+                             std::to_string((i + 1) % n) +
+                             " are equal (the polygon is not simple)");
     }
   }
   double area2 = 0.0;
@@ -127,8 +128,8 @@ Status CheckSimplePolygon(const std::string& field, const KeepOutZone& zone) {
         continue;
       }
       if (SegmentsTouch(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
-        return InvalidArgument(name + ": edges " + std::to_string(i) + " and " +
-                               std::to_string(j) + " cross (the polygon is not simple)");
+        return InvalidArgument(name + ": edges " + std::to_string(i) + " and " + std::to_string(j) +
+                               " cross (the polygon is not simple)");
       }
     }
   }

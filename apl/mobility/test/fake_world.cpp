@@ -30,8 +30,8 @@ void FakeWorld::AddWall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, doub
 }
 
 void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double y0, double y1,
-                        double radius, double height, const std::vector<Eigen::Vector2d>& keep_clear,
-                        double clear) {
+                        double radius, double height,
+                        const std::vector<Eigen::Vector2d>& keep_clear, double clear) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
   int placed = 0;
@@ -48,8 +48,8 @@ void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double 
 double FakeWorld::HeightAt(double x, double y) const { return field_.HeightAt(x, y); }
 
 nav_core::RangeScan FakeWorld::Capture(Camera camera) const {
-  rover::testing::SyntheticScan img =
-      field_.Capture(pose_.x, pose_.y, pose_.heading, camera == Camera::kRearHazcam, options_.camera);
+  rover::testing::SyntheticScan img = field_.Capture(
+      pose_.x, pose_.y, pose_.heading, camera == Camera::kRearHazcam, options_.camera);
   nav_core::RangeScan scan;
   scan.width = img.width;
   scan.height = img.height;
@@ -85,9 +85,9 @@ void FakeWorld::Absorb(const MobilityOutput& out) {
       continue;
     }
     if (drive_) {
-      Absorb(manager_->OnDriveStatus({d.command_id, DriveState::kRejected,
-                                      DriveTermination::kRejectedBusy, 0.0, "busy"},
-                                     now_));
+      Absorb(manager_->OnDriveStatus(
+          {d.command_id, DriveState::kRejected, DriveTermination::kRejectedBusy, 0.0, "busy"},
+          now_));
       continue;
     }
     drive_ = d;
@@ -96,8 +96,8 @@ void FakeWorld::Absorb(const MobilityOutput& out) {
   for (const RangeRequest& r : out.range_requests) {
     ranges_.push_back(r);
     if (!options_.deliver_images) continue;
-    images_.push_back({Capture(r.camera), r.camera, r.request_id,
-                       now_ + Seconds(options_.image_latency_s)});
+    images_.push_back(
+        {Capture(r.camera), r.camera, r.request_id, now_ + Seconds(options_.image_latency_s)});
   }
 }
 
@@ -106,8 +106,8 @@ void FakeWorld::Tick() {
   if (drive_) {
     const bool turn = drive_->kind == PrimitiveKind::kTurnInPlace;
     const double goal = turn ? std::abs(drive_->angle) : std::abs(drive_->distance);
-    const double inc = std::min(goal - drive_done_,
-                                (turn ? options_.turn_rate : options_.speed) * options_.dt);
+    const double inc =
+        std::min(goal - drive_done_, (turn ? options_.turn_rate : options_.speed) * options_.dt);
     Primitive p;
     p.kind = drive_->kind;
     p.curvature = drive_->curvature;

@@ -24,13 +24,13 @@ namespace rover::apl::mobility::testing {
 using Rock = rover::testing::FieldRock;
 
 struct WorldOptions {
-  double dt = 0.1;               ///< [s] simulation step
-  double speed = 0.25;           ///< [m/s] drive speed (faster than MER to keep tests short)
-  double turn_rate = 0.5;        ///< [rad/s]
-  double image_latency_s = 1.0;  ///< [s] request to delivery
+  double dt = 0.1;                    ///< [s] simulation step
+  double speed = 0.25;                ///< [m/s] drive speed (faster than MER to keep tests short)
+  double turn_rate = 0.5;             ///< [rad/s]
+  double image_latency_s = 1.0;       ///< [s] request to delivery
   rover::testing::HazcamSpec camera;  ///< the synthetic HAZCAMs (tests/support rock_field.hpp)
-  bool deliver_images = true;    ///< false: range requests are never answered
-  bool deliver_poses = true;     ///< false: dl/pose stops
+  bool deliver_images = true;         ///< false: range requests are never answered
+  bool deliver_poses = true;          ///< false: dl/pose stops
 };
 
 class FakeWorld {
@@ -43,9 +43,8 @@ class FakeWorld {
                double height);
   /// Scatters `n` rocks (seeded) in the box [x0, x1] x [y0, y1], none within `clear` of the
   /// points in `keep_clear`.
-  void Scatter(std::uint32_t seed, int n, double x0, double x1, double y0, double y1,
-               double radius, double height, const std::vector<Eigen::Vector2d>& keep_clear,
-               double clear);
+  void Scatter(std::uint32_t seed, int n, double x0, double x1, double y0, double y1, double radius,
+               double height, const std::vector<Eigen::Vector2d>& keep_clear, double clear);
 
   double HeightAt(double x, double y) const;
   Pose2& pose() { return pose_; }

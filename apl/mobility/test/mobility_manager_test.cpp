@@ -90,13 +90,14 @@ TEST(MobilityManagerWorld, DriveWhileThinkingStandsStillLessThanStopAndGo) {
     }
   }
   // The figures, for the record (simulated seconds; the ratio is what is asserted).
-  std::printf("stop-and-go: still %.1f s, moving %.1f s (%.0f %% still); drive while thinking: "
-              "still %.1f s, moving %.1f s (%.0f %% still)\n",
-              still[0], moving[0], 100.0 * still[0] / (still[0] + moving[0]), still[1], moving[1],
-              100.0 * still[1] / (still[1] + moving[1]));
-  EXPECT_LT(still[1], 0.5 * still[0]) << "stop-and-go still " << still[0] << " s, moving "
-                                      << moving[0] << " s; thinking still " << still[1]
-                                      << " s, moving " << moving[1] << " s";
+  std::printf(
+      "stop-and-go: still %.1f s, moving %.1f s (%.0f %% still); drive while thinking: "
+      "still %.1f s, moving %.1f s (%.0f %% still)\n",
+      still[0], moving[0], 100.0 * still[0] / (still[0] + moving[0]), still[1], moving[1],
+      100.0 * still[1] / (still[1] + moving[1]));
+  EXPECT_LT(still[1], 0.5 * still[0])
+      << "stop-and-go still " << still[0] << " s, moving " << moving[0] << " s; thinking still "
+      << still[1] << " s, moving " << moving[1] << " s";
 }
 
 TEST(MobilityManagerWorld, OpenGroundSkipsSomeImaging) {
@@ -419,7 +420,8 @@ TEST_F(MobilityManagerScripted, BadCommandsAreRejectedNamingTheFieldAndNothingMo
   expect_bad(Directed(1, Mode::kGuarded, {}), "primitives: 0 given");
   expect_bad(Directed(1, Mode::kDirected, {{PrimitiveKind::kArc, 3.0, 1.0, 0.0}}),
              "primitives[0].curvature = 3");
-  expect_bad(Directed(1, Mode::kDirected, {Straight(std::nan(""))}), "primitives[0].distance is nan");
+  expect_bad(Directed(1, Mode::kDirected, {Straight(std::nan(""))}),
+             "primitives[0].distance is nan");
   c = Autonav(1, 5, 0);
   c.lmst_end_h = 30;
   expect_bad(c, "lmst_end_h = 30");
@@ -470,8 +472,8 @@ TEST_F(MobilityManagerScripted, TimeBudgetIsWaypointTimeout) {
 
 TEST_F(MobilityManagerScripted, TimeOfDayLimit) {
   // Run-clock 0 is J2000 noon; find the LMST there and ask to stop 0.01 Mars hours later.
-  const double lmst =
-      MarsLocalMeanSolarTimeHours(m_.options().run_clock_epoch_unix_s, m_.options().site_longitude_east);
+  const double lmst = MarsLocalMeanSolarTimeHours(m_.options().run_clock_epoch_unix_s,
+                                                  m_.options().site_longitude_east);
   MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0)});
   c.lmst_end_h = std::fmod(lmst + 0.01, 24.0);
   Cmd(c, 0);
@@ -486,7 +488,7 @@ TEST_F(MobilityManagerScripted, TimeOfDayLimit) {
 
 TEST_F(MobilityManagerScripted, TiltAndNortherlyTiltFromThePose) {
   MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0), Straight(1.0)});
-  c.min_northerly_tilt = 0.05;  // the deck must face north by 3 deg
+  c.min_northerly_tilt = 0.05;     // the deck must face north by 3 deg
   MobilityOutput out = Cmd(c, 0);  // flat: checked before the first step, nothing moves
   EXPECT_TRUE(out.drives.empty());
   EXPECT_EQ(m_.status().fault, Fault::kNorth) << m_.status().message;
@@ -519,7 +521,8 @@ class OneWaypointPlanner final : public nav_core::GlobalPlanner {
 TEST(MobilityManagerWorld, LongTraverseWithAPlannerDrivesItsLegs) {
   const gestalt::GestaltOptions g;
   auto manager = MobilityManager::Create(
-      MobilityOptions{}, std::make_unique<gestalt::TerrainMap>(gestalt::TerrainMap::Create(g).value()),
+      MobilityOptions{},
+      std::make_unique<gestalt::TerrainMap>(gestalt::TerrainMap::Create(g).value()),
       std::make_unique<gestalt::ArcEvaluator>(gestalt::ArcEvaluator::Create(g).value()),
       std::make_unique<OneWaypointPlanner>());
   ASSERT_TRUE(manager.ok());

@@ -89,8 +89,8 @@ struct MobilityOutput {
   std::optional<nav_core::GoodnessMap> goodness_map;  ///< after an assessment
   std::vector<ArcVotesSnapshot> arc_votes;
   bool empty() const {
-    return drives.empty() && range_requests.empty() && mast_requests.empty() &&
-           statuses.empty() && !goodness_map && arc_votes.empty();
+    return drives.empty() && range_requests.empty() && mast_requests.empty() && statuses.empty() &&
+           !goodness_map && arc_votes.empty();
   }
 };
 
@@ -169,16 +169,16 @@ class MobilityManager {
     double max_tilt = 0.0;
     int max_steps = 0;
     bool think = false;
-    std::deque<Primitive> queue;       // directed / guarded pieces still to drive
-    int blind_pieces = 0;              // guarded arc: leading pieces that run blind
-    std::vector<Eigen::Vector2d> goals;  // long traverse legs (last = the goal)
+    std::deque<Primitive> queue;            // directed / guarded pieces still to drive
+    int blind_pieces = 0;                   // guarded arc: leading pieces that run blind
+    std::vector<Eigen::Vector2d> goals;     // long traverse legs (last = the goal)
     std::optional<Primitive> guarded_next;  // guarded piece waiting for its image
-    std::deque<Camera> camera_queue;   // further images this step needs
+    std::deque<Camera> camera_queue;        // further images this step needs
     std::optional<PendingImage> image;
     std::optional<PendingDrive> drive;
-    std::optional<Time> vo_since;      // waiting for a VO result since
-    Time vo_after;                     // VO results must end after this (the last drive's start)
-    bool think_image_merged = false;   // an image was merged while the last arc drove
+    std::optional<Time> vo_since;     // waiting for a VO result since
+    Time vo_after;                    // VO results must end after this (the last drive's start)
+    bool think_image_merged = false;  // an image was merged while the last arc drove
     std::uint32_t steps = 0;
     std::uint32_t images = 0;
     int vo_failures = 0;
@@ -196,8 +196,7 @@ class MobilityManager {
   void Reject(const MobilityCommand& command, Time now, Fault fault, const std::string& message,
               MobilityOutput* out);
   void Start(const MobilityCommand& command, Time now, MobilityOutput* out);
-  void Finish(Time now, State state, Fault fault, const std::string& message,
-              MobilityOutput* out);
+  void Finish(Time now, State state, Fault fault, const std::string& message, MobilityOutput* out);
   void EmitStatus(Time now, MobilityOutput* out);
   // The step loop.
   void NextStep(Time now, MobilityOutput* out);

@@ -19,22 +19,24 @@ inline constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 struct MobilityOptions {
   // ---- command limits ----------------------------------------------------------------------
-  bool software_enable = true;      ///< ACM: false refuses every motion command (MER's enable)
-  double max_goal_distance = 200.0; ///< [m] goals farther from the rover are out of the map (stack)
-  double min_tolerance = 0.1;       ///< [m] goal radius used when the command's is smaller (stack)
-  double time_budget_s = 0.0;       ///< [s] default command time-out; 0 = none (MER: per command)
-  int max_steps = 500;              ///< autonav steps per command (stack)
+  bool software_enable = true;  ///< ACM: false refuses every motion command (MER's enable)
+  double max_goal_distance =
+      200.0;                   ///< [m] goals farther from the rover are out of the map (stack)
+  double min_tolerance = 0.1;  ///< [m] goal radius used when the command's is smaller (stack)
+  double time_budget_s = 0.0;  ///< [s] default command time-out; 0 = none (MER: per command)
+  int max_steps = 500;         ///< autonav steps per command (stack)
   double max_tilt = 30.0 * kDegree;  ///< [rad], rover tilt from dl/pose (MER's nominal limit)
   // ---- stepping ----------------------------------------------------------------------------
   double step_length = 0.5;           ///< [m] autonav arc per step (stack; seeds give no value)
   double waypoint_step_length = 1.0;  ///< [m] blind go-to-waypoint arc per step (stack)
-  double waypoint_turn_threshold = 30.0 * kDegree;  ///< [rad] blind: turn in place first beyond 30 deg
-  double visodom_max_step = 0.6;      ///< [m] VisOdom steps no longer than this (MER ~60 cm)
+  double waypoint_turn_threshold =
+      30.0 * kDegree;                        ///< [rad] blind: turn in place first beyond 30 deg
+  double visodom_max_step = 0.6;             ///< [m] VisOdom steps no longer than this (MER ~60 cm)
   double visodom_max_turn = 15.0 * kDegree;  ///< [rad] VisOdom turns at most this (MER)
-  double guard_segment_length = 1.0;  ///< [m] guarded primitives are imaged every this far
-  int guard_min_goodness = 10;        ///< a guarded path over a cell below this is vetoed
-                                      ///< (MER's min-allowed goodness)
-  bool drive_while_thinking = true;   ///< image and assess the next step while driving
+  double guard_segment_length = 1.0;         ///< [m] guarded primitives are imaged every this far
+  int guard_min_goodness = 10;               ///< a guarded path over a cell below this is vetoed
+                                             ///< (MER's min-allowed goodness)
+  bool drive_while_thinking = true;          ///< image and assess the next step while driving
   // ---- limit cycle, VisOdom ----------------------------------------------------------------
   int progress_steps = 10;       ///< NOPROGRESS window (steps) (stack)
   double min_progress = 0.5;     ///< [m] the distance to the goal must shrink this much per window
@@ -47,14 +49,14 @@ struct MobilityOptions {
   double pose_jump = 0.5;         ///< [m] SAPP when consecutive poses differ by more
   double pose_jump_angle = 20.0 * kDegree;  ///< [rad] ... or turn by more than this
   // ---- drive watchdog ----------------------------------------------------------------------
-  double drive_speed = 0.0;         ///< [m/s] asked of locomotion; 0 = its default (0.05 m/s)
-  double nominal_speed = 0.05;      ///< [m/s] for the watchdog (MER top speed)
-  double nominal_turn_rate = 0.05;  ///< [rad/s] for the watchdog
-  double drive_timeout_factor = 3.0;   ///< DRIVE_TIMEOUT after factor * planned time + margin
+  double drive_speed = 0.0;           ///< [m/s] asked of locomotion; 0 = its default (0.05 m/s)
+  double nominal_speed = 0.05;        ///< [m/s] for the watchdog (MER top speed)
+  double nominal_turn_rate = 0.05;    ///< [rad/s] for the watchdog
+  double drive_timeout_factor = 3.0;  ///< DRIVE_TIMEOUT after factor * planned time + margin
   double drive_timeout_margin_s = 30.0;
   // ---- keep-out, time of day -----------------------------------------------------------------
-  double keepout_margin = 0.6;  ///< [m] the rover centre keeps this far from keep-out zones
-                                ///< (about half the rover's width)
+  double keepout_margin = 0.6;       ///< [m] the rover centre keeps this far from keep-out zones
+                                     ///< (about half the rover's width)
   double site_longitude_east = 0.0;  ///< [rad] Mars east longitude of the site (TOD)
   double run_clock_epoch_unix_s = 946728000.0;  ///< [s] UTC (Unix) of run-clock 0 (J2000 noon)
   // ---- output ------------------------------------------------------------------------------

@@ -27,18 +27,18 @@ namespace rover::apl::mobility {
 
 /// Driving modes (seed 000 Table 2, seed 003's guarded arc) and the two control commands.
 enum class Mode : int {
-  kDirected = 0,            ///< primitives, blind
-  kVisOdom,                 ///< primitives, visual odometry between steps
-  kGoToWaypoint,            ///< blind drive to the goal, pose-corrected arcs
-  kVisOdomGoToWaypoint,     ///< go-to-waypoint with visual odometry between steps
-  kGuarded,                 ///< primitives, each vetoed if terrain assessment forbids it
-  kGuardedVisOdom,          ///< guarded, visual odometry between steps
-  kAutoNav,                 ///< drive to the goal with stereo hazard avoidance
-  kAutoNavVisOdom,          ///< autonav, visual odometry between steps
-  kGuardedArc,              ///< the first primitive blind (a turn), the rest only if seen safe
-  kLongTraverse,            ///< global plan, then autonav legs (needs a GlobalPlanner)
-  kStop,                    ///< stop what runs: goal error STOPPED for it
-  kClearFault,              ///< clear a latched motion error
+  kDirected = 0,         ///< primitives, blind
+  kVisOdom,              ///< primitives, visual odometry between steps
+  kGoToWaypoint,         ///< blind drive to the goal, pose-corrected arcs
+  kVisOdomGoToWaypoint,  ///< go-to-waypoint with visual odometry between steps
+  kGuarded,              ///< primitives, each vetoed if terrain assessment forbids it
+  kGuardedVisOdom,       ///< guarded, visual odometry between steps
+  kAutoNav,              ///< drive to the goal with stereo hazard avoidance
+  kAutoNavVisOdom,       ///< autonav, visual odometry between steps
+  kGuardedArc,           ///< the first primitive blind (a turn), the rest only if seen safe
+  kLongTraverse,         ///< global plan, then autonav legs (needs a GlobalPlanner)
+  kStop,                 ///< stop what runs: goal error STOPPED for it
+  kClearFault,           ///< clear a latched motion error
 };
 inline constexpr int kModeCount = 12;
 
@@ -192,8 +192,8 @@ struct RangeRequest {
 struct MastRequest {
   std::uint32_t command_id = 0;
   bool look_at = false;
-  double pan = 0.0;   ///< [rad]
-  double tilt = 0.0;  ///< [rad]
+  double pan = 0.0;                                  ///< [rad]
+  double tilt = 0.0;                                 ///< [rad]
   Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< [m] site frame (look_at)
   Time stamp;
 };

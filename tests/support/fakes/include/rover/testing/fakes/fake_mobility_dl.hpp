@@ -49,7 +49,8 @@ class FakeLocomotion {
     if (running_ && last_.ns > 0) {
       const bool turn = running_->primitive == rover_dl_PRIMITIVE_TURN_IN_PLACE;
       const double goal = turn ? std::abs(running_->angle) : std::abs(running_->distance);
-      const double inc = std::min(goal - done_, (turn ? turn_rate : speed) * ToSeconds(now - last_));
+      const double inc =
+          std::min(goal - done_, (turn ? turn_rate : speed) * ToSeconds(now - last_));
       if (turn) {
         heading += std::copysign(inc, running_->angle);
       } else {

@@ -14,13 +14,12 @@
 /// invalid when nearer terrain hides it from a camera at `camera_height` (its elevation angle is
 /// below the largest one seen nearer along its column). No noise: the scan is exact.
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace rover::testing {
 
@@ -31,9 +30,9 @@ struct FieldRock {
 };
 
 struct HazcamSpec {
-  double camera_height = 0.8;                 ///< [m] above the ground
-  double near_range = 0.4, far_range = 4.5;   ///< [m] ground range of the nearest / farthest row
-  double fov = 2.1;                           ///< [rad] horizontal field of view (~120 deg)
+  double camera_height = 0.8;                ///< [m] above the ground
+  double near_range = 0.4, far_range = 4.5;  ///< [m] ground range of the nearest / farthest row
+  double fov = 2.1;                          ///< [rad] horizontal field of view (~120 deg)
   int cols = 100, rows = 80;
 };
 
