@@ -1,8 +1,8 @@
 // roverctl: the one command-line entry point of the rover stack.
 //
-//   roverctl up FILE [--domain N] [--detach] [--for SECONDS]   start a service set
-//   roverctl down [PROJECT]                                     stop it
-//   roverctl ps [PROJECT]                                       state, pid, restarts, heartbeat
+//   roverctl up FILE [-d] [--wait[=S]] [--domain N] [--for S]   start a service set
+//   roverctl down [PROJECT]                                     stop it (even if roverctl died)
+//   roverctl ps [PROJECT]                                       state, health, readiness
 //   roverctl logs SERVICE [-p PROJECT] [-f] [-n LINES]          a service's log
 //   roverctl config FILE                                        validate a compose file
 //   roverctl run SCENARIO [--seeds A..B] [--jobs J] [--out DIR] end-to-end scenario campaign
@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -73,9 +74,22 @@ nlohmann::json ReadState(const std::string& dir) {
   }
 }
 
+// The supervisor named by the state file is alive (the same process: its start time matches,
+// so a re-used pid does not count).
 bool SupervisorAlive(const nlohmann::json& state) {
   if (state.is_null()) return false;
-  return rover::ProcessAlive(state.value("supervisor_pid", 0));
+  const int pid = state.value("supervisor_pid", 0);
+  if (!rover::ProcessAlive(pid)) return false;
+  const long long ticks = state.value("supervisor_start_ticks", -1LL);
+  return ticks < 0 || rover::ProcessStartTicks(pid) == ticks;
+}
+
+// The processes of the set that are still alive (they carry its ROVER_SET_ID).
+std::vector<pid_t> SetProcesses(const nlohmann::json& state) {
+  const std::string set_id = state.value("set_id", "");
+  if (set_id.empty()) return {};
+  return rover::ProcessesWithEnvironment(rover::deploy::kSetIdVariable, set_id + "/",
+                                         rover::EnvMatch::kPrefix);
 }
 
 // Projects with a state file under the state root.
@@ -124,29 +138,39 @@ struct UpArgs {
   bool detach = false;
   bool no_preflight = false;
   double run_for_s = 0;
+  double wait_s = -1;  ///< --wait: seconds to wait for the set to be ready; < 0: do not wait
   std::string state_root;
   std::string project;
 };
 
+constexpr double kDefaultWaitS = 120;
+
+// The supervisor: starts the set, reports "ok <domain>" (and with --wait "ready <s>") on
+// `notify_fd`, then supervises until Ctrl-C, SIGTERM, `down` or --for.
 int RunSupervisor(const rover::deploy::ComposeProject& project,
                   rover::deploy::SupervisorOptions options, const UpArgs& args, int notify_fd) {
-  auto notify = [notify_fd](const std::string& msg) {
+  const rover::Time up_start = rover::MonotonicNow();
+  auto notify = [&notify_fd](const std::string& msg, bool last) {
     if (notify_fd < 0) return;
     const std::string line = msg + "\n";
     (void)!write(notify_fd, line.data(), line.size());
-    close(notify_fd);
+    if (last) {
+      close(notify_fd);
+      notify_fd = -1;
+    }
   };
+  const bool wait = args.wait_s >= 0;
   options.abort = &g_stop;
   auto sup = rover::deploy::Supervisor::Create(project, options);
   if (!sup.ok()) {
-    notify("error: " + sup.status().message());
+    notify("error: " + sup.status().message(), true);
     return Fail(sup.status().message());
   }
   std::cout << "roverctl: starting '" << project.rover.project << "' (" << project.services.size()
             << " services) on DDS domain " << (*sup)->domain() << "\n" << std::flush;
   const Status s = (*sup)->Start();
   if (!s.ok()) {
-    notify("error: " + s.message());
+    notify("error: " + s.message(), true);
     return Fail(s.message());
   }
   for (const auto& st : (*sup)->Snapshot()) {
@@ -155,17 +179,39 @@ int RunSupervisor(const rover::deploy::ComposeProject& project,
   std::cout << "roverctl: '" << project.rover.project << "' is up on domain " << (*sup)->domain()
             << "; `roverctl ps`, `roverctl logs SERVICE`, Ctrl-C or `roverctl down` to stop\n"
             << std::flush;
-  notify("ok " + std::to_string((*sup)->domain()));
+  notify("ok " + std::to_string((*sup)->domain()), !wait);
   const rover::Time start = rover::MonotonicNow();
+  bool waiting = wait;
+  int rc = 0;
   while (!g_stop.load()) {
     (*sup)->Poll();
+    if (waiting && (*sup)->readiness().ready) {
+      waiting = false;
+      const double after = rover::ToSeconds(rover::MonotonicNow() - up_start);
+      char line[160];
+      std::snprintf(line, sizeof line, "ready %.1f %.1f", after, (*sup)->ready_after_s());
+      std::printf("roverctl: '%s' is ready after %.1f s (%.1f s after its services started)\n",
+                  project.rover.project.c_str(), after, (*sup)->ready_after_s());
+      std::fflush(stdout);
+      notify(line, true);
+    } else if (waiting && rover::ToSeconds(rover::MonotonicNow() - up_start) >= args.wait_s) {
+      char within[64];
+      std::snprintf(within, sizeof within, "%g", args.wait_s);
+      const std::string msg = "'" + project.rover.project + "' is not ready within " + within +
+                              " s: " + (*sup)->readiness().Summary() + "; stopping it";
+      notify("error: " + msg, true);
+      Fail(msg);
+      rc = 1;
+      break;
+    }
     if (args.run_for_s > 0 && rover::ToSeconds(rover::MonotonicNow() - start) >= args.run_for_s) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   std::cout << "roverctl: stopping '" << project.rover.project << "'\n" << std::flush;
   (*sup)->Stop();
   std::cout << "roverctl: stopped\n";
-  return 0;
+  if (waiting && rc == 0) notify("error: stopped before the set was ready", true);
+  return rc;
 }
 
 int Up(const UpArgs& args) {
@@ -207,29 +253,90 @@ int Up(const UpArgs& args) {
     _exit(RunSupervisor(*project, options, args, fds[1]));
   }
   close(fds[1]);
-  std::string msg;
+  // Lines: "ok <domain>", then with --wait "ready <s> <s>" or "error: ..."; EOF ends it.
+  std::string text;
   char buf[512];
   ssize_t n;
-  while ((n = read(fds[0], buf, sizeof buf)) > 0) msg.append(buf, static_cast<std::size_t>(n));
+  while ((n = read(fds[0], buf, sizeof buf)) > 0) text.append(buf, static_cast<std::size_t>(n));
   close(fds[0]);
-  if (msg.rfind("ok ", 0) == 0) {
-    std::cout << "roverctl: '" << project->rover.project << "' is up on DDS domain "
-              << msg.substr(3, msg.find('\n') - 3) << " (supervisor pid " << pid << ")\n";
-    return 0;
+  std::istringstream lines(text);
+  std::string line;
+  bool up = false, ready = false;
+  std::string error;
+  while (std::getline(lines, line)) {
+    if (line.rfind("ok ", 0) == 0) {
+      up = true;
+      std::cout << "roverctl: '" << project->rover.project << "' is up on DDS domain "
+                << line.substr(3) << " (supervisor pid " << pid << ")\n";
+    } else if (line.rfind("ready ", 0) == 0) {
+      ready = true;
+      double after = 0, services = 0;
+      std::istringstream(line.substr(6)) >> after >> services;
+      std::printf("roverctl: '%s' is ready after %.1f s (%.1f s after its services started)\n",
+                  project->rover.project.c_str(), after, services);
+    } else if (line.rfind("error: ", 0) == 0) {
+      error = line.substr(7);
+    }
   }
-  if (msg.rfind("error: ", 0) == 0) msg = msg.substr(7);
-  while (!msg.empty() && msg.back() == '\n') msg.pop_back();
-  return Fail(msg.empty() ? "the supervisor died during start-up" : msg);
+  std::cout << std::flush;
+  if (!error.empty()) return Fail(error);
+  if (!up) return Fail("the supervisor died during start-up");
+  if (args.wait_s >= 0 && !ready) return Fail("the supervisor died before the set was ready");
+  return 0;
 }
 
 // ---- down / ps / logs ------------------------------------------------------------------------
 
+// Stops what is left of a set whose supervisor is gone (or did not stop everything): every
+// process carrying the set's ROVER_SET_ID, and their process groups (StopMarkedProcesses).
+rover::MarkedStop StopLeftovers(const nlohmann::json& state) {
+  double grace = 1;
+  for (const auto& s : state["services"]) grace = std::max(grace, s.value("stop_grace_s", 10.0));
+  const std::string set_id = state.value("set_id", "");
+  if (set_id.empty()) return {};
+  return rover::StopMarkedProcesses(rover::deploy::kSetIdVariable, set_id + "/",
+                                    rover::EnvMatch::kPrefix, rover::Seconds(grace));
+}
+
+// Marks the state file stopped (the supervisor that would have done it is gone).
+void MarkStopped(const std::string& dir, nlohmann::json state) {
+  state["phase"] = "stopped";
+  state["ready"] = false;
+  for (auto& s : state["services"]) {
+    if (s.value("state", "") == "running" || s.value("state", "") == "restarting") {
+      s["state"] = "stopped";
+    }
+    s["pid"] = 0;
+    s["ready"] = false;
+  }
+  const std::string tmp = dir + "/state.json.tmp";
+  std::ofstream(tmp) << state.dump(2) << "\n";
+  std::rename(tmp.c_str(), (dir + "/state.json").c_str());
+}
+
+std::string PidList(const std::vector<pid_t>& pids) {
+  std::string out;
+  for (pid_t p : pids) out += (out.empty() ? "" : " ") + std::to_string(p);
+  return out;
+}
+
 int Down(const std::string& root, const std::string& given, double timeout_s) {
   auto project = ResolveProject(root, given);
   if (!project.ok()) return Fail(project.status().message());
-  const auto state = ReadState(root + "/" + *project);
+  const std::string dir = root + "/" + *project;
+  const auto state = ReadState(dir);
   if (!SupervisorAlive(state)) {
-    std::cout << "roverctl: '" << *project << "' is not running\n";
+    const rover::MarkedStop left = StopLeftovers(state);
+    if (left.found.empty()) {
+      std::cout << "roverctl: '" << *project << "' is not running\n";
+      return 0;
+    }
+    MarkStopped(dir, state);
+    std::cout << "roverctl: '" << *project << "' was not running (supervisor pid "
+              << state.value("supervisor_pid", 0) << " is gone); stopped " << left.found.size()
+              << " processes it left behind: " << PidList(left.found)
+              << (left.killed.empty() ? "" : " (SIGKILL: " + PidList(left.killed) + ")") << "\n";
+    if (!left.all_gone) return Fail("some processes of '" + *project + "' did not stop");
     return 0;
   }
   const int pid = state.value("supervisor_pid", 0);
@@ -239,8 +346,19 @@ int Down(const std::string& root, const std::string& given, double timeout_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   if (rover::ProcessAlive(pid)) return Fail("supervisor " + std::to_string(pid) + " did not stop");
-  std::cout << "roverctl: '" << *project << "' stopped\n";
+  // The supervisor stops whole trees; anything it still missed goes now.
+  const rover::MarkedStop left = StopLeftovers(state);
+  std::cout << "roverctl: '" << *project << "' stopped";
+  if (!left.found.empty()) {
+    std::cout << "; stopped " << left.found.size() << " more processes: " << PidList(left.found);
+  }
+  std::cout << "\n";
   return 0;
+}
+
+std::string Clip(std::string s, std::size_t n) {
+  if (s.size() > n) s = s.substr(0, n - 3) + "...";
+  return s;
 }
 
 int Ps(const std::string& root, const std::string& given, bool json) {
@@ -257,16 +375,32 @@ int Ps(const std::string& root, const std::string& given, bool json) {
     auto state = ReadState(root + "/" + p);
     if (state.is_null()) continue;
     const bool alive = SupervisorAlive(state);
+    const std::vector<pid_t> left = alive ? std::vector<pid_t>{} : SetProcesses(state);
     if (json) {
       state["supervisor_alive"] = alive;
+      state["left_behind"] = left;
       all.push_back(state);
       continue;
     }
-    std::printf("%s  (%s, domain %d, %s)\n", p.c_str(),
+    std::string readiness;
+    if (alive && state.value("phase", "") == "up") {
+      const auto not_ready = state.value("not_ready", std::vector<std::string>{});
+      readiness = state.value("ready", false)
+                      ? "ready"
+                      : "not ready: " + std::to_string(not_ready.size()) + " of " +
+                            std::to_string(state["services"].size()) + " services";
+    }
+    std::printf("%s  (%s%s%s, domain %d, %s)\n", p.c_str(),
                 alive ? state.value("phase", "?").c_str() : "not running",
-                state.value("domain", -1), state.value("file", "").c_str());
-    std::printf("  %-22s %-11s %-8s %-8s %-12s %-14s %s\n", "SERVICE", "STATE", "PID", "RESTARTS",
-                "LIFECYCLE", "HEARTBEAT", "LAST EXIT");
+                readiness.empty() ? "" : ", ", readiness.c_str(), state.value("domain", -1),
+                state.value("file", "").c_str());
+    if (!alive && !left.empty()) {
+      std::printf("  supervisor pid %d is gone; %zu processes of the set are still alive (%s): "
+                  "`roverctl down %s` stops them\n",
+                  state.value("supervisor_pid", 0), left.size(), PidList(left).c_str(), p.c_str());
+    }
+    std::printf("  %-22s %-10s %-8s %-3s %-9s %-8s %-5s %-14s %s\n", "SERVICE", "STATE", "PID",
+                "RST", "LIFECYCLE", "HEALTH", "READY", "HEARTBEAT", "MESSAGE / LAST EXIT");
     const double timeout = state.value("heartbeat_timeout_s", 5.0);
     for (const auto& s : state["services"]) {
       std::string hb = Age(s.value("last_heartbeat_wall_ns", std::int64_t{0}));
@@ -274,10 +408,18 @@ int Ps(const std::string& root, const std::string& given, bool json) {
       if (last > 0 && (rover::WallNow().ns - last) * 1e-9 > timeout && s.value("state", "") == "running") {
         hb += " STALE";
       }
-      std::printf("  %-22s %-11s %-8d %-8d %-12s %-14s %s\n", s.value("name", "").c_str(),
+      std::string note = s.value("message", "");
+      const std::string waiting = s.value("waiting_for", "");
+      if (note.empty() && alive && !s.value("ready", false) && !waiting.empty()) note = waiting;
+      const std::string exit = s.value("last_exit", "");
+      if (!exit.empty()) note += (note.empty() ? "" : "; ") + std::string("last exit: ") + exit;
+      const std::string health = s.value("health", "");
+      std::printf("  %-22s %-10s %-8d %-3d %-9s %-8s %-5s %-14s %s\n", s.value("name", "").c_str(),
                   alive ? s.value("state", "").c_str() : "-", s.value("pid", 0),
-                  s.value("restarts", 0), s.value("lifecycle", "").c_str(), hb.c_str(),
-                  s.value("last_exit", "").c_str());
+                  s.value("restarts", 0), s.value("lifecycle", "").c_str(),
+                  health.empty() ? "-" : health.c_str(),
+                  alive ? (s.value("ready", false) ? "yes" : "no") : "-", hb.c_str(),
+                  Clip(note, 120).c_str());
     }
   }
   if (json) std::cout << all.dump(2) << "\n";
@@ -357,7 +499,9 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     seeds = *s;
   }
   if (out.empty()) out = "runs/" + scenario->name + "-" + NowStamp();
-  if (const Status s = rover::deploy::CheckOutputFolder(out); !s.ok()) return Fail(s.message(), 2);
+  if (const Status s = rover::deploy::CheckOutputFolder(out, scenario->name); !s.ok()) {
+    return Fail(s.message(), 2);
+  }
   rover::deploy::CampaignOptions o;
   o.seeds = seeds;
   o.jobs = jobs;
@@ -383,7 +527,7 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
   std::fflush(stdout);
   auto r = rover::deploy::RunCampaign(*scenario, o);
   if (!r.ok()) return Fail(r.status().message(), 2);
-  std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary).c_str());
+  std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary, r->missing).c_str());
   for (const auto& e : r->errors) std::printf("error: %s\n", e.c_str());
   if (r->interrupted) std::printf("interrupted: %zu of %zu runs finished and were kept\n", r->runs.size(), seeds.size());
   std::printf("\nreport: %s/summary.json  junit: %s/junit.xml\n", out.c_str(), out.c_str());
@@ -421,6 +565,12 @@ int main(int argc, char** argv) {
   up_cmd->add_flag("-d,--detach", up.detach, "run in the background");
   up_cmd->add_flag("--no-preflight", up.no_preflight, "skip parameter validation");
   up_cmd->add_option("--for", up.run_for_s, "stop by itself after this many seconds");
+  double wait_s = kDefaultWaitS;
+  auto* wait_flag = up_cmd->add_flag(
+      "--wait{" + std::to_string(static_cast<int>(kDefaultWaitS)) + "}", wait_s,
+      "return (with -d) or report once every service is ready, waiting at most S seconds "
+      "(--wait=S; default " + std::to_string(static_cast<int>(kDefaultWaitS)) +
+          "); not ready by then: the set is stopped, exit code 1");
 
   std::string project;
   double down_timeout = 60;
@@ -456,7 +606,16 @@ int main(int argc, char** argv) {
   auto* report_cmd = app.add_subcommand("report", "print the summary of a campaign folder");
   report_cmd->add_option("dir", report_dir, "campaign folder")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  // Usage errors are exit code 2 (docs/roverctl.md), not CLI11's own codes; --help is 0.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (*wait_flag) {
+    if (!(wait_s > 0)) return Fail("--wait: " + std::to_string(wait_s) + " is not > 0 s", 2);
+    up.wait_s = wait_s;
+  }
 
   struct sigaction sa {};
   sa.sa_handler = OnSignal;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace rover::deploy {
@@ -68,7 +69,8 @@ nlohmann::json ToJson(const RunResult& r) {
   }
   j["distance_driven_m"] = r.distance_driven;
   j["timings"] = {{"sim_time_s", r.sim_time_s}, {"wall_time_s", r.wall_time_s},
-                  {"startup_s", r.startup_s}, {"teardown_s", r.teardown_s},
+                  {"startup_s", r.startup_s}, {"ready_s", r.ready_s},
+                  {"teardown_s", r.teardown_s},
                   {"sim_seconds_per_wall_second",
                    r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0}};
   j["estimate_error"] = nlohmann::json::array();
@@ -117,6 +119,7 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.sim_time_s = t.value("sim_time_s", 0.0);
     r.wall_time_s = t.value("wall_time_s", 0.0);
     r.startup_s = t.value("startup_s", 0.0);
+    r.ready_s = t.value("ready_s", 0.0);
     r.teardown_s = t.value("teardown_s", 0.0);
     for (const auto& e : j.value("estimate_error", nlohmann::json::array())) {
       r.estimate_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
@@ -148,7 +151,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   if (!runs.empty()) s.scenario = runs.front().scenario;
   std::map<std::string, std::pair<std::string, std::vector<double>>> by_name;
   std::vector<std::string> order;
-  std::vector<double> wall, startup, teardown, distance, sim_time;
+  std::vector<double> wall, startup, ready, teardown, distance, sim_time;
   double sim_total = 0;
   for (const auto& r : runs) {
     if (r.pass) ++s.passed;
@@ -162,6 +165,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
     }
     wall.push_back(r.wall_time_s);
     startup.push_back(r.startup_s);
+    if (r.ready_s > 0) ready.push_back(r.ready_s);
     teardown.push_back(r.teardown_s);
     distance.push_back(r.distance_driven);
     sim_time.push_back(r.sim_time_s);
@@ -173,6 +177,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   s.figures.push_back(Stats("sim_time", "s", sim_time));
   s.figures.push_back(Stats("wall_time", "s", wall));
   s.figures.push_back(Stats("startup", "s", startup));
+  if (!ready.empty()) s.figures.push_back(Stats("ready", "s", ready));
   s.figures.push_back(Stats("teardown", "s", teardown));
   s.wall_time_s = campaign_wall_s;
   s.sim_seconds_per_wall_second = campaign_wall_s > 0 ? sim_total / campaign_wall_s : 0;
@@ -240,7 +245,23 @@ std::string ToJunitXml(const std::vector<RunResult>& runs, const std::string& su
   return x.str();
 }
 
-std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s) {
+std::vector<MissingRun> MissingRuns(const std::string& dir, const std::string& scenario,
+                                    const std::vector<std::uint32_t>& seeds,
+                                    const std::vector<RunResult>& runs) {
+  std::vector<MissingRun> out;
+  for (std::uint32_t seed : seeds) {
+    const bool have = std::any_of(runs.begin(), runs.end(),
+                                  [seed](const RunResult& r) { return r.seed == seed; });
+    if (have) continue;
+    out.push_back(
+        {seed, fs::exists(fs::path(dir) / (scenario + "-seed" + std::to_string(seed)))});
+  }
+  return out;
+}
+
+std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s,
+                               const std::vector<MissingRun>& missing,
+                               const std::vector<std::string>& ignored) {
   std::ostringstream o;
   char buf[512];
   std::snprintf(buf, sizeof buf, "%-8s %-6s %9s %9s %9s  %s\n", "seed", "result", "dist m",
@@ -252,9 +273,21 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
                   r.failure.c_str());
     o << buf;
   }
-  std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)\n\n", s.scenario.c_str(), s.passed,
+  std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)", s.scenario.c_str(), s.passed,
                 s.runs, 100.0 * s.pass_rate);
   o << buf;
+  if (!missing.empty()) {
+    o << "; " << missing.size() << " of " << runs.size() + missing.size()
+      << " seeds have no result:\n";
+    for (const auto& m : missing) {
+      o << "  seed " << m.seed << ": "
+        << (m.started ? "incomplete (started, no result.json)" : "not run") << "\n";
+    }
+  } else {
+    o << "\n";
+  }
+  for (const auto& i : ignored) o << "ignored: " << i << "\n";
+  o << "\n";
   std::snprintf(buf, sizeof buf, "%-36s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
                 "worst");
   o << buf;
@@ -301,7 +334,31 @@ Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir) {
 
 Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
   CampaignReport report;
-  ROVER_ASSIGN_OR_RETURN(report.runs, LoadRunFolder(dir));
+  ROVER_ASSIGN_OR_RETURN(std::vector<RunResult> all, LoadRunFolder(dir));
+  std::string scenario;
+  std::optional<std::vector<std::uint32_t>> seeds;
+  {
+    std::ifstream cj(dir + "/campaign.json");
+    try {
+      const nlohmann::json c = nlohmann::json::parse(cj);
+      scenario = c.value("scenario", "");
+      if (c.contains("seeds")) seeds = c["seeds"].get<std::vector<std::uint32_t>>();
+    } catch (const nlohmann::json::exception& e) {
+      return InvalidArgument(dir + "/campaign.json: " + e.what());
+    }
+  }
+  for (auto& r : all) {
+    const std::string folder = fs::path(r.run_dir).filename().string();
+    const std::string name = folder.empty() ? r.scenario + "-seed" + std::to_string(r.seed) : folder;
+    if (!scenario.empty() && r.scenario != scenario) {
+      report.ignored.push_back(name + " (scenario '" + r.scenario + "', not '" + scenario + "')");
+    } else if (seeds && std::find(seeds->begin(), seeds->end(), r.seed) == seeds->end()) {
+      report.ignored.push_back(name + " (seed " + std::to_string(r.seed) +
+                               " is not one of the last campaign's seeds)");
+    } else {
+      report.runs.push_back(std::move(r));
+    }
+  }
   double wall = 0;
   std::ifstream in(dir + "/summary.json");
   if (in) {
@@ -311,8 +368,12 @@ Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
     }
   }
   report.summary = Summarize(report.runs, wall);
-  report.table = FormatSummaryTable(report.runs, report.summary);
-  report.all_passed = report.summary.runs > 0 && report.summary.passed == report.summary.runs;
+  if (!scenario.empty()) report.summary.scenario = scenario;
+  if (seeds) report.missing = MissingRuns(dir, report.summary.scenario, *seeds, report.runs);
+  report.table =
+      FormatSummaryTable(report.runs, report.summary, report.missing, report.ignored);
+  report.all_passed = report.summary.runs > 0 && report.missing.empty() &&
+                      report.summary.passed == report.summary.runs;
   return report;
 }
 

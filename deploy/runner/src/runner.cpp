@@ -3,7 +3,6 @@
 #include "rover/deploy/runner.hpp"
 
 #include <filesystem>
-#include <optional>
 
 #include "rover/base/clock.hpp"
 #include "rover/deploy/runner/judging.hpp"
@@ -105,16 +104,16 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   if (!failure.empty()) return finish(failure);
   if (const Status s = set->ResumeSimulator(); !s.ok()) return finish(s.message());
   progress("running", 0);
-  // Wait for the simulator's clock and the pose estimate, then half a simulated second more:
-  // the runner hearing dl/pose does not mean that the commanded services have (a drive command
-  // would be rejected for want of an attitude, as MER's would).
-  std::optional<double> first_pose_at;
+  // Wait until the set is ready (every service's heartbeat ACTIVE and health OK: the estimator
+  // has levelled, locomotion has fresh joint states and a pose, so a drive command is accepted)
+  // and the runner itself hears the estimate.
   failure = run_loop.WaitUntil([&] {
-    if (!first_pose_at && (*recorder)->has_estimate()) first_pose_at = run_loop.now();
-    return run_loop.now() > 0 && first_pose_at && run_loop.now() >= *first_pose_at + 0.5 &&
-           task->Ready();
+    return run_loop.now() > 0 && set->Ready() && (*recorder)->has_estimate() && task->Ready();
   });
-  if (!failure.empty()) return finish(failure);
+  if (!failure.empty()) {
+    return finish(failure + (set->Ready() ? "" : " (not ready: " + set->NotReady() + ")"));
+  }
+  result.ready_s = set->ready_after_s();
   TaskOutcome outcome = task->Run(ctx);
   result.steps = std::move(outcome.steps);
   failure = outcome.failure;

@@ -37,6 +37,7 @@ struct RunResult {
   double sim_time_s = 0;           ///< simulated seconds run
   double wall_time_s = 0;          ///< wall seconds of the whole run
   double startup_s = 0;            ///< wall seconds to bring the service set up
+  double ready_s = 0;              ///< wall seconds from starting the set to every service ready
   double teardown_s = 0;           ///< wall seconds to stop it
   std::vector<sim::ErrorSample> estimate_error;
   std::vector<sim::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
@@ -80,19 +81,41 @@ nlohmann::json ToJson(const CampaignSummary& s);
 /// JUnit XML: one <testsuite> per scenario, one <testcase> per run, <failure> for failed runs.
 std::string ToJunitXml(const std::vector<RunResult>& runs, const std::string& suite_name);
 
-/// The human-readable table: one line per run, then the statistics.
-std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s);
+/// A seed of a campaign without a result.json: under way when the campaign stopped (its run
+/// folder exists) or never started.
+struct MissingRun {
+  std::uint32_t seed = 0;
+  bool started = false;
+};
+
+/// The seeds of a campaign of `scenario` in `dir` that none of `runs` covers.
+std::vector<MissingRun> MissingRuns(const std::string& dir, const std::string& scenario,
+                                    const std::vector<std::uint32_t>& seeds,
+                                    const std::vector<RunResult>& runs);
+
+/// The human-readable table: one line per run, the pass count ("x: 3/4 passed (75%)", then
+/// "; 2 of 6 seeds have no result" and one line per missing seed), the results left out of the
+/// report (`ignored`, one line each), then the statistics.
+std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s,
+                               const std::vector<MissingRun>& missing = {},
+                               const std::vector<std::string>& ignored = {});
 
 /// Reads every `*/result.json` under a run folder (for `roverctl report`).
 Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
 
-/// A campaign folder read back: its runs, their summary (with the campaign's wall time from
-/// summary.json, 0 if that is missing) and the table `roverctl run` printed.
+/// A campaign folder read back (campaign.json names its scenario and seeds): its runs, their
+/// summary (with the campaign's wall time from summary.json, 0 if that is missing) and the
+/// table `roverctl run` printed. Only results of the campaign's scenario and seeds count; others
+/// (a folder mixed by hand, or older runs of seeds the last campaign did not run) are listed in
+/// `ignored`, and the campaign's seeds without a result in `missing`.
 struct CampaignReport {
   std::vector<RunResult> runs;
   CampaignSummary summary;
+  std::vector<MissingRun> missing;
+  std::vector<std::string> ignored;  ///< "<folder> (why)"
   std::string table;
-  /// At least one run, and every run passed (`roverctl report` exits 0 only then).
+  /// At least one run, every seed has a result, and every run passed (`roverctl report` exits
+  /// 0 only then).
   bool all_passed = false;
 };
 Result<CampaignReport> LoadCampaignReport(const std::string& dir);
