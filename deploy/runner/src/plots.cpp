@@ -124,25 +124,26 @@ Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
       o.cell_layers.push_back(GoodnessLayer(*run.mobility->last_map));
     }
   }
-  // Wide lines first, thin ones on top, so that no path hides another: truth widest, the
-  // estimate thinnest and last; the planned path dashed.
+  // Wide lines first, thin ones on top, so that no path hides another: truth widest, then the
+  // odometry-only path, the estimate, the chosen arcs, and the planned path dashed on top (the
+  // paths under it show between its dashes).
   const auto truth = Track(run.truth_track);
   if (truth.size() >= 2) o.polylines.push_back({truth, {20, 170, 40}, "driven (truth)", 5, true});
   const auto odo = Track(run.odometry_only_track);
   if (odo.size() >= 2) o.polylines.push_back({odo, {170, 60, 200}, "odometry only", 3, true});
-  if (planned.size() >= 2) {
-    o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
-  }
+  const auto est = Track(run.estimate_track);
+  if (est.size() >= 2) o.polylines.push_back({est, {255, 140, 0}, "estimated", 2, true});
   if (run.mobility) {
     bool first = true;
     for (const ChosenArc& a : run.mobility->arcs) {
       o.polylines.push_back(
-          {ArcPoints(a), {255, 105, 180}, first ? "chosen arcs (1 m)" : "", 1, false});
+          {ArcPoints(a), {255, 105, 180}, first ? "chosen arcs (1 m)" : "", 2, false});
       first = false;
     }
   }
-  const auto est = Track(run.estimate_track);
-  if (est.size() >= 2) o.polylines.push_back({est, {255, 140, 0}, "estimated", 1, true});
+  if (planned.size() >= 2) {
+    o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
+  }
   return sim::WriteTopDownMap(terrain, path, o);
 }
 

@@ -265,37 +265,29 @@ Verdict Judge::Evaluate() const {
                         max_tilt_ <= criteria_.max_tilt, ""});
   for (std::size_t i = 0; i < rocks_.size(); ++i) {
     if (hit_[i]) v.rocks_hit.push_back(rocks_[i].id);
+    if (hazard_hit_[i]) v.hazards_hit.push_back(rocks_[i].id);
   }
+  // "rocks 3, 9 (rocks taller than 0.20 m<where>)": the first five ids and what counted.
+  auto detail = [&](const std::vector<int>& ids, const char* where) {
+    std::string list;
+    for (std::size_t i = 0; i < ids.size() && i < 5; ++i) {
+      list += (i ? ", " : "rocks ") + std::to_string(ids[i]);
+    }
+    const std::string taller =
+        Fmt1("rocks taller than %.2f m", criteria_.traversable_height) + where;
+    return list.empty() ? taller : list + " (" + taller + ")";
+  };
+  v.criteria.push_back({"rock_contacts", static_cast<double>(v.rocks_hit.size()), 0, "count",
+                        v.rocks_hit.empty(), detail(v.rocks_hit, "")});
   {
-    std::string detail;
-    for (std::size_t i = 0; i < v.rocks_hit.size() && i < 5; ++i) {
-      detail += (i ? ", " : "rocks ") + std::to_string(v.rocks_hit[i]);
-    }
-    char taller[64];
-    std::snprintf(taller, sizeof taller, "rocks taller than %.2f m", criteria_.traversable_height);
-    v.criteria.push_back({"rock_contacts", static_cast<double>(v.rocks_hit.size()), 0, "count",
-                          v.rocks_hit.empty(),
-                          detail.empty() ? std::string(taller) : detail + " (" + taller + ")"});
-  }
-  {
-    for (std::size_t i = 0; i < rocks_.size(); ++i) {
-      if (hazard_hit_[i]) v.hazards_hit.push_back(rocks_[i].id);
-    }
-    std::string detail;
-    for (std::size_t i = 0; i < v.hazards_hit.size() && i < 5; ++i) {
-      detail += (i ? ", " : "rocks ") + std::to_string(v.hazards_hit[i]);
-    }
-    char taller[96];
-    std::snprintf(taller, sizeof taller, "rocks taller than %.2f m under the rover's footprint",
-                  criteria_.traversable_height);
-    detail = detail.empty() ? std::string(taller) : detail + " (" + taller + ")";
     const double n = static_cast<double>(v.hazards_hit.size());
+    const std::string d = detail(v.hazards_hit, " under the rover's footprint");
     if (criteria_.max_hazard_contacts) {
       v.criteria.push_back({"hazard_contacts", n, static_cast<double>(*criteria_.max_hazard_contacts),
-                            "count", n <= *criteria_.max_hazard_contacts, detail});
+                            "count", n <= *criteria_.max_hazard_contacts, d});
     } else {
       v.figures.push_back(
-          {"hazard_contacts", n, std::numeric_limits<double>::quiet_NaN(), "count", true, detail});
+          {"hazard_contacts", n, std::numeric_limits<double>::quiet_NaN(), "count", true, d});
     }
   }
   if (criteria_.min_distance) {

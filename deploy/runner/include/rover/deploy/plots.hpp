@@ -2,9 +2,9 @@
 /// @file
 /// Plots a person would rather look at than read, written into each run folder:
 ///  - `map.png`: top-down terrain map with rocks, the driven path from truth (green, widest,
-///    drawn first), the odometry-only path (purple), the planned path (blue, dashed), the chosen
-///    arcs of a mobility run (pink, 1 m of each from where it was chosen) and the stack's
-///    estimated path (orange, thinnest, on top), over the run's last goodness map (grey from
+///    drawn first), the odometry-only path (purple), the stack's estimated path (orange,
+///    narrower), the chosen arcs of a mobility run (pink, 1 m of each from where it was chosen)
+///    and the planned path (blue, dashed, on top), over the run's last goodness map (grey from
 ///    black = obstacle to white = perfect; unknown cells show the terrain; bounds dashed);
 ///  - `estimate_error.png`: horizontal position error [m] and heading error [deg] of the pose
 ///    estimate against truth over simulated time.
