@@ -46,7 +46,74 @@ FigureStats Stats(const std::string& name, const std::string& unit, std::vector<
   f.worst = v.back();
   return f;
 }
+nlohmann::json MobilityToJson(const MobilityOutcome& m) {
+  nlohmann::json arcs = nlohmann::json::array();
+  for (const auto& a : m.arcs) {
+    arcs.push_back({a.x, a.y, a.yaw, a.point_turn ? 1 : 0, a.curvature, a.direction, a.turn_angle});
+  }
+  return {{"task", m.task},
+          {"mode", m.mode},
+          {"expect", m.expect},
+          {"outcome", m.outcome},
+          {"state", m.state},
+          {"fault", m.fault},
+          {"fault_class", m.fault_class},
+          {"message", m.message},
+          {"distance_to_goal_m", m.distance_to_goal},
+          {"steps", m.steps},
+          {"images", m.images},
+          {"sim_start_s", m.sim_start_s},
+          {"sim_end_s", m.sim_end_s},
+          {"arcs", arcs},
+          {"arcs_columns", {"x_m", "y_m", "yaw_rad", "point_turn", "curvature", "direction",
+                            "turn_angle_rad"}}};
+}
+
+MobilityOutcome MobilityFromJson(const nlohmann::json& j) {
+  MobilityOutcome m;
+  m.task = j.value("task", "");
+  m.mode = j.value("mode", "");
+  m.expect = j.value("expect", "");
+  m.outcome = j.value("outcome", "");
+  m.state = j.value("state", "");
+  m.fault = j.value("fault", "");
+  m.fault_class = j.value("fault_class", "");
+  m.message = j.value("message", "");
+  m.distance_to_goal = j.value("distance_to_goal_m", -1.0);
+  m.steps = j.value("steps", 0u);
+  m.images = j.value("images", 0u);
+  m.sim_start_s = j.value("sim_start_s", 0.0);
+  m.sim_end_s = j.value("sim_end_s", 0.0);
+  for (const auto& a : j.value("arcs", nlohmann::json::array())) {
+    m.arcs.push_back({a.at(0), a.at(1), a.at(2), a.at(3).get<int>() != 0, a.at(4), a.at(5),
+                      a.at(6)});
+  }
+  return m;
+}
+
+// "reached" or "NOPATH (goal error)", and "!= KEEPOUT" when it is not what was expected.
+std::string OutcomeText(const MobilityOutcome& m) {
+  std::string out = m.outcome;
+  if (m.fault_class != "none" && !m.fault_class.empty()) out += " (" + m.fault_class + ")";
+  if (m.outcome != m.expect) out += ", expected " + m.expect;
+  return out;
+}
 }  // namespace
+
+bool GoodnessGrid::Known(int i, int j) const {
+  if (i < 0 || j < 0 || i >= width || j >= height) return false;
+  const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(i);
+  return k < flags.size() && (flags[k] & 1) != 0;
+}
+
+int GoodnessGrid::CellAt(double x, double y) const {
+  if (!(resolution > 0)) return -1;
+  const double fi = std::floor((x - origin_x) / resolution);
+  const double fj = std::floor((y - origin_y) / resolution);
+  if (!(fi >= 0 && fj >= 0 && fi < width && fj < height)) return -1;
+  return static_cast<int>(fj) * width + static_cast<int>(fi);
+}
 
 nlohmann::json ToJson(const RunResult& r) {
   nlohmann::json j;
@@ -94,6 +161,7 @@ nlohmann::json ToJson(const RunResult& r) {
   j["truth_track"] = r.truth_track;
   j["estimate_track"] = r.estimate_track;
   j["odometry_only_track"] = r.odometry_only_track;
+  if (r.mobility) j["mobility"] = MobilityToJson(*r.mobility);
   return j;
 }
 
@@ -139,6 +207,7 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
     r.odometry_only_track =
         j.value("odometry_only_track", std::vector<std::array<double, 3>>{});
+    if (j.contains("mobility")) r.mobility = MobilityFromJson(j.at("mobility"));
     return r;
   } catch (const nlohmann::json::exception& e) {
     return InvalidArgument(std::string("result.json: ") + e.what());
@@ -267,11 +336,20 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
   std::snprintf(buf, sizeof buf, "%-8s %-6s %9s %9s %9s  %s\n", "seed", "result", "dist m",
                 "sim s", "wall s", "failure");
   o << buf;
+  std::map<std::string, int> outcomes;  // mobility tasks: "NOPATH (goal error)" -> runs
   for (const auto& r : runs) {
     std::snprintf(buf, sizeof buf, "%-8u %-6s %9.2f %9.1f %9.1f  %s\n", r.seed,
                   r.pass ? "PASS" : "FAIL", r.distance_driven, r.sim_time_s, r.wall_time_s,
                   r.failure.c_str());
     o << buf;
+    if (r.mobility) {
+      const std::string text = OutcomeText(*r.mobility);
+      ++outcomes[r.mobility->outcome +
+                 (r.mobility->fault_class == "none" || r.mobility->fault_class.empty()
+                      ? ""
+                      : " (" + r.mobility->fault_class + ")")];
+      o << "         " << r.mobility->task << ": " << text << "\n";
+    }
   }
   std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)", s.scenario.c_str(), s.passed,
                 s.runs, 100.0 * s.pass_rate);
@@ -287,6 +365,11 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
     o << "\n";
   }
   for (const auto& i : ignored) o << "ignored: " << i << "\n";
+  if (!outcomes.empty()) {
+    o << "outcomes:";
+    for (const auto& [name, n] : outcomes) o << " " << name << " x" << n << ";";
+    o << "\n";
+  }
   o << "\n";
   std::snprintf(buf, sizeof buf, "%-36s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
                 "worst");

@@ -125,6 +125,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   run_loop.Pump();
   result.sim_time_s = run_loop.now();
   ScoreRun(*judge, (*recorder)->Figures(), &result, &failure);
+  AddMobilityFigures(scenario, prepared.world, &result, &failure);
   return finish(failure);
 }
 

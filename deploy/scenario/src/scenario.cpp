@@ -35,7 +35,8 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "criteria",
                                   {"target", "heading", "max_tilt_deg", "traversable_height",
                                    "max_estimate_error", "max_estimate_error_percent",
-                                   "max_estimate_heading_error_deg", "min_distance"},
+                                   "max_estimate_heading_error_deg", "min_distance",
+                                   "max_hazard_contacts"},
                                   c));
   if (const YAML::Node t = n["target"]) {
     ROVER_RETURN_IF_ERROR(CheckKeys(t, "criteria.target", {"x", "y", "tolerance"}, c));
@@ -77,13 +78,23 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
   if (has) cr->max_estimate_heading_error = v * kDegToRad;
   ROVER_RETURN_IF_ERROR(OptionalNumber(n, "min_distance", "criteria", 0, 1e5, c, &v, &has));
   if (has) cr->min_distance = v;
+  ROVER_RETURN_IF_ERROR(OptionalNumber(n, "max_hazard_contacts", "criteria", 0, 1e6, c, &v, &has));
+  if (has) {
+    if (v != std::floor(v)) {
+      return c.At(n["max_hazard_contacts"], "criteria.max_hazard_contacts: " +
+                                                yaml::ScalarText(n["max_hazard_contacts"]) +
+                                                " is not a whole number");
+    }
+    cr->max_hazard_contacts = static_cast<int>(v);
+  }
   return cr->Validate();
 }
 
 }  // namespace
 
 const std::vector<std::string>& SimulatorSections() {
-  static const std::vector<std::string> k = {"terrain", "lander", "science_targets"};
+  static const std::vector<std::string> k = {"terrain", "terrain_features", "lander",
+                                             "science_targets"};
   return k;
 }
 

@@ -25,6 +25,49 @@ struct StepResult {
   double sim_start_s = 0, sim_end_s = 0;
 };
 
+/// The last apl/goodness_map of a run (GESTALT's 8-bit cells), for the judge and the map plot.
+/// Cell (i, j) covers x in [origin_x + i r, origin_x + (i+1) r), y likewise; index j * width + i.
+struct GoodnessGrid {
+  double origin_x = 0, origin_y = 0;  ///< [m] site frame
+  double resolution = 0.2;            ///< [m]
+  int width = 0, height = 0;          ///< cells
+  std::uint8_t unknown_goodness = 0;
+  std::vector<std::uint8_t> goodness;  ///< 0 = obstacle, 255 = perfect
+  std::vector<std::uint8_t> flags;     ///< bit 0 known, bit 1 border of unknown, bit 2 FOV edge
+  bool Known(int i, int j) const;
+  /// Index of the cell holding site point (x, y); -1 outside the grid.
+  int CellAt(double x, double y) const;
+};
+
+/// One decision of arc voting (apl/arc_votes): where the rover was and what it chose.
+struct ChosenArc {
+  double x = 0, y = 0, yaw = 0;  ///< [m], [rad] pose the votes were computed from
+  bool point_turn = false;
+  double curvature = 0;   ///< [1/m] arcs
+  int direction = 1;      ///< arcs: +1 forward, -1 backward
+  double turn_angle = 0;  ///< [rad] point turns
+};
+
+/// The mobility manager's verdict on the run's command (mobility tasks only).
+struct MobilityOutcome {
+  std::string task;         ///< "autonav", "goto_waypoint", "guarded", "guarded_arc"
+  std::string mode;         ///< the IDL mode ("autonav_visodom", ...)
+  std::string expect;       ///< what the scenario expects ("reached", "NOPATH", ...)
+  std::string outcome;      ///< what happened: "reached", a fault code, or "none" (no verdict)
+  std::string state;        ///< "succeeded", "failed", "rejected", "interrupted"
+  std::string fault;        ///< fault code name, "NONE" when there was none
+  std::string fault_class;  ///< "none", "goal error", "motion error"
+  std::string message;
+  double distance_to_goal = -1;  ///< [m] as the service reported it
+  std::uint32_t steps = 0, images = 0;
+  double sim_start_s = 0, sim_end_s = 0;  ///< [s] command sent, terminal status heard
+  /// Not in result.json (map.png shows them): the last goodness map and every decision.
+  std::optional<GoodnessGrid> last_map;
+  std::vector<ChosenArc> arcs;
+  /// The command's keep-out zones (site frame [m]), for the judge; not in result.json.
+  std::vector<std::vector<Eigen::Vector2d>> keep_out;
+};
+
 struct RunResult {
   std::string scenario;
   std::uint32_t seed = 0;
@@ -53,6 +96,8 @@ struct RunResult {
   std::vector<std::array<double, 3>> truth_track;     ///< t, x, y
   std::vector<std::array<double, 3>> estimate_track;  ///< t, x, y
   std::vector<std::array<double, 3>> odometry_only_track;  ///< t, x, y (dl/pose_odometry)
+  /// Set by the mobility tasks (autonav, goto_waypoint, guarded, guarded_arc).
+  std::optional<MobilityOutcome> mobility;
 };
 
 nlohmann::json ToJson(const RunResult& r);

@@ -49,6 +49,12 @@ class Recorder {
     return Status::Ok();
   }
 
+  /// The run's mobility outcome (RunResult::mobility), made empty on first use; a mobility task
+  /// fills it, and its Record callbacks may keep writing to it while the run goes.
+  MobilityOutcome& Mobility() {
+    if (!result_->mobility) result_->mobility.emplace();
+    return *result_->mobility;
+  }
   /// A figure (measured, not judged) for result.json, listed after the judge's own.
   void AddFigure(sim::Criterion figure) { added_figures_.push_back(std::move(figure)); }
   /// The recorder's figures: dl/pose's rejected-measurement count (when dl/pose was heard), then
