@@ -201,6 +201,16 @@ SessionStats BusRecorder::Snapshot() const {
   return session_->stats();
 }
 
+std::int64_t BusRecorder::RunClockNs() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return clock_.Now();
+}
+
+bool BusRecorder::clock_valid() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return clock_.mode() == LogClock::Mode::kWall || clock_.heard_clock();
+}
+
 std::vector<std::string> BusRecorder::topics() const {
   std::lock_guard<std::mutex> lock(mu_);
   std::vector<std::string> out;

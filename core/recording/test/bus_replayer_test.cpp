@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <thread>
 
 #include "recording_test_util.hpp"
@@ -92,18 +93,18 @@ TEST_F(BusReplayerTest, RepublishesInOrderWithTheRecordedClock) {
   ASSERT_TRUE(plan.ok()) << plan.status().message();
   EXPECT_TRUE(plan->clock_recorded);
 
+  // Keep-last 1 readers, taken on this thread while the replay runs on another.
   auto pose_r = dds::Reader<rover_dl_PoseEstimate>::Create(service_, "dl/pose");
   auto clock_r = dds::Reader<rover_sim_Clock>::Create(service_, "sim/clock");
   ASSERT_TRUE(pose_r.ok() && clock_r.ok());
-  // Keep-last 1 readers: take at the replay's pace on this thread while it runs on another.
   std::vector<double> xs;
   std::vector<std::int64_t> clocks;
   std::atomic<bool> done{false};
   Result<ReplayReport> report = Internal("not run");
   std::thread t([&] {
     BusReplayOptions o;
-    o.rate = 1.0;
-    o.settle_s = 0.5;
+    o.rate = 0.5;  // 100 ms apart: room for a loaded machine to take each one
+    o.settle_s = 2.0;  // discovery of the replay's writers, also on a loaded machine
     report = ReplayOnBus(replay_, **reader, *plan, o);
     done = true;
   });
@@ -118,14 +119,19 @@ TEST_F(BusReplayerTest, RepublishesInOrderWithTheRecordedClock) {
   EXPECT_EQ(report->published.at("dl/pose"), 20u);
   EXPECT_EQ(report->published.at("sim/clock"), 20u);
   EXPECT_EQ(report->clock_ticks, 0u);
-  // 50 ms apart at rate 1: the reader sees every one, in order.
-  ASSERT_EQ(xs.size(), 20u);
-  for (int i = 0; i < 20; ++i) EXPECT_EQ(xs[i], i + 1);
+  // In order, ending on the last one. dl/pose is a state topic (keep-last 1, latest wins): a
+  // loaded machine may let one sample supersede another in the reader, so not every one need
+  // be seen, but most are.
+  ASSERT_FALSE(xs.empty());
+  EXPECT_TRUE(std::adjacent_find(xs.begin(), xs.end(), std::greater_equal<double>()) == xs.end())
+      << ::testing::PrintToString(xs);
+  EXPECT_EQ(xs.back(), 20.0);
+  EXPECT_GE(xs.size(), 15u) << ::testing::PrintToString(xs);
   ASSERT_FALSE(clocks.empty());
   EXPECT_EQ(clocks.back(), 20 * 50'000'000LL);
   EXPECT_TRUE(std::is_sorted(clocks.begin(), clocks.end()));
-  // Rate 1 takes about the recording's span (0.95 s); it is paced, not instant.
-  EXPECT_GT(report->wall_s, 0.5);
+  // Rate 0.5 takes about twice the recording's span (0.95 s); it is paced, not instant.
+  EXPECT_GT(report->wall_s, 1.5);
 }
 
 TEST_F(BusReplayerTest, MakesUpTheClockWhenTheRecordingHasNone) {

@@ -70,4 +70,32 @@ std::vector<sim::Criterion> Recorder::Figures() const {
   return out;
 }
 
+Result<std::unique_ptr<recording::BusRecorder>> StartRunRecording(
+    const dds::Participant& participant, const Scenario& scenario, std::uint32_t seed,
+    const std::string& run_dir, int domain, const std::map<std::string, std::string>& qos) {
+  if (!scenario.record.enabled) return std::unique_ptr<recording::BusRecorder>();
+  recording::BusRecorderOptions o;
+  o.record = scenario.record;
+  if (o.record.path.empty()) o.record.path = DefaultRunRecording().path;
+  if (o.record.path.front() != '/') o.record.path = run_dir + "/" + o.record.path;
+  o.clock = recording::LogClock::Mode::kSim;
+  o.qos_overrides = qos;
+  o.metadata = {{"scenario", scenario.name},
+                {"scenario_file", scenario.file},
+                {"seed", std::to_string(seed)},
+                {"domain", std::to_string(domain)},
+                {"recorder", "roverctl run"}};
+  ROVER_ASSIGN_OR_RETURN(auto recorder, recording::BusRecorder::Create(participant, o));
+  ROVER_RETURN_IF_ERROR(recorder->Start());
+  return recorder;
+}
+
+std::string FinishRunRecording(recording::BusRecorder* recorder) {
+  if (recorder == nullptr) return "";
+  const recording::RecordingReport report = recorder->Stop();
+  if (report.status.ok()) return "";
+  return "recording failed: " + report.status.message() + "; " + report.path + " is incomplete";
+}
+
 }  // namespace rover::deploy::runner
+

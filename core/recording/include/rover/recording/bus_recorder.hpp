@@ -67,7 +67,12 @@ class BusRecorder {
   Status health() const;
   /// The counts so far. Thread-safe.
   SessionStats Snapshot() const;
-  /// The topics it records, in catalog order.
+  /// [ns] the run clock as the recorder sees it now (its log time for a sample taken now); in
+  /// sim mode 0 until the first sim/clock sample. Thread-safe.
+  std::int64_t RunClockNs() const;
+  /// False in sim mode until a sim/clock sample has arrived. Thread-safe.
+  bool clock_valid() const;
+  /// The topics it records, in catalog order (sim/clock first).
   std::vector<std::string> topics() const;
   const std::string& path() const { return options_.record.path; }
 

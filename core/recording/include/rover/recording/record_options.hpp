@@ -5,7 +5,7 @@
 ///
 ///   record:                  # or `record: false` (off) / `record: true` (all defaults)
 ///     path: run.mcap         # the file (compose: default <state>/<project>/recording.mcap;
-///                            # scenario: inside the run folder, default recording.mcap)
+///                            # scenario: inside the run folder, default run.mcap)
 ///     topics: ["ddl/*", "dl/*"]   # globs to include; default every catalog topic
 ///     exclude: ["hw/camera_frame"]  # globs to leave out
 ///     size_cap_mb: 500       # the file never grows past this [MB = 10^6 bytes]; 0 = no cap
