@@ -34,7 +34,10 @@ std::vector<int> ProcessesWithProjectPrefix(const std::string& prefix) {
 
 class ScenarioE2e : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = testing::MakeTempDir("scenario-e2e"); }
+  void SetUp() override {
+    testing::UseLoopbackDds();  // roverctl inherits it, whatever the shell exported
+    dir_ = testing::MakeTempDir("scenario-e2e");
+  }
   void TearDown() override {
     for (int pid : ProcessesWithProjectPrefix("short-drive")) kill(pid, SIGKILL);
     std::error_code ec;

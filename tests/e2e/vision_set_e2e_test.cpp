@@ -19,6 +19,7 @@ namespace rover {
 namespace {
 
 TEST(VisionSetE2e, RangeRequestOnSimulatorImagesGivesTheGround) {
+  testing::UseLoopbackDds();  // for roverctl and for this process, whatever the shell exported
   const std::string dir = testing::MakeTempDir("vision-e2e");
   SpawnOptions o;
   o.argv = {testing::BinDir() + "/roverctl", "up",
@@ -47,8 +48,9 @@ TEST(VisionSetE2e, RangeRequestOnSimulatorImagesGivesTheGround) {
   const int domain = state.value("domain", -1);
   ASSERT_GE(domain, 0);
 
-  auto participant = dds::Participant::Create(domain);
-  ASSERT_TRUE(participant.ok());
+  // The test's own participant joins the set's domain with the set's (loopback) configuration.
+  auto participant = testing::JoinDomain(domain);
+  ASSERT_TRUE(participant.ok()) << participant.status().message();
   auto req_w = dds::Writer<rover_dl_RangeRequest>::Create(*participant, "dl/range_request");
   auto range_r = dds::Reader<rover_dl_RangeImage>::Create(*participant, "dl/range_image");
   ASSERT_TRUE(req_w.ok() && range_r.ok());

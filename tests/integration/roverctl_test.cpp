@@ -45,7 +45,7 @@ class RoverctlTest : public ::testing::Test {
   void SetUp() override {
     dir_ = testing::MakeTempDir("roverctl-test");
     state_root_ = dir_ + "/state";
-    setenv("CYCLONEDDS_URI", dds::LoopbackConfigUri(testing::SourceDir()).c_str(), 1);
+    testing::UseLoopbackDds();
   }
   void TearDown() override {
     for (auto& p : running_) p.Terminate(std::chrono::seconds(10));

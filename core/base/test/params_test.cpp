@@ -141,5 +141,13 @@ TEST(Params, DidYouMeanNamesTheClosestWithinTwoEdits) {
   EXPECT_EQ(DidYouMean("x", {}), "");
 }
 
+TEST(Params, DidYouMeanSuggestsOnlyCloseNames) {
+  const std::vector<std::string> known = {"probability", "duration_s", "start_s"};
+  EXPECT_EQ(DidYouMean("probabilty", known), " (did you mean 'probability'?)");
+  EXPECT_EQ(DidYouMean("start", known), " (did you mean 'start_s'?)");
+  EXPECT_EQ(DidYouMean("colour", known), "");
+  EXPECT_EQ(DidYouMean("x", {}), "");
+}
+
 }  // namespace
 }  // namespace rover

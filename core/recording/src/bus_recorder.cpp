@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "rover/base/clock.hpp"
-#include "rover/idl/type_table.hpp"
+#include "rover/runtime/topic_catalog.hpp"
 #include "rover/runtime/topic_catalog.hpp"
 
 namespace rover::recording {
@@ -54,7 +54,7 @@ Result<std::unique_ptr<BusRecorder>> BusRecorder::Create(const dds::Participant&
     const bool is_clock = t.name == kClockTopic;
     const bool recorded = options.record.topics.Selects(t.name);
     if (!recorded && !(is_clock && options.clock == LogClock::Mode::kSim)) continue;
-    const dds_topic_descriptor_t* desc = idl::FindTopicDescriptor(t.type_name);
+    const dds_topic_descriptor_t* desc = dds::DescriptorForType(t.type_name);
     if (desc == nullptr) {
       return Internal("catalog topic '" + std::string(t.name) + "' has type " +
                       std::string(t.type_name) + ", which has no topic descriptor in this build");

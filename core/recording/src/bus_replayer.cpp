@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "rover/base/clock.hpp"
-#include "rover/idl/type_table.hpp"
+#include "rover/runtime/topic_catalog.hpp"
 #include "rover/mcap/info.hpp"
 #include "rover/recording/cdr.hpp"
 #include "rover/runtime/raw_sample.hpp"
@@ -20,7 +20,7 @@ Result<dds::RawWriter> MakeWriter(const dds::Participant& p, const std::string& 
                                   const std::map<std::string, std::string>& overrides) {
   const auto info = dds::FindTopic(topic);
   if (!info) return InvalidArgument("topic '" + topic + "' is not in the topic catalog");
-  const dds_topic_descriptor_t* desc = idl::FindTopicDescriptor(info->type_name);
+  const dds_topic_descriptor_t* desc = dds::DescriptorForType(info->type_name);
   if (desc == nullptr) {
     return Internal("no topic descriptor for " + std::string(info->type_name));
   }

@@ -137,9 +137,10 @@ class EveryOtherSeam : public TopicSeam {
     copy.command_id += 1000;
     return dds_write(writer, &copy);
   }
-  bool OnRead(void* sample, const dds_topic_descriptor_t*) override {
+  void OnRead(void* sample, const dds_sample_info_t& info, const dds_topic_descriptor_t*,
+              SampleSink& out) override {
     static_cast<rover_dl_DriveCommand*>(sample)->distance *= 2;
-    return true;
+    out.Deliver(sample, info);
   }
   std::atomic<int> n_{0};
 };

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "rover/idl/type_table.hpp"
+#include "rover/runtime/topic_catalog.hpp"
 #include "rover/testing/test_support.hpp"
 
 namespace rover::dds {
@@ -27,7 +27,7 @@ class RawSampleTest : public ::testing::Test {
 
 TEST(TypeTable, EveryCatalogTypeHasItsDescriptorAndScopedName) {
   for (const auto& t : TopicCatalog()) {
-    const dds_topic_descriptor_t* d = idl::FindTopicDescriptor(t.type_name);
+    const dds_topic_descriptor_t* d = dds::DescriptorForType(t.type_name);
     ASSERT_NE(d, nullptr) << t.name;
     // rover_dl_PoseEstimate -> rover::dl::PoseEstimate
     std::string scoped(t.type_name);
@@ -35,12 +35,12 @@ TEST(TypeTable, EveryCatalogTypeHasItsDescriptorAndScopedName) {
     scoped.replace(scoped.find('_'), 1, "::");
     EXPECT_EQ(std::string(d->m_typename), scoped) << t.name;
   }
-  EXPECT_EQ(idl::FindTopicDescriptor("rover_dl_Nothing"), nullptr);
+  EXPECT_EQ(dds::DescriptorForType("rover_dl_Nothing"), nullptr);
 }
 
 TEST_F(RawSampleTest, TypedToRawToRawToTypedKeepsTheBytes) {
   auto typed_w = Writer<rover_dl_PoseEstimate>::Create(participant_, "dl/pose");
-  const auto* desc = idl::FindTopicDescriptor("rover_dl_PoseEstimate");
+  const auto* desc = dds::DescriptorForType("rover_dl_PoseEstimate");
   auto raw_r = RawReader::Create(participant_, "dl/pose", desc, QosProfile::kState);
   ASSERT_TRUE(typed_w.ok() && raw_r.ok()) << raw_r.status().message();
   ASSERT_TRUE(testing::WaitFor([&] { return raw_r->MatchedWriters() == 1; }));
@@ -107,7 +107,7 @@ TEST_F(RawSampleTest, KeyedLatchedTopicsAndKeepAllHistory) {
     s.header.seq = id;
     ASSERT_TRUE(w->Write(s).ok());
   }
-  const auto* desc = idl::FindTopicDescriptor("rover_dl_DriveStatus");
+  const auto* desc = dds::DescriptorForType("rover_dl_DriveStatus");
   auto r = RawReader::Create(participant_, "dl/drive_status", desc, QosProfile::kLatched);
   ASSERT_TRUE(r.ok());
   std::size_t n = 0;
@@ -117,7 +117,7 @@ TEST_F(RawSampleTest, KeyedLatchedTopicsAndKeepAllHistory) {
   }));
   // A state (keep-last 1) topic: the raw reader keeps all 50 samples until taken.
   auto sw = Writer<rover_dl_PoseEstimate>::Create(participant_, "dl/pose");
-  auto sr = RawReader::Create(participant_, "dl/pose", idl::FindTopicDescriptor("rover_dl_PoseEstimate"),
+  auto sr = RawReader::Create(participant_, "dl/pose", dds::DescriptorForType("rover_dl_PoseEstimate"),
                               QosProfile::kState);
   ASSERT_TRUE(sw.ok() && sr.ok());
   ASSERT_TRUE(testing::WaitFor([&] { return sr->MatchedWriters() == 1; }));
@@ -135,7 +135,7 @@ TEST_F(RawSampleTest, KeyedLatchedTopicsAndKeepAllHistory) {
 }
 
 TEST_F(RawSampleTest, MalformedBytesAreRefusedAndNothingIsPublished) {
-  const auto* desc = idl::FindTopicDescriptor("rover_dl_PoseEstimate");
+  const auto* desc = dds::DescriptorForType("rover_dl_PoseEstimate");
   auto w = RawWriter::Create(participant_, "dl/pose", desc, QosProfile::kState);
   auto r = RawReader::Create(participant_, "dl/pose", desc, QosProfile::kState);
   ASSERT_TRUE(w.ok() && r.ok());

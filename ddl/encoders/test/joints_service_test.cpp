@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "rover/ddl/testing/service_harness.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -23,7 +23,6 @@ class JointsServiceTest : public ::testing::Test {
     telemetry_ = harness_->Writer<rover_hw_MotorTelemetry>("hw/motor_telemetry");
     pots_ = harness_->Writer<rover_hw_SuspensionPots>("hw/suspension_pots");
     joints_ = harness_->Reader<rover_ddl_JointState>("ddl/joint_state");
-    health_ = harness_->Reader<rover_sys_Heartbeat>("sys/health");
   }
   void TearDown() override { harness_.reset(); }
 
@@ -68,7 +67,6 @@ class JointsServiceTest : public ::testing::Test {
       }
       harness_->Spin();
       for (auto& s : joints_.Take()) states_.push_back(s.data());
-      for (auto& h : health_.Take()) health_log_.push_back(h.data());
     }
   }
 
@@ -78,11 +76,9 @@ class JointsServiceTest : public ::testing::Test {
   dds::Writer<rover_hw_MotorTelemetry> telemetry_;
   dds::Writer<rover_hw_SuspensionPots> pots_;
   dds::Reader<rover_ddl_JointState> joints_;
-  dds::Reader<rover_sys_Heartbeat> health_;
   Time now_ = Time::FromSeconds(1.0);
   int step_ = 0;
   std::vector<rover_ddl_JointState> states_;
-  std::vector<rover_sys_Heartbeat> health_log_;
 };
 
 TEST_F(JointsServiceTest, CountsBecomeRadiansAt50Hz) {
@@ -116,8 +112,8 @@ TEST_F(JointsServiceTest, CountsBecomeRadiansAt50Hz) {
   const std::size_t n = states_.size() - before;
   EXPECT_GE(n, 49u);
   EXPECT_LE(n, 51u);
-  ASSERT_FALSE(health_log_.empty());
-  EXPECT_EQ(health_log_.back().health, rover_HEALTH_OK);
+  ASSERT_FALSE(harness_->heartbeats().empty());
+  EXPECT_EQ(harness_->heartbeats().back().health, rover_HEALTH_OK);
 }
 
 TEST_F(JointsServiceTest, GoesStaleWhenInputsStopAndRecovers) {
@@ -134,10 +130,10 @@ TEST_F(JointsServiceTest, GoesStaleWhenInputsStopAndRecovers) {
   EXPECT_EQ(stale.header.stamp_ns, silence.ns);
   EXPECT_NEAR(stale.wheel_angle[0], WheelAngle(silence),
               1.0 / hw_.motors[hw::kDriveLF].CountsPerRad());
-  ASSERT_FALSE(health_log_.empty());
-  EXPECT_EQ(health_log_.back().health, rover_HEALTH_STALE);
-  EXPECT_NE(std::string(health_log_.back().message).find("s old"), std::string::npos)
-      << health_log_.back().message;
+  ASSERT_FALSE(harness_->heartbeats().empty());
+  EXPECT_EQ(harness_->heartbeats().back().health, rover_HEALTH_STALE);
+  EXPECT_NE(std::string(harness_->heartbeats().back().message).find("s old"), std::string::npos)
+      << harness_->heartbeats().back().message;
   Run(0.1);
   EXPECT_EQ(states_.back().health, rover_HEALTH_OK);
 }

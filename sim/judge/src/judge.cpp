@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "rover/hwconfig/rover_description.hpp"
+
 namespace rover::sim {
 namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
@@ -31,8 +33,9 @@ std::string Fmt1(const char* f, double a) {
 
 RoverFootprint RoverFootprint::MerDefault() {
   RoverFootprint f;
-  for (double x : {0.625, 0.0, -0.625}) {
-    for (double y : {0.5, -0.5}) f.wheels.emplace_back(x, y);
+  const hwconfig::RoverDescription rover;
+  for (double x : {rover.front_wheel_x, rover.middle_wheel_x, rover.rear_wheel_x}) {
+    for (double y : {rover.half_track, -rover.half_track}) f.wheels.emplace_back(x, y);
   }
   return f;
 }

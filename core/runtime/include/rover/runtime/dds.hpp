@@ -7,7 +7,7 @@
 /// factories return Result<>. Samples with sequences: a writer borrows the caller's memory
 /// (see BorrowSequence); a reader hands out Sample<T>, which owns what DDS allocated.
 ///
-/// Every Writer<T>::Write and Reader<T>::Take passes through the fault seam (seam.hpp).
+/// Every Writer<T>::Write and Reader<T>::Take / TakeEach passes through the fault seam (seam.hpp).
 
 #include <dds/dds.h>
 
@@ -82,6 +82,19 @@ Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
                                  const dds_topic_descriptor_t* desc, QosProfile profile);
 Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
                                     bool writer);
+/// Deep-copies a sample of `type` into `dst` (zeroed), which then owns its buffers
+/// (type_layout.hpp); dds_sample_free(dst, type, DDS_FREE_CONTENTS) frees them.
+void CopySample(void* dst, const void* src, const dds_topic_descriptor_t* type);
+/// A SampleSink that calls a callable.
+template <class F>
+class SinkOf final : public SampleSink {
+ public:
+  explicit SinkOf(F& f) : f_(f) {}
+  void Deliver(const void* sample, const dds_sample_info_t& info) override { f_(sample, info); }
+
+ private:
+  F& f_;
+};
 }  // namespace internal
 
 /// A sample taken from a reader, owning its contents (sequences, unbounded strings).
@@ -155,8 +168,9 @@ class Writer {
   /// Publishes one sample (through the fault seam, if any).
   Status Write(const T& sample) {
     ROVER_DEMAND(writer_.valid());
-    dds_return_t rc = seam_ ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
-                            : dds_write(writer_.handle(), &sample);
+    dds_return_t rc = seam_ && !seam_->Idle()
+                          ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
+                          : dds_write(writer_.handle(), &sample);
     if (rc < 0) return DdsError("write on " + name_, rc);
     return Status::Ok();
   }
@@ -172,6 +186,8 @@ class Writer {
   QosProfile profile() const { return profile_; }
   dds_entity_t handle() const { return writer_.handle(); }
   bool valid() const { return writer_.valid(); }
+  /// The fault seam samples pass through (nullptr when injection is off).
+  TopicSeam* seam() const { return seam_.get(); }
 
  private:
   Entity writer_;
@@ -204,7 +220,8 @@ class Reader {
   }
 
   /// Calls `fn(const Sample<T>&)` for every sample with valid data, oldest first, on memory
-  /// DDS lends (no copy); passes each through the fault seam. Returns the number delivered.
+  /// DDS lends (no copy); passes each through the fault seam, and first hands out the samples
+  /// the seam held back that are now due. Returns the number delivered.
   template <class F>
   std::size_t TakeEach(F&& fn) {
     ROVER_DEMAND(reader_.valid());
@@ -212,15 +229,23 @@ class Reader {
     void* ptrs[kBatch];
     dds_sample_info_t infos[kBatch];
     std::size_t delivered = 0;
+    auto deliver = [&](const void* p, const dds_sample_info_t& info) {
+      ++delivered;
+      fn(Sample<T>(static_cast<const T*>(p), &info));
+    };
+    internal::SinkOf<decltype(deliver)> sink(deliver);
+    if (seam_ && seam_->Holding()) seam_->ReleaseDue(sink);
     while (true) {
       ptrs[0] = nullptr;  // ask DDS to lend its buffers
       const dds_return_t n = dds_take(reader_.handle(), ptrs, infos, kBatch, kBatch);
       if (n <= 0) break;
       for (dds_return_t i = 0; i < n; ++i) {
         if (!infos[i].valid_data) continue;
-        if (seam_ && !seam_->OnRead(ptrs[i], TopicType<T>::Descriptor())) continue;
-        ++delivered;
-        fn(Sample<T>(static_cast<const T*>(ptrs[i]), &infos[i]));
+        if (seam_ && !seam_->Idle()) {
+          seam_->OnRead(ptrs[i], infos[i], TopicType<T>::Descriptor(), sink);
+        } else {
+          deliver(ptrs[i], infos[i]);
+        }
       }
       dds_return_loan(reader_.handle(), ptrs, n);
       if (static_cast<std::size_t>(n) < kBatch) break;
@@ -229,24 +254,44 @@ class Reader {
   }
 
   /// Takes up to `max` samples with valid data, oldest first, as owned copies (through the fault
-  /// seam, if any). Buffers are pooled: only samples actually taken cost an allocation.
+  /// seam, if any, after the held-back samples that are due). Buffers are pooled: only samples
+  /// actually taken cost an allocation.
   std::vector<OwnedSample<T>> Take(std::size_t max = 32) {
     ROVER_DEMAND(reader_.valid() && max > 0);
     if (pool_.size() < max) pool_.resize(max);
     std::vector<void*> ptrs(max);
     std::vector<dds_sample_info_t> infos(max);
+    std::vector<OwnedSample<T>> out;
+    std::size_t current = max;  // the pool slot being passed through the seam
+    auto deliver = [&](const void* p, const dds_sample_info_t& info) {
+      if (current < max && p == &pool_[current].data()) {  // the taken sample itself
+        pool_[current].mutable_info() = info;
+        out.push_back(std::move(pool_[current]));
+        pool_[current] = OwnedSample<T>();
+        current = max;
+      } else {  // a copy the seam made: deep-copy it into a sample of our own
+        OwnedSample<T> copy;
+        internal::CopySample(&copy.data(), p, TopicType<T>::Descriptor());
+        copy.mutable_info() = info;
+        out.push_back(std::move(copy));
+      }
+    };
+    internal::SinkOf<decltype(deliver)> sink(deliver);
+    if (seam_ && seam_->Holding()) seam_->ReleaseDue(sink);
     for (std::size_t i = 0; i < max; ++i) ptrs[i] = &pool_[i].data();
     const dds_return_t n = dds_take(reader_.handle(), ptrs.data(), infos.data(), max,
                                     static_cast<uint32_t>(max));
-    std::vector<OwnedSample<T>> out;
     if (n <= 0) return out;
-    out.reserve(static_cast<std::size_t>(n));
+    out.reserve(out.size() + static_cast<std::size_t>(n));
     for (dds_return_t i = 0; i < n; ++i) {
       if (!infos[i].valid_data) continue;
-      if (seam_ && !seam_->OnRead(&pool_[i].data(), TopicType<T>::Descriptor())) continue;
-      pool_[i].mutable_info() = infos[i];
-      out.push_back(std::move(pool_[i]));
-      pool_[i] = OwnedSample<T>();
+      current = static_cast<std::size_t>(i);
+      if (seam_ && !seam_->Idle()) {
+        seam_->OnRead(&pool_[current].data(), infos[i], TopicType<T>::Descriptor(), sink);
+      } else {
+        deliver(&pool_[current].data(), infos[i]);
+      }
+      current = max;
     }
     return out;
   }
@@ -262,6 +307,8 @@ class Reader {
   QosProfile profile() const { return profile_; }
   dds_entity_t handle() const { return reader_.handle(); }
   bool valid() const { return reader_.valid(); }
+  /// The fault seam samples pass through (nullptr when injection is off).
+  TopicSeam* seam() const { return seam_.get(); }
 
  private:
   Entity reader_;

@@ -5,8 +5,8 @@
 /// 4-byte CDR encapsulation header and the payload, exactly what a typed reader would have
 /// deserialised), and replay publishes recorded bytes as they are.
 ///
-/// Both create the topic with the type's idlc descriptor (rover/idl/type_table.hpp finds it by C
-/// type name), so they match typed endpoints of the same topic on type name and type
+/// Both create the topic with the type's idlc descriptor (dds::DescriptorForType in
+/// rover/runtime/topic_catalog.hpp finds it by C type name), so they match typed endpoints of the same topic on type name and type
 /// information alike. The writer hands Cyclone the bytes through dds_writecdr: Cyclone checks
 /// them against the type as it would a sample from the network (a malformed sample is refused
 /// with an error, nothing is published). Neither passes through the fault seam: they carry

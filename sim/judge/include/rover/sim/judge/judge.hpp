@@ -47,7 +47,8 @@ struct RoverFootprint {
   double wheel_contact_radius = 0.10;   ///< [m] half the wheel width plus margin
   Eigen::Vector2d belly_min{-0.45, -0.35}, belly_max{0.45, 0.35};  ///< [m] belly box
   double belly_clearance = 0.30;        ///< [m] rocks taller than this hit the belly
-  /// MER-like defaults: wheelbase 1.25 m (front/rear +-0.625 m, middle at 0), track 1.0 m.
+  /// The default rover description's wheel centres (wheelbase 1.25 m, track 1.0 m); the
+  /// contact radius, belly box and clearance above are the judge's own (with margins).
   static RoverFootprint MerDefault();
 };
 

@@ -1,0 +1,86 @@
+#pragma once
+/// @file
+/// GestaltOptions: every parameter of terrain assessment and path selection, with MER's values
+/// as defaults where the seeds give one (seed 002 Table 1 "Example GESTALT Parameters", seed
+/// 000's MER flight values, seed 003's nominal hazard limits); README.md has the table with the
+/// source of each. Declared once for parameter files with BindParams (keys carry their unit:
+/// `max_tilt_deg`, `cell_size_m`); Validate() checks ranges and cross-field rules and its
+/// messages start with the member's name (so ReadParams reports them against the key).
+///
+/// Units: metres, radians in members (degrees in keys that say `_deg`), goodness and certainty
+/// 0..255 (MER's 8-bit values).
+
+#include <numbers>
+
+#include "rover/base/param_binder.hpp"
+#include "rover/base/status.hpp"
+
+namespace rover::apl::gestalt {
+
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+
+struct GestaltOptions {
+  // ---- grid ------------------------------------------------------------------------------
+  double cell_size = 0.2;           ///< [m] cell side (MER 0.2 m, the size of a hazardous rock)
+  double map_size = 10.0;           ///< [m] side of the square grid that follows the rover
+  double forget_radius = 5.0;       ///< [m] data farther than this from the rover is dropped
+  double max_point_distance = 5.0;  ///< [m] points farther (horizontally) from the rover unused
+  int min_cell_points = 2;          ///< points a cell needs to count as covered
+  double min_coverage = 0.5;        ///< share of a rover disc's cells that must be covered
+
+  // ---- filters -----------------------------------------------------------------------------
+  double rover_disc_diameter = 2.6;    ///< [m] the rover modelled by its turn-in-place disc
+  double step_disc_diameter = 0.8;     ///< [m] belly-sized disc the step search runs in
+  double step_sigma_k = 1.0;           ///< cell top = mean + k sigma (tall thin obstacles)
+  double step_safe = 0.2 / 3.0;        ///< [m] steps up to this are perfect (255)
+  double max_step = 0.20;              ///< [m] steps from this on are obstacles (0)
+  double tilt_safe = 5.0 * kDeg;       ///< [rad] tilts up to this are perfect
+  double max_tilt = 20.0 * kDeg;       ///< [rad] tilts from this on are obstacles
+  double roughness_safe = 0.07 / 3.0;  ///< [m] fit residuals up to this are perfect
+  double max_roughness = 0.07;         ///< [m] fit residuals from this on are obstacles
+  double eigen_ratio = 2.0;            ///< middle / smallest eigenvalue a planar fit needs
+  /// Fit discs to the latest scan's points only (MER's per-image assessment) instead of the
+  /// merged map (newest data per cell, older data where the scan has none).
+  bool fit_from_scan_only = false;
+
+  // ---- merging -----------------------------------------------------------------------------
+  int fov_edge_band_px = 2;       ///< [px] band inside the image footprint's outline = FOV edge
+  int fov_edge_margin_cells = 1;  ///< goodness within this many cells of an edge cell is merged
+                                  ///< conservatively (min of old and new)
+  int num_layers = 7;             ///< layered goodness maps (1 = a single map, no layering)
+  int unknown_goodness = 11;      ///< value of an unknown cell
+  int unknown_certainty = 0;
+  int border_goodness = 250;  ///< cap on a known cell next to an unknown one
+  int border_certainty = 128;
+
+  // ---- arcs and votes ----------------------------------------------------------------------
+  double max_curvature = 1.0;  ///< [1/m] tightest arc (1 m turning radius)
+  int num_forward_arcs = 23;
+  int num_backward_arcs = 23;
+  int num_point_turns = 23;       ///< turns in place, evenly spaced over the full circle
+  double plan_min_dist = 0.3;     ///< [m] paths are evaluated from this arc length on
+  double plan_max_dist = 3.0;     ///< [m] ... up to this (or the goal distance, if shorter)
+  double path_half_width = 0.15;  ///< [m] cells whose centre is this close to the path count
+  double near_weight = 2.0;       ///< weight of a path cell at the rover / at plan_max_dist
+  int min_allowed_goodness = 10;  ///< a path over a cell below this is forbidden
+  int min_vote_goodness = 26;     ///< below this, merging takes the minimum of the two votes
+  int waypoint_certainty = 192;
+  int waypoint_peak_toward = 255;  ///< waypoint vote of the best arc in the goal's direction
+  int waypoint_peak_away = 128;    ///< ... in the other direction (and of turns normally)
+  double arc_vote_variance = 3.2;  ///< [1/m^2] variance of the waypoint Gaussian over curvature
+  double turn_vote_variance = 97.0 * kDeg * kDeg;  ///< [rad^2] ... over turn angle
+  double backup_vote_scale = 0.5;                  ///< back-up (K-turn) votes are scaled by this
+  int min_fwd_threshold = 180;      ///< best forward vote below this: image the rear as well
+  int skip_imaging_goodness = 200;  ///< all paths' hazard votes at or above: imaging may skip
+
+  /// Cells from a cell's centre to the edge of its rover disc (6.5 at MER's values).
+  double rover_disc_radius_cells() const { return 0.5 * rover_disc_diameter / cell_size; }
+  double step_disc_radius_cells() const { return 0.5 * step_disc_diameter / cell_size; }
+  /// Cells along each side of the grid.
+  int grid_cells() const;
+
+  Status Validate() const;
+  static void BindParams(ParamBinder<GestaltOptions>& b);
+};
+
+}  // namespace rover::apl::gestalt

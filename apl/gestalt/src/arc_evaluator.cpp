@@ -1,0 +1,218 @@
+#include "rover/apl/gestalt/arc_evaluator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "rover/apl/gestalt/arc_geometry.hpp"
+#include "rover/apl/nav_core/range_scan.hpp"
+#include "rover/base/range_check.hpp"
+
+namespace rover::apl::gestalt {
+namespace {
+
+using nav_core::ArcEvaluation;
+using nav_core::ArcRequest;
+using nav_core::Candidate;
+using nav_core::GoalMode;
+using nav_core::GoodnessMap;
+using nav_core::MotionKind;
+using nav_core::Vote;
+
+constexpr int kForward = 0, kBackward = 1, kTurns = 2;
+
+double WrapPi(double a) {
+  a = std::remainder(a, 2.0 * std::numbers::pi);  // [-pi, pi]
+  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
+}
+
+int Round255(double v) { return std::clamp(static_cast<int>(std::lround(v)), 0, 255); }
+
+Status CheckRequest(const ArcRequest& r) {
+  ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
+  ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.x", r.goal.x()));
+  ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.y", r.goal.y()));
+  return CheckNonNegative("ArcRequest.goal_tolerance", r.goal_tolerance, "m");
+}
+
+}  // namespace
+
+Vote MergeVotes(const Vote& hazard, const Vote& waypoint, int min_vote_goodness) {
+  if (hazard.goodness < min_vote_goodness || waypoint.goodness < min_vote_goodness ||
+      hazard.certainty + waypoint.certainty <= 0) {
+    return hazard.goodness <= waypoint.goodness ? hazard : waypoint;
+  }
+  const double sum = static_cast<double>(hazard.goodness) * hazard.certainty +
+                     static_cast<double>(waypoint.goodness) * waypoint.certainty;
+  return {Round255(sum / (hazard.certainty + waypoint.certainty)),
+          std::max(hazard.certainty, waypoint.certainty)};
+}
+
+int ChooseCandidate(const std::vector<Vote>& merged, const std::vector<int>& group) {
+  ROVER_DEMAND(merged.size() == group.size());
+  int best = 0;
+  for (const Vote& v : merged) best = std::max(best, v.goodness);
+  if (best <= 0) return -1;
+  int chosen = -1, best_len = 0;
+  const int n = static_cast<int>(merged.size());
+  for (int k = 0; k < n;) {
+    if (merged[static_cast<std::size_t>(k)].goodness != best) {
+      ++k;
+      continue;
+    }
+    int end = k + 1;
+    while (end < n && merged[static_cast<std::size_t>(end)].goodness == best &&
+           group[static_cast<std::size_t>(end)] == group[static_cast<std::size_t>(k)]) {
+      ++end;
+    }
+    const int len = end - k;
+    if (len > best_len) {
+      best_len = len;
+      chosen = k + (len - 1) / 2;
+    }
+    k = end;
+  }
+  return chosen;
+}
+
+Result<ArcEvaluator> ArcEvaluator::Create(const GestaltOptions& options) {
+  ROVER_RETURN_IF_ERROR(options.Validate());
+  return ArcEvaluator(options);
+}
+
+ArcEvaluator::ArcEvaluator(const GestaltOptions& options) : options_(options) {
+  auto add_arcs = [&](int count, int direction, int group) {
+    for (int a = 0; a < count; ++a) {
+      Candidate c;
+      c.kind = MotionKind::kArc;
+      c.direction = direction;
+      c.curvature = count == 1 ? 0.0 : options.max_curvature * (-1.0 + 2.0 * a / (count - 1));
+      candidates_.push_back(c);
+      groups_.push_back(group);
+    }
+  };
+  add_arcs(options.num_forward_arcs, 1, kForward);
+  add_arcs(options.num_backward_arcs, -1, kBackward);
+  std::vector<double> turns;
+  for (int t = 1; t <= options.num_point_turns; ++t) {
+    turns.push_back(WrapPi(2.0 * std::numbers::pi * t / (options.num_point_turns + 1)));
+  }
+  std::sort(turns.begin(), turns.end());
+  for (double a : turns) {
+    Candidate c;
+    c.kind = MotionKind::kPointTurn;
+    c.turn_angle = a;
+    candidates_.push_back(c);
+    groups_.push_back(kTurns);
+  }
+}
+
+PathVote ArcEvaluator::HazardVote(const GoodnessMap& map,
+                                  const std::vector<PathCell>& cells) const {
+  PathVote pv;
+  pv.cells = static_cast<int>(cells.size());
+  pv.all_known = !cells.empty();
+  double sw = 0.0, sg = 0.0, sc = 0.0;
+  bool forbidden = false;
+  for (const PathCell& c : cells) {
+    const nav_core::CellValue v = map.At(c.i, c.j);
+    if (!v.known()) pv.all_known = false;
+    if (v.goodness < options_.min_allowed_goodness) forbidden = true;
+    const double w =
+        1.0 + (options_.near_weight - 1.0) * std::max(0.0, 1.0 - c.s / options_.plan_max_dist);
+    sw += w;
+    sg += w * v.goodness;
+    sc += w * v.certainty;
+  }
+  if (forbidden) {
+    pv.vote = {0, 255};
+  } else if (sw > 0.0) {
+    pv.vote = {Round255(sg / sw), Round255(sc / sw)};
+  } else {
+    pv.vote = {map.unknown_goodness, map.unknown_certainty};
+  }
+  return pv;
+}
+
+Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
+                                             const ArcRequest& request) const {
+  ROVER_RETURN_IF_ERROR(CheckRequest(request));
+  const GestaltOptions& o = options_;
+  ArcEvaluation e;
+  e.candidates = candidates_;
+  const std::size_t n = candidates_.size();
+  e.hazard.assign(n, Vote{});
+  e.waypoint.assign(n, Vote{});
+  e.merged.assign(n, Vote{});
+
+  const Pose2 pose = PlanarPose(request.site_from_rover);
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  const double dx = request.goal.x() - pose.x, dy = request.goal.y() - pose.y;
+  const double gx = c * dx + s * dy, gy = -s * dx + c * dy;  // goal in the rover frame
+  e.distance_to_goal = std::hypot(gx, gy);
+  if (e.distance_to_goal <= request.goal_tolerance) {
+    e.mode = GoalMode::kReached;
+    return e;
+  }
+  const double k_goal = 2.0 * gy / (gx * gx + gy * gy);
+  const double bearing = std::atan2(gy, gx);
+  const bool backup = std::abs(k_goal) > o.max_curvature;
+  e.mode = backup ? GoalMode::kBackUp : GoalMode::kNormal;
+  const int toward_direction = gx >= 0.0 ? 1 : -1;
+  const double k_backup = (gy >= 0.0 ? -1.0 : 1.0) * o.max_curvature;
+  const double k_clamped = std::clamp(k_goal, -o.max_curvature, o.max_curvature);
+  const double length =
+      std::clamp(e.distance_to_goal, o.plan_min_dist + o.cell_size, o.plan_max_dist);
+
+  std::vector<PathCell> cells;
+  std::vector<PathVote> path_votes(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    Candidate& cand = e.candidates[k];
+    double peak = 0.0, exponent = 0.0;
+    if (cand.kind == MotionKind::kArc) {
+      cand.length = length;
+      SweptCells(map, pose, ArcPath{cand.curvature, cand.direction, o.plan_min_dist, length},
+                 o.path_half_width, &cells);
+      double centre = k_goal;
+      if (backup) {
+        centre = cand.direction < 0 ? k_backup : k_clamped;
+        peak = o.backup_vote_scale *
+               (cand.direction < 0 ? o.waypoint_peak_toward : o.waypoint_peak_away);
+      } else {
+        peak = cand.direction == toward_direction ? o.waypoint_peak_toward : o.waypoint_peak_away;
+      }
+      const double dk = cand.curvature - centre;
+      exponent = dk * dk / (2.0 * o.arc_vote_variance);
+    } else {
+      TurnCells(map, pose, o.path_half_width, &cells);
+      peak = backup ? o.waypoint_peak_toward : o.waypoint_peak_away;
+      const double da = WrapPi(cand.turn_angle - bearing);
+      exponent = da * da / (2.0 * o.turn_vote_variance);
+    }
+    path_votes[k] = HazardVote(map, cells);
+    e.hazard[k] = path_votes[k].vote;
+    e.waypoint[k] = {Round255(peak * std::exp(-exponent)), o.waypoint_certainty};
+    e.merged[k] = MergeVotes(e.hazard[k], e.waypoint[k], o.min_vote_goodness);
+  }
+  e.chosen = ChooseCandidate(e.merged, groups_);
+
+  int best_forward = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (groups_[k] == kForward) best_forward = std::max(best_forward, e.merged[k].goodness);
+  }
+  e.image_rear = best_forward < o.min_fwd_threshold;
+  if (e.chosen >= 0 && e.choice().kind == MotionKind::kArc) {
+    const int group = groups_[static_cast<std::size_t>(e.chosen)];
+    e.all_paths_safe = true;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (groups_[k] != group) continue;
+      if (!path_votes[k].all_known || e.hazard[k].goodness < o.skip_imaging_goodness) {
+        e.all_paths_safe = false;
+        break;
+      }
+    }
+  }
+  return e;
+}
+
+}  // namespace rover::apl::gestalt

@@ -1,0 +1,274 @@
+#include "rover/apl/gestalt/arc_evaluator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "test_maps.hpp"
+
+namespace rover::apl::gestalt {
+namespace {
+
+using nav_core::ArcEvaluation;
+using nav_core::ArcRequest;
+using nav_core::GoalMode;
+using nav_core::GoodnessMap;
+using nav_core::MotionKind;
+using nav_core::Vote;
+
+using testing::KnownMap;  // a 10 m map centred on the origin, every cell known
+void SetRect(GoodnessMap* m, double x0, double x1, double y0, double y1, int g, int c = 255,
+             std::uint8_t flags = nav_core::kCellKnown) {
+  for (int j = 0; j < m->height; ++j) {
+    for (int i = 0; i < m->width; ++i) {
+      const Eigen::Vector2d p = m->CellCenter(i, j);
+      if (p.x() < x0 || p.x() > x1 || p.y() < y0 || p.y() > y1) continue;
+      m->goodness[m->Index(i, j)] = static_cast<std::uint8_t>(g);
+      m->certainty[m->Index(i, j)] = static_cast<std::uint8_t>(c);
+      m->flags[m->Index(i, j)] = flags;
+    }
+  }
+}
+
+ArcRequest Toward(double gx, double gy, double yaw = 0.0, double tolerance = 0.3) {
+  ArcRequest r;
+  r.site_from_rover.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  r.goal = {gx, gy};
+  r.goal_tolerance = tolerance;
+  return r;
+}
+
+ArcEvaluator Make(const GestaltOptions& o = {}) {
+  auto e = ArcEvaluator::Create(o);
+  EXPECT_TRUE(e.ok()) << e.status().message();
+  return std::move(e).value();
+}
+
+TEST(ArcEvaluator, CandidatesAreMersArcsAndTurns) {
+  const ArcEvaluator ev = Make();
+  const auto& c = ev.candidates();
+  ASSERT_EQ(c.size(), 23u + 23u + 23u);
+  EXPECT_EQ(c[0].curvature, -1.0);
+  EXPECT_EQ(c[11].curvature, 0.0);
+  EXPECT_EQ(c[22].curvature, 1.0);
+  EXPECT_EQ(c[23].direction, -1);
+  EXPECT_EQ(c[46].kind, MotionKind::kPointTurn);
+  EXPECT_NEAR(c[46].turn_angle, -165.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_NEAR(c.back().turn_angle, std::numbers::pi, 1e-12);
+}
+
+TEST(ArcEvaluator, OpenGroundPicksTheArcToTheGoal) {
+  const ArcEvaluator ev = Make();
+  auto e = ev.Evaluate(KnownMap(), Toward(4.0, 0.0));
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  EXPECT_EQ(e->mode, GoalMode::kNormal);
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_EQ(e->choice().kind, MotionKind::kArc);
+  EXPECT_EQ(e->choice().direction, 1);
+  EXPECT_EQ(e->choice().curvature, 0.0);
+  EXPECT_EQ(e->merged[11].goodness, 255);
+  EXPECT_DOUBLE_EQ(e->choice().length, 3.0);  // plan_max_dist
+  EXPECT_TRUE(e->all_paths_safe);
+  EXPECT_FALSE(e->image_rear);
+  EXPECT_DOUBLE_EQ(e->distance_to_goal, 4.0);
+}
+
+TEST(ArcEvaluator, WaypointVotesAreGaussiansAroundTheGoalArc) {
+  GestaltOptions o;
+  const ArcEvaluator ev = Make(o);
+  const double gx = 3.0, gy = 1.0;
+  auto e = ev.Evaluate(KnownMap(), Toward(gx, gy));
+  ASSERT_TRUE(e.ok());
+  const double k_goal = 2.0 * gy / (gx * gx + gy * gy);
+  const double bearing = std::atan2(gy, gx);
+  for (std::size_t k = 0; k < e->candidates.size(); ++k) {
+    const auto& c = e->candidates[k];
+    double want = 0.0;
+    if (c.kind == MotionKind::kArc) {
+      const double peak = c.direction > 0 ? 255.0 : 128.0;
+      want = peak * std::exp(-std::pow(c.curvature - k_goal, 2) / (2.0 * 3.2));
+    } else {
+      const double da = std::remainder(c.turn_angle - bearing, 2.0 * std::numbers::pi);
+      want = 128.0 * std::exp(-da * da / (2.0 * o.turn_vote_variance));
+    }
+    EXPECT_EQ(e->waypoint[k].goodness, static_cast<int>(std::lround(want))) << k;
+    EXPECT_EQ(e->waypoint[k].certainty, 192);
+  }
+  // The chosen arc is the one nearest k*: hazard is flat, so the waypoint vote decides.
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_NEAR(e->choice().curvature, k_goal, 1.0 / 11.0);
+}
+
+TEST(ArcEvaluator, GoalBehindPrefersBackingUp) {
+  const ArcEvaluator ev = Make();
+  auto e = ev.Evaluate(KnownMap(), Toward(-3.0, 0.0));
+  ASSERT_TRUE(e.ok());
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_EQ(e->choice().kind, MotionKind::kArc);
+  EXPECT_EQ(e->choice().direction, -1);
+  EXPECT_EQ(e->choice().curvature, 0.0);
+  EXPECT_EQ(e->waypoint[11].goodness, 128);  // forward straight: away from the goal
+  EXPECT_EQ(e->waypoint[23 + 11].goodness, 255);
+}
+
+TEST(ArcEvaluator, ObstacleForbidsArcsAndTheRoverGoesAround) {
+  GoodnessMap m = KnownMap();
+  SetRect(&m, 1.4, 2.2, -0.6, 1.6, 0);  // a rock blob ahead and to the left
+  const ArcEvaluator ev = Make();
+  auto e = ev.Evaluate(m, Toward(4.0, 0.0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->hazard[11].goodness, 0);  // straight ahead is forbidden
+  EXPECT_EQ(e->hazard[11].certainty, 255);
+  EXPECT_EQ(e->merged[11].goodness, 0);
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_EQ(e->choice().kind, MotionKind::kArc);
+  EXPECT_LT(e->choice().curvature, 0.0);  // to the right, away from the blob
+  EXPECT_GT(e->hazard[static_cast<std::size_t>(e->chosen)].goodness, 200);
+  EXPECT_FALSE(e->all_paths_safe);  // some forward arc is forbidden: image before the next step
+}
+
+TEST(ArcEvaluator, NearerCellsWeighMore) {
+  // Equal poor patches near and far on two straight paths: the path with the near patch scores
+  // lower. Compare the two halves of the same straight arc.
+  GoodnessMap near_bad = KnownMap(), far_bad = KnownMap();
+  SetRect(&near_bad, 0.3, 1.2, -0.4, 0.4, 100);
+  SetRect(&far_bad, 2.1, 3.0, -0.4, 0.4, 100);
+  const ArcEvaluator ev = Make();
+  auto a = ev.Evaluate(near_bad, Toward(5.0, 0.0));
+  auto b = ev.Evaluate(far_bad, Toward(5.0, 0.0));
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_LT(a->hazard[11].goodness, b->hazard[11].goodness);
+}
+
+TEST(ArcEvaluator, UnknownCellsAreAllowedButPoor) {
+  GoodnessMap m = KnownMap();
+  SetRect(&m, -5.0, 5.0, -5.0, 5.0, 11, 0, 0);  // all unknown
+  const ArcEvaluator ev = Make();
+  auto e = ev.Evaluate(m, Toward(4.0, 0.0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->hazard[11].goodness, 11);
+  EXPECT_EQ(e->hazard[11].certainty, 0);
+  EXPECT_EQ(e->merged[11].goodness, 11);  // below min_vote_goodness: the minimum
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_FALSE(e->all_paths_safe);
+  EXPECT_TRUE(e->image_rear);
+}
+
+TEST(ArcEvaluator, KTurnForAGoalInsideTheTurningCircle) {
+  // The goal 0.5 m to the left, 0.2 m ahead: k* = 2 y / |g|^2 = 3.45 > 1.
+  GestaltOptions no_turns;
+  no_turns.num_point_turns = 0;
+  auto e = Make(no_turns).Evaluate(KnownMap(), Toward(0.2, 0.5, 0.0, 0.1));
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->mode, GoalMode::kBackUp);
+  ASSERT_TRUE(e->has_choice());
+  // Back up along (about) the tightest arc away from the goal, which swings the heading toward
+  // it: the Gaussian peaks, halved, on the k = -1 backward arc (index 23); the merged 8-bit
+  // votes of its neighbours tie and the middle of that plateau is driven.
+  EXPECT_EQ(e->choice().direction, -1);
+  EXPECT_LE(e->choice().curvature, -0.8);
+  EXPECT_EQ(e->waypoint[23].goodness, 128);  // 255 halved
+  EXPECT_EQ(e->waypoint[22].goodness, 64);   // forward arcs cannot reach it either: 128 halved
+  const Eigen::Vector2d end = ArcPoint(-1.0, -1, 0.5);
+  EXPECT_LT(end.y(), 0.0);  // moved away from the goal's side
+  // With turns in place available, the halved back-up vote loses to the turn toward the goal.
+  auto t = Make().Evaluate(KnownMap(), Toward(0.2, 0.5, 0.0, 0.1));
+  ASSERT_TRUE(t.ok());
+  ASSERT_TRUE(t->has_choice());
+  EXPECT_EQ(t->choice().kind, MotionKind::kPointTurn);
+  EXPECT_NEAR(t->choice().turn_angle, 75.0 * std::numbers::pi / 180.0, 1e-9);  // bearing 68 deg
+}
+
+TEST(ArcEvaluator, FramesFollowTheRoverHeading) {
+  // Rover facing site +y (yaw 90 deg); a goal at site (0, 4) is straight ahead.
+  const ArcEvaluator ev = Make();
+  auto e = ev.Evaluate(KnownMap(), Toward(0.0, 4.0, std::numbers::pi / 2));
+  ASSERT_TRUE(e.ok());
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_EQ(e->choice().curvature, 0.0);
+  EXPECT_EQ(e->choice().direction, 1);
+  // A blob at site (0, 2) now blocks it.
+  GoodnessMap m = KnownMap();
+  SetRect(&m, -0.4, 0.4, 1.6, 2.4, 0);
+  auto b = ev.Evaluate(m, Toward(0.0, 4.0, std::numbers::pi / 2));
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(b->hazard[11].goodness, 0);
+}
+
+TEST(ArcEvaluator, ReachedGoalChoosesNothing) {
+  auto e = Make().Evaluate(KnownMap(), Toward(0.2, 0.1, 0.0, 0.3));
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->mode, GoalMode::kReached);
+  EXPECT_FALSE(e->has_choice());
+}
+
+TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
+  const ArcEvaluator ev = Make();
+  GoodnessMap unknown_patch = KnownMap();
+  SetRect(&unknown_patch, 2.0, 3.0, 1.0, 2.0, 11, 0,
+          0);  // off to the left: the k = 1 arcs cross it
+  auto a = ev.Evaluate(unknown_patch, Toward(4.0, 0.0));
+  ASSERT_TRUE(a.ok());
+  ASSERT_TRUE(a->has_choice());
+  EXPECT_FALSE(a->all_paths_safe);
+  GoodnessMap rough = KnownMap();
+  SetRect(&rough, -5.0, 5.0, -5.0, 5.0, 190);
+  auto b = ev.Evaluate(rough, Toward(4.0, 0.0));
+  ASSERT_TRUE(b.ok());
+  EXPECT_FALSE(b->all_paths_safe);  // 190 < skip_imaging_goodness 200
+  GoodnessMap fine = KnownMap();
+  SetRect(&fine, -5.0, 5.0, -5.0, 5.0, 210);
+  auto c = ev.Evaluate(fine, Toward(4.0, 0.0));
+  ASSERT_TRUE(c.ok());
+  EXPECT_TRUE(c->all_paths_safe);
+}
+
+TEST(ArcEvaluator, RejectsBadRequests) {
+  const ArcEvaluator ev = Make();
+  ArcRequest r = Toward(std::numeric_limits<double>::quiet_NaN(), 0.0);
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
+            "ArcRequest.goal.x is nan (must be finite)");
+  r = Toward(1.0, 0.0, 0.0, -1.0);
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
+            "ArcRequest.goal_tolerance = -1 m is outside [0, inf)");
+  r = Toward(1.0, 0.0);
+  r.site_from_rover.translation().y() = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
+            "ArcRequest.site_from_rover(1, 3) is inf (must be finite)");
+  GestaltOptions bad;
+  bad.num_forward_arcs = 0;
+  EXPECT_EQ(ArcEvaluator::Create(bad).status().message(),
+            "num_forward_arcs = 0 is outside [1, 99]");
+}
+
+TEST(MergeVotes, MinimumBelowTheThresholdWeightedSumAbove) {
+  EXPECT_EQ(MergeVotes({20, 255}, {250, 192}, 26).goodness, 20);
+  EXPECT_EQ(MergeVotes({200, 255}, {20, 192}, 26).goodness, 20);
+  const Vote m = MergeVotes({200, 255}, {100, 192}, 26);
+  EXPECT_EQ(m.goodness, static_cast<int>(std::lround((200.0 * 255 + 100.0 * 192) / (255 + 192))));
+  EXPECT_EQ(m.certainty, 255);
+  EXPECT_EQ(MergeVotes({200, 0}, {100, 192}, 26).goodness, 100);  // no hazard certainty
+  EXPECT_EQ(MergeVotes({200, 0}, {100, 0}, 26).goodness, 100);    // none at all: the minimum
+}
+
+TEST(ChooseCandidate, MiddleOfTheLongestPlateau) {
+  auto votes = [](std::vector<int> g) {
+    std::vector<Vote> v;
+    for (int x : g) v.push_back({x, 255});
+    return v;
+  };
+  EXPECT_EQ(ChooseCandidate(votes({1, 5, 5, 5, 2}), {0, 0, 0, 0, 0}), 2);
+  EXPECT_EQ(ChooseCandidate(votes({5, 5, 0, 5, 5, 5}), {0, 0, 0, 0, 0, 0}), 4);
+  EXPECT_EQ(ChooseCandidate(votes({5, 5, 5, 5}), {0, 0, 0, 0}), 1);  // even: the lower middle
+  EXPECT_EQ(ChooseCandidate(votes({5, 0, 5}), {0, 0, 0}), 0);        // equal runs: the first
+  // A plateau does not run across groups (the last forward arc and the first backward arc).
+  EXPECT_EQ(ChooseCandidate(votes({5, 5, 5, 5, 5}), {0, 0, 1, 1, 1}), 3);
+  EXPECT_EQ(ChooseCandidate(votes({3, 9, 3}), {0, 0, 0}), 1);
+  EXPECT_EQ(ChooseCandidate(votes({0, 0}), {0, 0}), -1);
+  EXPECT_EQ(ChooseCandidate({}, {}), -1);
+}
+
+}  // namespace
+}  // namespace rover::apl::gestalt

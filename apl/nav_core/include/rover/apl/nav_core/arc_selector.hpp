@@ -1,0 +1,86 @@
+#pragma once
+/// @file
+/// ArcSelector: chooses the next drive primitive toward a goal from a goodness map (MER's Path
+/// Selection, GESTALT's second half). It is given the map rather than owning it, so any
+/// TerrainAssessor can feed any selector.
+///
+/// Candidates are MER's drive primitives: arcs of constant curvature driven forward or backward
+/// (straight lines are k = 0) and turns in place. Each gets a hazard vote (how safe its swept
+/// path is), a waypoint vote (how well it heads for the goal) and their merge; the choice is the
+/// best merged vote. Votes are MER's 8-bit (goodness, certainty) pairs, 0..255.
+///
+/// Frames: the request's pose and goal are in the site frame (x north, y west, z up); a
+/// candidate's curvature is signed in the rover frame (positive = centre of the turn on the left,
+/// i.e. heading increases when driving forward), its turn angle positive = counter-clockwise
+/// seen from above (to the left). Metres, radians.
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "rover/apl/nav_core/goodness_map.hpp"
+#include "rover/base/status.hpp"
+
+namespace rover::apl::nav_core {
+
+enum class MotionKind {
+  kArc,        ///< drive along a circle of `curvature`, `direction` +1 forward / -1 backward
+  kPointTurn,  ///< turn in place by `turn_angle`
+};
+
+struct Candidate {
+  MotionKind kind = MotionKind::kArc;
+  double curvature = 0.0;   ///< [1/m] arcs
+  int direction = 1;        ///< arcs: +1 forward, -1 backward
+  double length = 0.0;      ///< [m] arcs: path length that was evaluated
+  double turn_angle = 0.0;  ///< [rad] point turns
+};
+
+/// An 8-bit (goodness, certainty) pair.
+struct Vote {
+  int goodness = 0;   ///< 0..255, 0 = forbidden
+  int certainty = 0;  ///< 0..255
+};
+
+struct ArcRequest {
+  Eigen::Isometry3d site_from_rover = Eigen::Isometry3d::Identity();  ///< current pose
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();                     ///< [m] site x, y of the goal
+  double goal_tolerance = 0.0;  ///< [m] radius counted as arrived, >= 0
+};
+
+/// How the selector read the goal.
+enum class GoalMode {
+  kNormal,   ///< votes centred on the arc that passes through the goal
+  kReached,  ///< within tolerance: nothing to drive (chosen = -1)
+  kBackUp,   ///< goal inside the tightest turning circle: K-turn (back-up arc, vote halved)
+};
+
+struct ArcEvaluation {
+  std::vector<Candidate> candidates;
+  std::vector<Vote> hazard;    ///< per candidate
+  std::vector<Vote> waypoint;  ///< per candidate
+  std::vector<Vote> merged;    ///< per candidate
+  int chosen = -1;             ///< index into candidates; -1 = none (reached, or no safe path)
+  GoalMode mode = GoalMode::kNormal;
+  double distance_to_goal = 0.0;  ///< [m] horizontal
+  /// Every candidate path in the chosen direction lies on known cells with a hazard vote at or
+  /// above the selector's skip threshold: the next step may skip imaging (MER's "skip Terrain
+  /// Assessment when the existing data already ensure that all paths are safe").
+  bool all_paths_safe = false;
+  /// The best merged forward vote is below the selector's forward-imaging threshold: image
+  /// behind the rover too before the next step (MER's min-fwd-threshold).
+  bool image_rear = false;
+
+  bool has_choice() const { return chosen >= 0; }
+  const Candidate& choice() const { return candidates[static_cast<std::size_t>(chosen)]; }
+};
+
+class ArcSelector {
+ public:
+  virtual ~ArcSelector() = default;
+  /// Votes on every candidate from `request`'s pose toward its goal over `map`.
+  /// Errors: InvalidArgument for a non-finite pose or goal or a negative tolerance.
+  virtual Result<ArcEvaluation> Evaluate(const GoodnessMap& map,
+                                         const ArcRequest& request) const = 0;
+};
+
+}  // namespace rover::apl::nav_core

@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// GlobalPlanner: long-range planning beyond what the local goodness map covers (FIDO's ROAMAN,
+/// seed 004: a traversability map built from mast stereo out to ~12 m, a medial axis of the free
+/// space per grid row, a depth-first search for the longest connected path and a least-squares
+/// fit that yields waypoints). The mobility manager drives from waypoint to waypoint with the
+/// TerrainAssessor and ArcSelector for local avoidance; as in ROAMAN the planner keeps its own
+/// map, since long traverses accumulate localisation error and the maps are not shared.
+///
+/// Declared here so that apl/mobility can depend on it now; apl/planner (ROAMAN) implements it.
+/// Frames: site frame (x north, y west, z up), metres.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "rover/apl/nav_core/range_scan.hpp"
+#include "rover/base/status.hpp"
+
+namespace rover::apl::nav_core {
+
+struct PlanRequest {
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();  ///< [m] site x, y
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();   ///< [m] site x, y
+  double goal_tolerance = 0.0;                      ///< [m]
+};
+
+struct GlobalPlan {
+  std::vector<Eigen::Vector2d> waypoints;  ///< [m] site x, y, first leg first; ends near the goal
+  double cost = 0.0;                       ///< planner-defined, comparable between plans
+};
+
+class GlobalPlanner {
+ public:
+  virtual ~GlobalPlanner() = default;
+  /// Adds range data (typically a mast NAVCAM panorama, one scan per pointing) to the planner's
+  /// own map. Errors: InvalidArgument for a malformed scan.
+  virtual Status AddScan(const RangeScan& scan) = 0;
+  /// Plans from start to goal over the planner's map. Errors: NotFound when no path exists
+  /// (the mobility manager's NOPATH), InvalidArgument for a non-finite request.
+  virtual Result<GlobalPlan> MakePlan(const PlanRequest& request) = 0;
+  /// Forgets the planner's map.
+  virtual void Clear() = 0;
+};
+
+}  // namespace rover::apl::nav_core
