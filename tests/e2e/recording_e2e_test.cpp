@@ -99,6 +99,18 @@ TEST_F(RecordingE2e, ScenarioRunRecordsEveryTopicReadableByTheReferenceAndReplay
     EXPECT_GT(counts[t], 0u) << t << " missing from the recording";
   }
   EXPECT_FALSE(info->truncation.has_value());
+  // The recorder's figures beside the file (the benchmark figures of docs/status.md).
+  {
+    std::ifstream in(file + ".json");
+    ASSERT_TRUE(in.good()) << "no " << file << ".json";
+    const json fig = json::parse(in);
+    std::cout << "recorder figures: " << fig.dump() << "\n";
+    EXPECT_TRUE(fig["complete"].get<bool>());
+    EXPECT_EQ(fig["messages"].get<std::uint64_t>(), info->message_count);
+    EXPECT_GT(fig["cpu_share"].get<double>(), 0.0);
+    EXPECT_LT(fig["cpu_share"].get<double>(), 1.0);
+    EXPECT_GT(fig["file_mb_per_sim_minute"].get<double>(), 0.0);
+  }
   // The span covers the run: 4 m at 5 cm/s and a turn take well over 30 simulated seconds.
   EXPECT_GT(static_cast<double>(info->end_time - info->start_time) * 1e-9, 30.0);
 

@@ -65,6 +65,16 @@ TEST(SchemaForType, DdlTypesCarryTheHardwareFamilyAndCommonOnce) {
   EXPECT_LT(s->text.find("module hw"), s->text.find("module ddl"));
 }
 
+TEST(SchemaForType, AplTypesCarryTheDlDefinitionsTheyUse) {
+  // rover_apl.idl includes rover_dl.idl: MobilityCommand uses rover::dl::DrivePrimitive.
+  auto s = SchemaForType("rover_apl_MobilityCommand");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_EQ(s->name, "rover::apl::MobilityCommand");
+  EXPECT_EQ(Count(s->text, "struct Header"), 1u);
+  EXPECT_NE(s->text.find("enum DrivePrimitive"), std::string::npos);
+  EXPECT_LT(s->text.find("module dl"), s->text.find("module apl"));
+}
+
 TEST(SchemaForType, EveryTopicTypeOfTheBuildResolves) {
   ASSERT_FALSE(idl::IdlTopicTypes().empty());
   for (const auto& t : idl::IdlTopicTypes()) {

@@ -9,12 +9,13 @@
 #include <string_view>
 #include <vector>
 
+#include "rover/base/glob.hpp"
 #include "rover/base/status.hpp"
 
 namespace rover::recording {
 
-/// True when `pattern` matches all of `text`.
-bool GlobMatch(std::string_view pattern, std::string_view text);
+/// True when `pattern` matches all of `text` (rover/base/glob.hpp).
+using rover::GlobMatch;
 
 struct TopicFilter {
   std::vector<std::string> include;  ///< globs; empty = every topic

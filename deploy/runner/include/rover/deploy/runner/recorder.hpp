@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "rover/base/status.hpp"
 #include "rover/deploy/run_report.hpp"
 #include "rover/deploy/scenario.hpp"
@@ -83,8 +85,15 @@ Result<std::unique_ptr<recording::BusRecorder>> StartRunRecording(
     const dds::Participant& participant, const Scenario& scenario, std::uint32_t seed,
     const std::string& run_dir, int domain, const std::map<std::string, std::string>& qos);
 
-/// Stops the run's recording (null: nothing to do); "" when the file is complete, else the run's
-/// failure: "recording failed: <why>; <file> is incomplete".
+/// The recorder's figures of one recording (written beside it as <file>.json): messages,
+/// bytes, samples lost in transport, wall and CPU seconds of its thread, CPU share (CPU / wall),
+/// MB/s and samples/s (per wall second), run-clock span and file MB per simulated minute, and
+/// per topic messages, bytes, lost and messages per simulated second.
+nlohmann::json RecordingFigures(const recording::RecordingReport& report);
+
+/// Stops the run's recording (null: nothing to do) and writes its figures to <file>.json; ""
+/// when the file is complete, else the run's failure: "recording failed: <why>; <file> is
+/// incomplete".
 std::string FinishRunRecording(recording::BusRecorder* recorder);
 
 }  // namespace rover::deploy::runner
