@@ -10,7 +10,6 @@
 #include <sstream>
 
 #include "rover/base/format.hpp"
-#include "rover/base/glob.hpp"
 #include "rover/base/params.hpp"
 #include "rover/base/range_check.hpp"
 #include "rover/runtime/dds.hpp"
@@ -244,7 +243,23 @@ const char* CorruptionName(Corruption c) { return NameOf(kCorruptions, c); }
 const char* DelayDistributionName(DelayDistribution d) { return NameOf(kDistributions, d); }
 
 bool GlobMatch(std::string_view glob, std::string_view text) {
-  return rover::GlobMatch(glob, text);
+  std::size_t g = 0, t = 0, star_g = std::string_view::npos, star_t = 0;
+  while (t < text.size()) {
+    if (g < glob.size() && (glob[g] == '?' || glob[g] == text[t])) {
+      ++g;
+      ++t;
+    } else if (g < glob.size() && glob[g] == '*') {
+      star_g = g++;
+      star_t = t;
+    } else if (star_g != std::string_view::npos) {
+      g = star_g + 1;
+      t = ++star_t;
+    } else {
+      return false;
+    }
+  }
+  while (g < glob.size() && glob[g] == '*') ++g;
+  return g == glob.size();
 }
 
 bool TopicMatches(std::string_view patterns, std::string_view topic) {
