@@ -114,7 +114,13 @@ TEST_F(BusReplayerTest, RepublishesInOrderWithTheRecordedClock) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   t.join();
-  for (auto& s : pose_r->Take()) xs.push_back(s->pose.position.x);
+  // What arrived after the loop's last take (the last clock tick and pose among it).
+  ASSERT_TRUE(rover::testing::WaitFor([&] {
+    for (auto& s : pose_r->Take()) xs.push_back(s->pose.position.x);
+    for (auto& s : clock_r->Take()) clocks.push_back(s->sim_time_ns);
+    return !clocks.empty() && clocks.back() == 20 * 50'000'000LL && !xs.empty() &&
+           xs.back() == 20.0;
+  }));
   ASSERT_TRUE(report.ok()) << report.status().message();
   EXPECT_EQ(report->published.at("dl/pose"), 20u);
   EXPECT_EQ(report->published.at("sim/clock"), 20u);
