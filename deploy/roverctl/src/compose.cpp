@@ -226,7 +226,7 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   if (!n.IsMap()) return err.At(n, "x-rover: expected a map");
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "x-rover",
                                   {"project", "domain", "clock", "startup_timeout_s",
-                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario"},
+                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario", "record"},
                                   err, kComposeKeys));
   if (const auto p = n["project"]) {
     r->project = ScalarText(p);
@@ -269,6 +269,9 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
       yaml::Flatten(item, "", &spec.fields);
       r->faults.push_back(std::move(spec));
     }
+  }
+  if (const auto rec = n["record"]) {
+    ROVER_ASSIGN_OR_RETURN(r->record, recording::ParseRecordOptions(rec, "x-rover.record", err));
   }
   return Status::Ok();
 }

@@ -7,6 +7,9 @@
 //   roverctl config FILE                                        validate a compose file
 //   roverctl run SCENARIO [--seeds A..B] [--jobs J] [--out DIR] end-to-end scenario campaign
 //   roverctl report DIR                                         re-print a campaign's summary
+//   roverctl record [-p P | --domain D] -o FILE [--topics G...] record a set's topics to MCAP
+//   roverctl replay FILE [--topics G...] [--rate R] (--domain D | -p P)   republish a recording
+//   roverctl info FILE                                          topics, types, counts, time span
 //
 // See docs/roverctl.md.
 #include <CLI/CLI.hpp>
@@ -34,6 +37,7 @@
 #include "rover/deploy/scenario.hpp"
 #include "rover/deploy/supervisor.hpp"
 #include "rover/runtime/domain.hpp"
+#include "src/recording_commands.hpp"
 
 namespace fs = std::filesystem;
 using rover::Status;
@@ -168,8 +172,16 @@ int RunSupervisor(const rover::deploy::ComposeProject& project,
   }
   std::cout << "roverctl: starting '" << project.rover.project << "' (" << project.services.size()
             << " services) on DDS domain " << (*sup)->domain() << "\n" << std::flush;
+  // x-rover.record: the recorder starts first, so that it hears the set from its first sample.
+  auto recording = rover::deploy::SetRecording::Start(project, (*sup)->domain(), options.state_dir);
+  if (!recording.ok()) {
+    notify("error: " + recording.status().message(), true);
+    return Fail(recording.status().message(), 2);
+  }
+  if (*recording) std::cout << "roverctl: recording to " << (*recording)->path() << "\n";
   const Status s = (*sup)->Start();
   if (!s.ok()) {
+    if (*recording) (void)(*recording)->Stop();
     notify("error: " + s.message(), true);
     return Fail(s.message());
   }
@@ -205,10 +217,27 @@ int RunSupervisor(const rover::deploy::ComposeProject& project,
       break;
     }
     if (args.run_for_s > 0 && rover::ToSeconds(rover::MonotonicNow() - start) >= args.run_for_s) break;
+    if (*recording && !(*recording)->health().ok()) {
+      // The set was to be recorded: a failed recording fails the set (stopped, exit 1).
+      std::cerr << "roverctl: error: the recording failed: " << (*recording)->health().message()
+                << "; stopping '" << project.rover.project << "'\n";
+      rc = 1;
+      break;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   std::cout << "roverctl: stopping '" << project.rover.project << "'\n" << std::flush;
   (*sup)->Stop();
+  if (*recording) {
+    const auto report = (*recording)->Stop();
+    if (report.status.ok()) {
+      std::cout << "roverctl: " << rover::deploy::DescribeReport(report);
+    } else {
+      std::cerr << "roverctl: error: the recording failed: " << report.status.message() << "; "
+                << report.path << " is incomplete\n";
+      rc = 1;
+    }
+  }
   std::cout << "roverctl: stopped\n";
   if (waiting && rc == 0) notify("error: stopped before the set was ready", true);
   return rc;
@@ -478,6 +507,39 @@ int Config(const std::string& file) {
   return 0;
 }
 
+// ---- record / replay / info --------------------------------------------------------------------
+
+// The set a recording command works on: --domain D alone, or a project (given, or the only one
+// up) with its domain, clock and QoS overrides.
+rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
+                                                      const std::string& given, int domain,
+                                                      bool domain_alone_ok) {
+  rover::deploy::TargetSet t;
+  if (domain >= 0 && given.empty()) {
+    t.domain = domain;
+    return t;
+  }
+  if (domain >= 0) return rover::InvalidArgument("give --domain or --project, not both");
+  if (given.empty() && !domain_alone_ok) {
+    return rover::InvalidArgument("give --domain D (e.g. a service started by hand) or "
+                                  "--project P (a running set)");
+  }
+  ROVER_ASSIGN_OR_RETURN(t.project, ResolveProject(root, given));
+  const auto state = ReadState(root + "/" + t.project);
+  if (!SupervisorAlive(state)) {
+    return rover::FailedPrecondition("project '" + t.project + "' is not running");
+  }
+  t.domain = state.value("domain", -1);
+  if (t.domain < 0) return rover::Internal("the state file of '" + t.project + "' has no domain");
+  if (auto compose = rover::deploy::LoadComposeFile(state.value("file", "")); compose.ok()) {
+    t.clock = compose->rover.clock;
+    t.qos = compose->rover.qos;
+  }
+  const std::string dir = root + "/" + t.project;
+  t.alive = [dir] { return SupervisorAlive(ReadState(dir)); };
+  return t;
+}
+
 // ---- run / report ------------------------------------------------------------------------------
 
 std::string NowStamp() {
@@ -606,6 +668,44 @@ int main(int argc, char** argv) {
   auto* report_cmd = app.add_subcommand("report", "print the summary of a campaign folder");
   report_cmd->add_option("dir", report_dir, "campaign folder")->required();
 
+  std::string rec_out, rec_compression = "zstd", rec_clock = "auto";
+  std::vector<std::string> rec_topics, rec_exclude;
+  double rec_cap_mb = 0, rec_duration = 0;
+  int rec_domain = -1;
+  auto* record_cmd = app.add_subcommand("record", "record a running set's topics to an MCAP file");
+  record_cmd->add_option("-p,--project", project, "project (default: the only one up)");
+  record_cmd->add_option("--domain", rec_domain, "DDS domain instead of a project")
+      ->check(CLI::Range(0, 232));
+  record_cmd->add_option("-o,--output", rec_out, "MCAP file to write")->required();
+  record_cmd->add_option("--topics", rec_topics, "topic globs to record (default: every topic)");
+  record_cmd->add_option("--exclude", rec_exclude, "topic globs to leave out");
+  record_cmd->add_option("--size-cap", rec_cap_mb, "stop recording at this file size [MB]");
+  record_cmd->add_option("--compression", rec_compression, "chunk compression: zstd, lz4, none");
+  record_cmd->add_option("--duration", rec_duration, "stop after this many run-clock seconds");
+  record_cmd->add_option("--clock", rec_clock, "log time: auto (the set's), sim or wall");
+
+  std::string replay_file;
+  std::vector<std::string> rep_topics, rep_exclude;
+  double rep_rate = 1.0;
+  int rep_domain = -1;
+  bool rep_no_clock = false, rep_force = false, rep_accept = false;
+  auto* replay_cmd = app.add_subcommand("replay", "republish a recording onto a DDS domain");
+  replay_cmd->add_option("file", replay_file, "MCAP recording")->required();
+  replay_cmd->add_option("--topics", rep_topics, "topic globs to replay (default: all)");
+  replay_cmd->add_option("--exclude", rep_exclude, "topic globs to leave out");
+  replay_cmd->add_option("--rate", rep_rate, "1 = as recorded, 2 = twice as fast, 0 = at once");
+  replay_cmd->add_option("--domain", rep_domain, "DDS domain to publish on")
+      ->check(CLI::Range(0, 232));
+  replay_cmd->add_option("-p,--project", project, "a running set to publish into");
+  replay_cmd->add_flag("--no-clock", rep_no_clock, "publish no sim/clock");
+  replay_cmd->add_flag("--force", rep_force, "publish even where others publish the same topics");
+  replay_cmd->add_flag("--accept-schema-changes", rep_accept,
+                       "replay topics whose recorded IDL differs from this build's");
+
+  std::string info_file;
+  auto* info_cmd = app.add_subcommand("info", "print a recording's topics, types, counts and span");
+  info_cmd->add_option("file", info_file, "MCAP recording")->required();
+
   // Usage errors are exit code 2 (docs/roverctl.md), not CLI11's own codes; --help is 0.
   try {
     app.parse(argc, argv);
@@ -631,5 +731,36 @@ int main(int argc, char** argv) {
   if (*config_cmd) return Config(config_file);
   if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir);
   if (*report_cmd) return Report(report_dir);
+  if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);
+  if (*record_cmd) {
+    auto target = ResolveTarget(state_root, project, rec_domain, true);
+    if (!target.ok()) return Fail(target.status().message(), 2);
+    rover::deploy::RecordArgs a;
+    a.target = std::move(*target);
+    a.record.path = rec_out;
+    a.record.topics = {rec_topics, rec_exclude};
+    a.record.size_cap_mb = rec_cap_mb;
+    auto c = rover::recording::ParseCompression(rec_compression);
+    if (!c.ok()) return Fail("record: --" + c.status().message(), 2);
+    a.record.compression = *c;
+    a.clock = rec_clock;
+    a.duration_s = rec_duration;
+    a.stop = &g_stop;
+    return rover::deploy::RunRecord(a, std::cout, std::cerr);
+  }
+  if (*replay_cmd) {
+    auto target = ResolveTarget(state_root, project, rep_domain, false);
+    if (!target.ok()) return Fail(target.status().message(), 2);
+    rover::deploy::ReplayArgs a;
+    a.file = replay_file;
+    a.target = std::move(*target);
+    a.topics = {rep_topics, rep_exclude};
+    a.rate = rep_rate;
+    a.clock = !rep_no_clock;
+    a.force = rep_force;
+    a.accept_schema_changes = rep_accept;
+    a.stop = &g_stop;
+    return rover::deploy::RunReplay(a, std::cout, std::cerr);
+  }
   return 1;
 }

@@ -156,7 +156,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown_rover_key", "x-rover: {domian: 3}\nservices: {a: {command: x}}\n",
                 "f.yaml:1: x-rover: unknown key 'domian' (did you mean 'domain'?) (known: "
                 "project, domain, clock, startup_timeout_s, heartbeat_timeout_s, qos, sim, "
-                "faults, scenario)"},
+                "faults, scenario, record)"},
         BadCase{"unbalanced_quote", "services:\n  a: {command: \"x 'y\"}\n",
                 "f.yaml:2: services.a.command: unbalanced ' quote"},
         BadCase{"empty_services", "services: {}\n", "f.yaml:1: 'services' must be a non-empty map"},

@@ -44,6 +44,8 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   // Declared first so that it is destroyed last: the task's, recorder's and loop's DDS entities
   // belong to its participant.
   std::unique_ptr<ServiceSet> set;
+  // The run's run.mcap (on the operator's participant, so after `set`, destroyed before it).
+  std::unique_ptr<recording::BusRecorder> recording;
   ROVER_ASSIGN_OR_RETURN(std::unique_ptr<Task> task, TaskRegistry::Builtin().Make(scenario));
   RunResult result;
   result.scenario = scenario.name;
@@ -62,9 +64,15 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   const Status started = set->Start();
   result.startup_s = ToSeconds(MonotonicNow() - wall_start);
   // (d) Judging and the outputs, however the run ends.
-  auto finish = [&](const std::string& failure) -> Result<RunResult> {
+  auto finish = [&](std::string failure) -> Result<RunResult> {
     const Time t0 = MonotonicNow();
     set->Stop();
+    // After the set: the recording keeps what the services said while stopping. A recording
+    // that failed fails the run.
+    if (const std::string r = FinishRunRecording(recording.get()); !r.empty()) {
+      failure = failure.empty() ? r : failure + "; " + r;
+    }
+    recording.reset();
     result.teardown_s = ToSeconds(MonotonicNow() - t0);
     result.wall_time_s = ToSeconds(MonotonicNow() - wall_start);
     ROVER_RETURN_IF_ERROR(
@@ -73,6 +81,12 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   };
   if (!started.ok()) return finish("service set did not start: " + started.message());
   if (const Status s = set->OpenOperator(); !s.ok()) return finish(s.message());
+  {
+    auto r = StartRunRecording(set->participant(), scenario, seed, prepared.run_dir,
+                               result.domain, prepared.project.rover.qos);
+    if (!r.ok()) return finish("cannot record the run: " + r.status().message());
+    recording = std::move(*r);
+  }
   auto judge = MakeJudge(scenario, prepared.world);
   if (!judge.ok()) return finish(judge.status().message());
 
@@ -91,6 +105,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   run_loop.AddPump([&] { (*recorder)->Pump(); });
   run_loop.AddCheck([&] { return set->CheckServices(&result.crashes); });
   run_loop.AddCheck([&] { return (*recorder)->CrossTalk(result.domain); });
+  run_loop.AddCheck([&]() -> std::string {
+    if (!recording) return "";
+    const Status h = recording->health();
+    return h.ok() ? "" : "recording failed: " + h.message();
+  });
 
   // (c) The task.
   TaskContext ctx{scenario, set->participant(), run_loop, **recorder,

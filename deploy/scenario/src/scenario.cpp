@@ -98,6 +98,12 @@ const std::vector<std::string>& SimulatorSections() {
   return k;
 }
 
+recording::RecordOptions DefaultRunRecording() {
+  recording::RecordOptions o;
+  o.path = "run.mcap";
+  return o;
+}
+
 Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
                                const SimSectionValidator& validate_sim,
                                const TaskValidator& validate_task) {
@@ -105,7 +111,7 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
   ROVER_ASSIGN_OR_RETURN(const YAML::Node root, yaml::Load(text, c));
   if (!root.IsMap()) return c.At(1, "expected a map (a scenario)");
   std::vector<std::string> known = {"name", "description", "compose", "simulator", "estimator", "seed", "sim",
-                                    "rover", "task", "faults", "criteria", "params"};
+                                    "rover", "task", "faults", "criteria", "params", "record"};
   for (const auto& s : SimulatorSections()) known.push_back(s);
   ROVER_RETURN_IF_ERROR(CheckKeys(root, "", known, c));
   Scenario s;
@@ -190,6 +196,10 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
         return c.At(kv.second, "params." + kv.first.Scalar() + ": expected a map");
       yaml::Flatten(kv.second, "", &s.params[kv.first.Scalar()]);
     }
+  }
+  if (const YAML::Node r = root["record"]) {
+    ROVER_ASSIGN_OR_RETURN(s.record, recording::ParseRecordOptions(r, "record", c, s.record));
+    if (s.record.path.empty()) s.record.path = DefaultRunRecording().path;
   }
   if (validate_task) ROVER_RETURN_IF_ERROR(validate_task(s));
   if (validate_sim) ROVER_RETURN_IF_ERROR(validate_sim(text, file));

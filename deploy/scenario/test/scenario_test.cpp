@@ -100,8 +100,8 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
   const std::string crit = "criteria: {max_tilt_deg: 30}\n";
   EXPECT_EQ(Err(base + task + crit + "critera: {}\n"),
             "5: unknown key 'critera' (did you mean 'criteria'?) (known: name, description, "
-            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, terrain, "
-            "terrain_features, lander, science_targets)");
+            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, record, "
+            "terrain, terrain_features, lander, science_targets)");
   EXPECT_EQ(Err(base + crit), "1: missing 'task' (what the rover is to do)");
   EXPECT_EQ(Err(base + task), "1: missing 'criteria' (how the run is judged)");
   EXPECT_EQ(Err(base + task + "criteria: {max_tilt_deg: 95}\n"),

@@ -22,6 +22,8 @@
 ///     qos: {dl/pose: stream}     # per-topic QoS profile overrides
 ///     sim: {...}                 # simulator settings, passed to the simulator as ROVER_SIM_*
 ///     faults: [...]              # fault injection (list of maps; see docs/faults.md)
+///     record: {path, topics, exclude, size_cap_mb, compression}   # MCAP recording of the set
+///                                # while it is up (or true/false; rover/recording/record_options.hpp)
 ///
 /// Every error names the file, line and key: "deploy/x.yaml:12: services.loco: unknown key
 /// 'comand' (did you mean 'command'?)".
@@ -32,6 +34,7 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/recording/record_options.hpp"
 
 namespace rover::deploy {
 
@@ -94,6 +97,9 @@ struct RoverSettings {
   std::map<std::string, std::string> qos;  ///< topic -> profile name (validated)
   std::map<std::string, std::string> sim;  ///< flattened simulator settings
   std::vector<FaultSpec> faults;
+  /// x-rover.record; nullopt (or enabled = false) records nothing. A relative path is taken
+  /// from the directory roverctl runs in; no path: <state>/<project>/recording.mcap.
+  std::optional<recording::RecordOptions> record;
 };
 
 struct ComposeProject {
