@@ -244,7 +244,9 @@ const char* CorruptionName(Corruption c) { return NameOf(kCorruptions, c); }
 const char* DelayDistributionName(DelayDistribution d) { return NameOf(kDistributions, d); }
 
 // One glob algorithm for the project (rover/base/glob.hpp); this name stays for the fault API.
-bool GlobMatch(std::string_view glob, std::string_view text) { return rover::GlobMatch(glob, text); }
+bool GlobMatch(std::string_view glob, std::string_view text) {
+  return rover::GlobMatch(glob, text);
+}
 
 bool TopicMatches(std::string_view patterns, std::string_view topic) {
   bool included = false;
