@@ -4,7 +4,12 @@
 #       A library. Its layer is the top-level folder it lives in (idl, core, ddl, dl, apl, sim,
 #       deploy, tests) unless LAYER overrides it. Public headers live in <folder>/include.
 #   rover_add_service(NAME <exe> SOURCES ... [DEPS ...] [LAYER <layer>] [SIMBODY])
-#       A service or tool executable, written to ${CMAKE_BINARY_DIR}/bin.
+#       A service: a process that joins the bus (RunServiceMain, --help-params), with a page
+#       docs/services/<exe>.md. Written to ${CMAKE_BINARY_DIR}/bin like the two below.
+#   rover_add_tool(...)       same arguments: a command-line tool for people (roverctl, rover-drive)
+#   rover_add_benchmark(...)  same arguments: prints figures beside a baseline measured in the
+#       same run; `ninja benchmarks` builds them all. rover_write_executable_lists() writes
+#       build/rover_executables.txt (kind and name per line) for the consistency tests.
 #   rover_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s] [SIMBODY]
 #                  [GROUP_SUITES <suite>... | ONE_ENTRY])
 #       A GoogleTest executable. Every test case is its own CTest entry <test>.<Suite>.<Case>
@@ -96,10 +101,11 @@ function(rover_add_module)
   _rover_register(${M_NAME} ${layer} library)
 endfunction()
 
-function(rover_add_service)
+# One executable of `kind` (service, tool or benchmark), written to ${CMAKE_BINARY_DIR}/bin.
+function(_rover_add_executable kind)
   cmake_parse_arguments(S "SIMBODY" "NAME;LAYER;OUTPUT_NAME" "SOURCES;DEPS" ${ARGN})
   if(NOT S_NAME OR NOT S_SOURCES)
-    message(FATAL_ERROR "rover_add_service: NAME and SOURCES are required")
+    message(FATAL_ERROR "rover_add_${kind}: NAME and SOURCES are required")
   endif()
   _rover_layer_of(layer LAYER "${S_LAYER}")
   add_executable(${S_NAME} ${S_SOURCES})
@@ -110,8 +116,19 @@ function(rover_add_service)
     set_target_properties(${S_NAME} PROPERTIES OUTPUT_NAME ${S_OUTPUT_NAME})
   endif()
   _rover_common_target_setup(${S_NAME} "${S_SIMBODY}")
-  _rover_register(${S_NAME} ${layer} service)
+  _rover_register(${S_NAME} ${layer} ${kind})
+  set_property(GLOBAL APPEND PROPERTY ROVER_EXECUTABLES_${kind} ${S_NAME})
   install(TARGETS ${S_NAME} RUNTIME DESTINATION bin)
+endfunction()
+
+function(rover_add_service)
+  _rover_add_executable(service ${ARGN})
+endfunction()
+function(rover_add_tool)
+  _rover_add_executable(tool ${ARGN})
+endfunction()
+function(rover_add_benchmark)
+  _rover_add_executable(benchmark ${ARGN})
 endfunction()
 
 function(rover_add_test)
@@ -228,6 +245,24 @@ function(rover_check_layers)
   endforeach()
   if(errors)
     message(FATAL_ERROR "rover: the layer rule is broken:\n${errors}")
+  endif()
+endfunction()
+
+# Writes ${CMAKE_BINARY_DIR}/rover_executables.txt ("<kind> <name>" per line) and adds the
+# `benchmarks` target. Called once at the end of the top-level CMakeLists.txt.
+function(rover_write_executable_lists)
+  set(text "")
+  foreach(kind service tool benchmark)
+    get_property(names GLOBAL PROPERTY ROVER_EXECUTABLES_${kind})
+    list(SORT names)
+    foreach(name IN LISTS names)
+      string(APPEND text "${kind} ${name}\n")
+    endforeach()
+  endforeach()
+  file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/rover_executables.txt" CONTENT "${text}")
+  get_property(benchmarks GLOBAL PROPERTY ROVER_EXECUTABLES_benchmark)
+  if(benchmarks)
+    add_custom_target(benchmarks DEPENDS ${benchmarks})
   endif()
 endfunction()
 

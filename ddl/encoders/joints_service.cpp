@@ -131,8 +131,17 @@ void JointsService::OnTimer() {
   rover_ddl_JointState out{};
   ctx_->Stamp(out.header, "rover");
   if (js.stamp.ns <= 0) js.stamp = Time{out.header.stamp_ns};  // no input yet: now
-  msg::JointStateToIdl(js, &out);
-  (void)writer_.Write(out);
+  // The stamp is the newest input's time of validity. A tick that found no input newer than the
+  // last sample's (the run clock advanced two timer periods between inputs, as it does in
+  // lockstep with the simulator) would publish the same state with the same stamp again, which
+  // consumers reject as not after the previous sample. So each input state goes out once; only a
+  // STALE state is repeated at the timer rate, so that consumers hear that the inputs stopped.
+  const bool repeat = last_stamp_ns_.has_value() && js.stamp.ns == *last_stamp_ns_;
+  if (!repeat || h.health == msg::SensorHealth::kStale) {
+    msg::JointStateToIdl(js, &out);
+    (void)writer_.Write(out);
+    last_stamp_ns_ = js.stamp.ns;
+  }
   ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 

@@ -4,6 +4,7 @@
 #include "pose_service.hpp"
 
 #include "rover/base/format.hpp"
+#include "rover/base/log.hpp"
 #include "rover/msg/pose_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
@@ -18,6 +19,7 @@ struct Config {
   RoverGeometry geometry;
   WheelOdometryOptions odometry;
   PoseFusionOptions fusion;
+  PoseResumeOptions resume;
 };
 
 Result<Config> ConfigFromParams(const ParamSet& p) {
@@ -26,6 +28,7 @@ Result<Config> ConfigFromParams(const ParamSet& p) {
   ROVER_ASSIGN_OR_RETURN(c.geometry, RoverGeometryFromParams(p, "geometry."));
   ROVER_ASSIGN_OR_RETURN(c.odometry, WheelOdometryOptionsFromParams(p, "odometry."));
   ROVER_ASSIGN_OR_RETURN(c.fusion, ReadParams<PoseFusionOptions>(p, ""));
+  ROVER_ASSIGN_OR_RETURN(c.resume, ReadParams<PoseResumeOptions>(p, "resume."));
   return c;
 }
 
@@ -49,6 +52,7 @@ void PoseService::DeclareParameters(ParamSet& p) {
   DeclareRoverGeometryParams(p, "geometry.");
   DeclareWheelOdometryParams(p, "odometry.");
   DeclareParams<PoseFusionOptions>(p, "");
+  DeclareParams<PoseResumeOptions>(p, "resume.");
   p.Declare("publish_rate_hz", 10.0, "[Hz] dl/pose rate (run clock)").Range(8.0, 200.0);
   p.Declare("imu_stale_s", 0.5, "[s] without ddl/imu before the heartbeat reports DEGRADED")
       .Range(0.01, 60.0);
@@ -65,6 +69,9 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
                          PoseEstimator::Create(c.ekf, c.geometry, c.odometry, c.fusion));
   estimator_.emplace(std::move(estimator));
   imu_stale_s_ = p.GetDouble("imu_stale_s");
+  resume_ = c.resume;
+  if (resume_.enabled) checkpoints_ = CheckpointStore::FromEnvironment(ctx.name());
+  LoadCheckpoint();
 
   ROVER_ASSIGN_OR_RETURN(pose_writer_, ctx.MakeWriter<rover_dl_PoseEstimate>("dl/pose"));
   ROVER_ASSIGN_OR_RETURN(event_writer_,
@@ -95,8 +102,38 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
       "dl/relative_pose",
       [this](const dds::Sample<rover_dl_RelativePose>& s) { OnRelativePose(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("publish_rate_hz")), [this] { OnTimer(); });
-  ctx.SetHealth(rover_HEALTH_DEGRADED, "levelling: waiting for stationary ddl/imu samples");
+  OnTimer();  // the first heartbeat's health
   return Status::Ok();
+}
+
+void PoseService::LoadCheckpoint() {
+  const auto loaded = checkpoints_.Load();
+  if (!loaded.ok()) {
+    estimator_->DeclareUnknown("pose unknown after restart: " + loaded.status().message());
+    return;
+  }
+  if (!loaded->has_value()) return;  // a first start in this set
+  const auto checkpoint = PoseCheckpointFromFields(**loaded);
+  if (!checkpoint.ok()) {
+    estimator_->DeclareUnknown("pose unknown after restart: checkpoint " + checkpoints_.path() +
+                               ": " + checkpoint.status().message());
+    return;
+  }
+  log::Info("restarted: checkpoint found",
+            {{"path", checkpoints_.path()}, {"t_s", checkpoint->main.stamp.seconds()}});
+  estimator_->ResumeFrom(*checkpoint, resume_);
+}
+
+void PoseService::SaveCheckpointIfDue() {
+  if (!checkpoints_.enabled()) return;
+  const Time t = estimator_->ekf().time();
+  if (last_checkpoint_ && t >= *last_checkpoint_ &&
+      ToSeconds(t - *last_checkpoint_) < resume_.checkpoint_period_s) {
+    return;
+  }
+  const Status s = checkpoints_.Save(CheckpointFields(estimator_->Checkpoint()));
+  if (!s.ok()) estimator_->WarnCounted("checkpoint not written", s.message());
+  last_checkpoint_ = t;
 }
 
 void PoseService::OnRelativePose(const rover_dl_RelativePose& m) {
@@ -132,8 +169,14 @@ void PoseService::Publish(const PoseEkf& filter, dds::Writer<rover_dl_PoseEstima
 }
 
 void PoseService::OnTimer() {
+  if (const auto& why = estimator_->pose_unknown()) {
+    ctx_->SetHealth(rover_HEALTH_FAILED, *why);
+    return;
+  }
   if (!estimator_->started()) {
-    ctx_->SetHealth(rover_HEALTH_DEGRADED, "levelling: waiting for stationary ddl/imu samples");
+    ctx_->SetHealth(rover_HEALTH_DEGRADED,
+                    estimator_->resuming() ? "restarted: resuming from checkpoint"
+                                           : "levelling: waiting for stationary ddl/imu samples");
     return;
   }
   Publish(estimator_->ekf(), pose_writer_, "dl/pose");
@@ -141,6 +184,7 @@ void PoseService::OnTimer() {
   if (odometry_only != nullptr && odometry_only->initialized()) {
     Publish(*odometry_only, odometry_only_writer_, "dl/pose_odometry");
   }
+  SaveCheckpointIfDue();
   const double age = ToSeconds(ctx_->Now() - estimator_->ekf().time());
   if (age > imu_stale_s_) {
     ctx_->SetHealth(rover_HEALTH_DEGRADED, "no ddl/imu for " + FormatNumber(age) + " s");

@@ -29,6 +29,18 @@
 /// and says so in a warning. Until then nothing is published on dl/pose and the heartbeat
 /// reports DEGRADED.
 ///
+/// Restart (kill -9, crash: the supervisor starts it again; dl/pose/pose_resume.hpp): in a
+/// supervised set dl-pose keeps a checkpoint of its last published estimate every
+/// resume.checkpoint_period_s of run time (rover/base/checkpoint.hpp:
+/// $ROVER_STATE_DIR/checkpoints/<name>.ckpt, valid for this set's ROVER_SET_ID only). A
+/// restarted dl-pose never starts over at start.* as if nothing had happened: on its first
+/// usable ddl/imu sample it either resumes from the checkpoint (both filters, the covariance
+/// inflated for the gap; heartbeat DEGRADED "restarted: resuming from checkpoint" until then),
+/// or, when the checkpoint is older than resume.max_age_s or unreadable, declares the pose
+/// unknown: no dl/pose at all, heartbeat FAILED "pose unknown after restart: ...", so nothing
+/// drives on it. A checkpoint stamped more than 1 s after the first sample means the run clock
+/// went back (a new run): it is ignored and the filter levels as at a first start.
+///
 /// The IDL conversions are core/msg's (rover/msg/pose_idl.hpp, sensors_idl.hpp). Bad samples
 /// never crash the service: FAILED/STALE, non-finite or unreadable samples are dropped (counted
 /// in warnings), library errors are logged, and a run-clock reset (a sample more than 1 s older
@@ -36,6 +48,7 @@
 
 #include <optional>
 
+#include "rover/base/checkpoint.hpp"
 #include "rover/dl/pose/pose_estimator.hpp"
 #include "rover/runtime/service.hpp"
 
@@ -59,6 +72,11 @@ class PoseService final : public Service {
  private:
   void OnRelativePose(const rover_dl_RelativePose& m);
   void OnTimer();
+  /// Reads this set's checkpoint at configuration: arms the estimator's resume, or declares the
+  /// pose unknown on an unreadable one.
+  void LoadCheckpoint();
+  /// Saves both filters' state when resume.checkpoint_period_s of run time has passed.
+  void SaveCheckpointIfDue();
   void PublishEvents();
   void Publish(const PoseEkf& filter, dds::Writer<rover_dl_PoseEstimate>& writer,
                const char* topic);
@@ -66,6 +84,9 @@ class PoseService final : public Service {
   ServiceContext* ctx_ = nullptr;
   double imu_stale_s_ = 0.5;
   std::optional<PoseEstimator> estimator_;
+  PoseResumeOptions resume_;
+  CheckpointStore checkpoints_;          // disabled outside a supervised set
+  std::optional<Time> last_checkpoint_;  // filter time of the last save
   dds::Writer<rover_dl_PoseEstimate> pose_writer_;
   dds::Writer<rover_dl_EstimatorEvent> event_writer_;
   dds::Writer<rover_dl_PoseEstimate> odometry_only_writer_;

@@ -76,12 +76,15 @@ Result<DriveStatus> DriveStatusFromIdl(const rover_dl_DriveStatus& in) {
   return s;
 }
 
+rover_dl_DrivePrimitive DrivePrimitiveToIdl(DrivePrimitive p) {
+  return IsKnownPrimitive(p) ? internal::EnumToIdl<rover_dl_DrivePrimitive>(p)
+                             : rover_dl_PRIMITIVE_STOP;
+}
+
 void DriveStatusToIdl(const DriveStatus& in, rover_dl_DriveStatus* out) {
   out->header.stamp_ns = in.stamp.ns;
   out->command_id = in.command_id;
-  out->primitive = IsKnownPrimitive(in.primitive)
-                       ? internal::EnumToIdl<rover_dl_DrivePrimitive>(in.primitive)
-                       : rover_dl_PRIMITIVE_STOP;
+  out->primitive = DrivePrimitiveToIdl(in.primitive);
   out->state = internal::EnumToIdl<rover_dl_DriveState>(in.state);
   out->termination = internal::EnumToIdl<rover_dl_DriveTermination>(in.termination);
   out->distance_done = in.distance_done;

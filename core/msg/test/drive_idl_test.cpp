@@ -87,3 +87,18 @@ TEST(DriveIdl, StatusRoundTripAndAWireSafePrimitive) {
 
 }  // namespace
 }  // namespace rover::msg
+
+namespace rover::msg {
+namespace {
+
+TEST(DriveIdl, PrimitiveToIdlMapsEveryKnownPrimitiveAndAnUnknownOneToStop) {
+  EXPECT_EQ(DrivePrimitiveToIdl(DrivePrimitive::kStop), rover_dl_PRIMITIVE_STOP);
+  EXPECT_EQ(DrivePrimitiveToIdl(DrivePrimitive::kArc), rover_dl_PRIMITIVE_ARC);
+  EXPECT_EQ(DrivePrimitiveToIdl(DrivePrimitive::kStraight), rover_dl_PRIMITIVE_STRAIGHT);
+  EXPECT_EQ(DrivePrimitiveToIdl(DrivePrimitive::kTurnInPlace), rover_dl_PRIMITIVE_TURN_IN_PLACE);
+  EXPECT_EQ(DrivePrimitiveToIdl(DrivePrimitive::kSteer), rover_dl_PRIMITIVE_STEER);
+  EXPECT_EQ(DrivePrimitiveToIdl(static_cast<DrivePrimitive>(9)), rover_dl_PRIMITIVE_STOP);
+}
+
+}  // namespace
+}  // namespace rover::msg

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "rover/base/format.hpp"
+#include "rover/base/glob.hpp"
 #include "rover/base/params.hpp"
 #include "rover/base/range_check.hpp"
 #include "rover/runtime/dds.hpp"
@@ -242,24 +243,9 @@ const char* SideName(Side side) { return NameOf(kSides, side); }
 const char* CorruptionName(Corruption c) { return NameOf(kCorruptions, c); }
 const char* DelayDistributionName(DelayDistribution d) { return NameOf(kDistributions, d); }
 
+// One glob algorithm for the project (rover/base/glob.hpp); this name stays for the fault API.
 bool GlobMatch(std::string_view glob, std::string_view text) {
-  std::size_t g = 0, t = 0, star_g = std::string_view::npos, star_t = 0;
-  while (t < text.size()) {
-    if (g < glob.size() && (glob[g] == '?' || glob[g] == text[t])) {
-      ++g;
-      ++t;
-    } else if (g < glob.size() && glob[g] == '*') {
-      star_g = g++;
-      star_t = t;
-    } else if (star_g != std::string_view::npos) {
-      g = star_g + 1;
-      t = ++star_t;
-    } else {
-      return false;
-    }
-  }
-  while (g < glob.size() && glob[g] == '*') ++g;
-  return g == glob.size();
+  return rover::GlobMatch(glob, text);
 }
 
 bool TopicMatches(std::string_view patterns, std::string_view topic) {

@@ -153,9 +153,7 @@ void ServiceContext::AcknowledgeClock() {
 void ServiceContext::Stamp(rover_Header& header, std::string_view frame_id) {
   header.stamp_ns = clock_->Now().ns;
   dds::CopyString(header.frame_id, frame_id);
-  auto it = seq_.find(frame_id);
-  if (it == seq_.end()) it = seq_.emplace(std::string(frame_id), 0).first;
-  header.seq = ++it->second;
+  header.seq = 0;  // numbered by the writer
 }
 
 void ServiceContext::SetHealth(rover_SensorHealth health, std::string message) {

@@ -52,14 +52,15 @@ class JointsServiceTest : public ::testing::Test {
     }
     return m;
   }
-  // 10 ms steps: telemetry every step (100 Hz), pots every other (50 Hz) unless `silent`.
-  void Run(double seconds, bool silent = false) {
+  // 10 ms steps: telemetry every `telemetry_every` steps (100 Hz by default), pots every other
+  // (50 Hz) unless `silent`.
+  void Run(double seconds, bool silent = false, int telemetry_every = 1) {
     const Time end = now_ + Seconds(seconds);
     while (now_ < end) {
       now_ = now_ + Seconds(0.01);
       ++step_;
       ASSERT_TRUE(harness_->AdvanceTo(now_));
-      if (!silent) {
+      if (!silent && step_ % telemetry_every == 0) {
         ASSERT_TRUE(telemetry_.Write(Telemetry(now_)).ok());
         if (step_ % 2 == 0) {
           ASSERT_TRUE(pots_.Write(Pots(now_)).ok());
@@ -157,6 +158,22 @@ TEST_F(JointsServiceTest, FutureStampsAreDroppedAndASimulatorResetRestartsTheRea
   EXPECT_LT(states_.back().header.stamp_ns, Time::FromSeconds(1.0).ns);
   EXPECT_NEAR(states_.back().wheel_angle[0], WheelAngle(Time{states_.back().header.stamp_ns}),
               1e-3);
+}
+
+
+// A timer tick that has no new input since the last sample must not publish the same state
+// again: consumers (dl-pose's wheel odometry) reject a sample whose stamp is not after the
+// previous one, and logged each rejection.
+TEST_F(JointsServiceTest, EachInputStateIsPublishedOnceWithItsOwnStamp) {
+  Run(0.2);
+  states_.clear();
+  Run(1.0, /*silent=*/false, /*telemetry_every=*/4);  // inputs at 25 Hz, the timer at 50 Hz
+  ASSERT_GE(states_.size(), 10u);
+  for (std::size_t i = 1; i < states_.size(); ++i) {
+    EXPECT_GT(states_[i].header.stamp_ns, states_[i - 1].header.stamp_ns)
+        << "sample " << i << " repeats the stamp " << states_[i].header.stamp_ns;
+  }
+  for (const auto& s : states_) EXPECT_EQ(s.health, rover_HEALTH_OK);
 }
 
 }  // namespace

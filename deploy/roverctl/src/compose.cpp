@@ -8,6 +8,7 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "rover/base/params.hpp"  // DidYouMean
 #include "rover/base/yaml_check.hpp"
@@ -25,6 +26,23 @@ using Errors = yaml::FileErrors;
 // Compose keys: every key known or an x- extension, each once; callers check maps themselves.
 constexpr yaml::KeyRules kComposeKeys{.require_map = false, .allow_extensions = true};
 
+// A service may not move itself off what roverctl sets for the whole set (a ROVER_DOMAIN of its
+// own would put it on another DDS domain, silently).
+Status CheckNotReserved(const std::string& key, const YAML::Node& at, const std::string& where,
+                        const Errors& err) {
+  for (const auto& r : ReservedEnvironment()) {
+    const std::string_view k = r.key;
+    const bool prefix = !k.empty() && k.back() == '*';
+    const bool hit = prefix ? key.compare(0, k.size() - 1, k.substr(0, k.size() - 1)) == 0
+                            : key == k;
+    if (hit) {
+      return err.At(at, where + ".environment." + key + ": roverctl sets " + r.key +
+                            " for every service (" + r.what + "); a service may not override it");
+    }
+  }
+  return Status::Ok();
+}
+
 Status ParseEnvironment(const YAML::Node& n, const std::string& where, const Errors& err,
                         std::map<std::string, std::string>* env) {
   if (n.IsMap()) {
@@ -33,6 +51,7 @@ Status ParseEnvironment(const YAML::Node& n, const std::string& where, const Err
         return err.At(kv.second, where + ".environment." + kv.first.Scalar() +
                                      ": expected a scalar value");
       }
+      ROVER_RETURN_IF_ERROR(CheckNotReserved(kv.first.Scalar(), kv.first, where, err));
       (*env)[kv.first.Scalar()] = kv.second.IsNull() ? "" : kv.second.Scalar();
     }
     return Status::Ok();
@@ -44,6 +63,7 @@ Status ParseEnvironment(const YAML::Node& n, const std::string& where, const Err
       if (s.empty() || eq == 0) {
         return err.At(item, where + ".environment: expected KEY=VALUE, got '" + s + "'");
       }
+      ROVER_RETURN_IF_ERROR(CheckNotReserved(s.substr(0, eq), item, where, err));
       (*env)[s.substr(0, eq)] = eq == std::string::npos ? "" : s.substr(eq + 1);
     }
     return Status::Ok();
@@ -186,6 +206,19 @@ Status ParseService(const std::string& name, const YAML::Node& key, const YAML::
     s->stop_grace_s = *d;
   }
   if (const auto w = n["working_dir"]) s->working_dir = ScalarText(w);
+  if (const auto x = n["x-rover"]) {
+    ROVER_RETURN_IF_ERROR(CheckKeys(x, where + ".x-rover", {"ready"}, err));
+    if (const auto r = x["ready"]) {
+      ROVER_ASSIGN_OR_RETURN(
+          const std::string rule,
+          yaml::OneOf(r, where + ".x-rover.ready", {"healthy", "active", "started", "completed"},
+                      err));
+      for (ReadyRule k : {ReadyRule::kHealthy, ReadyRule::kActive, ReadyRule::kStarted,
+                          ReadyRule::kCompleted}) {
+        if (rule == ReadyRuleName(k)) s->ready = k;
+      }
+    }
+  }
   return Status::Ok();
 }
 
@@ -193,7 +226,7 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   if (!n.IsMap()) return err.At(n, "x-rover: expected a map");
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "x-rover",
                                   {"project", "domain", "clock", "startup_timeout_s",
-                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario"},
+                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario", "record"},
                                   err, kComposeKeys));
   if (const auto p = n["project"]) {
     r->project = ScalarText(p);
@@ -236,6 +269,9 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
       yaml::Flatten(item, "", &spec.fields);
       r->faults.push_back(std::move(spec));
     }
+  }
+  if (const auto rec = n["record"]) {
+    ROVER_ASSIGN_OR_RETURN(r->record, recording::ParseRecordOptions(rec, "x-rover.record", err));
   }
   return Status::Ok();
 }
@@ -308,6 +344,31 @@ const char* RestartPolicyName(RestartPolicy p) {
     case RestartPolicy::kUnlessStopped: return "unless-stopped";
   }
   return "?";
+}
+
+const char* ReadyRuleName(ReadyRule r) {
+  switch (r) {
+    case ReadyRule::kHealthy: return "healthy";
+    case ReadyRule::kActive: return "active";
+    case ReadyRule::kStarted: return "started";
+    case ReadyRule::kCompleted: return "completed";
+  }
+  return "?";
+}
+
+const std::vector<ReservedVariable>& ReservedEnvironment() {
+  static const std::vector<ReservedVariable> kReserved = {
+      {"ROVER_DOMAIN", "the set's DDS domain: choose it with x-rover.domain or --domain"},
+      {"ROVER_CLOCK", "the set's run clock: choose it with x-rover.clock"},
+      {"ROVER_PROJECT", "the set's name: x-rover.project or -p"},
+      {"ROVER_SERVICE_NAME", "the service's name: its key under services"},
+      {"ROVER_STATE_DIR", "where the set's state and logs are: roverctl --state-dir"},
+      {"ROVER_QOS_OVERRIDES", "per-topic QoS profiles: give them under x-rover.qos"},
+      {"ROVER_SET_ID", "marks every process of the set, so that none is left behind"},
+      {"ROVER_SIM_*", "simulator settings: give them under x-rover.sim"},
+      {"CYCLONEDDS_URI", "the set's Cyclone DDS configuration: give roverctl ROVER_DDS_CONFIG"},
+  };
+  return kReserved;
 }
 
 const ServiceSpec* ComposeProject::Find(const std::string& name) const {

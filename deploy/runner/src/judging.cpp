@@ -1,17 +1,47 @@
 #include "rover/deploy/runner/judging.hpp"
 
+#include <cstdio>
 #include <fstream>
 
 #include "rover/deploy/plots.hpp"
+#include "rover/deploy/runner/autonav_judging.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::deploy::runner {
 
-Result<sim::Judge> MakeJudge(const Scenario& scenario, const sim::World& world) {
+namespace {
+std::vector<sim::JudgeRock> JudgeRocks(const sim::World& world) {
   std::vector<sim::JudgeRock> rocks;
   for (const auto& r : world.terrain.rocks) {
     rocks.push_back({r.id, r.position.head<2>(), r.diameter, r.height});
   }
-  return sim::Judge::Create(scenario.criteria, rocks);
+  return rocks;
+}
+}  // namespace
+
+Result<sim::Judge> MakeJudge(const Scenario& scenario, const sim::World& world) {
+  return sim::Judge::Create(scenario.criteria, JudgeRocks(world));
+}
+
+void AddMobilityFigures(const Scenario& scenario, const sim::World& world, RunResult* result,
+                        std::string* failure) {
+  if (!result->mobility) return;
+  const MobilityOutcome& mob = *result->mobility;
+  const auto figures = AutonavFigures(mob, result->truth_track, JudgeRocks(world),
+                                      scenario.criteria.traversable_height);
+  result->figures.insert(result->figures.end(), figures.begin(), figures.end());
+  if (mob.keep_out.empty()) return;
+  const double front = hwconfig::RoverDescription{}.GroundFootprint().max_x;
+  const int entries = KeepOutEntries(result->truth_track, mob.keep_out, front);
+  char detail[128];
+  std::snprintf(detail, sizeof detail,
+                "sim/truth points with the rover's front (%.2f m ahead of its centre) in a zone",
+                front);
+  result->criteria.push_back(
+      {"keep_out_entries", static_cast<double>(entries), 0, "count", entries == 0, detail});
+  if (entries > 0 && failure->empty()) {
+    *failure = "keep_out_entries: " + std::to_string(entries) + " count (limit 0); " + detail;
+  }
 }
 
 void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_figures,

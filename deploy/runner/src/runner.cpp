@@ -3,7 +3,6 @@
 #include "rover/deploy/runner.hpp"
 
 #include <filesystem>
-#include <optional>
 
 #include "rover/base/clock.hpp"
 #include "rover/deploy/runner/judging.hpp"
@@ -45,6 +44,8 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   // Declared first so that it is destroyed last: the task's, recorder's and loop's DDS entities
   // belong to its participant.
   std::unique_ptr<ServiceSet> set;
+  // The run's run.mcap (on the operator's participant, so after `set`, destroyed before it).
+  std::unique_ptr<recording::BusRecorder> recording;
   ROVER_ASSIGN_OR_RETURN(std::unique_ptr<Task> task, TaskRegistry::Builtin().Make(scenario));
   RunResult result;
   result.scenario = scenario.name;
@@ -63,9 +64,15 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   const Status started = set->Start();
   result.startup_s = ToSeconds(MonotonicNow() - wall_start);
   // (d) Judging and the outputs, however the run ends.
-  auto finish = [&](const std::string& failure) -> Result<RunResult> {
+  auto finish = [&](std::string failure) -> Result<RunResult> {
     const Time t0 = MonotonicNow();
     set->Stop();
+    // After the set: the recording keeps what the services said while stopping. A recording
+    // that failed fails the run.
+    if (const std::string r = FinishRunRecording(recording.get()); !r.empty()) {
+      failure = failure.empty() ? r : failure + "; " + r;
+    }
+    recording.reset();
     result.teardown_s = ToSeconds(MonotonicNow() - t0);
     result.wall_time_s = ToSeconds(MonotonicNow() - wall_start);
     ROVER_RETURN_IF_ERROR(
@@ -74,6 +81,12 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   };
   if (!started.ok()) return finish("service set did not start: " + started.message());
   if (const Status s = set->OpenOperator(); !s.ok()) return finish(s.message());
+  {
+    auto r = StartRunRecording(set->participant(), scenario, seed, prepared.run_dir,
+                               result.domain, prepared.project.rover.qos);
+    if (!r.ok()) return finish("cannot record the run: " + r.status().message());
+    recording = std::move(*r);
+  }
   auto judge = MakeJudge(scenario, prepared.world);
   if (!judge.ok()) return finish(judge.status().message());
 
@@ -92,6 +105,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   run_loop.AddPump([&] { (*recorder)->Pump(); });
   run_loop.AddCheck([&] { return set->CheckServices(&result.crashes); });
   run_loop.AddCheck([&] { return (*recorder)->CrossTalk(result.domain); });
+  run_loop.AddCheck([&]() -> std::string {
+    if (!recording) return "";
+    const Status h = recording->health();
+    return h.ok() ? "" : "recording failed: " + h.message();
+  });
 
   // (c) The task.
   TaskContext ctx{scenario, set->participant(), run_loop, **recorder,
@@ -105,16 +123,16 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   if (!failure.empty()) return finish(failure);
   if (const Status s = set->ResumeSimulator(); !s.ok()) return finish(s.message());
   progress("running", 0);
-  // Wait for the simulator's clock and the pose estimate, then half a simulated second more:
-  // the runner hearing dl/pose does not mean that the commanded services have (a drive command
-  // would be rejected for want of an attitude, as MER's would).
-  std::optional<double> first_pose_at;
+  // Wait until the set is ready (every service's heartbeat ACTIVE and health OK: the estimator
+  // has levelled, locomotion has fresh joint states and a pose, so a drive command is accepted)
+  // and the runner itself hears the estimate.
   failure = run_loop.WaitUntil([&] {
-    if (!first_pose_at && (*recorder)->has_estimate()) first_pose_at = run_loop.now();
-    return run_loop.now() > 0 && first_pose_at && run_loop.now() >= *first_pose_at + 0.5 &&
-           task->Ready();
+    return run_loop.now() > 0 && set->Ready() && (*recorder)->has_estimate() && task->Ready();
   });
-  if (!failure.empty()) return finish(failure);
+  if (!failure.empty()) {
+    return finish(failure + (set->Ready() ? "" : " (not ready: " + set->NotReady() + ")"));
+  }
+  result.ready_s = set->ready_after_s();
   TaskOutcome outcome = task->Run(ctx);
   result.steps = std::move(outcome.steps);
   failure = outcome.failure;
@@ -126,6 +144,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   run_loop.Pump();
   result.sim_time_s = run_loop.now();
   ScoreRun(*judge, (*recorder)->Figures(), &result, &failure);
+  AddMobilityFigures(scenario, prepared.world, &result, &failure);
   return finish(failure);
 }
 

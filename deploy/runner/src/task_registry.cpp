@@ -4,6 +4,7 @@
 #include "rover/base/check.hpp"
 #include "rover/deploy/runner/task.hpp"
 #include "rover/deploy/runner/tasks/directed_task.hpp"
+#include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/deploy/runner/tasks/planned_tasks.hpp"
 
 namespace rover::deploy::runner {
@@ -13,6 +14,7 @@ const TaskRegistry& TaskRegistry::Builtin() {
   static const TaskRegistry registry = [] {
     TaskRegistry r;
     RegisterDirectedTask(r);
+    RegisterMobilityTasks(r);
     RegisterPlannedTasks(r);
     return r;
   }();

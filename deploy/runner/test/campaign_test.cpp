@@ -93,8 +93,10 @@ TEST_F(CampaignTest, RunsEverySeedAndWritesTheSummaries) {
   EXPECT_FALSE(summary["interrupted"].get<bool>());
   const std::string junit = rover::testing::ReadFile(dir_ + "/out/junit.xml");
   EXPECT_NE(junit.find("tests=\"4\" failures=\"2\""), std::string::npos) << junit;
+  ASSERT_EQ(r->missing.size(), 1u);  // seed 5's run could not be made
+  EXPECT_EQ(r->missing[0].seed, 5u);
   EXPECT_EQ(rover::testing::ReadFile(dir_ + "/out/summary.txt"),
-            FormatSummaryTable(r->runs, r->summary));
+            FormatSummaryTable(r->runs, r->summary, r->missing));
 }
 
 TEST_F(CampaignTest, ReportReprintsTheTableOfTheCampaign) {
@@ -144,6 +146,78 @@ TEST_F(CampaignTest, RejectsBadOptionsAndForeignFolders) {
   EXPECT_TRUE(CheckOutputFolder(dir_ + "/out").ok());  // an earlier campaign may be re-run
   std::ofstream(dir_ + "/file") << "x";
   EXPECT_FALSE(CheckOutputFolder(dir_ + "/file").ok());
+}
+
+
+// A campaign folder holds one scenario: re-using it for another is refused, and a report never
+// mixes two scenarios' runs.
+TEST_F(CampaignTest, AFolderOfOneScenarioIsNotReusedForAnother) {
+  ASSERT_TRUE(RunCampaign(scenario_, Options(2, 1)).ok());
+  Scenario other = scenario_;
+  other.name = "other";
+  auto r = RunCampaign(other, Options(1, 1));
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(),
+            "--out " + dir_ + "/out: holds a campaign of scenario 'tiny', not 'other'; choose "
+            "another folder");
+  EXPECT_EQ(started_, (std::set<std::uint32_t>{1, 2}));  // nothing of 'other' ran
+  // A folder mixed by hand (or by an older roverctl) reports only its campaign's scenario.
+  RunResult stray;
+  stray.scenario = "other";
+  stray.seed = 9;
+  stray.pass = true;
+  fs::create_directories(dir_ + "/out/other-seed9");
+  std::ofstream(dir_ + "/out/other-seed9/result.json") << ToJson(stray).dump(2) << "\n";
+  auto report = LoadCampaignReport(dir_ + "/out");
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  ASSERT_EQ(report->runs.size(), 2u);
+  for (const auto& run : report->runs) EXPECT_EQ(run.scenario, "tiny");
+  EXPECT_NE(report->table.find("tiny: 1/2 passed (50%)"), std::string::npos) << report->table;
+  EXPECT_NE(report->table.find("ignored: other-seed9 (scenario 'other', not 'tiny')"),
+            std::string::npos)
+      << report->table;
+}
+
+// Seeds re-run with a shorter list: the report covers the campaign's seeds, not old leftovers.
+TEST_F(CampaignTest, ReportCoversTheSeedsOfTheLastCampaignOnly) {
+  ASSERT_TRUE(RunCampaign(scenario_, Options(3, 1)).ok());
+  ASSERT_TRUE(RunCampaign(scenario_, Options(1, 1)).ok());
+  auto report = LoadCampaignReport(dir_ + "/out");
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  ASSERT_EQ(report->runs.size(), 1u);
+  EXPECT_TRUE(report->all_passed);
+  EXPECT_NE(report->table.find("tiny: 1/1 passed (100%)"), std::string::npos) << report->table;
+}
+
+// An interrupted campaign says which seeds have no result, and why.
+TEST_F(CampaignTest, InterruptedCampaignNamesTheSeedsWithoutAResult) {
+  abort_after_ = 1;
+  auto r = RunCampaign(scenario_, Options(3, 1));
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  // Seed 2 was under way when the campaign stopped: its folder exists, its result does not.
+  fs::create_directories(dir_ + "/out/tiny-seed2/logs");
+  auto report = LoadCampaignReport(dir_ + "/out");
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  EXPECT_FALSE(report->all_passed);
+  EXPECT_NE(report->table.find("tiny: 1/1 passed (100%); 2 of 3 seeds have no result"),
+            std::string::npos)
+      << report->table;
+  EXPECT_NE(report->table.find("seed 2: incomplete (started, no result.json)"), std::string::npos)
+      << report->table;
+  EXPECT_NE(report->table.find("seed 3: not run"), std::string::npos) << report->table;
+  // Interrupted before any run finished: not "0/0 passed" alone.
+  fs::remove_all(dir_ + "/out");
+  abort_.store(false);
+  abort_after_ = 0;
+  abort_.store(true);
+  r = RunCampaign(scenario_, Options(2, 1));
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  report = LoadCampaignReport(dir_ + "/out");
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  EXPECT_NE(report->table.find("tiny: 0/0 passed (0%); 2 of 2 seeds have no result"),
+            std::string::npos)
+      << report->table;
+  EXPECT_EQ(report->table, rover::testing::ReadFile(dir_ + "/out/summary.txt"));
 }
 
 }  // namespace

@@ -10,23 +10,21 @@ namespace {
 using testing::ScenarioWithTask;
 
 TEST(PlannedTasks, ValidateTheirSection) {
-  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: autonav}\n")).message(),
-            "s.yaml:2: task: a 'autonav' task needs a 'goal'");
   EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: long_traverse}\n")).message(),
             "s.yaml:2: task: a 'long_traverse' task needs a 'goal'");
   EXPECT_TRUE(ValidateTask(ScenarioWithTask("task: {type: lander_return}\n")).ok());
   EXPECT_TRUE(ValidateTask(ScenarioWithTask("task: {type: science_target}\n")).ok());
   EXPECT_EQ(
-      ValidateTask(ScenarioWithTask("task: {type: waypoint, goal: {x: 1, y: 1}, steps: []}\n"))
+      ValidateTask(ScenarioWithTask("task: {type: long_traverse, goal: {x: 1, y: 1}, steps: []}\n"))
           .message(),
       "s.yaml:2: task: unknown key 'steps' (known: type, goal)");
-  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: waypoint, goal: {x: 1}}\n")).message(),
+  EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: long_traverse, goal: {x: 1}}\n")).message(),
             "s.yaml:2: task.goal: needs both 'x' and 'y'");
 }
 
 TEST(PlannedTasks, ARunFailsSayingWhichServicesAreMissing) {
   auto t = TaskRegistry::Builtin().Make(
-      ScenarioWithTask("task: {type: waypoint, goal: {x: 5, y: 6}}\n"));
+      ScenarioWithTask("task: {type: long_traverse, goal: {x: 5, y: 6}}\n"));
   ASSERT_TRUE(t.ok()) << t.status().message();
   EXPECT_EQ((*t)->PlannedPath(), (std::vector<Eigen::Vector2d>{{1, 2}, {5, 6}}));
   testing::RunFixture run;
@@ -36,7 +34,7 @@ TEST(PlannedTasks, ARunFailsSayingWhichServicesAreMissing) {
   const TaskOutcome out = (*t)->Run(ctx);
   EXPECT_TRUE(out.steps.empty());
   EXPECT_EQ(out.failure,
-            "task type 'waypoint' needs the autonomous-navigation services, which this stack does "
+            "task type 'long_traverse' needs the autonomous-navigation services, which this stack does "
             "not have yet");
   auto home = TaskRegistry::Builtin().Make(ScenarioWithTask("task: {type: lander_return}\n"));
   ASSERT_TRUE(home.ok());

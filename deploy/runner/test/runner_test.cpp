@@ -31,8 +31,9 @@ TEST_F(RunnerTest, LoadScenarioChecksTheTaskWithItsOwnKeysAndLines) {
   text.replace(text.find("type: directed"), 14, "type: directd");
   EXPECT_EQ(Load(text).status().message(),
             dir_ +
-                "/s.yaml:13: task.type: 'directd' is not one of: directed, waypoint, autonav, "
-                "long_traverse, lander_return, science_target (did you mean 'directed'?)");
+                "/s.yaml:13: task.type: 'directd' is not one of: directed, autonav, "
+                "goto_waypoint, guarded, guarded_arc, long_traverse, lander_return, "
+                "science_target (did you mean 'directed'?)");
   text = runner::testing::kSmallScenario;
   text.replace(text.find("distance: 2"), 11, "distance: 200");
   EXPECT_EQ(Load(text).status().message(),

@@ -20,8 +20,9 @@ class NullTask : public Task {
 
 TEST(TaskRegistry, BuiltinTypesInOrder) {
   EXPECT_EQ(TaskRegistry::Builtin().Types(),
-            (std::vector<std::string>{"directed", "waypoint", "autonav", "long_traverse",
-                                      "lander_return", "science_target"}));
+            (std::vector<std::string>{"directed", "autonav", "goto_waypoint", "guarded",
+                                      "guarded_arc", "long_traverse", "lander_return",
+                                      "science_target"}));
   EXPECT_NE(TaskRegistry::Builtin().Describe().find("directed "), std::string::npos);
 }
 
@@ -30,11 +31,12 @@ TEST(TaskRegistry, UnknownTypeNamesFileLineAndTheKnownTypes) {
   auto t = TaskRegistry::Builtin().Make(s);
   ASSERT_FALSE(t.ok());
   EXPECT_EQ(t.status().message(),
-            "s.yaml:3: task.type: 'directd' is not one of: directed, waypoint, autonav, "
-            "long_traverse, lander_return, science_target (did you mean 'directed'?)");
+            "s.yaml:3: task.type: 'directd' is not one of: directed, autonav, goto_waypoint, "
+            "guarded, guarded_arc, long_traverse, lander_return, science_target (did you mean "
+            "'directed'?)");
   EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: fly}\n")).message(),
-            "s.yaml:2: task.type: 'fly' is not one of: directed, waypoint, autonav, long_traverse, "
-            "lander_return, science_target");
+            "s.yaml:2: task.type: 'fly' is not one of: directed, autonav, goto_waypoint, guarded, "
+            "guarded_arc, long_traverse, lander_return, science_target");
 }
 
 TEST(TaskRegistry, AFactoryGetsItsSectionAndOwnsItsKeys) {

@@ -35,7 +35,8 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "criteria",
                                   {"target", "heading", "max_tilt_deg", "traversable_height",
                                    "max_estimate_error", "max_estimate_error_percent",
-                                   "max_estimate_heading_error_deg", "min_distance"},
+                                   "max_estimate_heading_error_deg", "min_distance",
+                                   "max_hazard_contacts"},
                                   c));
   if (const YAML::Node t = n["target"]) {
     ROVER_RETURN_IF_ERROR(CheckKeys(t, "criteria.target", {"x", "y", "tolerance"}, c));
@@ -77,14 +78,30 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) 
   if (has) cr->max_estimate_heading_error = v * kDegToRad;
   ROVER_RETURN_IF_ERROR(OptionalNumber(n, "min_distance", "criteria", 0, 1e5, c, &v, &has));
   if (has) cr->min_distance = v;
+  ROVER_RETURN_IF_ERROR(OptionalNumber(n, "max_hazard_contacts", "criteria", 0, 1e6, c, &v, &has));
+  if (has) {
+    if (v != std::floor(v)) {
+      return c.At(n["max_hazard_contacts"], "criteria.max_hazard_contacts: " +
+                                                yaml::ScalarText(n["max_hazard_contacts"]) +
+                                                " is not a whole number");
+    }
+    cr->max_hazard_contacts = static_cast<int>(v);
+  }
   return cr->Validate();
 }
 
 }  // namespace
 
 const std::vector<std::string>& SimulatorSections() {
-  static const std::vector<std::string> k = {"terrain", "lander", "science_targets"};
+  static const std::vector<std::string> k = {"terrain", "terrain_features", "lander",
+                                             "science_targets"};
   return k;
+}
+
+recording::RecordOptions DefaultRunRecording() {
+  recording::RecordOptions o;
+  o.path = "run.mcap";
+  return o;
 }
 
 Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
@@ -94,7 +111,7 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
   ROVER_ASSIGN_OR_RETURN(const YAML::Node root, yaml::Load(text, c));
   if (!root.IsMap()) return c.At(1, "expected a map (a scenario)");
   std::vector<std::string> known = {"name", "description", "compose", "simulator", "estimator", "seed", "sim",
-                                    "rover", "task", "faults", "criteria", "params"};
+                                    "rover", "task", "faults", "criteria", "params", "record"};
   for (const auto& s : SimulatorSections()) known.push_back(s);
   ROVER_RETURN_IF_ERROR(CheckKeys(root, "", known, c));
   Scenario s;
@@ -179,6 +196,10 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
         return c.At(kv.second, "params." + kv.first.Scalar() + ": expected a map");
       yaml::Flatten(kv.second, "", &s.params[kv.first.Scalar()]);
     }
+  }
+  if (const YAML::Node r = root["record"]) {
+    ROVER_ASSIGN_OR_RETURN(s.record, recording::ParseRecordOptions(r, "record", c, s.record));
+    if (s.record.path.empty()) s.record.path = DefaultRunRecording().path;
   }
   if (validate_task) ROVER_RETURN_IF_ERROR(validate_task(s));
   if (validate_sim) ROVER_RETURN_IF_ERROR(validate_sim(text, file));

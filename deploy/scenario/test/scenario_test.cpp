@@ -49,6 +49,7 @@ criteria:
   heading: {deg: 0, tolerance_deg: 3}
   max_tilt_deg: 25
   max_estimate_error_percent: 2
+  max_hazard_contacts: 0
 params:
   dl-pose: {ekf: {gyro_noise: 0.001}}
 )";
@@ -80,6 +81,7 @@ TEST_F(ScenarioTest, ParsesAFullScenario) {
   ASSERT_TRUE(s->criteria.target_xy.has_value());
   EXPECT_EQ(s->criteria.position_tolerance, 0.5);
   EXPECT_NEAR(*s->criteria.max_estimate_error_fraction, 0.02, 1e-12);
+  EXPECT_EQ(s->criteria.max_hazard_contacts, 0);
   EXPECT_EQ(s->params.at("dl-pose").at("ekf.gyro_noise"), "0.001");
   EXPECT_EQ(seen_text, kGood);  // the simulator's sections are validated by the callback
 }
@@ -98,14 +100,18 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
   const std::string crit = "criteria: {max_tilt_deg: 30}\n";
   EXPECT_EQ(Err(base + task + crit + "critera: {}\n"),
             "5: unknown key 'critera' (did you mean 'criteria'?) (known: name, description, "
-            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, terrain, "
-            "lander, science_targets)");
+            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, record, "
+            "terrain, terrain_features, lander, science_targets)");
   EXPECT_EQ(Err(base + crit), "1: missing 'task' (what the rover is to do)");
   EXPECT_EQ(Err(base + task), "1: missing 'criteria' (how the run is judged)");
   EXPECT_EQ(Err(base + task + "criteria: {max_tilt_deg: 95}\n"),
             "4: criteria.max_tilt_deg: 95 is out of range [0.1, 89.9]");
   EXPECT_EQ(Err(base + task + "criteria: {target: {x: 1, y: 2, tolerance: -1}}\n"),
             "4: criteria.target.tolerance: -1 is out of range [0.001, 100]");
+  EXPECT_EQ(Err(base + task + "criteria: {max_hazard_contacts: 1.5}\n"),
+            "4: criteria.max_hazard_contacts: 1.5 is not a whole number");
+  EXPECT_EQ(Err(base + task + "criteria: {max_hazard_contacts: -1}\n"),
+            "4: criteria.max_hazard_contacts: -1 is out of range [0, 1e+06]");
   EXPECT_EQ(Err(base + task + "criteria: {target: {x: 1}}\n"),
             "4: criteria.target: needs both 'x' and 'y'");
   EXPECT_EQ(Err(base + "task: {steps: []}\n" + crit), "3: task: missing 'type'");

@@ -103,6 +103,8 @@ void PoseEstimator::OnImu(const msg::Imu& imu) {
     Restart("ddl/imu stamp " + Num(t.seconds()) + " s is before the filter time " +
             Num(ekf_.time().seconds()) + " s (run clock reset)");
   }
+  if (unknown_) return;  // nothing to propagate
+  if (!ekf_.initialized() && resume_ && !ResumeOrRefuse(t)) return;
   if (!ekf_.initialized()) {
     if (const auto d = leveller_.Add(t, w, f)) Start(*d);
     return;
@@ -143,6 +145,69 @@ void PoseEstimator::Start(const StartDecision& d) {
              {"yaw_deg", fusion_.start.yaw / kDeg},
              {"gyro_bias_z", d.init.gyro_bias.z()},
              {"gyro_bias_sigma", d.init.gyro_bias_sigma}});
+}
+
+void PoseEstimator::ResumeFrom(const PoseCheckpoint& checkpoint,
+                               const PoseResumeOptions& options) {
+  ROVER_DEMAND(!ekf_.initialized());
+  resume_ = checkpoint;
+  resume_options_ = options;
+}
+
+void PoseEstimator::DeclareUnknown(const std::string& why) {
+  resume_.reset();
+  unknown_ = why;
+  log::Error("pose unknown: dl/pose not published", {{"reason", why}});
+}
+
+PoseCheckpoint PoseEstimator::Checkpoint() const {
+  ROVER_DEMAND(ekf_.initialized());
+  PoseCheckpoint c;
+  c.main = SavedFilterOf(ekf_.Estimate());
+  if (odometry_only_ && odometry_only_->initialized()) {
+    c.odometry_only = SavedFilterOf(odometry_only_->Estimate());
+  }
+  return c;
+}
+
+bool PoseEstimator::ResumeOrRefuse(Time t) {
+  const PoseCheckpoint saved = *resume_;
+  resume_.reset();
+  const double gap = ToSeconds(t - saved.main.stamp);
+  if (gap < -kClockResetS) {
+    // The run clock is behind the checkpoint: a new run (simulator reset), not a restart.
+    log::Info("checkpoint is from a later run time: starting afresh",
+              {{"checkpoint_t_s", saved.main.stamp.seconds()}, {"t_s", t.seconds()}});
+    return true;
+  }
+  if (gap > resume_options_.max_age_s) {
+    DeclareUnknown("pose unknown after restart: the last checkpoint (t = " +
+                   Num(saved.main.stamp.seconds()) + " s) is " + Num(gap) +
+                   " s old, more than resume.max_age_s " + Num(resume_options_.max_age_s) + " s");
+    return false;
+  }
+  const double bias_sigma = fusion_.start.gyro_bias_sigma;
+  const Status s =
+      ekf_.Initialize(ResumedInitialState(saved.main, t, resume_options_, bias_sigma));
+  if (!s.ok()) {
+    DeclareUnknown("pose unknown after restart: checkpoint rejected: " + s.message());
+    return false;
+  }
+  if (odometry_only_) {
+    // Without its own (usable) checkpoint the baseline resumes from the main filter's.
+    Status r = odometry_only_->Initialize(ResumedInitialState(
+        saved.odometry_only.value_or(saved.main), t, resume_options_, bias_sigma));
+    if (!r.ok()) {
+      WarnCounted("odometry-only checkpoint rejected; resuming it from dl/pose's", r.message());
+      r = odometry_only_->Initialize(ResumedInitialState(saved.main, t, resume_options_,
+                                                         bias_sigma));
+    }
+    ROVER_DEMAND(r.ok());  // the main filter accepted this state
+  }
+  leveller_.Reset();
+  log::Info("pose estimator resumed from checkpoint",
+            {{"checkpoint_t_s", saved.main.stamp.seconds()}, {"t_s", t.seconds()}, {"gap_s", gap}});
+  return true;
 }
 
 void PoseEstimator::OnJointState(const msg::JointState& joints) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdlib.h>
+
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -33,10 +35,17 @@ Eigen::Vector3d RpyOf(const rover_dl_PoseEstimate& p) {
 
 class PoseServiceTest : public ::testing::Test {
  protected:
-  void Start(std::vector<std::string> overrides = {}) {
+  void TearDown() override {
+    h_.reset();
+    unsetenv("ROVER_STATE_DIR");
+    unsetenv("ROVER_SET_ID");
+  }
+
+  void Start(std::vector<std::string> overrides = {}, PoseService* service = nullptr) {
     // Level on 0.5 s (the service's default of 10 s is for real drives).
     overrides.insert(overrides.begin(), "start.level_samples=50");
-    h_ = std::make_unique<testing::ServiceHarness>(service_, "dl-pose-test", std::move(overrides));
+    h_ = std::make_unique<testing::ServiceHarness>(service ? *service : service_, "dl-pose-test",
+                                                   std::move(overrides));
     ASSERT_TRUE(h_->ok()) << h_->status().message();
     ASSERT_TRUE(imu_.Create(h_->peer()).ok());
     joint_w_ = h_->Writer<rover_ddl_JointState>("ddl/joint_state");
@@ -205,7 +214,7 @@ TEST_F(PoseServiceTest, WheelOdometryFromJointStatesMovesThePositionAlongTheHead
   const rover_dl_PoseEstimate p = poses_.back().pose;
   EXPECT_NEAR(p.pose.position.x, 0.0, 1e-6);
   EXPECT_NEAR(p.pose.position.y, 0.2, 1e-6);  // 4 s at 0.05 m/s
-  EXPECT_NEAR(p.odometer, 0.2, 1e-6);
+  EXPECT_NEAR(p.odometer, 0.2, 0.01);  // counted in ekf.odometer_step (1 cm) steps
   // Along-track variance grew by odometry.along_variance_per_m (1e-3 m^2/m) * 0.2 m.
   EXPECT_NEAR(p.covariance[7] - var_y0, 1e-3 * 0.2, 2e-5);
   EXPECT_TRUE(p.stationary);
@@ -298,6 +307,87 @@ TEST_F(PoseServiceTest, InvalidParametersKeepTheServiceUnconfigured) {
 
 // The conversions (RelativePoseFromIdl, PoseEstimateToIdl): core/msg/test/pose_idl_test.cpp;
 // the levelling (LevelFromSpecificForce, Leveller): test/pose_startup_test.cpp.
+
+// ---- restart (kill -9 mid-drive) ----------------------------------------------------------------
+
+class PoseRestartTest : public PoseServiceTest {
+ protected:
+  // As roverctl runs it: a state folder and the set's id (rover/base/checkpoint.hpp).
+  void Supervised(const std::string& set_id) {
+    if (state_dir_.empty()) state_dir_ = testing::MakeTempDir("dl-pose-restart");
+    setenv("ROVER_STATE_DIR", state_dir_.c_str(), 1);
+    setenv("ROVER_SET_ID", set_id.c_str(), 1);
+  }
+  // Levels, then drives 4 s at 0.05 m/s along site x (0.2 m).
+  void LevelAndDrive() {
+    Start();
+    Advance(1.0);
+    wheel_rate_ = 0.4;
+    Advance(4.0);
+    ASSERT_FALSE(poses_.empty());
+    before_ = poses_.back().pose;
+    ASSERT_NEAR(before_.pose.position.x, 0.2, 0.01);
+  }
+  // The process is gone (nothing of it runs any more: its checkpoint file stays, as after kill
+  // -9); the rover drives on for `gap_s` of run time; the supervisor starts a new dl-pose.
+  void KillAndRestart(double gap_s, std::vector<std::string> overrides = {}) {
+    h_.reset();
+    const auto gap_steps = static_cast<std::int64_t>(std::lround(gap_s / kStep));
+    step_ += gap_steps;
+    wheel_angle_ += wheel_rate_ * kStep * static_cast<double>(gap_steps);
+    poses_.clear();
+    restarted_ = std::make_unique<PoseService>();
+    Start(std::move(overrides), restarted_.get());
+  }
+  std::string state_dir_;
+  rover_dl_PoseEstimate before_{};
+  std::unique_ptr<PoseService> restarted_;
+};
+
+TEST_F(PoseRestartTest, KillNineMidDriveResumesFromTheCheckpointWithInflatedCovariance) {
+  Supervised("drive.1.a/dl-pose");
+  LevelAndDrive();
+  KillAndRestart(2.0);  // down for 2 s while driving at 0.05 m/s: 0.1 m unseen
+  Advance(1.0);         // still driving
+  ASSERT_FALSE(poses_.empty()) << "a resumed dl-pose publishes at once";
+  const rover_dl_PoseEstimate& first = poses_.front().pose;
+  // Not the start (x = 0, yaw 0, odometer 0): where the checkpoint left it (at most 1 s of
+  // checkpoint period before the kill), then on from there.
+  EXPECT_GT(first.pose.position.x, 0.15);
+  EXPECT_LT(first.pose.position.x, 0.25);
+  EXPECT_NEAR(RpyOf(first).z(), 0.0, 1e-3);
+  EXPECT_GT(first.odometer, 0.14);
+  // The covariance grew for the unseen gap (resume.max_speed 0.1 m/s times >= 2 s).
+  EXPECT_GT(first.covariance[0], before_.covariance[0] + 0.9 * 0.04);
+  EXPECT_GT(first.covariance[35], before_.covariance[35]);
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
+  // And it drives on from there: 1 s more at 0.05 m/s.
+  EXPECT_NEAR(poses_.back().pose.pose.position.x - first.pose.position.x, 0.05, 0.01);
+}
+
+TEST_F(PoseRestartTest, ACheckpointTooOldForResumingMeansThePoseIsUnknown) {
+  Supervised("drive.1.a/dl-pose");
+  LevelAndDrive();
+  KillAndRestart(3.0, {"resume.max_age_s=2"});
+  Advance(2.0);
+  EXPECT_TRUE(poses_.empty()) << "a restarted dl-pose without a usable checkpoint must not "
+                                 "publish a pose anything could drive on";
+  EXPECT_EQ(h_->health(), rover_HEALTH_FAILED);
+  EXPECT_NE(h_->health_message().find("pose unknown after restart"), std::string::npos)
+      << h_->health_message();
+}
+
+TEST_F(PoseRestartTest, ACheckpointOfAnotherSetIsNotResumed) {
+  Supervised("drive.1.a/dl-pose");
+  LevelAndDrive();
+  Supervised("drive.2.b/dl-pose");  // a later `up` of the same project: a fresh start
+  wheel_rate_ = 0.0;
+  KillAndRestart(1.0);
+  Advance(1.0);
+  ASSERT_FALSE(poses_.empty());
+  EXPECT_NEAR(poses_.back().pose.pose.position.x, 0.0, 1e-6);  // levelled at start.*, as a first start
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
+}
 
 }  // namespace
 }  // namespace rover::dl

@@ -22,41 +22,42 @@ const std::vector<std::string>& Terminations() {
   return k;
 }
 
-Result<DriveStep> ParseStep(const YAML::Node& n, const yaml::FileErrors& err) {
+Result<DriveStep> ParseStepAt(const YAML::Node& n, const std::string& where,
+                              const yaml::FileErrors& err) {
   DriveStep s;
   s.line = yaml::Line(n);
-  ROVER_RETURN_IF_ERROR(yaml::CheckKeys(n, kStep,
+  ROVER_RETURN_IF_ERROR(yaml::CheckKeys(n, where,
                                         {"primitive", "distance", "curvature", "angle_deg", "speed",
                                          "timeout_s", "stop_after_s", "expect"},
                                         err));
   if (const YAML::Node e = n["expect"]) {
-    ROVER_ASSIGN_OR_RETURN(s.expect, yaml::OneOf(e, "task.steps[].expect", Terminations(), err));
+    ROVER_ASSIGN_OR_RETURN(s.expect, yaml::OneOf(e, where + ".expect", Terminations(), err));
   }
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "timeout_s", kStep, 0, 86400, err, &s.timeout_s));
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "timeout_s", where, 0, 86400, err, &s.timeout_s));
   ROVER_RETURN_IF_ERROR(
-      yaml::OptionalNumber(n, "stop_after_s", kStep, 0, 86400, err, &s.stop_after_s));
-  ROVER_RETURN_IF_ERROR(yaml::RequireKey(n, kStep, "primitive", err));
+      yaml::OptionalNumber(n, "stop_after_s", where, 0, 86400, err, &s.stop_after_s));
+  ROVER_RETURN_IF_ERROR(yaml::RequireKey(n, where, "primitive", err));
   const std::vector<Primitive> primitives = {Primitive::kStraight, Primitive::kArc,
                                              Primitive::kTurnInPlace, Primitive::kSteer,
                                              Primitive::kStop};
   std::vector<std::string> names;
   for (Primitive p : primitives) names.emplace_back(PrimitiveName(p));
   ROVER_ASSIGN_OR_RETURN(const std::string name,
-                         yaml::OneOf(n["primitive"], "task.steps[].primitive", names, err));
+                         yaml::OneOf(n["primitive"], where + ".primitive", names, err));
   s.primitive = primitives[std::find(names.begin(), names.end(), name) - names.begin()];
   bool has_d = false, has_k = false, has_a = false;
   double angle_deg = 0;
   ROVER_RETURN_IF_ERROR(
-      yaml::OptionalNumber(n, "distance", kStep, -100, 100, err, &s.distance, &has_d));
+      yaml::OptionalNumber(n, "distance", where, -100, 100, err, &s.distance, &has_d));
   ROVER_RETURN_IF_ERROR(
-      yaml::OptionalNumber(n, "curvature", kStep, -1, 1, err, &s.curvature, &has_k));
+      yaml::OptionalNumber(n, "curvature", where, -1, 1, err, &s.curvature, &has_k));
   ROVER_RETURN_IF_ERROR(
-      yaml::OptionalNumber(n, "angle_deg", kStep, -360, 360, err, &angle_deg, &has_a));
-  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "speed", kStep, 0, 0.5, err, &s.speed));
+      yaml::OptionalNumber(n, "angle_deg", where, -360, 360, err, &angle_deg, &has_a));
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "speed", where, 0, 0.5, err, &s.speed));
   s.angle = angle_deg * kDegToRad;
   auto need = [&](bool has, const char* what) -> Status {
     return has ? Status::Ok()
-               : err.At(n, std::string(kStep) + ": '" + name + "' needs '" + what + "'");
+               : err.At(n, where + ": '" + name + "' needs '" + what + "'");
   };
   switch (s.primitive) {
     case Primitive::kStraight:
@@ -108,6 +109,11 @@ const char* PrimitiveName(Primitive p) {
   return "?";
 }
 
+Result<DriveStep> ParseDriveStep(const YAML::Node& n, const std::string& where,
+                                 const yaml::FileErrors& err) {
+  return ParseStepAt(n, where, err);
+}
+
 Result<DirectedTaskSpec> ParseDirectedTask(const TaskSource& source) {
   const YAML::Node& n = source.section;
   const yaml::FileErrors& err = source.errors;
@@ -119,7 +125,7 @@ Result<DirectedTaskSpec> ParseDirectedTask(const TaskSource& source) {
     return err.At(steps ? steps : n, "task.steps: a directed task needs a non-empty list of steps");
   }
   for (const auto& s : steps) {
-    ROVER_ASSIGN_OR_RETURN(DriveStep step, ParseStep(s, err));
+    ROVER_ASSIGN_OR_RETURN(DriveStep step, ParseStepAt(s, kStep, err));
     spec.steps.push_back(std::move(step));
   }
   return spec;

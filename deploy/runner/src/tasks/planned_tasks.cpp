@@ -45,10 +45,6 @@ TaskFactory Factory(std::string type, bool needs_goal) {
 }  // namespace
 
 void RegisterPlannedTasks(TaskRegistry& registry) {
-  registry.Register("waypoint", "drive to `goal` (planned: needs the application layer)",
-                    Factory("waypoint", true));
-  registry.Register("autonav", "navigate autonomously to `goal` (planned)",
-                    Factory("autonav", true));
   registry.Register("long_traverse", "a long autonomous traverse to `goal` (planned)",
                     Factory("long_traverse", true));
   registry.Register("lander_return", "return to the lander (planned)",

@@ -14,6 +14,9 @@ namespace rover::msg {
 DriveCommand DriveCommandFromIdl(const rover_dl_DriveCommand& in);
 void DriveCommandToIdl(const DriveCommand& in, rover_dl_DriveCommand* out);
 
+/// The wire enum of a known primitive; an unknown value becomes PRIMITIVE_STOP.
+rover_dl_DrivePrimitive DrivePrimitiveToIdl(DrivePrimitive p);
+
 /// Errors: a primitive, state or termination value no enumerator has.
 Result<DriveStatus> DriveStatusFromIdl(const rover_dl_DriveStatus& in);
 /// An unknown primitive value (only possible in a rejection) is sent as PRIMITIVE_STOP, since

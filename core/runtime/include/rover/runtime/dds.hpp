@@ -142,7 +142,12 @@ class Sample {
   const dds_sample_info_t* info_;
 };
 
-/// A typed writer on one topic.
+/// Types whose samples start with a rover::Header (every topic type of the catalog).
+template <class T>
+concept HasHeader = requires(T t) { t.header.seq; };
+
+/// A typed writer on one topic. It numbers the samples it writes (header.seq = 1, 2, 3, ... per
+/// writer, as the IDL says) unless the caller set a non-zero header.seq itself.
 template <class T>
 class Writer {
  public:
@@ -166,15 +171,23 @@ class Writer {
     return out;
   }
 
-  /// Publishes one sample (through the fault seam, if any).
+  /// Publishes one sample (numbered, then through the fault seam, if any: a dropped sample
+  /// leaves a gap in header.seq).
   Status Write(const T& sample) {
     ROVER_DEMAND(writer_.valid());
-    dds_return_t rc = seam_ && !seam_->Idle()
-                          ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
-                          : dds_write(writer_.handle(), &sample);
-    if (rc < 0) return DdsError("write on " + name_, rc);
-    return Status::Ok();
+    if constexpr (HasHeader<T>) {
+      if (sample.header.seq == 0) {
+        T numbered = sample;  // shallow: sequences stay borrowed from the caller
+        if (++seq_ == 0) seq_ = 1;
+        numbered.header.seq = seq_;
+        return WriteAsIs(numbered);
+      }
+    }
+    return WriteAsIs(sample);
   }
+
+  /// The header.seq of the last sample this writer numbered (0 before the first).
+  std::uint32_t last_seq() const { return seq_; }
 
   /// Readers currently matched.
   int MatchedReaders() const {
@@ -193,12 +206,22 @@ class Writer {
  private:
   Entity writer_;
   Entity topic_;
+  Status WriteAsIs(const T& sample) {
+    dds_return_t rc = seam_ && !seam_->Idle()
+                          ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
+                          : dds_write(writer_.handle(), &sample);
+    if (rc < 0) return DdsError("write on " + name_, rc);
+    return Status::Ok();
+  }
+
   std::string name_;
   QosProfile profile_ = QosProfile::kState;
   std::shared_ptr<TopicSeam> seam_;
+  std::uint32_t seq_ = 0;
 };
 
-/// A typed reader on one topic.
+/// A typed reader on one topic. Under a "fresh only" profile (commands, qos.hpp) it drops
+/// samples written before the reader was created.
 template <class T>
 class Reader {
  public:
@@ -217,6 +240,7 @@ class Reader {
     out.name_ = topic;
     out.profile_ = *prof;
     out.seam_ = SeamFor(topic, Direction::kRead);
+    if (DescribeQos(*prof).fresh_only) out.fresh_after_ = dds_time();
     return out;
   }
 
@@ -241,7 +265,7 @@ class Reader {
       const dds_return_t n = dds_take(reader_.handle(), ptrs, infos, kBatch, kBatch);
       if (n <= 0) break;
       for (dds_return_t i = 0; i < n; ++i) {
-        if (!infos[i].valid_data) continue;
+        if (!infos[i].valid_data || Stale(infos[i])) continue;
         if (seam_ && !seam_->Idle()) {
           seam_->OnRead(ptrs[i], infos[i], TopicType<T>::Descriptor(), sink);
         } else {
@@ -285,7 +309,7 @@ class Reader {
     if (n <= 0) return out;
     out.reserve(out.size() + static_cast<std::size_t>(n));
     for (dds_return_t i = 0; i < n; ++i) {
-      if (!infos[i].valid_data) continue;
+      if (!infos[i].valid_data || Stale(infos[i])) continue;
       current = static_cast<std::size_t>(i);
       if (seam_ && !seam_->Idle()) {
         seam_->OnRead(&pool_[current].data(), infos[i], TopicType<T>::Descriptor(), sink);
@@ -314,10 +338,17 @@ class Reader {
  private:
   Entity reader_;
   Entity topic_;
+  // Written before this reader existed (fresh-only profiles): an old command from a writer's
+  // history, not one for us.
+  bool Stale(const dds_sample_info_t& info) const {
+    return fresh_after_ != 0 && info.source_timestamp < fresh_after_;
+  }
+
   std::string name_;
   QosProfile profile_ = QosProfile::kState;
   std::shared_ptr<TopicSeam> seam_;
   std::vector<OwnedSample<T>> pool_;
+  dds_time_t fresh_after_ = 0;  // 0: every sample counts
 };
 
 /// A condition the program triggers itself (e.g. to wake a WaitSet for shutdown).

@@ -100,7 +100,8 @@ class ServiceContext {
     return executor_->Subscribe<T>(*holder, std::move(callback), always);
   }
 
-  /// Stamps a header from the run clock with a per-frame-id sequence number.
+  /// Stamps a header: the run clock's time and `frame_id`; header.seq is set to 0, so that the
+  /// writer that publishes the sample numbers it (per writer, dds::Writer).
   void Stamp(rover_Header& header, std::string_view frame_id);
 
   /// The service's own health, reported in every heartbeat.
@@ -136,7 +137,6 @@ class ServiceContext {
   rover_SensorHealth health_ = rover_HEALTH_OK;
   std::string health_message_;
   std::uint64_t heartbeat_count_ = 0;
-  std::map<std::string, std::uint32_t, std::less<>> seq_;
 };
 
 /// Base class of every service. Override OnConfigure at least.

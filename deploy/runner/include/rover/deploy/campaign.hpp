@@ -36,11 +36,14 @@ struct CampaignResult {
   CampaignSummary summary;
   bool interrupted = false;
   std::vector<std::string> errors;       ///< runs that could not be made at all
+  std::vector<MissingRun> missing;       ///< seeds without a result (interrupted, errors)
   bool all_passed() const;
 };
 
-/// Checks the output folder: it may not exist, be empty, or be an earlier campaign folder.
-Status CheckOutputFolder(const std::string& dir);
+/// Checks the output folder: it may not exist, be empty, or be an earlier campaign folder of the
+/// same scenario (`scenario`; "" accepts any): a folder holds one scenario's runs, so that a
+/// report never mixes two.
+Status CheckOutputFolder(const std::string& dir, const std::string& scenario = "");
 
 Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptions& options);
 

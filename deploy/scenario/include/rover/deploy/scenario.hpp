@@ -24,6 +24,9 @@
 ///     max_estimate_error_percent: 2      # of distance driven
 ///     min_distance: 4                    # [m]
 ///   params: {dl-pose: {key: value}}      # per-service parameter overrides
+///   record: {topics: [...], exclude: [...], size_cap_mb: 500, compression: zstd}
+///                                        # the run's run.mcap: on by default; `record:
+///                                        # false` turns it off (rover/recording/record_options.hpp)
 ///
 /// Errors are one line naming file, line and key. Sections meant for the simulator (terrain,
 /// lander, science_targets) and the task section are validated by callbacks (the simulator's
@@ -36,6 +39,7 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/recording/record_options.hpp"
 #include "rover/sim/judge/judge.hpp"
 
 namespace rover::deploy {
@@ -47,6 +51,10 @@ struct TaskSection {
   int line = 0;       ///< line of the section
   int type_line = 0;  ///< line of task.type
 };
+
+/// What a scenario run records when the scenario says nothing: every topic, zstd, no cap, into
+/// run.mcap.
+recording::RecordOptions DefaultRunRecording();
 
 struct Scenario {
   std::string file;               ///< path as given
@@ -70,6 +78,9 @@ struct Scenario {
   sim::JudgeCriteria criteria;
   /// service -> flattened key -> YAML scalar text
   std::map<std::string, std::map<std::string, std::string>> params;
+  /// The run's recording: every catalog topic into <run folder>/run.mcap unless the
+  /// scenario's `record` says otherwise (a relative path is inside the run folder).
+  recording::RecordOptions record = DefaultRunRecording();
   std::string text;               ///< the file's text (to hand sections to the simulator)
 };
 

@@ -27,6 +27,15 @@ Result<sim::Judge> MakeJudge(const Scenario& scenario, const sim::World& world);
 void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_figures,
               RunResult* result, std::string* failure);
 
+/// For a mobility run (result.mobility set): appends autonav_judging.hpp's figures (traverse
+/// rate, standing still, hazard-map recall and false-obstacle rate against the world's rocks
+/// taller than the scenario's criteria.traversable_height) to result.figures and, when the
+/// command had keep-out zones, the criterion keep_out_entries (truth track points with the
+/// rover's front, hwconfig's ground footprint, in a zone; limit 0). A failed criterion becomes
+/// `*failure` when that is empty.
+void AddMobilityFigures(const Scenario& scenario, const sim::World& world, RunResult* result,
+                        std::string* failure);
+
 /// Sets result.failure (unless already set) and result.pass, then writes result.json, map.png
 /// (terrain, rocks, `planned`, the tracks) and estimate_error.png into result.run_dir. The plots
 /// are best effort: an error there does not fail the run; result.json must be written.

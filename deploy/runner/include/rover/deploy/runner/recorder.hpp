@@ -16,8 +16,12 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "rover/base/status.hpp"
 #include "rover/deploy/run_report.hpp"
+#include "rover/deploy/scenario.hpp"
+#include "rover/recording/bus_recorder.hpp"
 #include "rover/runtime/dds.hpp"
 #include "rover/sim/judge/judge.hpp"
 
@@ -49,6 +53,12 @@ class Recorder {
     return Status::Ok();
   }
 
+  /// The run's mobility outcome (RunResult::mobility), made empty on first use; a mobility task
+  /// fills it, and its Record callbacks may keep writing to it while the run goes.
+  MobilityOutcome& Mobility() {
+    if (!result_->mobility) result_->mobility.emplace();
+    return *result_->mobility;
+  }
   /// A figure (measured, not judged) for result.json, listed after the judge's own.
   void AddFigure(sim::Criterion figure) { added_figures_.push_back(std::move(figure)); }
   /// The recorder's figures: dl/pose's rejected-measurement count (when dl/pose was heard), then
@@ -72,5 +82,24 @@ class Recorder {
   std::optional<double> rejected_measurements_;  // dl/pose's count, last sample
   std::vector<sim::Criterion> added_figures_;
 };
+
+/// The run's MCAP recording (the scenario's `record`, on by default): every catalog topic it
+/// selects, taken on the operator's participant, into the run folder (run.mcap unless the
+/// scenario names another file), log time on sim/clock. Null when the scenario turns it off.
+/// `qos` is the set's x-rover.qos, so that the recorder's readers match its writers.
+Result<std::unique_ptr<recording::BusRecorder>> StartRunRecording(
+    const dds::Participant& participant, const Scenario& scenario, std::uint32_t seed,
+    const std::string& run_dir, int domain, const std::map<std::string, std::string>& qos);
+
+/// The recorder's figures of one recording (written beside it as <file>.json): messages,
+/// bytes, samples lost in transport, wall and CPU seconds of its thread, CPU share (CPU / wall),
+/// MB/s and samples/s (per wall second), run-clock span and file MB per simulated minute, and
+/// per topic messages, bytes, lost and messages per simulated second.
+nlohmann::json RecordingFigures(const recording::RecordingReport& report);
+
+/// Stops the run's recording (null: nothing to do) and writes its figures to <file>.json; ""
+/// when the file is complete, else the run's failure: "recording failed: <why>; <file> is
+/// incomplete".
+std::string FinishRunRecording(recording::BusRecorder* recorder);
 
 }  // namespace rover::deploy::runner

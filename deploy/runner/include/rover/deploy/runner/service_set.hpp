@@ -60,6 +60,13 @@ class ServiceSet {
   /// One supervision step; "" while every service runs, else "service 'x' crashed (how it
   /// ended)", and "x: how it ended; its last log line" is appended to `*crashes`.
   std::string CheckServices(std::vector<std::string>* crashes);
+  /// Every service is ready by its rule (supervisor.hpp: a rover service's heartbeat says ACTIVE
+  /// and health OK), as of the last CheckServices().
+  bool Ready() const { return supervisor_->readiness().ready; }
+  /// Why it is not ready: "dl-pose: health degraded: levelling: ...; ...".
+  std::string NotReady() const { return supervisor_->readiness().Summary(); }
+  /// Wall seconds from the start of Start() to the set first being ready (< 0: not yet).
+  double ready_after_s() const { return supervisor_->ready_after_s(); }
   /// Stops every service; nothing is left running.
   void Stop();
 

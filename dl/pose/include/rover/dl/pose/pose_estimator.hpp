@@ -9,7 +9,11 @@
 ///     "IMU + wheel odometry" dead reckoning, published on dl/pose_odometry);
 ///   * the start-up (Leveller, pose_startup.hpp): nothing is estimated until the filter is
 ///     levelled, and a sample more than kClockResetS older than the filter (the run clock went
-///     back: a simulator reset) restarts both filters, the odometry and the levelling.
+///     back: a simulator reset) restarts both filters, the odometry and the levelling;
+///   * the restart after a crash (pose_resume.hpp): armed with a checkpoint (ResumeFrom), the
+///     first usable IMU sample resumes both filters from it, inflated for the gap, or declares
+///     the pose unknown when it is too old; a pose declared unknown is never estimated again
+///     (nothing may drive on it: the set must be restarted or the pose set by an operator).
 ///
 /// Sun updates: the sun direction in the site frame comes from the Mars ephemeris
 /// (core/geometry mars_sun.hpp) at run time t - run_start_s. A sample is used only when it is
@@ -30,6 +34,7 @@
 #include "rover/base/status.hpp"
 #include "rover/dl/locomotion/wheel_odometry.hpp"
 #include "rover/dl/pose/pose_ekf.hpp"
+#include "rover/dl/pose/pose_resume.hpp"
 #include "rover/dl/pose/pose_startup.hpp"
 #include "rover/geometry/mars_sun.hpp"
 #include "rover/msg/pose.hpp"
@@ -86,6 +91,18 @@ class PoseEstimator {
   /// Both filters, the odometry and the levelling start over (`why` is logged).
   void Restart(const std::string& why);
 
+  /// After a restart: resume from `checkpoint` on the first usable IMU sample instead of
+  /// levelling (see pose_resume.hpp). Precondition: not started.
+  void ResumeFrom(const PoseCheckpoint& checkpoint, const PoseResumeOptions& options);
+  /// The pose is unknown (`why`, e.g. an unreadable checkpoint): nothing is estimated any more.
+  void DeclareUnknown(const std::string& why);
+  /// Why the pose is unknown after a restart; nullopt when it is known or being levelled.
+  const std::optional<std::string>& pose_unknown() const { return unknown_; }
+  /// Armed with a checkpoint that the first IMU sample will resume from.
+  bool resuming() const { return resume_.has_value(); }
+  /// Both filters' state to checkpoint. Precondition: started().
+  PoseCheckpoint Checkpoint() const;
+
   bool started() const { return ekf_.initialized(); }
   const PoseEkf& ekf() const { return ekf_; }
   /// The IMU + wheel odometry filter; null when odometry_only is off.
@@ -98,6 +115,8 @@ class PoseEstimator {
   PoseEstimator(PoseEkf ekf, std::optional<PoseEkf> odometry_only, WheelOdometry odometry,
                 const EkfOptions& ekf_options, const PoseFusionOptions& fusion);
   void Start(const StartDecision& d);
+  /// On the first usable sample at `t` after a restart; false when the pose became unknown.
+  bool ResumeOrRefuse(Time t);
 
   EkfOptions ekf_options_;
   PoseFusionOptions fusion_;
@@ -109,6 +128,9 @@ class PoseEstimator {
   double last_rate_ = 0.0;                // [rad/s] |bias-corrected gyro| of the last IMU sample
   std::vector<EstimatorEvent> rejected_;  // rejected inputs not yet taken
   std::map<std::string, std::uint64_t> warn_counts_;
+  std::optional<PoseCheckpoint> resume_;  // armed by ResumeFrom, used by the first IMU sample
+  PoseResumeOptions resume_options_;
+  std::optional<std::string> unknown_;    // why the pose is unknown after a restart
 };
 
 }  // namespace rover::dl

@@ -54,6 +54,11 @@ struct DirectedTaskSpec {
   std::optional<TaskGoal> goal;  ///< drawn on the map only
 };
 
+/// Parses one step (a map with the keys of the file comment); `where` prefixes the messages
+/// ("task.steps[]: 'arc' needs 'curvature'").
+Result<DriveStep> ParseDriveStep(const YAML::Node& n, const std::string& where,
+                                 const yaml::FileErrors& err);
+
 /// Parses a directed task's section; errors name file, line and key
 /// ("s.yaml:12: task.steps[]: 'arc' needs 'curvature'").
 Result<DirectedTaskSpec> ParseDirectedTask(const TaskSource& source);
