@@ -2,9 +2,12 @@
 
 #include <cstdio>
 
-#include "camera_idl.hpp"
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"
+#include "rover/msg/camera_idl.hpp"
+#include "rover/msg/health_idl.hpp"
+#include "rover/msg/hw_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -108,7 +111,7 @@ Time CameraService::Now() {
 
 void CameraService::OnRequest(const rover_ddl_StereoRequest& request) {
   const Time now = Now();
-  auto hw = driver_->HandleRequest(StereoRequestFromIdl(request), now);
+  auto hw = driver_->HandleRequest(msg::StereoRequestFromIdl(request), now);
   if (!hw.ok()) {
     log::Warn("camera request rejected; no frame will be sent",
               {{"request_id", request.request_id}, {"reason", hw.status().message()}});
@@ -116,7 +119,7 @@ void CameraService::OnRequest(const rover_ddl_StereoRequest& request) {
   }
   rover_hw_CameraRequest out{};
   ctx_->Stamp(out.header, "rover");
-  HwCameraRequestToIdl(*hw, &out);
+  msg::CameraRequestToIdl(*hw, &out);
   const Status s = request_writer_.Write(out);
   if (!s.ok()) {
     write_error_ = s.message();
@@ -128,8 +131,8 @@ void CameraService::OnJointState(const rover_ddl_JointState& joints) {
   const Time now = Now();
   // Stale or failed joint states do not vouch for the mast angles: they are not used and do not
   // count as fresh input; frames then carry the age of the last usable sample.
-  const int health = RawHealth(joints.health);
-  if (health != rover_HEALTH_OK && health != rover_HEALTH_DEGRADED) return;
+  const auto js = msg::JointStateFromIdl(joints);
+  if (!js.ok() || !msg::IsUsable(js->health)) return;
   const Status s = joints_->Accept(joints.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
     if (IsLogWorthy(joints_->rejected())) {
@@ -137,7 +140,7 @@ void CameraService::OnJointState(const rover_ddl_JointState& joints) {
     }
     return;
   }
-  const Status m = driver_->HandleMast(MastSampleFromIdl(joints));
+  const Status m = driver_->HandleMast({js->stamp.ns, js->mast_pan, js->mast_tilt});
   if (!m.ok()) log::Warn("ddl/joint_state mast angles ignored", {{"reason", m.message()}});
 }
 
@@ -148,7 +151,7 @@ void CameraService::OnFrame(const rover_hw_CameraFrame& frame) {
     log::Warn("hw/camera_frame dropped", {{"reason", s.message()}});
     return;
   }
-  auto data = driver_->HandleFrame(CameraFrameViewFromIdl(frame));
+  auto data = driver_->HandleFrame(msg::CameraFrameFromIdl(frame));
   if (!data.ok()) {
     if (data.status().code() == StatusCode::kNotFound) {
       log::Info("hw/camera_frame ignored", {{"reason", data.status().message()}});
@@ -161,15 +164,14 @@ void CameraService::OnFrame(const rover_hw_CameraFrame& frame) {
   }
   camera_error_.clear();
   if (!data->note.empty()) log::Info("stereo frame note", {{"note", data->note}});
-  if (data->health != SensorHealth::kOk) {
+  if (data->health != msg::SensorHealth::kOk) {
     log::Warn("stereo frame not healthy", {{"request_id", data->request_id},
-                                           {"health", SensorHealthName(data->health)},
+                                           {"health", msg::SensorHealthName(data->health)},
                                            {"reason", data->health_reason}});
   }
   rover_ddl_StereoFrame out{};
   ctx_->Stamp(out.header, "rover");
-  out.header.stamp_ns = data->stamp_ns;  // capture time
-  StereoFrameToIdl(*data, &out);
+  msg::StereoFrameToIdl(data->Message(), &out);  // stamp = capture time; images borrowed
   const Status w = frame_writer_.Write(out);
   if (!w.ok()) {
     write_error_ = w.message();
@@ -183,19 +185,20 @@ void CameraService::OnWatchdog() {
   const Time now = Now();
   for (const PendingRequest& p : driver_->ExpireRequests(now)) {
     camera_error_ = "camera head did not answer request " + std::to_string(p.request.request_id) +
-                    " (" + CameraName(p.request.camera) + ") within " +
+                    " (" + msg::CameraName(p.request.camera) + ") within " +
                     Num(driver_->options().request_timeout_s) + " s";
-    log::Warn("camera request timed out; no frame will be sent",
-              {{"request_id", p.request.request_id}, {"camera", CameraName(p.request.camera)}});
+    log::Warn(
+        "camera request timed out; no frame will be sent",
+        {{"request_id", p.request.request_id}, {"camera", msg::CameraName(p.request.camera)}});
   }
   HealthSummary h;
   if (joints_->Stale(now)) {
-    h.Worsen(SensorHealth::kDegraded,
+    h.Worsen(msg::SensorHealth::kDegraded,
              joints_->StaleReason(now) + " (NAVCAM models cannot follow the mast)");
   }
-  if (!camera_error_.empty()) h.Worsen(SensorHealth::kDegraded, camera_error_);
-  if (!write_error_.empty()) h.Worsen(SensorHealth::kFailed, write_error_);
-  ctx_->SetHealth(static_cast<rover_SensorHealth>(static_cast<int>(h.health)), h.reason);
+  if (!camera_error_.empty()) h.Worsen(msg::SensorHealth::kDegraded, camera_error_);
+  if (!write_error_.empty()) h.Worsen(msg::SensorHealth::kFailed, write_error_);
+  ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
 }  // namespace rover::ddl

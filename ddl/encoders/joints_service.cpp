@@ -1,9 +1,11 @@
 #include "joints_service.hpp"
 
-#include "joints_idl.hpp"
 #include "rover/base/check.hpp"
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"
+#include "rover/msg/health_idl.hpp"
+#include "rover/msg/hw_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -104,7 +106,7 @@ void JointsService::OnTelemetry(const rover_hw_MotorTelemetry& t) {
     WarnDropped(*telemetry_, s);
     return;
   }
-  reader_->OnMotorTelemetry(JointTelemetryFromIdl(t));
+  reader_->OnMotorTelemetry(msg::MotorTelemetryFromIdl(t));
 }
 
 void JointsService::OnPots(const rover_hw_SuspensionPots& p) {
@@ -114,7 +116,7 @@ void JointsService::OnPots(const rover_hw_SuspensionPots& p) {
     WarnDropped(*pots_, s);
     return;
   }
-  reader_->OnSuspensionPots(SuspensionPotsFromIdl(p));
+  reader_->OnSuspensionPots(msg::SuspensionPotsFromIdl(p));
 }
 
 void JointsService::OnTimer() {
@@ -123,24 +125,24 @@ void JointsService::OnTimer() {
   HealthSummary h;
   h.Worsen(js.health, js.health_reason);
   for (const InputMonitor* m : {&*telemetry_, &*pots_}) {
-    if (m->Stale(now)) h.Worsen(SensorHealth::kStale, m->StaleReason(now));
+    if (m->Stale(now)) h.Worsen(msg::SensorHealth::kStale, m->StaleReason(now));
   }
   js.health = h.health;
   rover_ddl_JointState out{};
   ctx_->Stamp(out.header, "rover");
-  if (js.stamp_ns > 0) out.header.stamp_ns = js.stamp_ns;
+  if (js.stamp.ns <= 0) js.stamp = Time{out.header.stamp_ns};  // no input yet: now
   // The stamp is the newest input's time of validity. A tick that found no input newer than the
   // last sample's (the run clock advanced two timer periods between inputs, as it does in
   // lockstep with the simulator) would publish the same state with the same stamp again, which
   // consumers reject as not after the previous sample. So each input state goes out once; only a
   // STALE state is repeated at the timer rate, so that consumers hear that the inputs stopped.
-  const bool repeat = last_stamp_ns_.has_value() && out.header.stamp_ns == *last_stamp_ns_;
-  if (!repeat || h.health == SensorHealth::kStale) {
-    JointStateToIdl(js, &out);
+  const bool repeat = last_stamp_ns_.has_value() && js.stamp.ns == *last_stamp_ns_;
+  if (!repeat || h.health == msg::SensorHealth::kStale) {
+    msg::JointStateToIdl(js, &out);
     (void)writer_.Write(out);
-    last_stamp_ns_ = out.header.stamp_ns;
+    last_stamp_ns_ = js.stamp.ns;
   }
-  ctx_->SetHealth(JointHealthToIdl(h.health), h.reason);
+  ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
 }  // namespace rover::ddl

@@ -1,8 +1,10 @@
 #include "imu_service.hpp"
 
-#include "imu_idl.hpp"
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"
+#include "rover/msg/health_idl.hpp"
+#include "rover/msg/hw_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::ddl {
 
@@ -57,17 +59,16 @@ void ImuService::OnSample(const rover_hw_ImuRaw& raw) {
     }
     return;
   }
-  const Imu imu = driver_->Convert(ImuRawFromIdl(raw));
+  const Imu imu = driver_->Convert(msg::ImuRawFromIdl(raw));
   rover_ddl_Imu out{};
   ctx_->Stamp(out.header, "rover");
-  out.header.stamp_ns = imu.stamp_ns;
-  ImuToIdl(imu, &out);
+  msg::ImuToIdl(imu, &out);
   (void)writer_.Write(out);
-  if (imu.health != SensorHealth::kOk) {
+  if (imu.health != msg::SensorHealth::kOk) {
     since_check_.Worsen(imu.health, "hw/imu: " + imu.health_reason);
     ++unhealthy_samples_;
     if (IsLogWorthy(unhealthy_samples_) || imu.health_reason != last_reason_) {
-      log::Warn("IMU sample not healthy", {{"health", SensorHealthName(imu.health)},
+      log::Warn("IMU sample not healthy", {{"health", msg::SensorHealthName(imu.health)},
                                            {"reason", imu.health_reason},
                                            {"so_far", unhealthy_samples_}});
     }
@@ -79,8 +80,8 @@ void ImuService::OnWatchdog() {
   const Time now = Now();
   HealthSummary h = since_check_;
   since_check_ = {};
-  if (input_->Stale(now)) h.Worsen(SensorHealth::kStale, input_->StaleReason(now));
-  ctx_->SetHealth(ImuHealthToIdl(h.health), h.reason);
+  if (input_->Stale(now)) h.Worsen(msg::SensorHealth::kStale, input_->StaleReason(now));
+  ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
 }  // namespace rover::ddl

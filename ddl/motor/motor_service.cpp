@@ -1,8 +1,10 @@
 #include "motor_service.hpp"
 
-#include "motor_idl.hpp"
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"
+#include "rover/msg/health_idl.hpp"
+#include "rover/msg/hw_idl.hpp"
+#include "rover/msg/motor_idl.hpp"
 
 namespace rover::ddl {
 
@@ -74,7 +76,7 @@ Time MotorService::Now() {
 
 void MotorService::OnCommand(const rover_ddl_MotorCommand& command) {
   const Time now = Now();
-  const ManagerOutput out = manager_->HandleCommand(MotorCommandFromIdl(command), now);
+  const ManagerOutput out = manager_->HandleCommand(msg::MotorCommandFromIdl(command), now);
   for (const MotorStatus& s : out.statuses) {
     if (s.state == GroupState::kRejected) {
       log::Warn("motor command rejected", {{"command_id", s.command_id},
@@ -95,7 +97,7 @@ void MotorService::OnTelemetry(const rover_hw_MotorTelemetry& telemetry) {
     }
     return;
   }
-  Publish(manager_->HandleTelemetry(MotorTelemetryFromIdl(telemetry), now));
+  Publish(manager_->HandleTelemetry(msg::MotorTelemetryFromIdl(telemetry), now));
 }
 
 void MotorService::OnTick() {
@@ -109,7 +111,7 @@ void MotorService::Publish(const ManagerOutput& out) {
   if (out.goals) {
     rover_hw_MotorGoals g{};
     ctx_->Stamp(g.header, "rover");
-    MotorGoalsToIdl(*out.goals, &g);
+    msg::MotorGoalsToIdl(*out.goals, &g);
     const Status s = goals_writer_.Write(g);
     if (!s.ok()) {
       write_error_ = s.message();
@@ -121,16 +123,16 @@ void MotorService::Publish(const ManagerOutput& out) {
   for (const MotorStatus& status : out.statuses) {
     rover_ddl_MotorStatus m{};
     ctx_->Stamp(m.header, "rover");
-    MotorStatusToIdl(status, &m);
+    msg::MotorStatusToIdl(status, &m);
     (void)status_writer_.Write(m);
   }
 }
 
 void MotorService::UpdateHealth(Time now) {
   HealthSummary h;
-  if (telemetry_->Stale(now)) h.Worsen(SensorHealth::kStale, telemetry_->StaleReason(now));
-  if (!write_error_.empty()) h.Worsen(SensorHealth::kFailed, write_error_);
-  ctx_->SetHealth(HealthToIdl(h.health), h.reason);
+  if (telemetry_->Stale(now)) h.Worsen(msg::SensorHealth::kStale, telemetry_->StaleReason(now));
+  if (!write_error_.empty()) h.Worsen(msg::SensorHealth::kFailed, write_error_);
+  ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
 }  // namespace rover::ddl

@@ -2,7 +2,9 @@
 
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"
-#include "sun_idl.hpp"
+#include "rover/msg/health_idl.hpp"
+#include "rover/msg/hw_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::ddl {
 
@@ -59,30 +61,29 @@ void SunService::OnSample(const rover_hw_SunSensorRaw& raw) {
     }
     return;
   }
-  const SunSensor sun = driver_->Convert(SunSensorRawFromIdl(raw));
+  const SunSensor sun = driver_->Convert(msg::SunSensorRawFromIdl(raw));
   rover_ddl_SunSensor out{};
   ctx_->Stamp(out.header, "rover");
-  out.header.stamp_ns = sun.stamp_ns;
-  SunSensorToIdl(sun, &out);
+  msg::SunSensorToIdl(sun, &out);
   (void)writer_.Write(out);
-  if (sun.health != SensorHealth::kOk) {
+  if (sun.health != msg::SensorHealth::kOk) {
     since_check_.Worsen(sun.health, "hw/sun_sensor: " + sun.reason);
     ++unhealthy_samples_;
     if (IsLogWorthy(unhealthy_samples_) || sun.reason != last_reason_) {
-      log::Warn("sun sensor sample not healthy", {{"health", SensorHealthName(sun.health)},
+      log::Warn("sun sensor sample not healthy", {{"health", msg::SensorHealthName(sun.health)},
                                                   {"reason", sun.reason},
                                                   {"so_far", unhealthy_samples_}});
     }
   }
-  last_reason_ = sun.health != SensorHealth::kOk ? sun.reason : std::string();
+  last_reason_ = sun.health != msg::SensorHealth::kOk ? sun.reason : std::string();
 }
 
 void SunService::OnWatchdog() {
   const Time now = Now();
   HealthSummary h = since_check_;
   since_check_ = {};
-  if (input_->Stale(now)) h.Worsen(SensorHealth::kStale, input_->StaleReason(now));
-  ctx_->SetHealth(SunHealthToIdl(h.health), h.reason);
+  if (input_->Stale(now)) h.Worsen(msg::SensorHealth::kStale, input_->StaleReason(now));
+  ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
 }  // namespace rover::ddl

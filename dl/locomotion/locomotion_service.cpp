@@ -3,110 +3,16 @@
 // docs/services/dl-locomotion.md.
 #include "locomotion_service.hpp"
 
-#include <cmath>
-#include <cstring>
 #include <string>
 
 #include "rover/base/check.hpp"
 #include "rover/base/log.hpp"
-#include "rover/geometry/transforms.hpp"
+#include "rover/msg/drive_idl.hpp"
+#include "rover/msg/motor_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::dl {
-namespace {
-
-template <class A, std::size_t N>
-void CopyArray(const double (&src)[N], A& dst) {
-  for (std::size_t i = 0; i < N && i < dst.size(); ++i) dst[i] = src[i];
-}
-
-bool UsableHealth(rover_SensorHealth h) {
-  return h == rover_HEALTH_OK || h == rover_HEALTH_DEGRADED;
-}
-
-}  // namespace
-
-// ---- conversions ------------------------------------------------------------------------------
-
-DriveCommand DriveCommandFromIdl(const rover_dl_DriveCommand& m) {
-  DriveCommand c;
-  c.stamp = Time{m.header.stamp_ns};
-  c.command_id = m.command_id;
-  c.primitive = static_cast<DrivePrimitive>(static_cast<std::int32_t>(m.primitive));
-  c.curvature = m.curvature;
-  c.distance = m.distance;
-  c.angle = m.angle;
-  c.speed = m.speed;
-  c.timeout_s = m.timeout_s;
-  return c;
-}
-
-JointSample JointSampleFromIdl(const rover_ddl_JointState& m) {
-  JointSample j;
-  j.stamp = Time{m.header.stamp_ns};
-  CopyArray(m.wheel_angle, j.wheel_angle);
-  CopyArray(m.wheel_rate, j.wheel_rate);
-  CopyArray(m.steer_angle, j.steer_angle);
-  CopyArray(m.rocker_angle, j.rocker_angle);
-  CopyArray(m.bogie_angle, j.bogie_angle);
-  j.healthy = UsableHealth(m.health);
-  return j;
-}
-
-MotorGroupStatus MotorGroupStatusFromIdl(const rover_ddl_MotorStatus& m) {
-  MotorGroupStatus s;
-  s.stamp = Time{m.header.stamp_ns};
-  s.command_id = m.command_id;
-  s.state = static_cast<GroupState>(static_cast<std::int32_t>(m.state));
-  s.fault = static_cast<MotorFault>(static_cast<std::int32_t>(m.fault));
-  s.fault_motor = m.fault_motor;
-  s.message.assign(m.message, strnlen(m.message, sizeof(m.message)));
-  return s;
-}
-
-std::optional<AttitudeSample> AttitudeFromPose(const rover_dl_PoseEstimate& m) {
-  const rover_Quaternion& q = m.pose.orientation;
-  const Eigen::Quaterniond quat(q.w, q.x, q.y, q.z);
-  if (!quat.coeffs().allFinite()) return std::nullopt;
-  const double n = quat.norm();
-  if (!(n >= 0.5 && n <= 2.0)) return std::nullopt;
-  const geometry::Rpy rpy = geometry::RpyFromQuaternion(quat.normalized());
-  AttitudeSample a;
-  a.stamp = Time{m.header.stamp_ns};
-  a.roll = rpy.x();
-  a.pitch = rpy.y();
-  a.yaw = rpy.z();
-  a.healthy = true;
-  return a;
-}
-
-rover_ddl_MotorCommand MotorCommandToIdl(const MotorGroupCommand& c) {
-  rover_ddl_MotorCommand m{};
-  m.header.stamp_ns = c.stamp.ns;
-  m.command_id = c.command_id;
-  m.motor_mask = c.motor_mask;
-  m.mode = static_cast<rover_ddl_GroupMode>(static_cast<std::int32_t>(c.mode));
-  for (std::size_t i = 0; i < kNumMotors; ++i) {
-    m.goal[i] = c.goal[i];
-    m.max_rate[i] = c.max_rate[i];
-  }
-  m.timeout_s = c.timeout_s;
-  return m;
-}
-
-rover_dl_DriveStatus DriveStatusToIdl(const DriveStatus& s) {
-  rover_dl_DriveStatus m{};
-  m.header.stamp_ns = s.stamp.ns;
-  m.command_id = s.command_id;
-  m.primitive = IsKnownPrimitive(s.primitive)
-                    ? static_cast<rover_dl_DrivePrimitive>(static_cast<std::int32_t>(s.primitive))
-                    : rover_dl_PRIMITIVE_STOP;
-  m.state = static_cast<rover_dl_DriveState>(static_cast<std::int32_t>(s.state));
-  m.termination = static_cast<rover_dl_DriveTermination>(static_cast<std::int32_t>(s.termination));
-  m.distance_done = s.distance_done;
-  m.heading_change = s.heading_change;
-  dds::CopyString(m.message, s.message);
-  return m;
-}
 
 // ---- service ----------------------------------------------------------------------------------
 
@@ -143,24 +49,26 @@ Status LocomotionService::OnConfigure(ServiceContext& ctx, const ParamSet& param
 
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
-        const JointSample j = JointSampleFromIdl(s.data());
-        if (j.healthy && j.AllFinite()) last_joint_ = j.stamp;
-        executor_->OnJointState(j);  // ignores unhealthy, non-finite and out-of-order samples
+        const auto j = msg::JointStateFromIdl(s.data());
+        if (!j.ok()) return;  // an unknown health value: not usable
+        if (msg::IsUsable(j->health) && j->AllFinite()) last_joint_ = j->stamp;
+        executor_->OnJointState(*j);  // ignores unhealthy, non-finite and out-of-order samples
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
-        const std::optional<AttitudeSample> a = AttitudeFromPose(s.data());
-        if (!a.has_value()) return;
+        const auto a = msg::AttitudeSampleFromIdl(s.data());
+        if (!a.ok()) return;  // a degenerate quaternion
         last_attitude_ = a->stamp;
         executor_->OnAttitude(*a);
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_MotorStatus>(
       "ddl/motor_status", [this](const dds::Sample<rover_ddl_MotorStatus>& s) {
-        executor_->OnMotorStatus(MotorGroupStatusFromIdl(s.data()));
+        const auto m = msg::MotorStatusFromIdl(s.data());
+        if (m.ok()) executor_->OnMotorStatus(*m);
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_DriveCommand>(
       "dl/drive_command", [this](const dds::Sample<rover_dl_DriveCommand>& s) {
-        const DriveCommand c = DriveCommandFromIdl(s.data());
+        const DriveCommand c = msg::DriveCommandFromIdl(s.data());
         const DriveOutput out = executor_->Submit(c, ctx_->Now());
         for (const DriveStatus& st : out.statuses) {
           if (st.command_id == c.command_id && st.state == DriveState::kRejected) {
@@ -183,17 +91,17 @@ Status LocomotionService::OnDeactivate(ServiceContext&) {
 }
 
 void LocomotionService::Publish(const DriveOutput& out) {
-  for (const MotorGroupCommand& c : out.motor_commands) {
-    rover_ddl_MotorCommand m = MotorCommandToIdl(c);
+  for (const msg::MotorCommand& c : out.motor_commands) {
+    rover_ddl_MotorCommand m{};
     ctx_->Stamp(m.header, "rover");
-    m.header.stamp_ns = c.stamp.ns;
+    msg::MotorCommandToIdl(c, &m);  // stamp = the command's run-clock time
     const Status s = motor_writer_.Write(m);
     if (!s.ok()) log::Error("ddl/motor_command write failed", {{"error", s.message()}});
   }
   for (const DriveStatus& st : out.statuses) {
-    rover_dl_DriveStatus m = DriveStatusToIdl(st);
+    rover_dl_DriveStatus m{};
     ctx_->Stamp(m.header, "rover");
-    m.header.stamp_ns = st.stamp.ns;
+    msg::DriveStatusToIdl(st, &m);
     const Status s = status_writer_.Write(m);
     if (!s.ok()) log::Error("dl/drive_status write failed", {{"error", s.message()}});
     if (st.state == DriveState::kFailed) {

@@ -23,7 +23,10 @@
 /// the executor restarts with empty inputs. Deactivation stops a running primitive too.
 ///
 /// Parameters: geometry.* (DeclareRoverGeometryParams) and drive.* (DeclareDriveParams).
-/// The IDL conversions are free functions so tests can check them without DDS.
+/// The IDL conversions are core/msg's (rover/msg/drive_idl.hpp, motor_idl.hpp, pose_idl.hpp,
+/// sensors_idl.hpp): an unknown primitive value is kept for the executor to reject; a joint
+/// state with an unknown health value, a motor status with an unknown state or fault, and a
+/// dl/pose whose quaternion is not finite or degenerate (norm outside [0.5, 2]) are dropped.
 
 #include <optional>
 
@@ -31,22 +34,6 @@
 #include "rover/runtime/service.hpp"
 
 namespace rover::dl {
-
-/// dl/drive_command -> DriveCommand. The primitive value is copied as is (an unknown value is
-/// rejected INVALID by the executor).
-DriveCommand DriveCommandFromIdl(const rover_dl_DriveCommand& m);
-/// ddl/joint_state -> JointSample; healthy unless the driver marked it FAILED or STALE.
-JointSample JointSampleFromIdl(const rover_ddl_JointState& m);
-/// ddl/motor_status -> MotorGroupStatus.
-MotorGroupStatus MotorGroupStatusFromIdl(const rover_ddl_MotorStatus& m);
-/// dl/pose -> attitude (ZYX roll, pitch, yaw of the quaternion). nullopt for a non-finite or
-/// degenerate quaternion (norm outside [0.5, 2]).
-std::optional<AttitudeSample> AttitudeFromPose(const rover_dl_PoseEstimate& m);
-/// MotorGroupCommand -> ddl/motor_command (header stamp = the command's run-clock time).
-rover_ddl_MotorCommand MotorCommandToIdl(const MotorGroupCommand& c);
-/// DriveStatus -> dl/drive_status. An unknown primitive value (only possible in a rejection) is
-/// reported as PRIMITIVE_STOP, since the wire enum cannot carry it; the message names it.
-rover_dl_DriveStatus DriveStatusToIdl(const DriveStatus& s);
 
 class LocomotionService final : public Service {
  public:

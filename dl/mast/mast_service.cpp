@@ -10,85 +10,12 @@
 #include "rover/base/check.hpp"
 #include "rover/base/log.hpp"
 #include "rover/base/param_binder.hpp"
-#include "rover/dl/locomotion/drive_types.hpp"
+#include "rover/msg/mast_idl.hpp"
+#include "rover/msg/motor_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
+#include "rover/msg/sensors_idl.hpp"
 
 namespace rover::dl::mast {
-
-// ---- conversions ------------------------------------------------------------------------------
-
-MastCommand MastCommandFromIdl(const rover_dl_MastCommand& m) {
-  MastCommand c;
-  c.command_id = m.command_id;
-  c.pointing = static_cast<MastPointing>(static_cast<std::int32_t>(m.pointing));
-  c.pan = m.pan;
-  c.tilt = m.tilt;
-  c.look_at = Eigen::Vector3d(m.look_at.x, m.look_at.y, m.look_at.z);
-  c.timeout_s = m.timeout_s;
-  return c;
-}
-
-MastJoints MastJointsFromIdl(const rover_ddl_JointState& m) {
-  MastJoints j;
-  j.stamp = Time{m.header.stamp_ns};
-  j.pan = m.mast_pan;
-  j.tilt = m.mast_tilt;
-  j.healthy = m.health == rover_HEALTH_OK || m.health == rover_HEALTH_DEGRADED;
-  return j;
-}
-
-std::optional<RoverPose> RoverPoseFromIdl(const rover_dl_PoseEstimate& m) {
-  const rover_Quaternion& q = m.pose.orientation;
-  const Eigen::Quaterniond quat(q.w, q.x, q.y, q.z);
-  const Eigen::Vector3d t(m.pose.position.x, m.pose.position.y, m.pose.position.z);
-  if (!quat.coeffs().allFinite() || !t.allFinite()) return std::nullopt;
-  const double n = quat.norm();
-  if (!(n >= 0.5 && n <= 2.0)) return std::nullopt;
-  RoverPose p;
-  p.stamp = Time{m.header.stamp_ns};
-  p.site_from_rover = Eigen::Isometry3d::Identity();
-  p.site_from_rover.linear() = quat.normalized().toRotationMatrix();
-  p.site_from_rover.translation() = t;
-  return p;
-}
-
-MotorReport MotorReportFromIdl(const rover_ddl_MotorStatus& m) {
-  MotorReport r;
-  r.command_id = m.command_id;
-  r.state = static_cast<MotorGroupState>(static_cast<std::int32_t>(m.state));
-  r.fault_motor = m.fault_motor;
-  if (m.fault != rover_ddl_MOTOR_FAULT_NONE) {
-    r.fault = dl::MotorFaultName(static_cast<dl::MotorFault>(static_cast<std::int32_t>(m.fault)));
-  }
-  r.message.assign(m.message, strnlen(m.message, sizeof(m.message)));
-  return r;
-}
-
-rover_ddl_MotorCommand MotorCommandToIdl(const MastMotorCommand& c) {
-  rover_ddl_MotorCommand m{};
-  m.header.stamp_ns = c.stamp.ns;
-  m.command_id = c.command_id;
-  m.motor_mask = c.motor_mask;
-  m.mode = static_cast<rover_ddl_GroupMode>(static_cast<std::int32_t>(c.mode));
-  m.goal[hw::kMastPan] = c.pan_goal;
-  m.goal[hw::kMastTilt] = c.tilt_goal;
-  m.max_rate[hw::kMastPan] = c.max_rate;
-  m.max_rate[hw::kMastTilt] = c.max_rate;
-  m.timeout_s = 0.0;  // the motor driver derives it from the planned move
-  return m;
-}
-
-rover_dl_MastStatus MastStatusToIdl(const MastStatus& s) {
-  rover_dl_MastStatus m{};
-  m.header.stamp_ns = s.stamp.ns;
-  m.command_id = s.command_id;
-  m.state = static_cast<rover_dl_MastState>(static_cast<std::int32_t>(s.state));
-  m.pan = s.pan;
-  m.tilt = s.tilt;
-  m.pan_goal = s.pan_goal;
-  m.tilt_goal = s.tilt_goal;
-  dds::CopyString(m.message, s.message);
-  return m;
-}
 
 // ---- service ----------------------------------------------------------------------------------
 
@@ -117,20 +44,26 @@ Status MastService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
 
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
-        executor_->OnJoints(MastJointsFromIdl(s.data()));
+        const auto joints = msg::JointStateFromIdl(s.data());
+        if (joints.ok()) executor_->OnJoints(*joints);  // an unreadable one is not fresh
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
-        const std::optional<RoverPose> p = RoverPoseFromIdl(s.data());
-        if (p.has_value()) executor_->OnPose(*p);
+        const auto pose = msg::PoseSampleFromIdl(s.data());
+        if (pose.ok()) executor_->OnPose(*pose);  // a bad quaternion: the pose goes stale
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_MotorStatus>(
       "ddl/motor_status", [this](const dds::Sample<rover_ddl_MotorStatus>& s) {
-        Publish(executor_->OnMotorStatus(MotorReportFromIdl(s.data()), ctx_->Now()));
+        const auto status = msg::MotorStatusFromIdl(s.data());
+        if (status.ok()) {
+          Publish(executor_->OnMotorStatus(*status, ctx_->Now()));
+        } else {
+          log::Warn("ddl/motor_status sample dropped", {{"reason", status.status().message()}});
+        }
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastCommand>(
       "dl/mast_command", [this](const dds::Sample<rover_dl_MastCommand>& s) {
-        const MastCommand c = MastCommandFromIdl(s.data());
+        const MastCommand c = msg::MastCommandFromIdl(s.data());
         const MastOutput out = executor_->Submit(c, ctx_->Now());
         for (const MastStatus& st : out.statuses) {
           if (st.state == MastState::kRejected) {
@@ -159,15 +92,17 @@ Status MastService::OnDeactivate(ServiceContext&) {
 }
 
 void MastService::Publish(const MastOutput& out) {
-  for (const MastMotorCommand& c : out.motor_commands) {
-    rover_ddl_MotorCommand m = MotorCommandToIdl(c);
+  for (const msg::MotorCommand& c : out.motor_commands) {
+    rover_ddl_MotorCommand m{};
+    msg::MotorCommandToIdl(c, &m);
     ctx_->Stamp(m.header, "rover");
     m.header.stamp_ns = c.stamp.ns;
     const Status s = motor_writer_.Write(m);
     if (!s.ok()) log::Error("ddl/motor_command write failed", {{"error", s.message()}});
   }
   for (const MastStatus& st : out.statuses) {
-    rover_dl_MastStatus m = MastStatusToIdl(st);
+    rover_dl_MastStatus m{};
+    msg::MastStatusToIdl(st, &m);
     ctx_->Stamp(m.header, "rover");
     m.header.stamp_ns = st.stamp.ns;
     const Status s = status_writer_.Write(m);

@@ -14,11 +14,12 @@
 ///
 /// Bad input never crashes the service and never moves the mast: NaN/inf, out-of-limit or
 /// unknown values, stale joints or pose -> REJECTED with the reason in the message (the field
-/// and value). A non-finite or degenerate dl/pose quaternion is ignored (the pose then goes
+/// and value). A dl/pose whose quaternion is not a unit one is ignored (the pose then goes
 /// stale). Deactivation and a run clock that goes back stop a running move (FAULT).
 ///
 /// Parameters: geometry.* (hwconfig::RoverDescription) and mast.* (MastOptions).
-/// The IDL conversions are free functions so tests can check them without DDS.
+/// The IDL conversions are core/msg's (rover/msg/mast_idl.hpp, motor_idl.hpp, sensors_idl.hpp,
+/// pose_idl.hpp); a sample they cannot read is dropped.
 
 #include <optional>
 
@@ -26,20 +27,6 @@
 #include "rover/runtime/service.hpp"
 
 namespace rover::dl::mast {
-
-/// dl/mast_command -> MastCommand (an unknown pointing value is copied, the executor rejects it).
-MastCommand MastCommandFromIdl(const rover_dl_MastCommand& m);
-/// ddl/joint_state -> MastJoints; healthy unless the driver marked it FAILED or STALE.
-MastJoints MastJointsFromIdl(const rover_ddl_JointState& m);
-/// dl/pose -> RoverPose; nullopt for a non-finite position or a quaternion whose norm is outside
-/// [0.5, 2] (the quaternion is normalised otherwise).
-std::optional<RoverPose> RoverPoseFromIdl(const rover_dl_PoseEstimate& m);
-/// ddl/motor_status -> MotorReport (the fault as its IDL name, "" for MOTOR_FAULT_NONE).
-MotorReport MotorReportFromIdl(const rover_ddl_MotorStatus& m);
-/// MastMotorCommand -> ddl/motor_command (goal and max_rate set for motors 10 and 11 only).
-rover_ddl_MotorCommand MotorCommandToIdl(const MastMotorCommand& c);
-/// MastStatus -> dl/mast_status.
-rover_dl_MastStatus MastStatusToIdl(const MastStatus& s);
 
 class MastService final : public Service {
  public:

@@ -78,6 +78,24 @@ double SunAzimuth(const Eigen::Vector3d& d) {
   return Wrap(std::atan2(-d.y(), d.x()), 2.0 * kPi);  // east = -west
 }
 
+void SunEphemerisOptions::BindParams(ParamBinder<SunEphemerisOptions>& b) {
+  b.BindEnum("mode", &SunEphemerisOptions::mode, {{"season", Mode::kSeason}, {"date", Mode::kDate}},
+             "'season': Ls and local true solar time at run start; 'date': J2000 TT days");
+  b.Bind("latitude_deg", &SunEphemerisOptions::latitude_deg, "deg",
+         "landing-site latitude (+ north)")
+      .Range(-90.0, 90.0);
+  b.Bind("east_longitude_deg", &SunEphemerisOptions::east_longitude_deg, "deg",
+         "landing-site east longitude (mode 'date')")
+      .Range(-360.0, 360.0);
+  b.Bind("ls_deg", &SunEphemerisOptions::ls_deg, "deg", "areocentric solar longitude at run start")
+      .Range(0.0, 359.999999);
+  b.Bind("ltst_hours", &SunEphemerisOptions::ltst_hours, "h", "local true solar time at run start")
+      .Range(0.0, 23.999999);
+  b.Bind("j2000_tt_days", &SunEphemerisOptions::j2000_tt_days, "days",
+         "TT days since J2000 at run start (mode 'date')")
+      .Range(-1.0e6, 1.0e6);
+}
+
 Status SunEphemerisOptions::Validate() const {
   auto check = [](const char* key, double v, double lo, double hi, bool hi_open) -> Status {
     if (!std::isfinite(v) || v < lo || (hi_open ? v >= hi : v > hi)) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace rover::geometry {
 namespace {
@@ -109,6 +110,23 @@ TEST(MarsSun, OptionsAreValidated) {
   o = SunEphemerisOptions{};
   o.ls_deg = std::nan("");
   EXPECT_FALSE(o.Validate().ok());
+}
+
+TEST(MarsSun, OptionsAreParameters) {
+  ParamSet ps("dl-pose");
+  DeclareParams<SunEphemerisOptions>(ps, "ephemeris.");
+  ASSERT_TRUE(ps.LoadYamlString("ephemeris:\n  mode: date\n  latitude_deg: 4.5\n", "p.yaml").ok());
+  auto o = ReadParams<SunEphemerisOptions>(ps, "ephemeris.");
+  ASSERT_TRUE(o.ok()) << o.status().ToString();
+  EXPECT_EQ(o->mode, SunEphemerisOptions::Mode::kDate);
+  EXPECT_EQ(o->latitude_deg, 4.5);
+  EXPECT_EQ(o->ls_deg, SunEphemerisOptions().ls_deg);  // the default
+  ParamSet bad("dl-pose");
+  DeclareParams<SunEphemerisOptions>(bad, "ephemeris.");
+  ASSERT_TRUE(bad.LoadYamlString("ephemeris:\n  mode: calendar\n", "p.yaml").ok());
+  const auto r = ReadParams<SunEphemerisOptions>(bad, "ephemeris.");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("ephemeris.mode"), std::string::npos) << r.status().message();
 }
 
 }  // namespace

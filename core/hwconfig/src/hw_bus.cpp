@@ -1,43 +1,5 @@
 #include "rover/hwconfig/hw_bus.hpp"
 
-namespace rover {
-
-const char* SensorHealthName(SensorHealth h) {
-  switch (h) {
-    case SensorHealth::kOk:
-      return "ok";
-    case SensorHealth::kDegraded:
-      return "degraded";
-    case SensorHealth::kFailed:
-      return "failed";
-    case SensorHealth::kStale:
-      return "stale";
-  }
-  return "?";
-}
-
-namespace {
-int Severity(SensorHealth h) {
-  switch (h) {
-    case SensorHealth::kOk:
-      return 0;
-    case SensorHealth::kDegraded:
-      return 1;
-    case SensorHealth::kStale:
-      return 2;
-    case SensorHealth::kFailed:
-      return 3;
-  }
-  return 3;
-}
-}  // namespace
-
-SensorHealth WorseHealth(SensorHealth a, SensorHealth b) {
-  return Severity(a) >= Severity(b) ? a : b;
-}
-
-}  // namespace rover
-
 namespace rover::hw {
 
 const char* MotorName(int motor) {

@@ -46,13 +46,5 @@ TEST(HwBus, CounterDeltaUnwrapsAcrossTheInt32Boundary) {
   EXPECT_EQ(CounterDelta(-10, 10), -20);
 }
 
-TEST(HwBus, HealthOrdering) {
-  EXPECT_EQ(WorseHealth(SensorHealth::kOk, SensorHealth::kDegraded), SensorHealth::kDegraded);
-  EXPECT_EQ(WorseHealth(SensorHealth::kStale, SensorHealth::kDegraded), SensorHealth::kStale);
-  EXPECT_EQ(WorseHealth(SensorHealth::kStale, SensorHealth::kFailed), SensorHealth::kFailed);
-  EXPECT_EQ(WorseHealth(SensorHealth::kOk, SensorHealth::kOk), SensorHealth::kOk);
-  EXPECT_EQ(std::string(SensorHealthName(SensorHealth::kStale)), "stale");
-}
-
 }  // namespace
 }  // namespace rover::hw

@@ -2,12 +2,11 @@
 
 #include <array>
 
-#include "rover/ddl/camera/camera_model_fields.hpp"
+#include "rover/msg/camera.hpp"
 
 namespace rover::ddl {
 namespace {
 
-constexpr std::array<const char*, kNumCameras> kNames = {"navcam", "front_hazcam", "rear_hazcam"};
 constexpr std::array<const char*, 2> kSides = {"left", "right"};
 
 std::string Key(const std::string& cam, const std::string& rest) { return cam + "." + rest; }
@@ -72,10 +71,6 @@ Result<geometry::CameraModel> BuildModel(const ParamSet& p, const std::string& c
 
 }  // namespace
 
-const char* CameraName(int camera) {
-  return camera >= 0 && camera < kNumCameras ? kNames[static_cast<std::size_t>(camera)] : "?";
-}
-
 Eigen::Isometry3d MastHeadPose(double pan, double tilt, const MastGeometry& mast) {
   return mast.HeadPose(pan, tilt);
 }
@@ -97,8 +92,8 @@ void DeclareCameraCalibrationParams(ParamSet& p) {
   p.Declare("mast.head_height", mast.head_height,
             "[m] tilt axis (mast-head frame origin) above the pan joint")
       .Range(0.0, 10.0);
-  for (const char* cam_c : kNames) {
-    const std::string cam = cam_c;
+  for (int i = 0; i < kNumCameras; ++i) {
+    const std::string cam = msg::CameraName(static_cast<msg::CameraId>(i));
     p.Declare(Key(cam, "mount"), "body",
               "where the pair is mounted: mast_head (models in the mast-head frame, follow "
               "pan/tilt) or body (models in the rover frame)")
@@ -155,7 +150,7 @@ Result<CameraCalibration> CameraCalibrationFromParams(const ParamSet& p) {
   cal.mast.pan_joint = Vec(pj);
   cal.mast.head_height = p.GetDouble("mast.head_height");
   for (int i = 0; i < kNumCameras; ++i) {
-    const std::string cam = CameraName(i);
+    const std::string cam = msg::CameraName(static_cast<msg::CameraId>(i));
     auto left = BuildModel(p, cam, "left");
     if (!left.ok()) return left.status();
     auto right = BuildModel(p, cam, "right");
@@ -166,7 +161,7 @@ Result<CameraCalibration> CameraCalibrationFromParams(const ParamSet& p) {
     // cannot be converted would fail every frame, so refuse it here. Rotations and scaling do
     // not change convertibility, so checking the models as given is enough.
     for (const auto* m : {&*left, &*right}) {
-      auto f = ToCameraModelFields(*m);
+      auto f = msg::CameraModelFieldsFromModel(*m);
       if (!f.ok()) {
         return InvalidArgument(Where(p, Key(cam, "model")) + ": " + cam +
                                " cannot be sent as a ddl CameraModel: " + f.status().message());

@@ -18,7 +18,8 @@ std::string Size(int w, int h) { return std::to_string(w) + "x" + std::to_string
 std::string CameraList() {
   std::string s;
   for (int i = 0; i < kNumCameras; ++i) {
-    s += (i ? ", " : "") + std::to_string(i) + " (" + CameraName(i) + ")";
+    s += (i ? ", " : "") + std::to_string(i) + " (" +
+         msg::CameraName(static_cast<msg::CameraId>(i)) + ")";
   }
   return s;
 }
@@ -58,11 +59,11 @@ Result<CameraDriver> CameraDriver::Create(CameraCalibration calibration,
 CameraDriver::CameraDriver(CameraCalibration calibration, const CameraDriverOptions& options)
     : calibration_(std::move(calibration)), options_(options) {}
 
-Result<HwCameraRequest> CameraDriver::HandleRequest(const StereoRequest& r, Time now) {
+Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& r, Time now) {
   const std::string id = "request " + std::to_string(r.request_id);
-  if (r.camera < 0 || r.camera >= kNumCameras) {
-    return InvalidArgument(id + ": camera " + std::to_string(r.camera) + " is not one of " +
-                           CameraList());
+  if (!msg::IsKnownCamera(r.camera)) {
+    return InvalidArgument(id + ": camera " + std::to_string(static_cast<int>(r.camera)) +
+                           " is not one of " + CameraList());
   }
   const StereoCameraCalibration& cam = calibration_.cameras[static_cast<std::size_t>(r.camera)];
   if (r.width < 0 || r.width > cam.left.width()) {
@@ -82,7 +83,7 @@ Result<HwCameraRequest> CameraDriver::HandleRequest(const StereoRequest& r, Time
   PendingRequest p{next_hw_id_++, r, now};
   if (next_hw_id_ == 0) next_hw_id_ = 1;
   pending_.push_back(p);
-  return HwCameraRequest{p.hw_request_id, r.camera, r.exposure_us};
+  return hw::CameraRequest{now.ns, p.hw_request_id, static_cast<int>(r.camera), r.exposure_us};
 }
 
 Status CameraDriver::HandleMast(const MastSample& s) {
@@ -124,7 +125,7 @@ bool CameraDriver::MastAt(std::int64_t t, double* pan, double* tilt, double* gap
   return true;
 }
 
-Result<StereoFrameData> CameraDriver::HandleFrame(const CameraFrameView& f) {
+Result<StereoFrameData> CameraDriver::HandleFrame(const hw::CameraFrame& f) {
   auto it = std::find_if(pending_.begin(), pending_.end(),
                          [&](const PendingRequest& p) { return p.hw_request_id == f.request_id; });
   if (it == pending_.end()) {
@@ -135,9 +136,9 @@ Result<StereoFrameData> CameraDriver::HandleFrame(const CameraFrameView& f) {
   pending_.erase(it);
   const std::string id = "frame for request " + std::to_string(req.request.request_id);
 
-  if (f.camera != req.request.camera) {
+  if (f.camera != static_cast<int>(req.request.camera)) {
     return InvalidArgument(id + ": camera " + std::to_string(f.camera) + " but " +
-                           CameraName(req.request.camera) + " was requested");
+                           msg::CameraName(req.request.camera) + " was requested");
   }
   if (f.width < 1 || f.height < 1) {
     return InvalidArgument(id + ": empty image size " + Size(f.width, f.height));
@@ -157,16 +158,16 @@ Result<StereoFrameData> CameraDriver::HandleFrame(const CameraFrameView& f) {
                            " calibration's size)");
   }
 
-  SensorHealth health = SensorHealth::kOk;
+  msg::SensorHealth health = msg::SensorHealth::kOk;
   std::string health_reason;
   double pan = 0.0, tilt = 0.0, gap = 0.0;
   if (cam.mount == CameraMount::kMastHead) {
     if (!MastAt(f.stamp_ns, &pan, &tilt, &gap)) {
-      health = SensorHealth::kFailed;
+      health = msg::SensorHealth::kFailed;
       health_reason =
           "mast pose unknown (no ddl/joint_state yet): " + cam.name + " models are not valid";
     } else if (gap > options_.mast_max_age_s) {
-      health = SensorHealth::kDegraded;
+      health = msg::SensorHealth::kDegraded;
       health_reason = "nearest mast sample is " + Num(gap) + " s from the capture time";
     }
   }
@@ -189,9 +190,9 @@ Result<StereoFrameData> CameraDriver::HandleFrame(const CameraFrameView& f) {
   GrayImage right{f.width, f.height, std::vector<std::uint8_t>(f.right.begin(), f.right.end())};
   auto pair = DownsampleStereo(left, right, models.first, models.second, out_width);
   if (!pair.ok()) return pair.status().WithPrefix(id);
-  auto lf = ToCameraModelFields(pair->left_model);
+  auto lf = msg::CameraModelFieldsFromModel(pair->left_model);
   if (!lf.ok()) return Internal(id + ": left model: " + lf.status().message());
-  auto rf = ToCameraModelFields(pair->right_model);
+  auto rf = msg::CameraModelFieldsFromModel(pair->right_model);
   if (!rf.ok()) return Internal(id + ": right model: " + rf.status().message());
   return StereoFrameData{f.stamp_ns,
                          req.request.request_id,
@@ -205,6 +206,22 @@ Result<StereoFrameData> CameraDriver::HandleFrame(const CameraFrameView& f) {
                          health,
                          std::move(health_reason),
                          std::move(note)};
+}
+
+msg::StereoFrame StereoFrameData::Message() const {
+  msg::StereoFrame m;
+  m.stamp = Time{stamp_ns};
+  m.request_id = request_id;
+  m.camera = static_cast<msg::CameraId>(camera);
+  m.exposure_us = exposure_us;
+  m.width = pair.left.width;
+  m.height = pair.left.height;
+  m.left_model = left_fields;
+  m.right_model = right_fields;
+  m.left = pair.left.pixels;
+  m.right = pair.right.pixels;
+  m.health = health;
+  return m;
 }
 
 std::vector<PendingRequest> CameraDriver::ExpireRequests(Time now) {

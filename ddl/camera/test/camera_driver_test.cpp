@@ -44,6 +44,15 @@ CameraDriver Driver(CameraDriverOptions o = {}) {
 
 Time T(double s) { return Time::FromSeconds(s); }
 
+msg::StereoRequest Req(std::uint32_t id, int camera, std::uint32_t exposure_us, int width) {
+  msg::StereoRequest r;
+  r.request_id = id;
+  r.camera = static_cast<msg::CameraId>(camera);
+  r.exposure_us = exposure_us;
+  r.width = width;
+  return r;
+}
+
 // An image of 4 x 4 blocks of constant value (block (i, j) = 5 i + 3 j + offset).
 std::vector<std::uint8_t> Blocks(int w, int h, int block, int offset) {
   std::vector<std::uint8_t> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
@@ -58,7 +67,7 @@ std::vector<std::uint8_t> Blocks(int w, int h, int block, int offset) {
 
 struct Frame {
   std::vector<std::uint8_t> left, right;
-  CameraFrameView view;
+  hw::CameraFrame view;
 };
 Frame MakeFrame(std::uint32_t hw_id, int camera, int w, int h, double stamp_s) {
   Frame f;
@@ -70,19 +79,19 @@ Frame MakeFrame(std::uint32_t hw_id, int camera, int w, int h, double stamp_s) {
 
 TEST(CameraDriver, RejectsBadRequestsNamingFieldValueAndRange) {
   CameraDriver d = Driver();
-  auto r = d.HandleRequest({7, 3, 0, 0}, T(1));
+  auto r = d.HandleRequest(Req(7, 3, 0, 0), T(1));
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(r.status().message().find("request 7: camera 3 is not one of 0 (navcam)"),
             std::string::npos)
       << r.status().message();
-  r = d.HandleRequest({8, 0, 0, kSize + 1}, T(1));
+  r = d.HandleRequest(Req(8, 0, 0, kSize + 1), T(1));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message().find("width 65 is out of range [0, 64] for navcam"),
             std::string::npos)
       << r.status().message();
-  EXPECT_FALSE(d.HandleRequest({9, 0, 0, -1}, T(1)).ok());
-  r = d.HandleRequest({10, 1, 20'000'000, 0}, T(1));
+  EXPECT_FALSE(d.HandleRequest(Req(9, 0, 0, -1), T(1)).ok());
+  r = d.HandleRequest(Req(10, 1, 20'000'000, 0), T(1));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message().find("exposure_us 20000000"), std::string::npos);
   EXPECT_EQ(d.pending(), 0u);
@@ -93,21 +102,21 @@ TEST(CameraDriver, BusyBeyondMaxPendingAndExpiresUnansweredRequests) {
   o.max_pending = 2;
   o.request_timeout_s = 1.0;
   CameraDriver d = Driver(o);
-  ASSERT_TRUE(d.HandleRequest({1, 0, 0, 0}, T(1)).ok());
-  ASSERT_TRUE(d.HandleRequest({2, 1, 0, 0}, T(1.5)).ok());
-  EXPECT_EQ(d.HandleRequest({3, 1, 0, 0}, T(1.6)).status().code(), StatusCode::kBusy);
+  ASSERT_TRUE(d.HandleRequest(Req(1, 0, 0, 0), T(1)).ok());
+  ASSERT_TRUE(d.HandleRequest(Req(2, 1, 0, 0), T(1.5)).ok());
+  EXPECT_EQ(d.HandleRequest(Req(3, 1, 0, 0), T(1.6)).status().code(), StatusCode::kBusy);
   EXPECT_TRUE(d.ExpireRequests(T(2.0)).empty());
   auto expired = d.ExpireRequests(T(2.1));
   ASSERT_EQ(expired.size(), 1u);
   EXPECT_EQ(expired[0].request.request_id, 1u);
   EXPECT_EQ(d.pending(), 1u);
-  EXPECT_TRUE(d.HandleRequest({3, 1, 0, 0}, T(2.1)).ok());
+  EXPECT_TRUE(d.HandleRequest(Req(3, 1, 0, 0), T(2.1)).ok());
 }
 
 TEST(CameraDriver, HardwareIdsAreTheDriversOwnAndFramesEchoTheRequesterId) {
   CameraDriver d = Driver();
-  auto a = d.HandleRequest({5, 1, 0, 0}, T(1));
-  auto b = d.HandleRequest({5, 2, 0, 0}, T(1));  // another requester, same id
+  auto a = d.HandleRequest(Req(5, 1, 0, 0), T(1));
+  auto b = d.HandleRequest(Req(5, 2, 0, 0), T(1));  // another requester, same id
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_NE(a->request_id, b->request_id);
   EXPECT_EQ(a->camera, 1);
@@ -128,12 +137,12 @@ TEST(CameraDriver, DownsamplesAndAttachesNavcamModelsAtTheInterpolatedMastPose) 
   CameraDriver d = Driver();
   ASSERT_TRUE(d.HandleMast({T(1.00).ns, 0.0, -0.2}).ok());
   ASSERT_TRUE(d.HandleMast({T(1.02).ns, 0.2, -0.4}).ok());
-  auto hw = d.HandleRequest({42, 0, 0, 16}, T(1.0));
+  auto hw = d.HandleRequest(Req(42, 0, 0, 16), T(1.0));
   ASSERT_TRUE(hw.ok());
   Frame f = MakeFrame(hw->request_id, 0, kSize, kSize, 1.01);
   auto out = d.HandleFrame(f.view);
   ASSERT_TRUE(out.ok()) << out.status().message();
-  EXPECT_EQ(out->health, SensorHealth::kOk) << out->health_reason;
+  EXPECT_EQ(out->health, msg::SensorHealth::kOk) << out->health_reason;
   EXPECT_NEAR(out->mast_pan, 0.1, 1e-12);
   EXPECT_NEAR(out->mast_tilt, -0.3, 1e-12);
   EXPECT_EQ(out->stamp_ns, T(1.01).ns);
@@ -169,7 +178,7 @@ TEST(CameraDriver, DownsamplesAndAttachesNavcamModelsAtTheInterpolatedMastPose) 
     EXPECT_LT((*c - *e).norm(), 1e-9);
   }
   // The message fields describe the same models.
-  auto fields = ToCameraModelFields(want_l);
+  auto fields = msg::CameraModelFieldsFromModel(want_l);
   ASSERT_TRUE(fields.ok());
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(out->left_fields.c[static_cast<std::size_t>(k)],
@@ -184,47 +193,47 @@ TEST(CameraDriver, DownsamplesAndAttachesNavcamModelsAtTheInterpolatedMastPose) 
 TEST(CameraDriver, MastAgeDecidesTheHealthOfNavcamFramesOnly) {
   CameraDriver d = Driver();
   // No mast sample at all: navcam models unknown -> FAILED; a hazcam does not care.
-  auto nav = d.HandleRequest({1, 0, 0, 0}, T(1));
-  auto haz = d.HandleRequest({2, 1, 0, 0}, T(1));
+  auto nav = d.HandleRequest(Req(1, 0, 0, 0), T(1));
+  auto haz = d.HandleRequest(Req(2, 1, 0, 0), T(1));
   ASSERT_TRUE(nav.ok() && haz.ok());
   Frame fn = MakeFrame(nav->request_id, 0, kSize, kSize, 1.0);
   Frame fh = MakeFrame(haz->request_id, 1, kSize, kSize, 1.0);
   auto on = d.HandleFrame(fn.view);
   auto oh = d.HandleFrame(fh.view);
   ASSERT_TRUE(on.ok() && oh.ok());
-  EXPECT_EQ(on->health, SensorHealth::kFailed);
+  EXPECT_EQ(on->health, msg::SensorHealth::kFailed);
   EXPECT_NE(on->health_reason.find("mast pose unknown"), std::string::npos);
-  EXPECT_EQ(oh->health, SensorHealth::kOk);
+  EXPECT_EQ(oh->health, msg::SensorHealth::kOk);
 
   // A mast sample 0.5 s before the capture: DEGRADED, using that sample.
   ASSERT_TRUE(d.HandleMast({T(2.0).ns, 0.3, 0.1}).ok());
-  nav = d.HandleRequest({3, 0, 0, 0}, T(2.5));
+  nav = d.HandleRequest(Req(3, 0, 0, 0), T(2.5));
   fn = MakeFrame(nav->request_id, 0, kSize, kSize, 2.5);
   on = d.HandleFrame(fn.view);
   ASSERT_TRUE(on.ok());
-  EXPECT_EQ(on->health, SensorHealth::kDegraded);
+  EXPECT_EQ(on->health, msg::SensorHealth::kDegraded);
   EXPECT_NEAR(on->mast_pan, 0.3, 1e-15);
   // Within mast_max_age_s: OK.
   ASSERT_TRUE(d.HandleMast({T(2.45).ns, 0.3, 0.1}).ok());
-  nav = d.HandleRequest({4, 0, 0, 0}, T(2.5));
+  nav = d.HandleRequest(Req(4, 0, 0, 0), T(2.5));
   fn = MakeFrame(nav->request_id, 0, kSize, kSize, 2.5);
   on = d.HandleFrame(fn.view);
   ASSERT_TRUE(on.ok());
-  EXPECT_EQ(on->health, SensorHealth::kOk);
+  EXPECT_EQ(on->health, msg::SensorHealth::kOk);
   // Non-finite angles are refused; older samples ignored.
   EXPECT_EQ(d.HandleMast({T(3).ns, std::nan(""), 0.0}).code(), StatusCode::kInvalidArgument);
   EXPECT_TRUE(d.HandleMast({T(1).ns, 9.0, 9.0}).ok());
   d.Reset();
-  nav = d.HandleRequest({5, 0, 0, 0}, T(2.5));
+  nav = d.HandleRequest(Req(5, 0, 0, 0), T(2.5));
   fn = MakeFrame(nav->request_id, 0, kSize, kSize, 2.5);
   on = d.HandleFrame(fn.view);
   ASSERT_TRUE(on.ok());
-  EXPECT_EQ(on->health, SensorHealth::kFailed);  // Reset forgot the mast history
+  EXPECT_EQ(on->health, msg::SensorHealth::kFailed);  // Reset forgot the mast history
 }
 
 TEST(CameraDriver, CorruptFramesAreRejectedAndEndTheirRequest) {
   CameraDriver d = Driver();
-  auto hw = d.HandleRequest({1, 1, 0, 0}, T(1));
+  auto hw = d.HandleRequest(Req(1, 1, 0, 0), T(1));
   Frame f = MakeFrame(hw->request_id, 1, kSize, kSize, 1.0);
   f.view.right = f.view.right.subspan(1);
   auto out = d.HandleFrame(f.view);
@@ -234,15 +243,15 @@ TEST(CameraDriver, CorruptFramesAreRejectedAndEndTheirRequest) {
       << out.status().message();
   EXPECT_EQ(d.pending(), 0u);
 
-  hw = d.HandleRequest({2, 1, 0, 0}, T(1));
+  hw = d.HandleRequest(Req(2, 1, 0, 0), T(1));
   f = MakeFrame(hw->request_id, 2, kSize, kSize, 1.0);  // wrong camera
   EXPECT_NE(d.HandleFrame(f.view).status().message().find("front_hazcam was requested"),
             std::string::npos);
-  hw = d.HandleRequest({3, 1, 0, 0}, T(1));
+  hw = d.HandleRequest(Req(3, 1, 0, 0), T(1));
   f = MakeFrame(hw->request_id, 1, 60, 64, 1.0);  // not a binning of 64x64
   EXPECT_NE(d.HandleFrame(f.view).status().message().find("image size 60x64 is not 64x64"),
             std::string::npos);
-  hw = d.HandleRequest({4, 1, 0, 0}, T(1));
+  hw = d.HandleRequest(Req(4, 1, 0, 0), T(1));
   f = MakeFrame(hw->request_id, 1, 0, 0, 1.0);
   EXPECT_EQ(d.HandleFrame(f.view).status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(d.pending(), 0u);
@@ -250,7 +259,7 @@ TEST(CameraDriver, CorruptFramesAreRejectedAndEndTheirRequest) {
 
 TEST(CameraDriver, BinnedFramesGetScaledModelsAndTooWideRequestsGoFullSize) {
   CameraDriver d = Driver();
-  auto hw = d.HandleRequest({1, 1, 0, 48}, T(1));  // valid for the 64 px calibration
+  auto hw = d.HandleRequest(Req(1, 1, 0, 48), T(1));  // valid for the 64 px calibration
   ASSERT_TRUE(hw.ok());
   Frame f = MakeFrame(hw->request_id, 1, 32, 32, 1.0);  // the camera sends 2x2-binned frames
   auto out = d.HandleFrame(f.view);

@@ -51,8 +51,8 @@ bool ClockJumpDetector::WentBack(Time now, bool clock_valid) {
   return back;
 }
 
-void HealthSummary::Worsen(SensorHealth h, const std::string& why) {
-  if (WorseHealth(health, h) != health) {
+void HealthSummary::Worsen(msg::SensorHealth h, const std::string& why) {
+  if (msg::WorseHealth(health, h) != health) {
     health = h;
     reason = why;
   }

@@ -54,15 +54,15 @@ TEST(ClockJumpDetector, SeesOnlyBackwardSteps) {
 
 TEST(HealthSummary, KeepsTheWorstAndItsFirstReason) {
   HealthSummary h;
-  h.Worsen(SensorHealth::kOk, "fine");
-  EXPECT_EQ(h.health, SensorHealth::kOk);
+  h.Worsen(msg::SensorHealth::kOk, "fine");
+  EXPECT_EQ(h.health, msg::SensorHealth::kOk);
   EXPECT_EQ(h.reason, "");
-  h.Worsen(SensorHealth::kDegraded, "a");
-  h.Worsen(SensorHealth::kDegraded, "b");
+  h.Worsen(msg::SensorHealth::kDegraded, "a");
+  h.Worsen(msg::SensorHealth::kDegraded, "b");
   EXPECT_EQ(h.reason, "a");
-  h.Worsen(SensorHealth::kFailed, "c");
-  h.Worsen(SensorHealth::kStale, "d");
-  EXPECT_EQ(h.health, SensorHealth::kFailed);
+  h.Worsen(msg::SensorHealth::kFailed, "c");
+  h.Worsen(msg::SensorHealth::kStale, "d");
+  EXPECT_EQ(h.health, msg::SensorHealth::kFailed);
   EXPECT_EQ(h.reason, "c");
 }
 

@@ -14,8 +14,8 @@ std::string Num(double v) {
 }
 
 // Keeps the worst health and the reason of the first problem of that severity.
-void Worsen(SensorHealth h, const std::string& why, JointState* s) {
-  if (WorseHealth(s->health, h) != s->health) {
+void Worsen(msg::SensorHealth h, const std::string& why, JointState* s) {
+  if (msg::WorseHealth(s->health, h) != s->health) {
     s->health = h;
     s->health_reason = why;
   }
@@ -73,14 +73,14 @@ void JointReader::OnSuspensionPots(const hw::SuspensionPots& p) {
 
 JointState JointReader::State(Time now) const {
   JointState s;
-  s.health = SensorHealth::kOk;
+  s.health = msg::SensorHealth::kOk;
   const double stale_ns = options_.stale_after_s * 1e9;
   if (!last_telemetry_) {
-    Worsen(SensorHealth::kStale, "no motor telemetry yet", &s);
+    Worsen(msg::SensorHealth::kStale, "no motor telemetry yet", &s);
   } else {
-    s.stamp_ns = last_telemetry_->stamp_ns;
+    s.stamp = Time{last_telemetry_->stamp_ns};
     if (static_cast<double>(now.ns - last_telemetry_->stamp_ns) > stale_ns) {
-      Worsen(SensorHealth::kStale,
+      Worsen(msg::SensorHealth::kStale,
              "motor telemetry " + Num((now.ns - last_telemetry_->stamp_ns) * 1e-9) + " s old", &s);
     }
     for (std::size_t w = 0; w < 6; ++w) {
@@ -102,18 +102,18 @@ JointState JointReader::State(Time now) const {
           static_cast<double>(counts_[static_cast<std::size_t>(m)]) / spec.CountsPerRad();
       if (spec.HasLimits() && (a < spec.min_angle - options_.joint_limit_margin ||
                                a > spec.max_angle + options_.joint_limit_margin)) {
-        Worsen(SensorHealth::kDegraded,
+        Worsen(msg::SensorHealth::kDegraded,
                std::string(hw::MotorName(m)) + " angle " + Num(a) + " rad beyond its limits", &s);
       }
     }
   }
 
   if (!last_pots_) {
-    Worsen(SensorHealth::kStale, "no suspension pots yet", &s);
+    Worsen(msg::SensorHealth::kStale, "no suspension pots yet", &s);
   } else {
-    s.stamp_ns = std::max(s.stamp_ns, last_pots_->stamp_ns);
+    s.stamp = std::max(s.stamp, Time{last_pots_->stamp_ns});
     if (static_cast<double>(now.ns - last_pots_->stamp_ns) > stale_ns) {
-      Worsen(SensorHealth::kStale,
+      Worsen(msg::SensorHealth::kStale,
              "suspension pots " + Num((now.ns - last_pots_->stamp_ns) * 1e-9) + " s old", &s);
     }
     std::array<double, hw::kNumPots> angle{};
@@ -122,11 +122,11 @@ JointState JointReader::State(Time now) const {
       const std::uint16_t adc = last_pots_->adc[k];
       angle[k] = config_.pots.AngleFromCounts(i, adc);
       if (adc == 0 || adc >= hw::kAdcMax) {
-        Worsen(SensorHealth::kFailed,
+        Worsen(msg::SensorHealth::kFailed,
                std::string(hw::PotName(i)) + " pot at the ADC rail (" + std::to_string(adc) + ")",
                &s);
       } else if (std::abs(angle[k]) > config_.pots.Limit(i) + options_.pot_limit_margin) {
-        Worsen(SensorHealth::kDegraded,
+        Worsen(msg::SensorHealth::kDegraded,
                std::string(hw::PotName(i)) + " angle " + Num(angle[k]) +
                    " rad beyond its mechanical stop",
                &s);
@@ -137,7 +137,7 @@ JointState JointReader::State(Time now) const {
     const double diff = angle[hw::kLeftRocker] + angle[hw::kRightRocker];
     if (std::abs(diff) > config_.pots.differential_tolerance) {
       Worsen(
-          SensorHealth::kDegraded,
+          msg::SensorHealth::kDegraded,
           "rocker angles inconsistent with the differential: left + right = " + Num(diff) + " rad",
           &s);
     }

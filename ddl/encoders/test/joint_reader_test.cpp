@@ -46,8 +46,8 @@ TEST(JointReader, ConvertsCountsToAnglesWithTheCalibration) {
   reader->OnMotorTelemetry(Telemetry(c, 1'000'000, a));
   reader->OnSuspensionPots(Pots(c, 2'000'000, {0.12, -0.12, -0.3, 0.25}));
   const JointState s = reader->State(Time{3'000'000});
-  EXPECT_EQ(s.health, SensorHealth::kOk) << s.health_reason;
-  EXPECT_EQ(s.stamp_ns, 2'000'000);
+  EXPECT_EQ(s.health, msg::SensorHealth::kOk) << s.health_reason;
+  EXPECT_EQ(s.stamp.ns, 2'000'000);
   for (std::size_t w = 0; w < 6; ++w) {
     EXPECT_NEAR(s.wheel_angle[w], a[w], 0.5 / c.motors[w].CountsPerRad());
   }
@@ -84,28 +84,28 @@ TEST(JointReader, HealthStaleFailedDegraded) {
   const HardwareConfig c;
   auto reader = JointReader::Create(c);
   ASSERT_TRUE(reader.ok());
-  EXPECT_EQ(reader->State(Time{0}).health, SensorHealth::kStale);
+  EXPECT_EQ(reader->State(Time{0}).health, msg::SensorHealth::kStale);
   reader->OnMotorTelemetry(Telemetry(c, 0, {}));
   JointState s = reader->State(Time{0});
-  EXPECT_EQ(s.health, SensorHealth::kStale);
+  EXPECT_EQ(s.health, msg::SensorHealth::kStale);
   EXPECT_NE(s.health_reason.find("pots"), std::string::npos);
   reader->OnSuspensionPots(Pots(c, 0, {0.0, 0.0, 0.0, 0.0}));
-  EXPECT_EQ(reader->State(Time{100'000'000}).health, SensorHealth::kOk);
+  EXPECT_EQ(reader->State(Time{100'000'000}).health, msg::SensorHealth::kOk);
   s = reader->State(Time{400'000'000});  // nothing new for 0.4 s
-  EXPECT_EQ(s.health, SensorHealth::kStale);
+  EXPECT_EQ(s.health, msg::SensorHealth::kStale);
   EXPECT_NE(s.health_reason.find("old"), std::string::npos);
 
   // Rocker differential broken (left + right should be 0).
   reader->OnMotorTelemetry(Telemetry(c, 500'000'000, {}));
   reader->OnSuspensionPots(Pots(c, 500'000'000, {0.2, 0.1, 0.0, 0.0}));
   s = reader->State(Time{500'000'000});
-  EXPECT_EQ(s.health, SensorHealth::kDegraded);
+  EXPECT_EQ(s.health, msg::SensorHealth::kDegraded);
   EXPECT_NE(s.health_reason.find("differential"), std::string::npos);
 
   // A bogie beyond its mechanical stop, not at a rail.
   reader->OnSuspensionPots(Pots(c, 600'000'000, {0.0, 0.0, 0.9, 0.0}));
   s = reader->State(Time{600'000'000});
-  EXPECT_EQ(s.health, SensorHealth::kDegraded);
+  EXPECT_EQ(s.health, msg::SensorHealth::kDegraded);
   EXPECT_NE(s.health_reason.find("left_bogie"), std::string::npos);
 
   // A pot at the ADC rail (open wiper): failed, whatever else is wrong.
@@ -113,7 +113,7 @@ TEST(JointReader, HealthStaleFailedDegraded) {
   rail.adc[hw::kRightBogie] = 4095;
   reader->OnSuspensionPots(rail);
   s = reader->State(Time{700'000'000});
-  EXPECT_EQ(s.health, SensorHealth::kFailed);
+  EXPECT_EQ(s.health, msg::SensorHealth::kFailed);
   EXPECT_NE(s.health_reason.find("right_bogie"), std::string::npos);
 
   // Steering beyond its limits.
@@ -122,7 +122,7 @@ TEST(JointReader, HealthStaleFailedDegraded) {
   a[hw::kSteerRR] = 1.8;
   reader->OnMotorTelemetry(Telemetry(c, 800'000'000, a));
   s = reader->State(Time{800'000'000});
-  EXPECT_EQ(s.health, SensorHealth::kDegraded);
+  EXPECT_EQ(s.health, msg::SensorHealth::kDegraded);
   EXPECT_NE(s.health_reason.find("steer_rr"), std::string::npos);
 }
 
@@ -164,7 +164,7 @@ TEST(JointReader, RoundTripThroughTheSimulatedSensors) {
     if (k % 2 == 0) reader->OnSuspensionPots(pots.Sample(susp, Time{std::llround(t * 1e9)}));
   }
   const JointState s = reader->State(Time{1'000'000'000});
-  EXPECT_EQ(s.health, SensorHealth::kOk) << s.health_reason;
+  EXPECT_EQ(s.health, msg::SensorHealth::kOk) << s.health_reason;
   for (std::size_t w = 0; w < 6; ++w) {
     EXPECT_NEAR(s.wheel_angle[w], 0.1 * static_cast<double>(w + 1),
                 0.5 / c.motors[w].CountsPerRad());
@@ -183,7 +183,7 @@ TEST(JointReader, RoundTripThroughTheSimulatedSensors) {
   sim::SuspensionPotModel noisy(c.pots, real.pots, 1.0, 3);
   reader->OnSuspensionPots(noisy.Sample(susp, Time{1'010'000'000}));
   const JointState r = reader->State(Time{1'010'000'000});
-  EXPECT_EQ(r.health, SensorHealth::kOk) << r.health_reason;
+  EXPECT_EQ(r.health, msg::SensorHealth::kOk) << r.health_reason;
   EXPECT_NEAR(r.rocker_angle[0], 0.21, 0.02);
   EXPECT_NEAR(r.bogie_angle[1], 0.33, 0.02);
 }

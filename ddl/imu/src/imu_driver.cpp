@@ -19,7 +19,7 @@ ImuDriver::ImuDriver(const ImuSpec& spec) : spec_(spec) {
 
 Imu ImuDriver::Convert(const hw::ImuRaw& raw) const {
   Imu out;
-  out.stamp_ns = raw.stamp_ns;
+  out.stamp = Time{raw.stamp_ns};
   Eigen::Vector3d g, a;
   for (int i = 0; i < 3; ++i) {
     g[i] = raw.gyro[static_cast<std::size_t>(i)] * spec_.gyro.lsb;
@@ -31,25 +31,25 @@ Imu ImuDriver::Convert(const hw::ImuRaw& raw) const {
 
   const char* axes = "xyz";
   if (raw.status & hw::kImuSelfTestFail) {
-    out.health = SensorHealth::kFailed;
+    out.health = msg::SensorHealth::kFailed;
     out.health_reason = "IMU self-test failed";
     return out;
   }
   for (int i = 0; i < 3; ++i) {
     // One LSB of slack for rounding at full scale.
     if (std::abs(g[i]) > spec_.gyro.range + spec_.gyro.lsb) {
-      out.health = SensorHealth::kFailed;
+      out.health = msg::SensorHealth::kFailed;
       out.health_reason = std::string("gyro ") + axes[i] + " reads beyond full scale";
       return out;
     }
     if (std::abs(a[i]) > spec_.accel.range + spec_.accel.lsb) {
-      out.health = SensorHealth::kFailed;
+      out.health = msg::SensorHealth::kFailed;
       out.health_reason = std::string("accelerometer ") + axes[i] + " reads beyond full scale";
       return out;
     }
   }
   if (raw.status & (hw::kImuGyroSaturated | hw::kImuAccelSaturated)) {
-    out.health = SensorHealth::kDegraded;
+    out.health = msg::SensorHealth::kDegraded;
     out.health_reason =
         (raw.status & hw::kImuGyroSaturated) ? "gyro saturated" : "accelerometer saturated";
   }

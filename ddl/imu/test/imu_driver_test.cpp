@@ -38,8 +38,8 @@ TEST(ImuDriver, InvertsTheNominalCalibration) {
   hw::ImuRaw raw = Encode(spec, w, f);
   raw.stamp_ns = 77;
   const Imu imu = driver->Convert(raw);
-  EXPECT_EQ(imu.stamp_ns, 77);
-  EXPECT_EQ(imu.health, SensorHealth::kOk);
+  EXPECT_EQ(imu.stamp.ns, 77);
+  EXPECT_EQ(imu.health, msg::SensorHealth::kOk);
   EXPECT_LT((imu.angular_velocity - w).cwiseAbs().maxCoeff(), spec.gyro.lsb);
   EXPECT_LT((imu.linear_acceleration - f).cwiseAbs().maxCoeff(), spec.accel.lsb);
   EXPECT_NEAR(imu.temperature, 12.34, 1e-12);
@@ -51,16 +51,16 @@ TEST(ImuDriver, HealthFromStatusBitsAndRanges) {
   ASSERT_TRUE(driver.ok());
   hw::ImuRaw raw = Encode(spec, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 3.71));
   raw.status = hw::kImuGyroSaturated;
-  EXPECT_EQ(driver->Convert(raw).health, SensorHealth::kDegraded);
+  EXPECT_EQ(driver->Convert(raw).health, msg::SensorHealth::kDegraded);
   EXPECT_EQ(driver->Convert(raw).health_reason, "gyro saturated");
   raw.status = hw::kImuAccelSaturated;
-  EXPECT_EQ(driver->Convert(raw).health, SensorHealth::kDegraded);
+  EXPECT_EQ(driver->Convert(raw).health, msg::SensorHealth::kDegraded);
   raw.status = hw::kImuSelfTestFail | hw::kImuGyroSaturated;
-  EXPECT_EQ(driver->Convert(raw).health, SensorHealth::kFailed);
+  EXPECT_EQ(driver->Convert(raw).health, msg::SensorHealth::kFailed);
   raw.status = 0;
   raw.gyro[1] = 2'000'000'000;  // corrupt: 2000 rad/s, beyond the 17.45 rad/s full scale
   const Imu bad = driver->Convert(raw);
-  EXPECT_EQ(bad.health, SensorHealth::kFailed);
+  EXPECT_EQ(bad.health, msg::SensorHealth::kFailed);
   EXPECT_NE(bad.health_reason.find("gyro y"), std::string::npos);
 }
 
@@ -89,7 +89,7 @@ TEST(ImuDriver, RoundTripThroughTheSimulatedImu) {
   truth.specific_force_rover = Eigen::Vector3d(-0.5, 0.25, 3.71);
   truth.temperature_c = -33.21;
   const Imu imu = driver->Convert(ideal.Sample(truth, Time{}));
-  EXPECT_EQ(imu.health, SensorHealth::kOk);
+  EXPECT_EQ(imu.health, msg::SensorHealth::kOk);
   EXPECT_LT((imu.angular_velocity - truth.angular_velocity_rover).cwiseAbs().maxCoeff(),
             spec.gyro.lsb);
   EXPECT_LT((imu.linear_acceleration - truth.specific_force_rover).cwiseAbs().maxCoeff(),
@@ -98,7 +98,8 @@ TEST(ImuDriver, RoundTripThroughTheSimulatedImu) {
 
   // Saturation in the simulator -> DEGRADED from the driver.
   truth.angular_velocity_rover = Eigen::Vector3d(0.0, 0.0, 30.0);
-  EXPECT_EQ(driver->Convert(ideal.Sample(truth, Time{10'000'000})).health, SensorHealth::kDegraded);
+  EXPECT_EQ(driver->Convert(ideal.Sample(truth, Time{10'000'000})).health,
+            msg::SensorHealth::kDegraded);
 }
 
 TEST(ImuDriver, SimulatorCalibrationErrorsShowUpInTheOutput) {

@@ -48,7 +48,7 @@ MotorStatus MotorGroupManager::MakeStatus(std::uint32_t command_id, GroupState s
                                           MotorFault fault, int fault_motor,
                                           const std::string& message, Time now) const {
   MotorStatus s;
-  s.stamp_ns = now.ns;
+  s.stamp = now;
   s.command_id = command_id;
   s.state = state;
   s.fault = fault;
@@ -491,7 +491,7 @@ ManagerOutput MotorGroupManager::Tick(Time now) {
     if (last_final_) {
       MotorStatus s = *last_final_;
       const MotorStatus fresh = MakeStatus(0, GroupState::kIdle, MotorFault::kNone, -1, "", now);
-      s.stamp_ns = now.ns;
+      s.stamp = now;
       s.position = fresh.position;
       s.velocity = fresh.velocity;
       s.current = fresh.current;

@@ -4,56 +4,6 @@
 
 namespace rover::ddl {
 
-const char* GroupModeName(GroupMode m) {
-  switch (m) {
-    case GroupMode::kPosition:
-      return "position";
-    case GroupMode::kVelocity:
-      return "velocity";
-    case GroupMode::kStop:
-      return "stop";
-  }
-  return "?";
-}
-
-const char* GroupStateName(GroupState s) {
-  switch (s) {
-    case GroupState::kIdle:
-      return "idle";
-    case GroupState::kRunning:
-      return "running";
-    case GroupState::kDone:
-      return "done";
-    case GroupState::kFault:
-      return "fault";
-    case GroupState::kRejected:
-      return "rejected";
-  }
-  return "?";
-}
-
-const char* MotorFaultName(MotorFault f) {
-  switch (f) {
-    case MotorFault::kNone:
-      return "none";
-    case MotorFault::kStall:
-      return "stall";
-    case MotorFault::kOverCurrent:
-      return "overcurrent";
-    case MotorFault::kOverTemp:
-      return "overtemp";
-    case MotorFault::kTimeout:
-      return "timeout";
-    case MotorFault::kNoTelemetry:
-      return "no_telemetry";
-    case MotorFault::kBadCommand:
-      return "bad_command";
-    case MotorFault::kStopped:
-      return "stopped";
-  }
-  return "?";
-}
-
 const char* CommandErrorName(CommandError e) {
   switch (e) {
     case CommandError::kNone:

@@ -14,7 +14,7 @@ Result<SunSensorDriver> SunSensorDriver::Create(const SunSensorSpec& spec) {
 
 SunSensor SunSensorDriver::Convert(const hw::SunSensorRaw& raw) const {
   SunSensor out;
-  out.stamp_ns = raw.stamp_ns;
+  out.stamp = Time{raw.stamp_ns};
   out.intensity = std::clamp(raw.intensity / spec_.full_scale_intensity, 0.0, 1.0);
   const double col = raw.spot[0], row = raw.spot[1];
   if (raw.intensity < spec_.min_intensity) {
@@ -25,7 +25,7 @@ SunSensor SunSensorDriver::Convert(const hw::SunSensorRaw& raw) const {
   const double tx = (std::abs(col - spec_.principal_point.x()) - 0.5) / spec_.focal_counts;
   const double ty = (std::abs(row - spec_.principal_point.y()) - 0.5) / spec_.focal_counts;
   if (std::atan(std::hypot(std::max(tx, 0.0), std::max(ty, 0.0))) > spec_.fov) {
-    out.health = SensorHealth::kFailed;
+    out.health = msg::SensorHealth::kFailed;
     out.reason = "bright spot outside the field of view";
     return out;
   }

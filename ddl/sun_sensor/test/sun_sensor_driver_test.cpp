@@ -35,7 +35,7 @@ TEST(SunSensorDriver, SpotToRoverFrameVector) {
   ASSERT_TRUE(driver.ok());
   SunSensor s = driver->Convert(Raw(0, 0, 3500));
   ASSERT_TRUE(s.valid);
-  EXPECT_EQ(s.health, SensorHealth::kOk);
+  EXPECT_EQ(s.health, msg::SensorHealth::kOk);
   EXPECT_LT(Angle(s.sun_vector, Eigen::Vector3d::UnitZ()), 1e-12);  // boresight = rover up
   EXPECT_NEAR(s.intensity, 1.0, 1e-12);
   // Rows run forward: a spot at +f tan(30 deg) rows is 30 deg forward of the zenith.
@@ -57,14 +57,14 @@ TEST(SunSensorDriver, ValidityAndHealth) {
   SunSensor s = driver->Convert(Raw(0, 0, 0));
   EXPECT_FALSE(s.valid);
   EXPECT_EQ(s.sun_vector.norm(), 0.0);
-  EXPECT_EQ(s.health, SensorHealth::kOk);
+  EXPECT_EQ(s.health, msg::SensorHealth::kOk);
   s = driver->Convert(Raw(100, 100, 250));  // below min_intensity 300
   EXPECT_FALSE(s.valid);
   EXPECT_NE(s.reason.find("dim"), std::string::npos);
   // A bright spot 70 deg off the boresight cannot come through 60 deg optics.
   s = driver->Convert(Raw(spec.focal_counts * std::tan(70 * kDeg), 0, 2000));
   EXPECT_FALSE(s.valid);
-  EXPECT_EQ(s.health, SensorHealth::kFailed);
+  EXPECT_EQ(s.health, msg::SensorHealth::kFailed);
   // Right at the edge (59.9 deg) is fine.
   EXPECT_TRUE(driver->Convert(Raw(0, -spec.focal_counts * std::tan(59.9 * kDeg), 500)).valid);
   SunSensorSpec bad = spec;

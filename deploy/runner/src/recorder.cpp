@@ -4,7 +4,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "src/idl_conversions.hpp"
+#include "rover/msg/pose_idl.hpp"
 
 namespace rover::deploy::runner {
 namespace {
@@ -37,19 +37,19 @@ void Recorder::Pump() {
     truth_writers_.insert(s.info().publication_handle);
     result_->truth_publishers = static_cast<int>(truth_writers_.size());
     const Time t{s->header.stamp_ns};
-    if (judge_) judge_->AddTruth(t, ToIsometry(s->pose));
+    if (judge_) judge_->AddTruth(t, msg::IsometryFromIdl(s->pose));
     AddTrackPoint(t, s->pose, &last_truth_track_, &result_->truth_track);
   });
   pose_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
     const Time t{s->header.stamp_ns};
-    if (judge_) judge_->AddEstimate(t, ToIsometry(s->pose));
+    if (judge_) judge_->AddEstimate(t, msg::IsometryFromIdl(s->pose));
     has_estimate_ = true;
     rejected_measurements_ = static_cast<double>(s->rejected_measurements);
     AddTrackPoint(t, s->pose, &last_estimate_track_, &result_->estimate_track);
   });
   odometry_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
     const Time t{s->header.stamp_ns};
-    if (judge_) judge_->AddOdometryOnlyEstimate(t, ToIsometry(s->pose));
+    if (judge_) judge_->AddOdometryOnlyEstimate(t, msg::IsometryFromIdl(s->pose));
     AddTrackPoint(t, s->pose, &last_odometry_track_, &result_->odometry_only_track);
   });
   for (auto& e : extra_) e();

@@ -25,7 +25,7 @@ double Wrap(double a) {
   return a;
 }
 
-bool AttitudeFinite(const AttitudeSample& a) {
+bool AttitudeFinite(const msg::AttitudeSample& a) {
   return std::isfinite(a.roll) && std::isfinite(a.pitch) && std::isfinite(a.yaw);
 }
 
@@ -88,13 +88,13 @@ Result<DriveExecutor> DriveExecutor::Create(const RoverGeometry& geometry,
   return DriveExecutor(geometry, options);
 }
 
-void DriveExecutor::OnJointState(const JointSample& sample) {
-  if (!sample.healthy || !sample.AllFinite()) return;
+void DriveExecutor::OnJointState(const msg::JointState& sample) {
+  if (!msg::IsUsable(sample.health) || !sample.AllFinite()) return;
   if (joint_.has_value() && sample.stamp < joint_->stamp) return;
   joint_ = sample;
 }
 
-void DriveExecutor::OnAttitude(const AttitudeSample& sample) {
+void DriveExecutor::OnAttitude(const msg::AttitudeSample& sample) {
   if (!sample.healthy || !AttitudeFinite(sample)) return;
   if (attitude_.has_value() && sample.stamp < attitude_->stamp) return;
   if (phase_ != Phase::kIdle) {
@@ -104,7 +104,7 @@ void DriveExecutor::OnAttitude(const AttitudeSample& sample) {
   attitude_ = sample;
 }
 
-void DriveExecutor::OnMotorStatus(const MotorGroupStatus& status) { motor_status_ = status; }
+void DriveExecutor::OnMotorStatus(const msg::MotorStatus& status) { motor_status_ = status; }
 
 // ---- command checking -------------------------------------------------------------------------
 
@@ -166,8 +166,8 @@ InvalidReason DriveExecutor::CheckCommand(const DriveCommand& c, std::string* me
 
 // ---- helpers ----------------------------------------------------------------------------------
 
-MotorGroupCommand DriveExecutor::NewCommand(Time now, std::uint16_t mask, GroupMode mode) {
-  MotorGroupCommand c;
+msg::MotorCommand DriveExecutor::NewCommand(Time now, std::uint16_t mask, GroupMode mode) {
+  msg::MotorCommand c;
   c.stamp = now;
   c.command_id = next_motor_id_++;
   if (next_motor_id_ == 0) next_motor_id_ = 1;  // 0 is never used
@@ -177,12 +177,12 @@ MotorGroupCommand DriveExecutor::NewCommand(Time now, std::uint16_t mask, GroupM
   return c;
 }
 
-MotorGroupCommand DriveExecutor::StopCommand(Time now) {
+msg::MotorCommand DriveExecutor::StopCommand(Time now) {
   return NewCommand(now, kMobilityMotorMask, GroupMode::kStop);
 }
 
-MotorGroupCommand DriveExecutor::SteerCommand(Time now) {
-  MotorGroupCommand c = NewCommand(now, kSteerMotorMask, GroupMode::kPosition);
+msg::MotorCommand DriveExecutor::SteerCommand(Time now) {
+  msg::MotorCommand c = NewCommand(now, kSteerMotorMask, GroupMode::kPosition);
   for (int j = 0; j < kNumSteered; ++j) {
     const auto m = static_cast<std::size_t>(SteerMotor(j));
     c.goal[m] = plan_.steer_angle[static_cast<std::size_t>(j)];
@@ -195,8 +195,8 @@ MotorGroupCommand DriveExecutor::SteerCommand(Time now) {
   return c;
 }
 
-MotorGroupCommand DriveExecutor::DrivePositionCommand(Time now) {
-  MotorGroupCommand c = NewCommand(now, kDriveMotorMask, GroupMode::kPosition);
+msg::MotorCommand DriveExecutor::DrivePositionCommand(Time now) {
+  msg::MotorCommand c = NewCommand(now, kDriveMotorMask, GroupMode::kPosition);
   for (std::size_t i = 0; i < kNumWheels; ++i) {
     c.goal[i] = wheel_start_[i] + plan_.wheel_rotation[i];
     c.max_rate[i] = std::abs(plan_.wheel_rate[i]);
@@ -205,8 +205,8 @@ MotorGroupCommand DriveExecutor::DrivePositionCommand(Time now) {
   return c;
 }
 
-MotorGroupCommand DriveExecutor::TurnVelocityCommand(Time now, double yaw_rate) {
-  MotorGroupCommand c = NewCommand(now, kDriveMotorMask, GroupMode::kVelocity);
+msg::MotorCommand DriveExecutor::TurnVelocityCommand(Time now, double yaw_rate) {
+  msg::MotorCommand c = NewCommand(now, kDriveMotorMask, GroupMode::kVelocity);
   const std::array<double, kNumWheels> rates = TurnInPlaceWheelRates(geometry_, yaw_rate);
   for (std::size_t i = 0; i < kNumWheels; ++i) c.goal[i] = rates[i];
   c.timeout_s = RemainingTimeout(now);
@@ -408,7 +408,7 @@ DriveOutput DriveExecutor::Step(Time now) {
 void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
   // 1. Motor group faults on a group of this primitive.
   if (motor_status_.has_value()) {
-    const MotorGroupStatus& m = *motor_status_;
+    const msg::MotorStatus& m = *motor_status_;
     const bool ours = m.command_id >= first_motor_id_ && m.command_id <= last_motor_id_;
     const bool superseded_stop = m.fault == MotorFault::kStopped && m.command_id != last_motor_id_;
     if (ours && !superseded_stop &&

@@ -13,7 +13,7 @@ std::string Num(double v) {
   return os.str();
 }
 
-SuspensionAngles Suspension(const JointSample& s, bool use) {
+SuspensionAngles Suspension(const msg::JointState& s, bool use) {
   SuspensionAngles a;
   if (use) {
     a.rocker = s.rocker_angle;
@@ -22,7 +22,7 @@ SuspensionAngles Suspension(const JointSample& s, bool use) {
   return a;
 }
 
-double WheelHeading(const JointSample& s, int wheel) {
+double WheelHeading(const msg::JointState& s, int wheel) {
   for (int j = 0; j < kNumSteered; ++j) {
     if (kSteeredWheel[static_cast<std::size_t>(j)] == wheel) {
       return s.steer_angle[static_cast<std::size_t>(j)];
@@ -62,8 +62,8 @@ Result<WheelOdometry> WheelOdometry::Create(const RoverGeometry& geometry,
   return WheelOdometry(geometry, options);
 }
 
-Result<OdometryIncrement> WheelOdometry::Compute(const JointSample& from,
-                                                 const JointSample& to) const {
+Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
+                                                 const msg::JointState& to) const {
   if (!from.AllFinite() || !to.AllFinite()) {
     return InvalidArgument("wheel odometry: joint sample has a non-finite angle or rate");
   }
@@ -140,7 +140,7 @@ Result<OdometryIncrement> WheelOdometry::Compute(const JointSample& from,
   return inc;
 }
 
-Result<std::optional<OdometryIncrement>> WheelOdometry::Add(const JointSample& sample) {
+Result<std::optional<OdometryIncrement>> WheelOdometry::Add(const msg::JointState& sample) {
   if (!sample.AllFinite()) {
     return InvalidArgument("wheel odometry: joint sample has a non-finite angle or rate");
   }

@@ -29,7 +29,7 @@ class Plant {
   std::array<double, 6> wheel{};
   std::array<double, 4> steer{};
 
-  void Apply(const MotorGroupCommand& c) {
+  void Apply(const msg::MotorCommand& c) {
     if (c.mode == GroupMode::kStop) {
       drive_mode_ = GroupMode::kStop;
       steer_goal_ = steer;
@@ -89,8 +89,8 @@ class Plant {
     }
   }
 
-  JointSample Joint(Time t) const {
-    JointSample s;
+  msg::JointState Joint(Time t) const {
+    msg::JointState s;
     s.stamp = t;
     s.wheel_angle = wheel;
     s.steer_angle = steer;
@@ -98,8 +98,8 @@ class Plant {
     s.bogie_angle = bogie;
     return s;
   }
-  AttitudeSample Attitude(Time t) const {
-    AttitudeSample a;
+  msg::AttitudeSample Attitude(Time t) const {
+    msg::AttitudeSample a;
     a.stamp = t;
     a.roll = roll;
     a.pitch = pitch;
@@ -128,7 +128,7 @@ class DriveExecutorTest : public ::testing::Test {
   }
 
   void Absorb(const DriveOutput& out) {
-    for (const MotorGroupCommand& c : out.motor_commands) {
+    for (const msg::MotorCommand& c : out.motor_commands) {
       plant_.Apply(c);
       commands_.push_back(c);
     }
@@ -192,7 +192,7 @@ class DriveExecutorTest : public ::testing::Test {
   std::uint32_t next_id_ = 100;
   bool feed_joint_ = true;
   bool feed_attitude_ = true;
-  std::vector<MotorGroupCommand> commands_;
+  std::vector<msg::MotorCommand> commands_;
   std::vector<DriveStatus> statuses_;
 };
 
@@ -342,7 +342,7 @@ TEST_F(DriveExecutorTest, MotorGroupFaultsStopTheDrive) {
     ASSERT_TRUE(ex_->busy());
     const std::uint32_t drive_group = commands_.back().command_id;
     ASSERT_EQ(commands_.back().motor_mask, kDriveMotorMask);
-    MotorGroupStatus m;
+    msg::MotorStatus m;
     m.stamp = now_;
     m.command_id = drive_group;
     m.state = c.state;
@@ -365,7 +365,7 @@ TEST_F(DriveExecutorTest, FaultOfAnEarlierGroupIsIgnored) {
   RunUntilIdle();
   const std::uint32_t old_group = commands_.front().command_id;
   Submit(Arc(0.0, 0.3));
-  MotorGroupStatus m;
+  msg::MotorStatus m;
   m.command_id = old_group;
   m.state = GroupState::kFault;
   m.fault = MotorFault::kStall;
@@ -536,11 +536,11 @@ TEST_F(DriveExecutorTest, UnhealthyAndNonFiniteSamplesDoNotCountAsFresh) {
   feed_joint_ = false;
   const Time cut = now_;
   while (ex_->busy() && ToSeconds(now_ - cut) < 5.0) {
-    JointSample bad = plant_.Joint(now_ + kTick);
+    msg::JointState bad = plant_.Joint(now_ + kTick);
     bad.wheel_angle[0] = std::numeric_limits<double>::quiet_NaN();
     ex_->OnJointState(bad);
-    JointSample sick = plant_.Joint(now_ + kTick);
-    sick.healthy = false;
+    msg::JointState sick = plant_.Joint(now_ + kTick);
+    sick.health = msg::SensorHealth::kFailed;
     ex_->OnJointState(sick);
     Tick();
   }

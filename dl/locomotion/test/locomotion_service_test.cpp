@@ -12,6 +12,7 @@
 #include <string>
 
 #include "rover/dl/locomotion/ackermann.hpp"
+#include "rover/msg/drive_idl.hpp"
 #include "test/locomotion_rig.hpp"
 
 namespace rover::dl {
@@ -124,7 +125,7 @@ TEST_F(LocomotionServiceTest, UnknownPrimitiveIsRejectedInvalid) {
     }
   }
   // The conversion path the service uses, without DDS in between.
-  const DriveCommand d = DriveCommandFromIdl(c);
+  const DriveCommand d = msg::DriveCommandFromIdl(c);
   EXPECT_FALSE(IsKnownPrimitive(d.primitive));
   const DriveExecutor* ex = h_.service().drive_executor();
   ASSERT_NE(ex, nullptr);
@@ -135,7 +136,9 @@ TEST_F(LocomotionServiceTest, UnknownPrimitiveIsRejectedInvalid) {
   s.primitive = d.primitive;
   s.state = DriveState::kRejected;
   s.termination = DriveTermination::kRejectedInvalid;
-  EXPECT_EQ(DriveStatusToIdl(s).primitive, rover_dl_PRIMITIVE_STOP);  // wire-safe
+  rover_dl_DriveStatus wire{};
+  msg::DriveStatusToIdl(s, &wire);
+  EXPECT_EQ(wire.primitive, rover_dl_PRIMITIVE_STOP);  // wire-safe
   for (double w : h_.rover().steers()) EXPECT_EQ(w, 0.0);
   // Still serving.
   h_.Send(LocomotionRig::Command(32, rover_dl_PRIMITIVE_STOP));
@@ -216,33 +219,8 @@ TEST_F(LocomotionServiceTest, TurnInPlaceClosesTheLoopOnTheDlPoseHeading) {
   EXPECT_TRUE(saw_velocity);
 }
 
-TEST(LocomotionConversions, PoseQuaternionGivesRollPitchYawAndBadOnesAreRefused) {
-  rover_dl_PoseEstimate p{};
-  p.header.stamp_ns = 5;
-  const Eigen::Quaterniond q = geometry::QuaternionFromRpy(0.1, -0.2, 2.5);
-  p.pose.orientation = {q.w(), q.x(), q.y(), q.z()};
-  const auto a = AttitudeFromPose(p);
-  ASSERT_TRUE(a.has_value());
-  EXPECT_NEAR(a->roll, 0.1, 1e-12);
-  EXPECT_NEAR(a->pitch, -0.2, 1e-12);
-  EXPECT_NEAR(a->yaw, 2.5, 1e-12);
-  EXPECT_EQ(a->stamp.ns, 5);
-  p.pose.orientation.w = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(AttitudeFromPose(p).has_value());
-  p.pose.orientation = {0.0, 0.0, 0.0, 0.0};
-  EXPECT_FALSE(AttitudeFromPose(p).has_value());
-
-  rover_ddl_JointState j{};
-  j.health = rover_HEALTH_STALE;
-  EXPECT_FALSE(JointSampleFromIdl(j).healthy);
-  j.health = rover_HEALTH_DEGRADED;
-  j.wheel_angle[5] = 1.5;
-  j.bogie_angle[1] = -0.1;
-  const JointSample js = JointSampleFromIdl(j);
-  EXPECT_TRUE(js.healthy);
-  EXPECT_EQ(js.wheel_angle[5], 1.5);
-  EXPECT_EQ(js.bogie_angle[1], -0.1);
-}
+// The conversions (AttitudeSampleFromIdl, JointStateFromIdl) are tested in
+// core/msg/test/pose_idl_test.cpp and sensors_idl_test.cpp.
 
 }  // namespace
 }  // namespace rover::dl

@@ -27,8 +27,8 @@ class SampleWriter {
  public:
   explicit SampleWriter(const RoverGeometry& g) : g_(g) { sample_.stamp = Time::FromSeconds(1.0); }
 
-  const JointSample& sample() const { return sample_; }
-  std::vector<JointSample>& samples() { return out_; }
+  const msg::JointState& sample() const { return sample_; }
+  std::vector<msg::JointState>& samples() { return out_; }
 
   void Emit() { out_.push_back(sample_); }
 
@@ -70,16 +70,16 @@ class SampleWriter {
     Emit();
   }
   RoverGeometry g_;
-  JointSample sample_;
-  std::vector<JointSample> out_;
+  msg::JointState sample_;
+  std::vector<msg::JointState> out_;
 };
 
-Pose2 Integrate(WheelOdometry& odo, const std::vector<JointSample>& samples,
+Pose2 Integrate(WheelOdometry& odo, const std::vector<msg::JointState>& samples,
                 double* path = nullptr) {
   Pose2 pose;
   double s = 0.0;
   odo.Reset();
-  for (const JointSample& js : samples) {
+  for (const msg::JointState& js : samples) {
     auto inc = odo.Add(js);
     EXPECT_TRUE(inc.ok()) << inc.status().ToString();
     if (inc.ok() && inc->has_value()) {
@@ -159,12 +159,12 @@ TEST(WheelOdometry, SuspensionArticulationIsNotMistakenForMotion) {
   const RoverGeometry g;
   const int steps = 80;
   const double body_step = 0.01;  // [m] per sample
-  std::vector<JointSample> samples;
-  JointSample js;
+  std::vector<msg::JointState> samples;
+  msg::JointState js;
   js.stamp = Time::FromSeconds(3.0);
   samples.push_back(js);
   for (int n = 1; n <= steps; ++n) {
-    JointSample next = js;
+    msg::JointState next = js;
     next.stamp = js.stamp + Seconds(0.05);
     const double a = std::sin(std::numbers::pi * n / steps);
     next.rocker_angle = {12 * kDeg * a, -4 * kDeg * a};
@@ -201,12 +201,12 @@ TEST(WheelOdometry, CovarianceGrowsWithDistance) {
   o.cross_variance_per_m = 1e-3;
   o.yaw_variance_per_m = 2e-4;
   WheelOdometry odo = MakeOdometry(g, o);
-  JointSample a;
+  msg::JointState a;
   a.stamp = Time::FromSeconds(1);
-  JointSample b = a;
+  msg::JointState b = a;
   b.stamp = Time::FromSeconds(1.1);
   for (double& th : b.wheel_angle) th = 0.1 / g.wheel_radius;  // 0.1 m straight
-  JointSample c = b;
+  msg::JointState c = b;
   c.stamp = Time::FromSeconds(1.2);
   for (double& th : c.wheel_angle) th += 0.1 / g.wheel_radius;
   Result<OdometryIncrement> short_inc = odo.Compute(a, b);
@@ -220,9 +220,9 @@ TEST(WheelOdometry, CovarianceGrowsWithDistance) {
   EXPECT_NEAR(short_inc->residual_rms, 0.0, 1e-12);
 
   // A turn in place has no translation but the wheels travel, so its heading variance is > 0.
-  JointSample t = a;
+  msg::JointState t = a;
   t.steer_angle = TurnInPlaceSteerAngles(g);
-  JointSample t2 = t;
+  msg::JointState t2 = t;
   t2.stamp = Time::FromSeconds(1.1);
   const auto q = TurnInPlaceRadii(g);
   for (std::size_t i = 0; i < 6; ++i) t2.wheel_angle[i] = q[i] * 0.1 / g.wheel_radius;
@@ -235,9 +235,9 @@ TEST(WheelOdometry, CovarianceGrowsWithDistance) {
 TEST(WheelOdometry, SlipShowsInTheResidual) {
   const RoverGeometry g;
   WheelOdometry odo = MakeOdometry(g);
-  JointSample a;
+  msg::JointState a;
   a.stamp = Time::FromSeconds(1);
-  JointSample b = a;
+  msg::JointState b = a;
   b.stamp = Time::FromSeconds(1.1);
   for (double& th : b.wheel_angle) th = 0.05 / g.wheel_radius;
   b.wheel_angle[2] += 0.4;  // LR spins in sand
@@ -250,9 +250,9 @@ TEST(WheelOdometry, SlipShowsInTheResidual) {
 
 TEST(WheelOdometry, RejectsBadSamples) {
   WheelOdometry odo = MakeOdometry();
-  JointSample a;
+  msg::JointState a;
   a.stamp = Time::FromSeconds(1);
-  JointSample b = a;
+  msg::JointState b = a;
   EXPECT_EQ(odo.Compute(a, b).status().code(), StatusCode::kInvalidArgument);  // same stamp
   b.stamp = Time::FromSeconds(5);
   EXPECT_EQ(odo.Compute(a, b).status().code(), StatusCode::kOutOfRange);  // gap
@@ -266,22 +266,22 @@ TEST(WheelOdometry, RejectsBadSamples) {
   auto r = odo.Add(a);
   ASSERT_TRUE(r.ok());
   EXPECT_FALSE(r->has_value());
-  JointSample j = a;
+  msg::JointState j = a;
   j.stamp = Time::FromSeconds(1.02);
   j.wheel_angle[3] = 50.0;
   EXPECT_FALSE(odo.Add(j).ok());
-  JointSample n = j;
+  msg::JointState n = j;
   n.stamp = Time::FromSeconds(1.04);
   n.wheel_rate[0] = std::nan("");
   EXPECT_FALSE(odo.Add(n).ok());
-  JointSample k = j;
+  msg::JointState k = j;
   k.stamp = Time::FromSeconds(1.06);
   auto r2 = odo.Add(k);
   ASSERT_TRUE(r2.ok());
   ASSERT_TRUE(r2->has_value());
   EXPECT_NEAR((*r2)->dx, 0.0, 1e-12);  // measured from the restarted sample j
   // A long gap restarts silently.
-  JointSample late = k;
+  msg::JointState late = k;
   late.stamp = Time::FromSeconds(60);
   auto r3 = odo.Add(late);
   ASSERT_TRUE(r3.ok());

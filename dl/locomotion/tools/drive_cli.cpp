@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "rover/msg/drive_idl.hpp"
 #include "rover/runtime/dds.hpp"
 
 namespace rover::dl::tools {
@@ -175,17 +176,19 @@ Status CheckDriveOptions(const DriveCliOptions& o) {
 
 rover_dl_DriveCommand MakeDriveCommand(const DriveCliOptions& o, std::uint32_t command_id,
                                        std::int64_t stamp_ns) {
+  DriveCommand d;
+  d.stamp = Time{stamp_ns};
+  d.command_id = command_id;
+  d.primitive = o.primitive;
+  d.curvature = o.curvature;
+  d.distance = o.distance;
+  d.angle = o.angle;
+  d.speed = o.speed;
+  d.timeout_s = o.drive_timeout_s;
   rover_dl_DriveCommand c{};
-  c.header.stamp_ns = stamp_ns;
   dds::CopyString(c.header.frame_id, "rover");
   c.header.seq = 1;
-  c.command_id = command_id;
-  c.primitive = static_cast<rover_dl_DrivePrimitive>(static_cast<std::int32_t>(o.primitive));
-  c.curvature = o.curvature;
-  c.distance = o.distance;
-  c.angle = o.angle;
-  c.speed = o.speed;
-  c.timeout_s = o.drive_timeout_s;
+  msg::DriveCommandToIdl(d, &c);
   return c;
 }
 

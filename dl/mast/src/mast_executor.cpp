@@ -17,17 +17,6 @@ std::string Deg(double rad) { return FormatNumber(rad / kDegree, 4) + " deg"; }
 
 }  // namespace
 
-const char* MastStateName(MastState s) {
-  switch (s) {
-    case MastState::kIdle: return "IDLE";
-    case MastState::kMoving: return "MOVING";
-    case MastState::kAtGoal: return "AT_GOAL";
-    case MastState::kFault: return "FAULT";
-    case MastState::kRejected: return "REJECTED";
-  }
-  return "?";
-}
-
 Result<MastExecutor> MastExecutor::Create(const hwconfig::RoverDescription& rover,
                                           const MastOptions& options) {
   ROVER_RETURN_IF_ERROR(rover.Validate());
@@ -35,15 +24,17 @@ Result<MastExecutor> MastExecutor::Create(const hwconfig::RoverDescription& rove
   return MastExecutor(rover, options);
 }
 
-void MastExecutor::OnJoints(const MastJoints& j) {
-  if (!j.healthy || !std::isfinite(j.pan) || !std::isfinite(j.tilt)) return;
+void MastExecutor::OnJoints(const msg::JointState& j) {
+  if (!msg::IsUsable(j.health) || !std::isfinite(j.mast_pan) || !std::isfinite(j.mast_tilt)) {
+    return;
+  }
   if (joints_.has_value() && j.stamp < joints_->stamp) return;
-  joints_ = j;
-  status_.pan = j.pan;
-  status_.tilt = j.tilt;
+  joints_ = Joints{j.stamp, j.mast_pan, j.mast_tilt};
+  status_.pan = j.mast_pan;
+  status_.tilt = j.mast_tilt;
 }
 
-void MastExecutor::OnPose(const RoverPose& p) {
+void MastExecutor::OnPose(const msg::PoseSample& p) {
   if (!p.site_from_rover.matrix().allFinite()) return;
   if (pose_.has_value() && p.stamp < pose_->stamp) return;
   pose_ = p;
@@ -87,12 +78,18 @@ void MastExecutor::Reject(const MastCommand& c, const Status& why, Time now, Mas
   }
 }
 
+msg::MotorCommand MastExecutor::MotorCommand(msg::GroupMode mode, Time now) {
+  msg::MotorCommand m;
+  m.stamp = now;
+  m.command_id = NextMotorId();
+  m.motor_mask = kMastMotorMask;
+  m.mode = mode;
+  m.timeout_s = 0.0;  // the motor driver derives it from the planned move
+  return m;
+}
+
 void MastExecutor::Fault(std::string message, Time now, MastOutput* out) {
-  MastMotorCommand stop;
-  stop.stamp = now;
-  stop.command_id = NextMotorId();
-  stop.mode = MotorMode::kStop;
-  out->motor_commands.push_back(stop);
+  out->motor_commands.push_back(MotorCommand(msg::GroupMode::kStop, now));
   motor_id_ = 0;
   SetStatus(MastState::kFault, std::move(message), now, out);
 }
@@ -142,13 +139,11 @@ MastOutput MastExecutor::Submit(const MastCommand& c, Time now) {
     return out;
   }
   const std::uint32_t superseded = moving() ? status_.command_id : 0;
-  MastMotorCommand m;
-  m.stamp = now;
-  m.command_id = NextMotorId();
-  m.mode = MotorMode::kPosition;
-  m.pan_goal = goal->pan;
-  m.tilt_goal = goal->tilt;
-  m.max_rate = options_.speed;
+  msg::MotorCommand m = MotorCommand(msg::GroupMode::kPosition, now);
+  m.goal[hw::kMastPan] = goal->pan;
+  m.goal[hw::kMastTilt] = goal->tilt;
+  m.max_rate[hw::kMastPan] = options_.speed;
+  m.max_rate[hw::kMastTilt] = options_.speed;
   out.motor_commands.push_back(m);
   motor_id_ = m.command_id;
   motors_done_ = false;
@@ -163,20 +158,19 @@ MastOutput MastExecutor::Submit(const MastCommand& c, Time now) {
   return out;
 }
 
-MastOutput MastExecutor::OnMotorStatus(const MotorReport& r, Time now) {
+MastOutput MastExecutor::OnMotorStatus(const msg::MotorStatus& r, Time now) {
   MastOutput out;
   if (!moving() || r.command_id != motor_id_) return out;
-  if (r.state == MotorGroupState::kFault || r.state == MotorGroupState::kRejected) {
-    std::string why = std::string("motor driver ") +
-                      (r.state == MotorGroupState::kFault ? "FAULT" : "REJECTED");
-    if (!r.fault.empty()) why += " " + r.fault;
+  if (r.state == msg::GroupState::kFault || r.state == msg::GroupState::kRejected) {
+    std::string why = std::string("motor driver ") + msg::GroupStateName(r.state);
+    if (r.fault != msg::MotorFault::kNone) why += std::string(" ") + msg::MotorFaultName(r.fault);
     if (r.fault_motor >= 0) why += " on " + std::string(hw::MotorName(r.fault_motor));
     if (!r.message.empty()) why += ": " + r.message;
     motor_id_ = 0;  // the driver has braked the group already
     SetStatus(MastState::kFault, std::move(why), now, &out);
     return out;
   }
-  if (r.state == MotorGroupState::kDone) {
+  if (r.state == msg::GroupState::kDone) {
     if (!motors_done_) done_at_ = now;
     motors_done_ = true;
     if (WithinTolerance()) SetStatus(MastState::kAtGoal, "at goal", now, &out);

@@ -9,6 +9,16 @@ namespace {
 
 Time T(double s) { return Time::FromSeconds(s); }
 
+msg::JointState JointSample(double t, double pan, double tilt,
+                            msg::SensorHealth health = msg::SensorHealth::kOk) {
+  msg::JointState j;
+  j.stamp = T(t);
+  j.mast_pan = pan;
+  j.mast_tilt = tilt;
+  j.health = health;
+  return j;
+}
+
 class MastExecutorTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -16,7 +26,7 @@ class MastExecutorTest : public ::testing::Test {
     ASSERT_TRUE(e.ok()) << e.status().message();
     exec_.emplace(std::move(*e));
   }
-  void Joints(double t, double pan, double tilt) { exec_->OnJoints({T(t), pan, tilt, true}); }
+  void Joints(double t, double pan, double tilt) { exec_->OnJoints(JointSample(t, pan, tilt)); }
   MastCommand Angles(std::uint32_t id, double pan, double tilt) {
     MastCommand c;
     c.command_id = id;
@@ -26,9 +36,9 @@ class MastExecutorTest : public ::testing::Test {
     return c;
   }
   MastOutput Done(std::uint32_t motor_id, double t) {
-    MotorReport r;
+    msg::MotorStatus r;
     r.command_id = motor_id;
-    r.state = MotorGroupState::kDone;
+    r.state = msg::GroupState::kDone;
     return exec_->OnMotorStatus(r, T(t));
   }
   std::optional<MastExecutor> exec_;
@@ -39,13 +49,15 @@ TEST_F(MastExecutorTest, AnglesCommandMovesBothMastMotorsAndArrives) {
   Joints(1.0, 0.0, 0.0);
   MastOutput out = exec_->Submit(Angles(5, 0.4, -0.3), T(1.0));
   ASSERT_EQ(out.motor_commands.size(), 1u);
-  const MastMotorCommand& m = out.motor_commands[0];
-  EXPECT_EQ(m.mode, MotorMode::kPosition);
+  const msg::MotorCommand& m = out.motor_commands[0];
+  EXPECT_EQ(m.mode, msg::GroupMode::kPosition);
   EXPECT_EQ(m.motor_mask, (1u << 10) | (1u << 11));
   EXPECT_EQ(m.command_id, kMotorIdBase);
-  EXPECT_DOUBLE_EQ(m.pan_goal, 0.4);
-  EXPECT_DOUBLE_EQ(m.tilt_goal, -0.3);
-  EXPECT_DOUBLE_EQ(m.max_rate, MastOptions{}.speed);
+  EXPECT_DOUBLE_EQ(m.goal[hw::kMastPan], 0.4);
+  EXPECT_DOUBLE_EQ(m.goal[hw::kMastTilt], -0.3);
+  EXPECT_DOUBLE_EQ(m.max_rate[hw::kMastPan], MastOptions{}.speed);
+  EXPECT_DOUBLE_EQ(m.max_rate[hw::kMastTilt], MastOptions{}.speed);
+  EXPECT_DOUBLE_EQ(m.timeout_s, 0.0);
   ASSERT_EQ(out.statuses.size(), 1u);
   EXPECT_EQ(out.statuses[0].state, MastState::kMoving);
   EXPECT_EQ(out.statuses[0].command_id, 5u);
@@ -97,7 +109,7 @@ TEST_F(MastExecutorTest, DoneButJointsElsewhereFaultsAfterTheSettleTime) {
   EXPECT_EQ(out.statuses[0].state, MastState::kFault);
   EXPECT_NE(out.statuses[0].message.find("not within tolerance"), std::string::npos);
   ASSERT_EQ(out.motor_commands.size(), 1u);
-  EXPECT_EQ(out.motor_commands[0].mode, MotorMode::kStop);
+  EXPECT_EQ(out.motor_commands[0].mode, msg::GroupMode::kStop);
 }
 
 TEST_F(MastExecutorTest, RejectsBadCommandsNamingFieldAndValue) {
@@ -145,8 +157,8 @@ TEST_F(MastExecutorTest, LookAtUsesThePoseAndARejectionLeavesARunningMoveAlone) 
   c.look_at = Eigen::Vector3d(0.35, 3.0, 1.5);  // level with the head, 3 m to the left
   MastOutput out = exec_->Submit(c, T(1.0));
   ASSERT_EQ(out.motor_commands.size(), 1u);
-  EXPECT_NEAR(out.motor_commands[0].pan_goal, M_PI / 2, 1e-9);
-  EXPECT_NEAR(out.motor_commands[0].tilt_goal, 0.0, 1e-9);
+  EXPECT_NEAR(out.motor_commands[0].goal[hw::kMastPan], M_PI / 2, 1e-9);
+  EXPECT_NEAR(out.motor_commands[0].goal[hw::kMastTilt], 0.0, 1e-9);
   out = exec_->Submit(Angles(10, 9.0, 0.0), T(1.1));
   ASSERT_EQ(out.statuses.size(), 1u);
   EXPECT_EQ(out.statuses[0].state, MastState::kRejected);
@@ -173,7 +185,7 @@ TEST_F(MastExecutorTest, TimeoutAndStaleJointsFaultAndStopTheMotors) {
   EXPECT_EQ(out.statuses[0].state, MastState::kFault);
   EXPECT_NE(out.statuses[0].message.find("timeout after 2.125 s"), std::string::npos)
       << out.statuses[0].message;
-  EXPECT_EQ(out.motor_commands[0].mode, MotorMode::kStop);
+  EXPECT_EQ(out.motor_commands[0].mode, msg::GroupMode::kStop);
 
   Joints(4.0, 0.1, 0.0);
   exec_->Submit(Angles(2, 0.0, 0.0), T(4.0));
@@ -186,10 +198,10 @@ TEST_F(MastExecutorTest, TimeoutAndStaleJointsFaultAndStopTheMotors) {
 TEST_F(MastExecutorTest, MotorDriverFaultNamesTheMotor) {
   Joints(1.0, 0.0, 0.0);
   const std::uint32_t id = exec_->Submit(Angles(1, 0.5, 0.0), T(1.0)).motor_commands[0].command_id;
-  MotorReport r;
+  msg::MotorStatus r;
   r.command_id = id;
-  r.state = MotorGroupState::kFault;
-  r.fault = "STALL";
+  r.state = msg::GroupState::kFault;
+  r.fault = msg::MotorFault::kStall;
   r.fault_motor = 10;
   r.message = "no progress";
   const MastOutput out = exec_->OnMotorStatus(r, T(1.5));
@@ -201,13 +213,17 @@ TEST_F(MastExecutorTest, MotorDriverFaultNamesTheMotor) {
 
 TEST_F(MastExecutorTest, IgnoresBadJointSamples) {
   Joints(1.0, 0.1, 0.2);
-  exec_->OnJoints({T(1.1), std::nan(""), 0.0, true});
-  exec_->OnJoints({T(1.1), 0.5, 0.5, false});
-  exec_->OnJoints({T(0.9), 0.7, 0.7, true});  // older
+  exec_->OnJoints(JointSample(1.1, std::nan(""), 0.0));
+  exec_->OnJoints(JointSample(1.1, 0.5, 0.5, msg::SensorHealth::kStale));
+  exec_->OnJoints(JointSample(1.1, 0.5, 0.5, msg::SensorHealth::kFailed));
+  exec_->OnJoints(JointSample(0.9, 0.7, 0.7));  // older
   EXPECT_DOUBLE_EQ(exec_->status().pan, 0.1);
   EXPECT_DOUBLE_EQ(exec_->status().tilt, 0.2);
   EXPECT_STREQ(MastStateName(MastState::kAtGoal), "AT_GOAL");
-  EXPECT_STREQ(MastStateName(static_cast<MastState>(42)), "?");
+  EXPECT_STREQ(MastStateName(static_cast<MastState>(42)), "UNKNOWN");
+  // A degraded sample is still a measurement.
+  exec_->OnJoints(JointSample(1.2, 0.3, 0.4, msg::SensorHealth::kDegraded));
+  EXPECT_DOUBLE_EQ(exec_->status().pan, 0.3);
 }
 
 TEST(MastExecutor, CreateRefusesInvalidOptions) {

@@ -11,6 +11,7 @@
 
 #include "mast_service.hpp"
 #include "rover/geometry/transforms.hpp"
+#include "rover/msg/mast_idl.hpp"
 #include "rover/testing/fakes/fake_mast.hpp"
 #include "rover/testing/fakes/fake_pose.hpp"
 #include "rover/testing/service_harness.hpp"
@@ -190,7 +191,7 @@ TEST_F(MastServiceTest, BadCommandsAreRejectedNamingFieldAndValueAndNothingMoves
       EXPECT_NE(std::string(st.message).find("pointing = 9"), std::string::npos) << st.message;
     }
   }
-  EXPECT_EQ(static_cast<int>(MastCommandFromIdl(c).pointing), 9);
+  EXPECT_EQ(static_cast<int>(msg::MastCommandFromIdl(c).pointing), 9);
   rover_dl_MastStatus s;
   c = Angles(4, 0.0, 0.0);
   c.timeout_s = 1e9;
@@ -265,43 +266,6 @@ TEST_F(MastServiceTest, InvalidParametersRefuseConfigurationNamingTheKey) {
   ASSERT_FALSE(h.ok());
   EXPECT_NE(h.status().message().find("mast.tilt_max_deg"), std::string::npos)
       << h.status().message();
-}
-
-TEST(MastServiceConversions, RoundTripTheIdlFields) {
-  rover_dl_MastCommand m{};
-  m.command_id = 8;
-  m.pointing = rover_dl_MAST_POINT_LOOK_AT;
-  m.look_at = {1.0, 2.0, 3.0};
-  m.timeout_s = 4.0;
-  const MastCommand c = MastCommandFromIdl(m);
-  EXPECT_EQ(c.pointing, MastPointing::kLookAt);
-  EXPECT_EQ(c.look_at, Eigen::Vector3d(1.0, 2.0, 3.0));
-  EXPECT_DOUBLE_EQ(c.timeout_s, 4.0);
-
-  rover_dl_PoseEstimate p{};
-  p.pose.orientation = {2.0, 0.0, 0.0, 0.0};  // normalised
-  p.pose.position = {1.0, 0.0, 0.0};
-  auto pose = RoverPoseFromIdl(p);
-  ASSERT_TRUE(pose.has_value());
-  EXPECT_TRUE(pose->site_from_rover.linear().isIdentity(1e-12));
-  p.pose.orientation = {0.0, 0.0, 0.0, 0.0};
-  EXPECT_FALSE(RoverPoseFromIdl(p).has_value());
-  p.pose.orientation = {1.0, 0.0, 0.0, 0.0};
-  p.pose.position.y = NAN;
-  EXPECT_FALSE(RoverPoseFromIdl(p).has_value());
-
-  rover_ddl_JointState j{};
-  j.mast_pan = 0.5;
-  j.health = rover_HEALTH_STALE;
-  EXPECT_FALSE(MastJointsFromIdl(j).healthy);
-  EXPECT_DOUBLE_EQ(MastJointsFromIdl(j).pan, 0.5);
-
-  MastStatus s;
-  s.state = MastState::kAtGoal;
-  s.message = "at goal";
-  const rover_dl_MastStatus sm = MastStatusToIdl(s);
-  EXPECT_EQ(sm.state, rover_dl_MAST_AT_GOAL);
-  EXPECT_STREQ(sm.message, "at goal");
 }
 
 }  // namespace

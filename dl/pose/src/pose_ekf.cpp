@@ -56,22 +56,6 @@ bool SymmetricPositiveDefinite(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
-const char* MotionSourceName(MotionSource s) {
-  switch (s) {
-    case MotionSource::kWheelOdometry:
-      return "wheel_odometry";
-    case MotionSource::kVisualOdometry:
-      return "visual_odometry";
-    case MotionSource::kSunSensor:
-      return "sun_sensor";
-    case MotionSource::kAccelerometer:
-      return "accelerometer";
-    case MotionSource::kExternal:
-      return "external";
-  }
-  return "unknown";
-}
-
 // ---- options ----------------------------------------------------------------------------------
 
 Status EkfOptions::Validate() const {
@@ -439,7 +423,7 @@ Status PoseEkf::UpdateSunSensor(Time t, const Eigen::Vector3d& sun_rover,
   return Status::Ok();
 }
 
-Status PoseEkf::AddRelativePose(const RelativePoseMeasurement& m) {
+Status PoseEkf::AddRelativePose(const msg::RelativePose& m) {
   if (!initialized_) return FailedPrecondition("EKF: relative pose before Initialize()");
   if (!m.delta.matrix().allFinite() || !m.covariance.allFinite()) {
     return InvalidArgument("EKF: relative pose has a non-finite value");
@@ -463,7 +447,7 @@ Status PoseEkf::AddRelativePose(const RelativePoseMeasurement& m) {
   }
   if (ahead > kSameTimeS) {
     if (pending_.size() >= kMaxPending) {
-      const RelativePoseMeasurement dropped = pending_.front();
+      const msg::RelativePose dropped = pending_.front();
       pending_.pop_front();
       Reject(dropped.source, dropped.t_to,
              std::string(MotionSourceName(dropped.source)) +
@@ -480,7 +464,7 @@ void PoseEkf::ProcessPending() {
   // Measurements are processed in arrival order once the filter has reached their t_to.
   for (auto it = pending_.begin(); it != pending_.end();) {
     if (ToSeconds(it->t_to - time_) <= kSameTimeS) {
-      const RelativePoseMeasurement m = *it;
+      const msg::RelativePose m = *it;
       it = pending_.erase(it);
       ProcessRelativePose(m);
     } else {
@@ -489,7 +473,7 @@ void PoseEkf::ProcessPending() {
   }
 }
 
-void PoseEkf::ProcessRelativePose(const RelativePoseMeasurement& m) {
+void PoseEkf::ProcessRelativePose(const msg::RelativePose& m) {
   const std::string what = std::string(MotionSourceName(m.source)) + " relative pose";
   const std::optional<PoseNode> from = Interpolate(m.t_from);
   const std::optional<PoseNode> to = Interpolate(m.t_to);

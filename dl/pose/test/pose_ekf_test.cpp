@@ -199,7 +199,7 @@ class Simulation {
       const double t_to = truth_.t - cfg_.vo_delay_s;
       if (t_to - last_vo_.t >= cfg_.vo_every_s - 1e-9) {
         const Truth& to = history_[static_cast<std::size_t>(std::lround(t_to / dt))];
-        RelativePoseMeasurement m;
+        msg::RelativePose m;
         m.t_from = Time::FromSeconds(last_vo_.t);
         m.t_to = Time::FromSeconds(to.t);
         const Eigen::Vector3d dp = last_vo_.R.transpose() * (to.p - last_vo_.p);
@@ -505,7 +505,7 @@ TEST(PoseEkf, GatingRejectsACorruptedRelativePoseAndAcceptsGoodOnes) {
   PoseEkf& ekf = sim.ekf();
   const Eigen::Vector3d p_before = ekf.position();
   const Matrix9d p9_before = ekf.covariance();
-  RelativePoseMeasurement bad;
+  msg::RelativePose bad;
   bad.t_from = Time::FromSeconds(54.0);
   bad.t_to = Time::FromSeconds(59.0);
   bad.delta.translation() = Eigen::Vector3d(0.25 + 1.0, 0.0, 0.0);
@@ -571,7 +571,7 @@ TEST(PoseEkf, RelativePoseWaitsForTheFilterAndChecksTheWindow) {
   };
   propagate_to(2.0);
   EXPECT_EQ(ekf.num_clones(), 5u);  // t = 0 (first sample), 0.5, ..., 2.0
-  RelativePoseMeasurement m;
+  msg::RelativePose m;
   m.t_from = Time::FromSeconds(1.3);  // between clones
   m.t_to = Time::FromSeconds(3.01);   // ahead of the filter
   m.covariance = Matrix6d::Identity() * 1e-4;
@@ -598,7 +598,7 @@ TEST(PoseEkf, RelativePoseWaitsForTheFilterAndChecksTheWindow) {
   EXPECT_NE(events[0].message.find("clone window"), std::string::npos);
   EXPECT_EQ(ekf.rejected_measurements(), 0u);  // not a gating rejection
   // Bad inputs.
-  RelativePoseMeasurement bad = m;
+  msg::RelativePose bad = m;
   bad.t_from = Time::FromSeconds(11.5);
   EXPECT_EQ(ekf.AddRelativePose(bad).code(), StatusCode::kInvalidArgument);
   bad = m;

@@ -305,38 +305,8 @@ TEST_F(PoseServiceTest, InvalidParametersKeepTheServiceUnconfigured) {
   EXPECT_EQ(h.lifecycle().state(), LifecycleState::kUnconfigured);
 }
 
-TEST(PoseConversions, LevelAndRelativePoseAndEstimate) {
-  const double roll = 0.1, pitch = -0.2;
-  const Eigen::Matrix3d r = geometry::RotationFromRpy(roll, pitch, 1.0);
-  const Eigen::Vector2d rp = LevelFromSpecificForce(r.transpose() * Eigen::Vector3d(0, 0, 3.71));
-  EXPECT_NEAR(rp.x(), roll, 1e-12);
-  EXPECT_NEAR(rp.y(), pitch, 1e-12);
-
-  rover_dl_RelativePose m{};
-  m.source = static_cast<rover_dl_MotionSource>(9);
-  EXPECT_FALSE(RelativePoseFromIdl(m).ok());
-  m.source = rover_dl_SOURCE_VISUAL_ODOMETRY;
-  m.t_from_ns = 1;
-  m.t_to_ns = 2;
-  m.delta.position = {1, 2, 3};
-  m.delta.orientation = {1, 0, 0, 0};
-  m.covariance[1] = 7.0;  // row 0, column 1
-  const auto rel = RelativePoseFromIdl(m);
-  ASSERT_TRUE(rel.ok());
-  EXPECT_EQ(rel->covariance(0, 1), 7.0);
-  EXPECT_EQ(rel->covariance(1, 0), 0.0);
-  EXPECT_EQ(rel->delta.translation(), Eigen::Vector3d(1, 2, 3));
-
-  PoseEstimate e;
-  e.covariance(2, 4) = 5.0;
-  e.odometer = 3.5;
-  e.rejected_measurements = 4;
-  const rover_dl_PoseEstimate w = PoseEstimateToIdl(e);
-  EXPECT_EQ(w.covariance[2 * 6 + 4], 5.0);
-  EXPECT_EQ(w.odometer, 3.5);
-  EXPECT_EQ(w.rejected_measurements, 4u);
-  EXPECT_EQ(w.pose.orientation.w, 1.0);
-}
+// The conversions (RelativePoseFromIdl, PoseEstimateToIdl): core/msg/test/pose_idl_test.cpp;
+// the levelling (LevelFromSpecificForce, Leveller): test/pose_startup_test.cpp.
 
 // ---- restart (kill -9 mid-drive) ----------------------------------------------------------------
 

@@ -11,8 +11,8 @@ StereoSetupCache::StereoSetupCache(std::size_t capacity, geometry::RectifyOption
   ROVER_DEMAND(capacity_ >= 1);
 }
 
-Result<std::shared_ptr<const StereoSetup>> StereoSetupCache::Get(const CameraModelFields& left,
-                                                                 const CameraModelFields& right) {
+Result<std::shared_ptr<const StereoSetup>> StereoSetupCache::Get(
+    const msg::CameraModelFields& left, const msg::CameraModelFields& right) {
   for (auto it = entries_.begin(); it != entries_.end(); ++it) {
     if (it->left == left && it->right == right) {
       ++hits_;
@@ -21,9 +21,9 @@ Result<std::shared_ptr<const StereoSetup>> StereoSetupCache::Get(const CameraMod
     }
   }
   ++misses_;
-  auto l = CameraModelFromFields(left);
+  auto l = msg::CameraModelFromFields(left);
   if (!l.ok()) return l.status().WithPrefix("left model");
-  auto r = CameraModelFromFields(right);
+  auto r = msg::CameraModelFromFields(right);
   if (!r.ok()) return r.status().WithPrefix("right model");
   auto setup = MakeStereoSetup(*l, *r, options_);
   if (!setup.ok()) return setup.status().WithPrefix("stereo rectification");

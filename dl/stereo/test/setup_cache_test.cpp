@@ -5,31 +5,16 @@
 #include <cmath>
 #include <string>
 
+#include "test_cameras.hpp"
+
 namespace rover::dl::stereo {
 namespace {
 
-// Fields of a distortion-free 128x96 camera looking along rover +x, at lateral offset y [m].
-CameraModelFields Camera(double y, double f = 100.0) {
-  geometry::PinholeRadial p;
-  p.fx = p.fy = f;
-  p.cx = 63.5;
-  p.cy = 47.5;
-  p.width = 128;
-  p.height = 96;
-  p.pose.linear().col(0) = Eigen::Vector3d(0, -1, 0);
-  p.pose.linear().col(1) = Eigen::Vector3d(0, 0, -1);
-  p.pose.linear().col(2) = Eigen::Vector3d(1, 0, 0);
-  p.pose.translation() = Eigen::Vector3d(0.5, y, 1.0);
-  auto m = geometry::CameraModel::Create(p);
-  EXPECT_TRUE(m.ok());
-  auto fields = FieldsFromCameraModel(*m);
-  EXPECT_TRUE(fields.ok());
-  return *fields;
-}
+msg::CameraModelFields Camera(double y, double f = 100.0) { return testing::ForwardCamera(y, f); }
 
 TEST(StereoSetupCache, ComputesOncePerModelPair) {
   StereoSetupCache cache(2);
-  const CameraModelFields left = Camera(0.1), right = Camera(-0.1);
+  const msg::CameraModelFields left = Camera(0.1), right = Camera(-0.1);
   auto a = cache.Get(left, right);
   ASSERT_TRUE(a.ok()) << a.status().ToString();
   EXPECT_NEAR((*a)->camera.model.baseline_m, 0.2, 1e-12);
@@ -42,7 +27,7 @@ TEST(StereoSetupCache, ComputesOncePerModelPair) {
   EXPECT_EQ(cache.hits(), 1u);
   EXPECT_EQ(cache.misses(), 1u);
 
-  CameraModelFields nudged = right;
+  msg::CameraModelFields nudged = right;
   nudged.c[1] += 1e-6;  // any change in a field is another pair
   nudged.position[1] += 1e-6;
   auto c = cache.Get(left, nudged);
@@ -68,7 +53,7 @@ TEST(StereoSetupCache, EvictsTheLeastRecentlyUsedButHandedOutSetupsStayValid) {
 
 TEST(StereoSetupCache, BadModelsAreErrorsAndNotCached) {
   StereoSetupCache cache(4);
-  CameraModelFields missing;
+  msg::CameraModelFields missing;
   missing.width = 128;
   missing.height = 96;
   auto r = cache.Get(Camera(0.1), missing);

@@ -22,6 +22,32 @@ Status CheckRange(const char* name, double v, double lo, double hi, bool open_lo
 
 }  // namespace
 
+void CadenceOptions::BindParams(ParamBinder<CadenceOptions>& b) {
+  b.Bind("step_distance", &CadenceOptions::step_distance, "m",
+         "odometer travelled between two pairs while driving (MER: <= ~0.6 m)")
+      .Range(0.05, 0.9);
+  b.BindDegrees("step_angle_deg", &CadenceOptions::step_angle,
+                "turn between two pairs while driving (turns in place move no odometer)")
+      .Range(1.0, 20.0);
+  b.Bind("max_interval_s", &CadenceOptions::max_interval_s, "s",
+         "run-clock time between two pairs while driving, at most")
+      .Range(0.5, 3600.0);
+  b.Bind("moving_speed", &CadenceOptions::moving_speed, "m/s",
+         "dl/pose speed or odometer rate above which the rover is driving")
+      .Range(0.0001, 1.0);
+  b.BindScaled("moving_rate_deg_s", &CadenceOptions::moving_rate, 3.14159265358979323846 / 180.0,
+               "deg/s", "turn rate above which the rover is driving")
+      .Range(0.001, 30.0);
+  b.Bind("settle_s", &CadenceOptions::settle_s, "s", "at rest before the end-of-drive pair")
+      .Range(0.0, 60.0);
+  b.Bind("min_distance", &CadenceOptions::min_distance, "m",
+         "moved since the last pair for an end-of-drive pair")
+      .Range(0.0, 0.9);
+  b.BindDegrees("min_angle_deg", &CadenceOptions::min_angle,
+                "turned since the last pair for an end-of-drive pair")
+      .Range(0.0, 20.0);
+}
+
 Status CadenceOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("step_distance", step_distance, 0.0, 0.9, true));
   ROVER_RETURN_IF_ERROR(CheckRange("step_angle", step_angle, 0.0, 0.35, true));

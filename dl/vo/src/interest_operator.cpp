@@ -9,6 +9,14 @@
 
 namespace rover::dl::vo {
 
+void InterestOptions::BindParams(ParamBinder<InterestOptions>& b) {
+  b.Bind("cell_size", &InterestOptions::cell_size, "px",
+         "interest-operator grid cell (one feature per cell)")
+      .Range(4, 256);
+  b.Bind("min_separation", &InterestOptions::min_separation, "px", "between two features")
+      .Range(0.0, 256.0);
+}
+
 Status InterestOptions::Validate() const {
   if (cell_size < 4) {
     return InvalidArgument("interest.cell_size=" + std::to_string(cell_size) + " must be >= 4");

@@ -15,6 +15,27 @@ Status Check(const char* name, double v, double lo, double hi, bool open_lo) {
 
 }  // namespace
 
+void OdometryPriorOptions::BindParams(ParamBinder<OdometryPriorOptions>& b) {
+  b.Bind("translation_sigma_min", &OdometryPriorOptions::translation_sigma_min, "m",
+         "wheel-odometry prior: 1-sigma translation floor")
+      .Range(0.001, 10.0);
+  b.Bind("translation_sigma_fraction", &OdometryPriorOptions::translation_sigma_fraction, "",
+         "wheel-odometry prior: added 1-sigma per metre of step (slip)")
+      .Range(0.0, 10.0);
+  b.BindDegrees("rotation_sigma_min_deg", &OdometryPriorOptions::rotation_sigma_min,
+                "wheel-odometry prior: 1-sigma rotation floor")
+      .Range(0.01, 90.0);
+  b.Bind("rotation_sigma_fraction", &OdometryPriorOptions::rotation_sigma_fraction, "",
+         "wheel-odometry prior: added 1-sigma per radian of turn")
+      .Range(0.0, 10.0);
+  b.Bind("vague_translation_sigma", &OdometryPriorOptions::vague_translation_sigma, "m",
+         "prior 1-sigma when dl/pose is missing at a capture time")
+      .Range(0.01, 10.0);
+  b.BindDegrees("vague_rotation_sigma_deg", &OdometryPriorOptions::vague_rotation_sigma,
+                "prior 1-sigma when dl/pose is missing at a capture time")
+      .Range(0.1, 90.0);
+}
+
 Status OdometryPriorOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(Check("translation_sigma_min", translation_sigma_min, 0.0, 100.0, true));
   ROVER_RETURN_IF_ERROR(

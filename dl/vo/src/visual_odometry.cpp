@@ -42,6 +42,25 @@ std::string Num(double v) {
 
 }  // namespace
 
+void Options::BindParams(ParamBinder<Options>& b) {
+  b.Bind("pixel_sigma", &Options::pixel_sigma, "px", "1-sigma matching noise in the covariance")
+      .Range(0.01, 10.0);
+  b.Bind("min_range", &Options::min_range, "m", "nearer features are dropped").Range(0.05, 100.0);
+  b.Bind("max_range", &Options::max_range, "m", "farther features are dropped").Range(0.1, 1000.0);
+  b.Nest("", &Options::interest);
+  b.Bind("min_features", &Options::min_features, "", "tracked features needed").Range(3, 10000);
+  b.Bind("min_inliers", &Options::min_inliers, "", "RANSAC/ML inliers needed").Range(3, 10000);
+  b.Bind("min_inlier_fraction", &Options::min_inlier_fraction, "", "inliers / tracked, at least")
+      .Range(0.0, 1.0);
+  b.Bind("max_translation", &Options::max_translation, "m", "of one step, at most (sanity limit)")
+      .Range(0.01, 10.0);
+  b.BindDegrees("max_rotation_deg", &Options::max_rotation, "of one step, at most (sanity limit)")
+      .Range(0.1, 90.0);
+  b.Bind("max_prior_mahalanobis_sq", &Options::max_prior_mahalanobis_sq, "",
+         "gate on the estimate's distance from the odometry prior; 0 = off")
+      .Range(0.0, 1e6);
+}
+
 Status Options::Validate() const {
   ROVER_RETURN_IF_ERROR(interest.Validate());
   ROVER_RETURN_IF_ERROR(match.Validate());

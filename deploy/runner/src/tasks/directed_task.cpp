@@ -1,10 +1,12 @@
 #include "rover/deploy/runner/tasks/directed_task.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
-#include "src/idl_conversions.hpp"
+#include "rover/msg/drive_idl.hpp"
 
 namespace rover::deploy::runner {
 namespace {
@@ -35,10 +37,14 @@ Result<DriveStep> ParseStepAt(const YAML::Node& n, const std::string& where,
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(n, "stop_after_s", where, 0, 86400, err, &s.stop_after_s));
   ROVER_RETURN_IF_ERROR(yaml::RequireKey(n, where, "primitive", err));
-  const std::vector<std::string> names = {"straight", "arc", "turn_in_place", "steer", "stop"};
+  const std::vector<Primitive> primitives = {Primitive::kStraight, Primitive::kArc,
+                                             Primitive::kTurnInPlace, Primitive::kSteer,
+                                             Primitive::kStop};
+  std::vector<std::string> names;
+  for (Primitive p : primitives) names.emplace_back(PrimitiveName(p));
   ROVER_ASSIGN_OR_RETURN(const std::string name,
                          yaml::OneOf(n["primitive"], where + ".primitive", names, err));
-  s.primitive = static_cast<Primitive>(std::find(names.begin(), names.end(), name) - names.begin());
+  s.primitive = primitives[std::find(names.begin(), names.end(), name) - names.begin()];
   bool has_d = false, has_k = false, has_a = false;
   double angle_deg = 0;
   ROVER_RETURN_IF_ERROR(
@@ -73,12 +79,16 @@ Result<DriveStep> ParseStepAt(const YAML::Node& n, const std::string& where,
   return s;
 }
 
-bool Terminal(rover_dl_DriveState s) {
-  return s == rover_dl_DRIVE_DONE || s == rover_dl_DRIVE_FAILED || s == rover_dl_DRIVE_REJECTED;
+bool Terminal(msg::DriveState s) {
+  return s == msg::DriveState::kDone || s == msg::DriveState::kFailed ||
+         s == msg::DriveState::kRejected;
 }
 
-const char* StateName(rover_dl_DriveState s) {
-  return s == rover_dl_DRIVE_DONE ? "done" : s == rover_dl_DRIVE_FAILED ? "failed" : "rejected";
+// The scenario spelling of a message enumerator name: "MOTOR_STALL" -> "motor_stall".
+std::string ScenarioName(const char* idl_name) {
+  std::string out(idl_name);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
 }
 
 }  // namespace
@@ -155,22 +165,24 @@ bool DirectedTask::Ready() const { return command_.valid() && command_.MatchedRe
 
 bool DirectedTask::Send(TaskContext& ctx, std::size_t index, StepResult* sr) {
   const DriveStep& step = spec_.steps[index];
-  rover_dl_DriveCommand c{};
-  c.header.stamp_ns = Time::FromSeconds(ctx.Now()).ns;
-  dds::CopyString(c.header.frame_id, "rover");
+  msg::DriveCommand c;
+  c.stamp = Time::FromSeconds(ctx.Now());
   c.command_id = static_cast<uint32_t>(index + 1);
-  c.primitive = ToIdl(step.primitive);
+  c.primitive = step.primitive;
   c.curvature = step.primitive == Primitive::kStraight ? 0.0 : step.curvature;
   c.distance = step.distance;
   c.angle = step.angle;
   c.speed = step.speed;
   c.timeout_s = step.timeout_s;
+  rover_dl_DriveCommand wire{};
+  msg::DriveCommandToIdl(c, &wire);
+  dds::CopyString(wire.header.frame_id, "rover");
   sr->primitive = PrimitiveName(step.primitive);
   sr->command_id = c.command_id;
   sr->sim_start_s = ctx.Now();
   ctx.Note("step " + std::to_string(index + 1) + "/" + std::to_string(spec_.steps.size()) + " " +
            sr->primitive);
-  return command_.Write(c).ok();
+  return command_.Write(wire).ok();
 }
 
 std::string DirectedTask::AwaitTerminal(TaskContext& ctx, std::size_t index, StepResult* sr) {
@@ -179,18 +191,27 @@ std::string DirectedTask::AwaitTerminal(TaskContext& ctx, std::size_t index, Ste
   bool stop_sent = false;
   return ctx.WaitUntil([&] {
     if (step.stop_after_s > 0 && !stop_sent && ctx.Now() - sr->sim_start_s >= step.stop_after_s) {
-      rover_dl_DriveCommand stop{};
-      stop.header.stamp_ns = Time::FromSeconds(ctx.Now()).ns;
+      msg::DriveCommand stop;
+      stop.stamp = Time::FromSeconds(ctx.Now());
       stop.command_id = sr->command_id + kStopIdOffset;
-      stop.primitive = rover_dl_PRIMITIVE_STOP;
-      stop_sent = command_.Write(stop).ok();
+      stop.primitive = Primitive::kStop;
+      rover_dl_DriveCommand wire{};
+      msg::DriveCommandToIdl(stop, &wire);
+      stop_sent = command_.Write(wire).ok();
     }
     status_.TakeEach([&](const dds::Sample<rover_dl_DriveStatus>& s) {
-      if (s->command_id != sr->command_id || !Terminal(s->state)) return;
+      if (s->command_id != sr->command_id) return;
+      const Result<msg::DriveStatus> status = msg::DriveStatusFromIdl(s.data());
+      if (!status.ok()) {
+        ctx.Note("unreadable dl/drive_status for command " + std::to_string(sr->command_id) +
+                 ": " + status.status().message());
+        return;
+      }
+      if (!Terminal(status->state)) return;
       terminal = true;
-      sr->state = StateName(s->state);
-      sr->termination = TerminationName(s->termination);
-      sr->message = s->message;
+      sr->state = ScenarioName(msg::DriveStateName(status->state));
+      sr->termination = ScenarioName(msg::DriveTerminationName(status->termination));
+      sr->message = status->message;
     });
     return terminal;
   });

@@ -7,7 +7,8 @@
 
 #include "rover/base/format.hpp"
 
-#include "src/idl_conversions.hpp"
+#include "rover/msg/drive_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
 
 namespace rover::deploy::runner {
 namespace {
@@ -293,7 +294,7 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec,
   storage->primitives.clear();
   for (const auto& p : spec.primitives) {
     rover_apl_MobilityPrimitive m{};
-    m.primitive = ToIdl(p.primitive);
+    m.primitive = msg::DrivePrimitiveToIdl(p.primitive);
     m.curvature = p.primitive == Primitive::kArc ? p.curvature : 0.0;
     m.distance = p.primitive == Primitive::kTurnInPlace ? 0.0 : p.distance;
     m.angle = p.primitive == Primitive::kTurnInPlace ? p.angle : 0.0;
@@ -366,7 +367,7 @@ Status MobilityTask::Open(TaskContext& ctx) {
         const auto votes = dds::View(s->votes);
         if (s->chosen < 0 || static_cast<std::size_t>(s->chosen) >= votes.size()) return;
         const rover_apl_ArcVote& v = votes[static_cast<std::size_t>(s->chosen)];
-        const Eigen::Isometry3d pose = ToIsometry(s->rover_pose);
+        const Eigen::Isometry3d pose = msg::IsometryFromIdl(s->rover_pose);
         ChosenArc a;
         a.x = pose.translation().x();
         a.y = pose.translation().y();

@@ -34,6 +34,7 @@
 
 #include <Eigen/Core>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 
 namespace rover::geometry {
@@ -78,6 +79,9 @@ struct SunEphemerisOptions {
   double j2000_tt_days = 1463.69;  ///< kDate: TT days since J2000 at run time 0 (Spirit landing)
   /// Latitude in [-90, 90], longitude in [-360, 360], ls in [0, 360), ltst in [0, 24), finite.
   Status Validate() const;
+  /// Keys mode ('season' or 'date'), latitude_deg, east_longitude_deg, ls_deg, ltst_hours,
+  /// j2000_tt_days ("at run start" = at run-clock time 0 of the ephemeris).
+  static void BindParams(ParamBinder<SunEphemerisOptions>& b);
 };
 
 /// The sun at one instant.

@@ -5,29 +5,13 @@
 /// layouts are exactly the IDL's; a DDS binding copies field by field. The IDL Header is reduced
 /// to `stamp_ns` (run-clock time of validity); frame_id and seq are the writer's business.
 ///
-/// Also here: the rover::SensorHealth enum of idl/rover_common.idl, and the helpers both sides
-/// need to treat the int32 encoder counters as free-running (wrapping) counters.
+/// Also here: the helpers both sides need to treat the int32 encoder counters as free-running
+/// (wrapping) counters. The conversions to and from the IDL structs are in core/msg
+/// (rover/msg/hw_idl.hpp).
 
 #include <array>
 #include <cstdint>
-
-namespace rover {
-
-/// Health of a sensor or a derived quantity (rover_common.idl).
-enum class SensorHealth : std::uint8_t {
-  kOk = 0,        ///< within range and fresh
-  kDegraded = 1,  ///< usable with care (e.g. saturated axis, low signal)
-  kFailed = 2,    ///< do not use
-  kStale = 3,     ///< the source stopped updating
-};
-
-/// "ok", "degraded", "failed", "stale".
-const char* SensorHealthName(SensorHealth h);
-
-/// The worse of two health values: kFailed > kStale > kDegraded > kOk.
-SensorHealth WorseHealth(SensorHealth a, SensorHealth b);
-
-}  // namespace rover
+#include <span>
 
 namespace rover::hw {
 
@@ -131,6 +115,31 @@ struct SunSensorRaw {
   std::array<std::int16_t, 2> spot{};  ///< [detector counts] centroid column, row; 0,0 = centre
   std::uint16_t intensity = 0;         ///< [ADC counts] integrated spot brightness (0 = no sun)
 };
+
+/// hw/camera_request (command, DDL camera driver -> camera head).
+struct CameraRequest {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t request_id = 0;   ///< the driver's own id, echoed in the frame
+  int camera = 0;                 ///< rover_common.idl CameraId; any int (checked by the receiver)
+  std::uint32_t exposure_us = 0;  ///< [us] 0 = auto exposure
+};
+
+// rover_description.hpp includes this header into the simulator's C++17 Simbody translation
+// unit, which has no std::span; nothing there uses the camera frame.
+#if __cplusplus >= 202002L
+/// hw/camera_frame (camera head -> DDL): one full-resolution stereo pair, 8-bit mono,
+/// row-major, taken at stamp_ns. The images VIEW the sample's (or the sender's) buffers.
+struct CameraFrame {
+  std::int64_t stamp_ns = 0;     ///< capture time
+  std::uint32_t request_id = 0;  ///< echo of CameraRequest::request_id
+  int camera = 0;
+  std::uint32_t exposure_us = 0;       ///< [us] exposure actually used
+  int width = 0;                       ///< [px]
+  int height = 0;                      ///< [px]
+  std::span<const std::uint8_t> left;  ///< width * height bytes (checked by the receiver)
+  std::span<const std::uint8_t> right;
+};
+#endif
 
 /// The int32 counter value of an unbounded count: two's-complement wrap (what a 32-bit
 /// hardware counter shows after `count` increments from 0).

@@ -21,6 +21,7 @@
 
 #include "rover/base/check.hpp"
 #include "rover/base/status.hpp"
+#include "rover/idl/access.hpp"
 #include "rover/idl/types.hpp"
 #include "rover/runtime/qos.hpp"
 #include "rover/runtime/seam.hpp"
@@ -381,28 +382,11 @@ class WaitSet : public Entity {
 
 // ---- sequences ---------------------------------------------------------------------------------
 
-/// Points a DDS sequence at memory the caller keeps alive until Write() returns.
-template <class Seq, class V>
-void BorrowSequence(Seq& seq, V& container) {
-  seq._buffer = container.data();
-  seq._length = static_cast<uint32_t>(container.size());
-  seq._maximum = static_cast<uint32_t>(container.size());
-  seq._release = false;
-}
-
-/// A read-only view of a received sequence.
-template <class Seq>
-auto View(const Seq& seq) {
-  using E = std::remove_pointer_t<decltype(seq._buffer)>;
-  return std::span<const E>(seq._buffer, seq._length);
-}
-
-/// Copies a std::string into a bounded IDL string (char[N]), truncating.
-template <std::size_t N>
-void CopyString(char (&dst)[N], std::string_view src) {
-  const std::size_t n = std::min(src.size(), N - 1);
-  std::memcpy(dst, src.data(), n);
-  dst[n] = '\0';
-}
+// BorrowSequence (memory the caller keeps alive until Write() returns), View (a read-only view
+// of a received sequence) and CopyString (std::string -> bounded IDL string): see
+// rover/idl/access.hpp.
+using idl::BorrowSequence;
+using idl::CopyString;
+using idl::View;
 
 }  // namespace rover::dds

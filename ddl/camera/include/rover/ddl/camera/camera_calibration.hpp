@@ -38,13 +38,12 @@
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
 #include "rover/hwconfig/rover_description.hpp"
+#include "rover/msg/camera.hpp"
 
 namespace rover::ddl {
 
-/// Number of stereo cameras (rover_common.idl CameraId).
-inline constexpr int kNumCameras = 3;
-/// "navcam", "front_hazcam", "rear_hazcam"; "?" outside 0..2.
-const char* CameraName(int camera);
+/// The stereo cameras and their names (rover_common.idl CameraId): rover/msg/camera.hpp.
+using msg::kNumCameras;
 
 enum class CameraMount { kMastHead, kBody };
 
@@ -57,7 +56,7 @@ Eigen::Isometry3d MastHeadPose(double pan, double tilt, const MastGeometry& mast
 
 /// One stereo pair.
 struct StereoCameraCalibration {
-  std::string name;  ///< CameraName(index)
+  std::string name;  ///< msg::CameraName(index)
   CameraMount mount;
   geometry::CameraModel left;   ///< in the mount frame (head or rover)
   geometry::CameraModel right;  ///< in the mount frame
@@ -78,8 +77,8 @@ void DeclareCameraCalibrationParams(ParamSet& params);
 
 /// Builds the calibration from declared and loaded parameters. Errors (InvalidArgument, naming
 /// file:line and key): missing O/R/E for the model kind, invalid models (geometry::CameraModel::
-/// Create), and pairs whose models cannot be sent as ddl CameraModel fields (ToCameraModelFields,
-/// e.g. a field of view of 180 deg or more).
+/// Create), and pairs whose models cannot be sent as ddl CameraModel fields
+/// (msg::CameraModelFieldsFromModel, e.g. a field of view of 180 deg or more).
 Result<CameraCalibration> CameraCalibrationFromParams(const ParamSet& params);
 
 /// Declare, load `path`, build.

@@ -36,9 +36,9 @@
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 #include "rover/ddl/camera/camera_calibration.hpp"
-#include "rover/ddl/camera/camera_model_fields.hpp"
 #include "rover/ddl/camera/downsample.hpp"
 #include "rover/hwconfig/hw_bus.hpp"
+#include "rover/msg/camera.hpp"
 
 namespace rover::ddl {
 
@@ -50,33 +50,6 @@ struct CameraDriverOptions {
   std::uint32_t max_exposure_us = 10'000'000;  ///< [us] longest exposure accepted
   /// Positive finite times, max_pending >= 1, history >= max age.
   Status Validate() const;
-};
-
-/// ddl/camera_request.
-struct StereoRequest {
-  std::uint32_t request_id = 0;
-  int camera = 0;  ///< CameraId; any int (checked)
-  std::uint32_t exposure_us = 0;
-  int width = 0;  ///< [px] 0 = full size
-};
-
-/// hw/camera_request (without header).
-struct HwCameraRequest {
-  std::uint32_t request_id = 0;  ///< the driver's own id
-  int camera = 0;
-  std::uint32_t exposure_us = 0;
-};
-
-/// hw/camera_frame, viewing the received sample's buffers.
-struct CameraFrameView {
-  std::int64_t stamp_ns = 0;  ///< capture time
-  std::uint32_t request_id = 0;
-  int camera = 0;
-  std::uint32_t exposure_us = 0;
-  int width = 0;
-  int height = 0;
-  std::span<const std::uint8_t> left;
-  std::span<const std::uint8_t> right;
 };
 
 /// Mast angles from one ddl/joint_state sample.
@@ -91,21 +64,25 @@ struct StereoFrameData {
   std::int64_t stamp_ns = 0;     ///< capture time (the hw frame's stamp)
   std::uint32_t request_id = 0;  ///< the requester's id
   int camera = 0;
-  std::uint32_t exposure_us = 0;  ///< as used by the camera
-  DownsampledStereo pair;         ///< images and models (rover frame) at the output size
-  CameraModelFields left_fields;
-  CameraModelFields right_fields;
+  std::uint32_t exposure_us = 0;       ///< as used by the camera
+  DownsampledStereo pair;              ///< images and models (rover frame) at the output size
+  msg::CameraModelFields left_fields;  ///< `pair`'s models as message fields
+  msg::CameraModelFields right_fields;
   double mast_pan = 0.0;  ///< [rad] mast angles used (mast-head pairs)
   double mast_tilt = 0.0;
-  SensorHealth health = SensorHealth::kOk;
+  msg::SensorHealth health = msg::SensorHealth::kOk;
   std::string health_reason;  ///< empty when kOk
   std::string note;           ///< e.g. a requested width larger than the frame (sent full size)
+
+  /// The ddl/stereo_frame message of this data; its images view `pair`'s pixels (valid while
+  /// this data is and is not changed).
+  msg::StereoFrame Message() const;
 };
 
 /// A request that is waiting for its frame.
 struct PendingRequest {
   std::uint32_t hw_request_id = 0;
-  StereoRequest request;
+  msg::StereoRequest request;
   Time issued;
 };
 
@@ -118,7 +95,7 @@ class CameraDriver {
   /// Checks a ddl/camera_request; on success it is pending and the hw request is returned.
   /// Errors: InvalidArgument (unknown camera, width out of range, exposure too long), Busy
   /// (max_pending requests already wait).
-  Result<HwCameraRequest> HandleRequest(const StereoRequest& request, Time now);
+  Result<hw::CameraRequest> HandleRequest(const msg::StereoRequest& request, Time now);
 
   /// Stores a mast sample. InvalidArgument for non-finite angles; samples not newer than the
   /// newest stored are ignored (Ok).
@@ -128,7 +105,7 @@ class CameraDriver {
   /// hardware request id: late, duplicate or not ours); InvalidArgument (camera differs from
   /// the request's, empty or inconsistent sizes, byte counts, a size that is not a binning of
   /// the calibrated one) — the request is dropped; Internal if a model conversion fails.
-  Result<StereoFrameData> HandleFrame(const CameraFrameView& frame);
+  Result<StereoFrameData> HandleFrame(const hw::CameraFrame& frame);
 
   /// Removes and returns the requests issued more than request_timeout_s before `now`.
   std::vector<PendingRequest> ExpireRequests(Time now);

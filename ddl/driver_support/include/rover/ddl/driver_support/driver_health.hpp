@@ -21,7 +21,7 @@
 
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
-#include "rover/hwconfig/hw_bus.hpp"
+#include "rover/msg/health.hpp"
 
 namespace rover::ddl {
 
@@ -78,11 +78,11 @@ inline bool IsLogWorthy(std::uint64_t count) {
 
 /// The worst health seen and the first reason of that severity.
 struct HealthSummary {
-  SensorHealth health = SensorHealth::kOk;
+  msg::SensorHealth health = msg::SensorHealth::kOk;
   std::string reason;  ///< empty while kOk
 
   /// Keeps `h` and `why` if `h` is worse than the current health.
-  void Worsen(SensorHealth h, const std::string& why);
+  void Worsen(msg::SensorHealth h, const std::string& why);
 };
 
 }  // namespace rover::ddl

@@ -28,20 +28,13 @@
 #include "rover/base/time.hpp"
 #include "rover/ddl/encoders/rate_estimator.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
+#include "rover/msg/sensors.hpp"
 
 namespace rover::ddl {
 
-/// ddl/joint_state.
-struct JointState {
-  std::int64_t stamp_ns = 0;             ///< newest input sample's stamp
-  std::array<double, 6> wheel_angle{};   ///< [rad] LF LM LR RF RM RR
-  std::array<double, 6> wheel_rate{};    ///< [rad/s]
-  std::array<double, 4> steer_angle{};   ///< [rad] LF LR RF RR
-  std::array<double, 2> rocker_angle{};  ///< [rad] left, right
-  std::array<double, 2> bogie_angle{};   ///< [rad] left, right
-  double mast_pan = 0.0;                 ///< [rad]
-  double mast_tilt = 0.0;                ///< [rad]
-  SensorHealth health = SensorHealth::kStale;
+/// ddl/joint_state (rover/msg/sensors.hpp; stamp = the newest input sample's) and why its
+/// health is not OK.
+struct JointState : msg::JointState {
   std::string health_reason;  ///< empty when kOk (not in the IDL; for logs)
 };
 

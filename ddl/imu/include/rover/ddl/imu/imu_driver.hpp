@@ -14,16 +14,12 @@
 
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
+#include "rover/msg/sensors.hpp"
 
 namespace rover::ddl {
 
-/// ddl/imu.
-struct Imu {
-  std::int64_t stamp_ns = 0;
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();     ///< [rad/s] rover frame
-  Eigen::Vector3d linear_acceleration = Eigen::Vector3d::Zero();  ///< [m/s^2] specific force
-  double temperature = 0.0;                                       ///< [deg C]
-  SensorHealth health = SensorHealth::kOk;
+/// ddl/imu (rover/msg/sensors.hpp) and why its health is not OK.
+struct Imu : msg::Imu {
   std::string health_reason;  ///< empty when kOk (not in the IDL; for logs)
 };
 

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// Plain C++ mirrors of ddl/motor_command and ddl/motor_status (idl/rover_ddl.idl), the typed
-/// reasons for rejecting a command, the options of the motor-group manager, and the conversion
-/// of hw/motor_telemetry into engineering units.
+/// The motor driver's view of ddl/motor_command and ddl/motor_status (the message types are
+/// rover/msg/motor.hpp), the typed reasons for rejecting a command, the options of the
+/// motor-group manager, and the conversion of hw/motor_telemetry into engineering units.
 
 #include <array>
 #include <cstdint>
@@ -12,22 +12,18 @@
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/hwconfig/hw_bus.hpp"
+#include "rover/msg/motor.hpp"
 
 namespace rover::ddl {
 
-enum class GroupMode : int { kPosition = 0, kVelocity = 1, kStop = 2 };
-enum class GroupState : int { kIdle = 0, kRunning = 1, kDone = 2, kFault = 3, kRejected = 4 };
-/// Same order and meaning as the IDL's MotorFault.
-enum class MotorFault : int {
-  kNone = 0,
-  kStall,
-  kOverCurrent,
-  kOverTemp,
-  kTimeout,
-  kNoTelemetry,
-  kBadCommand,
-  kStopped
-};
+// The message types of ddl/motor_command and ddl/motor_status (rover/msg/motor.hpp).
+using msg::GroupMode;
+using msg::GroupModeName;
+using msg::GroupState;
+using msg::GroupStateName;
+using msg::MotorCommand;
+using msg::MotorFault;
+using msg::MotorFaultName;
 
 /// Why a command was rejected (GROUP_REJECTED); kNone for accepted commands.
 enum class CommandError : int {
@@ -44,35 +40,11 @@ enum class CommandError : int {
   kNoTelemetry,      ///< no fresh telemetry to plan from
 };
 
-const char* GroupModeName(GroupMode m);
-const char* GroupStateName(GroupState s);
-const char* MotorFaultName(MotorFault f);
 const char* CommandErrorName(CommandError e);
 
-/// ddl/motor_command.
-struct MotorCommand {
-  std::int64_t stamp_ns = 0;
-  std::uint32_t command_id = 0;
-  std::uint16_t motor_mask = 0;  ///< bit i selects motor i (hw order)
-  GroupMode mode = GroupMode::kPosition;
-  std::array<double, hw::kNumMotors> goal{};      ///< [rad] or [rad/s]
-  std::array<double, hw::kNumMotors> max_rate{};  ///< [rad/s]; 0 = MotorSpec::default_rate
-  double timeout_s = 0.0;                         ///< [s]; 0 = default
-};
-
-/// ddl/motor_status.
-struct MotorStatus {
-  std::int64_t stamp_ns = 0;
-  std::uint32_t command_id = 0;
-  GroupState state = GroupState::kIdle;
-  MotorFault fault = MotorFault::kNone;
-  std::int8_t fault_motor = -1;                      ///< motor (or mask bit) at fault, -1 if none
-  std::string message;                               ///< <= 127 characters
-  CommandError error = CommandError::kNone;          ///< typed reason of kRejected (not in the IDL)
-  std::array<double, hw::kNumMotors> position{};     ///< [rad]
-  std::array<double, hw::kNumMotors> velocity{};     ///< [rad/s]
-  std::array<double, hw::kNumMotors> current{};      ///< [A]
-  std::array<double, hw::kNumMotors> temperature{};  ///< [deg C]
+/// ddl/motor_status (rover/msg/motor.hpp) and the typed reason of a rejection.
+struct MotorStatus : msg::MotorStatus {
+  CommandError error = CommandError::kNone;  ///< typed reason of kRejected (not in the IDL)
 };
 
 /// Telemetry in engineering units (position straight from the int32 register: wheels are

@@ -14,16 +14,12 @@
 
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
+#include "rover/msg/sensors.hpp"
 
 namespace rover::ddl {
 
-/// ddl/sun_sensor.
-struct SunSensor {
-  std::int64_t stamp_ns = 0;
-  Eigen::Vector3d sun_vector = Eigen::Vector3d::Zero();  ///< unit, rover frame; 0 if !valid
-  bool valid = false;
-  double intensity = 0.0;  ///< [0..1]
-  SensorHealth health = SensorHealth::kOk;
+/// ddl/sun_sensor (rover/msg/sensors.hpp) and why it is not valid or not OK.
+struct SunSensor : msg::SunSensor {
   std::string reason;  ///< why not valid / not OK (not in the IDL; for logs)
 };
 

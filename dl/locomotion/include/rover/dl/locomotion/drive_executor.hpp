@@ -88,7 +88,7 @@ struct DriveOptions {
 
 /// What to send and publish after an input.
 struct DriveOutput {
-  std::vector<MotorGroupCommand> motor_commands;
+  std::vector<msg::MotorCommand> motor_commands;
   std::vector<DriveStatus> statuses;
   bool empty() const { return motor_commands.empty() && statuses.empty(); }
 };
@@ -100,12 +100,12 @@ class DriveExecutor {
 
   /// Stores the latest sample. Non-finite or unhealthy samples are ignored (they do not refresh
   /// the staleness timer). Samples older than the stored one are ignored.
-  void OnJointState(const JointSample& sample);
+  void OnJointState(const msg::JointState& sample);
   /// Stores the latest attitude and, while a primitive runs, accumulates the unwrapped heading
   /// change. Non-finite or unhealthy samples are ignored.
-  void OnAttitude(const AttitudeSample& sample);
+  void OnAttitude(const msg::AttitudeSample& sample);
   /// Stores the latest motor-group report (checked at the next cycle).
-  void OnMotorStatus(const MotorGroupStatus& status);
+  void OnMotorStatus(const msg::MotorStatus& status);
 
   /// Handles a drive command received at run-clock time `now` (see the file comment).
   DriveOutput Submit(const DriveCommand& command, Time now);
@@ -130,11 +130,11 @@ class DriveExecutor {
 
   DriveExecutor(const RoverGeometry& g, const DriveOptions& o) : geometry_(g), options_(o) {}
 
-  MotorGroupCommand NewCommand(Time now, std::uint16_t mask, GroupMode mode);
-  MotorGroupCommand StopCommand(Time now);
-  MotorGroupCommand SteerCommand(Time now);
-  MotorGroupCommand DrivePositionCommand(Time now);
-  MotorGroupCommand TurnVelocityCommand(Time now, double yaw_rate);
+  msg::MotorCommand NewCommand(Time now, std::uint16_t mask, GroupMode mode);
+  msg::MotorCommand StopCommand(Time now);
+  msg::MotorCommand SteerCommand(Time now);
+  msg::MotorCommand DrivePositionCommand(Time now);
+  msg::MotorCommand TurnVelocityCommand(Time now, double yaw_rate);
   DriveStatus MakeStatus(Time now, std::uint32_t command_id, DrivePrimitive primitive,
                          DriveState state, DriveTermination termination, std::string message) const;
   void Reject(const DriveCommand& command, Time now, DriveTermination termination,
@@ -150,9 +150,9 @@ class DriveExecutor {
   DriveOptions options_;
 
   // Latest inputs.
-  std::optional<JointSample> joint_;
-  std::optional<AttitudeSample> attitude_;
-  std::optional<MotorGroupStatus> motor_status_;
+  std::optional<msg::JointState> joint_;
+  std::optional<msg::AttitudeSample> attitude_;
+  std::optional<msg::MotorStatus> motor_status_;
 
   // Running primitive.
   Phase phase_ = Phase::kIdle;

@@ -70,13 +70,13 @@ class WheelOdometry {
   /// The increment from `from` to `to`. Errors (InvalidArgument / OutOfRange, state-free):
   /// non-finite samples, to.stamp <= from.stamp, an interval longer than max_interval_s, or a
   /// wheel rotation larger than max_wheel_step.
-  Result<OdometryIncrement> Compute(const JointSample& from, const JointSample& to) const;
+  Result<OdometryIncrement> Compute(const msg::JointState& from, const msg::JointState& to) const;
 
   /// Convenience for a stream of samples: the increment from the previous accepted sample (none
   /// for the first). A non-finite or out-of-order sample is reported and dropped; a later sample
   /// with an implausible wheel jump is reported and restarts the stream, as does (silently,
   /// returning nullopt) a sample after a gap longer than max_interval_s.
-  Result<std::optional<OdometryIncrement>> Add(const JointSample& sample);
+  Result<std::optional<OdometryIncrement>> Add(const msg::JointState& sample);
   void Reset() { previous_.reset(); }
 
   const RoverGeometry& geometry() const { return geometry_; }
@@ -87,7 +87,7 @@ class WheelOdometry {
       : geometry_(g), options_(o) {}
   RoverGeometry geometry_;
   WheelOdometryOptions options_;
-  std::optional<JointSample> previous_;
+  std::optional<msg::JointState> previous_;
 };
 
 /// Declares the odometry parameters under `prefix` ("odometry." by default).

@@ -42,19 +42,19 @@
 #include "rover/dl/mast/look_at.hpp"
 #include "rover/dl/mast/mast_options.hpp"
 #include "rover/hwconfig/rover_description.hpp"
+#include "rover/msg/mast.hpp"
+#include "rover/msg/motor.hpp"
+#include "rover/msg/pose.hpp"
+#include "rover/msg/sensors.hpp"
 
 namespace rover::dl::mast {
 
-/// rover_dl.idl MastPointing ordinals.
-enum class MastPointing : std::int32_t { kAngles = 0, kLookAt = 1 };
-/// rover_dl.idl MastState ordinals.
-enum class MastState : std::int32_t { kIdle = 0, kMoving, kAtGoal, kFault, kRejected };
-/// rover_ddl.idl GroupMode and GroupState ordinals (the subset the mast uses).
-enum class MotorMode : std::int32_t { kPosition = 0, kVelocity = 1, kStop = 2 };
-enum class MotorGroupState : std::int32_t { kIdle = 0, kRunning, kDone, kFault, kRejected };
-
-/// "IDLE", "MOVING", "AT_GOAL", "FAULT", "REJECTED"; "?" otherwise.
-const char* MastStateName(MastState s);
+// The messages are core/msg's (rover/msg/mast.hpp, motor.hpp, sensors.hpp, pose.hpp).
+using msg::MastCommand;
+using msg::MastPointing;
+using msg::MastState;
+using msg::MastStateName;
+using msg::MastStatus;
 
 /// First motor command id of the mast (see the file comment).
 inline constexpr std::uint32_t kMotorIdBase = 0x4D000000u;
@@ -62,65 +62,11 @@ inline constexpr std::uint32_t kMotorIdBase = 0x4D000000u;
 inline constexpr std::uint16_t kMastMotorMask =
     static_cast<std::uint16_t>((1u << hw::kMastPan) | (1u << hw::kMastTilt));
 
-/// dl/mast_command.
-struct MastCommand {
-  std::uint32_t command_id = 0;
-  MastPointing pointing = MastPointing::kAngles;
-  double pan = 0.0;                                   ///< [rad] kAngles
-  double tilt = 0.0;                                  ///< [rad] kAngles
-  Eigen::Vector3d look_at = Eigen::Vector3d::Zero();  ///< [m] site frame, kLookAt
-  double timeout_s = 0.0;                             ///< [s] 0 = options.timeout_s
-};
-
-/// The mast angles of one ddl/joint_state sample.
-struct MastJoints {
-  Time stamp;
-  double pan = 0.0;   ///< [rad]
-  double tilt = 0.0;  ///< [rad]
-  bool healthy = true;
-};
-
-/// One dl/pose sample: the rover in the site frame.
-struct RoverPose {
-  Time stamp;
-  Eigen::Isometry3d site_from_rover = Eigen::Isometry3d::Identity();
-};
-
-/// ddl/motor_status, as far as the mast needs it.
-struct MotorReport {
-  std::uint32_t command_id = 0;
-  MotorGroupState state = MotorGroupState::kIdle;
-  int fault_motor = -1;
-  std::string fault;    ///< the fault's name (motor driver's enum), "" if none
-  std::string message;
-};
-
-/// ddl/motor_command for the mast motors.
-struct MastMotorCommand {
-  Time stamp;
-  std::uint32_t command_id = 0;
-  MotorMode mode = MotorMode::kStop;
-  std::uint16_t motor_mask = kMastMotorMask;
-  double pan_goal = 0.0;   ///< [rad] goal[hw::kMastPan] (kPosition)
-  double tilt_goal = 0.0;  ///< [rad] goal[hw::kMastTilt]
-  double max_rate = 0.0;   ///< [rad/s] for both motors
-};
-
-/// dl/mast_status.
-struct MastStatus {
-  Time stamp;
-  std::uint32_t command_id = 0;
-  MastState state = MastState::kIdle;
-  double pan = 0.0;        ///< [rad] measured
-  double tilt = 0.0;       ///< [rad] measured
-  double pan_goal = 0.0;   ///< [rad]
-  double tilt_goal = 0.0;  ///< [rad]
-  std::string message;
-};
-
-/// What to publish after a call, in order.
+/// What to publish after a call, in order. Motor commands are for kMastMotorMask only: a
+/// position goal (goal and max_rate set at hw::kMastPan and hw::kMastTilt) or a group stop;
+/// timeout_s 0 (the motor driver derives it from the planned move).
 struct MastOutput {
-  std::vector<MastMotorCommand> motor_commands;
+  std::vector<msg::MotorCommand> motor_commands;
   std::vector<MastStatus> statuses;
 };
 
@@ -131,9 +77,10 @@ class MastExecutor {
                                      const MastOptions& options);
 
   MastOutput Submit(const MastCommand& command, Time now);
-  void OnJoints(const MastJoints& joints);
-  void OnPose(const RoverPose& pose);
-  MastOutput OnMotorStatus(const MotorReport& report, Time now);
+  /// Uses mast_pan, mast_tilt and health of ddl/joint_state.
+  void OnJoints(const msg::JointState& joints);
+  void OnPose(const msg::PoseSample& pose);
+  MastOutput OnMotorStatus(const msg::MotorStatus& report, Time now);
   MastOutput Step(Time now);
   /// Stops a running move (GROUP_STOP of the mast motors, FAULT naming `why`); nothing if idle.
   MastOutput Stop(const std::string& why, Time now);
@@ -152,6 +99,7 @@ class MastExecutor {
   void SetStatus(MastState state, std::string message, Time now, MastOutput* out);
   void Reject(const MastCommand& command, const Status& why, Time now, MastOutput* out);
   void Fault(std::string message, Time now, MastOutput* out);
+  msg::MotorCommand MotorCommand(msg::GroupMode mode, Time now);
   Result<PanTilt> GoalOf(const MastCommand& command, Time now) const;
   bool WithinTolerance() const;
   std::uint32_t NextMotorId();
@@ -159,8 +107,13 @@ class MastExecutor {
   hwconfig::RoverDescription rover_;
   MastOptions options_;
   MastStatus status_;
-  std::optional<MastJoints> joints_;
-  std::optional<RoverPose> pose_;
+  struct Joints {
+    Time stamp;
+    double pan = 0.0;   // [rad]
+    double tilt = 0.0;  // [rad]
+  };
+  std::optional<Joints> joints_;
+  std::optional<msg::PoseSample> pose_;
   std::uint32_t next_motor_id_ = kMotorIdBase;
   std::uint32_t motor_id_ = 0;  // motor command of the running move
   bool motors_done_ = false;

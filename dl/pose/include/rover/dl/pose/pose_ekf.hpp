@@ -72,31 +72,22 @@
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 #include "rover/dl/locomotion/wheel_odometry.hpp"
+#include "rover/msg/pose.hpp"
 
 namespace rover::dl {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
 
-/// rover_dl.idl MotionSource (same ordinals).
-enum class MotionSource : std::int32_t {
-  kWheelOdometry = 0,
-  kVisualOdometry = 1,
-  kSunSensor = 2,
-  kAccelerometer = 3,
-  kExternal = 4,
-};
-const char* MotionSourceName(MotionSource s);
+// The messages the filter reads and writes (rover/msg/pose.hpp): dl/pose, dl/relative_pose
+// (only CONVERGED samples are measurements) and dl/estimator_event.
+using msg::MotionSource;
+using msg::MotionSourceName;
+using msg::PoseEstimate;
 
-/// One gated measurement (dl/estimator_event).
-struct EstimatorEvent {
-  Time stamp;  ///< time of validity of the measurement (t_to for relative poses)
-  MotionSource source = MotionSource::kExternal;
-  bool accepted = false;
-  double mahalanobis_sq = 0.0;  ///< NaN when rejected before gating (e.g. outside the window)
-  double gate = 0.0;
-  int dof = 0;
-  std::string message;
+/// One gated measurement (dl/estimator_event) and the degrees of freedom of its test.
+struct EstimatorEvent : msg::EstimatorEvent {
+  int dof = 0;  ///< dim(r) of the chi-square test (not on the wire)
 };
 
 struct EkfOptions {
@@ -140,34 +131,11 @@ struct EkfInitialState {
   double odometer = 0.0;  ///< [m] the odometer's start value (a resumed estimator keeps its own)
 };
 
-/// dl/pose PoseEstimate.
-struct PoseEstimate {
-  Time stamp;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< w >= 0
-  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();                    ///< ZYX roll, pitch, yaw
-  Matrix6d covariance = Matrix6d::Zero();              ///< x, y, z [m], roll, pitch, yaw [rad]
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< [m/s] rover frame, from odometry
-  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
-  bool stationary = false;
-  std::uint32_t rejected_measurements = 0;
-  double odometer = 0.0;  ///< [m] planar path length from wheel odometry
-};
-
 /// Heading for closed-loop turns in place.
 struct HeadingEstimate {
   Time stamp;
   double yaw = 0.0;       ///< [rad] in (-pi, pi]
   double variance = 0.0;  ///< [rad^2]
-};
-
-/// A relative-pose measurement (dl/relative_pose with status CONVERGED).
-struct RelativePoseMeasurement {
-  MotionSource source = MotionSource::kVisualOdometry;
-  Time t_from;
-  Time t_to;
-  Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();  ///< rover(t_to) in rover(t_from)
-  Matrix6d covariance = Matrix6d::Identity();
 };
 
 class PoseEkf {
@@ -192,7 +160,7 @@ class PoseEkf {
   /// outcome is an EstimatorEvent. Errors: non-finite values, t_to <= t_from, a delta rotation
   /// that is not a rotation, a covariance that is not symmetric positive definite, t_to more
   /// than max_pending_s ahead of the filter.
-  Status AddRelativePose(const RelativePoseMeasurement& measurement);
+  Status AddRelativePose(const msg::RelativePose& measurement);
 
   PoseEstimate Estimate() const;
   HeadingEstimate Heading() const;
@@ -235,7 +203,7 @@ class PoseEkf {
   void PruneClones();
   std::optional<PoseNode> Interpolate(Time t) const;
   void ProcessPending();
-  void ProcessRelativePose(const RelativePoseMeasurement& m);
+  void ProcessRelativePose(const msg::RelativePose& m);
   bool Update(MotionSource source, Time t, const Eigen::VectorXd& r, const Eigen::MatrixXd& h,
               const Eigen::MatrixXd& noise, const std::string& what);
   void Inject(const Eigen::VectorXd& dx);
@@ -251,7 +219,7 @@ class PoseEkf {
   Matrix9d phi_acc_ = Matrix9d::Identity();
   std::vector<Clone> clones_;
   std::optional<Time> last_clone_;
-  std::deque<RelativePoseMeasurement> pending_;
+  std::deque<msg::RelativePose> pending_;
   std::vector<EstimatorEvent> events_;
   Eigen::Vector3d last_rate_ = Eigen::Vector3d::Zero();  // bias-corrected
   Time last_motion_;

@@ -5,7 +5,7 @@
 /// Computing the remap tables of a pair (geometry::RectifyStereoPair, one ray per pixel through
 /// CAHVOR) costs far more than remapping an image, and a fixed camera (a HAZCAM, or the NAVCAM
 /// while the mast does not move) sends the same two models with every frame. The cache keys on
-/// the exact message fields of both models (CameraModelFields, compared field by field) and
+/// the exact message fields of both models (msg::CameraModelFields, compared field by field) and
 /// keeps the `capacity` most recently used setups (least recently used evicted).
 
 #include <cstddef>
@@ -14,8 +14,8 @@
 #include <memory>
 
 #include "rover/base/status.hpp"
-#include "rover/dl/stereo/camera_model_fields.hpp"
 #include "rover/dl/stereo/geometry_adapter.hpp"
+#include "rover/msg/camera.hpp"
 
 namespace rover::dl::stereo {
 
@@ -25,12 +25,12 @@ class StereoSetupCache {
   explicit StereoSetupCache(std::size_t capacity = 4, geometry::RectifyOptions options = {});
 
   /// The rectification maps and rectified camera of a model pair: from the cache, or converted
-  /// (CameraModelFromFields) and rectified (MakeStereoSetup) and then cached. Errors (not
+  /// (msg::CameraModelFromFields) and rectified (MakeStereoSetup) and then cached. Errors (not
   /// cached): "left model: ..." / "right model: ..." for bad models, and MakeStereoSetup's
   /// (different sizes, cameras at the same place: no baseline, forward stereo, mirrored).
   /// The returned setup stays valid after eviction (shared ownership).
-  Result<std::shared_ptr<const StereoSetup>> Get(const CameraModelFields& left,
-                                                 const CameraModelFields& right);
+  Result<std::shared_ptr<const StereoSetup>> Get(const msg::CameraModelFields& left,
+                                                 const msg::CameraModelFields& right);
 
   void Clear() { entries_.clear(); }
   std::size_t size() const { return entries_.size(); }
@@ -40,7 +40,7 @@ class StereoSetupCache {
 
  private:
   struct Entry {
-    CameraModelFields left, right;
+    msg::CameraModelFields left, right;
     std::shared_ptr<const StereoSetup> setup;
   };
   std::size_t capacity_;

@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 #include <optional>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 
@@ -41,6 +42,9 @@ struct CadenceOptions {
 
   /// Checks the ranges above; the message names the field.
   Status Validate() const;
+  /// dl-vo's top-level keys step_distance, step_angle_deg, max_interval_s, moving_speed,
+  /// moving_rate_deg_s, settle_s, min_distance, min_angle_deg.
+  static void BindParams(ParamBinder<CadenceOptions>& b);
 };
 
 class VoCadence {

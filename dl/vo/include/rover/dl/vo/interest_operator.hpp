@@ -18,6 +18,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 
 namespace rover::dl::vo {
@@ -32,6 +33,8 @@ struct InterestOptions {
   int max_features = 0;        ///< keep at most this many (strongest); 0 = no limit
 
   Status Validate() const;
+  /// dl-vo's keys vo.cell_size and vo.min_separation (without the prefix).
+  static void BindParams(ParamBinder<InterestOptions>& b);
 };
 
 /// A selected feature: integer pixel of the left image.

@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/dl/vo/visual_odometry.hpp"
 
@@ -30,6 +31,10 @@ struct OdometryPriorOptions {
   double vague_rotation_sigma = 0.2;        ///< [rad] > 0, prior without poses
 
   Status Validate() const;
+  /// dl-vo's keys prior.* (translation_sigma_min, translation_sigma_fraction,
+  /// rotation_sigma_min_deg, rotation_sigma_fraction, vague_translation_sigma,
+  /// vague_rotation_sigma_deg) without the prefix.
+  static void BindParams(ParamBinder<OdometryPriorOptions>& b);
 };
 
 /// The prior in the rover frame from the two poses (see the file comment).

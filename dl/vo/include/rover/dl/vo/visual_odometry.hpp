@@ -90,6 +90,11 @@ struct Options {
 
   Status Validate() const;
 
+  /// dl-vo's keys vo.* (without the prefix): pixel_sigma, min_range, max_range, cell_size,
+  /// min_separation, min_features, min_inliers, min_inlier_fraction, max_translation,
+  /// max_rotation_deg, max_prior_mahalanobis_sq.
+  static void BindParams(ParamBinder<Options>& b);
+
   /// Defaults for a rover NAVCAM/HAZCAM pair (MER-like: slow steps of up to ~1 m).
   static Options Rover() { return Options{}; }
   /// Defaults for car-mounted data such as KITTI (1.2 m steps at 10 Hz, wide images).

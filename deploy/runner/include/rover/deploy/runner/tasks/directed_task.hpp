@@ -26,10 +26,13 @@
 #include <vector>
 
 #include "rover/deploy/runner/task.hpp"
+#include "rover/msg/drive.hpp"
 
 namespace rover::deploy::runner {
 
-enum class Primitive { kStraight, kArc, kTurnInPlace, kSteer, kStop };
+/// A step's primitive is dl/drive_command's (rover/msg/drive.hpp).
+using Primitive = msg::DrivePrimitive;
+/// The scenario name of a primitive: "straight", "arc", "turn_in_place", "steer", "stop".
 const char* PrimitiveName(Primitive p);
 
 struct DriveStep {

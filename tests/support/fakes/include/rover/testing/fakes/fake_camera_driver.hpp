@@ -18,7 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "rover/dl/stereo/camera_model_fields.hpp"
+#include "rover/msg/camera.hpp"
+#include "rover/msg/camera_idl.hpp"
 #include "rover/runtime/dds.hpp"
 #include "rover/testing/fakes/textured_scene.hpp"
 
@@ -72,7 +73,7 @@ struct Rig {
     return c;
   }
   /// The message fields of the left (right = false) or right camera model for `width`.
-  dl::stereo::CameraModelFields Model(int width, bool right) const {
+  msg::CameraModelFields Model(int width, bool right) const {
     const PinholeStereo c = Camera(width);
     geometry::PinholeRadial p;
     p.fx = c.fx;
@@ -85,7 +86,7 @@ struct Rig {
     if (right) p.pose = rover_from_left * Eigen::Translation3d(baseline, 0.0, 0.0);
     auto cahv = geometry::ToCahv(p);
     auto model = geometry::CameraModel::Create(*cahv, c.width, c.height);
-    auto fields = dl::stereo::FieldsFromCameraModel(*model);
+    auto fields = msg::CameraModelFieldsFromModel(*model);
     return *fields;
   }
 };
@@ -148,8 +149,8 @@ class FakeCameraDriver {
     m.exposure_us = req.exposure_us;
     m.width = static_cast<std::uint16_t>(cam.width);
     m.height = static_cast<std::uint16_t>(cam.height);
-    dl::stereo::FieldsToMessage(rig.Model(width, false), &m.left_model);
-    dl::stereo::FieldsToMessage(rig.Model(width, true), &m.right_model);
+    msg::CameraModelToIdl(rig.Model(width, false), &m.left_model);
+    msg::CameraModelToIdl(rig.Model(width, true), &m.right_model);
     m.health = rover_HEALTH_OK;
     dds::BorrowSequence(m.left, l);
     dds::BorrowSequence(m.right, r);

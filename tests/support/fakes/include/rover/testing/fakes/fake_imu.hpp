@@ -14,6 +14,7 @@
 
 #include "rover/base/clock.hpp"
 #include "rover/base/status.hpp"
+#include "rover/msg/sensors_idl.hpp"
 #include "rover/runtime/dds.hpp"
 
 namespace rover::testing {
@@ -35,11 +36,12 @@ class FakeImu {
     // The rover turned by body_yaw_ about its z axis: gravity turns the other way in its frame.
     const Eigen::Vector3d f =
         Eigen::AngleAxisd(-body_yaw_, Eigen::Vector3d::UnitZ()).toRotationMatrix() * specific_force;
+    msg::Imu sample;
+    sample.stamp = stamp;
+    sample.angular_velocity = Eigen::Vector3d(0.0, 0.0, yaw_rate);
+    sample.linear_acceleration = f;
     rover_ddl_Imu imu{};
-    imu.header.stamp_ns = stamp.ns;
-    imu.angular_velocity = {0.0, 0.0, yaw_rate};
-    imu.linear_acceleration = {f.x(), f.y(), f.z()};
-    imu.health = rover_HEALTH_OK;
+    msg::ImuToIdl(sample, &imu);
     return imu;
   }
   /// Step, then publishes the sample.

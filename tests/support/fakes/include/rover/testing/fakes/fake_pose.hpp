@@ -14,6 +14,7 @@
 
 #include "rover/base/clock.hpp"
 #include "rover/base/status.hpp"
+#include "rover/msg/pose_idl.hpp"
 #include "rover/runtime/dds.hpp"
 
 namespace rover::testing {
@@ -36,16 +37,17 @@ struct FakePoseState {
 
 /// The dl/pose sample of `state`, stamped `stamp`, frame "site" (as dl-pose sends it).
 inline rover_dl_PoseEstimate PoseEstimateMessage(Time stamp, const FakePoseState& state) {
+  msg::PoseEstimate e;
+  e.stamp = stamp;
+  e.position = state.position;
+  e.orientation = state.orientation;
+  e.covariance = msg::Matrix6d::Identity() * state.variance;
+  e.velocity = state.velocity;
+  e.stationary = state.stationary;
+  e.odometer = state.odometer;
   rover_dl_PoseEstimate p{};
-  p.header.stamp_ns = stamp.ns;
+  msg::PoseEstimateToIdl(e, &p);
   dds::CopyString(p.header.frame_id, "site");
-  p.pose.position = {state.position.x(), state.position.y(), state.position.z()};
-  const Eigen::Quaterniond& q = state.orientation;
-  p.pose.orientation = {q.w(), q.x(), q.y(), q.z()};
-  for (int i = 0; i < 6; ++i) p.covariance[i * 7] = state.variance;
-  p.velocity = {state.velocity.x(), state.velocity.y(), state.velocity.z()};
-  p.stationary = state.stationary;
-  p.odometer = state.odometer;
   return p;
 }
 
