@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "rover/base/clock.hpp"
+#include "rover/deploy/set_faults.hpp"
 #include "rover/runtime/dds.hpp"
 #include "rover/runtime/fault_control.hpp"
 #include "rover/runtime/fault_yaml.hpp"
@@ -60,11 +61,7 @@ Result<YAML::Node> InlineMap(const FaultAddArgs& a) {
   return map;
 }
 
-bool Applies(const FaultRecord& r) {
-  return r.detail.size() < std::char_traits<char>::length(kNotHere) ||
-         r.detail.compare(r.detail.size() - std::char_traits<char>::length(kNotHere),
-                          std::string::npos, kNotHere) != 0;
-}
+bool Applies(const FaultRecord& r) { return AppliesInService(r); }
 
 std::string Names(const std::vector<std::string>& names) {
   std::string out;

@@ -514,6 +514,27 @@ int Config(const std::string& file) {
 
 // ---- record / replay / info --------------------------------------------------------------------
 
+// A set that is up: its project (given, or the only one up), state file and DDS domain.
+struct LiveSet {
+  std::string project;
+  nlohmann::json state;
+  int domain = -1;
+};
+
+rover::Result<LiveSet> ResolveLiveSet(const std::string& root, const std::string& given) {
+  LiveSet set;
+  ROVER_ASSIGN_OR_RETURN(set.project, ResolveProject(root, given));
+  set.state = ReadState(root + "/" + set.project);
+  if (!SupervisorAlive(set.state)) {
+    return rover::FailedPrecondition("project '" + set.project + "' is not running");
+  }
+  set.domain = set.state.value("domain", -1);
+  if (set.domain < 0) {
+    return rover::Internal("the state file of '" + set.project + "' has no domain");
+  }
+  return set;
+}
+
 // The set a recording command works on: --domain D alone, or a project (given, or the only one
 // up) with its domain, clock and QoS overrides.
 rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
@@ -529,14 +550,10 @@ rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
     return rover::InvalidArgument("give --domain D (e.g. a service started by hand) or "
                                   "--project P (a running set)");
   }
-  ROVER_ASSIGN_OR_RETURN(t.project, ResolveProject(root, given));
-  const auto state = ReadState(root + "/" + t.project);
-  if (!SupervisorAlive(state)) {
-    return rover::FailedPrecondition("project '" + t.project + "' is not running");
-  }
-  t.domain = state.value("domain", -1);
-  if (t.domain < 0) return rover::Internal("the state file of '" + t.project + "' has no domain");
-  if (auto compose = rover::deploy::LoadComposeFile(state.value("file", "")); compose.ok()) {
+  ROVER_ASSIGN_OR_RETURN(const LiveSet set, ResolveLiveSet(root, given));
+  t.project = set.project;
+  t.domain = set.domain;
+  if (auto compose = rover::deploy::LoadComposeFile(set.state.value("file", "")); compose.ok()) {
     t.clock = compose->rover.clock;
     t.qos = compose->rover.qos;
   }
@@ -552,14 +569,10 @@ rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
 rover::Result<rover::deploy::FaultTarget> ResolveFaultTarget(const std::string& root,
                                                              const std::string& given) {
   rover::deploy::FaultTarget t;
-  ROVER_ASSIGN_OR_RETURN(t.project, ResolveProject(root, given));
-  const auto state = ReadState(root + "/" + t.project);
-  if (!SupervisorAlive(state)) {
-    return rover::FailedPrecondition("project '" + t.project + "' is not running");
-  }
-  t.domain = state.value("domain", -1);
-  if (t.domain < 0) return rover::Internal("the state file of '" + t.project + "' has no domain");
-  for (const auto& s : state["services"]) {
+  ROVER_ASSIGN_OR_RETURN(const LiveSet set, ResolveLiveSet(root, given));
+  t.project = set.project;
+  t.domain = set.domain;
+  for (const auto& s : set.state["services"]) {
     if (s.value("state", "") == "running" && s.value("last_heartbeat_wall_ns", std::int64_t{0}) > 0) {
       t.services.push_back(s.value("name", ""));
     }

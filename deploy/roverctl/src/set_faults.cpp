@@ -72,6 +72,12 @@ std::string SetFaultsFileText(const std::vector<SetFault>& faults) {
   return out;
 }
 
+bool AppliesInService(const faults::FaultRecord& r) {
+  static constexpr std::string_view kNotHere = " (not for this service)";
+  const std::string_view d = r.detail;
+  return d.size() < kNotHere.size() || d.substr(d.size() - kNotHere.size()) != kNotHere;
+}
+
 std::string SetFaultsPath(const std::string& state_dir) { return state_dir + "/faults.yaml"; }
 
 Status WriteSetFaults(const std::vector<SetFault>& faults, const std::string& state_dir) {

@@ -124,5 +124,15 @@ TEST(SetFaults, WritesTheFileIntoTheStateFolder) {
   EXPECT_EQ(back->size(), 1u);
 }
 
+TEST(SetFaults, RecordsSayWhereAFaultActs) {
+  faults::FaultRecord r;
+  r.detail = "active: fault 1: drop every sample of dl/pose at the writers of dl-pose";
+  EXPECT_TRUE(AppliesInService(r));
+  r.detail += " (not for this service)";
+  EXPECT_FALSE(AppliesInService(r));
+  r.detail = "";
+  EXPECT_TRUE(AppliesInService(r));
+}
+
 }  // namespace
 }  // namespace rover::deploy

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rover/deploy/set_faults.hpp"
+
 namespace rover::deploy::runner {
 
 namespace {
@@ -46,6 +48,7 @@ void FaultLog::Add(const faults::FaultRecord& r) {
   p.seen = std::max(p.seen, r.seen);
   p.hit = std::max(p.hit, r.hit);
   InjectedFault& f = e.fault;
+  if (!AppliesInService(r)) return;  // held there, acting elsewhere
   const bool listed_active = r.event == Event::kListed && r.detail.rfind("active", 0) == 0;
   const bool listed_ended = r.event == Event::kListed && r.detail.rfind("ended", 0) == 0;
   if (r.event == Event::kStarted || r.event == Event::kCount || listed_active ||

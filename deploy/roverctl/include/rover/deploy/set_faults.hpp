@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/runtime/fault_engine.hpp"
 #include "rover/runtime/fault_spec.hpp"
 
 namespace YAML {
@@ -43,5 +44,10 @@ std::string SetFaultsPath(const std::string& state_dir);
 
 /// Writes SetFaultsFileText to SetFaultsPath(state_dir) (creating the folder).
 Status WriteSetFaults(const std::vector<SetFault>& faults, const std::string& state_dir);
+
+/// Whether a service's record is about a fault that acts there: every service holds every fault
+/// of the set, and its ADDED and LISTED records end with "(not for this service)" where the
+/// fault's `service` glob does not match it.
+bool AppliesInService(const faults::FaultRecord& record);
 
 }  // namespace rover::deploy
