@@ -509,6 +509,10 @@ int Config(const std::string& file) {
     }
     std::cout << "\n";
   }
+  if (!project->rover.faults.empty()) {
+    std::cout << "faults (x-rover.faults, given to every service):\n";
+    for (const auto& f : project->rover.faults) std::cout << "  " << f.spec.Describe() << "\n";
+  }
   return 0;
 }
 
