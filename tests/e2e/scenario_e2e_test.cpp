@@ -104,6 +104,33 @@ TEST_F(ScenarioE2e, PassingAndDeliberatelyFailingScenarios) {
 
 // Each off-nominal termination of the drive primitives, triggered in the simulator: the scenario
 // passes only if its step ends with the termination it expects.
+// A scenario's `faults:` reach the services at start and act on simulated time; the run report
+// lists each with its window and the samples it touched (result.json and summary.txt).
+TEST_F(ScenarioE2e, ScenarioFaultsAreInjectedAndListedInTheRunReport) {
+  auto [e, out] = Run({"run", Scenario("short_drive_faults.yaml"), "--out", dir_ + "/faults"});
+  const std::string run = dir_ + "/faults/short-drive-faults-seed1";
+  ASSERT_TRUE(fs::exists(run + "/result.json")) << out;
+  const auto result = Json(run + "/result.json");
+  ASSERT_EQ(result["faults"].size(), 1u) << result["faults"].dump(2) << out;
+  const auto& f = result["faults"][0];
+  EXPECT_EQ(f["id"], 1);
+  EXPECT_EQ(f["name"], "sun dropouts");
+  EXPECT_EQ(f["kind"], "drop");
+  EXPECT_EQ(f["topic"], "ddl/sun_sensor");
+  EXPECT_EQ(f["side"], "writer");
+  EXPECT_DOUBLE_EQ(f["start_s"].get<double>(), 1.0) << f.dump(2);
+  EXPECT_EQ(f["services"], nlohmann::json::array({"ddl-sun"})) << f.dump(2);
+  EXPECT_GT(f["samples_seen"].get<std::uint64_t>(), 0u) << f.dump(2);
+  EXPECT_GT(f["samples_hit"].get<std::uint64_t>(), 0u) << f.dump(2);
+  EXPECT_LT(f["samples_hit"].get<std::uint64_t>(), f["samples_seen"].get<std::uint64_t>());
+  // The services said so too, in their logs (msg="fault" event=started ...).
+  EXPECT_NE(testing::ReadFile(run + "/logs/ddl-sun.log").find("event=started"), std::string::npos);
+  const std::string summary = testing::ReadFile(dir_ + "/faults/summary.txt");
+  EXPECT_NE(summary.find("fault 1 'sun dropouts' drop ddl/sun_sensor (writer of ddl-sun): 1.0 s"),
+            std::string::npos)
+      << summary;
+}
+
 TEST_F(ScenarioE2e, OffNominalTerminationsInTheSimulator) {
   for (const char* name : {"terminate_tilt", "terminate_stall", "terminate_timeout", "terminate_stop"}) {
     const std::string out = dir_ + "/" + name;

@@ -310,7 +310,8 @@ TEST_F(RoverctlTest, DetachedUpThenPsAndDown) {
 TEST_F(RoverctlTest, UsageErrorsExitWithTwo) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"up"}, {"frobnicate"}, {"ps", "--bogus"}, {"run"},
-        {"logs", "x", "-n", "many"}, {}}) {
+        {"logs", "x", "-n", "many"}, {}, {"fault"}, {"fault", "add"}, {"fault", "add", "--kind"},
+        {"fault", "clear", "x"}, {"fault", "add", "{kind: drop, topic: dl/pose, probability: 2}"}}) {
     auto [e, out] = RunRoverctl(args);
     std::string line;
     for (const auto& a : args) line += a + " ";
@@ -371,6 +372,104 @@ TEST_F(RoverctlTest, PsShowsHealthAndMessageOfEveryHeartbeat) {
       EXPECT_FALSE(svc["ready"].get<bool>());
     }
   }
+  EXPECT_TRUE(RunRoverctl({"down", project}).first.success());
+}
+
+// Row `id`/`service` of `roverctl fault list`: {seen, hit}, or {-1, -1} if absent; `state` gets
+// its STATE column.
+std::pair<long long, long long> FaultRow(const std::string& table, int id,
+                                         const std::string& service, std::string* state = nullptr) {
+  std::istringstream lines(table);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream cols(line);
+    std::string rid, kind, st, svc;
+    long long seen = -1, hit = -1;
+    if (!(cols >> rid >> kind >> st >> svc >> seen >> hit)) continue;
+    if (rid == std::to_string(id) && svc == service) {
+      if (state) *state = st;
+      return {seen, hit};
+    }
+  }
+  return {-1, -1};
+}
+
+// Faults from the compose file (x-rover.faults) and from `roverctl fault add|list|clear`: a
+// bad spec is refused with exit 2 and nothing applied; a drop is acknowledged by the services,
+// its counts rise in `list`, and `clear` removes it.
+TEST_F(RoverctlTest, FaultAddListClearAgainstARunningSet) {
+  std::string file = WriteSmoke("faults");
+  const std::string project = ProjectOf("faults");
+  std::string text = testing::ReadFile(file);
+  const std::string xr = "x-rover: {project: " + project + "}\n";
+  text.replace(text.find(xr), xr.size(),
+               "x-rover:\n  project: " + project + "\n  faults:\n"
+               "    - {kind: duplicate, topic: dl/pose, service: smoke-dl, probability: 0.5, seed: 4}\n");
+  std::ofstream(file) << text;
+  auto [up, up_out] = RunRoverctl({"up", "-d", "--wait=60", file});
+  ASSERT_TRUE(up.success()) << up_out;
+
+  // Refused before anything is sent: exit 2, one line naming the key.
+  auto [bad, bad_out] = RunRoverctl({"fault", "add", "--kind", "dorp", "--topic", "ddl/imu", "-p", project});
+  EXPECT_EQ(bad.code, 2) << bad_out;
+  EXPECT_NE(bad_out.find("fault add: key 'kind': 'dorp' is not a fault kind (did you mean 'drop'?)"),
+            std::string::npos) << bad_out;
+  auto [topic, topic_out] = RunRoverctl({"fault", "add", "{kind: drop, topic: ddl/imuu}", "-p", project});
+  EXPECT_EQ(topic.code, 2) << topic_out;
+  EXPECT_NE(topic_out.find("matches no catalog topic (nearest: ddl/imu"), std::string::npos) << topic_out;
+  auto [prob, prob_out] = RunRoverctl(
+      {"fault", "add", "--kind", "drop", "--topic", "ddl/imu", "--probability", "1.5", "-p", project});
+  EXPECT_EQ(prob.code, 2) << prob_out;
+  EXPECT_NE(prob_out.find("probability = 1.5 is outside [0, 1]"), std::string::npos) << prob_out;
+
+  // Only the compose file's fault is there (id 1), acting in smoke-dl.
+  auto [l0, l0_out] = RunRoverctl({"fault", "list", "-p", project});
+  ASSERT_TRUE(l0.success()) << l0_out;
+  EXPECT_GE(FaultRow(l0_out, 1, "smoke-dl").first, 0) << l0_out;
+  EXPECT_EQ(FaultRow(l0_out, 2, "smoke-ddl").first, -1) << l0_out;
+
+  auto [add, add_out] = RunRoverctl({"fault", "add", "--kind", "drop", "--topic", "ddl/imu",
+                                     "--service", "smoke-ddl", "--probability", "0.5", "--seed",
+                                     "9", "-p", project});
+  ASSERT_TRUE(add.success()) << add_out;
+  EXPECT_NE(add_out.find("fault 2: drop 50% of ddl/imu at the writers of smoke-ddl"),
+            std::string::npos) << add_out;
+  EXPECT_NE(add_out.find("applies in: smoke-ddl (held by 3 of 3 services)"), std::string::npos)
+      << add_out;
+
+  // Its counts rise while it acts (smoke-ddl writes ddl/imu at 50 Hz).
+  long long first_hit = -1;
+  ASSERT_TRUE(WaitFor([&] {
+    auto [l, out] = RunRoverctl({"fault", "list", "-p", project});
+    first_hit = FaultRow(out, 2, "smoke-ddl").second;
+    return l.success() && first_hit > 0;
+  }, std::chrono::seconds(30)));
+  std::string state;
+  ASSERT_TRUE(WaitFor([&] {
+    auto [l, out] = RunRoverctl({"fault", "list", "-p", project});
+    const auto [seen, hit] = FaultRow(out, 2, "smoke-ddl", &state);
+    return hit > first_hit && hit < seen;
+  }, std::chrono::seconds(30)));
+  EXPECT_EQ(state, "active");
+  auto [l1, l1_out] = RunRoverctl({"fault", "list", "-p", project});
+  EXPECT_EQ(FaultRow(l1_out, 2, "smoke-dl").first, -1) << l1_out;  // not where it does not act
+  EXPECT_GT(FaultRow(l1_out, 1, "smoke-dl").second, 0) << l1_out;  // the compose file's acts
+
+  auto [clear, clear_out] = RunRoverctl({"fault", "clear", "2", "-p", project});
+  ASSERT_TRUE(clear.success()) << clear_out;
+  EXPECT_NE(clear_out.find("fault 2 removed in"), std::string::npos) << clear_out;
+  auto [l2, l2_out] = RunRoverctl({"fault", "list", "-p", project});
+  const auto [seen_after, hit_after] = FaultRow(l2_out, 2, "smoke-ddl", &state);
+  EXPECT_EQ(state, "ended") << l2_out;
+  auto [l3, l3_out] = RunRoverctl({"fault", "list", "-p", project});
+  EXPECT_EQ(FaultRow(l3_out, 2, "smoke-ddl").second, hit_after) << l3_out;  // no longer counts
+  (void)seen_after;
+  auto [all, all_out] = RunRoverctl({"fault", "clear", "-p", project});
+  ASSERT_TRUE(all.success()) << all_out;
+  EXPECT_NE(all_out.find("cleared 1 fault in 3 services"), std::string::npos) << all_out;
+  auto [again, again_out] = RunRoverctl({"fault", "clear", "7", "-p", project});
+  EXPECT_EQ(again.code, 1) << again_out;
+  EXPECT_NE(again_out.find("no fault 7"), std::string::npos) << again_out;
   EXPECT_TRUE(RunRoverctl({"down", project}).first.success());
 }
 

@@ -144,6 +144,7 @@ void FaultAgent::OnControl(const rover_sys_FaultControl& m) {
         r.end = st.end;
         r.at = clock_.Now();
         r.detail = std::string(FaultStateName(st.state)) + ": " + st.spec.Describe();
+        if (!GlobMatch(st.spec.service, options_.service)) r.detail += " (not for this service)";
         Publish(r);
       }
       break;

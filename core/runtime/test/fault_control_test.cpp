@@ -1,9 +1,11 @@
 #include "rover/runtime/fault_control.hpp"
 
 #include <gtest/gtest.h>
+
 #include <stdlib.h>
 
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -153,6 +155,24 @@ TEST_F(FaultControlTest, InvalidControlMessagesAreRejectedWithTheReason) {
             0u)
       << rejected->detail;
   EXPECT_EQ(ctx_->faults()->engine().List().size(), 1u);  // only the initial fault
+}
+
+// Every service holds every fault; a LIST answer says where it does not apply, so that
+// `roverctl fault list` shows each fault only for the services it acts in.
+TEST_F(FaultControlTest, ListSaysWhereAFaultDoesNotApply) {
+  auto here = ParseFault("{kind: drop, topic: dl/drive_command, id: 6, service: svc-*}", "cli");
+  auto elsewhere = ParseFault("{kind: drop, topic: dl/drive_command, id: 7, service: dl-pose}", "cli");
+  ASSERT_TRUE(here.ok() && elsewhere.ok());
+  ASSERT_TRUE(client_->Add(*here).ok());
+  ASSERT_TRUE(client_->Add(*elsewhere).ok());
+  ASSERT_TRUE(WaitRecord(Is(FaultRecord::Event::kAdded, 7)));
+  const auto listed = client_->List(std::chrono::milliseconds(500));
+  std::map<std::uint32_t, std::string> detail;
+  for (const auto& r : listed) detail[r.fault_id] = r.detail;
+  ASSERT_EQ(detail.count(6), 1u);
+  ASSERT_EQ(detail.count(7), 1u);
+  EXPECT_EQ(detail[6].find("(not for this service)"), std::string::npos) << detail[6];
+  EXPECT_NE(detail[7].find("(not for this service)"), std::string::npos) << detail[7];
 }
 
 TEST_F(FaultControlTest, EventsRoundTripThroughIdl) {

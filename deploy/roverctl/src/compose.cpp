@@ -262,13 +262,7 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   }
   if (const auto f = n["faults"]) {
     if (!f.IsSequence()) return err.At(f, "x-rover.faults: expected a list");
-    for (const auto& item : f) {
-      if (!item.IsMap()) return err.At(item, "x-rover.faults: each fault is a map");
-      FaultSpec spec;
-      spec.line = Line(item);
-      yaml::Flatten(item, "", &spec.fields);
-      r->faults.push_back(std::move(spec));
-    }
+    ROVER_ASSIGN_OR_RETURN(r->faults, ParseSetFaults(f, err.file()));
   }
   if (const auto rec = n["record"]) {
     ROVER_ASSIGN_OR_RETURN(r->record, recording::ParseRecordOptions(rec, "x-rover.record", err));
@@ -367,6 +361,8 @@ const std::vector<ReservedVariable>& ReservedEnvironment() {
       {"ROVER_SET_ID", "marks every process of the set, so that none is left behind"},
       {"ROVER_SIM_*", "simulator settings: give them under x-rover.sim"},
       {"CYCLONEDDS_URI", "the set's Cyclone DDS configuration: give roverctl ROVER_DDS_CONFIG"},
+      {"ROVER_FAULTS", "the set's faults: give them under x-rover.faults (with `service:`)"},
+      {"ROVER_FAULTS_EPOCH_NS", "what the set's fault windows count from: its start"},
   };
   return kReserved;
 }

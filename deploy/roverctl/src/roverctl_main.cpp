@@ -10,6 +10,9 @@
 //   roverctl record [-p P | --domain D] -o FILE [--topics G...] record a set's topics to MCAP
 //   roverctl replay FILE [--topics G...] [--rate R] (--domain D | -p P)   republish a recording
 //   roverctl info FILE                                          topics, types, counts, time span
+//   roverctl fault add [SPEC] [--kind K --topic T ...] [-f FILE] [-p P]   inject a fault
+//   roverctl fault list [-p P] [--json]                         faults per service, with counts
+//   roverctl fault clear [ID] [-p P]                            remove one fault, or all
 //
 // See docs/roverctl.md.
 #include <CLI/CLI.hpp>
@@ -26,6 +29,7 @@
 #include <iostream>
 #include <sstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "rover/base/clock.hpp"
@@ -33,6 +37,7 @@
 #include "rover/base/process.hpp"
 #include "rover/deploy/campaign.hpp"
 #include "rover/deploy/compose.hpp"
+#include "rover/deploy/fault_commands.hpp"
 #include "rover/deploy/run_report.hpp"
 #include "rover/deploy/scenario.hpp"
 #include "rover/deploy/supervisor.hpp"
@@ -504,10 +509,35 @@ int Config(const std::string& file) {
     }
     std::cout << "\n";
   }
+  if (!project->rover.faults.empty()) {
+    std::cout << "faults (x-rover.faults, given to every service):\n";
+    for (const auto& f : project->rover.faults) std::cout << "  " << f.spec.Describe() << "\n";
+  }
   return 0;
 }
 
 // ---- record / replay / info --------------------------------------------------------------------
+
+// A set that is up: its project (given, or the only one up), state file and DDS domain.
+struct LiveSet {
+  std::string project;
+  nlohmann::json state;
+  int domain = -1;
+};
+
+rover::Result<LiveSet> ResolveLiveSet(const std::string& root, const std::string& given) {
+  LiveSet set;
+  ROVER_ASSIGN_OR_RETURN(set.project, ResolveProject(root, given));
+  set.state = ReadState(root + "/" + set.project);
+  if (!SupervisorAlive(set.state)) {
+    return rover::FailedPrecondition("project '" + set.project + "' is not running");
+  }
+  set.domain = set.state.value("domain", -1);
+  if (set.domain < 0) {
+    return rover::Internal("the state file of '" + set.project + "' has no domain");
+  }
+  return set;
+}
 
 // The set a recording command works on: --domain D alone, or a project (given, or the only one
 // up) with its domain, clock and QoS overrides.
@@ -524,19 +554,38 @@ rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
     return rover::InvalidArgument("give --domain D (e.g. a service started by hand) or "
                                   "--project P (a running set)");
   }
-  ROVER_ASSIGN_OR_RETURN(t.project, ResolveProject(root, given));
-  const auto state = ReadState(root + "/" + t.project);
-  if (!SupervisorAlive(state)) {
-    return rover::FailedPrecondition("project '" + t.project + "' is not running");
-  }
-  t.domain = state.value("domain", -1);
-  if (t.domain < 0) return rover::Internal("the state file of '" + t.project + "' has no domain");
-  if (auto compose = rover::deploy::LoadComposeFile(state.value("file", "")); compose.ok()) {
+  ROVER_ASSIGN_OR_RETURN(const LiveSet set, ResolveLiveSet(root, given));
+  t.project = set.project;
+  t.domain = set.domain;
+  if (auto compose = rover::deploy::LoadComposeFile(set.state.value("file", "")); compose.ok()) {
     t.clock = compose->rover.clock;
     t.qos = compose->rover.qos;
   }
   const std::string dir = root + "/" + t.project;
   t.alive = [dir] { return SupervisorAlive(ReadState(dir)); };
+  return t;
+}
+
+// ---- fault ----------------------------------------------------------------------------------
+
+// The running set a fault command talks to, and the services that run a fault agent: those
+// running that have sent a heartbeat (every rover service does both).
+rover::Result<rover::deploy::FaultTarget> ResolveFaultTarget(const std::string& root,
+                                                             const std::string& given) {
+  rover::deploy::FaultTarget t;
+  ROVER_ASSIGN_OR_RETURN(const LiveSet set, ResolveLiveSet(root, given));
+  t.project = set.project;
+  t.domain = set.domain;
+  for (const auto& s : set.state["services"]) {
+    if (s.value("state", "") == "running" && s.value("last_heartbeat_wall_ns", std::int64_t{0}) > 0) {
+      t.services.push_back(s.value("name", ""));
+    }
+  }
+  if (t.services.empty()) {
+    return rover::FailedPrecondition("no service of '" + t.project +
+                                     "' has sent a heartbeat yet; try again when `roverctl ps` "
+                                     "shows them running");
+  }
   return t;
 }
 
@@ -706,6 +755,56 @@ int main(int argc, char** argv) {
   auto* info_cmd = app.add_subcommand("info", "print a recording's topics, types, counts and span");
   info_cmd->add_option("file", info_file, "MCAP recording")->required();
 
+  auto* fault_cmd = app.add_subcommand("fault", "inject, list and clear faults in a running set");
+  fault_cmd->require_subcommand(1);
+  rover::deploy::FaultAddArgs fault_add;
+  std::string fault_project;
+  auto* fault_add_cmd = fault_cmd->add_subcommand(
+      "add", "inject a fault (keys as in x-rover.faults, docs/faults.md); applied by every "
+             "service it names, from now unless --from-epoch");
+  fault_add_cmd->add_option("spec", fault_add.inline_spec,
+                            "the fault as a YAML map, e.g. '{kind: drop, topic: dl/pose}'");
+  fault_add_cmd->add_option("-f,--file", fault_add.file, "a YAML file of faults (a list)");
+  fault_add_cmd->add_option("-p,--project", fault_project, "project (default: the only one up)");
+  fault_add_cmd->add_flag("--from-epoch", fault_add.from_epoch,
+                          "count --start from the run's epoch instead of from now");
+  // One flag per key; a flag given overrides the same key of SPEC.
+  const std::vector<std::pair<std::string, std::string>> kFaultKeys = {
+      {"kind", "drop, delay, duplicate, reorder, freeze, corrupt, noise, bias, partition"},
+      {"topic", "topic globs, comma-separated; !glob excludes"},
+      {"service", "service glob (default: every service)"},
+      {"side", "writer, reader or both"},
+      {"field", "field path (corrupt, noise, bias), e.g. pose.position.x"},
+      {"mode", "corrupt: nan, inf, -inf, value, out_of_range, bitflip"},
+      {"value", "corrupt value / bias offset"},
+      {"sigma", "noise standard deviation"},
+      {"bits", "bitflip: bits per value"},
+      {"copies", "duplicate: extra copies"},
+      {"probability", "share of the samples hit, [0, 1]"},
+      {"delay", "seconds, or a YAML map such as '{distribution: uniform, min: 0.1, max: 0.5}'"},
+      {"start_s", "window start [s] (from now, or the epoch with --from-epoch)"},
+      {"duration_s", "window length [s]; 0 = until cleared"},
+      {"seed", "the fault's random stream"},
+      {"id", "fault id (default: the next free one)"},
+      {"name", "a label"}};
+  std::map<std::string, std::string> fault_keys;
+  std::vector<std::pair<std::string, CLI::Option*>> fault_key_opts;
+  for (const auto& [key, help] : kFaultKeys) {
+    std::string flag = "--" + key;
+    if (key == "start_s") flag = "--start,--start_s";
+    if (key == "duration_s") flag = "--duration,--duration_s";
+    fault_key_opts.push_back({key, fault_add_cmd->add_option(flag, fault_keys[key], help)});
+  }
+  auto* fault_list_cmd = fault_cmd->add_subcommand(
+      "list", "the faults each service holds, with the samples seen and hit");
+  fault_list_cmd->add_option("-p,--project", fault_project, "project (default: the only one up)");
+  fault_list_cmd->add_flag("--json", json, "machine-readable output");
+  std::int64_t fault_clear_id = 0;
+  auto* fault_clear_cmd = fault_cmd->add_subcommand("clear", "remove one fault (by id), or all");
+  fault_clear_cmd->add_option("id", fault_clear_id, "fault id (default: every fault)")
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{4294967295}));
+  fault_clear_cmd->add_option("-p,--project", fault_project, "project (default: the only one up)");
+
   // Usage errors are exit code 2 (docs/roverctl.md), not CLI11's own codes; --help is 0.
   try {
     app.parse(argc, argv);
@@ -732,6 +831,26 @@ int main(int argc, char** argv) {
   if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir);
   if (*report_cmd) return Report(report_dir);
   if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);
+  if (*fault_cmd) {
+    for (const auto& [key, opt] : fault_key_opts) {
+      if (opt->count() > 0) fault_add.keys[key] = fault_keys[key];
+    }
+    if (*fault_add_cmd) {
+      // A bad spec is a usage error whether or not a set is up: check it first.
+      if (auto specs = rover::deploy::BuildFaultSpecs(fault_add, {}); !specs.ok()) {
+        return Fail(specs.status().message(), 2);
+      }
+    }
+    auto target = ResolveFaultTarget(state_root, fault_project);
+    if (!target.ok()) return Fail(target.status().message());
+    setenv("CYCLONEDDS_URI", DdsConfigUri().c_str(), 0);  // the set's own configuration
+    if (*fault_add_cmd) return rover::deploy::RunFaultAdd(*target, fault_add, std::cout, std::cerr);
+    if (*fault_list_cmd) return rover::deploy::RunFaultList(*target, json, std::cout, std::cerr);
+    const std::optional<std::uint32_t> id =
+        fault_clear_id > 0 ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(fault_clear_id))
+                           : std::nullopt;
+    return rover::deploy::RunFaultClear(*target, id, std::cout, std::cerr);
+  }
   if (*record_cmd) {
     auto target = ResolveTarget(state_root, project, rec_domain, true);
     if (!target.ok()) return Fail(target.status().message(), 2);

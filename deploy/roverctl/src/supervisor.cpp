@@ -109,6 +109,9 @@ std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& proj
     for (char& ch : key) ch = ch == '.' ? '_' : static_cast<char>(std::toupper(ch));
     env[key] = v;
   }
+  // x-rover.faults (and a scenario's faults:), written into the state folder by Preflight and
+  // Create; under wall time Start() adds ROVER_FAULTS_EPOCH_NS (the set's start) to extra_env.
+  if (!project.rover.faults.empty()) env["ROVER_FAULTS"] = SetFaultsPath(options.state_dir);
   for (const auto& [k, v] : options.extra_env) env[k] = v;
   for (const auto& [k, v] : s.environment) env[k] = v;  // never a reserved one (compose.cpp)
   return env;
@@ -157,6 +160,10 @@ Status Preflight(const ComposeProject& project, const SupervisorOptions& options
   std::error_code ec;
   fs::create_directories(options.state_dir + "/logs", ec);
   const std::string tmp = options.state_dir + "/logs/.preflight";
+  // The services validate the set's faults with their parameters (--validate reads ROVER_FAULTS).
+  if (!project.rover.faults.empty()) {
+    ROVER_RETURN_IF_ERROR(WriteSetFaults(project.rover.faults, options.state_dir));
+  }
   for (const auto& spec : project.services) {
     const auto env = ServiceEnvironment(project, spec, options, 0);
     const std::string exe = FindInPath(spec.command[0], env.at("PATH"));
@@ -209,6 +216,9 @@ Result<std::unique_ptr<Supervisor>> Supervisor::Create(ComposeProject project,
   fs::create_directories(options.state_dir + "/logs", ec);
   if (ec) {
     return Unavailable("cannot create state directory " + options.state_dir + ": " + ec.message());
+  }
+  if (!project.rover.faults.empty()) {
+    ROVER_RETURN_IF_ERROR(WriteSetFaults(project.rover.faults, options.state_dir));
   }
   std::unique_ptr<Supervisor> s(
       new Supervisor(std::move(project), std::move(options), std::move(*lease)));
@@ -363,6 +373,11 @@ Status Supervisor::Start() {
   phase_ = "starting";
   started_wall_ns_ = WallNow().ns;
   started_mono_ns_ = MonoNs();
+  // Fault windows (start_s) count from the set's start under wall time, in every service and
+  // across restarts; under sim time from simulated zero (docs/faults.md "Time").
+  if (project_.rover.clock == "wall") {
+    options_.extra_env["ROVER_FAULTS_EPOCH_NS"] = std::to_string(started_wall_ns_);
+  }
   WriteState(phase_);
   const std::int64_t deadline =
       MonoNs() + static_cast<std::int64_t>(project_.rover.startup_timeout_s * 1e9);

@@ -46,7 +46,10 @@ TEST(Compose, ParsesTheSupportedSubset) {
   EXPECT_EQ(p->rover.qos.at("dl/pose"), "stream");
   EXPECT_EQ(p->rover.sim.at("terrain.seed"), "7");
   ASSERT_EQ(p->rover.faults.size(), 1u);
-  EXPECT_EQ(p->rover.faults[0].fields.at("kind"), "drop");
+  EXPECT_EQ(p->rover.faults[0].spec.kind, faults::FaultKind::kDrop);
+  EXPECT_EQ(p->rover.faults[0].spec.topic, "ddl/imu");
+  EXPECT_EQ(p->rover.faults[0].spec.probability, 0.1);
+  EXPECT_EQ(p->rover.faults[0].spec.id, 1u);
   ASSERT_EQ(p->services.size(), 3u);
   // Start order: dependencies first.
   EXPECT_EQ(p->services[0].name, "ddl");
@@ -157,6 +160,23 @@ INSTANTIATE_TEST_SUITE_P(
                 "f.yaml:1: x-rover: unknown key 'domian' (did you mean 'domain'?) (known: "
                 "project, domain, clock, startup_timeout_s, heartbeat_timeout_s, qos, sim, "
                 "faults, scenario, record)"},
+        // x-rover.faults is validated when the file is read: nothing starts on a bad fault.
+        BadCase{"fault_kind",
+                "x-rover:\n  faults:\n    - topic: ddl/imu\n      kind: dorp\n"
+                "services: {a: {command: x}}\n",
+                "f.yaml:4: key 'kind': 'dorp' is not a fault kind (did you mean 'drop'?); one "
+                "of: drop, delay, duplicate, reorder, freeze, corrupt, noise, bias, partition"},
+        BadCase{"fault_probability",
+                "x-rover:\n  faults:\n    - {kind: drop, topic: ddl/imu, probability: 1.5}\n"
+                "services: {a: {command: x}}\n",
+                "f.yaml:3: probability = 1.5 is outside [0, 1]"},
+        BadCase{"fault_not_a_list", "x-rover:\n  faults: {kind: drop}\nservices: {a: {command: x}}\n",
+                "f.yaml:2: x-rover.faults: expected a list"},
+        BadCase{"env_overrides_faults",
+                "services:\n  a:\n    command: x\n    environment: {ROVER_FAULTS: f.yaml}\n",
+                "f.yaml:4: services.a.environment.ROVER_FAULTS: roverctl sets ROVER_FAULTS for "
+                "every service (the set's faults: give them under x-rover.faults (with "
+                "`service:`)); a service may not override it"},
         BadCase{"unbalanced_quote", "services:\n  a: {command: \"x 'y\"}\n",
                 "f.yaml:2: services.a.command: unbalanced ' quote"},
         BadCase{"empty_services", "services: {}\n", "f.yaml:1: 'services' must be a non-empty map"},

@@ -162,6 +162,14 @@ nlohmann::json ToJson(const RunResult& r) {
   j["estimate_track"] = r.estimate_track;
   j["odometry_only_track"] = r.odometry_only_track;
   if (r.mobility) j["mobility"] = MobilityToJson(*r.mobility);
+  j["faults"] = nlohmann::json::array();
+  for (const auto& f : r.faults) {
+    j["faults"].push_back({{"id", f.id}, {"name", f.name}, {"kind", f.kind}, {"topic", f.topic},
+                           {"service", f.service}, {"side", f.side},
+                           {"description", f.description}, {"start_s", f.start_s},
+                           {"end_s", f.end_s}, {"samples_seen", f.samples_seen},
+                           {"samples_hit", f.samples_hit}, {"services", f.services}});
+  }
   return j;
 }
 
@@ -208,6 +216,22 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.odometry_only_track =
         j.value("odometry_only_track", std::vector<std::array<double, 3>>{});
     if (j.contains("mobility")) r.mobility = MobilityFromJson(j.at("mobility"));
+    for (const auto& f : j.value("faults", nlohmann::json::array())) {
+      InjectedFault x;
+      x.id = f.at("id");
+      x.name = f.value("name", "");
+      x.kind = f.at("kind");
+      x.topic = f.at("topic");
+      x.service = f.value("service", "*");
+      x.side = f.value("side", "");
+      x.description = f.value("description", "");
+      x.start_s = f.value("start_s", -1.0);
+      x.end_s = f.value("end_s", -1.0);
+      x.samples_seen = f.value("samples_seen", std::uint64_t{0});
+      x.samples_hit = f.value("samples_hit", std::uint64_t{0});
+      x.services = f.value("services", std::vector<std::string>{});
+      r.faults.push_back(std::move(x));
+    }
     return r;
   } catch (const nlohmann::json::exception& e) {
     return InvalidArgument(std::string("result.json: ") + e.what());
@@ -328,6 +352,23 @@ std::vector<MissingRun> MissingRuns(const std::string& dir, const std::string& s
   return out;
 }
 
+std::string DescribeInjected(const InjectedFault& f) {
+  char when[96];
+  if (f.start_s < 0) {
+    std::snprintf(when, sizeof when, "never started");
+  } else if (f.end_s < 0) {
+    std::snprintf(when, sizeof when, "%.1f s to the end", f.start_s);
+  } else {
+    std::snprintf(when, sizeof when, "%.1f s to %.1f s", f.start_s, f.end_s);
+  }
+  std::string where;
+  for (const auto& s : f.services) where += (where.empty() ? "" : ", ") + s;
+  return "fault " + std::to_string(f.id) + (f.name.empty() ? "" : " '" + f.name + "'") + " " +
+         f.kind + " " + f.topic + " (" + f.side + " of " + f.service + "): " + when + ", " +
+         std::to_string(f.samples_hit) + " of " + std::to_string(f.samples_seen) +
+         " samples hit" + (where.empty() ? "" : " in " + where);
+}
+
 std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s,
                                const std::vector<MissingRun>& missing,
                                const std::vector<std::string>& ignored) {
@@ -350,6 +391,7 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
                       : " (" + r.mobility->fault_class + ")")];
       o << "         " << r.mobility->task << ": " << text << "\n";
     }
+    for (const auto& f : r.faults) o << "         " << DescribeInjected(f) << "\n";
   }
   std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)", s.scenario.c_str(), s.passed,
                 s.runs, 100.0 * s.pass_rate);

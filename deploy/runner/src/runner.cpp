@@ -3,13 +3,16 @@
 #include "rover/deploy/runner.hpp"
 
 #include <filesystem>
+#include <optional>
 
 #include "rover/base/clock.hpp"
+#include "rover/deploy/runner/fault_log.hpp"
 #include "rover/deploy/runner/judging.hpp"
 #include "rover/deploy/runner/recorder.hpp"
 #include "rover/deploy/runner/run_loop.hpp"
 #include "rover/deploy/runner/service_set.hpp"
 #include "rover/deploy/runner/task.hpp"
+#include "rover/runtime/fault_control.hpp"
 
 namespace rover::deploy {
 namespace fs = std::filesystem;
@@ -59,6 +62,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   result.run_dir = prepared.run_dir;
   result.terrain_digest = TerrainDigest(prepared.world.terrain);
   progress("starting", 0);
+  // The set's faults (x-rover.faults, then the scenario's), and what the services say they did.
+  std::vector<faults::FaultSpec> specs;
+  for (const auto& f : prepared.project.rover.faults) specs.push_back(f.spec);
+  FaultLog fault_log(specs);
+  std::optional<faults::FaultClient> fault_client;
   ROVER_ASSIGN_OR_RETURN(set, ServiceSet::Create(prepared));
   result.domain = set->domain();
   const Status started = set->Start();
@@ -66,6 +74,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   // (d) Judging and the outputs, however the run ends.
   auto finish = [&](std::string failure) -> Result<RunResult> {
     const Time t0 = MonotonicNow();
+    // The final counts: every service answers LIST with what each fault touched so far.
+    if (fault_client && !specs.empty()) {
+      for (const auto& r : fault_client->List(std::chrono::milliseconds(500))) fault_log.Add(r);
+    }
+    result.faults = fault_log.Summary();
     set->Stop();
     // After the set: the recording keeps what the services said while stopping. A recording
     // that failed fails the run.
@@ -87,6 +100,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
     if (!r.ok()) return finish("cannot record the run: " + r.status().message());
     recording = std::move(*r);
   }
+  if (!specs.empty()) {
+    auto c = faults::FaultClient::Create(set->participant());
+    if (!c.ok()) return finish("cannot create the runner's DDS endpoints: " + c.status().message());
+    fault_client.emplace(std::move(*c));
+  }
   auto judge = MakeJudge(scenario, prepared.world);
   if (!judge.ok()) return finish(judge.status().message());
 
@@ -103,6 +121,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   }
   RunLoop& run_loop = **loop;
   run_loop.AddPump([&] { (*recorder)->Pump(); });
+  if (fault_client) {
+    run_loop.AddPump([&] {
+      for (const auto& r : fault_client->TakeRecords()) fault_log.Add(r);
+    });
+  }
   run_loop.AddCheck([&] { return set->CheckServices(&result.crashes); });
   run_loop.AddCheck([&] { return (*recorder)->CrossTalk(result.domain); });
   run_loop.AddCheck([&]() -> std::string {

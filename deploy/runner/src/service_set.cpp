@@ -133,6 +133,9 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
   for (auto& svc : project.services) {
     ROVER_RETURN_IF_ERROR(GiveParameters(scenario, run_dir, sim_params_path, &svc));
   }
+  // The scenario's faults join the compose file's x-rover.faults; every service gets them at
+  // start (ROVER_FAULTS, windows on simulated time), so the same seed hits the same samples.
+  ROVER_RETURN_IF_ERROR(AppendSetFaults(scenario.faults, &project.rover.faults));
   for (const auto& [svc, _] : scenario.params) {
     if (project.Find(svc) == nullptr) {
       return InvalidArgument(scenario.file + ": params." + svc + ": no such service in " +

@@ -83,6 +83,53 @@ TEST(RunReport, MobilityOutcomeRoundTripsAndIsPrinted) {
       << table;
 }
 
+TEST(RunReport, InjectedFaultsRoundTripAndArePrinted) {
+  RunResult r = MakeRun(2, true, 0.1);
+  InjectedFault f;
+  f.id = 3;
+  f.name = "half the poses";
+  f.kind = "drop";
+  f.topic = "dl/pose";
+  f.service = "*";
+  f.side = "writer";
+  f.description = "fault 3: drop 50% of dl/pose ...";
+  f.start_s = 20;
+  f.end_s = 30;
+  f.samples_seen = 100;
+  f.samples_hit = 48;
+  f.services = {"dl-pose"};
+  r.faults.push_back(f);
+  InjectedFault never = f;
+  never.id = 4;
+  never.name.clear();
+  never.start_s = -1;
+  never.end_s = -1;
+  never.samples_seen = never.samples_hit = 0;
+  never.services.clear();
+  r.faults.push_back(never);
+  auto back = RunResultFromJson(ToJson(r));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ASSERT_EQ(back->faults.size(), 2u);
+  EXPECT_EQ(back->faults[0].id, 3u);
+  EXPECT_EQ(back->faults[0].name, "half the poses");
+  EXPECT_EQ(back->faults[0].side, "writer");
+  EXPECT_EQ(back->faults[0].start_s, 20);
+  EXPECT_EQ(back->faults[0].end_s, 30);
+  EXPECT_EQ(back->faults[0].samples_hit, 48u);
+  EXPECT_EQ(back->faults[0].services, std::vector<std::string>{"dl-pose"});
+  EXPECT_EQ(DescribeInjected(back->faults[0]),
+            "fault 3 'half the poses' drop dl/pose (writer of *): 20.0 s to 30.0 s, 48 of 100 "
+            "samples hit in dl-pose");
+  EXPECT_EQ(DescribeInjected(back->faults[1]),
+            "fault 4 drop dl/pose (writer of *): never started, 0 of 0 samples hit");
+  const std::string table = FormatSummaryTable({*back}, Summarize({*back}, 40));
+  EXPECT_NE(table.find("         fault 3 'half the poses' drop dl/pose"), std::string::npos) << table;
+  // Older result.json files have no faults.
+  nlohmann::json old = ToJson(MakeRun(1, true, 0.1));
+  old.erase("faults");
+  ASSERT_TRUE(RunResultFromJson(old).ok());
+}
+
 TEST(RunReport, GoodnessGridCells) {
   GoodnessGrid g;
   g.origin_x = -1;

@@ -172,12 +172,7 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
   ROVER_RETURN_IF_ERROR(ParseTaskSection(root["task"], c, &s.task));
   if (const YAML::Node f = root["faults"]) {
     if (!f.IsSequence()) return c.At(f, "faults: expected a list");
-    for (const auto& item : f) {
-      if (!item.IsMap()) return c.At(item, "faults[]: expected a map");
-      std::map<std::string, std::string> m;
-      yaml::Flatten(item, "", &m);
-      s.faults.push_back(std::move(m));
-    }
+    ROVER_ASSIGN_OR_RETURN(s.faults, ParseSetFaults(f, file));
   }
   if (const YAML::Node cr = root["criteria"]) {
     const Status st = ParseCriteria(cr, c, &s.criteria);

@@ -131,6 +131,27 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
   EXPECT_EQ(Err("name: [x\n"), "2: malformed YAML: end of sequence flow not found");
 }
 
+TEST_F(ScenarioTest, FaultsAreValidatedWhenTheFileIsRead) {
+  auto s = Parse(std::string(kGood) +
+                 "faults:\n  - {kind: drop, topic: dl/pose, probability: 0.5, start_s: 20, "
+                 "duration_s: 10, seed: 3}\n  - {kind: freeze, topic: ddl/imu, service: dl-pose, "
+                 "side: reader}\n");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  ASSERT_EQ(s->faults.size(), 2u);
+  EXPECT_EQ(s->faults[0].spec.kind, faults::FaultKind::kDrop);
+  EXPECT_EQ(s->faults[0].spec.start_s, 20);
+  EXPECT_EQ(s->faults[0].spec.seed, 3u);
+  EXPECT_EQ(s->faults[0].spec.line, 23);
+  EXPECT_EQ(s->faults[1].spec.side, faults::Side::kReader);
+  EXPECT_EQ(s->faults[1].spec.id, 2u);
+  EXPECT_EQ(Err(std::string(kGood) + "faults:\n  - kind: drop\n    topic: dl/pose\n"
+                                     "    probability: -0.1\n"),
+            "25: probability = -0.1 is outside [0, 1]");
+  const std::string kind = Err(std::string(kGood) + "faults:\n  - {kind: stall, topic: dl/pose}\n");
+  EXPECT_EQ(kind.rfind("23: key 'kind': 'stall' is not a fault kind", 0), 0u) << kind;
+  EXPECT_EQ(Err(std::string(kGood) + "faults: {kind: drop}\n"), "22: faults: expected a list");
+}
+
 TEST(SeedRange, ParsesAndRejects) {
   auto r = ParseSeedRange("1..4");
   ASSERT_TRUE(r.ok());

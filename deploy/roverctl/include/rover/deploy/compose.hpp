@@ -21,7 +21,8 @@
 ///     heartbeat_timeout_s: 5     # a heartbeat older than this marks a service stale in `ps`
 ///     qos: {dl/pose: stream}     # per-topic QoS profile overrides
 ///     sim: {...}                 # simulator settings, passed to the simulator as ROVER_SIM_*
-///     faults: [...]              # fault injection (list of maps; see docs/faults.md)
+///     faults: [...]              # fault injection (list of maps; docs/faults.md), validated
+///                                # here and given to every service in ROVER_FAULTS
 ///     record: {path, topics, exclude, size_cap_mb, compression}   # MCAP recording of the set
 ///                                # while it is up (or true/false; rover/recording/record_options.hpp)
 ///
@@ -34,6 +35,7 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/deploy/set_faults.hpp"
 #include "rover/recording/record_options.hpp"
 
 namespace rover::deploy {
@@ -83,11 +85,6 @@ struct ServiceSpec {
   std::optional<ReadyRule> ready;  ///< x-rover.ready; unset: by kind of command (ReadyRule)
 };
 
-struct FaultSpec {
-  std::map<std::string, std::string> fields;  ///< raw key/value pairs, validated by the fault layer
-  int line = 0;
-};
-
 struct RoverSettings {
   std::string project;
   std::optional<int> domain;
@@ -96,7 +93,8 @@ struct RoverSettings {
   double heartbeat_timeout_s = 5.0;
   std::map<std::string, std::string> qos;  ///< topic -> profile name (validated)
   std::map<std::string, std::string> sim;  ///< flattened simulator settings
-  std::vector<FaultSpec> faults;
+  /// x-rover.faults, validated (set_faults.hpp); every service gets them in ROVER_FAULTS.
+  std::vector<SetFault> faults;
   /// x-rover.record; nullopt (or enabled = false) records nothing. A relative path is taken
   /// from the directory roverctl runs in; no path: <state>/<project>/recording.mcap.
   std::optional<recording::RecordOptions> record;

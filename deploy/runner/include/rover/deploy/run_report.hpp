@@ -68,6 +68,26 @@ struct MobilityOutcome {
   std::vector<std::vector<Eigen::Vector2d>> keep_out;
 };
 
+/// What one fault of the run's set (x-rover.faults, the scenario's `faults:`) did, from the
+/// services' sys/fault_event records (docs/faults.md "Records").
+struct InjectedFault {
+  std::uint32_t id = 0;
+  std::string name;         ///< the spec's label ("" if none)
+  std::string kind;         ///< "drop", "delay", ...
+  std::string topic;        ///< the topic pattern
+  std::string service;      ///< the service glob
+  std::string side;         ///< "writer", "reader", "both"
+  std::string description;  ///< FaultSpec::Describe()
+  double start_s = -1;      ///< [s] run clock when its window opened in a service; < 0: never
+  double end_s = -1;        ///< [s] run clock when it ended; < 0: still active at the end
+  std::uint64_t samples_seen = 0;  ///< samples of its endpoints while active, all services
+  std::uint64_t samples_hit = 0;   ///< samples it touched (dropped, delayed, changed, ...)
+  std::vector<std::string> services;  ///< where it started
+};
+
+/// One line: "fault 1 drop dl/pose (writer of *): 20.0 s to 30.0 s, 55 of 110 samples hit in dl-pose".
+std::string DescribeInjected(const InjectedFault& f);
+
 struct RunResult {
   std::string scenario;
   std::uint32_t seed = 0;
@@ -98,6 +118,8 @@ struct RunResult {
   std::vector<std::array<double, 3>> odometry_only_track;  ///< t, x, y (dl/pose_odometry)
   /// Set by the mobility tasks (autonav, goto_waypoint, guarded, guarded_arc).
   std::optional<MobilityOutcome> mobility;
+  /// Every fault of the run's set, in id order, with what it did.
+  std::vector<InjectedFault> faults;
 };
 
 nlohmann::json ToJson(const RunResult& r);
@@ -138,7 +160,7 @@ std::vector<MissingRun> MissingRuns(const std::string& dir, const std::string& s
                                     const std::vector<std::uint32_t>& seeds,
                                     const std::vector<RunResult>& runs);
 
-/// The human-readable table: one line per run, the pass count ("x: 3/4 passed (75%)", then
+/// The human-readable table: one line per run (then one per injected fault), the pass count ("x: 3/4 passed (75%)", then
 /// "; 2 of 6 seeds have no result" and one line per missing seed), the results left out of the
 /// report (`ignored`, one line each), then the statistics.
 std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s,

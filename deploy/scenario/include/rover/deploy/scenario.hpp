@@ -14,7 +14,9 @@
 ///   task:                              # what the rover is to do; `type` picks the task and
 ///     type: directed                     # the task parses the rest of the section itself
 ///     steps: [...]                       # (deploy/runner: task registry; docs/scenarios.md)
-///   faults: []                           # fault injection (filled by the fault issue)
+///   faults: [{kind: drop, topic: dl/pose, probability: 0.5, start_s: 20, duration_s: 10}]
+///                                        # injected during the run (docs/faults.md; start_s
+///                                        # in simulated seconds); listed in result.json
 ///   criteria:
 ///     target: {x: 5, y: 0, tolerance: 0.5}
 ///     heading: {deg: 90, tolerance_deg: 5}
@@ -39,6 +41,7 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/deploy/set_faults.hpp"
 #include "rover/recording/record_options.hpp"
 #include "rover/sim/judge/judge.hpp"
 
@@ -74,7 +77,9 @@ struct Scenario {
   double wall_budget_s = 600;     ///< [s] wall-clock safety net
   double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]
   TaskSection task;
-  std::vector<std::map<std::string, std::string>> faults;
+  /// `faults:`, validated when the file is read; the runner adds them to the set's
+  /// x-rover.faults (renumbered after those) and lists what they did in the run's result.
+  std::vector<SetFault> faults;
   sim::JudgeCriteria criteria;
   /// service -> flattened key -> YAML scalar text
   std::map<std::string, std::map<std::string, std::string>> params;
