@@ -37,7 +37,8 @@ TEST(AutonavE2e, ShortAutonavReachesItsGoalWithoutFaultOrHazardContact) {
   const std::string log = dir + "/roverctl.log";
   SpawnOptions o;
   o.argv = {testing::BinDir() + "/roverctl", "run",
-            testing::SourceDir() + "/tests/e2e/scenarios/short_autonav.yaml", "--out", dir + "/out"};
+            testing::SourceDir() + "/tests/e2e/scenarios/short_autonav.yaml", "--out",
+            dir + "/out"};
   o.env[kMarkVariable] = mark;
   o.stdout_path = log;
   o.stderr_path = log;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -120,8 +119,7 @@ TEST(TerrainContact, NormalForcesDoNotSpinTheWheel) {
   for (double x : {-0.035, -0.04, -0.045}) {
     WheelKinematics w;
     w.center = Eigen::Vector3d(x, 0.0, kR - 0.002);  // 2 mm into the floor
-    const WheelContact c =
-        EvaluateWheelContact(h, params, kR, kWidth, w, Eigen::Vector2d::Zero());
+    const WheelContact c = EvaluateWheelContact(h, params, kR, kWidth, w, Eigen::Vector2d::Zero());
     ASSERT_TRUE(c.in_contact);
     ASSERT_GT(c.num_samples, params.slices) << "a fan sample must feel the bank at x = " << x;
     EXPECT_GT(c.force.x(), 1.0) << "the bank pushes the wheel forward at x = " << x;

@@ -1,12 +1,13 @@
 #pragma once
 /// @file
 /// First and second moments of a set of 3-D points and the plane fitted to them (GESTALT's cell
-/// statistics, seed 002: no matter how many points fall in a cell only ten numbers are kept).
+/// statistics, seed 002: no matter how many points fall in a cell only ten numbers are kept;
+/// we keep an eleventh for the stereo noise model).
 ///
 /// Moments: n, Σx, Σy, Σz, Σx², Σy², Σz², Σxy, Σxz, Σyz, and Σσ² (the sum of the points'
-/// expected height-noise variances, 0 without a noise model; see GestaltOptions). They add: the moments of a union of
-/// point sets are the sums of their moments, so a disc of cells is fitted from the sum of its
-/// cells' moments without revisiting a point.
+/// expected height-noise variances [m²], 0 without a noise model; see GestaltOptions). They
+/// add: the moments of a union of point sets are the sums of their moments, so a disc of cells
+/// is fitted from the sum of its cells' moments without revisiting a point.
 ///
 /// Plane fit (total least squares): mean m = Σp / n, covariance C = Σ p pᵀ / n - m mᵀ with
 /// eigenvalues λ0 <= λ1 <= λ2 and unit eigenvectors v0, v1, v2. The plane passes through m with
