@@ -17,8 +17,13 @@ constexpr int kCells = 31;  // 6.2 m square grid of 0.2 m cells, centre cell (15
 constexpr int kCentre = 15;
 
 // Moments of a surface z = f(x, y) sampled on a regular s x s lattice in every cell; x, y are
-// metres from the centre cell's centre.
-Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) {
+// metres from the centre cell's centre. With sigma > 0 every height gets seeded Gaussian noise
+// of that sigma; `model` says whether the points carry that noise variance (the stereo noise
+// model) or claim to be exact.
+Grid<Moments> SampleNoisy(const std::function<double(double, double)>& f, int s, double sigma,
+                          bool model, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma > 0.0 ? sigma : 1.0);
   Grid<Moments> g(kCells, kCells);
   const double r = 0.2;
   for (int j = 0; j < kCells; ++j) {
@@ -27,7 +32,8 @@ Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) 
         for (int a = 0; a < s; ++a) {
           const double x = (i - kCentre - 0.5 + (a + 0.5) / s) * r;
           const double y = (j - kCentre - 0.5 + (b + 0.5) / s) * r;
-          g.at(i, j).Add(x, y, f(x, y));
+          const double z = f(x, y) + (sigma > 0.0 ? noise(rng) : 0.0);
+          g.at(i, j).Add(Eigen::Vector3d(x, y, z), model ? sigma * sigma : 0.0);
         }
       }
     }
@@ -35,26 +41,8 @@ Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) 
   return g;
 }
 
-// As Sample, with seeded Gaussian height noise of `sigma` on every point; `model` says whether
-// the points carry that noise variance (the stereo noise model) or claim to be exact.
-Grid<Moments> SampleNoisy(const std::function<double(double, double)>& f, int s, double sigma,
-                          bool model, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, sigma);
-  Grid<Moments> g(kCells, kCells);
-  const double r = 0.2;
-  for (int j = 0; j < kCells; ++j) {
-    for (int i = 0; i < kCells; ++i) {
-      for (int b = 0; b < s; ++b) {
-        for (int a = 0; a < s; ++a) {
-          const double x = (i - kCentre - 0.5 + (a + 0.5) / s) * r;
-          const double y = (j - kCentre - 0.5 + (b + 0.5) / s) * r;
-          g.at(i, j).Add(Eigen::Vector3d(x, y, f(x, y) + noise(rng)), model ? sigma * sigma : 0.0);
-        }
-      }
-    }
-  }
-  return g;
+Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) {
+  return SampleNoisy(f, s, 0.0, false, 0);
 }
 
 CellAssessment AssessCentre(const Grid<Moments>& g, const GestaltOptions& o) {
