@@ -35,13 +35,15 @@ CellStats StatsOf(const Moments& m, int min_points) {
   s.vxy = c(0, 1);
   s.vxz = c(0, 2);
   s.vyz = c(1, 2);
+  s.n = m.n;
+  s.noise_var = std::max(0.0, m.NoiseVariance());
   return s;
 }
 
 double CellStats::SpreadAbove(double b, double c) const {
   const double v =
       vzz + b * b * vxx + c * c * vyy - 2.0 * b * vxz - 2.0 * c * vyz + 2.0 * b * c * vxy;
-  return std::sqrt(std::max(0.0, v));
+  return std::sqrt(std::max(0.0, v - noise_var));
 }
 
 DiscAssessor::DiscAssessor(const GestaltOptions& options)
@@ -79,8 +81,10 @@ double DiscAssessor::Step(int i, int j, const PlaneFit& plane, const Grid<CellSt
       const CellStats& c = cells.at(ii, jj);
       if (!c.covered) continue;
       const double e = c.z - plane.HeightAt(c.x, c.y);
-      bottom_[at(dx + R, dy + R)] = e;
-      top_[at(dx + R, dy + R)] = e + options_.step_sigma_k * c.SpreadAbove(grad_x, grad_y);
+      // A cell's mean is only known to within its noise: the step counts what lies beyond.
+      const double u = options_.step_noise_sigmas * c.MeanNoise();
+      bottom_[at(dx + R, dy + R)] = e + u;
+      top_[at(dx + R, dy + R)] = e - u + options_.step_sigma_k * c.SpreadAbove(grad_x, grad_y);
     }
   }
   // Sliding max / min along rows, one level per half-width: level w covers [x - w, x + w].
@@ -138,7 +142,10 @@ CellAssessment DiscAssessor::Assess(int i, int j, const Moments& disc_sum, int c
   const PlaneFit fit = FitPlane(disc_sum, options_.eigen_ratio);
   if (!fit.ok) return a;
   a.tilt = static_cast<float>(fit.tilt);
-  a.roughness = static_cast<float>(fit.residual);
+  // The fit residual less the expected noise (the disc's mean noise variance).
+  const double residual = std::sqrt(
+      std::max(0.0, fit.residual * fit.residual - std::max(0.0, disc_sum.NoiseVariance())));
+  a.roughness = static_cast<float>(residual);
   if (!fit.planar) {
     if (fit.residual < options_.max_roughness) return a;  // orientation undetermined: unknown
     a.status = AssessStatus::kNotPlanar;
@@ -146,7 +153,7 @@ CellAssessment DiscAssessor::Assess(int i, int j, const Moments& disc_sum, int c
   }
   a.status = AssessStatus::kAssessed;
   const int g_tilt = RampGoodness(fit.tilt, options_.tilt_safe, options_.max_tilt);
-  const int g_rough = RampGoodness(fit.residual, options_.roughness_safe, options_.max_roughness);
+  const int g_rough = RampGoodness(residual, options_.roughness_safe, options_.max_roughness);
   // A plane too steep to express as a height field is an obstacle by tilt already.
   const double step = fit.normal.z() > 1e-3 ? Step(i, j, fit, cells) : kInf;
   a.step = static_cast<float>(std::min(step, 1e3));

@@ -17,6 +17,7 @@ Moments& Moments::operator+=(const Moments& o) {
   sxy += o.sxy;
   sxz += o.sxz;
   syz += o.syz;
+  snv += o.snv;
   return *this;
 }
 
@@ -31,6 +32,7 @@ Moments& Moments::operator-=(const Moments& o) {
   sxy -= o.sxy;
   sxz -= o.sxz;
   syz -= o.syz;
+  snv -= o.snv;
   return *this;
 }
 

@@ -52,6 +52,8 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("step_disc_diameter", step_disc_diameter,
                                    Bounds::OpenLow(0.0, rover_disc_diameter), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("step_sigma_k", step_sigma_k, 0.0, 10.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("stereo_noise_coeff", stereo_noise_coeff, 0.0, 1.0, "1/m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("step_noise_sigmas", step_noise_sigmas, 0.0, 10.0));
   ROVER_RETURN_IF_ERROR(CheckPositive("max_step", max_step, "m"));
   ROVER_RETURN_IF_ERROR(CheckNonNegative("step_safe", step_safe, "m"));
   ROVER_RETURN_IF_ERROR(CheckBelow("step_safe", step_safe, "max_step", max_step, "m"));
@@ -136,6 +138,12 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
          "belly-sized disc in which steps are searched")
       .Range(0.05, 20.0);
   b.Bind("step_sigma_k", &G::step_sigma_k, "", "cell top = mean + k sigma (tall thin obstacles)")
+      .Range(0.0, 10.0);
+  b.Bind("stereo_noise_coeff", &G::stereo_noise_coeff, "1/m",
+         "height noise sigma = coeff * d^2 of a point d m from the rover (0 = none; ours)")
+      .Range(0.0, 1.0);
+  b.Bind("step_noise_sigmas", &G::step_noise_sigmas, "",
+         "cell means count for the step beyond this many standard errors of noise (ours)")
       .Range(0.0, 10.0);
   b.Bind("step_safe_m", &G::step_safe, "m", "steps up to this are perfect (MER 1/3 of max_step)")
       .Min(0.0);

@@ -131,6 +131,7 @@ Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
   used_px_.assign(npx, 0);
   cell_of_px_.assign(npx, -1);
   point_of_px_.resize(npx);
+  noise_of_px_.resize(npx);
   const double r = options_.cell_size;
   const double max_d2 = options_.max_point_distance * options_.max_point_distance;
   const Eigen::Matrix3d rot = pose.linear();
@@ -141,13 +142,16 @@ Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
     const Eigen::Vector3d p_r(scan.xyz[3 * k], scan.xyz[3 * k + 1], scan.xyz[3 * k + 2]);
     if (!p_r.allFinite()) continue;
     const Eigen::Vector3d p = rot * p_r + t;
-    if ((p.head<2>() - rover_xy).squaredNorm() > max_d2) continue;
+    const double d2 = (p.head<2>() - rover_xy).squaredNorm();
+    if (d2 > max_d2) continue;
     const int i = static_cast<int>(std::floor(p.x() / r)) - i0_;
     const int j = static_cast<int>(std::floor(p.y() / r)) - j0_;
     if (!moments_.Contains(i, j)) continue;
     used_px_[k] = 1;
     cell_of_px_[k] = static_cast<std::int32_t>(moments_.Index(i, j));
     point_of_px_[k] = p - moment_origin_;
+    // Height noise sigma = coeff d² (the options' stereo noise model): variance coeff² d⁴.
+    noise_of_px_[k] = options_.stereo_noise_coeff * options_.stereo_noise_coeff * d2 * d2;
     ++stats.points_used;
   }
   FindFovEdgePixels(scan.width, scan.height, used_px_, options_.fov_edge_band_px, &edge_px_);
@@ -161,7 +165,7 @@ Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
       touched_[c] = 1;
       touched_list_.push_back(c);
     }
-    scan_moments_[c].Add(point_of_px_[k]);
+    scan_moments_[c].Add(point_of_px_[k], noise_of_px_[k]);
     if (edge_px_[k] != 0) scan_edge_[c] = 1;
   }
   stats.cells_touched = static_cast<int>(touched_list_.size());

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 
 #include "rover/apl/gestalt/disc.hpp"
 
@@ -16,8 +17,13 @@ constexpr int kCells = 31;  // 6.2 m square grid of 0.2 m cells, centre cell (15
 constexpr int kCentre = 15;
 
 // Moments of a surface z = f(x, y) sampled on a regular s x s lattice in every cell; x, y are
-// metres from the centre cell's centre.
-Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) {
+// metres from the centre cell's centre. With sigma > 0 every height gets seeded Gaussian noise
+// of that sigma; `model` says whether the points carry that noise variance (the stereo noise
+// model) or claim to be exact.
+Grid<Moments> SampleNoisy(const std::function<double(double, double)>& f, int s, double sigma,
+                          bool model, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma > 0.0 ? sigma : 1.0);
   Grid<Moments> g(kCells, kCells);
   const double r = 0.2;
   for (int j = 0; j < kCells; ++j) {
@@ -26,12 +32,17 @@ Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) 
         for (int a = 0; a < s; ++a) {
           const double x = (i - kCentre - 0.5 + (a + 0.5) / s) * r;
           const double y = (j - kCentre - 0.5 + (b + 0.5) / s) * r;
-          g.at(i, j).Add(x, y, f(x, y));
+          const double z = f(x, y) + (sigma > 0.0 ? noise(rng) : 0.0);
+          g.at(i, j).Add(Eigen::Vector3d(x, y, z), model ? sigma * sigma : 0.0);
         }
       }
     }
   }
   return g;
+}
+
+Grid<Moments> Sample(const std::function<double(double, double)>& f, int s = 8) {
+  return SampleNoisy(f, s, 0.0, false, 0);
 }
 
 CellAssessment AssessCentre(const Grid<Moments>& g, const GestaltOptions& o) {
@@ -173,6 +184,43 @@ TEST(DiscAssessor, ChaoticPointsAreNotAPlane) {
   EXPECT_EQ(a.status, AssessStatus::kNotPlanar);
   EXPECT_EQ(a.goodness, 0);
   EXPECT_TRUE(a.known());
+}
+
+// Noisy stereo at range (dl-stereo's HAZCAM heights scatter ~6 cm at 4 m, 4 points per cell):
+// without the noise model the noise alone reads as a step obstacle; with it flat ground is
+// safe, and a 0.3 m rock in the same noise is still an obstacle.
+TEST(Filters, NoiseModelSeparatesStereoNoiseFromSteps) {
+  const GestaltOptions o;
+  const double sigma = 0.06;
+  auto flat = [](double, double) { return 0.0; };
+  auto rock = [](double x, double y) { return std::hypot(x - 0.4, y) < 0.2 ? 0.3 : 0.0; };
+  int flat_exact_obstacles = 0;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const CellAssessment exact = AssessCentre(SampleNoisy(flat, 2, sigma, false, seed), o);
+    ASSERT_TRUE(exact.known());
+    if (exact.step_goodness == 0) ++flat_exact_obstacles;
+    const CellAssessment modelled = AssessCentre(SampleNoisy(flat, 2, sigma, true, seed), o);
+    ASSERT_TRUE(modelled.known());
+    EXPECT_GE(modelled.goodness, 200) << "seed " << seed << ": step " << modelled.step
+                                      << " m, roughness " << modelled.roughness << " m";
+    EXPECT_LE(modelled.roughness, o.roughness_safe) << "seed " << seed;
+    const CellAssessment stone = AssessCentre(SampleNoisy(rock, 2, sigma, true, seed), o);
+    EXPECT_EQ(stone.step_goodness, 0) << "seed " << seed << ": step " << stone.step << " m";
+  }
+  EXPECT_GE(flat_exact_obstacles, 4) << "noise alone must read as a step without the model";
+}
+
+// Exact data carries no noise variance: the model changes nothing (stereo_noise_coeff 0).
+TEST(Filters, NoiseModelIsInertOnExactData) {
+  auto bump = [](double x, double y) { return std::hypot(x, y) < 0.3 ? 0.15 : 0.02 * x; };
+  const Grid<Moments> g = Sample(bump);
+  GestaltOptions o;
+  const CellAssessment a = AssessCentre(g, o);
+  o.step_noise_sigmas = 5.0;
+  const CellAssessment b = AssessCentre(g, o);
+  EXPECT_EQ(a.goodness, b.goodness);
+  EXPECT_FLOAT_EQ(a.step, b.step);
+  EXPECT_FLOAT_EQ(a.roughness, b.roughness);
 }
 
 }  // namespace

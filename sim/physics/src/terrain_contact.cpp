@@ -284,6 +284,13 @@ WheelContact EvaluateWheelContact(const HeightField& terrain, const ContactParam
   out.torque =
       -soil.mu_max * N * params.spin_radius * std::tanh(w_n / params.spin_rate_eps) * out.normal +
       (wheel.center - out.point).cross(resistance * f);
+  // The normal forces press on a rigid rim, so they pass through the axle and cannot spin the
+  // wheel. The terrain normal at a penetrating rim sample is not radial where the surface bends
+  // under the rim (a dip, a rock's flank, a height-field cell edge); applied at `point` it would
+  // turn the wheel about its axle. Remove that axle moment; its other components (the patch
+  // off the wheel's mid-plane) stay, as on a real wheel.
+  const double axle_moment = wheel.axis.dot((out.point - wheel.center).cross(f_n));
+  out.torque -= axle_moment * wheel.axis;
 
   const double denom = std::max(std::abs(v_w), std::abs(v_x));
   out.slip_ratio = denom > 1e-4 ? (v_w - v_x) / denom : 0.0;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -98,6 +100,33 @@ TEST(TerrainContact, FanSamplesFeelAStepAheadOfTheWheel) {
   ContactParams no_fan;
   no_fan.fan_angles_deg = {0.0, 0.0, 0.0};
   EXPECT_FALSE(EvaluateWheelContact(h, no_fan, kR, kWidth, w, Eigen::Vector2d::Zero()).in_contact);
+}
+
+// A parked wheel at the foot of a 45 deg bank behind it: the bank pushes on a rim sample behind
+// the wheel along the bank's normal, which is not the rim's radius there. That normal force must
+// not turn the wheel about its axle (a rigid rim's normal forces pass through the axle). Without
+// the correction the moment made a slow inner wheel on uneven ground fight its motor in the
+// tightest arc (the MOT stall of the first autonav run).
+TEST(TerrainContact, NormalForcesDoNotSpinTheWheel) {
+  HeightField h = Plane(0.0, Soil::kFirmSoil, 0.01);
+  for (int j = 0; j < h.ny(); ++j) {
+    for (int i = 0; i < h.nx(); ++i) {
+      const double x = h.min_x() + i * 0.01;
+      h.at(i, j) = static_cast<float>(std::max(0.0, -0.08 - x));  // the bank, up towards -x
+    }
+  }
+  const ContactParams params;
+  for (double x : {-0.035, -0.04, -0.045}) {
+    WheelKinematics w;
+    w.center = Eigen::Vector3d(x, 0.0, kR - 0.002);  // 2 mm into the floor
+    const WheelContact c = EvaluateWheelContact(h, params, kR, kWidth, w, Eigen::Vector2d::Zero());
+    ASSERT_TRUE(c.in_contact);
+    ASSERT_GT(c.num_samples, params.slices) << "a fan sample must feel the bank at x = " << x;
+    EXPECT_GT(c.force.x(), 1.0) << "the bank pushes the wheel forward at x = " << x;
+    // At rest with no shear there is no traction, so no moment about the axle.
+    const Eigen::Vector3d moment = (c.point - w.center).cross(c.force) + c.torque;
+    EXPECT_NEAR(w.axis.dot(moment), 0.0, 1e-9 * c.normal_force) << "x = " << x;
+  }
 }
 
 TEST(TerrainContact, SlipTractionCurveAndSteadySlip) {

@@ -54,9 +54,14 @@ struct CellStats {
   double x = 0.0, y = 0.0, z = 0.0;  ///< [m] mean of the cell's points
   /// [m²] population covariance of the cell's points
   double vxx = 0.0, vyy = 0.0, vzz = 0.0, vxy = 0.0, vxz = 0.0, vyz = 0.0;
+  double n = 0.0;          ///< points
+  double noise_var = 0.0;  ///< [m²] mean expected height-noise variance of the points
 
-  /// [m] standard deviation of the heights above a plane of gradient (b, c): of z - b x - c y.
+  /// [m] standard deviation of the heights above a plane of gradient (b, c), of z - b x - c y,
+  /// less the expected noise: sqrt(max(0, var(z - b x - c y) - noise_var)).
   double SpreadAbove(double b, double c) const;
+  /// [m] standard error of the mean height from noise alone, sqrt(noise_var / n).
+  double MeanNoise() const { return n > 0.0 ? std::sqrt(noise_var / n) : 0.0; }
 };
 /// Stats of a cell's moments (`covered` when n >= min_points).
 CellStats StatsOf(const Moments& m, int min_points);

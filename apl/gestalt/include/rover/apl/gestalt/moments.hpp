@@ -1,11 +1,13 @@
 #pragma once
 /// @file
 /// First and second moments of a set of 3-D points and the plane fitted to them (GESTALT's cell
-/// statistics, seed 002: no matter how many points fall in a cell only ten numbers are kept).
+/// statistics, seed 002: no matter how many points fall in a cell only ten numbers are kept;
+/// we keep an eleventh for the stereo noise model).
 ///
-/// Moments: n, Σx, Σy, Σz, Σx², Σy², Σz², Σxy, Σxz, Σyz. They add: the moments of a union of
-/// point sets are the sums of their moments, so a disc of cells is fitted from the sum of its
-/// cells' moments without revisiting a point.
+/// Moments: n, Σx, Σy, Σz, Σx², Σy², Σz², Σxy, Σxz, Σyz, and Σσ² (the sum of the points'
+/// expected height-noise variances [m²], 0 without a noise model; see GestaltOptions). They
+/// add: the moments of a union of point sets are the sums of their moments, so a disc of cells
+/// is fitted from the sum of its cells' moments without revisiting a point.
 ///
 /// Plane fit (total least squares): mean m = Σp / n, covariance C = Σ p pᵀ / n - m mᵀ with
 /// eigenvalues λ0 <= λ1 <= λ2 and unit eigenvectors v0, v1, v2. The plane passes through m with
@@ -28,6 +30,7 @@ struct Moments {
   double sx = 0.0, sy = 0.0, sz = 0.0;
   double sxx = 0.0, syy = 0.0, szz = 0.0;
   double sxy = 0.0, sxz = 0.0, syz = 0.0;
+  double snv = 0.0;  ///< [m²] Σ of the points' expected height-noise variances
 
   void Add(double x, double y, double z) {
     n += 1.0;
@@ -42,6 +45,13 @@ struct Moments {
     syz += y * z;
   }
   void Add(const Eigen::Vector3d& p) { Add(p.x(), p.y(), p.z()); }
+  /// A point whose height carries noise of variance `noise_var` [m²].
+  void Add(const Eigen::Vector3d& p, double noise_var) {
+    Add(p.x(), p.y(), p.z());
+    snv += noise_var;
+  }
+  /// [m²] mean expected height-noise variance of the points, Σσ² / n. Preconditions: !empty().
+  double NoiseVariance() const { return snv / n; }
   Moments& operator+=(const Moments& o);
   Moments& operator-=(const Moments& o);
   friend Moments operator+(Moments a, const Moments& b) { return a += b; }

@@ -39,6 +39,14 @@ struct GestaltOptions {
   double roughness_safe = 0.07 / 3.0;  ///< [m] fit residuals up to this are perfect
   double max_roughness = 0.07;         ///< [m] fit residuals from this on are obstacles
   double eigen_ratio = 2.0;            ///< middle / smallest eigenvalue a planar fit needs
+  /// Stereo noise model: a range point d metres (horizontally) from the rover at capture has
+  /// height noise sigma = stereo_noise_coeff d² [m] (stereo depth error grows with range²).
+  /// The filters judge terrain, not noise: the expected noise variance is taken out of each
+  /// cell's height spread (the k sigma of the step filter) and of the disc's fit residual, and
+  /// cell means count for the step only beyond step_noise_sigmas standard errors of their
+  /// noise. 0 = no noise model (exact data).
+  double stereo_noise_coeff = 0.0;  ///< [1/m]
+  double step_noise_sigmas = 2.0;   ///< cell means are trusted to this many standard errors
   /// Fit discs to the latest scan's points only (MER's per-image assessment) instead of the
   /// merged map (newest data per cell, older data where the scan has none).
   bool fit_from_scan_only = false;

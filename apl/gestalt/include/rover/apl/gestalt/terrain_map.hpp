@@ -93,6 +93,7 @@ class TerrainMap final : public nav_core::TerrainAssessor {
   std::vector<std::uint8_t> used_px_, edge_px_;
   std::vector<std::int32_t> cell_of_px_;
   std::vector<Eigen::Vector3d> point_of_px_;
+  std::vector<double> noise_of_px_;  // expected height-noise variance of each used pixel [m²]
   Grid<std::uint8_t> dirty_, conservative_;
   Grid<CellStats> cell_stats_;
   Grid<int> covered_;

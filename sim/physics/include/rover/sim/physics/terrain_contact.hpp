@@ -31,6 +31,10 @@
 /// Motion (compaction) resistance along f, through the hub (radial stresses make no moment
 /// about the axle): F_rr = -c_rr N tanh(v_x / v_rr); the drive must supply c_rr N R of torque
 /// by gross traction, i.e. by slip, even on flat ground.
+/// Normal forces press on a rigid rim and pass through the axle: the axle component of their
+/// moment about the hub, a . ((p - c) x sum f_k n_k), is cancelled by a pure torque (the terrain
+/// normal at a rim sample is not radial where the surface bends under the wheel, and would
+/// otherwise spin it), so only traction turns a wheel about its axle.
 /// Spin (scrub) resistance about n: T = -mu_max N r_spin tanh((w . n) / w_spin).
 /// On a uniform slope theta with all wheels at the same slip, sum mu(s) N_i = W (sin + c_rr cos),
 /// so mu(s) = tan theta + c_rr and s = -K ln(1 - (tan theta + c_rr)/mu_max): slip grows with slope
