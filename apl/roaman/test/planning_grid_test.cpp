@@ -68,8 +68,8 @@ TEST(PlanningGrid, TheGroundUnderTheRoverCountsAsSafe) {
   RoamanOptions o;
   const PlanningGrid g = BuildPlanningGrid(t, {0.0, 0.0}, {8.0, 0.0}, 9.5, o);
   EXPECT_EQ(g.ClassAt({0.0, 0.0}), CellClass::kSafe);
-  EXPECT_EQ(g.ClassAt({-0.9, 0.3}), CellClass::kSafe);  // within start_clear_radius 1 m
-  EXPECT_EQ(g.ClassAt({1.2, 0.0}), CellClass::kMissing);
+  EXPECT_EQ(g.ClassAt({-0.9, 1.3}), CellClass::kSafe);  // within start_clear_radius 2 m
+  EXPECT_EQ(g.ClassAt({2.2, 0.0}), CellClass::kMissing);
   EXPECT_EQ(g.ClassAt({0.5, 0.5}), CellClass::kStep);   // real hazards stay
 }
 

@@ -71,8 +71,9 @@ struct RoamanOptions {
   double plan_length = 12.0;          ///< [m] toward the goal from the rover (FIDO: 12 m)
   double plan_back = 1.5;             ///< [m] rows behind the rover (backing out)
   double goal_margin = 1.5;           ///< [m] rows beyond a goal inside the grid
-  double start_clear_radius = 1.0;    ///< [m] unknown and border cells this close to the rover
-                                      ///< count as safe (it stands there)
+  double start_clear_radius = 2.0;    ///< [m] missing and border cells this close to the rover
+                                      ///< count as safe: it stands there, and the mast cannot
+                                      ///< see the ground next to it (HAZCAMs cover it)
   double start_search_radius = 2.0;   ///< [m] farthest turn-safe cell a first leg may reach
   double min_progress = 0.5;          ///< [m] partial plans must end this much nearer the goal
 
