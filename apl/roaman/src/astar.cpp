@@ -103,8 +103,8 @@ Result<GridPath> Search(const PlanningGrid& grid, Eigen::Vector2i from, Eigen::V
   if (!closed[goal]) {
     return NotFound("grid search: no path from cell (" + std::to_string(from.x()) + ", " +
                     std::to_string(from.y()) + ") to cell (" + std::to_string(to.x()) + ", " +
-                    std::to_string(to.y()) + ") over cells with clearance >= " +
-                    FormatNumber(cost.min_clearance, 3) + " m");
+                    std::to_string(to.y()) +
+                    ") over cells with clearance >= " + FormatNumber(cost.min_clearance, 3) + " m");
   }
   path.cost = g[goal];
   path.length = len[goal];
@@ -147,14 +147,23 @@ Layer<std::uint8_t> ReachableCells(const PlanningGrid& grid, Eigen::Vector2i fro
 
 std::vector<Eigen::Vector2d> PullString(const PlanningGrid& grid,
                                         const std::vector<Eigen::Vector2d>& points,
-                                        double leg_clearance) {
+                                        const Footprint& footprint) {
   std::vector<Eigen::Vector2d> out;
   if (points.empty()) return out;
+  const double leg = footprint.leg_clearance(), turn = footprint.turn_radius();
   out.push_back(points.front());
   std::size_t a = 0;
   while (a + 1 < points.size()) {
     std::size_t b = a + 1;
-    while (b + 1 < points.size() && grid.SegmentClear(points[a], points[b + 1], leg_clearance)) ++b;
+    while (b + 1 < points.size() && grid.SegmentClear(points[a], points[b + 1], leg)) ++b;
+    if (b + 1 < points.size()) {
+      for (std::size_t q = b; q > a; --q) {
+        if (grid.ClearanceAt(points[q]) >= turn) {
+          b = q;
+          break;
+        }
+      }
+    }
     out.push_back(points[b]);
     a = b;
   }

@@ -1,6 +1,8 @@
 #include "rover/apl/roaman/options.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "rover/base/format.hpp"
@@ -18,7 +20,13 @@ const char* AlgorithmName(Algorithm a) {
   return "?";
 }
 
-double RoamanOptions::turn_radius() const { return 0.5 * std::hypot(rover_length, rover_width); }
+double Footprint::turn_radius() const { return 0.5 * std::hypot(length, width); }
+
+double Footprint::TurnClearance(double turn) const {
+  const double a = std::abs(turn);
+  if (a >= 0.5 * std::numbers::pi) return turn_radius();
+  return std::min(turn_radius(), 0.5 * width + 0.5 * length * std::sin(a));
+}
 
 int RoamanOptions::map_cells() const { return static_cast<int>(std::lround(map_size / cell_size)); }
 
@@ -40,8 +48,8 @@ Status RoamanOptions::Validate() const {
                            FormatNumber(cell_size) + " m is " + std::to_string(map_cells()) +
                            " cells across (allowed 16 to 2000)");
   }
-  ROVER_RETURN_IF_ERROR(CheckRange("recenter_distance", recenter_distance,
-                                   B::OpenLow(0.0, 0.5 * map_size), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("recenter_distance", recenter_distance, B::OpenLow(0.0, 0.5 * map_size), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("max_range", max_range, B::OpenLow(0.0, 0.5 * map_size), "m"));
   ROVER_RETURN_IF_ERROR(CheckPositive("new_panorama_distance", new_panorama_distance, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("min_cell_points", min_cell_points, 1, 1000000));
@@ -94,8 +102,7 @@ void RoamanOptions::BindParams(ParamBinder<RoamanOptions>& b) {
       .Range(0.1, 10.0);
   b.Bind("rover_width_m", &O::rover_width, "m", "footprint width (track + wheel width)")
       .Range(0.1, 10.0);
-  b.Bind("body_clearance_m", &O::body_clearance, "m", "belly above flat ground")
-      .Range(0.01, 2.0);
+  b.Bind("body_clearance_m", &O::body_clearance, "m", "belly above flat ground").Range(0.01, 2.0);
   // Map memory.
   b.Bind("cell_size_m", &O::cell_size, "m", "map cell side (FIDO 5 cm)").Range(0.005, 0.5);
   b.Bind("map_size_m", &O::map_size, "m", "side of the site-frame map memory").Range(1.0, 200.0);
@@ -118,8 +125,7 @@ void RoamanOptions::BindParams(ParamBinder<RoamanOptions>& b) {
       .Range(0.0, 10.0);
   b.Bind("normal_window_m", &O::normal_window, "m", "3: side of the plane-fit window")
       .Range(0.01, 2.0);
-  b.Bind("min_fit_cells", &O::min_fit_cells, "", "3: cells with heights a plane fit needs")
-      .Min(3);
+  b.Bind("min_fit_cells", &O::min_fit_cells, "", "3: cells with heights a plane fit needs").Min(3);
   b.BindDegrees("region_tolerance_deg", &O::region_tolerance,
                 "4: normal angle to a region's mean normal that still joins it")
       .Range(0.1, 90.0);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <utility>
 
 #include "rover/apl/roaman/astar.hpp"
@@ -29,9 +30,9 @@ RoamanPlan Finish(const PlanProblem& problem, const RoamanOptions& options,
   }
   plan.cost = plan.length + options.turn_cost * plan.total_turn;
   plan.goal_distance = (full.back() - problem.request.goal).norm();
-  plan.reaches_goal = problem.goal_on_grid &&
-                      (plan.goal_distance <= problem.request.goal_tolerance + 1e-9 ||
-                       (full.back() - problem.goal_anchor).norm() < 1e-9);
+  plan.reaches_goal =
+      problem.goal_on_grid && (plan.goal_distance <= problem.request.goal_tolerance + 1e-9 ||
+                               (full.back() - problem.goal_anchor).norm() < 1e-9);
   return plan;
 }
 
@@ -40,11 +41,11 @@ RoamanPlan Finish(const PlanProblem& problem, const RoamanOptions& options,
 Result<Eigen::Vector2i> SearchTarget(const PlanProblem& problem, const RoamanOptions& options) {
   const PlanningGrid& g = problem.grid;
   const Layer<std::uint8_t> reach =
-      ReachableCells(g, {problem.start_i, problem.start_j}, problem.turn_clearance);
+      ReachableCells(g, {problem.start_i, problem.start_j}, problem.leg_clearance);
   if (problem.goal_on_grid) {
     if (!reach.at(problem.goal_i, problem.goal_j)) {
       return NotFound("grid search: the goal anchor " + FormatPoint(problem.goal_anchor) +
-                      " is not connected to the rover by cells it can turn on");
+                      " is not connected to the rover by cells it can drive over");
     }
     return Eigen::Vector2i(problem.goal_i, problem.goal_j);
   }
@@ -81,7 +82,18 @@ Result<RoamanPlan> GridPlan(const PlanProblem& problem, const RoamanOptions& opt
   points.front() = problem.start_anchor;
   if (problem.goal_on_grid) points.back() = problem.goal_anchor;
   const std::vector<Eigen::Vector2d> waypoints =
-      PullString(problem.grid, points, problem.leg_clearance);
+      PullString(problem.grid, points, problem.footprint);
+  for (std::size_t k = 1; k + 1 < waypoints.size(); ++k) {
+    if (!TurnSafe(problem.grid, problem.footprint, waypoints[k - 1], waypoints[k],
+                  waypoints[k + 1])) {
+      const double turn = TurnAngle(waypoints[k - 1], waypoints[k], waypoints[k + 1]);
+      return NotFound("grid search: the path turns by " +
+                      FormatNumber(std::abs(turn) * 180.0 / std::numbers::pi, 3) + " deg at " +
+                      FormatPoint(waypoints[k]) + ", where the clearance " +
+                      FormatNumber(problem.grid.ClearanceAt(waypoints[k]), 3) + " m is below the " +
+                      FormatNumber(problem.footprint.TurnClearance(turn), 3) + " m that needs");
+    }
+  }
   RoamanPlan plan = Finish(problem, options, waypoints, Algorithm::kAStar);
   plan.path = std::move(points);
   plan.expanded = path.expanded;
@@ -107,13 +119,13 @@ Result<RoamanPlan> PlanWithRoadMap(const PlanProblem& problem, const RoamanOptio
   if (!found.ok()) return found.status();
   const RoadPath& path = *found;
   const std::vector<int> keep =
-      SelectWaypoints(problem.grid, path.vertices, options.fit_tolerance, problem.leg_clearance);
+      SelectWaypoints(problem.grid, path.vertices, options.fit_tolerance, problem.footprint);
   std::vector<Eigen::Vector2d> initial;
   for (const int k : keep) initial.push_back(path.vertices[static_cast<std::size_t>(k)]);
   std::vector<int> index;
   const std::vector<Eigen::Vector2d> samples = SamplePath(path.vertices, problem.grid.cell, &index);
-  const FitResult fit = FitWaypoints(problem.grid, samples, initial, problem.turn_clearance,
-                                     problem.leg_clearance, options.fit_max_evaluations);
+  const FitResult fit =
+      FitWaypoints(problem.grid, samples, initial, problem.footprint, options.fit_max_evaluations);
   RoamanPlan plan = Finish(problem, options, fit.waypoints, Algorithm::kRoaman);
   plan.path = path.vertices;
   plan.road_nodes = kept;
@@ -126,12 +138,12 @@ Result<RoamanPlan> PlanWithRoadMap(const PlanProblem& problem, const RoamanOptio
 }
 
 Result<RoamanPlan> PlanWithAStar(const PlanProblem& problem, const RoamanOptions& options) {
-  const SearchCost cost{problem.turn_clearance, options.clearance_weight, options.clearance_ref};
+  const SearchCost cost{problem.leg_clearance, options.clearance_weight, options.clearance_ref};
   return GridPlan(problem, options, cost, true);
 }
 
 Result<RoamanPlan> ShortestSafePath(const PlanProblem& problem, const RoamanOptions& options) {
-  const SearchCost cost{problem.turn_clearance, 0.0, options.clearance_ref};
+  const SearchCost cost{problem.leg_clearance, 0.0, options.clearance_ref};
   return GridPlan(problem, options, cost, false);
 }
 
@@ -227,8 +239,7 @@ Result<RoamanPlan> RoamanPlanner::Plan(const nav_core::PlanRequest& request, Alg
   }
   // Every route is blocked: say how far the rover's safe region reaches.
   const PlanProblem& p = *problem_;
-  const Layer<std::uint8_t> reach =
-      ReachableCells(p.grid, {p.start_i, p.start_j}, p.turn_clearance);
+  const Layer<std::uint8_t> reach = ReachableCells(p.grid, {p.start_i, p.start_j}, p.leg_clearance);
   int cells = 0;
   double nearest = std::numeric_limits<double>::infinity();
   for (int j = 0; j < p.grid.height; ++j) {
@@ -242,10 +253,9 @@ Result<RoamanPlan> RoamanPlanner::Plan(const nav_core::PlanRequest& request, Alg
   return Failed(
       PlanFailure::kBlocked,
       NotFound("every route to the goal " + FormatPoint(request.goal) + " is blocked: the " +
-               FormatNumber(cells * p.grid.cell * p.grid.cell, 3) +
-               " m^2 the rover at " + FormatPoint(request.start) +
-               " can reach and turn on come no nearer than " + FormatNumber(nearest, 4) +
-               " m to it; " + std::to_string(corridors) + " corridor" +
+               FormatNumber(cells * p.grid.cell * p.grid.cell, 3) + " m^2 the rover at " +
+               FormatPoint(request.start) + " can reach come no nearer than " +
+               FormatNumber(nearest, 4) + " m to it; " + std::to_string(corridors) + " corridor" +
                (corridors == 1 ? "" : "s") + " reported blocked (" + why + ")"));
 }
 

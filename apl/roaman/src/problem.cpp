@@ -102,7 +102,8 @@ Status ValidateRequest(const nav_core::PlanRequest& r) {
   ROVER_RETURN_IF_ERROR(CheckFinite("PlanRequest.start.y", r.start.y()));
   ROVER_RETURN_IF_ERROR(CheckFinite("PlanRequest.goal.x", r.goal.x()));
   ROVER_RETURN_IF_ERROR(CheckFinite("PlanRequest.goal.y", r.goal.y()));
-  ROVER_RETURN_IF_ERROR(CheckRange("PlanRequest.goal_tolerance", r.goal_tolerance, 0.0, 1000.0, "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("PlanRequest.goal_tolerance", r.goal_tolerance, 0.0, 1000.0, "m"));
   return Status::Ok();
 }
 
@@ -113,6 +114,7 @@ Result<PlanProblem> PreparePlan(const TraversabilityMap& map, const nav_core::Pl
   ROVER_DEMAND(distance > request.goal_tolerance && distance > 0.0);
   PlanProblem p;
   p.request = request;
+  p.footprint = options.footprint();
   p.turn_clearance = options.turn_radius();
   p.leg_clearance = options.leg_clearance();
   const bool fits = distance + options.goal_margin <= options.plan_length;
@@ -148,8 +150,9 @@ Result<PlanProblem> PreparePlan(const TraversabilityMap& map, const nav_core::Pl
       if (c == CellClass::kMissing) {
         if (!request.allow_partial) {
           return Fail(failure, PlanFailure::kGoalMissing,
-                      goal_text + " is on terrain the map has no data for (unseen, or in the "
-                                  "shadow of a rock); allow a partial plan to plan toward it");
+                      goal_text +
+                          " is on terrain the map has no data for (unseen, or in the "
+                          "shadow of a rock); allow a partial plan to plan toward it");
         }
       } else if (c != CellClass::kSafe) {
         return Fail(failure, PlanFailure::kGoalInHazard,
@@ -159,8 +162,8 @@ Result<PlanProblem> PreparePlan(const TraversabilityMap& map, const nav_core::Pl
       } else {
         return Fail(failure, PlanFailure::kGoalInHazard,
                     goal_text + " is inside a hazard's reach: clearance " +
-                        FormatNumber(g.ClearanceAt(request.goal), 3) + " m (nearest: " +
-                        DescribeNearestHazard(g, request.goal, p.turn_clearance) +
+                        FormatNumber(g.ClearanceAt(request.goal), 3) +
+                        " m (nearest: " + DescribeNearestHazard(g, request.goal, p.turn_clearance) +
                         "); the rover needs " + FormatNumber(p.turn_clearance, 3) +
                         " m to stand and turn there, and no cell within goal_tolerance " +
                         FormatNumber(request.goal_tolerance, 3) + " m has it");

@@ -10,6 +10,26 @@
 
 namespace rover::apl::roaman {
 
+namespace {
+
+double Wrap(double t) {
+  while (t > std::numbers::pi) t -= 2.0 * std::numbers::pi;
+  while (t <= -std::numbers::pi) t += 2.0 * std::numbers::pi;
+  return t;
+}
+
+}  // namespace
+
+double TurnAngle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d u = b - a, v = c - b;
+  return Wrap(std::atan2(v.y(), v.x()) - std::atan2(u.y(), u.x()));
+}
+
+bool TurnSafe(const PlanningGrid& grid, const Footprint& footprint, const Eigen::Vector2d& a,
+              const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return grid.ClearanceAt(b) >= footprint.TurnClearance(TurnAngle(a, b, c));
+}
+
 std::vector<Leg> MakeLegs(const std::vector<Eigen::Vector2d>& waypoints) {
   std::vector<Leg> legs;
   for (std::size_t k = 1; k < waypoints.size(); ++k) {
@@ -19,12 +39,7 @@ std::vector<Leg> MakeLegs(const std::vector<Eigen::Vector2d>& waypoints) {
     const Eigen::Vector2d d = l.to - l.from;
     l.length = d.norm();
     l.heading = std::atan2(d.y(), d.x());
-    if (!legs.empty()) {
-      double t = l.heading - legs.back().heading;
-      while (t > std::numbers::pi) t -= 2.0 * std::numbers::pi;
-      while (t <= -std::numbers::pi) t += 2.0 * std::numbers::pi;
-      l.turn = t;
-    }
+    if (!legs.empty()) l.turn = Wrap(l.heading - legs.back().heading);
     legs.push_back(l);
   }
   return legs;
@@ -46,8 +61,10 @@ std::vector<Eigen::Vector2d> SamplePath(const std::vector<Eigen::Vector2d>& vert
   return out;
 }
 
-std::vector<int> SelectWaypoints(const PlanningGrid& grid, const std::vector<Eigen::Vector2d>& vertices,
-                                 double tolerance, double leg_clearance) {
+std::vector<int> SelectWaypoints(const PlanningGrid& grid,
+                                 const std::vector<Eigen::Vector2d>& vertices, double tolerance,
+                                 const Footprint& footprint) {
+  const double leg_clearance = footprint.leg_clearance();
   const int n = static_cast<int>(vertices.size());
   if (n <= 2) {
     std::vector<int> all;
@@ -85,11 +102,26 @@ std::vector<int> SelectWaypoints(const PlanningGrid& grid, const std::vector<Eig
     stack.emplace_back(a, split);
     stack.emplace_back(split, b);
   }
-  std::vector<int> out;
-  for (int k = 0; k < n; ++k) {
-    if (keep[static_cast<std::size_t>(k)]) out.push_back(k);
+  // Turn repair: a waypoint whose turn is not safe gets back the vertices between its
+  // neighbours (the full path's turns are safe, so this ends).
+  while (true) {
+    std::vector<int> kept;
+    for (int k = 0; k < n; ++k) {
+      if (keep[static_cast<std::size_t>(k)]) kept.push_back(k);
+    }
+    bool changed = false;
+    for (std::size_t m = 1; m + 1 < kept.size(); ++m) {
+      const auto v = [&](std::size_t q) { return vertices[static_cast<std::size_t>(kept[q])]; };
+      if (TurnSafe(grid, footprint, v(m - 1), v(m), v(m + 1))) continue;
+      for (int k = kept[m - 1] + 1; k < kept[m + 1]; ++k) {
+        if (!keep[static_cast<std::size_t>(k)]) {
+          keep[static_cast<std::size_t>(k)] = 1;
+          changed = true;
+        }
+      }
+    }
+    if (!changed) return kept;
   }
-  return out;
 }
 
 double FitError(const std::vector<Eigen::Vector2d>& points,
@@ -107,12 +139,12 @@ double FitError(const std::vector<Eigen::Vector2d>& points,
 }
 
 bool PolylineSafe(const PlanningGrid& grid, const std::vector<Eigen::Vector2d>& waypoints,
-                  double turn_clearance, double leg_clearance) {
+                  const Footprint& footprint) {
   for (std::size_t k = 1; k + 1 < waypoints.size(); ++k) {
-    if (grid.ClearanceAt(waypoints[k]) < turn_clearance) return false;
+    if (!TurnSafe(grid, footprint, waypoints[k - 1], waypoints[k], waypoints[k + 1])) return false;
   }
   for (std::size_t k = 1; k < waypoints.size(); ++k) {
-    if (!grid.SegmentClear(waypoints[k - 1], waypoints[k], leg_clearance)) return false;
+    if (!grid.SegmentClear(waypoints[k - 1], waypoints[k], footprint.leg_clearance())) return false;
   }
   return true;
 }
@@ -123,8 +155,7 @@ struct FitData {
   const PlanningGrid* grid = nullptr;
   const std::vector<Eigen::Vector2d>* points = nullptr;
   std::vector<Eigen::Vector2d> waypoints;  // the ends fixed, interior from x
-  double turn_clearance = 0.0;
-  double leg_clearance = 0.0;
+  Footprint footprint;
   double best_error = std::numeric_limits<double>::infinity();
   std::vector<Eigen::Vector2d> best;
   int evaluations = 0;
@@ -143,15 +174,14 @@ double Objective(unsigned n, const double* x, double* grad, void* data) {
   d->Load(x);
   ++d->evaluations;
   const double e = FitError(*d->points, d->waypoints);
-  if (e < d->best_error &&
-      PolylineSafe(*d->grid, d->waypoints, d->turn_clearance, d->leg_clearance)) {
+  if (e < d->best_error && PolylineSafe(*d->grid, d->waypoints, d->footprint)) {
     d->best_error = e;
     d->best = d->waypoints;
   }
   return e;
 }
 
-// c_l = leg_clearance - min clearance under leg l (legs first), then c = turn_clearance -
+// c_l = leg_clearance - min clearance under leg l (legs first), then c = TurnClearance(turn) -
 // clearance at each interior waypoint; feasible when all are <= 0.
 void Constraints(unsigned m, double* result, unsigned n, const double* x, double* grad,
                  void* data) {
@@ -162,18 +192,21 @@ void Constraints(unsigned m, double* result, unsigned n, const double* x, double
   d->Load(x);
   const std::size_t legs = d->waypoints.size() - 1;
   for (std::size_t k = 0; k < legs; ++k) {
-    result[k] = d->leg_clearance - d->grid->MinClearanceAlong(d->waypoints[k], d->waypoints[k + 1]);
+    result[k] = d->footprint.leg_clearance() -
+                d->grid->MinClearanceAlong(d->waypoints[k], d->waypoints[k + 1]);
   }
+  const std::vector<Eigen::Vector2d>& w = d->waypoints;
   for (std::size_t k = 1; k < legs; ++k) {
-    result[legs + k - 1] = d->turn_clearance - d->grid->ClearanceAt(d->waypoints[k]);
+    result[legs + k - 1] = d->footprint.TurnClearance(TurnAngle(w[k - 1], w[k], w[k + 1])) -
+                           d->grid->ClearanceAt(w[k]);
   }
 }
 
 }  // namespace
 
 FitResult FitWaypoints(const PlanningGrid& grid, const std::vector<Eigen::Vector2d>& points,
-                       const std::vector<Eigen::Vector2d>& initial, double turn_clearance,
-                       double leg_clearance, int max_evaluations) {
+                       const std::vector<Eigen::Vector2d>& initial, const Footprint& footprint,
+                       int max_evaluations) {
   FitResult r;
   r.waypoints = initial;
   r.error_before = r.error_after = FitError(points, initial);
@@ -189,8 +222,7 @@ FitResult FitWaypoints(const PlanningGrid& grid, const std::vector<Eigen::Vector
   data.grid = &grid;
   data.points = &points;
   data.waypoints = initial;
-  data.turn_clearance = turn_clearance;
-  data.leg_clearance = leg_clearance;
+  data.footprint = footprint;
   data.best_error = r.error_before;
   data.best = initial;
   const unsigned n = static_cast<unsigned>(2 * (initial.size() - 2));

@@ -19,7 +19,8 @@ PlanningGrid RandomGrid(std::uint32_t seed) {
   for (int k = 0; k < 6; ++k) {
     const Eigen::Vector2d c(std::uniform_real_distribution<double>(0.0, 3.0)(rng),
                             std::uniform_real_distribution<double>(-1.5, 1.5)(rng));
-    testing::Paint(&t, c, c, std::uniform_real_distribution<double>(0.05, 0.3)(rng), CellClass::kStep);
+    testing::Paint(&t, c, c, std::uniform_real_distribution<double>(0.05, 0.3)(rng),
+                   CellClass::kStep);
   }
   RoamanOptions o;
   o.cell_size = 0.1;
@@ -31,12 +32,17 @@ PlanningGrid RandomGrid(std::uint32_t seed) {
 }
 
 // Bellman-Ford style relaxation to a fixed point: the brute-force reference for Dijkstra.
-double BruteForceCost(const PlanningGrid& g, Eigen::Vector2i a, Eigen::Vector2i b, const SearchCost& c) {
+double BruteForceCost(const PlanningGrid& g, Eigen::Vector2i a, Eigen::Vector2i b,
+                      const SearchCost& c) {
   const double inf = std::numeric_limits<double>::infinity();
   Layer<double> d(g.width, g.height, inf);
   d.at(a.x(), a.y()) = 0.0;
-  const auto in = [&](int i, int j) { return g.Contains(i, j) && g.clearance.at(i, j) >= c.min_clearance; };
-  const auto pen = [&](int i, int j) { return std::max(0.0, 1.0 - g.clearance.at(i, j) / c.clearance_ref); };
+  const auto in = [&](int i, int j) {
+    return g.Contains(i, j) && g.clearance.at(i, j) >= c.min_clearance;
+  };
+  const auto pen = [&](int i, int j) {
+    return std::max(0.0, 1.0 - g.clearance.at(i, j) / c.clearance_ref);
+  };
   bool changed = true;
   while (changed) {
     changed = false;
@@ -48,7 +54,8 @@ double BruteForceCost(const PlanningGrid& g, Eigen::Vector2i a, Eigen::Vector2i 
             if ((di == 0 && dj == 0) || !in(i + di, j + dj)) continue;
             if (di != 0 && dj != 0 && (!in(i + di, j) || !in(i, j + dj))) continue;
             const double step = g.cell * std::hypot(di, dj);
-            const double v = d.at(i, j) + step * (1.0 + c.clearance_weight * 0.5 * (pen(i, j) + pen(i + di, j + dj)));
+            const double v = d.at(i, j) + step * (1.0 + c.clearance_weight * 0.5 *
+                                                            (pen(i, j) + pen(i + di, j + dj)));
             if (v < d.at(i + di, j + dj) - 1e-12) {
               d.at(i + di, j + dj) = v;
               changed = true;
@@ -74,7 +81,8 @@ TEST(AStar, IsOptimalOnSmallMapsAgainstDijkstraAndBruteForce) {
         a = {static_cast<int>(rng() % g.width), static_cast<int>(rng() % g.height)};
         b = {static_cast<int>(rng() % g.width), static_cast<int>(rng() % g.height)};
       } while ((g.clearance.at(a.x(), a.y()) < cost.min_clearance ||
-                g.clearance.at(b.x(), b.y()) < cost.min_clearance) && ++tries < 1000);
+                g.clearance.at(b.x(), b.y()) < cost.min_clearance) &&
+               ++tries < 1000);
       const auto astar = AStarSearch(g, a, b, cost);
       const auto dijkstra = DijkstraSearch(g, a, b, cost);
       const double brute = BruteForceCost(g, a, b, cost);
@@ -154,19 +162,19 @@ TEST(AStar, PullStringMakesStraightLegs) {
   const PlanningGrid g = BuildPlanningGrid(open, {0.0, 0.0}, {5.0, 0.0}, 6.0, RoamanOptions{});
   std::vector<Eigen::Vector2d> stairs;
   for (int k = 0; k <= 40; ++k) stairs.emplace_back(0.1 * k, 0.05 * (k % 2));  // grid stairs
-  const auto pulled = PullString(g, stairs, 0.58);
+  const auto pulled = PullString(g, stairs, RoamanOptions{}.footprint());
   ASSERT_EQ(pulled.size(), 2u);
   EXPECT_NEAR(PolylineLength(pulled), 4.0, 1e-9);
   TraversabilityMap rock = open;
   testing::Paint(&rock, {2.0, 1.0}, {2.0, 1.0}, 0.5, CellClass::kStep);
   const PlanningGrid r = BuildPlanningGrid(rock, {0.0, 0.0}, {5.0, 0.0}, 6.0, RoamanOptions{});
   std::vector<Eigen::Vector2d> around;
-  for (int k = 0; k <= 20; ++k) around.emplace_back(0.1 * k, 1.0 - 0.1 * k);     // down
+  for (int k = 0; k <= 20; ++k) around.emplace_back(0.1 * k, 1.0 - 0.1 * k);         // down
   for (int k = 1; k <= 20; ++k) around.emplace_back(2.0 + 0.1 * k, -1.0 + 0.1 * k);  // up
-  const auto w = PullString(r, around, 0.58);
+  const auto w = PullString(r, around, RoamanOptions{}.footprint());
   EXPECT_GE(w.size(), 3u);
   for (std::size_t k = 1; k < w.size(); ++k) EXPECT_TRUE(r.SegmentClear(w[k - 1], w[k], 0.58));
-  EXPECT_TRUE(PullString(g, {}, 0.58).empty());
+  EXPECT_TRUE(PullString(g, {}, RoamanOptions{}.footprint()).empty());
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ nav_core::PlanRequest Request(Eigen::Vector2d start, Eigen::Vector2d goal, bool 
 // A planner that has seen all of `ground` in [x0, x1] x [y0, y1] (within max_range) from a
 // rover at (x, y).
 std::unique_ptr<RoamanPlanner> Seen(const sim::HeightField& ground, const RoamanOptions& o,
-                                    double x, double y, double x0, double y0, double x1, double y1) {
+                                    double x, double y, double x0, double y0, double x1,
+                                    double y1) {
   auto planner = RoamanPlanner::Create(o);
   EXPECT_TRUE(planner.ok()) << planner.status().message();
   const Status s = (*planner)->AddScan(
@@ -46,7 +47,8 @@ void ExpectSafe(const RoamanPlanner& p, const RoamanPlan& plan) {
           << "leg " << k << " " << l.from.transpose() << " -> " << l.to.transpose();
     }
     if (k > 0) {
-      EXPECT_GE(pr.grid.ClearanceAt(l.from), pr.turn_clearance) << "turn before leg " << k;
+      EXPECT_GE(pr.grid.ClearanceAt(l.from), pr.footprint.TurnClearance(l.turn))
+          << "turn before leg " << k;
     }
   }
 }
@@ -101,7 +103,8 @@ TEST(Planner, ScansThatAreAllInvalidOrNaNAreRejectedByName) {
   EXPECT_EQ(st.code(), StatusCode::kInvalidArgument);
   EXPECT_NE(st.message().find("RangeScan 'overhead' has no usable point: 0 of"), std::string::npos);
   nav_core::RangeScan nan = s;
-  for (std::size_t k = 0; k < nan.xyz.size(); k += 6) nan.xyz[k] = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t k = 0; k < nan.xyz.size(); k += 6)
+    nan.xyz[k] = std::numeric_limits<float>::quiet_NaN();
   auto stats = (*planner)->Add(nan);
   ASSERT_TRUE(stats.ok()) << stats.status().message();
   EXPECT_EQ(stats->non_finite, (nan.xyz.size() + 5) / 6);
@@ -174,8 +177,9 @@ TEST(Planner, PlansTowardAGoalInTheShadowOfTheCulDeSac) {
   ASSERT_TRUE(planner.ok());
   testing::MastCamera cam;
   for (const auto& scan : testing::SynthesizePanorama(
-           CulDeSac(), testing::PanoramaPointings(cam, 45.0 * testing::kDeg, 3,
-                                                  {-8.0 * testing::kDeg, -28.0 * testing::kDeg}),
+           CulDeSac(),
+           testing::PanoramaPointings(cam, 45.0 * testing::kDeg, 3,
+                                      {-8.0 * testing::kDeg, -28.0 * testing::kDeg}),
            testing::RoverPose(CulDeSac(), 0, 0, 0))) {
     ASSERT_TRUE((*planner)->AddScan(scan).ok());
   }
@@ -191,7 +195,8 @@ TEST(Planner, PlansTowardAGoalInTheShadowOfTheCulDeSac) {
   EXPECT_LT(plan->goal_distance, 8.0 - o.min_progress);
   ExpectSafe(p, *plan);
   for (const Leg& l : plan->legs) {
-    for (double s = 0.0; s <= 1.0; s += 0.01) EXPECT_FALSE(InsideTheU(l.from + s * (l.to - l.from)));
+    for (double s = 0.0; s <= 1.0; s += 0.01)
+      EXPECT_FALSE(InsideTheU(l.from + s * (l.to - l.from)));
   }
   EXPECT_FALSE(plan->ToGlobalPlan().reaches_goal);
 }
@@ -264,7 +269,8 @@ TEST(Planner, AGoalNoRouteReachesIsAGoalErrorThatSaysSo) {
   EXPECT_EQ(p->last_failure(), PlanFailure::kBlocked);
   EXPECT_EQ(plan.status().message().rfind("every route to the goal (7, 0) is blocked: the ", 0), 0u)
       << plan.status().message();
-  EXPECT_NE(plan.status().message().find("0 corridors reported blocked (roaman: "), std::string::npos);
+  EXPECT_NE(plan.status().message().find("0 corridors reported blocked (roaman: "),
+            std::string::npos);
   EXPECT_NE(plan.status().message().find("; astar: "), std::string::npos);
 }
 
@@ -323,9 +329,9 @@ TEST(Planner, TheMapMemoryMergesPanoramasAsTheRoverMoves) {
   auto step = p->Plan(Request({0, 0}, {16, 0}, true));
   ASSERT_TRUE(step.ok()) << step.status().message();
   EXPECT_FALSE(step->reaches_goal);
-  ASSERT_TRUE(p->AddScan(testing::OverheadScan(f, 6, -4, 23, 4, 0.04,
-                                               testing::RoverPose(f, 8.0, 0.0, 0.0)))
-                  .ok());
+  ASSERT_TRUE(
+      p->AddScan(testing::OverheadScan(f, 6, -4, 23, 4, 0.04, testing::RoverPose(f, 8.0, 0.0, 0.0)))
+          .ok());
   EXPECT_GT(p->site_map().panorama(), 1);
   EXPECT_GT(p->site_map().center().x(), centre + 6.0);  // recentred on the rover
   auto there = p->Plan(Request({8, 0}, {16, 0}));

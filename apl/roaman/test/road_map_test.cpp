@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "rover/apl/roaman/waypoint_fit.hpp"
 #include "scenes.hpp"
 
 namespace rover::apl::roaman {
@@ -50,44 +51,56 @@ TEST(RoadMap, TheMedialAxisOfAStraightCorridorIsItsCentreLine) {
   // Every connection goes toward the goal, at most lookahead / cell rows ahead.
   for (int k = 0; k < road.nodes(); ++k) {
     for (int e = road.edge_first[k]; e < road.edge_first[k + 1]; ++e) {
-      const int dj = road.NodeCell(road.edge_to[static_cast<std::size_t>(e)]).y() - road.NodeCell(k).y();
+      const int dj =
+          road.NodeCell(road.edge_to[static_cast<std::size_t>(e)]).y() - road.NodeCell(k).y();
       EXPECT_GE(dj, 1);
       EXPECT_LE(dj, 40);
     }
   }
 }
 
-TEST(RoadMap, TheVirtualDriveDropsCellsTooNarrowToTurnOn) {
+TEST(RoadMap, TheVirtualDriveDropsCellsTooNarrowForTheFootprint) {
   TraversabilityMap t = Corridor(1.5);
-  // A 1.6 m wide gap between x = 4 and 7: the rover (turn radius 0.95 m) cannot turn there.
-  Paint(&t, {4.0, 1.3}, {7.0, 1.3}, 0.5, CellClass::kStep);
-  Paint(&t, {4.0, -1.3}, {7.0, -1.3}, 0.5, CellClass::kStep);
+  // A 1.0 m gap between x = 4 and 5: narrower than the 1.16 m rover.
+  Paint(&t, {4.0, 1.0}, {5.0, 1.0}, 0.5, CellClass::kStep);
+  Paint(&t, {4.0, -1.0}, {5.0, -1.0}, 0.5, CellClass::kStep);
   const PlanProblem p = Prepare(t, {8.0, 0.0});
   const RoadMap road = BuildRoadMap(p.grid, RoamanOptions{});
   int dropped_in_gap = 0;
   for (const AxisRun& r : road.runs) {
     const double x = p.grid.Center(r.axis, r.j).x();
-    if (x > 4.2 && x < 6.8) {
+    if (x > 4.0 && x < 5.0) {
       EXPECT_FALSE(r.kept);
       ++dropped_in_gap;
     }
   }
-  EXPECT_GT(dropped_in_gap, 40);
+  EXPECT_GE(dropped_in_gap, 19);
   EXPECT_GE(road.dropped, dropped_in_gap);
-  // The cell graph of A* cannot pass either; the road map has no path to the goal.
   auto path = LongestRoadPath(road, p, RoamanOptions{});
   ASSERT_FALSE(path.ok());
   EXPECT_EQ(path.status().code(), StatusCode::kNotFound);
   EXPECT_NE(path.status().message().find("no connected path reaches the goal anchor (8, 0)"),
             std::string::npos);
-  // Driving straight through a 1.6 m gap needs only half the width, 0.58 m: a lookahead longer
-  // than the gap lets the road map jump it.
-  RoamanOptions jump;
-  jump.lookahead = 5.0;  // the axis cells dropped run from x = 3.4 to 7.6 m
-  const RoadMap far = BuildRoadMap(p.grid, jump);
-  auto through = LongestRoadPath(far, p, jump);
-  ASSERT_TRUE(through.ok()) << through.status().message();
-  EXPECT_TRUE(through->reaches_goal);
+}
+
+TEST(RoadMap, ThePathTurnsOnlyWhereTheTurnIsSafe) {
+  // A 1.6 m gap (x = 2 to 5) the rover fits through driving straight but could not turn in
+  // (turn radius 0.95 m), then open ground; the goal lies off to the left beyond it.
+  TraversabilityMap t = ClassMap(-5, -5, 20, 5, 0.05, CellClass::kSafe);
+  Paint(&t, {2.0, 1.8}, {5.0, 1.8}, 1.0, CellClass::kStep);
+  Paint(&t, {2.0, -1.8}, {5.0, -1.8}, 1.0, CellClass::kStep);
+  const PlanProblem p = Prepare(t, {9.0, 2.5});
+  const RoamanOptions o;
+  auto path = LongestRoadPath(BuildRoadMap(p.grid, o), p, o);
+  ASSERT_TRUE(path.ok()) << path.status().message();
+  EXPECT_TRUE(path->reaches_goal);
+  const std::vector<Eigen::Vector2d>& v = path->vertices;
+  int cramped = 0;
+  for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+    EXPECT_TRUE(TurnSafe(p.grid, p.footprint, v[k - 1], v[k], v[k + 1])) << v[k].transpose();
+    cramped += p.grid.ClearanceAt(v[k]) < p.turn_clearance;
+  }
+  EXPECT_GT(cramped, 0);  // it did pass where a sharp turn would not have been safe
 }
 
 TEST(RoadMap, DepthFirstSearchTakesTheBranchThatReachesTheGoal) {

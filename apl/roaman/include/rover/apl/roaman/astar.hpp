@@ -4,8 +4,8 @@
 /// reference, and the shortest safe path the benchmark compares against), the region reachable
 /// from the rover, and string pulling from a cell path to turn-in-place + straight legs.
 ///
-/// Graph: cells whose clearance is at least `min_clearance` (the turn radius: a rover that
-/// follows the cells can turn anywhere on them), 8-connected; a diagonal move also needs both
+/// Graph: cells whose clearance is at least `min_clearance` (the planner uses half the footprint
+/// width: the rover can drive over them), 8-connected; a diagonal move also needs both
 /// cells it passes between. Move cost from a to b: |ab| (1 + w (p(a) + p(b)) / 2) with the
 /// clearance penalty p(c) = max(0, 1 - clearance(c) / ref) (w = clearance_weight, ref =
 /// clearance_ref), so paths keep away from hazards when it costs little. A* uses the octile
@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rover/apl/roaman/options.hpp"
 #include "rover/apl/roaman/planning_grid.hpp"
 #include "rover/base/status.hpp"
 
@@ -47,12 +48,15 @@ Result<GridPath> DijkstraSearch(const PlanningGrid& grid, Eigen::Vector2i from, 
 Layer<std::uint8_t> ReachableCells(const PlanningGrid& grid, Eigen::Vector2i from,
                                    double min_clearance);
 
-/// Turns a path of points into waypoints: from each waypoint, the farthest later point the
-/// rover can drive to straight (SegmentClear with `leg_clearance`) before the first that it
-/// cannot. Returns the waypoints, first and last point included.
+/// Turns a path of points into waypoints: from each waypoint, look ahead to the farthest later
+/// point the rover can drive to straight (SegmentClear with half the footprint width) before
+/// the first that it cannot; the next waypoint is the farthest point up to there where the rover
+/// can turn to any heading (clearance >= the turn radius), or that farthest point when there is
+/// none. Returns the waypoints, first and last point included. (Turns at the fallback points
+/// may not be safe: the planner checks the result with PolylineSafe.)
 std::vector<Eigen::Vector2d> PullString(const PlanningGrid& grid,
                                         const std::vector<Eigen::Vector2d>& points,
-                                        double leg_clearance);
+                                        const Footprint& footprint);
 
 /// [m] length of a polyline.
 double PolylineLength(const std::vector<Eigen::Vector2d>& points);

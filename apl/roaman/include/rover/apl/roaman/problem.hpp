@@ -42,7 +42,8 @@ const char* PlanFailureName(PlanFailure f);
 struct PlanProblem {
   nav_core::PlanRequest request;
   PlanningGrid grid;
-  double turn_clearance = 0.0;  ///< [m] clearance a turn in place needs (turn radius)
+  Footprint footprint;          ///< the rover, for turn tests
+  double turn_clearance = 0.0;  ///< [m] clearance any turn in place is safe with (turn radius)
   double leg_clearance = 0.0;   ///< [m] clearance a straight drive needs (half width)
   Eigen::Vector2d start_anchor = Eigen::Vector2d::Zero();  ///< [m] site
   int start_i = 0, start_j = 0;                            ///< its cell
@@ -66,6 +67,7 @@ Result<PlanProblem> PreparePlan(const TraversabilityMap& map, const nav_core::Pl
 std::string FormatPoint(const Eigen::Vector2d& p);
 /// The nearest non-safe cell to p within `radius` on the grid, as "<class> at (x, y), d m away",
 /// or "the edge of the planning grid, d m away", or "none within r m".
-std::string DescribeNearestHazard(const PlanningGrid& grid, const Eigen::Vector2d& p, double radius);
+std::string DescribeNearestHazard(const PlanningGrid& grid, const Eigen::Vector2d& p,
+                                  double radius);
 
 }  // namespace rover::apl::roaman

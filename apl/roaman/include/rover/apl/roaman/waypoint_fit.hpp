@@ -4,20 +4,26 @@
 /// longest connected path in order to determine waypoints"; FIDO drives each leg as a turn in
 /// place followed by a straight drive).
 ///
-/// 1. SelectWaypoints: Douglas-Peucker over the path's vertices (the road-map nodes, all of
-///    which the rover can turn on): a chord replaces the vertices between its ends when no point
-///    of the path between them lies farther than fit_tolerance from it AND the rover can drive
-///    it straight (every cell under it has half the footprint width of clearance); otherwise it
-///    splits at the farthest vertex (at the middle one when only the drive test failed).
+/// Turn safety: at an interior waypoint the rover turns in place by the angle between the legs
+/// before and after it; that needs Footprint::TurnClearance(angle) of clearance there (W/2 for
+/// no turn, the turn radius for 30° or more at the sim rover's size).
+///
+/// 1. SelectWaypoints: Douglas-Peucker over the path's vertices (whose turns the road map made
+///    safe): a chord replaces the vertices between its ends when no point of the path between
+///    them lies farther than fit_tolerance from it AND the rover can drive it straight (every
+///    cell under it has half the footprint width of clearance); otherwise it splits at the
+///    farthest vertex (at the middle one when only the drive test failed). A kept waypoint whose
+///    (now sharper) turn is not safe gets back the path's vertices on either side of it, until
+///    every turn is safe (the whole path is).
 /// 2. FitWaypoints: the interior waypoints w_1 .. w_{M-1} (the ends stay fixed) move to
 ///    minimise the least-squares error of the path against the polyline,
 ///        E(w) = sum_k d(p_k, polyline(w))^2     (p_k: the path sampled every cell),
 ///    subject to: every leg w_i w_{i+1} a clear straight drive (min clearance under it >= half
-///    the footprint width) and every interior waypoint a safe turn (clearance >= the turn
-///    radius). NLopt's COBYLA (derivative-free, inequality constraints) does the minimisation
-///    from the Douglas-Peucker waypoints, which satisfy the constraints; the best point that
-///    satisfies them (checked exactly as the constraints are stated) is returned, so the fit
-///    never makes a plan unsafe or worse than its start.
+///    the footprint width) and every interior waypoint a safe turn (clearance >=
+///    TurnClearance of its turn). NLopt's COBYLA (derivative-free, inequality constraints) does the
+///    minimisation from the Douglas-Peucker waypoints, which satisfy the constraints; the best
+///    point that satisfies them (checked exactly as the constraints are stated) is returned, so the
+///    fit never makes a plan unsafe or worse than its start.
 /// 3. MakeLegs: each pair of consecutive waypoints is one leg: turn in place to its heading,
 ///    drive straight its length.
 
@@ -25,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "rover/apl/roaman/options.hpp"
 #include "rover/apl/roaman/planning_grid.hpp"
 
 namespace rover::apl::roaman {
@@ -47,9 +54,16 @@ std::vector<Leg> MakeLegs(const std::vector<Eigen::Vector2d>& waypoints);
 std::vector<Eigen::Vector2d> SamplePath(const std::vector<Eigen::Vector2d>& vertices, double step,
                                         std::vector<int>* vertex_index);
 
+/// [rad] signed turn at b from the direction a->b to b->c, in (-pi, pi].
+double TurnAngle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+/// The turn at b (arriving from a, leaving for c) is safe on the grid.
+bool TurnSafe(const PlanningGrid& grid, const Footprint& footprint, const Eigen::Vector2d& a,
+              const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
 /// Step 1: indices into `vertices` of the waypoints kept (first and last always).
-std::vector<int> SelectWaypoints(const PlanningGrid& grid, const std::vector<Eigen::Vector2d>& vertices,
-                                 double tolerance, double leg_clearance);
+std::vector<int> SelectWaypoints(const PlanningGrid& grid,
+                                 const std::vector<Eigen::Vector2d>& vertices, double tolerance,
+                                 const Footprint& footprint);
 
 /// E(w) for the polyline `waypoints` against `points`.
 double FitError(const std::vector<Eigen::Vector2d>& points,
@@ -57,7 +71,7 @@ double FitError(const std::vector<Eigen::Vector2d>& points,
 
 /// The polyline's legs are clear straight drives and its interior vertices safe turns.
 bool PolylineSafe(const PlanningGrid& grid, const std::vector<Eigen::Vector2d>& waypoints,
-                  double turn_clearance, double leg_clearance);
+                  const Footprint& footprint);
 
 struct FitResult {
   std::vector<Eigen::Vector2d> waypoints;
@@ -69,7 +83,7 @@ struct FitResult {
 
 /// Step 2. `initial` must satisfy PolylineSafe (then so does the result).
 FitResult FitWaypoints(const PlanningGrid& grid, const std::vector<Eigen::Vector2d>& points,
-                       const std::vector<Eigen::Vector2d>& initial, double turn_clearance,
-                       double leg_clearance, int max_evaluations);
+                       const std::vector<Eigen::Vector2d>& initial, const Footprint& footprint,
+                       int max_evaluations);
 
 }  // namespace rover::apl::roaman
