@@ -4,9 +4,20 @@
 #       A library. Its layer is the top-level folder it lives in (idl, core, ddl, dl, apl, sim,
 #       deploy, tests) unless LAYER overrides it. Public headers live in <folder>/include.
 #   rover_add_service(NAME <exe> SOURCES ... [DEPS ...] [LAYER <layer>] [SIMBODY])
-#       A service or tool executable, written to ${CMAKE_BINARY_DIR}/bin.
-#   rover_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s] [SIMBODY])
-#       A GoogleTest executable registered with CTest (one CTest entry per executable).
+#       A service: a process that joins the bus (RunServiceMain, --help-params), with a page
+#       docs/services/<exe>.md. Written to ${CMAKE_BINARY_DIR}/bin like the two below.
+#   rover_add_tool(...)       same arguments: a command-line tool for people (roverctl, rover-drive)
+#   rover_add_benchmark(...)  same arguments: prints figures beside a baseline measured in the
+#       same run; `ninja benchmarks` builds them all. rover_write_executable_lists() writes
+#       build/rover_executables.txt (kind and name per line) for the consistency tests.
+#   rover_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s] [SIMBODY]
+#                  [GROUP_SUITES <suite>... | ONE_ENTRY])
+#       A GoogleTest executable. Every test case is its own CTest entry <test>.<Suite>.<Case>
+#       (listed after the build by gtest_discover_tests), with the executable's labels,
+#       environment and TIMEOUT (per case). Cases that share an expensive fixture stay together:
+#       GROUP_SUITES makes each named suite one entry <test>.<Suite> (a SetUpTestSuite that
+#       renders or loads once); ONE_ENTRY makes the whole executable one entry <test> (cases that
+#       must not run beside each other, or that all start the same service sets).
 #   rover_check_layers()
 #       Called once at the end of the top-level CMakeLists.txt: fails the configure step if any
 #       module links a module of a layer it may not use, naming both targets.
@@ -18,6 +29,7 @@
 # DDS (rover_runtime, rover_idl or CycloneDDS::ddsc): only its service executable binds topics.
 
 include_guard(GLOBAL)
+include(GoogleTest)
 
 set_property(GLOBAL PROPERTY ROVER_MODULES "")
 
@@ -89,10 +101,11 @@ function(rover_add_module)
   _rover_register(${M_NAME} ${layer} library)
 endfunction()
 
-function(rover_add_service)
+# One executable of `kind` (service, tool or benchmark), written to ${CMAKE_BINARY_DIR}/bin.
+function(_rover_add_executable kind)
   cmake_parse_arguments(S "SIMBODY" "NAME;LAYER;OUTPUT_NAME" "SOURCES;DEPS" ${ARGN})
   if(NOT S_NAME OR NOT S_SOURCES)
-    message(FATAL_ERROR "rover_add_service: NAME and SOURCES are required")
+    message(FATAL_ERROR "rover_add_${kind}: NAME and SOURCES are required")
   endif()
   _rover_layer_of(layer LAYER "${S_LAYER}")
   add_executable(${S_NAME} ${S_SOURCES})
@@ -103,15 +116,29 @@ function(rover_add_service)
     set_target_properties(${S_NAME} PROPERTIES OUTPUT_NAME ${S_OUTPUT_NAME})
   endif()
   _rover_common_target_setup(${S_NAME} "${S_SIMBODY}")
-  _rover_register(${S_NAME} ${layer} service)
+  _rover_register(${S_NAME} ${layer} ${kind})
+  set_property(GLOBAL APPEND PROPERTY ROVER_EXECUTABLES_${kind} ${S_NAME})
   install(TARGETS ${S_NAME} RUNTIME DESTINATION bin)
 endfunction()
 
+function(rover_add_service)
+  _rover_add_executable(service ${ARGN})
+endfunction()
+function(rover_add_tool)
+  _rover_add_executable(tool ${ARGN})
+endfunction()
+function(rover_add_benchmark)
+  _rover_add_executable(benchmark ${ARGN})
+endfunction()
+
 function(rover_add_test)
-  cmake_parse_arguments(T "SIMBODY;NO_GTEST_MAIN" "NAME;TIMEOUT;LAYER" "SOURCES;DEPS;LABELS;ARGS"
-                        ${ARGN})
+  cmake_parse_arguments(T "SIMBODY;NO_GTEST_MAIN;ONE_ENTRY" "NAME;TIMEOUT;LAYER"
+                        "SOURCES;DEPS;LABELS;ARGS;GROUP_SUITES" ${ARGN})
   if(NOT T_NAME OR NOT T_SOURCES)
     message(FATAL_ERROR "rover_add_test: NAME and SOURCES are required")
+  endif()
+  if(T_ONE_ENTRY AND T_GROUP_SUITES)
+    message(FATAL_ERROR "rover_add_test(${T_NAME}): ONE_ENTRY and GROUP_SUITES exclude each other")
   endif()
   if(NOT BUILD_TESTING)
     return()
@@ -129,15 +156,44 @@ function(rover_add_test)
   target_compile_definitions(${T_NAME} PRIVATE
     ROVER_SOURCE_DIR="${PROJECT_SOURCE_DIR}" ROVER_BINARY_DIR="${CMAKE_BINARY_DIR}"
     ROVER_SHARED_DATA_DIR="${ROVER_SHARED_DATA_DIR}")
-  add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 120)
   endif()
   if(NOT T_LABELS)
     set(T_LABELS unit)
   endif()
-  set_tests_properties(${T_NAME} PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}"
-    ENVIRONMENT "ROVER_BIN_DIR=${CMAKE_BINARY_DIR}/bin;ROVER_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  set(env "ROVER_BIN_DIR=${CMAKE_BINARY_DIR}/bin" "ROVER_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  if(T_ONE_ENTRY)
+    add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
+    set_tests_properties(${T_NAME} PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}"
+                         ENVIRONMENT "${env}")
+  else()
+    set(grouped "")
+    foreach(suite IN LISTS T_GROUP_SUITES)
+      add_test(NAME ${T_NAME}.${suite} COMMAND ${T_NAME} --gtest_filter=${suite}.* ${T_ARGS})
+      # A suite name that matches no case would pass silently.
+      set_tests_properties(${T_NAME}.${suite} PROPERTIES TIMEOUT ${T_TIMEOUT}
+                           LABELS "${T_LABELS}" ENVIRONMENT "${env}"
+                           FAIL_REGULAR_EXPRESSION "Running 0 tests")
+      list(APPEND grouped "${suite}.*")
+    endforeach()
+    set(filter "")
+    if(grouped)
+      list(JOIN grouped ":" excluded)
+      set(filter TEST_FILTER "-${excluded}")
+    endif()
+    gtest_discover_tests(${T_NAME} EXTRA_ARGS ${T_ARGS} TEST_PREFIX "${T_NAME}." ${filter}
+                         TEST_LIST ${T_NAME}_CASES DISCOVERY_TIMEOUT 120)
+    # The cases' properties are set by a script CTest reads after the discovered list:
+    # gtest_discover_tests(PROPERTIES) cannot pass a value that is itself a list (ENVIRONMENT).
+    set(props "${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_case_properties.cmake")
+    file(WRITE "${props}"
+      "if(${T_NAME}_CASES)\n"
+      "  set_tests_properties(\${${T_NAME}_CASES} PROPERTIES TIMEOUT ${T_TIMEOUT}\n"
+      "    LABELS [==[${T_LABELS}]==] ENVIRONMENT [==[${env}]==])\n"
+      "endif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${props}")
+  endif()
   _rover_register(${T_NAME} ${layer} test)
 endfunction()
 
@@ -192,15 +248,38 @@ function(rover_check_layers)
   endif()
 endfunction()
 
+# Writes ${CMAKE_BINARY_DIR}/rover_executables.txt ("<kind> <name>" per line) and adds the
+# `benchmarks` target. Called once at the end of the top-level CMakeLists.txt.
+function(rover_write_executable_lists)
+  set(text "")
+  foreach(kind service tool benchmark)
+    get_property(names GLOBAL PROPERTY ROVER_EXECUTABLES_${kind})
+    list(SORT names)
+    foreach(name IN LISTS names)
+      string(APPEND text "${kind} ${name}\n")
+    endforeach()
+  endforeach()
+  file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/rover_executables.txt" CONTENT "${text}")
+  get_property(benchmarks GLOBAL PROPERTY ROVER_EXECUTABLES_benchmark)
+  if(benchmarks)
+    add_custom_target(benchmarks DEPENDS ${benchmarks})
+  endif()
+endfunction()
+
 # Adds every sub-folder of the current folder that has a CMakeLists.txt, in sorted order.
 # ROVER_MODULE_FILTER (a regex over paths relative to the source root, e.g. "dl/stereo|core/.*")
 # limits which component folders are added, for building one module in isolation.
+# EXCLUDE names sub-folders the caller adds itself.
 set(ROVER_MODULE_FILTER "" CACHE STRING "Regex of component folders to build (empty = all)")
 function(rover_add_subdirectories)
+  cmake_parse_arguments(A "" "" "EXCLUDE" ${ARGN})
   file(GLOB children RELATIVE "${CMAKE_CURRENT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/*/CMakeLists.txt")
   list(SORT children)
   foreach(child IN LISTS children)
     get_filename_component(dir "${child}" DIRECTORY)
+    if(dir IN_LIST A_EXCLUDE)
+      continue()
+    endif()
     file(RELATIVE_PATH rel "${PROJECT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/${dir}")
     if(ROVER_MODULE_FILTER AND NOT rel MATCHES "^(${ROVER_MODULE_FILTER})$")
       continue()

@@ -129,8 +129,17 @@ void JointsService::OnTimer() {
   rover_ddl_JointState out{};
   ctx_->Stamp(out.header, "rover");
   if (js.stamp_ns > 0) out.header.stamp_ns = js.stamp_ns;
-  JointStateToIdl(js, &out);
-  (void)writer_.Write(out);
+  // The stamp is the newest input's time of validity. A tick that found no input newer than the
+  // last sample's (the run clock advanced two timer periods between inputs, as it does in
+  // lockstep with the simulator) would publish the same state with the same stamp again, which
+  // consumers reject as not after the previous sample. So each input state goes out once; only a
+  // STALE state is repeated at the timer rate, so that consumers hear that the inputs stopped.
+  const bool repeat = last_stamp_ns_.has_value() && out.header.stamp_ns == *last_stamp_ns_;
+  if (!repeat || h.health == SensorHealth::kStale) {
+    JointStateToIdl(js, &out);
+    (void)writer_.Write(out);
+    last_stamp_ns_ = out.header.stamp_ns;
+  }
   ctx_->SetHealth(JointHealthToIdl(h.health), h.reason);
 }
 

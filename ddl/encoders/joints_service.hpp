@@ -43,6 +43,7 @@ class JointsService final : public Service {
   std::optional<InputMonitor> pots_;
   ClockJumpDetector clock_jump_;
   dds::Writer<rover_ddl_JointState> writer_;
+  std::optional<std::int64_t> last_stamp_ns_;  // header.stamp_ns of the last ddl/joint_state
 };
 
 }  // namespace rover::ddl

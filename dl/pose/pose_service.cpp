@@ -3,10 +3,15 @@
 // docs/services/dl-pose.md.
 #include "pose_service.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 #include "rover/base/check.hpp"
 #include "rover/base/log.hpp"
@@ -49,6 +54,30 @@ std::string Num(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
+}
+
+// Checkpoint values: exact round trip of doubles.
+std::string Exact(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+std::string Exact(const double* v, int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i) out += (i ? " " : "") + Exact(v[i]);
+  return out;
+}
+// `n` finite numbers from `text`, or nullopt.
+std::optional<std::vector<double>> Numbers(const std::string& text, int n) {
+  std::istringstream in(text);
+  std::vector<double> v;
+  double x = 0;
+  while (in >> x) v.push_back(x);
+  if (!in.eof() || static_cast<int>(v.size()) != n) return std::nullopt;
+  for (double d : v) {
+    if (!std::isfinite(d)) return std::nullopt;
+  }
+  return v;
 }
 
 }  // namespace
@@ -168,6 +197,24 @@ void PoseService::DeclareParameters(ParamSet& p) {
   p.Declare("ephemeris.run_start_s", 0.0,
             "[s] run-clock time of the run start (0 = sim/clock zero, as the simulator)")
       .Range(-1e11, 1e11);
+  const ResumeOptions r;
+  p.Declare("resume.enabled", r.enabled,
+            "in a supervised set, keep a checkpoint and resume from it after a restart (else a "
+            "restarted dl-pose starts over at start.*)");
+  p.Declare("resume.checkpoint_period_s", r.checkpoint_period_s,
+            "[s] run time between checkpoints of the published estimate")
+      .Range(0.01, 3600.0);
+  p.Declare("resume.max_age_s", r.max_age_s,
+            "[s] run time from the last checkpoint beyond which a restarted dl-pose does not "
+            "resume but declares the pose unknown")
+      .Range(0.0, 86400.0);
+  p.Declare("resume.max_speed", r.max_speed,
+            "[m/s] how fast the rover may have moved while dl-pose was down (position sigma "
+            "inflation per second of the gap)")
+      .Range(0.0, 10.0);
+  p.Declare("resume.max_yaw_rate_deg_s", r.max_yaw_rate / kDeg,
+            "[deg/s] how fast it may have turned while dl-pose was down (heading sigma inflation)")
+      .Range(0.0, 90.0);
   p.Declare("sun.enabled", true, "apply ddl/sun_sensor heading updates");
   p.Declare("odometry_only.enabled", true,
             "also run an IMU + wheel odometry filter (no sun, no visual odometry) and publish "
@@ -236,6 +283,13 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   sun_min_elevation_ = p.GetDouble("sun.min_elevation_deg") * kDeg;
   sun_max_rate_ = p.GetDouble("sun.max_rate_deg_s") * kDeg;
   imu_stale_s_ = p.GetDouble("imu_stale_s");
+  resume_.enabled = p.GetBool("resume.enabled");
+  resume_.checkpoint_period_s = p.GetDouble("resume.checkpoint_period_s");
+  resume_.max_age_s = p.GetDouble("resume.max_age_s");
+  resume_.max_speed = p.GetDouble("resume.max_speed");
+  resume_.max_yaw_rate = p.GetDouble("resume.max_yaw_rate_deg_s") * kDeg;
+  if (resume_.enabled) checkpoints_ = CheckpointStore::FromEnvironment(ctx.name());
+  LoadCheckpoint();
 
   auto pw = ctx.MakeWriter<rover_dl_PoseEstimate>("dl/pose");
   if (!pw.ok()) return pw.status();
@@ -261,7 +315,12 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
       "dl/relative_pose",
       [this](const dds::Sample<rover_dl_RelativePose>& s) { OnRelativePose(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("publish_rate_hz")), [this] { OnTimer(); });
-  ctx.SetHealth(rover_HEALTH_DEGRADED, "levelling: waiting for stationary ddl/imu samples");
+  if (uninitialised_) {
+    ctx.SetHealth(rover_HEALTH_FAILED, *uninitialised_);
+  } else {
+    ctx.SetHealth(rover_HEALTH_DEGRADED, saved_ ? "restarted: resuming from checkpoint"
+                                                : "levelling: waiting for stationary ddl/imu samples");
+  }
   return Status::Ok();
 }
 
@@ -304,6 +363,8 @@ void PoseService::OnImu(const rover_ddl_Imu& m) {
     Restart("ddl/imu stamp " + Num(t.seconds()) + " s is before the filter time " +
             Num(ekf_->time().seconds()) + " s (run clock reset)");
   }
+  if (uninitialised_) return;  // the pose is unknown: nothing to propagate
+  if (!ekf_->initialized() && saved_ && !ResumeOrRefuse(t)) return;
   if (!ekf_->initialized()) {
     Level(t, w, f);
     return;
@@ -475,6 +536,10 @@ void PoseService::PublishRejectedInput(MotionSource source, Time t, const std::s
 }
 
 void PoseService::OnTimer() {
+  if (uninitialised_) {
+    ctx_->SetHealth(rover_HEALTH_FAILED, *uninitialised_);
+    return;
+  }
   if (!ekf_->initialized()) {
     ctx_->SetHealth(rover_HEALTH_DEGRADED, "levelling: waiting for stationary ddl/imu samples");
     return;
@@ -491,12 +556,151 @@ void PoseService::OnTimer() {
     const Status w = odometry_only_writer_.Write(o);
     if (!w.ok()) WarnCounted("dl/pose_odometry write failed", w.message());
   }
+  if (!last_checkpoint_ || ekf_->time() < *last_checkpoint_ ||
+      ToSeconds(ekf_->time() - *last_checkpoint_) >= resume_.checkpoint_period_s) {
+    SaveCheckpoint();
+  }
   const double age = ToSeconds(ctx_->Now() - ekf_->time());
   if (age > imu_stale_s_) {
     ctx_->SetHealth(rover_HEALTH_DEGRADED, "no ddl/imu for " + Num(age) + " s");
   } else {
     ctx_->SetHealth(rover_HEALTH_OK, "");
   }
+}
+
+// ---- restart: checkpoint, resume or refuse ------------------------------------------------------
+
+namespace {
+
+// Keys of one filter's checkpoint under `prefix` ("" for dl/pose, "odometry_only." for the other).
+void AddSaved(const PoseEstimate& e, const std::string& prefix,
+              std::map<std::string, std::string>* out) {
+  const double q[4] = {e.orientation.w(), e.orientation.x(), e.orientation.y(),
+                       e.orientation.z()};
+  double sigma[6];
+  for (int i = 0; i < 6; ++i) sigma[i] = std::sqrt(std::max(e.covariance(i, i), 0.0));
+  (*out)[prefix + "stamp_ns"] = std::to_string(e.stamp.ns);
+  (*out)[prefix + "position"] = Exact(e.position.data(), 3);
+  (*out)[prefix + "attitude_wxyz"] = Exact(q, 4);
+  (*out)[prefix + "sigma_xyz_rpy"] = Exact(sigma, 6);
+  (*out)[prefix + "gyro_bias"] = Exact(e.gyro_bias.data(), 3);
+  (*out)[prefix + "odometer"] = Exact(e.odometer);
+}
+
+}  // namespace
+
+void PoseService::SaveCheckpoint() {
+  if (!checkpoints_.enabled()) return;
+  std::map<std::string, std::string> fields;
+  AddSaved(ekf_->Estimate(), "", &fields);
+  if (odometry_only_ && odometry_only_->initialized()) {
+    AddSaved(odometry_only_->Estimate(), "odometry_only.", &fields);
+  }
+  const Status s = checkpoints_.Save(fields);
+  if (!s.ok()) WarnCounted("checkpoint not written", s.message());
+  last_checkpoint_ = ekf_->time();
+}
+
+void PoseService::LoadCheckpoint() {
+  saved_.reset();
+  saved_odometry_only_.reset();
+  uninitialised_.reset();
+  auto loaded = checkpoints_.Load();
+  if (!loaded.ok()) {
+    uninitialised_ = "pose unknown after restart: " + loaded.status().message();
+    log::Error("checkpoint unreadable: pose unknown", {{"reason", loaded.status().message()}});
+    return;
+  }
+  if (!loaded->has_value()) return;  // a first start in this set
+  const auto& f = **loaded;
+  auto read = [&](const std::string& prefix) -> std::optional<Saved> {
+    auto get = [&](const char* key, int n) -> std::optional<std::vector<double>> {
+      const auto it = f.find(prefix + key);
+      return it == f.end() ? std::nullopt : Numbers(it->second, n);
+    };
+    const auto stamp = get("stamp_ns", 1);
+    const auto pos = get("position", 3);
+    const auto q = get("attitude_wxyz", 4);
+    const auto sigma = get("sigma_xyz_rpy", 6);
+    const auto bias = get("gyro_bias", 3);
+    const auto odo = get("odometer", 1);
+    if (!stamp || !pos || !q || !sigma || !bias || !odo) return std::nullopt;
+    Saved s;
+    s.stamp = Time{static_cast<std::int64_t>((*stamp)[0])};
+    s.position = {(*pos)[0], (*pos)[1], (*pos)[2]};
+    s.attitude = Eigen::Quaterniond((*q)[0], (*q)[1], (*q)[2], (*q)[3]);
+    if (!(std::abs(s.attitude.norm() - 1.0) < 1e-6)) return std::nullopt;
+    s.attitude.normalize();
+    s.position_sigma = {(*sigma)[0], (*sigma)[1], (*sigma)[2]};
+    s.rpy_sigma = {(*sigma)[3], (*sigma)[4], (*sigma)[5]};
+    s.gyro_bias = {(*bias)[0], (*bias)[1], (*bias)[2]};
+    s.odometer = (*odo)[0];
+    return s;
+  };
+  saved_ = read("");
+  if (!saved_) {
+    uninitialised_ = "pose unknown after restart: checkpoint " + checkpoints_.path() +
+                     " has no complete estimate";
+    log::Error("checkpoint incomplete: pose unknown", {{"path", checkpoints_.path()}});
+    return;
+  }
+  if (odometry_only_) saved_odometry_only_ = read("odometry_only.");
+  log::Info("restarted: checkpoint found", {{"path", checkpoints_.path()},
+                                            {"t_s", saved_->stamp.seconds()}});
+}
+
+bool PoseService::ResumeOrRefuse(Time t) {
+  const Saved saved = *saved_;
+  saved_.reset();
+  const double gap = ToSeconds(t - saved.stamp);
+  if (gap < -kClockResetS) {
+    // The run clock is behind the checkpoint: a new run (simulator reset), not a restart.
+    log::Info("checkpoint is from a later run time: starting afresh",
+              {{"checkpoint_t_s", saved.stamp.seconds()}, {"t_s", t.seconds()}});
+    saved_odometry_only_.reset();
+    return true;
+  }
+  if (gap > resume_.max_age_s) {
+    uninitialised_ = "pose unknown after restart: the last checkpoint (t = " +
+                     Num(saved.stamp.seconds()) + " s) is " + Num(gap) +
+                     " s old, more than resume.max_age_s " + Num(resume_.max_age_s) + " s";
+    log::Error("restarted without a usable checkpoint: pose unknown, dl/pose not published",
+               {{"reason", *uninitialised_}});
+    ctx_->SetHealth(rover_HEALTH_FAILED, *uninitialised_);
+    return false;
+  }
+  const double g = std::max(gap, 0.0);
+  auto init_from = [&](const Saved& s) {
+    EkfInitialState init;
+    init.stamp = t;
+    init.position = s.position;
+    init.attitude = s.attitude;
+    init.gyro_bias = s.gyro_bias;
+    init.odometer = s.odometer;
+    const double grow_p = resume_.max_speed * g;
+    for (int i = 0; i < 3; ++i) init.position_sigma[i] = std::hypot(s.position_sigma[i], grow_p);
+    init.rpy_sigma = s.rpy_sigma;
+    init.rpy_sigma.z() = std::hypot(s.rpy_sigma.z(), resume_.max_yaw_rate * g);
+    init.gyro_bias_sigma = start_.gyro_bias_sigma;
+    return init;
+  };
+  const Status s = ekf_->Initialize(init_from(saved));
+  if (!s.ok()) {
+    uninitialised_ = "pose unknown after restart: checkpoint rejected: " + s.message();
+    ctx_->SetHealth(rover_HEALTH_FAILED, *uninitialised_);
+    return false;
+  }
+  if (odometry_only_) {
+    // Without its own checkpoint the baseline resumes from dl/pose's.
+    const Status r = odometry_only_->Initialize(init_from(saved_odometry_only_.value_or(saved)));
+    ROVER_DEMAND(r.ok());
+  }
+  saved_odometry_only_.reset();
+  levelling_ = Levelling{};
+  log::Info("pose estimator resumed from checkpoint",
+            {{"checkpoint_t_s", saved.stamp.seconds()}, {"t_s", t.seconds()}, {"gap_s", gap}});
+  ctx_->SetHealth(rover_HEALTH_OK, "");
+  return true;
 }
 
 }  // namespace rover::dl

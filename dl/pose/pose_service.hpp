@@ -30,6 +30,21 @@
 /// plausible accelerometer samples seen (level if none) and says so in a warning. Until then
 /// nothing is published on dl/pose and the heartbeat reports DEGRADED.
 ///
+/// Restart (kill -9, crash: the supervisor starts it again): in a supervised set dl-pose keeps a
+/// checkpoint of its last published estimate every resume.checkpoint_period_s of run time
+/// (rover/base/checkpoint.hpp: $ROVER_STATE_DIR/checkpoints/<name>.ckpt, valid for this set's
+/// ROVER_SET_ID only). A restarted dl-pose never starts over at start.* as if nothing had
+/// happened: on its first usable ddl/imu sample it either
+///   - resumes from the checkpoint (position, attitude, gyro bias, odometer; both filters), the
+///     covariance inflated for what may have happened while it was down: position sigma grown
+///     by resume.max_speed, heading sigma by resume.max_yaw_rate_deg_s, times the run-clock gap
+///     (quadrature); heartbeat OK "resumed from checkpoint ..."; or
+///   - declares itself uninitialised when the checkpoint is older than resume.max_age_s or
+///     unreadable: no dl/pose at all, heartbeat FAILED "pose unknown after restart: ...", so
+///     nothing drives on it (the set must be restarted or the pose set by an operator).
+/// A checkpoint stamped more than 1 s after the first sample means the run clock went back (a new
+/// run): it is ignored and the filter levels as at a first start.
+///
 /// Bad samples never crash the service: FAILED/STALE or non-finite samples are dropped (counted
 /// in warnings), library errors are logged, and a run-clock reset (a sample more than 1 s older
 /// than the filter, e.g. after a simulator reset) restarts the filter and the levelling.
@@ -39,6 +54,7 @@
 #include <optional>
 #include <string>
 
+#include "rover/base/checkpoint.hpp"
 #include "rover/dl/locomotion/wheel_odometry.hpp"
 #include "rover/dl/pose/pose_ekf.hpp"
 #include "rover/geometry/mars_sun.hpp"
@@ -87,6 +103,23 @@ class PoseService final : public Service {
     double level_timeout_s = 30.0;
     bool estimate_gyro_bias = true;
   };
+  struct ResumeOptions {
+    bool enabled = true;
+    double checkpoint_period_s = 1.0;
+    double max_age_s = 60.0;
+    double max_speed = 0.1;                       // [m/s]
+    double max_yaw_rate = 0.034906585039886591;   // [rad/s] 2 deg/s
+  };
+  /// A checkpoint read back: one filter's state.
+  struct Saved {
+    Time stamp;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d position_sigma = Eigen::Vector3d::Zero();
+    Eigen::Vector3d rpy_sigma = Eigen::Vector3d::Zero();
+    Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+    double odometer = 0.0;
+  };
   struct Levelling {
     std::optional<Time> first;                        // first usable IMU sample
     Eigen::Vector3d f_sum = Eigen::Vector3d::Zero();  // current stationary stretch
@@ -109,6 +142,12 @@ class PoseService final : public Service {
   void Start(Time t, const Eigen::Vector3d& f_mean, const Eigen::Vector3d& bias,
              double bias_span_s, const char* how);
   void Restart(const std::string& why);
+  /// Reads this set's checkpoint at configuration (into saved_, or uninitialised_ on a bad one).
+  void LoadCheckpoint();
+  void SaveCheckpoint();
+  /// On the first usable sample after a restart: resume from saved_ or declare the pose unknown.
+  /// Returns true when it resumed.
+  bool ResumeOrRefuse(Time t);
   void PublishEvents();
   void PublishRejectedInput(MotionSource source, Time t, const std::string& message);
   /// Logs the 1st, 10th, 100th, ... occurrence of `what` (a warning that cannot flood sys/event).
@@ -130,6 +169,12 @@ class PoseService final : public Service {
   std::optional<WheelOdometry> odometry_;
   std::optional<geometry::SunEphemeris> ephemeris_;
   Levelling levelling_;
+  ResumeOptions resume_;
+  CheckpointStore checkpoints_;
+  std::optional<Saved> saved_;                 // the filter's checkpoint
+  std::optional<Saved> saved_odometry_only_;   // the odometry-only filter's
+  std::optional<Time> last_checkpoint_;
+  std::optional<std::string> uninitialised_;   // why the pose is unknown after a restart
   dds::Writer<rover_dl_PoseEstimate> pose_writer_;
   dds::Writer<rover_dl_EstimatorEvent> event_writer_;
   dds::Writer<rover_dl_PoseEstimate> odometry_only_writer_;

@@ -74,7 +74,7 @@ class RoverSim final : public rover::Service {
     rtf_ = p.GetDouble("sim.real_time_factor");
     image_size_ = static_cast<int>(p.GetInt("camera.image_size"));
     render_seed_ = static_cast<std::uint64_t>(p.GetInt("camera.render_seed"));
-    cameras_ = rover::sim::DefaultStereoCameras(image_size_);
+    cameras_ = rover::sim::DefaultStereoCameras(image_size_, engine_->rover());
     terrain_ = std::make_shared<const rover::sim::Terrain>(engine_->world().terrain);
     paused_ = p.GetBool("sim.start_paused");
     lockstep_lead_s_ = p.GetDouble("sim.lockstep_lead_s");
@@ -367,7 +367,7 @@ class RoverSim final : public rover::Service {
     const auto readings = engine_->physics().Readings();
     rover::sim::MastState mast{readings.joint_angle_rad[rover::hw::kMastPan],
                                readings.joint_angle_rad[rover::hw::kMastTilt]};
-    auto spec = rover::sim::MakeCameraPairSpec(*def, mast);
+    auto spec = rover::sim::MakeCameraPairSpec(*def, mast, engine_->rover().mast);
     if (!spec.ok()) {
       rover::log::Error("camera pair", {{"error", spec.status().message()}});
       return;

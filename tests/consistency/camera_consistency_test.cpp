@@ -46,7 +46,7 @@ TEST(CameraConsistencyTest, DriverCalibrationEqualsSimulatedCameras) {
     EXPECT_LT(MaxPixelDifference(cal.left, sim->left), 1e-3);
     EXPECT_LT(MaxPixelDifference(cal.right, sim->right), 1e-3);
   }
-  const rover::sim::MastGeometry sim_mast;
+  const rover::hwconfig::MastDescription sim_mast;  // what rover-sim renders with by default
   EXPECT_LT((calibration->mast.pan_joint - sim_mast.pan_joint).norm(), 1e-9);
   EXPECT_NEAR(calibration->mast.head_height, sim_mast.head_height, 1e-9);
 }

@@ -16,29 +16,28 @@ namespace rover {
 namespace {
 namespace fs = std::filesystem;
 
-// Every live process whose environment carries ROVER_PROJECT=<prefix>...
-std::vector<int> ProcessesWithProjectPrefix(const std::string& prefix) {
-  std::vector<int> pids;
-  const std::string marker = "ROVER_PROJECT=" + prefix;
-  for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream in(e.path() / "environ", std::ios::binary);
-    std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (env.find(marker) != std::string::npos && ProcessAlive(std::stoi(name))) {
-      pids.push_back(std::stoi(name));
-    }
-  }
-  return pids;
-}
+// Every process a test's roverctl starts (and everything those start) inherits this variable from
+// it, with a value unique to the test: the clean-up kills only what this test started, never
+// another engineer's run of the same scenario on this machine.
+constexpr const char* kMarkVariable = "ROVER_E2E_TEST_RUN";
 
 class ScenarioE2e : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = testing::MakeTempDir("scenario-e2e"); }
+  void SetUp() override {
+    testing::UseLoopbackDds();  // roverctl inherits it, whatever the shell exported
+    dir_ = testing::MakeTempDir("scenario-e2e");
+    mark_ = std::to_string(getpid()) + "-" + dir_;
+  }
   void TearDown() override {
-    for (int pid : ProcessesWithProjectPrefix("short-drive")) kill(pid, SIGKILL);
+    KillLeftovers();
     std::error_code ec;
     fs::remove_all(dir_, ec);
+  }
+  // The processes this test's runs started that are still alive.
+  std::vector<pid_t> Leftovers() const { return ProcessesWithEnvironment(kMarkVariable, mark_); }
+  // Whatever this test's runs left behind.
+  void KillLeftovers() {
+    for (pid_t pid : Leftovers()) kill(pid, SIGKILL);
   }
   std::string Scenario(const std::string& name) {
     return testing::SourceDir() + "/tests/e2e/scenarios/" + name;
@@ -47,6 +46,7 @@ class ScenarioE2e : public ::testing::Test {
     SpawnOptions o;
     o.argv = {testing::BinDir() + "/roverctl"};
     o.argv.insert(o.argv.end(), args.begin(), args.end());
+    o.env[kMarkVariable] = mark_;
     o.stdout_path = log;
     o.stderr_path = log;
     auto p = Process::Spawn(o);
@@ -65,6 +65,7 @@ class ScenarioE2e : public ::testing::Test {
     return nlohmann::json::parse(in);
   }
   std::string dir_;
+  std::string mark_;
   int n_ = 0;
 };
 
@@ -153,13 +154,32 @@ TEST_F(ScenarioE2e, CtrlCStopsEverythingAndKeepsFinishedRuns) {
   auto e = p.WaitFor(std::chrono::minutes(2));
   ASSERT_TRUE(e.has_value());
   EXPECT_EQ(e->code, 1);
-  EXPECT_TRUE(testing::WaitFor([] { return ProcessesWithProjectPrefix("short-drive").empty(); },
-                               std::chrono::seconds(30)));
+  EXPECT_TRUE(testing::WaitFor([&] { return Leftovers().empty(); }, std::chrono::seconds(30)));
   const auto summary = Json(dir_ + "/int/summary.json");
   EXPECT_TRUE(summary["interrupted"].get<bool>());
   EXPECT_GE(summary["runs"].get<int>(), 1);
   EXPECT_TRUE(Json(dir_ + "/int/short-drive-seed1/result.json")["pass"].get<bool>());
   EXPECT_FALSE(fs::exists(dir_ + "/int/short-drive-seed3/result.json"));
+}
+
+
+// The clean-up kills only what this test started: another engineer's run of the same scenario
+// on this machine (same project prefix) is left alone.
+TEST_F(ScenarioE2e, CleanUpLeavesOtherPeoplesRunsAlone) {
+  SpawnOptions o;
+  o.argv = {"sleep", "120"};
+  o.env["ROVER_PROJECT"] = "short-drive-seed1-someone-else";
+  auto other = Process::Spawn(o);
+  ASSERT_TRUE(other.ok()) << other.status().message();
+  ASSERT_TRUE(testing::WaitFor([&] {
+    return testing::ReadFile("/proc/" + std::to_string(other->pid()) + "/environ")
+               .find("ROVER_PROJECT=short-drive-seed1-someone-else") != std::string::npos;
+  }));
+  KillLeftovers();
+  EXPECT_FALSE(other->WaitFor(std::chrono::milliseconds(500)).has_value())
+      << "the clean-up killed a process this test did not start";
+  EXPECT_TRUE(ProcessAlive(other->pid()));
+  other->Terminate(std::chrono::seconds(1));
 }
 
 }  // namespace

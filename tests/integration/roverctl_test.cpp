@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "rover/base/process.hpp"
 #include "rover/runtime/dds.hpp"
@@ -19,25 +20,7 @@ using testing::WaitFor;
 
 // Every process whose environment says it belongs to `project` (roverctl sets ROVER_PROJECT).
 std::vector<int> ProcessesOfProject(const std::string& project) {
-  std::vector<int> pids;
-  const std::string marker = "ROVER_PROJECT=" + project;
-  for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream in(e.path() / "environ", std::ios::binary);
-    std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::size_t pos = 0;
-    while (pos < env.size()) {
-      const std::size_t end = env.find('\0', pos);
-      if (env.compare(pos, (end == std::string::npos ? env.size() : end) - pos, marker) == 0) {
-        if (ProcessAlive(std::stoi(name))) pids.push_back(std::stoi(name));
-        break;
-      }
-      if (end == std::string::npos) break;
-      pos = end + 1;
-    }
-  }
-  return pids;
+  return ProcessesWithEnvironment("ROVER_PROJECT", project);
 }
 
 class RoverctlTest : public ::testing::Test {
@@ -45,7 +28,7 @@ class RoverctlTest : public ::testing::Test {
   void SetUp() override {
     dir_ = testing::MakeTempDir("roverctl-test");
     state_root_ = dir_ + "/state";
-    setenv("CYCLONEDDS_URI", dds::LoopbackConfigUri(testing::SourceDir()).c_str(), 1);
+    testing::UseLoopbackDds();
   }
   void TearDown() override {
     for (auto& p : running_) p.Terminate(std::chrono::seconds(10));
@@ -320,6 +303,167 @@ TEST_F(RoverctlTest, DetachedUpThenPsAndDown) {
   EXPECT_TRUE(e4.success()) << out4;
   EXPECT_TRUE(ProcessesOfProject(project).empty());
   EXPECT_FALSE(ProcessAlive(supervisor));
+}
+
+
+// Usage errors are exit code 2, as docs/roverctl.md says (CLI11's own codes were 105..109).
+TEST_F(RoverctlTest, UsageErrorsExitWithTwo) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"up"}, {"frobnicate"}, {"ps", "--bogus"}, {"run"},
+        {"logs", "x", "-n", "many"}, {}}) {
+    auto [e, out] = RunRoverctl(args);
+    std::string line;
+    for (const auto& a : args) line += a + " ";
+    EXPECT_EQ(e.code, 2) << "roverctl " << line << "\n" << out;
+    EXPECT_FALSE(e.signaled);
+  }
+  auto [help, text] = RunRoverctl({"--help"});
+  EXPECT_TRUE(help.success()) << text;
+  EXPECT_NE(text.find("up"), std::string::npos);
+}
+
+// A smoke set whose dl service stays DEGRADED for `warmup` imu samples (smoke-ddl at 20 Hz), as
+// dl-pose does while it levels.
+std::string WarmupService(int warmup) {
+  return "    command: smoke-dl --set warmup_samples=" + std::to_string(warmup) + "\n";
+}
+
+// `ps` shows each heartbeat's health and message, and says the set is not ready yet.
+TEST_F(RoverctlTest, PsShowsHealthAndMessageOfEveryHeartbeat) {
+  const std::string file = WriteSmoke("health");
+  std::string text = testing::ReadFile(file);
+  text.replace(text.find("    command: smoke-dl\n"), 22, WarmupService(1000000));
+  std::ofstream(file) << text;
+  const std::string project = ProjectOf("health");
+  auto [up, up_out] = RunRoverctl({"up", "-d", file});
+  ASSERT_TRUE(up.success()) << up_out;
+  std::string ps;
+  EXPECT_TRUE(WaitFor([&] {
+    ps = RunRoverctl({"ps", project}).second;
+    // Every service has sent its first heartbeat (under load smoke-apl's may come later).
+    return ps.find("warming up:") != std::string::npos &&
+           ps.find("no heartbeat yet") == std::string::npos;
+  }, std::chrono::seconds(30))) << ps;
+  EXPECT_NE(ps.find("HEALTH"), std::string::npos) << ps;
+  EXPECT_NE(ps.find("MESSAGE"), std::string::npos) << ps;
+  EXPECT_NE(ps.find("not ready"), std::string::npos) << ps;
+  // One line per service: smoke-dl degraded with its message, the others ok.
+  std::istringstream lines(ps);
+  std::string line;
+  int checked = 0;
+  while (std::getline(lines, line)) {
+    if (line.find("  smoke-dl ") == 0) {
+      EXPECT_NE(line.find("degraded"), std::string::npos) << line;
+      EXPECT_NE(line.find("of 1000000 ddl/imu samples"), std::string::npos) << line;
+      ++checked;
+    } else if (line.find("  smoke-ddl ") == 0 || line.find("  smoke-apl ") == 0) {
+      EXPECT_NE(line.find(" ok "), std::string::npos) << line;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 3) << ps;
+  const nlohmann::json state = State(project);
+  EXPECT_FALSE(state["ready"].get<bool>()) << state.dump(2);
+  for (const auto& svc : state["services"]) {
+    if (svc["name"] == "smoke-dl") {
+      EXPECT_EQ(svc["health"], "degraded");
+      EXPECT_NE(svc["message"].get<std::string>().find("warming up"), std::string::npos);
+      EXPECT_FALSE(svc["ready"].get<bool>());
+    }
+  }
+  EXPECT_TRUE(RunRoverctl({"down", project}).first.success());
+}
+
+// `up -d --wait` returns once every service is ready (heartbeat ACTIVE and health OK), not when
+// the processes are merely running.
+TEST_F(RoverctlTest, UpWaitReturnsOnceEveryServiceIsReady) {
+  const std::string file = WriteSmoke("ready");
+  std::string text = testing::ReadFile(file);
+  text.replace(text.find("    command: smoke-dl\n"), 22, WarmupService(60));  // about 3 s
+  std::ofstream(file) << text;
+  const std::string project = ProjectOf("ready");
+  auto [up, out] = RunRoverctl({"up", "-d", "--wait=120", file});
+  ASSERT_TRUE(up.success()) << out;
+  EXPECT_NE(out.find("is ready"), std::string::npos) << out;
+  // When it returned, the state file already said ready, and every heartbeat said OK.
+  const nlohmann::json state = State(project);
+  EXPECT_TRUE(state["ready"].get<bool>()) << state.dump(2);
+  for (const auto& svc : state["services"]) {
+    EXPECT_EQ(svc["health"], "ok") << svc.dump();
+    EXPECT_EQ(svc["lifecycle"], "active") << svc.dump();
+    EXPECT_TRUE(svc["ready"].get<bool>()) << svc.dump();
+  }
+  EXPECT_TRUE(RunRoverctl({"down", project}).first.success());
+}
+
+// Not ready within the timeout: exit 1 naming what is not ready and why; the set is stopped.
+TEST_F(RoverctlTest, UpWaitTimesOutNamingTheServicesThatAreNotReady) {
+  const std::string file = WriteSmoke("slow");
+  std::string text = testing::ReadFile(file);
+  text.replace(text.find("    command: smoke-dl\n"), 22, WarmupService(1000000));
+  std::ofstream(file) << text;
+  const std::string project = ProjectOf("slow");
+  auto [up, out] = RunRoverctl({"up", "-d", "--wait=10", file});
+  EXPECT_EQ(up.code, 1) << out;
+  EXPECT_NE(out.find("not ready within 10 s"), std::string::npos) << out;
+  EXPECT_NE(out.find("smoke-dl: health degraded: warming up"), std::string::npos) << out;
+  EXPECT_TRUE(WaitFor([&] { return ProcessesOfProject(project).empty(); }, std::chrono::seconds(30)));
+}
+
+// A service whose process tree outlives it: a wrapper script with a plain child, a child that
+// ignores SIGTERM and one that left the process group (setsid).
+constexpr const char* kTreeService =
+    "  tree:\n"
+    "    command: [sh, -c, \"sleep 300 & (trap '' TERM; exec sleep 301) & setsid sleep 302 & "
+    "wait\"]\n"
+    "    stop_grace_period: 1s\n";
+
+int CountCommand(const std::vector<int>& pids, const std::string& needle) {
+  int n = 0;
+  for (int pid : pids) {
+    const std::string cmdline = testing::ReadFile("/proc/" + std::to_string(pid) + "/cmdline");
+    if (cmdline.rfind(needle + '\0', 0) == 0) ++n;  // the program itself, not a script naming it
+  }
+  return n;
+}
+
+// roverctl SIGKILLed: the kernel's SIGTERM (PR_SET_PDEATHSIG) reaches only its children, so the
+// grandchildren live on; `roverctl down` must still find and stop them from the state file.
+TEST_F(RoverctlTest, DownStopsWhatADeadSupervisorLeftBehind) {
+  const std::string file = WriteSmoke("orphans", kTreeService);
+  const std::string project = ProjectOf("orphans");
+  Process roverctl = StartRoverctl({"up", file}, dir_ + "/orphans.log");
+  ASSERT_TRUE(WaitUp(project)) << testing::ReadFile(dir_ + "/orphans.log");
+  ASSERT_TRUE(WaitFor([&] { return CountCommand(ProcessesOfProject(project), "sleep") == 3; }));
+  kill(roverctl.pid(), SIGKILL);
+  roverctl.WaitFor(std::chrono::seconds(10));
+  // The services die with their parent; the three sleeps do not.
+  ASSERT_TRUE(WaitFor([&] {
+    return ProcessesOfProject(project).size() == 3u &&
+           CountCommand(ProcessesOfProject(project), "sleep") == 3;
+  }, std::chrono::seconds(30)));
+  auto [ps_exit, ps] = RunRoverctl({"ps", project});
+  EXPECT_NE(ps.find("not running"), std::string::npos) << ps;
+  EXPECT_NE(ps.find("3 processes of the set are still alive"), std::string::npos) << ps;
+  auto [down, out] = RunRoverctl({"down", project});
+  EXPECT_TRUE(down.success()) << out;
+  EXPECT_NE(out.find("stopped 3 processes it left behind"), std::string::npos) << out;
+  EXPECT_TRUE(ProcessesOfProject(project).empty()) << out;
+  EXPECT_EQ(State(project)["phase"], "stopped");
+}
+
+// With the supervisor alive, `down` (and Ctrl-C) stop whole trees, including a process that left
+// its service's process group.
+TEST_F(RoverctlTest, DownStopsWholeProcessTrees) {
+  const std::string file = WriteSmoke("trees", kTreeService);
+  const std::string project = ProjectOf("trees");
+  auto [up, up_out] = RunRoverctl({"up", "-d", file});
+  ASSERT_TRUE(up.success()) << up_out;
+  ASSERT_TRUE(WaitFor([&] { return CountCommand(ProcessesOfProject(project), "sleep") == 3; }));
+  auto [down, out] = RunRoverctl({"down", project});
+  EXPECT_TRUE(down.success()) << out;
+  EXPECT_TRUE(WaitFor([&] { return ProcessesOfProject(project).empty(); }, std::chrono::seconds(5)))
+      << CountCommand(ProcessesOfProject(project), "sleep") << " sleeps left";
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "rover/apl/gestalt/arc_geometry.hpp"
-#include "rover/base/format.hpp"
+#include "rover/apl/nav_core/range_scan.hpp"
 #include "rover/base/range_check.hpp"
 
 namespace rover::apl::gestalt {
@@ -29,16 +29,7 @@ double WrapPi(double a) {
 int Round255(double v) { return std::clamp(static_cast<int>(std::lround(v)), 0, 255); }
 
 Status CheckRequest(const ArcRequest& r) {
-  const Eigen::Matrix4d m = r.site_from_rover.matrix();
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      if (!std::isfinite(m(i, j))) {
-        return InvalidArgument("ArcRequest.site_from_rover(" + std::to_string(i) + ", " +
-                               std::to_string(j) + ") is " + FormatNumber(m(i, j)) +
-                               " (must be finite)");
-      }
-    }
-  }
+  ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
   ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.x", r.goal.x()));
   ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.y", r.goal.y()));
   return CheckNonNegative("ArcRequest.goal_tolerance", r.goal_tolerance, "m");
@@ -95,8 +86,7 @@ ArcEvaluator::ArcEvaluator(const GestaltOptions& options) : options_(options) {
       Candidate c;
       c.kind = MotionKind::kArc;
       c.direction = direction;
-      c.curvature = count == 1 ? 0.0
-                               : options.max_curvature * (-1.0 + 2.0 * a / (count - 1));
+      c.curvature = count == 1 ? 0.0 : options.max_curvature * (-1.0 + 2.0 * a / (count - 1));
       candidates_.push_back(c);
       groups_.push_back(group);
     }
@@ -117,7 +107,8 @@ ArcEvaluator::ArcEvaluator(const GestaltOptions& options) : options_(options) {
   }
 }
 
-PathVote ArcEvaluator::HazardVote(const GoodnessMap& map, const std::vector<PathCell>& cells) const {
+PathVote ArcEvaluator::HazardVote(const GoodnessMap& map,
+                                  const std::vector<PathCell>& cells) const {
   PathVote pv;
   pv.cells = static_cast<int>(cells.size());
   pv.all_known = !cells.empty();
@@ -143,7 +134,8 @@ PathVote ArcEvaluator::HazardVote(const GoodnessMap& map, const std::vector<Path
   return pv;
 }
 
-Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map, const ArcRequest& request) const {
+Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
+                                             const ArcRequest& request) const {
   ROVER_RETURN_IF_ERROR(CheckRequest(request));
   const GestaltOptions& o = options_;
   ArcEvaluation e;
@@ -169,7 +161,8 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map, const ArcRe
   const int toward_direction = gx >= 0.0 ? 1 : -1;
   const double k_backup = (gy >= 0.0 ? -1.0 : 1.0) * o.max_curvature;
   const double k_clamped = std::clamp(k_goal, -o.max_curvature, o.max_curvature);
-  const double length = std::clamp(e.distance_to_goal, o.plan_min_dist + o.cell_size, o.plan_max_dist);
+  const double length =
+      std::clamp(e.distance_to_goal, o.plan_min_dist + o.cell_size, o.plan_max_dist);
 
   std::vector<PathCell> cells;
   std::vector<PathVote> path_votes(n);

@@ -63,7 +63,9 @@ ArcProjection ProjectOntoArc(const ArcPath& path, const Eigen::Vector2d& p) {
     out.distance = std::abs(v.norm() - radius);
     return out;
   }
-  auto end_point = [&](double s) { return Eigen::Vector2d(radius * std::sin(k * s), radius * (1.0 - std::cos(k * s))); };
+  auto end_point = [&](double s) {
+    return Eigen::Vector2d(radius * std::sin(k * s), radius * (1.0 - std::cos(k * s)));
+  };
   const double d0 = (q - end_point(s0)).norm(), d1 = (q - end_point(s1)).norm();
   out.s = d0 <= d1 ? s0 : s1;
   out.distance = std::min(d0, d1);

@@ -59,7 +59,7 @@ void DiscExtreme(const Grid<std::int16_t>& v, const DiscSpans& disc, std::int16_
     row_of[static_cast<std::size_t>(dy + disc.radius())] = static_cast<std::size_t>(
         std::lower_bound(widths.begin(), widths.end(), disc.half_width(dy)) - widths.begin());
   }
-  *out = Grid<std::int16_t>(W, H, absent);
+  if (out->width() != W || out->height() != H) *out = Grid<std::int16_t>(W, H, absent);
   for (int j = 0; j < H; ++j) {
     for (int i = 0; i < W; ++i) {
       std::int16_t e = identity;
@@ -95,7 +95,9 @@ void DilateMask(const Grid<std::uint8_t>& mask, const DiscSpans& disc, Grid<std:
   for (std::size_t k = 0; k < mask.size(); ++k) counts[k] = mask[k] != 0 ? 1 : 0;
   RowPrefix<int> prefix;
   prefix.Build(counts);
-  *out = Grid<std::uint8_t>(mask.width(), mask.height(), 0);
+  if (out->width() != mask.width() || out->height() != mask.height()) {
+    *out = Grid<std::uint8_t>(mask.width(), mask.height(), 0);
+  }
   for (int j = 0; j < mask.height(); ++j) {
     for (int i = 0; i < mask.width(); ++i) {
       out->at(i, j) = prefix.DiscSum(i, j, disc) > 0 ? 1 : 0;
@@ -105,14 +107,16 @@ void DilateMask(const Grid<std::uint8_t>& mask, const DiscSpans& disc, Grid<std:
 
 void DiscMax(const Grid<std::int16_t>& v, const DiscSpans& disc, std::int16_t absent,
              Grid<std::int16_t>* out) {
-  DiscExtreme(v, disc, absent, std::numeric_limits<std::int16_t>::min(),
-              [](std::int16_t a, std::int16_t b) { return a > b ? a : b; }, out);
+  DiscExtreme(
+      v, disc, absent, std::numeric_limits<std::int16_t>::min(),
+      [](std::int16_t a, std::int16_t b) { return a > b ? a : b; }, out);
 }
 
 void DiscMin(const Grid<std::int16_t>& v, const DiscSpans& disc, std::int16_t absent,
              Grid<std::int16_t>* out) {
-  DiscExtreme(v, disc, absent, std::numeric_limits<std::int16_t>::max(),
-              [](std::int16_t a, std::int16_t b) { return a < b ? a : b; }, out);
+  DiscExtreme(
+      v, disc, absent, std::numeric_limits<std::int16_t>::max(),
+      [](std::int16_t a, std::int16_t b) { return a < b ? a : b; }, out);
 }
 
 }  // namespace rover::apl::gestalt

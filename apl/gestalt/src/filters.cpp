@@ -39,7 +39,8 @@ CellStats StatsOf(const Moments& m, int min_points) {
 }
 
 double CellStats::SpreadAbove(double b, double c) const {
-  const double v = vzz + b * b * vxx + c * c * vyy - 2.0 * b * vxz - 2.0 * c * vyz + 2.0 * b * c * vxy;
+  const double v =
+      vzz + b * b * vxx + c * c * vyy - 2.0 * b * vxz - 2.0 * c * vyz + 2.0 * b * c * vxy;
   return std::sqrt(std::max(0.0, v));
 }
 

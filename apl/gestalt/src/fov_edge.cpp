@@ -32,7 +32,8 @@ void FindFovEdgePixels(int width, int height, const std::vector<std::uint8_t>& u
     }
   }
   // Columns.
-  std::vector<int> first(static_cast<std::size_t>(width), -1), last(static_cast<std::size_t>(width), -1);
+  std::vector<int> first(static_cast<std::size_t>(width), -1),
+      last(static_cast<std::size_t>(width), -1);
   for (int v = 0; v < height; ++v) {
     for (int u = 0; u < width; ++u) {
       if (used[idx(u, v)] == 0) continue;

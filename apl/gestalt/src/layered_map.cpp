@@ -13,7 +13,8 @@ LayeredGoodness::LayeredGoodness(int width, int height, int num_layers) {
   combined_ = Grid<std::int16_t>(width, height, kAbsent);
 }
 
-void LayeredGoodness::Merge(const Grid<std::int16_t>& fresh, const Grid<std::uint8_t>& conservative) {
+void LayeredGoodness::Merge(const Grid<std::int16_t>& fresh,
+                            const Grid<std::uint8_t>& conservative) {
   ROVER_DEMAND(fresh.width() == combined_.width() && fresh.height() == combined_.height());
   ROVER_DEMAND(conservative.size() == fresh.size());
   Grid<std::int16_t> shrunk;
@@ -30,12 +31,12 @@ void LayeredGoodness::Merge(const Grid<std::int16_t>& fresh, const Grid<std::uin
       layer[k] = (conservative[k] != 0 && layer[k] != kAbsent) ? std::min(layer[k], v) : v;
     }
   }
-  Recombine();
+  stale_ = true;
 }
 
 void LayeredGoodness::Shift(int di, int dj) {
   for (auto& l : layers_) l.Shift(di, dj, kAbsent);
-  Recombine();
+  stale_ = true;
 }
 
 void LayeredGoodness::Forget(const Grid<std::uint8_t>& mask) {
@@ -44,15 +45,22 @@ void LayeredGoodness::Forget(const Grid<std::uint8_t>& mask) {
       if (mask[k] != 0) l[k] = kAbsent;
     }
   }
-  Recombine();
+  stale_ = true;
 }
 
 void LayeredGoodness::Clear() {
   for (auto& l : layers_) l.Fill(kAbsent);
   combined_.Fill(kAbsent);
+  stale_ = false;
 }
 
-void LayeredGoodness::Recombine() {
+const Grid<std::int16_t>& LayeredGoodness::combined() const {
+  if (stale_) Recombine();
+  return combined_;
+}
+
+void LayeredGoodness::Recombine() const {
+  stale_ = false;
   const Grid<std::int16_t>& top = layers_.back();  // radius 0: known cells are its own
   combined_ = top;
   Grid<std::int16_t> grown;

@@ -72,7 +72,8 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckByte("border_goodness", border_goodness));
   ROVER_RETURN_IF_ERROR(CheckByte("border_certainty", border_certainty));
   // Arcs and votes.
-  ROVER_RETURN_IF_ERROR(CheckRange("max_curvature", max_curvature, Bounds::OpenLow(0.0, 10.0), "1/m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("max_curvature", max_curvature, Bounds::OpenLow(0.0, 10.0), "1/m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_forward_arcs", num_forward_arcs, 1, 99));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_backward_arcs", num_backward_arcs, 0, 99));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_point_turns", num_point_turns, 0, 359));
@@ -81,16 +82,17 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(
       CheckBelow("plan_min_dist", plan_min_dist, "plan_max_dist", plan_max_dist, "m"));
   if (plan_max_dist > 0.5 * map_size) {
-    return InvalidArgument(Describe("plan_max_dist", plan_max_dist, "m") +
-                           " reaches beyond the map (half of map_size = " +
-                           FormatNumber(0.5 * map_size) + " m)");
+    return InvalidArgument(
+        Describe("plan_max_dist", plan_max_dist, "m") +
+        " reaches beyond the map (half of map_size = " + FormatNumber(0.5 * map_size) + " m)");
   }
-  ROVER_RETURN_IF_ERROR(CheckRange("path_half_width", path_half_width, Bounds::OpenLow(0.0, 2.0), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("path_half_width", path_half_width, Bounds::OpenLow(0.0, 2.0), "m"));
   if (path_half_width < cell_size / std::sqrt(2.0)) {
-    return InvalidArgument(Describe("path_half_width", path_half_width, "m") +
-                           " must be at least cell_size / sqrt(2) = " +
-                           FormatNumber(cell_size / std::sqrt(2.0)) +
-                           " m so that every point of a path lies on a path cell");
+    return InvalidArgument(
+        Describe("path_half_width", path_half_width, "m") +
+        " must be at least cell_size / sqrt(2) = " + FormatNumber(cell_size / std::sqrt(2.0)) +
+        " m so that every point of a path lies on a path cell");
   }
   ROVER_RETURN_IF_ERROR(CheckRange("near_weight", near_weight, 1.0, 100.0));
   ROVER_RETURN_IF_ERROR(CheckByte("min_allowed_goodness", min_allowed_goodness));
@@ -100,13 +102,18 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckByte("waypoint_peak_away", waypoint_peak_away));
   ROVER_RETURN_IF_ERROR(CheckPositive("arc_vote_variance", arc_vote_variance, "1/m^2"));
   ROVER_RETURN_IF_ERROR(CheckPositive("turn_vote_variance", turn_vote_variance, "rad^2"));
-  ROVER_RETURN_IF_ERROR(CheckRange("backup_vote_scale", backup_vote_scale, Bounds::OpenLow(0.0, 1.0)));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("backup_vote_scale", backup_vote_scale, Bounds::OpenLow(0.0, 1.0)));
   ROVER_RETURN_IF_ERROR(CheckByte("min_fwd_threshold", min_fwd_threshold));
   ROVER_RETURN_IF_ERROR(CheckByte("skip_imaging_goodness", skip_imaging_goodness));
   return Status::Ok();
 }
 
 void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
+  // MER's goodness and certainty values are 8-bit.
+  auto byte = [&b](const char* key, int G::*member, const char* doc) {
+    b.Bind(key, member, "", doc).Range(0, 255);
+  };
   b.Bind("cell_size_m", &G::cell_size, "m", "grid cell side (MER 0.2)").Range(0.01, 1.0);
   b.Bind("map_size_m", &G::map_size, "m", "side of the square grid that follows the rover (MER 10)")
       .Range(1.0, 100.0);
@@ -116,7 +123,8 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
   b.Bind("max_point_distance_m", &G::max_point_distance, "m",
          "range points farther from the rover (horizontally) are not used (MER 5)")
       .Min(0.1);
-  b.Bind("min_cell_points", &G::min_cell_points, "", "points a cell needs to count as covered (MER 2)")
+  b.Bind("min_cell_points", &G::min_cell_points, "",
+         "points a cell needs to count as covered (MER 2)")
       .Range(1, 1000000);
   b.Bind("min_coverage", &G::min_coverage, "",
          "share of a rover disc's cells that must be covered for a plane fit (MER 0.5)")
@@ -154,15 +162,11 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
       .Range(0, 10);
   b.Bind("num_layers", &G::num_layers, "", "layered goodness maps (MER 7; 1 = no layering)")
       .Range(1, 16);
-  b.Bind("unknown_goodness", &G::unknown_goodness, "", "goodness of an unknown cell (MER 11)")
-      .Range(0, 255);
-  b.Bind("unknown_certainty", &G::unknown_certainty, "", "certainty of an unknown cell (MER 0)")
-      .Range(0, 255);
-  b.Bind("border_goodness", &G::border_goodness, "",
-         "goodness cap of a cell next to an unknown one (MER 250)")
-      .Range(0, 255);
-  b.Bind("border_certainty", &G::border_certainty, "", "certainty of a border cell (MER 128)")
-      .Range(0, 255);
+  byte("unknown_goodness", &G::unknown_goodness, "goodness of an unknown cell (MER 11)");
+  byte("unknown_certainty", &G::unknown_certainty, "certainty of an unknown cell (MER 0)");
+  byte("border_goodness", &G::border_goodness,
+       "goodness cap of a cell next to an unknown one (MER 250)");
+  byte("border_certainty", &G::border_certainty, "certainty of a border cell (MER 128)");
   b.Bind("max_curvature", &G::max_curvature, "1/m", "tightest arc (MER 1)").Range(0.01, 10.0);
   b.Bind("num_forward_arcs", &G::num_forward_arcs, "", "forward arcs (MER 23)").Range(1, 99);
   b.Bind("num_backward_arcs", &G::num_backward_arcs, "", "backward arcs (MER 23)").Range(0, 99);
@@ -179,20 +183,15 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
   b.Bind("near_weight", &G::near_weight, "",
          "weight of a path cell next to the rover relative to one at plan_max_dist")
       .Range(1.0, 100.0);
-  b.Bind("min_allowed_goodness", &G::min_allowed_goodness, "",
-         "a path over a cell below this is forbidden (MER 10)")
-      .Range(0, 255);
-  b.Bind("min_vote_goodness", &G::min_vote_goodness, "",
-         "below this either vote wins by minimum when merging (MER 26)")
-      .Range(0, 255);
-  b.Bind("waypoint_certainty", &G::waypoint_certainty, "", "certainty of waypoint votes (MER 192)")
-      .Range(0, 255);
-  b.Bind("waypoint_peak_toward", &G::waypoint_peak_toward, "",
-         "waypoint vote of the arc through the goal, driving toward it (MER 255)")
-      .Range(0, 255);
-  b.Bind("waypoint_peak_away", &G::waypoint_peak_away, "",
-         "... driving away from it, and of turns in place normally (MER 128)")
-      .Range(0, 255);
+  byte("min_allowed_goodness", &G::min_allowed_goodness,
+       "a path over a cell below this is forbidden (MER 10)");
+  byte("min_vote_goodness", &G::min_vote_goodness,
+       "below this either vote wins by minimum when merging (MER 26)");
+  byte("waypoint_certainty", &G::waypoint_certainty, "certainty of waypoint votes (MER 192)");
+  byte("waypoint_peak_toward", &G::waypoint_peak_toward,
+       "waypoint vote of the arc through the goal, driving toward it (MER 255)");
+  byte("waypoint_peak_away", &G::waypoint_peak_away,
+       "... driving away from it, and of turns in place normally (MER 128)");
   b.Bind("arc_vote_variance", &G::arc_vote_variance, "1/m^2",
          "variance of the waypoint Gaussian over curvature (MER 3.2)")
       .Range(1e-6, 1e6);
@@ -203,12 +202,10 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
   b.Bind("backup_vote_scale", &G::backup_vote_scale, "",
          "scale of the back-up (K-turn) votes (MER 0.5: halved)")
       .Range(0.001, 1.0);
-  b.Bind("min_fwd_threshold", &G::min_fwd_threshold, "",
-         "best forward vote below this advises imaging the rear (MER 180)")
-      .Range(0, 255);
-  b.Bind("skip_imaging_goodness", &G::skip_imaging_goodness, "",
-         "every path's hazard vote at or above this (on known cells): imaging may be skipped")
-      .Range(0, 255);
+  byte("min_fwd_threshold", &G::min_fwd_threshold,
+       "best forward vote below this advises imaging the rear (MER 180)");
+  byte("skip_imaging_goodness", &G::skip_imaging_goodness,
+       "every path's hazard vote at or above this (on known cells): imaging may be skipped");
 }
 
 }  // namespace rover::apl::gestalt

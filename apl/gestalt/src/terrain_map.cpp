@@ -38,6 +38,11 @@ void TerrainMap::Clear() {
   scan_edge_ = Grid<std::uint8_t>(cells_, cells_, 0);
   touched_ = Grid<std::uint8_t>(cells_, cells_, 0);
   touched_list_.clear();
+  dirty_ = Grid<std::uint8_t>(cells_, cells_, 0);
+  conservative_ = Grid<std::uint8_t>(cells_, cells_, 0);
+  cell_stats_ = Grid<CellStats>(cells_, cells_);
+  covered_ = Grid<int>(cells_, cells_, 0);
+  fresh_ = Grid<std::int16_t>(cells_, cells_, LayeredGoodness::kAbsent);
   map_ = nav_core::GoodnessMap{};
   map_.resolution = options_.cell_size;
   map_.width = map_.height = cells_;
@@ -98,22 +103,27 @@ bool TerrainMap::ForgetFar(const Eigen::Vector2d& rover_xy) {
   return any;
 }
 
-void TerrainMap::Follow(const Eigen::Isometry3d& site_from_rover) {
+bool TerrainMap::Move(const Eigen::Isometry3d& site_from_rover) {
   const Eigen::Vector2d xy = site_from_rover.translation().head<2>();
-  if (!xy.allFinite()) return;
+  if (!xy.allFinite()) return false;
   if (!anchored_) moment_origin_ = site_from_rover.translation();
   const bool moved = Recentre(xy);
   const bool forgot = ForgetFar(xy);
-  if (moved || forgot) Publish();
+  return moved || forgot;
+}
+
+void TerrainMap::Follow(const Eigen::Isometry3d& site_from_rover) {
+  if (Move(site_from_rover)) Publish();
 }
 
 Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
   if (Status s = scan.Validate(); !s.ok()) {
-    return Status(s.code(), s.message() + (scan.camera.empty() ? "" : " (camera " + scan.camera + ")"));
+    return Status(s.code(),
+                  s.message() + (scan.camera.empty() ? "" : " (camera " + scan.camera + ")"));
   }
   const Eigen::Isometry3d& pose = scan.site_from_rover;
   const Eigen::Vector2d rover_xy = pose.translation().head<2>();
-  Follow(pose);
+  (void)Move(pose);  // published below with the new data
 
   AssessmentStats stats;
   scan_edge_.Fill(0);
@@ -169,20 +179,21 @@ Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
   }
 
   // Cells whose rover disc holds a touched cell are re-assessed.
-  Grid<std::uint8_t> dirty;
+  Grid<std::uint8_t>& dirty = dirty_;
   DilateMask(touched_, assessor_.rover_disc(), &dirty);
   const Grid<Moments>& source = options_.fit_from_scan_only ? scan_moments_ : moments_;
-  Grid<CellStats> cell_stats(cells_, cells_);
-  Grid<int> covered(cells_, cells_, 0);
+  Grid<CellStats>& cell_stats = cell_stats_;
+  Grid<int>& covered = covered_;
   for (std::size_t k = 0; k < source.size(); ++k) {
     cell_stats[k] = StatsOf(source[k], options_.min_cell_points);
     covered[k] = cell_stats[k].covered ? 1 : 0;
   }
-  RowPrefix<Moments> moment_sums;
+  RowPrefix<Moments>& moment_sums = moment_sums_;
   moment_sums.Build(source);
-  RowPrefix<int> covered_sums;
+  RowPrefix<int>& covered_sums = covered_sums_;
   covered_sums.Build(covered);
-  Grid<std::int16_t> fresh(cells_, cells_, LayeredGoodness::kAbsent);
+  Grid<std::int16_t>& fresh = fresh_;
+  fresh.Fill(LayeredGoodness::kAbsent);
   for (int j = 0; j < cells_; ++j) {
     for (int i = 0; i < cells_; ++i) {
       if (dirty.at(i, j) == 0) continue;
@@ -201,7 +212,7 @@ Result<AssessmentStats> TerrainMap::Update(const RangeScan& scan) {
   }
 
   // Conservative merge around the edge of the field of view.
-  Grid<std::uint8_t> conservative;
+  Grid<std::uint8_t>& conservative = conservative_;
   DilateMask(scan_edge_, edge_margin_disc_, &conservative);
   layers_.Merge(fresh, conservative);
   for (std::size_t k = 0; k < fresh.size(); ++k) {

@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "test_maps.hpp"
+
 namespace rover::apl::gestalt {
 namespace {
 
@@ -16,19 +18,7 @@ using nav_core::GoodnessMap;
 using nav_core::MotionKind;
 using nav_core::Vote;
 
-// A 10 m map centred on the origin, every cell known with goodness `g`.
-GoodnessMap KnownMap(int g = 255) {
-  GoodnessMap m;
-  m.resolution = 0.2;
-  m.width = m.height = 50;
-  m.origin_x = m.origin_y = -5.0;
-  m.goodness.assign(m.cell_count(), static_cast<std::uint8_t>(g));
-  m.certainty.assign(m.cell_count(), 255);
-  m.flags.assign(m.cell_count(), nav_core::kCellKnown);
-  m.unknown_goodness = 11;
-  m.unknown_certainty = 0;
-  return m;
-}
+using testing::KnownMap;  // a 10 m map centred on the origin, every cell known
 void SetRect(GoodnessMap* m, double x0, double x1, double y0, double y1, int g, int c = 255,
              std::uint8_t flags = nav_core::kCellKnown) {
   for (int j = 0; j < m->height; ++j) {
@@ -217,7 +207,8 @@ TEST(ArcEvaluator, ReachedGoalChoosesNothing) {
 TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
   const ArcEvaluator ev = Make();
   GoodnessMap unknown_patch = KnownMap();
-  SetRect(&unknown_patch, 2.0, 3.0, 1.0, 2.0, 11, 0, 0);  // off to the left: the k = 1 arcs cross it
+  SetRect(&unknown_patch, 2.0, 3.0, 1.0, 2.0, 11, 0,
+          0);  // off to the left: the k = 1 arcs cross it
   auto a = ev.Evaluate(unknown_patch, Toward(4.0, 0.0));
   ASSERT_TRUE(a.ok());
   ASSERT_TRUE(a->has_choice());
@@ -237,7 +228,8 @@ TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
 TEST(ArcEvaluator, RejectsBadRequests) {
   const ArcEvaluator ev = Make();
   ArcRequest r = Toward(std::numeric_limits<double>::quiet_NaN(), 0.0);
-  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(), "ArcRequest.goal.x is nan (must be finite)");
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
+            "ArcRequest.goal.x is nan (must be finite)");
   r = Toward(1.0, 0.0, 0.0, -1.0);
   EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
             "ArcRequest.goal_tolerance = -1 m is outside [0, inf)");
@@ -247,7 +239,8 @@ TEST(ArcEvaluator, RejectsBadRequests) {
             "ArcRequest.site_from_rover(1, 3) is inf (must be finite)");
   GestaltOptions bad;
   bad.num_forward_arcs = 0;
-  EXPECT_EQ(ArcEvaluator::Create(bad).status().message(), "num_forward_arcs = 0 is outside [1, 99]");
+  EXPECT_EQ(ArcEvaluator::Create(bad).status().message(),
+            "num_forward_arcs = 0 is outside [1, 99]");
 }
 
 TEST(MergeVotes, MinimumBelowTheThresholdWeightedSumAbove) {

@@ -12,7 +12,7 @@
 namespace rover::apl::gestalt {
 namespace {
 
-constexpr int kCells = 31;     // 6.2 m square grid of 0.2 m cells, centre cell (15, 15)
+constexpr int kCells = 31;  // 6.2 m square grid of 0.2 m cells, centre cell (15, 15)
 constexpr int kCentre = 15;
 
 // Moments of a surface z = f(x, y) sampled on a regular s x s lattice in every cell; x, y are
@@ -98,7 +98,9 @@ TEST(StepFilter, FollowsItsRampOverStepHeights) {
   o.step_sigma_k = 0.0;
   for (double h : {0.03, 0.0667, 0.1, 0.15, 0.2, 0.3}) {
     // Flat ground with one raised cell (a flat-topped block) next to the centre.
-    auto f = [&](double x, double y) { return (x > 0.1 && x < 0.3 && std::abs(y) < 0.1) ? h : 0.0; };
+    auto f = [&](double x, double y) {
+      return (x > 0.1 && x < 0.3 && std::abs(y) < 0.1) ? h : 0.0;
+    };
     GestaltOptions no_rough = o;
     no_rough.max_roughness = 10.0;  // isolate the step filter
     no_rough.roughness_safe = 5.0;

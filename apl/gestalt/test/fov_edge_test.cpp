@@ -29,23 +29,13 @@ TEST(FovEdge, OutlineOfAFootprintWithAHole) {
   // A trapezoid footprint (far edge at the top, as a downward-looking camera sees the ground)
   // with a hole (a rock's shadow) inside it.
   const std::vector<std::string> in = {
-      "..........",
-      "...####...",
-      "..######..",
-      ".###..###.",
-      ".########.",
-      "##########",
+      "..........", "...####...", "..######..", ".###..###.", ".########.", "##########",
   };
   const auto used = Mask(in);
   std::vector<std::uint8_t> edge;
   FindFovEdgePixels(10, 6, used, 1, &edge);
   const std::vector<std::string> want = {
-      "..........",
-      "...EEEE...",
-      "..E####E..",
-      ".E##..##E.",
-      ".E######E.",
-      "EEEEEEEEEE",
+      "..........", "...EEEE...", "..E####E..", ".E##..##E.", ".E######E.", "EEEEEEEEEE",
   };
   EXPECT_EQ(Draw(10, edge, used), want);
 }

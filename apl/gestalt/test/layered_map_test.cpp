@@ -25,7 +25,8 @@ TEST(LayeredGoodness, OneScanIntoAnEmptyMapIsTheScan) {
   Grid<std::int16_t> fresh(40, 40, kAbsent);
   for (auto& v : fresh.cells()) {
     const double u = rng.Uniform();
-    v = u < 0.3 ? kAbsent : (u < 0.4 ? std::int16_t{0} : static_cast<std::int16_t>(rng.UniformInt(256)));
+    v = u < 0.3 ? kAbsent
+                : (u < 0.4 ? std::int16_t{0} : static_cast<std::int16_t>(rng.UniformInt(256)));
   }
   LayeredGoodness map(40, 40, 7);
   map.Merge(fresh, Grid<std::uint8_t>(40, 40, 0));

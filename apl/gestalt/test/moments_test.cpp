@@ -40,7 +40,8 @@ DirectFit FitDirect(const std::vector<Eigen::Vector3d>& pts) {
   for (const auto& p : pts) m += p;
   m /= static_cast<double>(pts.size());
   Eigen::MatrixXd a(pts.size(), 3);
-  for (std::size_t k = 0; k < pts.size(); ++k) a.row(static_cast<Eigen::Index>(k)) = (pts[k] - m).transpose();
+  for (std::size_t k = 0; k < pts.size(); ++k)
+    a.row(static_cast<Eigen::Index>(k)) = (pts[k] - m).transpose();
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinV);
   Eigen::Vector3d n = svd.matrixV().col(2);
   if (n.z() < 0) n = -n;
@@ -106,7 +107,8 @@ TEST(PlaneFit, EigenRatioRejectsPointsThatAreNotAPlane) {
   // A thin rod of points: the second eigenvalue is as small as the first.
   sim::Rng rod_rng(4);
   Moments line;
-  for (int k = 0; k < 200; ++k) line.Add(0.01 * k, 0.002 * rod_rng.Normal(), 0.002 * rod_rng.Normal());
+  for (int k = 0; k < 200; ++k)
+    line.Add(0.01 * k, 0.002 * rod_rng.Normal(), 0.002 * rod_rng.Normal());
   EXPECT_FALSE(FitPlane(line, 2.0).planar);
   // A cube of points: all three eigenvalues equal.
   sim::Rng rng(5);

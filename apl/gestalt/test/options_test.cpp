@@ -84,11 +84,13 @@ TEST(GestaltOptions, ReadsFromParametersInTheirUnits) {
 TEST(GestaltOptions, ValidateErrorsFromParametersNameTheKeyAndLine) {
   ParamSet p("apl-mobility");
   DeclareParams<GestaltOptions>(p, "gestalt.");
-  ASSERT_TRUE(p.LoadYamlString("gestalt:\n  max_step_m: 0.3\n  step_safe_m: 0.4\n", "nav.yaml").ok());
+  ASSERT_TRUE(
+      p.LoadYamlString("gestalt:\n  max_step_m: 0.3\n  step_safe_m: 0.4\n", "nav.yaml").ok());
   auto o = ReadParams<GestaltOptions>(p, "gestalt.");
   ASSERT_FALSE(o.ok());
-  EXPECT_EQ(o.status().message(),
-            "nav.yaml:3: key 'gestalt.step_safe_m': step_safe = 0.4 m must be below max_step = 0.3 m");
+  EXPECT_EQ(
+      o.status().message(),
+      "nav.yaml:3: key 'gestalt.step_safe_m': step_safe = 0.4 m must be below max_step = 0.3 m");
 
   ParamSet q;
   DeclareParams<GestaltOptions>(q, "gestalt.");

@@ -58,7 +58,8 @@ TEST(TerrainMap, MalformedScansAreRejectedAndChangeNothing) {
   bad.camera = "front_hazcam";
   auto r = m.Update(bad);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().message(), "RangeScan.valid: 65535 bytes for 65536 pixels (camera front_hazcam)");
+  EXPECT_EQ(r.status().message(),
+            "RangeScan.valid: 65535 bytes for 65536 pixels (camera front_hazcam)");
   EXPECT_EQ(m.goodness_map().revision, rev);
   EXPECT_EQ(m.goodness_map().goodness, before);
   // Non-finite points marked valid are skipped, not fatal.
@@ -104,11 +105,19 @@ TEST(TerrainMap, FlatGroundIsPerfectAndTheRestUnknown) {
   EXPECT_FALSE(At(m, 20.0, 0.0).known());  // off the map
 }
 
-TEST(TerrainMap, ARockIsAnObstacleBlobTheSizeOfTheRoverDisc) {
+// Flat ground with a 0.3 m rock 2.5 m ahead, seen once.
+struct OneRock {
   sim::Terrain world = FlatWorld(14.0);
-  AddRock(&world, 2.5, 0.0, 0.5, 0.3);
-  TerrainMap m = Make();
-  ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
+  TerrainMap map = Make();
+  OneRock() {
+    AddRock(&world, 2.5, 0.0, 0.5, 0.3);
+    EXPECT_TRUE(map.Update(Look(world, 0, 0, 0)).ok());
+  }
+};
+
+TEST(TerrainMap, ARockIsAnObstacleBlobTheSizeOfTheRoverDisc) {
+  OneRock scene;
+  const TerrainMap& m = scene.map;
   EXPECT_EQ(At(m, 2.5, 0.0).goodness, 0);
   const CellAssessment& a = AssessmentAt(m, 2.5, 0.0);
   EXPECT_EQ(a.step_goodness, 0);
@@ -130,8 +139,8 @@ TEST(TerrainMap, TallThinRocksAreFoundThroughTheCellSpread) {
   const RangeScan scan = Look(world, 0, 0, 0);
   ASSERT_TRUE(blind.Update(scan).ok());
   ASSERT_TRUE(seen.Update(scan).ok());
-  EXPECT_GT(At(blind, 2.2, 0.3).goodness, 30);     // the mean barely rises: looks passable
-  EXPECT_LT(At(seen, 2.2, 0.3).goodness, 10);      // mean + sigma: an obstacle
+  EXPECT_GT(At(blind, 2.2, 0.3).goodness, 30);  // the mean barely rises: looks passable
+  EXPECT_LT(At(seen, 2.2, 0.3).goodness, 10);   // mean + sigma: an obstacle
   EXPECT_LT(AssessmentAt(blind, 2.2, 0.3).step, AssessmentAt(seen, 2.2, 0.3).step - 0.08);
 }
 
@@ -195,10 +204,9 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
 }
 
 TEST(TerrainMap, NewDataOverridesOld) {
-  sim::Terrain world = FlatWorld(14.0);
-  AddRock(&world, 2.5, 0.0, 0.5, 0.3);
-  TerrainMap m = Make();
-  ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
+  OneRock scene;
+  sim::Terrain& world = scene.world;
+  TerrainMap& m = scene.map;
   ASSERT_EQ(At(m, 2.5, 0.0).goodness, 0);
   // The "rock" was a stereo artefact (or a pose error): the next look shows flat ground.
   world.rocks.clear();
@@ -234,8 +242,9 @@ TEST(TerrainMap, UpdatesAreIncremental) {
     for (int i = 0; i < 50; ++i) {
       const CellAssessment& stored = m.assessments().at(i, j);
       if (!stored.known()) continue;
-      const CellAssessment fresh = assessor.Assess(i, j, sums.DiscSum(i, j, assessor.rover_disc()),
-                                                   counts.DiscSum(i, j, assessor.rover_disc()), stats);
+      const CellAssessment fresh =
+          assessor.Assess(i, j, sums.DiscSum(i, j, assessor.rover_disc()),
+                          counts.DiscSum(i, j, assessor.rover_disc()), stats);
       ASSERT_TRUE(fresh.known()) << i << "," << j;
       EXPECT_EQ(fresh.goodness, stored.goodness) << i << "," << j;
       ++compared;
@@ -279,7 +288,7 @@ TEST(TerrainMap, PartialViewsAtTheFovEdgeAreMergedConservatively) {
   a.goodness_map().CellOf(2.1, 0.1, &i, &j);
   const double points_whole = a.moments().at(i, j).n;
   for (TerrainMap* m : {&a, &b}) ASSERT_TRUE(m->Update(Look(world, 0, 0, yaw, 2)).ok());
-  ASSERT_NE(b.fov_edge_cells().at(i, j), 0);           // the cell is at the edge of the view
+  ASSERT_NE(b.fov_edge_cells().at(i, j), 0);              // the cell is at the edge of the view
   ASSERT_LT(a.moments().at(i, j).n, 0.6 * points_whole);  // and only partly seen
   // Overwritten by the sliver, the cell (and every cell whose disc holds it) looks passable;
   // merged conservatively it stays an obstacle.
@@ -397,18 +406,19 @@ TEST(TerrainMap, MarksTheHazardsItSawAndFewCellsWithoutCause) {
         add(&field, testing::CompareWithTruth(m.goodness_map(), world, {x, 0.0}, o, lenient));
         add(&field_strict, testing::CompareWithTruth(m.goodness_map(), world, {x, 0.0}, o, strict));
       }
-      std::printf("%s seed %llu: hazards marked %d / %d; obstacle cells %d, unexplained by rocks "
-                  ">= 0.15 m %.3f, by rocks >= %.2f m %.3f\n",
-                  preset, static_cast<unsigned long long>(seed), field.hazards_marked,
-                  field.hazards_seen, field.obstacle_cells, field.false_rate(), o.max_step,
-                  field_strict.false_rate());
+      std::printf(
+          "%s seed %llu: hazards marked %d / %d; obstacle cells %d, unexplained by rocks "
+          ">= 0.15 m %.3f, by rocks >= %.2f m %.3f\n",
+          preset, static_cast<unsigned long long>(seed), field.hazards_marked, field.hazards_seen,
+          field.obstacle_cells, field.false_rate(), o.max_step, field_strict.false_rate());
       add(&total, field);
       add(&total_strict, field_strict);
     }
   }
-  std::printf("all: recall %.3f (%d hazards), unexplained obstacle cells %.4f (of %d), strict %.3f\n",
-              total.recall(), total.hazards_seen, total.false_rate(), total.obstacle_cells,
-              total_strict.false_rate());
+  std::printf(
+      "all: recall %.3f (%d hazards), unexplained obstacle cells %.4f (of %d), strict %.3f\n",
+      total.recall(), total.hazards_seen, total.false_rate(), total.obstacle_cells,
+      total_strict.false_rate());
   EXPECT_GT(total.hazards_seen, 20);
   EXPECT_GE(total.recall(), 0.95);
   EXPECT_LE(total.false_rate(), 0.02);

@@ -1,15 +1,14 @@
-// The nav_core headers on their own: each compiles alone (they are included first, one per
-// block below), the inline helpers index the map as the topic does, and RangeScan::Validate
-// names the field that is wrong.
+// The nav_core headers: they compile, the inline helpers index the map as the topic does,
+// RangeScan::Validate names the field that is wrong, and the interfaces can be implemented.
+#include <gtest/gtest.h>
+
+#include <limits>
+
 #include "rover/apl/nav_core/arc_selector.hpp"
 #include "rover/apl/nav_core/global_planner.hpp"
 #include "rover/apl/nav_core/goodness_map.hpp"
 #include "rover/apl/nav_core/range_scan.hpp"
 #include "rover/apl/nav_core/terrain_assessor.hpp"
-
-#include <gtest/gtest.h>
-
-#include <limits>
 
 namespace rover::apl::nav_core {
 namespace {

@@ -94,6 +94,19 @@ std::size_t EditDistance(const std::string& a, const std::string& b) {
   return prev[b.size()];
 }
 
+std::string DidYouMean(const std::string& key, const std::vector<std::string>& known) {
+  const std::string* best = nullptr;
+  std::size_t best_d = 3;  // suggest only close matches
+  for (const auto& k : known) {
+    const std::size_t d = EditDistance(key, k);
+    if (d < best_d) {
+      best_d = d;
+      best = &k;
+    }
+  }
+  return best ? " (did you mean '" + *best + "'?)" : "";
+}
+
 // ---- Spec --------------------------------------------------------------------------------------
 
 ParamSet::Spec& ParamSet::Spec::Range(double lo, double hi) {
@@ -176,18 +189,7 @@ ParamSet::Spec& ParamSet::Declare(const std::string& n, std::vector<double> v, s
 
 // ---- loading -----------------------------------------------------------------------------------
 
-std::string ParamSet::Suggest(const std::string& key) const {
-  std::string best;
-  std::size_t best_d = 3;  // suggest only close matches
-  for (const auto& name : order_) {
-    std::size_t d = EditDistance(key, name);
-    if (d < best_d) {
-      best_d = d;
-      best = name;
-    }
-  }
-  return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
+std::string ParamSet::Suggest(const std::string& key) const { return DidYouMean(key, order_); }
 
 Status ParamSet::Assign(const std::string& key, const ParamOrigin& origin, const void* yaml_node) {
   const YAML::Node& node = *static_cast<const YAML::Node*>(yaml_node);

@@ -9,7 +9,10 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
 #include <sstream>
 #include <thread>
 #include <utility>
@@ -198,6 +201,130 @@ bool ProcessAlive(pid_t pid) {
   const auto rparen = content.rfind(')');
   if (rparen == std::string::npos || rparen + 2 >= content.size()) return true;
   return content[rparen + 2] != 'Z';
+}
+
+namespace {
+
+// /proc/<pid>/stat fields after the command name: "S ppid pgrp ..." (the name may hold spaces
+// and parentheses, so parse from the last ')').
+std::vector<std::string> StatFields(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string content;
+  std::getline(in, content);
+  const auto rparen = content.rfind(')');
+  std::vector<std::string> fields;
+  if (rparen == std::string::npos) return fields;
+  std::istringstream rest(content.substr(rparen + 1));
+  std::string f;
+  while (rest >> f) fields.push_back(f);
+  return fields;  // [0] state, [1] ppid, [2] pgrp, ..., [19] starttime
+}
+
+bool EnvironmentMatches(pid_t pid, std::string_view key, std::string_view value, EnvMatch match) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/environ", std::ios::binary);
+  if (!in) return false;
+  const std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t pos = 0;
+  while (pos < env.size()) {
+    std::size_t end = env.find('\0', pos);
+    if (end == std::string::npos) end = env.size();
+    const std::string_view entry(env.data() + pos, end - pos);
+    if (entry.size() > key.size() && entry.compare(0, key.size(), key) == 0 &&
+        entry[key.size()] == '=') {
+      const std::string_view v = entry.substr(key.size() + 1);
+      return match == EnvMatch::kExact ? v == value : v.compare(0, value.size(), value) == 0;
+    }
+    pos = end + 1;
+  }
+  return false;
+}
+
+std::vector<pid_t> AllPids() {
+  std::vector<pid_t> pids;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/proc", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    pids.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return pids;
+}
+
+// The processes StopMarkedProcesses is after, and their groups, as they are now.
+struct MarkedTree {
+  std::vector<pid_t> pids;
+  std::set<pid_t> groups;
+};
+
+MarkedTree FindMarkedTree(std::string_view key, std::string_view value, EnvMatch match) {
+  const pid_t self = getpid();
+  const pid_t own_group = getpgrp();
+  MarkedTree t;
+  std::vector<std::pair<pid_t, pid_t>> live;  // pid, group
+  for (pid_t pid : AllPids()) {
+    if (pid == self || !ProcessAlive(pid)) continue;
+    const pid_t group = ProcessGroupOf(pid);
+    if (group < 0) continue;
+    live.emplace_back(pid, group);
+    if (EnvironmentMatches(pid, key, value, match) && group != own_group) t.groups.insert(group);
+  }
+  for (const auto& [pid, group] : live) {
+    if (t.groups.count(group) || (group != own_group && EnvironmentMatches(pid, key, value, match))) {
+      t.pids.push_back(pid);
+    }
+  }
+  return t;
+}
+
+void SignalTree(const MarkedTree& t, int sig) {
+  for (pid_t g : t.groups) kill(-g, sig);
+  for (pid_t p : t.pids) kill(p, sig);
+}
+
+}  // namespace
+
+std::vector<pid_t> ProcessesWithEnvironment(std::string_view key, std::string_view value,
+                                            EnvMatch match) {
+  std::vector<pid_t> out;
+  const pid_t self = getpid();
+  for (pid_t pid : AllPids()) {
+    if (pid != self && EnvironmentMatches(pid, key, value, match) && ProcessAlive(pid)) {
+      out.push_back(pid);
+    }
+  }
+  return out;
+}
+
+pid_t ProcessGroupOf(pid_t pid) {
+  const auto f = StatFields(pid);
+  return f.size() > 2 ? static_cast<pid_t>(std::stol(f[2])) : -1;
+}
+
+long long ProcessStartTicks(pid_t pid) {
+  const auto f = StatFields(pid);
+  return f.size() > 19 ? std::stoll(f[19]) : -1;
+}
+
+MarkedStop StopMarkedProcesses(std::string_view key, std::string_view value, EnvMatch match,
+                               Duration grace) {
+  MarkedStop out;
+  MarkedTree tree = FindMarkedTree(key, value, match);
+  out.found = tree.pids;
+  if (tree.pids.empty()) return out;
+  SignalTree(tree, SIGTERM);
+  auto wait_gone = [&](Duration limit) {
+    const Time deadline = MonotonicNow() + limit;
+    while (true) {
+      tree = FindMarkedTree(key, value, match);
+      if (tree.pids.empty() || MonotonicNow() >= deadline) return tree.pids.empty();
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  };
+  if (wait_gone(grace)) return out;
+  out.killed = tree.pids;
+  SignalTree(tree, SIGKILL);
+  out.all_gone = wait_gone(std::chrono::seconds(5));
+  return out;
 }
 
 }  // namespace rover

@@ -134,5 +134,20 @@ TEST(Params, EditDistance) {
   EXPECT_EQ(EditDistance("", "abc"), 3u);
 }
 
+TEST(Params, DidYouMeanNamesTheClosestWithinTwoEdits) {
+  EXPECT_EQ(DidYouMean("critera", {"name", "criteria", "seed"}), " (did you mean 'criteria'?)");
+  EXPECT_EQ(DidYouMean("ab", {"xb", "ax"}), " (did you mean 'xb'?)");  // the first of equals
+  EXPECT_EQ(DidYouMean("kitten", {"sitting"}), "");                    // three edits
+  EXPECT_EQ(DidYouMean("x", {}), "");
+}
+
+TEST(Params, DidYouMeanSuggestsOnlyCloseNames) {
+  const std::vector<std::string> known = {"probability", "duration_s", "start_s"};
+  EXPECT_EQ(DidYouMean("probabilty", known), " (did you mean 'probability'?)");
+  EXPECT_EQ(DidYouMean("start", known), " (did you mean 'start_s'?)");
+  EXPECT_EQ(DidYouMean("colour", known), "");
+  EXPECT_EQ(DidYouMean("x", {}), "");
+}
+
 }  // namespace
 }  // namespace rover

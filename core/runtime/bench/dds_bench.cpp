@@ -10,6 +10,9 @@
 // profile; ddsperf's ping/pong QoS), median and 90th percentile.
 // Throughput: one publisher writing as fast as it can, one subscriber in another process,
 // reliable keep-all (our `command` profile; ddsperf -k all), samples and bytes per second.
+// Fault seam (--cases seam): the cost of fault injection per sample, in one process (write one
+// rover_dl_PoseEstimate on dl/pose, take it), plain wrappers vs the fault engine installed with
+// no fault vs with a 10 % drop; interleaved rounds, medians, ratios to the plain wrappers.
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
@@ -18,6 +21,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -28,6 +32,7 @@
 #include "rover/base/process.hpp"
 #include "rover/runtime/dds.hpp"
 #include "rover/runtime/domain.hpp"
+#include "rover/runtime/fault_engine.hpp"
 
 namespace {
 using rover::dds::QosProfile;
@@ -387,6 +392,96 @@ double ReadNumber(const std::string& path) {
   return v;
 }
 
+// ---- the fault seam's cost ------------------------------------------------------------------
+
+double ThreadCpuNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
+}
+
+struct PerSample {
+  double cpu_ns = 0, wall_ns = 0;
+};
+
+// Writes `samples` poses on dl/pose and takes each, in one process; cost per written sample.
+PerSample WriteTake(const dds::Participant& p, int samples, Payload& payload) {
+  auto w = dds::Writer<rover_dl_PoseEstimate>::Create(p, "dl/pose");
+  auto r = dds::Reader<rover_dl_PoseEstimate>::Create(p, "dl/pose");
+  PerSample out;
+  if (!w.ok() || !r.ok()) return out;
+  rover_dl_PoseEstimate& s = payload.small;
+  std::size_t taken = 0;
+  auto loop = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      SetSeq(s, static_cast<uint32_t>(i));
+      (void)w->Write(s);
+      taken += r->TakeEach([](const dds::Sample<rover_dl_PoseEstimate>&) {});
+    }
+  };
+  loop(std::max(200, samples / 10));  // warm up
+  const double cpu0 = ThreadCpuNs();
+  const rover::Time wall0 = rover::MonotonicNow();
+  loop(samples);
+  out.cpu_ns = (ThreadCpuNs() - cpu0) / samples;
+  out.wall_ns = static_cast<double>((rover::MonotonicNow() - wall0).count()) / samples;
+  return out;
+}
+
+int SeamBench(int domain, int rounds, int samples, Payload& payload) {
+  auto p = dds::Participant::Create(domain);
+  if (!p.ok()) {
+    std::fprintf(stderr, "%s\n", p.status().message().c_str());
+    return 1;
+  }
+  rover::WallClock clock;
+  rover::faults::FaultEngine engine({"rover-dds-bench", &clock, rover::Time{0}});
+  auto drop = rover::faults::ParseFault("{kind: drop, topic: dl/pose, probability: 0.1, id: 1}", "bench");
+  if (!drop.ok()) {
+    std::fprintf(stderr, "%s\n", drop.status().message().c_str());
+    return 1;
+  }
+  // Case 3 repeats case 0: its ratio is the noise floor of this machine and run.
+  const char* names[] = {"plain wrappers", "seam, no fault", "seam, 10% drop", "plain, again"};
+  constexpr int kCases = 4;
+  std::vector<double> cpu[kCases], wall[kCases];
+  std::mt19937 shuffle(12345);  // a fixed seed: the same order on every run
+  for (int round = 0; round < rounds; ++round) {
+    int order[kCases] = {0, 1, 2, 3};
+    std::shuffle(order, order + kCases, shuffle);  // no case always runs first or after another
+    for (int k = 0; k < kCases; ++k) {
+      const int c = order[k];
+      engine.Uninstall();
+      engine.Clear();
+      if (c == 1 || c == 2) engine.Install();
+      if (c == 2) (void)engine.Add(*drop);
+      const PerSample ps = WriteTake(*p, samples, payload);
+      cpu[c].push_back(ps.cpu_ns);
+      wall[c].push_back(ps.wall_ns);
+    }
+  }
+  engine.Uninstall();
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  const double base_cpu = median(cpu[0]), base_wall = median(wall[0]);
+  std::printf("\nrover-dds-bench: fault seam cost, write + take of rover_dl_PoseEstimate in one process\n");
+  std::printf("%d samples per case, medians of %d interleaved rounds\n\n", samples, rounds);
+  std::printf("%-18s %14s %14s %10s %10s\n", "case", "cpu ns/sample", "wall ns/sample", "cpu ratio",
+              "wall ratio");
+  for (int c = 0; c < kCases; ++c) {
+    const double mc = median(cpu[c]), mw = median(wall[c]);
+    std::printf("%-18s %14.0f %14.0f %10.3f %10.3f\n", names[c], mc, mw,
+                base_cpu > 0 ? mc / base_cpu : 0, base_wall > 0 ? mw / base_wall : 0);
+  }
+  std::printf("\nratio = case / plain wrappers in the same run (thread CPU time and wall time);\n"
+              "'plain, again' measures the plain wrappers a second time: its distance from 1 is the\n"
+              "noise. goal: seam with no fault <= 1.02. A 10%% drop also saves the dropped samples'\n"
+              "delivery, so it can come out below 1.\n");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -401,6 +496,12 @@ int main(int argc, char** argv) {
   app.add_option("--seconds", seconds, "measurement time per case")->check(CLI::Range(1.0, 600.0));
   int rounds = 3;
   app.add_option("--rounds", rounds, "interleaved repetitions (median reported)")->check(CLI::Range(1, 20));
+  std::string cases = "all";
+  app.add_option("--cases", cases, "all | wrappers | seam")
+      ->check(CLI::IsMember({"all", "wrappers", "seam"}));
+  int seam_samples = 20000, seam_rounds = 15;
+  app.add_option("--seam-samples", seam_samples, "samples per seam case")->check(CLI::Range(1000, 10000000));
+  app.add_option("--seam-rounds", seam_rounds, "interleaved seam rounds")->check(CLI::Range(1, 200));
   CLI11_PARSE(app, argc, argv);
 
   g_octets = size == "octets";
@@ -441,6 +542,11 @@ int main(int argc, char** argv) {
   };
   const std::string tmp = "/tmp/rover-dds-bench-" + std::to_string(getpid());
   Payload payload;
+  if (cases == "seam" || cases == "all") {
+    next_domain();
+    const int rc = SeamBench(d, seam_rounds, seam_samples, payload);
+    if (rc != 0 || cases == "seam") return rc;
+  }
   // Serialised sizes, for ddsperf's KS topic ("size" includes its 12-byte fixed part).
   const std::size_t small_bytes = 432, stereo_bytes = 2 * kStereoSide * kStereoSide + 64;
 

@@ -1,5 +1,7 @@
 #include "rover/runtime/dds.hpp"
 
+#include "rover/runtime/type_layout.hpp"
+
 #include <cstdlib>
 
 namespace rover::dds {
@@ -89,6 +91,12 @@ Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, Qo
     }
   }
   return e;
+}
+
+void CopySample(void* dst, const void* src, const dds_topic_descriptor_t* type) {
+  auto layout = TypeLayout::For(type);
+  ROVER_DEMAND_MSG(layout.ok() && (*layout)->copyable(), "CopySample on a type without a layout");
+  (*layout)->CopyInto(dst, src);
 }
 
 }  // namespace internal

@@ -44,8 +44,8 @@ void Executor::CancelTimer(TimerId id) {
 }
 
 Status Executor::AddSubscription(dds_entity_t handle, const std::string& topic,
-                                 std::function<void()> drain, bool always) {
-  Subscription s{handle, topic, std::move(drain), always};
+                                 std::function<void()> drain, bool always, dds::TopicSeam* seam) {
+  Subscription s{handle, topic, std::move(drain), always, seam};
   if (always || active_) {
     ROVER_RETURN_IF_ERROR(
         waitset_.Attach(handle, static_cast<dds_attach_t>(subscriptions_.size())));
@@ -135,6 +135,13 @@ void Executor::SpinOnce(Duration max_wait) {
       wait = std::min(wait, std::max(Duration::zero(), t.next - now));
     }
   }
+  if (auto pump = dds::CurrentSeamPump()) {
+    if (auto due = pump->NextDue()) {
+      // Held samples fall due on the run clock; under wall time that is a wall deadline.
+      wait = std::min(wait, clock_.simulated() ? kMaxIdleWait
+                                               : std::max(Duration::zero(), *due - clock_.Now()));
+    }
+  }
   if (clock_.simulated()) wait = std::min(wait, kMaxIdleWait);
 
   const auto tokens = waitset_.Wait(wait.count());
@@ -146,8 +153,16 @@ void Executor::SpinOnce(Duration max_wait) {
     const auto idx = static_cast<std::size_t>(token);
     if (idx < subscriptions_.size() && subscriptions_[idx].attached) subscriptions_[idx].drain();
   }
+  RunSeams();
   RunDueTimers();
   if (after_spin_) Invoke("after-spin", after_spin_);
+}
+
+void Executor::RunSeams() {
+  if (auto pump = dds::CurrentSeamPump()) Invoke("fault seam", [&] { pump->Pump(); });
+  for (auto& s : subscriptions_) {
+    if (s.attached && s.seam != nullptr && s.seam->Holding() && s.seam->HasDue()) s.drain();
+  }
 }
 
 void Executor::Spin() {

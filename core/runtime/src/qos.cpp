@@ -6,7 +6,7 @@ QosSpec DescribeQos(QosProfile profile) {
   switch (profile) {
     case QosProfile::kState: return {true, 1, false};
     case QosProfile::kStream: return {false, 8, false};
-    case QosProfile::kCommand: return {true, 0, false};
+    case QosProfile::kCommand: return {true, 0, true, true};
     case QosProfile::kLatched: return {true, 1, true};
   }
   return {};
@@ -46,6 +46,11 @@ QosPtr MakeQos(QosProfile profile) {
   }
   dds_qset_durability(q.get(), spec.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL
                                                     : DDS_DURABILITY_VOLATILE);
+  if (spec.transient_local && spec.history_depth == 0) {
+    // Keep-all while unacknowledged; for readers that match later, the last few.
+    dds_qset_durability_service(q.get(), 0, DDS_HISTORY_KEEP_LAST, kCommandHistoryDepth,
+                                DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  }
   return q;
 }
 

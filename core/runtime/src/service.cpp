@@ -77,6 +77,13 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
   } else {
     ctx->clock_ = std::make_unique<WallClock>();
   }
+  if (options.fault_injection) {
+    const Time epoch = options.fault_epoch_ns ? Time{*options.fault_epoch_ns}
+                       : ctx->sim_clock_ != nullptr ? Time{0}
+                                                    : ctx->clock_->Now();
+    ctx->faults_ = faults::FaultAgent::Install(
+        *ctx->clock_, faults::FaultAgent::Options{options.name, options.faults, epoch});
+  }
   auto exec = Executor::Create(ctx->participant_, *ctx->clock_);
   if (!exec.ok()) return exec.status();
   ctx->executor_ = std::move(*exec);
@@ -103,6 +110,8 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
   auto ev = dds::Writer<rover_sys_Event>::Create(ctx->participant_, "sys/event");
   if (!ev.ok()) return ev.status();
   ctx->event_writer_ = std::move(*ev);
+
+  if (ctx->faults_) ROVER_RETURN_IF_ERROR(ctx->faults_->Attach(ctx->participant_, *ctx->executor_));
 
   ServiceContext* raw = ctx.get();
   ctx->executor_->AddTimer(Seconds(options.heartbeat_period_s),
@@ -144,9 +153,7 @@ void ServiceContext::AcknowledgeClock() {
 void ServiceContext::Stamp(rover_Header& header, std::string_view frame_id) {
   header.stamp_ns = clock_->Now().ns;
   dds::CopyString(header.frame_id, frame_id);
-  auto it = seq_.find(frame_id);
-  if (it == seq_.end()) it = seq_.emplace(std::string(frame_id), 0).first;
-  header.seq = ++it->second;
+  header.seq = 0;  // numbered by the writer
 }
 
 void ServiceContext::SetHealth(rover_SensorHealth health, std::string message) {
@@ -175,6 +182,19 @@ void ServiceContext::PublishHeartbeat() {
 }
 
 // ---- parameters and lifecycle ------------------------------------------------------------------
+
+Status LoadFaults(ServiceOptions* options) {
+  options->faults.clear();
+  if (options->faults_file.empty()) return Status::Ok();
+  if (!options->fault_injection) {
+    return InvalidArgument("faults file '" + options->faults_file +
+                           "' given but fault injection is off (ROVER_FAULT_INJECTION)");
+  }
+  auto specs = faults::LoadFaultsFile(options->faults_file);
+  if (!specs.ok()) return specs.status();
+  options->faults = std::move(*specs);
+  return Status::Ok();
+}
 
 Status LoadParameters(Service& service, const ServiceOptions& options, ParamSet* params) {
   *params = ParamSet(options.name.empty() ? service.kind() : options.name);
@@ -273,6 +293,12 @@ int RunServiceMain(Service& service, int argc, char** argv) {
   if (const char* e = std::getenv("ROVER_DOMAIN")) options.domain = std::atoi(e);
   if (const char* e = std::getenv("ROVER_CLOCK")) options.clock = e;
   if (const char* e = std::getenv("ROVER_PARAMS")) options.param_files = SplitColon(e);
+  if (const char* e = std::getenv("ROVER_FAULTS")) options.faults_file = e;
+  if (const char* e = std::getenv("ROVER_FAULT_INJECTION")) {
+    options.fault_injection = std::string(e) != "off" && std::string(e) != "0";
+  }
+  std::string epoch_text;
+  if (const char* e = std::getenv("ROVER_FAULTS_EPOCH_NS")) epoch_text = e;
 
   CLI::App app{"rover service '" + service.kind() + "'"};
   bool validate_only = false, help_params = false, print_params = false;
@@ -281,7 +307,8 @@ int RunServiceMain(Service& service, int argc, char** argv) {
   app.add_option("--clock", options.clock, "run clock: wall or sim");
   app.add_option("--params", options.param_files, "YAML parameter files");
   app.add_option("--set", options.overrides, "parameter override key=value");
-  app.add_flag("--validate", validate_only, "validate the parameters and exit");
+  app.add_option("--faults", options.faults_file, "YAML file of faults to inject (docs/faults.md)");
+  app.add_flag("--validate", validate_only, "validate the parameters and faults and exit");
   app.add_flag("--help-params", help_params, "describe the parameters and exit");
   app.add_flag("--print-params", print_params, "print the effective parameters at start");
   try {
@@ -301,7 +328,17 @@ int RunServiceMain(Service& service, int argc, char** argv) {
     return 0;
   }
   Status s = ValidateOptions(options);
+  if (s.ok() && !epoch_text.empty()) {
+    char* end = nullptr;
+    const long long v = std::strtoll(epoch_text.c_str(), &end, 10);
+    if (end == epoch_text.c_str() || *end != '\0') {
+      s = InvalidArgument("ROVER_FAULTS_EPOCH_NS: '" + epoch_text + "' is not a whole number of ns");
+    } else {
+      options.fault_epoch_ns = v;
+    }
+  }
   if (s.ok()) s = LoadParameters(service, options, &params);
+  if (s.ok()) s = LoadFaults(&options);
   if (!s.ok()) {
     std::cerr << options.name << ": error: " << s.message() << "\n";
     return 2;

@@ -1,5 +1,7 @@
 #include "rover/runtime/topic_catalog.hpp"
 
+#include "rover/idl/types.hpp"
+
 namespace rover::dds {
 
 const std::vector<TopicInfo>& TopicCatalog() {
@@ -61,6 +63,13 @@ std::optional<TopicInfo> FindTopic(std::string_view name) {
     if (t.name == name) return t;
   }
   return std::nullopt;
+}
+
+const dds_topic_descriptor_t* DescriptorForType(std::string_view type_name) {
+  for (const auto& e : kTopicTypes) {
+    if (type_name == e.type_name) return e.descriptor;
+  }
+  return nullptr;
 }
 
 }  // namespace rover::dds

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <atomic>
+#include <functional>
 #include <vector>
 
 #include "rover/testing/test_support.hpp"
@@ -137,9 +142,10 @@ class EveryOtherSeam : public TopicSeam {
     copy.command_id += 1000;
     return dds_write(writer, &copy);
   }
-  bool OnRead(void* sample, const dds_topic_descriptor_t*) override {
+  void OnRead(void* sample, const dds_sample_info_t& info, const dds_topic_descriptor_t*,
+              SampleSink& out) override {
     static_cast<rover_dl_DriveCommand*>(sample)->distance *= 2;
-    return true;
+    out.Deliver(sample, info);
   }
   std::atomic<int> n_{0};
 };
@@ -193,6 +199,106 @@ TEST(DomainLease, ExclusivePerMachine) {
   EXPECT_EQ(b.status().code(), StatusCode::kBusy);
   EXPECT_FALSE(DomainLease::Acquire(999).ok());
   EXPECT_FALSE(DomainLease::AcquireFree(5, 1).ok());
+}
+
+
+// ---- commands and discovery ---------------------------------------------------------------------
+// Discovery between processes takes time; within one process Cyclone matches endpoints at once.
+// So the writer of these tests lives in a child process, forked before this process touches DDS
+// (a fork after Cyclone started would leave the child without its threads).
+
+class CommandDelivery : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    lease_ = testing::IsolatedDomain();
+    ASSERT_EQ(pipe(to_child_), 0);
+    ASSERT_EQ(pipe(to_parent_), 0);
+  }
+  void TearDown() override {
+    if (child_ > 0) {
+      close(to_child_[1]);  // the child ends when this closes
+      int status = 0;
+      waitpid(child_, &status, 0);
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "writer process failed";
+    }
+  }
+  // Forks the writer's process; `body` runs there and gets a writer of dl/drive_command.
+  void ForkWriter(const std::function<bool(Writer<rover_dl_DriveCommand>&)>& body) {
+    child_ = fork();
+    ASSERT_GE(child_, 0);
+    if (child_ > 0) return;
+    close(to_child_[1]);
+    bool ok = false;
+    {
+      auto p = Participant::Create(lease_.domain());
+      auto w = p.ok() ? Writer<rover_dl_DriveCommand>::Create(*p, "dl/drive_command")
+                      : Result<Writer<rover_dl_DriveCommand>>(p.status());
+      ok = w.ok() && body(*w);
+      // Keep the writer alive until the test is done with it (the parent closes the pipe).
+      char c;
+      while (read(to_child_[0], &c, 1) > 0) {
+      }
+    }
+    _exit(ok ? 0 : 1);
+  }
+  // In the child: waits for the parent's signal.
+  bool AwaitParent() {
+    char c = 0;
+    return read(to_child_[0], &c, 1) == 1;
+  }
+  void SignalChild() { ASSERT_EQ(write(to_child_[1], "g", 1), 1); }
+  bool SignalParent() { return write(to_parent_[1], "w", 1) == 1; }
+  void AwaitChild() {
+    char c = 0;
+    ASSERT_EQ(read(to_parent_[0], &c, 1), 1);
+  }
+  static bool Send(Writer<rover_dl_DriveCommand>& w, std::uint32_t id) {
+    rover_dl_DriveCommand c{};
+    c.command_id = id;
+    return w.Write(c).ok();
+  }
+
+  DomainLease lease_;
+  int to_child_[2] = {-1, -1}, to_parent_[2] = {-1, -1};
+  pid_t child_ = -1;
+};
+
+// The reader exists; the writer is created and publishes at once, before discovery has matched
+// the two. The command must still arrive (a volatile command topic lost it).
+TEST_F(CommandDelivery, CommandWrittenRightAfterTheWriterIsCreatedArrives) {
+  ForkWriter([this](Writer<rover_dl_DriveCommand>& w) { return AwaitParent() && Send(w, 7); });
+  auto p = Participant::Create(lease_.domain());
+  ASSERT_TRUE(p.ok());
+  auto r = Reader<rover_dl_DriveCommand>::Create(*p, "dl/drive_command");
+  ASSERT_TRUE(r.ok());
+  SignalChild();
+  std::vector<std::uint32_t> got;
+  EXPECT_TRUE(testing::WaitFor([&] {
+    for (auto& s : r->Take()) got.push_back(s->command_id);
+    return !got.empty();
+  })) << "the first command was lost to discovery";
+  EXPECT_EQ(got, (std::vector<std::uint32_t>{7}));
+}
+
+// A reader that joins after a command was written (a restarted service) must not execute it:
+// only commands written after the reader was created reach it.
+TEST_F(CommandDelivery, LateJoiningReaderDoesNotGetCommandsOlderThanItself) {
+  ForkWriter([this](Writer<rover_dl_DriveCommand>& w) {
+    if (!Send(w, 1) || !SignalParent()) return false;
+    if (!testing::WaitFor([&] { return w.MatchedReaders() > 0; })) return false;
+    return Send(w, 2);
+  });
+  AwaitChild();  // command 1 is written
+  auto p = Participant::Create(lease_.domain());
+  ASSERT_TRUE(p.ok());
+  auto r = Reader<rover_dl_DriveCommand>::Create(*p, "dl/drive_command");
+  ASSERT_TRUE(r.ok());
+  std::vector<std::uint32_t> got;
+  ASSERT_TRUE(testing::WaitFor([&] {
+    for (auto& s : r->Take()) got.push_back(s->command_id);
+    return std::find(got.begin(), got.end(), 2u) != got.end();
+  }));
+  EXPECT_EQ(got, (std::vector<std::uint32_t>{2})) << "a stale command reached a late joiner";
 }
 
 }  // namespace

@@ -13,6 +13,10 @@ TEST(Qos, ProfilesMeanWhatTheDesignSays) {
   EXPECT_GT(DescribeQos(QosProfile::kStream).history_depth, 1);
   EXPECT_EQ(DescribeQos(QosProfile::kCommand).history_depth, 0);  // keep-all
   EXPECT_TRUE(DescribeQos(QosProfile::kCommand).reliable);
+  // None lost to discovery, none executed by a late joiner (CommandDelivery in dds_test.cpp).
+  EXPECT_TRUE(DescribeQos(QosProfile::kCommand).transient_local);
+  EXPECT_TRUE(DescribeQos(QosProfile::kCommand).fresh_only);
+  EXPECT_FALSE(DescribeQos(QosProfile::kLatched).fresh_only);
   EXPECT_TRUE(DescribeQos(QosProfile::kLatched).transient_local);
 }
 
@@ -37,6 +41,14 @@ TEST(Qos, MakeQosSetsThePolicies) {
     dds_durability_kind_t dur{};
     ASSERT_TRUE(dds_qget_durability(q.get(), &dur));
     EXPECT_EQ(dur == DDS_DURABILITY_TRANSIENT_LOCAL, spec.transient_local);
+    if (p == QosProfile::kCommand) {
+      dds_duration_t cleanup = 0;
+      dds_history_kind_t kind{};
+      int32_t tl_depth = 0, a = 0, b = 0, c = 0;
+      ASSERT_TRUE(dds_qget_durability_service(q.get(), &cleanup, &kind, &tl_depth, &a, &b, &c));
+      EXPECT_EQ(kind, DDS_HISTORY_KEEP_LAST);
+      EXPECT_EQ(tl_depth, kCommandHistoryDepth);
+    }
   }
 }
 

@@ -174,5 +174,40 @@ TEST_F(ServiceTest, SimClockDrivesServiceTimers) {
   EXPECT_EQ(svc.ticks, 20);
 }
 
+
+// header.seq counts per writer (the IDL's promise, which drop detection relies on): two writers
+// stamping with the same frame id each number their own samples 1, 2, 3, ...
+TEST_F(ServiceTest, HeaderSeqCountsPerWriterNotPerFrameId) {
+  auto ctx = ServiceContext::Create(Options());
+  ASSERT_TRUE(ctx.ok()) << ctx.status().message();
+  // Topics outside the catalog, keep-all, so that every sample arrives.
+  constexpr auto kKeepAll = dds::QosProfile::kCommand;
+  auto pose = (*ctx)->MakeWriter<rover_dl_PoseEstimate>("test/pose_a", kKeepAll);
+  auto odometry = (*ctx)->MakeWriter<rover_dl_PoseEstimate>("test/pose_b", kKeepAll);
+  ASSERT_TRUE(pose.ok() && odometry.ok());
+  auto p = dds::Participant::Create(lease_.domain());
+  ASSERT_TRUE(p.ok());
+  auto pose_r = dds::Reader<rover_dl_PoseEstimate>::Create(*p, "test/pose_a", kKeepAll);
+  auto odo_r = dds::Reader<rover_dl_PoseEstimate>::Create(*p, "test/pose_b", kKeepAll);
+  ASSERT_TRUE(pose_r.ok() && odo_r.ok());
+  ASSERT_TRUE(testing::WaitFor(
+      [&] { return pose->MatchedReaders() == 1 && odometry->MatchedReaders() == 1; }));
+  for (int i = 0; i < 3; ++i) {
+    for (auto* w : {&*pose, &*odometry}) {
+      rover_dl_PoseEstimate m{};
+      (*ctx)->Stamp(m.header, "site");  // the same frame id on both topics
+      ASSERT_TRUE(w->Write(m).ok());
+    }
+  }
+  for (auto* r : {&*pose_r, &*odo_r}) {
+    std::vector<std::uint32_t> seqs;
+    ASSERT_TRUE(testing::WaitFor([&] {
+      for (auto& s : r->Take()) seqs.push_back(s->header.seq);
+      return seqs.size() >= 3;
+    }));
+    EXPECT_EQ(seqs, (std::vector<std::uint32_t>{1, 2, 3})) << r->topic_name();
+  }
+}
+
 }  // namespace
 }  // namespace rover

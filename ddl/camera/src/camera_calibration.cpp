@@ -77,12 +77,7 @@ const char* CameraName(int camera) {
 }
 
 Eigen::Isometry3d MastHeadPose(double pan, double tilt, const MastGeometry& mast) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() = mast.pan_joint + Eigen::Vector3d(0.0, 0.0, mast.head_height);
-  t.linear() = (Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(-tilt, Eigen::Vector3d::UnitY()))
-                   .toRotationMatrix();
-  return t;
+  return mast.HeadPose(pan, tilt);
 }
 
 std::pair<geometry::CameraModel, geometry::CameraModel> StereoCameraCalibration::InRover(
@@ -93,11 +88,14 @@ std::pair<geometry::CameraModel, geometry::CameraModel> StereoCameraCalibration:
 }
 
 void DeclareCameraCalibrationParams(ParamSet& p) {
-  p.Declare("mast.pan_joint", std::vector<double>{0.35, 0.0, 0.65},
+  const MastGeometry mast;
+  p.Declare("mast.pan_joint",
+            std::vector<double>{mast.pan_joint.x(), mast.pan_joint.y(), mast.pan_joint.z()},
             "[m] mast pan joint in the rover frame")
       .Size(3)
       .Range(-5.0, 5.0);
-  p.Declare("mast.head_height", 0.85, "[m] tilt axis (mast-head frame origin) above the pan joint")
+  p.Declare("mast.head_height", mast.head_height,
+            "[m] tilt axis (mast-head frame origin) above the pan joint")
       .Range(0.0, 10.0);
   for (const char* cam_c : kNames) {
     const std::string cam = cam_c;

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "rover/ddl/testing/service_harness.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -56,7 +56,6 @@ class CameraServiceTest : public ::testing::Test {
     frame_ = harness_->Writer<rover_hw_CameraFrame>("hw/camera_frame");
     hw_request_ = harness_->Reader<rover_hw_CameraRequest>("hw/camera_request");
     stereo_ = harness_->Reader<rover_ddl_StereoFrame>("ddl/stereo_frame");
-    health_ = harness_->Reader<rover_sys_Heartbeat>("sys/health");
   }
   void TearDown() override { harness_.reset(); }
 
@@ -81,7 +80,6 @@ class CameraServiceTest : public ::testing::Test {
   void Collect() {
     for (auto& r : hw_request_.Take()) hw_requests_.push_back(r.data());
     for (auto& s : stereo_.Take()) frames_.push_back(std::move(s));
-    for (auto& h : health_.Take()) health_log_.push_back(h.data());
   }
   void Request(std::uint32_t id, rover_CameraId camera, std::uint16_t width,
                std::uint32_t exposure_us = 0) {
@@ -122,9 +120,6 @@ class CameraServiceTest : public ::testing::Test {
     }));
     return frames_.at(n - 1).data();
   }
-  rover_SensorHealth Health() const {
-    return health_log_.empty() ? rover_HEALTH_OK : health_log_.back().health;
-  }
 
   CameraService service_;
   std::unique_ptr<CameraCalibration> calibration_;
@@ -134,14 +129,12 @@ class CameraServiceTest : public ::testing::Test {
   dds::Writer<rover_hw_CameraFrame> frame_;
   dds::Reader<rover_hw_CameraRequest> hw_request_;
   dds::Reader<rover_ddl_StereoFrame> stereo_;
-  dds::Reader<rover_sys_Heartbeat> health_;
   Time now_ = Time::FromSeconds(2.0);
   double pan_ = 0.3, tilt_ = -0.2;
   bool joints_silent_ = false;
   std::vector<std::uint8_t> left_px_, right_px_;
   std::vector<rover_hw_CameraRequest> hw_requests_;
   std::vector<dds::OwnedSample<rover_ddl_StereoFrame>> frames_;
-  std::vector<rover_sys_Heartbeat> health_log_;
 };
 
 TEST_F(CameraServiceTest, DownsamplesNavcamAndAttachesMastFollowingModels) {
@@ -235,7 +228,7 @@ TEST_F(CameraServiceTest, InvalidRequestsReachNeitherTheCameraNorTheRequester) {
   Run(0.2);
   EXPECT_EQ(hw_requests_.size(), 1u);
   EXPECT_TRUE(frames_.empty());
-  EXPECT_EQ(Health(), rover_HEALTH_OK);  // a bad request is not a driver fault
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);  // a bad request is not a driver fault
   // The service carries on: the valid request is answered.
   Answer(hw, 1024, 1024, 8);
   const rover_ddl_StereoFrame& f = WaitFrame(1);
@@ -249,8 +242,8 @@ TEST_F(CameraServiceTest, UnansweredRequestsAndStaleJointsDegradeTheHealth) {
   Request(5, rover_CAMERA_FRONT_HAZCAM, 0);
   const rover_hw_CameraRequest lost = WaitHwRequest(1);
   Run(1.2);  // request_timeout_s = 1 s
-  EXPECT_EQ(Health(), rover_HEALTH_DEGRADED);
-  EXPECT_STREQ(health_log_.back().message,
+  EXPECT_EQ(harness_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_STREQ(harness_->heartbeats().back().message,
                "camera head did not answer request 5 (front_hazcam) within 1 s");
   // A late answer is ignored (no frame); the next request succeeds and clears the fault.
   Answer(lost, 1024, 1024, 4);
@@ -260,13 +253,13 @@ TEST_F(CameraServiceTest, UnansweredRequestsAndStaleJointsDegradeTheHealth) {
   Answer(WaitHwRequest(2), 1024, 1024, 4);
   EXPECT_EQ(WaitFrame(1).request_id, 6u);
   Run(0.2);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
 
   // ddl/joint_state stops: the service is DEGRADED and NAVCAM frames carry the mast age.
   joints_silent_ = true;
   Run(0.4);
-  EXPECT_EQ(Health(), rover_HEALTH_DEGRADED);
-  EXPECT_STREQ(health_log_.back().message,
+  EXPECT_EQ(harness_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_STREQ(harness_->heartbeats().back().message,
                "ddl/joint_state: no sample for more than 0.25 s (NAVCAM models cannot follow "
                "the mast)");
   Request(7, rover_CAMERA_NAVCAM, 256);

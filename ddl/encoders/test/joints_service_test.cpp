@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "rover/ddl/testing/service_harness.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -23,7 +23,6 @@ class JointsServiceTest : public ::testing::Test {
     telemetry_ = harness_->Writer<rover_hw_MotorTelemetry>("hw/motor_telemetry");
     pots_ = harness_->Writer<rover_hw_SuspensionPots>("hw/suspension_pots");
     joints_ = harness_->Reader<rover_ddl_JointState>("ddl/joint_state");
-    health_ = harness_->Reader<rover_sys_Heartbeat>("sys/health");
   }
   void TearDown() override { harness_.reset(); }
 
@@ -53,14 +52,15 @@ class JointsServiceTest : public ::testing::Test {
     }
     return m;
   }
-  // 10 ms steps: telemetry every step (100 Hz), pots every other (50 Hz) unless `silent`.
-  void Run(double seconds, bool silent = false) {
+  // 10 ms steps: telemetry every `telemetry_every` steps (100 Hz by default), pots every other
+  // (50 Hz) unless `silent`.
+  void Run(double seconds, bool silent = false, int telemetry_every = 1) {
     const Time end = now_ + Seconds(seconds);
     while (now_ < end) {
       now_ = now_ + Seconds(0.01);
       ++step_;
       ASSERT_TRUE(harness_->AdvanceTo(now_));
-      if (!silent) {
+      if (!silent && step_ % telemetry_every == 0) {
         ASSERT_TRUE(telemetry_.Write(Telemetry(now_)).ok());
         if (step_ % 2 == 0) {
           ASSERT_TRUE(pots_.Write(Pots(now_)).ok());
@@ -68,7 +68,6 @@ class JointsServiceTest : public ::testing::Test {
       }
       harness_->Spin();
       for (auto& s : joints_.Take()) states_.push_back(s.data());
-      for (auto& h : health_.Take()) health_log_.push_back(h.data());
     }
   }
 
@@ -78,11 +77,9 @@ class JointsServiceTest : public ::testing::Test {
   dds::Writer<rover_hw_MotorTelemetry> telemetry_;
   dds::Writer<rover_hw_SuspensionPots> pots_;
   dds::Reader<rover_ddl_JointState> joints_;
-  dds::Reader<rover_sys_Heartbeat> health_;
   Time now_ = Time::FromSeconds(1.0);
   int step_ = 0;
   std::vector<rover_ddl_JointState> states_;
-  std::vector<rover_sys_Heartbeat> health_log_;
 };
 
 TEST_F(JointsServiceTest, CountsBecomeRadiansAt50Hz) {
@@ -116,8 +113,8 @@ TEST_F(JointsServiceTest, CountsBecomeRadiansAt50Hz) {
   const std::size_t n = states_.size() - before;
   EXPECT_GE(n, 49u);
   EXPECT_LE(n, 51u);
-  ASSERT_FALSE(health_log_.empty());
-  EXPECT_EQ(health_log_.back().health, rover_HEALTH_OK);
+  ASSERT_FALSE(harness_->heartbeats().empty());
+  EXPECT_EQ(harness_->heartbeats().back().health, rover_HEALTH_OK);
 }
 
 TEST_F(JointsServiceTest, GoesStaleWhenInputsStopAndRecovers) {
@@ -134,10 +131,10 @@ TEST_F(JointsServiceTest, GoesStaleWhenInputsStopAndRecovers) {
   EXPECT_EQ(stale.header.stamp_ns, silence.ns);
   EXPECT_NEAR(stale.wheel_angle[0], WheelAngle(silence),
               1.0 / hw_.motors[hw::kDriveLF].CountsPerRad());
-  ASSERT_FALSE(health_log_.empty());
-  EXPECT_EQ(health_log_.back().health, rover_HEALTH_STALE);
-  EXPECT_NE(std::string(health_log_.back().message).find("s old"), std::string::npos)
-      << health_log_.back().message;
+  ASSERT_FALSE(harness_->heartbeats().empty());
+  EXPECT_EQ(harness_->heartbeats().back().health, rover_HEALTH_STALE);
+  EXPECT_NE(std::string(harness_->heartbeats().back().message).find("s old"), std::string::npos)
+      << harness_->heartbeats().back().message;
   Run(0.1);
   EXPECT_EQ(states_.back().health, rover_HEALTH_OK);
 }
@@ -161,6 +158,22 @@ TEST_F(JointsServiceTest, FutureStampsAreDroppedAndASimulatorResetRestartsTheRea
   EXPECT_LT(states_.back().header.stamp_ns, Time::FromSeconds(1.0).ns);
   EXPECT_NEAR(states_.back().wheel_angle[0], WheelAngle(Time{states_.back().header.stamp_ns}),
               1e-3);
+}
+
+
+// A timer tick that has no new input since the last sample must not publish the same state
+// again: consumers (dl-pose's wheel odometry) reject a sample whose stamp is not after the
+// previous one, and logged each rejection.
+TEST_F(JointsServiceTest, EachInputStateIsPublishedOnceWithItsOwnStamp) {
+  Run(0.2);
+  states_.clear();
+  Run(1.0, /*silent=*/false, /*telemetry_every=*/4);  // inputs at 25 Hz, the timer at 50 Hz
+  ASSERT_GE(states_.size(), 10u);
+  for (std::size_t i = 1; i < states_.size(); ++i) {
+    EXPECT_GT(states_[i].header.stamp_ns, states_[i - 1].header.stamp_ns)
+        << "sample " << i << " repeats the stamp " << states_[i].header.stamp_ns;
+  }
+  for (const auto& s : states_) EXPECT_EQ(s.health, rover_HEALTH_OK);
 }
 
 }  // namespace

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "rover/ddl/testing/service_harness.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -22,7 +22,6 @@ class ImuServiceTest : public ::testing::Test {
     ASSERT_TRUE(harness_->ok()) << harness_->status().message();
     raw_ = harness_->Writer<rover_hw_ImuRaw>("hw/imu");
     imu_ = harness_->Reader<rover_ddl_Imu>("ddl/imu");
-    health_ = harness_->Reader<rover_sys_Heartbeat>("sys/health");
   }
   void TearDown() override { harness_.reset(); }
 
@@ -64,10 +63,6 @@ class ImuServiceTest : public ::testing::Test {
   }
   void Collect() {
     for (auto& s : imu_.Take()) out_.push_back(s.data());
-    for (auto& h : health_.Take()) health_log_.push_back(h.data());
-  }
-  rover_SensorHealth Health() const {
-    return health_log_.empty() ? rover_HEALTH_OK : health_log_.back().health;
   }
 
   HardwareConfig hw_;
@@ -75,13 +70,11 @@ class ImuServiceTest : public ::testing::Test {
   std::unique_ptr<ServiceHarness> harness_;
   dds::Writer<rover_hw_ImuRaw> raw_;
   dds::Reader<rover_ddl_Imu> imu_;
-  dds::Reader<rover_sys_Heartbeat> health_;
   Time now_ = Time::FromSeconds(1.0);
   Eigen::Vector3d rate_{0.01, -0.02, 0.3};
   Eigen::Vector3d force_{0.5, -0.3, 9.81};
   int sent_ = 0;
   std::vector<rover_ddl_Imu> out_;
-  std::vector<rover_sys_Heartbeat> health_log_;
 };
 
 TEST_F(ImuServiceTest, RawCountsBecomeRoverFrameSiOnePerSample) {
@@ -101,35 +94,35 @@ TEST_F(ImuServiceTest, RawCountsBecomeRoverFrameSiOnePerSample) {
     EXPECT_DOUBLE_EQ(m.temperature, 21.5);
     EXPECT_EQ(m.health, rover_HEALTH_OK);
   }
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
 }
 
 TEST_F(ImuServiceTest, StatusBitsAndSilenceSetTheHealth) {
   Run(20);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
   Run(5, false, hw::kImuGyroSaturated);
   ASSERT_FALSE(out_.empty());
   EXPECT_EQ(out_.back().health, rover_HEALTH_DEGRADED);
   Run(10, false, hw::kImuGyroSaturated);
-  EXPECT_EQ(Health(), rover_HEALTH_DEGRADED);
-  EXPECT_STREQ(health_log_.back().message, "hw/imu: gyro saturated");
+  EXPECT_EQ(harness_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_STREQ(harness_->heartbeats().back().message, "hw/imu: gyro saturated");
   Run(20, false, hw::kImuSelfTestFail);
   EXPECT_EQ(out_.back().health, rover_HEALTH_FAILED);
-  EXPECT_EQ(Health(), rover_HEALTH_FAILED);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_FAILED);
   Run(20);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
   // Silence: STALE once hw/imu has not arrived for 0.1 s (judged at 10 Hz).
   Run(25, /*silent=*/true);
-  EXPECT_EQ(Health(), rover_HEALTH_STALE);
-  EXPECT_STREQ(health_log_.back().message, "hw/imu: no sample for more than 0.1 s");
+  EXPECT_EQ(harness_->health(), rover_HEALTH_STALE);
+  EXPECT_STREQ(harness_->heartbeats().back().message, "hw/imu: no sample for more than 0.1 s");
   // A sample from the far future is dropped: no output, still STALE.
   const std::size_t before = out_.size();
   ASSERT_TRUE(raw_.Write(Raw(now_ + Seconds(50.0), rate_, force_)).ok());
   Run(15, /*silent=*/true);
   EXPECT_EQ(out_.size(), before);
-  EXPECT_EQ(Health(), rover_HEALTH_STALE);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_STALE);
   Run(15);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "rover/ddl/motor/sync_planner.hpp"
-#include "rover/ddl/testing/service_harness.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -87,7 +87,6 @@ class MotorServiceTest : public ::testing::Test {
     command_ = harness_->Writer<rover_ddl_MotorCommand>("ddl/motor_command");
     goals_ = harness_->Reader<rover_hw_MotorGoals>("hw/motor_goals");
     status_ = harness_->Reader<rover_ddl_MotorStatus>("ddl/motor_status");
-    health_ = harness_->Reader<rover_sys_Heartbeat>("sys/health");
   }
   void TearDown() override { harness_.reset(); }
 
@@ -106,7 +105,6 @@ class MotorServiceTest : public ::testing::Test {
     }
     harness_->Spin();
     for (auto& s : status_.Take()) statuses_.push_back(s.data());
-    for (auto& h : health_.Take()) health_log_.push_back(h.data());
   }
   // Steps until `cond` holds, at most `max_s` simulated seconds.
   bool StepUntil(const std::function<bool()>& cond, double max_s, bool silent = false) {
@@ -129,13 +127,12 @@ class MotorServiceTest : public ::testing::Test {
   }
   // Spins (wall time only bounds the wait) until a heartbeat satisfying `pred` arrives.
   bool WaitHeartbeat(const std::function<bool(const rover_sys_Heartbeat&)>& pred) {
-    return harness_->SpinUntil([&] {
-      for (auto& h : health_.Take()) health_log_.push_back(h.data());
-      return !health_log_.empty() && pred(health_log_.back());
-    });
+    return harness_->SpinUntil(
+        [&] { return !harness_->heartbeats().empty() && pred(harness_->heartbeats().back()); });
   }
   bool Healthy() const {
-    return !health_log_.empty() && health_log_.back().health == rover_HEALTH_OK;
+    return !harness_->heartbeats().empty() &&
+           harness_->heartbeats().back().health == rover_HEALTH_OK;
   }
   // Runs telemetry until the service reports healthy (it has fresh telemetry to plan from).
   void WaitForTelemetry() {
@@ -155,12 +152,10 @@ class MotorServiceTest : public ::testing::Test {
   dds::Writer<rover_ddl_MotorCommand> command_;
   dds::Reader<rover_hw_MotorGoals> goals_;
   dds::Reader<rover_ddl_MotorStatus> status_;
-  dds::Reader<rover_sys_Heartbeat> health_;
   FakeControllers fake_;
   Time now_ = Time::FromSeconds(1.0);
   std::vector<rover_ddl_MotorStatus> statuses_;
   std::vector<rover_hw_MotorGoals> goal_log_;
-  std::vector<rover_sys_Heartbeat> health_log_;
 };
 
 TEST_F(MotorServiceTest, PositionCommandBecomesGoalsAndEndsDone) {
@@ -272,8 +267,8 @@ TEST_F(MotorServiceTest, BadCommandsAreRejectedWithAReasonAndTheServiceCarriesOn
   EXPECT_EQ(Final(1)->state, rover_ddl_GROUP_REJECTED);
   EXPECT_EQ(Final(1)->fault, rover_ddl_MOTOR_FAULT_NO_TELEMETRY);
   ASSERT_TRUE(WaitHeartbeat([](const rover_sys_Heartbeat& h) { return h.count > 0; }));
-  EXPECT_EQ(health_log_.back().health, rover_HEALTH_STALE);
-  EXPECT_STREQ(health_log_.back().message, "hw/motor_telemetry: no sample yet");
+  EXPECT_EQ(harness_->heartbeats().back().health, rover_HEALTH_STALE);
+  EXPECT_STREQ(harness_->heartbeats().back().message, "hw/motor_telemetry: no sample yet");
 
   WaitForTelemetry();
   c = PositionCommand(2);
@@ -303,9 +298,14 @@ TEST_F(MotorServiceTest, BadCommandsAreRejectedWithAReasonAndTheServiceCarriesOn
   ASSERT_TRUE(StepUntil([&] { return Healthy(); }, 0.5));
   // Telemetry stops: STALE after telemetry_timeout_s (0.5 s).
   ASSERT_TRUE(StepUntil(
-      [&] { return !health_log_.empty() && health_log_.back().health == rover_HEALTH_STALE; }, 1.0,
+      [&] {
+        return !harness_->heartbeats().empty() &&
+               harness_->heartbeats().back().health == rover_HEALTH_STALE;
+      },
+      1.0,
       /*silent=*/true));
-  EXPECT_STREQ(health_log_.back().message, "hw/motor_telemetry: no sample for more than 0.5 s");
+  EXPECT_STREQ(harness_->heartbeats().back().message,
+               "hw/motor_telemetry: no sample for more than 0.5 s");
 }
 
 }  // namespace

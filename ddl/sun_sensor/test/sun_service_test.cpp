@@ -10,7 +10,7 @@
 #include <numbers>
 #include <vector>
 
-#include "rover/ddl/testing/service_harness.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl {
 namespace {
@@ -25,7 +25,6 @@ class SunServiceTest : public ::testing::Test {
     ASSERT_TRUE(harness_->ok()) << harness_->status().message();
     raw_ = harness_->Writer<rover_hw_SunSensorRaw>("hw/sun_sensor");
     sun_ = harness_->Reader<rover_ddl_SunSensor>("ddl/sun_sensor");
-    health_ = harness_->Reader<rover_sys_Heartbeat>("sys/health");
   }
   void TearDown() override { harness_.reset(); }
 
@@ -57,13 +56,9 @@ class SunServiceTest : public ::testing::Test {
       }
       ASSERT_TRUE(harness_->SpinUntil([&] {
         for (auto& s : sun_.Take()) out_.push_back(s.data());
-        for (auto& h : health_.Take()) health_log_.push_back(h.data());
         return static_cast<int>(out_.size()) == sent_;
       }));
     }
-  }
-  rover_SensorHealth Health() const {
-    return health_log_.empty() ? rover_HEALTH_OK : health_log_.back().health;
   }
 
   HardwareConfig hw_;
@@ -71,11 +66,9 @@ class SunServiceTest : public ::testing::Test {
   std::unique_ptr<ServiceHarness> harness_;
   dds::Writer<rover_hw_SunSensorRaw> raw_;
   dds::Reader<rover_ddl_SunSensor> sun_;
-  dds::Reader<rover_sys_Heartbeat> health_;
   Time now_ = Time::FromSeconds(10.0);
   int sent_ = 0;
   std::vector<rover_ddl_SunSensor> out_;
-  std::vector<rover_sys_Heartbeat> health_log_;
 };
 
 TEST_F(SunServiceTest, SpotBecomesTheRoverFrameSunVector) {
@@ -92,7 +85,7 @@ TEST_F(SunServiceTest, SpotBecomesTheRoverFrameSunVector) {
   EXPECT_NEAR(v.norm(), 1.0, 1e-12);
   // Half a count of rounding on a 2000-count focal length: < 0.5/2000 rad off.
   EXPECT_LT(std::acos(std::min(1.0, v.dot(sun))), 0.5 / 2000.0 * std::sqrt(2.0));
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
 }
 
 TEST_F(SunServiceTest, DimSpotIsNotValidImpossibleSpotFailsSilenceIsStale) {
@@ -100,22 +93,24 @@ TEST_F(SunServiceTest, DimSpotIsNotValidImpossibleSpotFailsSilenceIsStale) {
   EXPECT_FALSE(out_.back().valid);
   EXPECT_EQ(out_.back().sun_vector.z, 0.0);
   EXPECT_EQ(out_.back().health, rover_HEALTH_OK);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
   // A bright spot 75 deg off the boresight (field of view 60 deg): a detector fault.
   Run(2, Direction(0.0, 15.0), 3000);
   EXPECT_FALSE(out_.back().valid);
   EXPECT_EQ(out_.back().health, rover_HEALTH_FAILED);
-  EXPECT_EQ(Health(), rover_HEALTH_FAILED);
-  EXPECT_STREQ(health_log_.back().message, "hw/sun_sensor: bright spot outside the field of view");
+  EXPECT_EQ(harness_->health(), rover_HEALTH_FAILED);
+  EXPECT_STREQ(harness_->heartbeats().back().message,
+               "hw/sun_sensor: bright spot outside the field of view");
   Run(2, Direction(0.0, 70.0), 3000);
   EXPECT_TRUE(out_.back().valid);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
   // Silence: STALE after stale_after_s (1.5 s), judged at 4 Hz.
   Run(3, Direction(0.0, 70.0), 3000, /*silent=*/true);
-  EXPECT_EQ(Health(), rover_HEALTH_OK);  // 1.5 s: not yet more than the limit
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);  // 1.5 s: not yet more than the limit
   Run(1, Direction(0.0, 70.0), 3000, /*silent=*/true);
-  EXPECT_EQ(Health(), rover_HEALTH_STALE);
-  EXPECT_STREQ(health_log_.back().message, "hw/sun_sensor: no sample for more than 1.5 s");
+  EXPECT_EQ(harness_->health(), rover_HEALTH_STALE);
+  EXPECT_STREQ(harness_->heartbeats().back().message,
+               "hw/sun_sensor: no sample for more than 1.5 s");
 }
 
 }  // namespace

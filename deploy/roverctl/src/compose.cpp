@@ -8,72 +8,39 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
-#include "rover/base/params.hpp"  // EditDistance
+#include "rover/base/params.hpp"  // DidYouMean
+#include "rover/base/yaml_check.hpp"
 #include "rover/runtime/qos.hpp"
 
 namespace rover::deploy {
 namespace {
 
-int Line(const YAML::Node& n) { return n.Mark().line + 1; }
+using yaml::CheckKeys;
+using yaml::JoinNames;
+using yaml::Line;
+using yaml::ScalarText;
+using Errors = yaml::FileErrors;
 
-class Errors {
- public:
-  explicit Errors(std::string file) : file_(std::move(file)) {}
-  Status At(const YAML::Node& n, const std::string& what) const { return At(Line(n), what); }
-  Status At(int line, const std::string& what) const {
-    return InvalidArgument(file_ + ":" + std::to_string(line) + ": " + what);
-  }
+// Compose keys: every key known or an x- extension, each once; callers check maps themselves.
+constexpr yaml::KeyRules kComposeKeys{.require_map = false, .allow_extensions = true};
 
- private:
-  std::string file_;
-};
-
-std::string Suggest(const std::string& key, const std::vector<std::string>& known) {
-  std::string best;
-  std::size_t best_d = 3;
-  for (const auto& k : known) {
-    const std::size_t d = EditDistance(key, k);
-    if (d < best_d) {
-      best_d = d;
-      best = k;
-    }
-  }
-  return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
-
-std::string Join(const std::vector<std::string>& v, const std::string& sep) {
-  std::string out;
-  for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
-  return out;
-}
-
-// Checks that every key of `map` is known (or an x- extension) and appears once.
-Status CheckKeys(const YAML::Node& map, const std::string& where,
-                 const std::vector<std::string>& known, const Errors& err) {
-  std::set<std::string> seen;
-  for (const auto& kv : map) {
-    const std::string key = kv.first.Scalar();
-    if (!seen.insert(key).second) {
-      return err.At(kv.first, where + ": duplicate key '" + key + "'");
-    }
-    if (key.rfind("x-", 0) == 0) continue;
-    if (std::find(known.begin(), known.end(), key) == known.end()) {
-      return err.At(kv.first, where + ": unknown key '" + key + "'" + Suggest(key, known) +
-                                  " (known: " + Join(known, ", ") + ")");
+// A service may not move itself off what roverctl sets for the whole set (a ROVER_DOMAIN of its
+// own would put it on another DDS domain, silently).
+Status CheckNotReserved(const std::string& key, const YAML::Node& at, const std::string& where,
+                        const Errors& err) {
+  for (const auto& r : ReservedEnvironment()) {
+    const std::string_view k = r.key;
+    const bool prefix = !k.empty() && k.back() == '*';
+    const bool hit = prefix ? key.compare(0, k.size() - 1, k.substr(0, k.size() - 1)) == 0
+                            : key == k;
+    if (hit) {
+      return err.At(at, where + ".environment." + key + ": roverctl sets " + r.key +
+                            " for every service (" + r.what + "); a service may not override it");
     }
   }
   return Status::Ok();
-}
-
-std::string ScalarText(const YAML::Node& n) { return n.IsScalar() ? n.Scalar() : ""; }
-
-Result<double> NumberAt(const YAML::Node& n, const std::string& key, const Errors& err) {
-  try {
-    if (n.IsScalar()) return n.as<double>();
-  } catch (const YAML::Exception&) {
-  }
-  return err.At(n, key + ": expected a number, got '" + ScalarText(n) + "'");
 }
 
 Status ParseEnvironment(const YAML::Node& n, const std::string& where, const Errors& err,
@@ -84,6 +51,7 @@ Status ParseEnvironment(const YAML::Node& n, const std::string& where, const Err
         return err.At(kv.second, where + ".environment." + kv.first.Scalar() +
                                      ": expected a scalar value");
       }
+      ROVER_RETURN_IF_ERROR(CheckNotReserved(kv.first.Scalar(), kv.first, where, err));
       (*env)[kv.first.Scalar()] = kv.second.IsNull() ? "" : kv.second.Scalar();
     }
     return Status::Ok();
@@ -95,6 +63,7 @@ Status ParseEnvironment(const YAML::Node& n, const std::string& where, const Err
       if (s.empty() || eq == 0) {
         return err.At(item, where + ".environment: expected KEY=VALUE, got '" + s + "'");
       }
+      ROVER_RETURN_IF_ERROR(CheckNotReserved(s.substr(0, eq), item, where, err));
       (*env)[s.substr(0, eq)] = eq == std::string::npos ? "" : s.substr(eq + 1);
     }
     return Status::Ok();
@@ -116,20 +85,17 @@ Status ParseDependsOn(const YAML::Node& n, const std::string& where, const Error
     Dependency d{kv.first.Scalar(), DependencyCondition::kStarted, Line(kv.first)};
     const std::string w = where + ".depends_on." + d.service;
     if (kv.second.IsMap()) {
-      ROVER_RETURN_IF_ERROR(CheckKeys(kv.second, w, {"condition", "restart", "required"}, err));
+      ROVER_RETURN_IF_ERROR(
+          CheckKeys(kv.second, w, {"condition", "restart", "required"}, err, kComposeKeys));
       if (const auto c = kv.second["condition"]) {
-        const std::string cond = ScalarText(c);
-        if (cond == "service_started") {
-          d.condition = DependencyCondition::kStarted;
-        } else if (cond == "service_healthy") {
-          d.condition = DependencyCondition::kHealthy;
-        } else if (cond == "service_completed_successfully") {
-          d.condition = DependencyCondition::kCompletedSuccessfully;
-        } else {
-          return err.At(c, w + ".condition: '" + cond +
-                               "' is not one of: service_started, service_healthy, "
-                               "service_completed_successfully");
-        }
+        ROVER_ASSIGN_OR_RETURN(
+            const std::string cond,
+            yaml::OneOf(c, w + ".condition",
+                        {"service_started", "service_healthy", "service_completed_successfully"},
+                        err));
+        d.condition = cond == "service_started"   ? DependencyCondition::kStarted
+                      : cond == "service_healthy" ? DependencyCondition::kHealthy
+                                                  : DependencyCondition::kCompletedSuccessfully;
       }
     } else if (!kv.second.IsNull()) {
       return err.At(kv.second, w + ": expected a map with 'condition'");
@@ -201,12 +167,12 @@ Status ParseService(const std::string& name, const YAML::Node& key, const YAML::
   auto merged = ResolveMergeKeys(raw, where, err);
   if (!merged.ok()) return merged.status();
   const YAML::Node n = *merged;
-  ROVER_RETURN_IF_ERROR(CheckKeys(n, where,
-                                  {"command", "environment", "depends_on", "restart",
-                                   "stop_grace_period", "image", "build", "network_mode",
-                                   "working_dir", "volumes", "container_name", "stop_signal",
-                                   "healthcheck", "init"},
-                                  err));
+  ROVER_RETURN_IF_ERROR(
+      CheckKeys(n, where,
+                {"command", "environment", "depends_on", "restart", "stop_grace_period", "image",
+                 "build", "network_mode", "working_dir", "volumes", "container_name", "stop_signal",
+                 "healthcheck", "init"},
+                err, kComposeKeys));
   const YAML::Node cmd = n["command"];
   if (!cmd || cmd.IsNull()) {
     return err.At(key, where + ": no 'command' (roverctl runs each service's command natively)");
@@ -240,61 +206,46 @@ Status ParseService(const std::string& name, const YAML::Node& key, const YAML::
     s->stop_grace_s = *d;
   }
   if (const auto w = n["working_dir"]) s->working_dir = ScalarText(w);
-  return Status::Ok();
-}
-
-void Flatten(const YAML::Node& n, const std::string& prefix,
-             std::map<std::string, std::string>* out) {
-  if (n.IsMap()) {
-    for (const auto& kv : n) {
-      Flatten(kv.second, prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar(),
-              out);
+  if (const auto x = n["x-rover"]) {
+    ROVER_RETURN_IF_ERROR(CheckKeys(x, where + ".x-rover", {"ready"}, err));
+    if (const auto r = x["ready"]) {
+      ROVER_ASSIGN_OR_RETURN(
+          const std::string rule,
+          yaml::OneOf(r, where + ".x-rover.ready", {"healthy", "active", "started", "completed"},
+                      err));
+      for (ReadyRule k : {ReadyRule::kHealthy, ReadyRule::kActive, ReadyRule::kStarted,
+                          ReadyRule::kCompleted}) {
+        if (rule == ReadyRuleName(k)) s->ready = k;
+      }
     }
-  } else if (n.IsScalar()) {
-    (*out)[prefix] = n.Scalar();
-  } else if (n.IsSequence()) {
-    std::ostringstream os;
-    os << YAML::Dump(n);
-    (*out)[prefix] = os.str();
   }
+  return Status::Ok();
 }
 
 Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   if (!n.IsMap()) return err.At(n, "x-rover: expected a map");
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "x-rover",
                                   {"project", "domain", "clock", "startup_timeout_s",
-                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario"},
-                                  err));
+                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario", "record"},
+                                  err, kComposeKeys));
   if (const auto p = n["project"]) {
     r->project = ScalarText(p);
     if (r->project.empty()) return err.At(p, "x-rover.project: expected a name");
   }
   if (const auto d = n["domain"]) {
-    auto v = NumberAt(d, "x-rover.domain", err);
-    if (!v.ok()) return v.status();
-    if (*v != static_cast<int>(*v) || *v < 0 || *v > 232) {
+    ROVER_ASSIGN_OR_RETURN(const double v, yaml::Number(d, "x-rover.domain", err));
+    if (v != static_cast<int>(v) || v < 0 || v > 232) {
       return err.At(d, "x-rover.domain: " + ScalarText(d) + " is not an integer in [0, 232]");
     }
-    r->domain = static_cast<int>(*v);
+    r->domain = static_cast<int>(v);
   }
   if (const auto c = n["clock"]) {
-    r->clock = ScalarText(c);
-    if (r->clock != "wall" && r->clock != "sim") {
-      return err.At(c, "x-rover.clock: '" + r->clock + "' is not one of: wall, sim");
-    }
+    ROVER_ASSIGN_OR_RETURN(r->clock, yaml::OneOf(c, "x-rover.clock", {"wall", "sim"}, err));
   }
-  for (auto [key, field] : {std::pair{"startup_timeout_s", &r->startup_timeout_s},
-                            std::pair{"heartbeat_timeout_s", &r->heartbeat_timeout_s}}) {
-    if (const auto t = n[key]) {
-      auto v = NumberAt(t, std::string("x-rover.") + key, err);
-      if (!v.ok()) return v.status();
-      if (!(*v > 0 && *v <= 3600)) {
-        return err.At(t, std::string("x-rover.") + key + ": " + ScalarText(t) +
-                             " is out of range (0, 3600]");
-      }
-      *field = *v;
-    }
-  }
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "startup_timeout_s", "x-rover",
+                                             Bounds::OpenLow(0, 3600), err, &r->startup_timeout_s));
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(
+      n, "heartbeat_timeout_s", "x-rover", Bounds::OpenLow(0, 3600), err, &r->heartbeat_timeout_s));
   if (const auto q = n["qos"]) {
     if (!q.IsMap()) return err.At(q, "x-rover.qos: expected a map of topic: profile");
     for (const auto& kv : q) {
@@ -307,7 +258,7 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   }
   if (const auto s = n["sim"]) {
     if (!s.IsMap()) return err.At(s, "x-rover.sim: expected a map");
-    Flatten(s, "", &r->sim);
+    yaml::Flatten(s, "", &r->sim);
   }
   if (const auto f = n["faults"]) {
     if (!f.IsSequence()) return err.At(f, "x-rover.faults: expected a list");
@@ -315,9 +266,12 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
       if (!item.IsMap()) return err.At(item, "x-rover.faults: each fault is a map");
       FaultSpec spec;
       spec.line = Line(item);
-      Flatten(item, "", &spec.fields);
+      yaml::Flatten(item, "", &spec.fields);
       r->faults.push_back(std::move(spec));
     }
+  }
+  if (const auto rec = n["record"]) {
+    ROVER_ASSIGN_OR_RETURN(r->record, recording::ParseRecordOptions(rec, "x-rover.record", err));
   }
   return Status::Ok();
 }
@@ -331,8 +285,8 @@ Status OrderServices(std::vector<ServiceSpec>* services, const Errors& err) {
       if (!by_name.count(d.service)) {
         std::vector<std::string> names;
         for (const auto& [n, _] : by_name) names.push_back(n);
-        return err.At(d.line, "services." + s.name + ".depends_on: unknown service '" +
-                                  d.service + "'" + Suggest(d.service, names));
+        return err.At(d.line, "services." + s.name + ".depends_on: unknown service '" + d.service +
+                                  "'" + DidYouMean(d.service, names));
       }
       if (d.service == s.name) {
         return err.At(d.line, "services." + s.name + ".depends_on: a service cannot depend on itself");
@@ -349,7 +303,8 @@ Status OrderServices(std::vector<ServiceSpec>* services, const Errors& err) {
       auto it = std::find(stack.begin(), stack.end(), s.name);
       std::vector<std::string> cycle(it, stack.end());
       cycle.push_back(s.name);
-      return err.At(s.line, "services." + s.name + ": dependency cycle: " + Join(cycle, " -> "));
+      return err.At(s.line,
+                    "services." + s.name + ": dependency cycle: " + JoinNames(cycle, " -> "));
     }
     mark[s.name] = kVisiting;
     stack.push_back(s.name);
@@ -389,6 +344,31 @@ const char* RestartPolicyName(RestartPolicy p) {
     case RestartPolicy::kUnlessStopped: return "unless-stopped";
   }
   return "?";
+}
+
+const char* ReadyRuleName(ReadyRule r) {
+  switch (r) {
+    case ReadyRule::kHealthy: return "healthy";
+    case ReadyRule::kActive: return "active";
+    case ReadyRule::kStarted: return "started";
+    case ReadyRule::kCompleted: return "completed";
+  }
+  return "?";
+}
+
+const std::vector<ReservedVariable>& ReservedEnvironment() {
+  static const std::vector<ReservedVariable> kReserved = {
+      {"ROVER_DOMAIN", "the set's DDS domain: choose it with x-rover.domain or --domain"},
+      {"ROVER_CLOCK", "the set's run clock: choose it with x-rover.clock"},
+      {"ROVER_PROJECT", "the set's name: x-rover.project or -p"},
+      {"ROVER_SERVICE_NAME", "the service's name: its key under services"},
+      {"ROVER_STATE_DIR", "where the set's state and logs are: roverctl --state-dir"},
+      {"ROVER_QOS_OVERRIDES", "per-topic QoS profiles: give them under x-rover.qos"},
+      {"ROVER_SET_ID", "marks every process of the set, so that none is left behind"},
+      {"ROVER_SIM_*", "simulator settings: give them under x-rover.sim"},
+      {"CYCLONEDDS_URI", "the set's Cyclone DDS configuration: give roverctl ROVER_DDS_CONFIG"},
+  };
+  return kReserved;
 }
 
 const ServiceSpec* ComposeProject::Find(const std::string& name) const {
@@ -466,15 +446,11 @@ Result<double> ParseDuration(const std::string& text) {
 
 Result<ComposeProject> ParseCompose(const std::string& text, const std::string& file) {
   const Errors err(file);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    return err.At(e.mark.line + 1, "malformed YAML: " + e.msg);
-  }
+  ROVER_ASSIGN_OR_RETURN(const YAML::Node root, yaml::Load(text, err));
   if (!root.IsMap()) return err.At(1, "expected a map with a 'services' key");
-  ROVER_RETURN_IF_ERROR(
-      CheckKeys(root, "top level", {"version", "name", "services", "networks", "volumes"}, err));
+  ROVER_RETURN_IF_ERROR(CheckKeys(root, "top level",
+                                  {"version", "name", "services", "networks", "volumes"}, err,
+                                  kComposeKeys));
   ComposeProject project;
   project.file = file;
   if (const auto r = root["x-rover"]) ROVER_RETURN_IF_ERROR(ParseRover(r, err, &project.rover));

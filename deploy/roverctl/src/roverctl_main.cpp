@@ -1,12 +1,15 @@
 // roverctl: the one command-line entry point of the rover stack.
 //
-//   roverctl up FILE [--domain N] [--detach] [--for SECONDS]   start a service set
-//   roverctl down [PROJECT]                                     stop it
-//   roverctl ps [PROJECT]                                       state, pid, restarts, heartbeat
+//   roverctl up FILE [-d] [--wait[=S]] [--domain N] [--for S]   start a service set
+//   roverctl down [PROJECT]                                     stop it (even if roverctl died)
+//   roverctl ps [PROJECT]                                       state, health, readiness
 //   roverctl logs SERVICE [-p PROJECT] [-f] [-n LINES]          a service's log
 //   roverctl config FILE                                        validate a compose file
 //   roverctl run SCENARIO [--seeds A..B] [--jobs J] [--out DIR] end-to-end scenario campaign
 //   roverctl report DIR                                         re-print a campaign's summary
+//   roverctl record [-p P | --domain D] -o FILE [--topics G...] record a set's topics to MCAP
+//   roverctl replay FILE [--topics G...] [--rate R] (--domain D | -p P)   republish a recording
+//   roverctl info FILE                                          topics, types, counts, time span
 //
 // See docs/roverctl.md.
 #include <CLI/CLI.hpp>
@@ -21,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -33,6 +37,7 @@
 #include "rover/deploy/scenario.hpp"
 #include "rover/deploy/supervisor.hpp"
 #include "rover/runtime/domain.hpp"
+#include "src/recording_commands.hpp"
 
 namespace fs = std::filesystem;
 using rover::Status;
@@ -73,9 +78,22 @@ nlohmann::json ReadState(const std::string& dir) {
   }
 }
 
+// The supervisor named by the state file is alive (the same process: its start time matches,
+// so a re-used pid does not count).
 bool SupervisorAlive(const nlohmann::json& state) {
   if (state.is_null()) return false;
-  return rover::ProcessAlive(state.value("supervisor_pid", 0));
+  const int pid = state.value("supervisor_pid", 0);
+  if (!rover::ProcessAlive(pid)) return false;
+  const long long ticks = state.value("supervisor_start_ticks", -1LL);
+  return ticks < 0 || rover::ProcessStartTicks(pid) == ticks;
+}
+
+// The processes of the set that are still alive (they carry its ROVER_SET_ID).
+std::vector<pid_t> SetProcesses(const nlohmann::json& state) {
+  const std::string set_id = state.value("set_id", "");
+  if (set_id.empty()) return {};
+  return rover::ProcessesWithEnvironment(rover::deploy::kSetIdVariable, set_id + "/",
+                                         rover::EnvMatch::kPrefix);
 }
 
 // Projects with a state file under the state root.
@@ -124,29 +142,47 @@ struct UpArgs {
   bool detach = false;
   bool no_preflight = false;
   double run_for_s = 0;
+  double wait_s = -1;  ///< --wait: seconds to wait for the set to be ready; < 0: do not wait
   std::string state_root;
   std::string project;
 };
 
+constexpr double kDefaultWaitS = 120;
+
+// The supervisor: starts the set, reports "ok <domain>" (and with --wait "ready <s>") on
+// `notify_fd`, then supervises until Ctrl-C, SIGTERM, `down` or --for.
 int RunSupervisor(const rover::deploy::ComposeProject& project,
                   rover::deploy::SupervisorOptions options, const UpArgs& args, int notify_fd) {
-  auto notify = [notify_fd](const std::string& msg) {
+  const rover::Time up_start = rover::MonotonicNow();
+  auto notify = [&notify_fd](const std::string& msg, bool last) {
     if (notify_fd < 0) return;
     const std::string line = msg + "\n";
     (void)!write(notify_fd, line.data(), line.size());
-    close(notify_fd);
+    if (last) {
+      close(notify_fd);
+      notify_fd = -1;
+    }
   };
+  const bool wait = args.wait_s >= 0;
   options.abort = &g_stop;
   auto sup = rover::deploy::Supervisor::Create(project, options);
   if (!sup.ok()) {
-    notify("error: " + sup.status().message());
+    notify("error: " + sup.status().message(), true);
     return Fail(sup.status().message());
   }
   std::cout << "roverctl: starting '" << project.rover.project << "' (" << project.services.size()
             << " services) on DDS domain " << (*sup)->domain() << "\n" << std::flush;
+  // x-rover.record: the recorder starts first, so that it hears the set from its first sample.
+  auto recording = rover::deploy::SetRecording::Start(project, (*sup)->domain(), options.state_dir);
+  if (!recording.ok()) {
+    notify("error: " + recording.status().message(), true);
+    return Fail(recording.status().message(), 2);
+  }
+  if (*recording) std::cout << "roverctl: recording to " << (*recording)->path() << "\n";
   const Status s = (*sup)->Start();
   if (!s.ok()) {
-    notify("error: " + s.message());
+    if (*recording) (void)(*recording)->Stop();
+    notify("error: " + s.message(), true);
     return Fail(s.message());
   }
   for (const auto& st : (*sup)->Snapshot()) {
@@ -155,17 +191,56 @@ int RunSupervisor(const rover::deploy::ComposeProject& project,
   std::cout << "roverctl: '" << project.rover.project << "' is up on domain " << (*sup)->domain()
             << "; `roverctl ps`, `roverctl logs SERVICE`, Ctrl-C or `roverctl down` to stop\n"
             << std::flush;
-  notify("ok " + std::to_string((*sup)->domain()));
+  notify("ok " + std::to_string((*sup)->domain()), !wait);
   const rover::Time start = rover::MonotonicNow();
+  bool waiting = wait;
+  int rc = 0;
   while (!g_stop.load()) {
     (*sup)->Poll();
+    if (waiting && (*sup)->readiness().ready) {
+      waiting = false;
+      const double after = rover::ToSeconds(rover::MonotonicNow() - up_start);
+      char line[160];
+      std::snprintf(line, sizeof line, "ready %.1f %.1f", after, (*sup)->ready_after_s());
+      std::printf("roverctl: '%s' is ready after %.1f s (%.1f s after its services started)\n",
+                  project.rover.project.c_str(), after, (*sup)->ready_after_s());
+      std::fflush(stdout);
+      notify(line, true);
+    } else if (waiting && rover::ToSeconds(rover::MonotonicNow() - up_start) >= args.wait_s) {
+      char within[64];
+      std::snprintf(within, sizeof within, "%g", args.wait_s);
+      const std::string msg = "'" + project.rover.project + "' is not ready within " + within +
+                              " s: " + (*sup)->readiness().Summary() + "; stopping it";
+      notify("error: " + msg, true);
+      Fail(msg);
+      rc = 1;
+      break;
+    }
     if (args.run_for_s > 0 && rover::ToSeconds(rover::MonotonicNow() - start) >= args.run_for_s) break;
+    if (*recording && !(*recording)->health().ok()) {
+      // The set was to be recorded: a failed recording fails the set (stopped, exit 1).
+      std::cerr << "roverctl: error: the recording failed: " << (*recording)->health().message()
+                << "; stopping '" << project.rover.project << "'\n";
+      rc = 1;
+      break;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   std::cout << "roverctl: stopping '" << project.rover.project << "'\n" << std::flush;
   (*sup)->Stop();
+  if (*recording) {
+    const auto report = (*recording)->Stop();
+    if (report.status.ok()) {
+      std::cout << "roverctl: " << rover::deploy::DescribeReport(report);
+    } else {
+      std::cerr << "roverctl: error: the recording failed: " << report.status.message() << "; "
+                << report.path << " is incomplete\n";
+      rc = 1;
+    }
+  }
   std::cout << "roverctl: stopped\n";
-  return 0;
+  if (waiting && rc == 0) notify("error: stopped before the set was ready", true);
+  return rc;
 }
 
 int Up(const UpArgs& args) {
@@ -207,29 +282,90 @@ int Up(const UpArgs& args) {
     _exit(RunSupervisor(*project, options, args, fds[1]));
   }
   close(fds[1]);
-  std::string msg;
+  // Lines: "ok <domain>", then with --wait "ready <s> <s>" or "error: ..."; EOF ends it.
+  std::string text;
   char buf[512];
   ssize_t n;
-  while ((n = read(fds[0], buf, sizeof buf)) > 0) msg.append(buf, static_cast<std::size_t>(n));
+  while ((n = read(fds[0], buf, sizeof buf)) > 0) text.append(buf, static_cast<std::size_t>(n));
   close(fds[0]);
-  if (msg.rfind("ok ", 0) == 0) {
-    std::cout << "roverctl: '" << project->rover.project << "' is up on DDS domain "
-              << msg.substr(3, msg.find('\n') - 3) << " (supervisor pid " << pid << ")\n";
-    return 0;
+  std::istringstream lines(text);
+  std::string line;
+  bool up = false, ready = false;
+  std::string error;
+  while (std::getline(lines, line)) {
+    if (line.rfind("ok ", 0) == 0) {
+      up = true;
+      std::cout << "roverctl: '" << project->rover.project << "' is up on DDS domain "
+                << line.substr(3) << " (supervisor pid " << pid << ")\n";
+    } else if (line.rfind("ready ", 0) == 0) {
+      ready = true;
+      double after = 0, services = 0;
+      std::istringstream(line.substr(6)) >> after >> services;
+      std::printf("roverctl: '%s' is ready after %.1f s (%.1f s after its services started)\n",
+                  project->rover.project.c_str(), after, services);
+    } else if (line.rfind("error: ", 0) == 0) {
+      error = line.substr(7);
+    }
   }
-  if (msg.rfind("error: ", 0) == 0) msg = msg.substr(7);
-  while (!msg.empty() && msg.back() == '\n') msg.pop_back();
-  return Fail(msg.empty() ? "the supervisor died during start-up" : msg);
+  std::cout << std::flush;
+  if (!error.empty()) return Fail(error);
+  if (!up) return Fail("the supervisor died during start-up");
+  if (args.wait_s >= 0 && !ready) return Fail("the supervisor died before the set was ready");
+  return 0;
 }
 
 // ---- down / ps / logs ------------------------------------------------------------------------
 
+// Stops what is left of a set whose supervisor is gone (or did not stop everything): every
+// process carrying the set's ROVER_SET_ID, and their process groups (StopMarkedProcesses).
+rover::MarkedStop StopLeftovers(const nlohmann::json& state) {
+  double grace = 1;
+  for (const auto& s : state["services"]) grace = std::max(grace, s.value("stop_grace_s", 10.0));
+  const std::string set_id = state.value("set_id", "");
+  if (set_id.empty()) return {};
+  return rover::StopMarkedProcesses(rover::deploy::kSetIdVariable, set_id + "/",
+                                    rover::EnvMatch::kPrefix, rover::Seconds(grace));
+}
+
+// Marks the state file stopped (the supervisor that would have done it is gone).
+void MarkStopped(const std::string& dir, nlohmann::json state) {
+  state["phase"] = "stopped";
+  state["ready"] = false;
+  for (auto& s : state["services"]) {
+    if (s.value("state", "") == "running" || s.value("state", "") == "restarting") {
+      s["state"] = "stopped";
+    }
+    s["pid"] = 0;
+    s["ready"] = false;
+  }
+  const std::string tmp = dir + "/state.json.tmp";
+  std::ofstream(tmp) << state.dump(2) << "\n";
+  std::rename(tmp.c_str(), (dir + "/state.json").c_str());
+}
+
+std::string PidList(const std::vector<pid_t>& pids) {
+  std::string out;
+  for (pid_t p : pids) out += (out.empty() ? "" : " ") + std::to_string(p);
+  return out;
+}
+
 int Down(const std::string& root, const std::string& given, double timeout_s) {
   auto project = ResolveProject(root, given);
   if (!project.ok()) return Fail(project.status().message());
-  const auto state = ReadState(root + "/" + *project);
+  const std::string dir = root + "/" + *project;
+  const auto state = ReadState(dir);
   if (!SupervisorAlive(state)) {
-    std::cout << "roverctl: '" << *project << "' is not running\n";
+    const rover::MarkedStop left = StopLeftovers(state);
+    if (left.found.empty()) {
+      std::cout << "roverctl: '" << *project << "' is not running\n";
+      return 0;
+    }
+    MarkStopped(dir, state);
+    std::cout << "roverctl: '" << *project << "' was not running (supervisor pid "
+              << state.value("supervisor_pid", 0) << " is gone); stopped " << left.found.size()
+              << " processes it left behind: " << PidList(left.found)
+              << (left.killed.empty() ? "" : " (SIGKILL: " + PidList(left.killed) + ")") << "\n";
+    if (!left.all_gone) return Fail("some processes of '" + *project + "' did not stop");
     return 0;
   }
   const int pid = state.value("supervisor_pid", 0);
@@ -239,8 +375,19 @@ int Down(const std::string& root, const std::string& given, double timeout_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   if (rover::ProcessAlive(pid)) return Fail("supervisor " + std::to_string(pid) + " did not stop");
-  std::cout << "roverctl: '" << *project << "' stopped\n";
+  // The supervisor stops whole trees; anything it still missed goes now.
+  const rover::MarkedStop left = StopLeftovers(state);
+  std::cout << "roverctl: '" << *project << "' stopped";
+  if (!left.found.empty()) {
+    std::cout << "; stopped " << left.found.size() << " more processes: " << PidList(left.found);
+  }
+  std::cout << "\n";
   return 0;
+}
+
+std::string Clip(std::string s, std::size_t n) {
+  if (s.size() > n) s = s.substr(0, n - 3) + "...";
+  return s;
 }
 
 int Ps(const std::string& root, const std::string& given, bool json) {
@@ -257,16 +404,32 @@ int Ps(const std::string& root, const std::string& given, bool json) {
     auto state = ReadState(root + "/" + p);
     if (state.is_null()) continue;
     const bool alive = SupervisorAlive(state);
+    const std::vector<pid_t> left = alive ? std::vector<pid_t>{} : SetProcesses(state);
     if (json) {
       state["supervisor_alive"] = alive;
+      state["left_behind"] = left;
       all.push_back(state);
       continue;
     }
-    std::printf("%s  (%s, domain %d, %s)\n", p.c_str(),
+    std::string readiness;
+    if (alive && state.value("phase", "") == "up") {
+      const auto not_ready = state.value("not_ready", std::vector<std::string>{});
+      readiness = state.value("ready", false)
+                      ? "ready"
+                      : "not ready: " + std::to_string(not_ready.size()) + " of " +
+                            std::to_string(state["services"].size()) + " services";
+    }
+    std::printf("%s  (%s%s%s, domain %d, %s)\n", p.c_str(),
                 alive ? state.value("phase", "?").c_str() : "not running",
-                state.value("domain", -1), state.value("file", "").c_str());
-    std::printf("  %-22s %-11s %-8s %-8s %-12s %-14s %s\n", "SERVICE", "STATE", "PID", "RESTARTS",
-                "LIFECYCLE", "HEARTBEAT", "LAST EXIT");
+                readiness.empty() ? "" : ", ", readiness.c_str(), state.value("domain", -1),
+                state.value("file", "").c_str());
+    if (!alive && !left.empty()) {
+      std::printf("  supervisor pid %d is gone; %zu processes of the set are still alive (%s): "
+                  "`roverctl down %s` stops them\n",
+                  state.value("supervisor_pid", 0), left.size(), PidList(left).c_str(), p.c_str());
+    }
+    std::printf("  %-22s %-10s %-8s %-3s %-9s %-8s %-5s %-14s %s\n", "SERVICE", "STATE", "PID",
+                "RST", "LIFECYCLE", "HEALTH", "READY", "HEARTBEAT", "MESSAGE / LAST EXIT");
     const double timeout = state.value("heartbeat_timeout_s", 5.0);
     for (const auto& s : state["services"]) {
       std::string hb = Age(s.value("last_heartbeat_wall_ns", std::int64_t{0}));
@@ -274,10 +437,18 @@ int Ps(const std::string& root, const std::string& given, bool json) {
       if (last > 0 && (rover::WallNow().ns - last) * 1e-9 > timeout && s.value("state", "") == "running") {
         hb += " STALE";
       }
-      std::printf("  %-22s %-11s %-8d %-8d %-12s %-14s %s\n", s.value("name", "").c_str(),
+      std::string note = s.value("message", "");
+      const std::string waiting = s.value("waiting_for", "");
+      if (note.empty() && alive && !s.value("ready", false) && !waiting.empty()) note = waiting;
+      const std::string exit = s.value("last_exit", "");
+      if (!exit.empty()) note += (note.empty() ? "" : "; ") + std::string("last exit: ") + exit;
+      const std::string health = s.value("health", "");
+      std::printf("  %-22s %-10s %-8d %-3d %-9s %-8s %-5s %-14s %s\n", s.value("name", "").c_str(),
                   alive ? s.value("state", "").c_str() : "-", s.value("pid", 0),
-                  s.value("restarts", 0), s.value("lifecycle", "").c_str(), hb.c_str(),
-                  s.value("last_exit", "").c_str());
+                  s.value("restarts", 0), s.value("lifecycle", "").c_str(),
+                  health.empty() ? "-" : health.c_str(),
+                  alive ? (s.value("ready", false) ? "yes" : "no") : "-", hb.c_str(),
+                  Clip(note, 120).c_str());
     }
   }
   if (json) std::cout << all.dump(2) << "\n";
@@ -336,6 +507,39 @@ int Config(const std::string& file) {
   return 0;
 }
 
+// ---- record / replay / info --------------------------------------------------------------------
+
+// The set a recording command works on: --domain D alone, or a project (given, or the only one
+// up) with its domain, clock and QoS overrides.
+rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
+                                                      const std::string& given, int domain,
+                                                      bool domain_alone_ok) {
+  rover::deploy::TargetSet t;
+  if (domain >= 0 && given.empty()) {
+    t.domain = domain;
+    return t;
+  }
+  if (domain >= 0) return rover::InvalidArgument("give --domain or --project, not both");
+  if (given.empty() && !domain_alone_ok) {
+    return rover::InvalidArgument("give --domain D (e.g. a service started by hand) or "
+                                  "--project P (a running set)");
+  }
+  ROVER_ASSIGN_OR_RETURN(t.project, ResolveProject(root, given));
+  const auto state = ReadState(root + "/" + t.project);
+  if (!SupervisorAlive(state)) {
+    return rover::FailedPrecondition("project '" + t.project + "' is not running");
+  }
+  t.domain = state.value("domain", -1);
+  if (t.domain < 0) return rover::Internal("the state file of '" + t.project + "' has no domain");
+  if (auto compose = rover::deploy::LoadComposeFile(state.value("file", "")); compose.ok()) {
+    t.clock = compose->rover.clock;
+    t.qos = compose->rover.qos;
+  }
+  const std::string dir = root + "/" + t.project;
+  t.alive = [dir] { return SupervisorAlive(ReadState(dir)); };
+  return t;
+}
+
 // ---- run / report ------------------------------------------------------------------------------
 
 std::string NowStamp() {
@@ -348,7 +552,7 @@ std::string NowStamp() {
 }
 
 int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out) {
-  auto scenario = rover::deploy::LoadScenarioFile(file, rover::deploy::ValidateSimulatorSections);
+  auto scenario = rover::deploy::LoadScenario(file);
   if (!scenario.ok()) return Fail(scenario.status().message(), 2);
   std::vector<std::uint32_t> seeds = {scenario->seed};
   if (!seeds_text.empty()) {
@@ -357,7 +561,9 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     seeds = *s;
   }
   if (out.empty()) out = "runs/" + scenario->name + "-" + NowStamp();
-  if (const Status s = rover::deploy::CheckOutputFolder(out); !s.ok()) return Fail(s.message(), 2);
+  if (const Status s = rover::deploy::CheckOutputFolder(out, scenario->name); !s.ok()) {
+    return Fail(s.message(), 2);
+  }
   rover::deploy::CampaignOptions o;
   o.seeds = seeds;
   o.jobs = jobs;
@@ -383,7 +589,7 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
   std::fflush(stdout);
   auto r = rover::deploy::RunCampaign(*scenario, o);
   if (!r.ok()) return Fail(r.status().message(), 2);
-  std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary).c_str());
+  std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary, r->missing).c_str());
   for (const auto& e : r->errors) std::printf("error: %s\n", e.c_str());
   if (r->interrupted) std::printf("interrupted: %zu of %zu runs finished and were kept\n", r->runs.size(), seeds.size());
   std::printf("\nreport: %s/summary.json  junit: %s/junit.xml\n", out.c_str(), out.c_str());
@@ -396,19 +602,10 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
 }
 
 int Report(const std::string& dir) {
-  auto runs = rover::deploy::LoadRunFolder(dir);
-  if (!runs.ok()) return Fail(runs.status().message(), 2);
-  double wall = 0;
-  std::ifstream in(dir + "/summary.json");
-  if (in) {
-    try {
-      wall = nlohmann::json::parse(in).value("wall_time_s", 0.0);
-    } catch (const nlohmann::json::exception&) {
-    }
-  }
-  auto summary = rover::deploy::Summarize(*runs, wall);
-  std::printf("%s", rover::deploy::FormatSummaryTable(*runs, summary).c_str());
-  return summary.passed == summary.runs && summary.runs > 0 ? 0 : 1;
+  auto report = rover::deploy::LoadCampaignReport(dir);
+  if (!report.ok()) return Fail(report.status().message(), 2);
+  std::printf("%s", report->table.c_str());
+  return report->all_passed ? 0 : 1;
 }
 
 }  // namespace
@@ -430,6 +627,12 @@ int main(int argc, char** argv) {
   up_cmd->add_flag("-d,--detach", up.detach, "run in the background");
   up_cmd->add_flag("--no-preflight", up.no_preflight, "skip parameter validation");
   up_cmd->add_option("--for", up.run_for_s, "stop by itself after this many seconds");
+  double wait_s = kDefaultWaitS;
+  auto* wait_flag = up_cmd->add_flag(
+      "--wait{" + std::to_string(static_cast<int>(kDefaultWaitS)) + "}", wait_s,
+      "return (with -d) or report once every service is ready, waiting at most S seconds "
+      "(--wait=S; default " + std::to_string(static_cast<int>(kDefaultWaitS)) +
+          "); not ready by then: the set is stopped, exit code 1");
 
   std::string project;
   double down_timeout = 60;
@@ -465,7 +668,54 @@ int main(int argc, char** argv) {
   auto* report_cmd = app.add_subcommand("report", "print the summary of a campaign folder");
   report_cmd->add_option("dir", report_dir, "campaign folder")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  std::string rec_out, rec_compression = "zstd", rec_clock = "auto";
+  std::vector<std::string> rec_topics, rec_exclude;
+  double rec_cap_mb = 0, rec_duration = 0;
+  int rec_domain = -1;
+  auto* record_cmd = app.add_subcommand("record", "record a running set's topics to an MCAP file");
+  record_cmd->add_option("-p,--project", project, "project (default: the only one up)");
+  record_cmd->add_option("--domain", rec_domain, "DDS domain instead of a project")
+      ->check(CLI::Range(0, 232));
+  record_cmd->add_option("-o,--output", rec_out, "MCAP file to write")->required();
+  record_cmd->add_option("--topics", rec_topics, "topic globs to record (default: every topic)");
+  record_cmd->add_option("--exclude", rec_exclude, "topic globs to leave out");
+  record_cmd->add_option("--size-cap", rec_cap_mb, "stop recording at this file size [MB]");
+  record_cmd->add_option("--compression", rec_compression, "chunk compression: zstd, lz4, none");
+  record_cmd->add_option("--duration", rec_duration, "stop after this many run-clock seconds");
+  record_cmd->add_option("--clock", rec_clock, "log time: auto (the set's), sim or wall");
+
+  std::string replay_file;
+  std::vector<std::string> rep_topics, rep_exclude;
+  double rep_rate = 1.0;
+  int rep_domain = -1;
+  bool rep_no_clock = false, rep_force = false, rep_accept = false;
+  auto* replay_cmd = app.add_subcommand("replay", "republish a recording onto a DDS domain");
+  replay_cmd->add_option("file", replay_file, "MCAP recording")->required();
+  replay_cmd->add_option("--topics", rep_topics, "topic globs to replay (default: all)");
+  replay_cmd->add_option("--exclude", rep_exclude, "topic globs to leave out");
+  replay_cmd->add_option("--rate", rep_rate, "1 = as recorded, 2 = twice as fast, 0 = at once");
+  replay_cmd->add_option("--domain", rep_domain, "DDS domain to publish on")
+      ->check(CLI::Range(0, 232));
+  replay_cmd->add_option("-p,--project", project, "a running set to publish into");
+  replay_cmd->add_flag("--no-clock", rep_no_clock, "publish no sim/clock");
+  replay_cmd->add_flag("--force", rep_force, "publish even where others publish the same topics");
+  replay_cmd->add_flag("--accept-schema-changes", rep_accept,
+                       "replay topics whose recorded IDL differs from this build's");
+
+  std::string info_file;
+  auto* info_cmd = app.add_subcommand("info", "print a recording's topics, types, counts and span");
+  info_cmd->add_option("file", info_file, "MCAP recording")->required();
+
+  // Usage errors are exit code 2 (docs/roverctl.md), not CLI11's own codes; --help is 0.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (*wait_flag) {
+    if (!(wait_s > 0)) return Fail("--wait: " + std::to_string(wait_s) + " is not > 0 s", 2);
+    up.wait_s = wait_s;
+  }
 
   struct sigaction sa {};
   sa.sa_handler = OnSignal;
@@ -481,5 +731,36 @@ int main(int argc, char** argv) {
   if (*config_cmd) return Config(config_file);
   if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir);
   if (*report_cmd) return Report(report_dir);
+  if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);
+  if (*record_cmd) {
+    auto target = ResolveTarget(state_root, project, rec_domain, true);
+    if (!target.ok()) return Fail(target.status().message(), 2);
+    rover::deploy::RecordArgs a;
+    a.target = std::move(*target);
+    a.record.path = rec_out;
+    a.record.topics = {rec_topics, rec_exclude};
+    a.record.size_cap_mb = rec_cap_mb;
+    auto c = rover::recording::ParseCompression(rec_compression);
+    if (!c.ok()) return Fail("record: --" + c.status().message(), 2);
+    a.record.compression = *c;
+    a.clock = rec_clock;
+    a.duration_s = rec_duration;
+    a.stop = &g_stop;
+    return rover::deploy::RunRecord(a, std::cout, std::cerr);
+  }
+  if (*replay_cmd) {
+    auto target = ResolveTarget(state_root, project, rep_domain, false);
+    if (!target.ok()) return Fail(target.status().message(), 2);
+    rover::deploy::ReplayArgs a;
+    a.file = replay_file;
+    a.target = std::move(*target);
+    a.topics = {rep_topics, rep_exclude};
+    a.rate = rep_rate;
+    a.clock = !rep_no_clock;
+    a.force = rep_force;
+    a.accept_schema_changes = rep_accept;
+    a.stop = &g_stop;
+    return rover::deploy::RunReplay(a, std::cout, std::cerr);
+  }
   return 1;
 }

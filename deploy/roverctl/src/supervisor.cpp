@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -28,6 +29,29 @@ const char* LifecycleName(rover_sys_LifecycleState s) {
     case rover_sys_LIFECYCLE_ERROR: return "error";
   }
   return "?";
+}
+
+const char* HealthName(rover_SensorHealth h) {
+  switch (h) {
+    case rover_HEALTH_OK: return "ok";
+    case rover_HEALTH_DEGRADED: return "degraded";
+    case rover_HEALTH_FAILED: return "failed";
+    case rover_HEALTH_STALE: return "stale";
+  }
+  return "?";
+}
+
+std::string MakeSetId(const std::string& project) {
+  std::random_device rd;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%08x", static_cast<unsigned>(rd()));
+  return project + "." + std::to_string(getpid()) + "." + buf;
+}
+
+std::string Seconds1(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", s);
+  return buf;
 }
 
 bool ShouldRestart(const ServiceSpec& s, const ExitInfo& e, int restarts) {
@@ -61,7 +85,8 @@ std::string DefaultStateRoot() {
 
 std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& project,
                                                       const ServiceSpec& s,
-                                                      const SupervisorOptions& options, int domain) {
+                                                      const SupervisorOptions& options, int domain,
+                                                      const std::string& set_id) {
   std::map<std::string, std::string> env;
   const char* path = std::getenv("PATH");
   env["PATH"] = options.bin_dir + ":" + (path ? path : "/usr/bin:/bin");
@@ -71,6 +96,7 @@ std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& proj
   env["ROVER_PROJECT"] = project.rover.project;
   env["ROVER_CLOCK"] = project.rover.clock;
   env["ROVER_STATE_DIR"] = options.state_dir;
+  if (!set_id.empty()) env[kSetIdVariable] = set_id + "/" + s.name;
   if (!project.rover.qos.empty()) {
     std::string q;
     for (const auto& [topic, profile] : project.rover.qos) {
@@ -84,8 +110,47 @@ std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& proj
     env[key] = v;
   }
   for (const auto& [k, v] : options.extra_env) env[k] = v;
-  for (const auto& [k, v] : s.environment) env[k] = v;  // the compose file has the last word
+  for (const auto& [k, v] : s.environment) env[k] = v;  // never a reserved one (compose.cpp)
   return env;
+}
+
+bool IsRoverService(const ComposeProject& project, const ServiceSpec& spec,
+                    const SupervisorOptions& options) {
+  const auto env = ServiceEnvironment(project, spec, options, 0);
+  const std::string exe = FindInPath(spec.command[0], env.at("PATH"));
+  return !exe.empty() && fs::path(exe).parent_path() == fs::path(options.bin_dir);
+}
+
+Readiness ServiceReadiness(const ServiceStatus& s, std::int64_t now_wall_ns,
+                           double heartbeat_timeout_s) {
+  switch (s.state) {
+    case ServiceState::kPending: return {false, "not started"};
+    case ServiceState::kBackoff: return {false, "restarting (" + s.last_exit + ")"};
+    case ServiceState::kFailed: return {false, "failed (" + s.last_exit + ")"};
+    case ServiceState::kStopped: return {false, "stopped"};
+    case ServiceState::kExited: return {true, ""};  // exited 0: done, under every rule
+    case ServiceState::kRunning: break;
+  }
+  switch (s.ready_rule) {
+    case ReadyRule::kStarted: return {true, ""};
+    case ReadyRule::kCompleted: return {false, "still running (ready: completed)"};
+    case ReadyRule::kHealthy:
+    case ReadyRule::kActive: break;
+  }
+  if (s.last_heartbeat_wall_ns <= 0) return {false, "no heartbeat yet"};
+  const double age = (now_wall_ns - s.last_heartbeat_wall_ns) * 1e-9;
+  if (age > heartbeat_timeout_s) return {false, "heartbeat " + Seconds1(age) + " s old"};
+  if (s.lifecycle != "active") return {false, "lifecycle " + s.lifecycle};
+  if (s.ready_rule == ReadyRule::kHealthy && s.health != "ok") {
+    return {false, "health " + s.health + (s.message.empty() ? "" : ": " + s.message)};
+  }
+  return {true, ""};
+}
+
+std::string SetReadiness::Summary() const {
+  std::string out;
+  for (const auto& n : not_ready) out += (out.empty() ? "" : "; ") + n;
+  return out;
 }
 
 Status Preflight(const ComposeProject& project, const SupervisorOptions& options) {
@@ -100,8 +165,7 @@ Status Preflight(const ComposeProject& project, const SupervisorOptions& options
                              ": services." + spec.name + ".command: no such command '" +
                              spec.command[0] + "'");
     }
-    // Only rover services understand --validate.
-    if (fs::path(exe).parent_path() != fs::path(options.bin_dir)) continue;
+    if (!IsRoverService(project, spec, options)) continue;  // only they understand --validate
     SpawnOptions o;
     o.argv = spec.command;
     o.argv.push_back("--validate");
@@ -155,11 +219,15 @@ Result<std::unique_ptr<Supervisor>> Supervisor::Create(ComposeProject project,
   auto r = dds::Reader<rover_sys_Heartbeat>::Create(s->participant_, "sys/health");
   if (!r.ok()) return r.status();
   s->heartbeats_ = std::make_unique<dds::Reader<rover_sys_Heartbeat>>(std::move(*r));
+  s->set_id_ = MakeSetId(s->project_.rover.project);
   for (const auto& spec : s->project_.services) {
     auto c = std::make_unique<Child>();
     c->spec = &spec;
     c->status.name = spec.name;
     c->status.log_path = s->options_.state_dir + "/logs/" + spec.name + ".log";
+    c->status.ready_rule = spec.ready.value_or(IsRoverService(s->project_, spec, s->options_)
+                                                   ? ReadyRule::kHealthy
+                                                   : ReadyRule::kStarted);
     s->by_name_[spec.name] = c.get();
     s->children_.push_back(std::move(c));
   }
@@ -174,7 +242,7 @@ Supervisor::~Supervisor() { Stop(); }
 Status Supervisor::Spawn(Child& c) {
   SpawnOptions o;
   o.argv = c.spec->command;
-  o.env = ServiceEnvironment(project_, *c.spec, options_, lease_.domain());
+  o.env = ServiceEnvironment(project_, *c.spec, options_, lease_.domain(), set_id_);
   o.stdout_path = c.status.log_path;
   o.stderr_path = c.status.log_path;
   o.working_dir = c.spec->working_dir;
@@ -190,6 +258,9 @@ Status Supervisor::Spawn(Child& c) {
   c.status.state = ServiceState::kRunning;
   c.status.started_wall_ns = WallNow().ns;
   c.status.lifecycle.clear();
+  c.status.health.clear();
+  c.status.message.clear();
+  c.status.last_heartbeat_wall_ns = 0;
   c.started_mono_ns = MonoNs();
   return Status::Ok();
 }
@@ -217,6 +288,38 @@ void Supervisor::ReadHeartbeats() {
     if (s->pid != c.status.pid) continue;  // a previous incarnation
     c.status.last_heartbeat_wall_ns = s->wall_time_ns;
     c.status.lifecycle = LifecycleName(s->state);
+    c.status.health = HealthName(s->health);
+    c.status.message = s->message;
+  }
+}
+
+void Supervisor::UpdateReadiness() {
+  const std::int64_t now = WallNow().ns;
+  SetReadiness r;
+  r.ready = !children_.empty();
+  for (auto& c : children_) {
+    const Readiness one = ServiceReadiness(c->status, now, project_.rover.heartbeat_timeout_s);
+    c->status.ready = one.ready;
+    c->status.waiting_for = one.reason;
+    if (!one.ready) {
+      r.ready = false;
+      r.not_ready.push_back(c->spec->name + ": " + one.reason);
+    }
+  }
+  if (r.ready && ready_after_s_ < 0 && phase_ == "up") {
+    ready_after_s_ = (MonoNs() - started_mono_ns_) * 1e-9;
+    log::Info("ready", {{"after_s", ready_after_s_}});
+  }
+  readiness_ = std::move(r);
+}
+
+void Supervisor::StopLeftovers(const Child& c, Duration grace) {
+  const MarkedStop stopped = StopMarkedProcesses(kSetIdVariable, set_id_ + "/" + c.spec->name,
+                                                 EnvMatch::kExact, grace);
+  if (!stopped.found.empty()) {
+    log::Warn("stopped processes left over by a service",
+              {{"service", c.spec->name}, {"count", stopped.found.size()},
+               {"killed", stopped.killed.size()}});
   }
 }
 
@@ -258,6 +361,8 @@ Status Supervisor::WaitForDependencies(const ServiceSpec& s, std::int64_t deadli
 
 Status Supervisor::Start() {
   phase_ = "starting";
+  started_wall_ns_ = WallNow().ns;
+  started_mono_ns_ = MonoNs();
   WriteState(phase_);
   const std::int64_t deadline =
       MonoNs() + static_cast<std::int64_t>(project_.rover.startup_timeout_s * 1e9);
@@ -293,6 +398,7 @@ Status Supervisor::Start() {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   phase_ = "up";
+  UpdateReadiness();
   WriteState(phase_);
   return Status::Ok();
 }
@@ -310,6 +416,7 @@ void Supervisor::Poll() {
         continue;
       }
       c->process.Signal(SIGKILL);  // leave no stragglers of its process group
+      StopLeftovers(*c, Duration{0});  // nor any that left it
       c->status.last_exit = e->ToString();
       c->status.pid = 0;
       if (ShouldRestart(*c->spec, *e, c->status.restarts)) {
@@ -332,6 +439,7 @@ void Supervisor::Poll() {
       }
     }
   }
+  UpdateReadiness();
   WriteState(phase_);
 }
 
@@ -342,8 +450,10 @@ void Supervisor::Stop() {
     Child& c = **it;
     c.stopping = true;
     if (c.process.pid() <= 0) continue;
-    const ExitInfo e =
-        c.process.Terminate(std::chrono::milliseconds(static_cast<int>(c.spec->stop_grace_s * 1000)));
+    const Duration grace =
+        std::chrono::milliseconds(static_cast<int>(c.spec->stop_grace_s * 1000));
+    const ExitInfo e = c.process.Terminate(grace);
+    StopLeftovers(c, grace);
     if (c.status.state == ServiceState::kRunning) {
       c.status.state = ServiceState::kStopped;
       c.status.last_exit = e.ToString();
@@ -351,6 +461,7 @@ void Supervisor::Stop() {
     c.status.pid = 0;
   }
   if (phase_ != "failed") phase_ = "stopped";
+  UpdateReadiness();
   WriteState(phase_);
 }
 
@@ -366,7 +477,13 @@ void Supervisor::WriteState(const std::string& phase) const {
   j["file"] = fs::absolute(project_.file).string();
   j["domain"] = lease_.domain();
   j["supervisor_pid"] = getpid();
+  j["supervisor_start_ticks"] = ProcessStartTicks(getpid());
+  j["set_id"] = set_id_;
   j["phase"] = phase;
+  j["ready"] = readiness_.ready;
+  j["not_ready"] = readiness_.not_ready;
+  j["started_wall_ns"] = started_wall_ns_;
+  j["ready_after_s"] = ready_after_s_;
   j["clock"] = project_.rover.clock;
   j["heartbeat_timeout_s"] = project_.rover.heartbeat_timeout_s;
   j["written_wall_ns"] = WallNow().ns;
@@ -376,11 +493,18 @@ void Supervisor::WriteState(const std::string& phase) const {
     j["services"].push_back({{"name", s.name},
                              {"state", ServiceStateName(s.state)},
                              {"pid", s.pid},
+                             {"pgid", s.pid},  // each service leads its own process group
                              {"restarts", s.restarts},
                              {"last_exit", s.last_exit},
                              {"started_wall_ns", s.started_wall_ns},
                              {"last_heartbeat_wall_ns", s.last_heartbeat_wall_ns},
                              {"lifecycle", s.lifecycle},
+                             {"health", s.health},
+                             {"message", s.message},
+                             {"ready_rule", ReadyRuleName(s.ready_rule)},
+                             {"ready", s.ready},
+                             {"waiting_for", s.waiting_for},
+                             {"stop_grace_s", c->spec->stop_grace_s},
                              {"log", s.log_path}});
   }
   const std::string path = options_.state_dir + "/state.json";

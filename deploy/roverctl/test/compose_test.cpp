@@ -156,13 +156,35 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown_rover_key", "x-rover: {domian: 3}\nservices: {a: {command: x}}\n",
                 "f.yaml:1: x-rover: unknown key 'domian' (did you mean 'domain'?) (known: "
                 "project, domain, clock, startup_timeout_s, heartbeat_timeout_s, qos, sim, "
-                "faults, scenario)"},
+                "faults, scenario, record)"},
         BadCase{"unbalanced_quote", "services:\n  a: {command: \"x 'y\"}\n",
                 "f.yaml:2: services.a.command: unbalanced ' quote"},
         BadCase{"empty_services", "services: {}\n", "f.yaml:1: 'services' must be a non-empty map"},
         BadCase{"bad_grace", "services:\n  a: {command: x, stop_grace_period: soon}\n",
                 "f.yaml:2: services.a.stop_grace_period: 'soon' is not a duration like 10s, "
-                "1m30s, 500ms"}),
+                "1m30s, 500ms"},
+        // What roverctl sets for the whole set cannot be moved for one service.
+        BadCase{"env_overrides_domain",
+                "services:\n  a:\n    command: x\n    environment: {A: \"1\", ROVER_DOMAIN: \"7\"}\n",
+                "f.yaml:4: services.a.environment.ROVER_DOMAIN: roverctl sets ROVER_DOMAIN for "
+                "every service (the set's DDS domain: choose it with x-rover.domain or --domain); "
+                "a service may not override it"},
+        BadCase{"env_overrides_clock_in_a_list",
+                "services:\n  a:\n    command: x\n    environment:\n      - A=1\n"
+                "      - ROVER_CLOCK=wall\n",
+                "f.yaml:6: services.a.environment.ROVER_CLOCK: roverctl sets ROVER_CLOCK for "
+                "every service (the set's run clock: choose it with x-rover.clock); a service "
+                "may not override it"},
+        BadCase{"env_overrides_sim_setting",
+                "services:\n  a:\n    command: x\n    environment: {ROVER_SIM_SEED: \"3\"}\n",
+                "f.yaml:4: services.a.environment.ROVER_SIM_SEED: roverctl sets ROVER_SIM_* for "
+                "every service (simulator settings: give them under x-rover.sim); a service may "
+                "not override it"},
+        BadCase{"env_overrides_dds_config",
+                "services:\n  a:\n    command: x\n    environment: {CYCLONEDDS_URI: x.xml}\n",
+                "f.yaml:4: services.a.environment.CYCLONEDDS_URI: roverctl sets CYCLONEDDS_URI "
+                "for every service (the set's Cyclone DDS configuration: give roverctl "
+                "ROVER_DDS_CONFIG); a service may not override it"}),
     [](const ::testing::TestParamInfo<BadCase>& p) { return std::string(p.param.name); });
 
 TEST(Compose, MissingFileIsNotFound) {

@@ -33,21 +33,34 @@ std::string Eta(double s) {
 }  // namespace
 
 bool CampaignResult::all_passed() const {
-  if (interrupted || !errors.empty() || runs.empty()) return false;
+  if (interrupted || !errors.empty() || !missing.empty() || runs.empty()) return false;
   return std::all_of(runs.begin(), runs.end(), [](const RunResult& r) { return r.pass; });
 }
 
-Status CheckOutputFolder(const std::string& dir) {
+Status CheckOutputFolder(const std::string& dir, const std::string& scenario) {
   if (!fs::exists(dir)) return Status::Ok();
   if (!fs::is_directory(dir)) return InvalidArgument("--out " + dir + ": exists and is not a folder");
-  if (fs::is_empty(dir) || IsRunFolder(dir)) return Status::Ok();
+  if (fs::is_empty(dir)) return Status::Ok();
+  if (IsRunFolder(dir)) {
+    std::string earlier;
+    try {
+      std::ifstream in(dir + "/campaign.json");
+      earlier = nlohmann::json::parse(in).value("scenario", "");
+    } catch (const nlohmann::json::exception&) {
+    }
+    if (!scenario.empty() && !earlier.empty() && earlier != scenario) {
+      return InvalidArgument("--out " + dir + ": holds a campaign of scenario '" + earlier +
+                             "', not '" + scenario + "'; choose another folder");
+    }
+    return Status::Ok();
+  }
   return InvalidArgument("--out " + dir +
                          ": exists and is not a run folder (no campaign.json); choose another "
                          "folder so nothing of yours is overwritten");
 }
 
 Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptions& options) {
-  ROVER_RETURN_IF_ERROR(CheckOutputFolder(options.out_dir));
+  ROVER_RETURN_IF_ERROR(CheckOutputFolder(options.out_dir, scenario.name));
   if (options.seeds.empty()) return InvalidArgument("no seeds to run");
   if (options.jobs < 1 || options.jobs > 16) return InvalidArgument("--jobs must be in [1, 16]");
   std::error_code ec;
@@ -118,7 +131,8 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
         slots[slot_index].sim_s = sim_s;
         draw(false);
       };
-      auto r = RunScenario(scenario, seed, ro);
+      auto r =
+          options.run_one ? options.run_one(scenario, seed, ro) : RunScenario(scenario, seed, ro);
       std::lock_guard lock(mu);
       slots[slot_index].busy = false;
       if (!r.ok()) {
@@ -151,12 +165,17 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
   out.errors = std::move(errors);
   out.summary = Summarize(out.runs, ToSeconds(MonotonicNow() - start));
   out.summary.scenario = scenario.name;
+  out.missing = MissingRuns(options.out_dir, scenario.name, options.seeds, out.runs);
   nlohmann::json sj = ToJson(out.summary);
   sj["interrupted"] = out.interrupted;
   sj["errors"] = out.errors;
+  sj["seeds"] = options.seeds.size();
+  sj["missing"] = nlohmann::json::array();
+  for (const auto& m : out.missing) sj["missing"].push_back({{"seed", m.seed}, {"started", m.started}});
   std::ofstream(options.out_dir + "/summary.json") << sj.dump(2) << "\n";
   std::ofstream(options.out_dir + "/junit.xml") << ToJunitXml(out.runs, scenario.name);
-  std::ofstream(options.out_dir + "/summary.txt") << FormatSummaryTable(out.runs, out.summary);
+  std::ofstream(options.out_dir + "/summary.txt")
+      << FormatSummaryTable(out.runs, out.summary, out.missing);
   return out;
 }
 

@@ -7,7 +7,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rover/sim/terrain/terrain.hpp"
-#include "rover/sim/terrain/top_down_map.hpp"
 
 namespace rover::deploy {
 namespace {
@@ -76,19 +75,75 @@ void Panel(cv::Mat& img, cv::Rect area, const std::vector<double>& t, const std:
   cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
 }
 
+// The chosen arcs: `kArcDrawLength` of each arc from the pose it was chosen at; a point turn as
+// a short stroke along its new heading.
+constexpr double kArcDrawLength = 1.0;  // [m]
+
+std::vector<Eigen::Vector2d> ArcPoints(const ChosenArc& a) {
+  std::vector<Eigen::Vector2d> pts{{a.x, a.y}};
+  if (a.point_turn) {
+    const double th = a.yaw + a.turn_angle;
+    pts.emplace_back(a.x + 0.5 * std::cos(th), a.y + 0.5 * std::sin(th));
+    return pts;
+  }
+  double x = a.x, y = a.y, th = a.yaw;
+  const int n = 10;
+  const double ds = a.direction * kArcDrawLength / n;
+  for (int i = 0; i < n; ++i) {
+    x += ds * std::cos(th + 0.5 * a.curvature * ds);
+    y += ds * std::sin(th + 0.5 * a.curvature * ds);
+    th += a.curvature * ds;
+    pts.emplace_back(x, y);
+  }
+  return pts;
+}
+
 }  // namespace
+
+sim::MapCellLayer GoodnessLayer(const GoodnessGrid& g) {
+  sim::MapCellLayer l;
+  l.origin_x = g.origin_x;
+  l.origin_y = g.origin_y;
+  l.resolution = g.resolution;
+  l.width = g.width;
+  l.height = g.height;
+  l.value = g.goodness;
+  l.known.resize(g.flags.size());
+  for (std::size_t k = 0; k < g.flags.size(); ++k) l.known[k] = g.flags[k] & 1;
+  l.label = "last goodness map (black 0 .. white 255)";
+  return l;
+}
 
 Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
                      const std::vector<Eigen::Vector2d>& planned, const std::string& path) {
   sim::MapOptions o;
   o.title = run.scenario + " seed " + std::to_string(run.seed) + (run.pass ? "  PASS" : "  FAIL");
-  if (planned.size() >= 2) o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true});
+  if (run.mobility) {
+    o.title += "  " + run.mobility->task + ": " + run.mobility->outcome;
+    if (run.mobility->last_map && run.mobility->last_map->width > 0) {
+      o.cell_layers.push_back(GoodnessLayer(*run.mobility->last_map));
+    }
+  }
+  // Wide lines first, thin ones on top, so that no path hides another: truth widest, then the
+  // odometry-only path, the estimate, the chosen arcs, and the planned path dashed on top (the
+  // paths under it show between its dashes).
   const auto truth = Track(run.truth_track);
-  if (truth.size() >= 2) o.polylines.push_back({truth, {20, 170, 40}, "driven (truth)", 2, true});
+  if (truth.size() >= 2) o.polylines.push_back({truth, {20, 170, 40}, "driven (truth)", 5, true});
   const auto odo = Track(run.odometry_only_track);
-  if (odo.size() >= 2) o.polylines.push_back({odo, {170, 60, 200}, "odometry only", 2, true});
+  if (odo.size() >= 2) o.polylines.push_back({odo, {170, 60, 200}, "odometry only", 3, true});
   const auto est = Track(run.estimate_track);
   if (est.size() >= 2) o.polylines.push_back({est, {255, 140, 0}, "estimated", 2, true});
+  if (run.mobility) {
+    bool first = true;
+    for (const ChosenArc& a : run.mobility->arcs) {
+      o.polylines.push_back(
+          {ArcPoints(a), {255, 105, 180}, first ? "chosen arcs (1 m)" : "", 2, false});
+      first = false;
+    }
+  }
+  if (planned.size() >= 2) {
+    o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
+  }
   return sim::WriteTopDownMap(terrain, path, o);
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace rover::deploy {
@@ -45,7 +46,74 @@ FigureStats Stats(const std::string& name, const std::string& unit, std::vector<
   f.worst = v.back();
   return f;
 }
+nlohmann::json MobilityToJson(const MobilityOutcome& m) {
+  nlohmann::json arcs = nlohmann::json::array();
+  for (const auto& a : m.arcs) {
+    arcs.push_back({a.x, a.y, a.yaw, a.point_turn ? 1 : 0, a.curvature, a.direction, a.turn_angle});
+  }
+  return {{"task", m.task},
+          {"mode", m.mode},
+          {"expect", m.expect},
+          {"outcome", m.outcome},
+          {"state", m.state},
+          {"fault", m.fault},
+          {"fault_class", m.fault_class},
+          {"message", m.message},
+          {"distance_to_goal_m", m.distance_to_goal},
+          {"steps", m.steps},
+          {"images", m.images},
+          {"sim_start_s", m.sim_start_s},
+          {"sim_end_s", m.sim_end_s},
+          {"arcs", arcs},
+          {"arcs_columns", {"x_m", "y_m", "yaw_rad", "point_turn", "curvature", "direction",
+                            "turn_angle_rad"}}};
+}
+
+MobilityOutcome MobilityFromJson(const nlohmann::json& j) {
+  MobilityOutcome m;
+  m.task = j.value("task", "");
+  m.mode = j.value("mode", "");
+  m.expect = j.value("expect", "");
+  m.outcome = j.value("outcome", "");
+  m.state = j.value("state", "");
+  m.fault = j.value("fault", "");
+  m.fault_class = j.value("fault_class", "");
+  m.message = j.value("message", "");
+  m.distance_to_goal = j.value("distance_to_goal_m", -1.0);
+  m.steps = j.value("steps", 0u);
+  m.images = j.value("images", 0u);
+  m.sim_start_s = j.value("sim_start_s", 0.0);
+  m.sim_end_s = j.value("sim_end_s", 0.0);
+  for (const auto& a : j.value("arcs", nlohmann::json::array())) {
+    m.arcs.push_back({a.at(0), a.at(1), a.at(2), a.at(3).get<int>() != 0, a.at(4), a.at(5),
+                      a.at(6)});
+  }
+  return m;
+}
+
+// "reached" or "NOPATH (goal error)", and "!= KEEPOUT" when it is not what was expected.
+std::string OutcomeText(const MobilityOutcome& m) {
+  std::string out = m.outcome;
+  if (m.fault_class != "none" && !m.fault_class.empty()) out += " (" + m.fault_class + ")";
+  if (m.outcome != m.expect) out += ", expected " + m.expect;
+  return out;
+}
 }  // namespace
+
+bool GoodnessGrid::Known(int i, int j) const {
+  if (i < 0 || j < 0 || i >= width || j >= height) return false;
+  const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(i);
+  return k < flags.size() && (flags[k] & 1) != 0;
+}
+
+int GoodnessGrid::CellAt(double x, double y) const {
+  if (!(resolution > 0)) return -1;
+  const double fi = std::floor((x - origin_x) / resolution);
+  const double fj = std::floor((y - origin_y) / resolution);
+  if (!(fi >= 0 && fj >= 0 && fi < width && fj < height)) return -1;
+  return static_cast<int>(fj) * width + static_cast<int>(fi);
+}
 
 nlohmann::json ToJson(const RunResult& r) {
   nlohmann::json j;
@@ -68,7 +136,8 @@ nlohmann::json ToJson(const RunResult& r) {
   }
   j["distance_driven_m"] = r.distance_driven;
   j["timings"] = {{"sim_time_s", r.sim_time_s}, {"wall_time_s", r.wall_time_s},
-                  {"startup_s", r.startup_s}, {"teardown_s", r.teardown_s},
+                  {"startup_s", r.startup_s}, {"ready_s", r.ready_s},
+                  {"teardown_s", r.teardown_s},
                   {"sim_seconds_per_wall_second",
                    r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0}};
   j["estimate_error"] = nlohmann::json::array();
@@ -92,6 +161,7 @@ nlohmann::json ToJson(const RunResult& r) {
   j["truth_track"] = r.truth_track;
   j["estimate_track"] = r.estimate_track;
   j["odometry_only_track"] = r.odometry_only_track;
+  if (r.mobility) j["mobility"] = MobilityToJson(*r.mobility);
   return j;
 }
 
@@ -117,6 +187,7 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.sim_time_s = t.value("sim_time_s", 0.0);
     r.wall_time_s = t.value("wall_time_s", 0.0);
     r.startup_s = t.value("startup_s", 0.0);
+    r.ready_s = t.value("ready_s", 0.0);
     r.teardown_s = t.value("teardown_s", 0.0);
     for (const auto& e : j.value("estimate_error", nlohmann::json::array())) {
       r.estimate_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
@@ -136,6 +207,7 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
     r.odometry_only_track =
         j.value("odometry_only_track", std::vector<std::array<double, 3>>{});
+    if (j.contains("mobility")) r.mobility = MobilityFromJson(j.at("mobility"));
     return r;
   } catch (const nlohmann::json::exception& e) {
     return InvalidArgument(std::string("result.json: ") + e.what());
@@ -148,7 +220,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   if (!runs.empty()) s.scenario = runs.front().scenario;
   std::map<std::string, std::pair<std::string, std::vector<double>>> by_name;
   std::vector<std::string> order;
-  std::vector<double> wall, startup, teardown, distance, sim_time;
+  std::vector<double> wall, startup, ready, teardown, distance, sim_time;
   double sim_total = 0;
   for (const auto& r : runs) {
     if (r.pass) ++s.passed;
@@ -162,6 +234,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
     }
     wall.push_back(r.wall_time_s);
     startup.push_back(r.startup_s);
+    if (r.ready_s > 0) ready.push_back(r.ready_s);
     teardown.push_back(r.teardown_s);
     distance.push_back(r.distance_driven);
     sim_time.push_back(r.sim_time_s);
@@ -173,6 +246,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   s.figures.push_back(Stats("sim_time", "s", sim_time));
   s.figures.push_back(Stats("wall_time", "s", wall));
   s.figures.push_back(Stats("startup", "s", startup));
+  if (!ready.empty()) s.figures.push_back(Stats("ready", "s", ready));
   s.figures.push_back(Stats("teardown", "s", teardown));
   s.wall_time_s = campaign_wall_s;
   s.sim_seconds_per_wall_second = campaign_wall_s > 0 ? sim_total / campaign_wall_s : 0;
@@ -240,21 +314,63 @@ std::string ToJunitXml(const std::vector<RunResult>& runs, const std::string& su
   return x.str();
 }
 
-std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s) {
+std::vector<MissingRun> MissingRuns(const std::string& dir, const std::string& scenario,
+                                    const std::vector<std::uint32_t>& seeds,
+                                    const std::vector<RunResult>& runs) {
+  std::vector<MissingRun> out;
+  for (std::uint32_t seed : seeds) {
+    const bool have = std::any_of(runs.begin(), runs.end(),
+                                  [seed](const RunResult& r) { return r.seed == seed; });
+    if (have) continue;
+    out.push_back(
+        {seed, fs::exists(fs::path(dir) / (scenario + "-seed" + std::to_string(seed)))});
+  }
+  return out;
+}
+
+std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s,
+                               const std::vector<MissingRun>& missing,
+                               const std::vector<std::string>& ignored) {
   std::ostringstream o;
   char buf[512];
   std::snprintf(buf, sizeof buf, "%-8s %-6s %9s %9s %9s  %s\n", "seed", "result", "dist m",
                 "sim s", "wall s", "failure");
   o << buf;
+  std::map<std::string, int> outcomes;  // mobility tasks: "NOPATH (goal error)" -> runs
   for (const auto& r : runs) {
     std::snprintf(buf, sizeof buf, "%-8u %-6s %9.2f %9.1f %9.1f  %s\n", r.seed,
                   r.pass ? "PASS" : "FAIL", r.distance_driven, r.sim_time_s, r.wall_time_s,
                   r.failure.c_str());
     o << buf;
+    if (r.mobility) {
+      const std::string text = OutcomeText(*r.mobility);
+      ++outcomes[r.mobility->outcome +
+                 (r.mobility->fault_class == "none" || r.mobility->fault_class.empty()
+                      ? ""
+                      : " (" + r.mobility->fault_class + ")")];
+      o << "         " << r.mobility->task << ": " << text << "\n";
+    }
   }
-  std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)\n\n", s.scenario.c_str(), s.passed,
+  std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)", s.scenario.c_str(), s.passed,
                 s.runs, 100.0 * s.pass_rate);
   o << buf;
+  if (!missing.empty()) {
+    o << "; " << missing.size() << " of " << runs.size() + missing.size()
+      << " seeds have no result:\n";
+    for (const auto& m : missing) {
+      o << "  seed " << m.seed << ": "
+        << (m.started ? "incomplete (started, no result.json)" : "not run") << "\n";
+    }
+  } else {
+    o << "\n";
+  }
+  for (const auto& i : ignored) o << "ignored: " << i << "\n";
+  if (!outcomes.empty()) {
+    o << "outcomes:";
+    for (const auto& [name, n] : outcomes) o << " " << name << " x" << n << ";";
+    o << "\n";
+  }
+  o << "\n";
   std::snprintf(buf, sizeof buf, "%-36s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
                 "worst");
   o << buf;
@@ -297,6 +413,51 @@ Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir) {
   }
   std::sort(out.begin(), out.end(), [](const RunResult& a, const RunResult& b) { return a.seed < b.seed; });
   return out;
+}
+
+Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
+  CampaignReport report;
+  ROVER_ASSIGN_OR_RETURN(std::vector<RunResult> all, LoadRunFolder(dir));
+  std::string scenario;
+  std::optional<std::vector<std::uint32_t>> seeds;
+  {
+    std::ifstream cj(dir + "/campaign.json");
+    try {
+      const nlohmann::json c = nlohmann::json::parse(cj);
+      scenario = c.value("scenario", "");
+      if (c.contains("seeds")) seeds = c["seeds"].get<std::vector<std::uint32_t>>();
+    } catch (const nlohmann::json::exception& e) {
+      return InvalidArgument(dir + "/campaign.json: " + e.what());
+    }
+  }
+  for (auto& r : all) {
+    const std::string folder = fs::path(r.run_dir).filename().string();
+    const std::string name = folder.empty() ? r.scenario + "-seed" + std::to_string(r.seed) : folder;
+    if (!scenario.empty() && r.scenario != scenario) {
+      report.ignored.push_back(name + " (scenario '" + r.scenario + "', not '" + scenario + "')");
+    } else if (seeds && std::find(seeds->begin(), seeds->end(), r.seed) == seeds->end()) {
+      report.ignored.push_back(name + " (seed " + std::to_string(r.seed) +
+                               " is not one of the last campaign's seeds)");
+    } else {
+      report.runs.push_back(std::move(r));
+    }
+  }
+  double wall = 0;
+  std::ifstream in(dir + "/summary.json");
+  if (in) {
+    try {
+      wall = nlohmann::json::parse(in).value("wall_time_s", 0.0);
+    } catch (const nlohmann::json::exception&) {
+    }
+  }
+  report.summary = Summarize(report.runs, wall);
+  if (!scenario.empty()) report.summary.scenario = scenario;
+  if (seeds) report.missing = MissingRuns(dir, report.summary.scenario, *seeds, report.runs);
+  report.table =
+      FormatSummaryTable(report.runs, report.summary, report.missing, report.ignored);
+  report.all_passed = report.summary.runs > 0 && report.missing.empty() &&
+                      report.summary.passed == report.summary.runs;
+  return report;
 }
 
 }  // namespace rover::deploy

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
 
 #include "rover/sim/terrain/terrain.hpp"
@@ -66,6 +67,64 @@ TEST(Plots, TrackMapDrawsPaths) {
     }
   }
   EXPECT_GT(green, 20);
+  std::remove(path.c_str());
+}
+
+int CountColour(const cv::Mat& img, const cv::Vec3b& bgr) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r) {
+    for (int c = 0; c < img.cols; ++c) n += img.at<cv::Vec3b>(r, c) == bgr;
+  }
+  return n;
+}
+
+TEST(Plots, TrackMapShowsTheGoodnessMapTheArcsAndEveryPathOverlapping) {
+  sim::TerrainParams p;
+  p.size_x = 12;
+  p.size_y = 12;
+  p.resolution = 0.05;
+  p.rocks.preset = sim::RockPreset::kNone;
+  auto terrain = sim::GenerateTerrain(p);
+  ASSERT_TRUE(terrain.ok()) << terrain.status().message();
+  RunResult run = SampleRun();
+  // Truth, odometry, estimate and plan all on the same line: each must still show.
+  run.odometry_only_track = run.truth_track;
+  run.estimate_track = run.truth_track;
+  MobilityOutcome mob;
+  mob.task = "autonav";
+  mob.outcome = "reached";
+  GoodnessGrid g;
+  g.origin_x = -4;
+  g.origin_y = -4;
+  g.resolution = 0.2;
+  g.width = 20;
+  g.height = 20;
+  g.goodness.assign(400, 255);
+  g.flags.assign(400, 1);
+  for (int k = 0; k < 200; ++k) g.goodness[static_cast<std::size_t>(k)] = 0;  // y < -2: black
+  mob.last_map = g;
+  mob.arcs.push_back({1, -2, 0, false, 0.5, 1, 0});
+  run.mobility = mob;
+  const std::string path = ::testing::TempDir() + "/map_mobility.png";
+  ASSERT_TRUE(WriteTrackMap(*terrain, run, {{0, 0}, {5, 0}}, path).ok());
+  const cv::Mat img = cv::imread(path);
+  ASSERT_FALSE(img.empty());
+  // Goodness layer (x in [-4, 0), y in [-4, 0)): known cells are blended toward black
+  // (obstacle) or white (perfect), so the obstacle half is darker than the perfect half.
+  const auto px = [&](double x, double y) {
+    const double s = img.cols / 12.0;
+    return img.at<cv::Vec3b>(static_cast<int>((6 - x) * s), static_cast<int>((6 - y) * s));
+  };
+  const cv::Vec3b dark = px(-2, -3), light = px(-2, -1);
+  EXPECT_LT(dark[0] + dark[1] + dark[2], light[0] + light[1] + light[2] - 200);
+  EXPECT_GT(CountColour(img, {180, 105, 255}), 5);  // the chosen arc, pink
+  EXPECT_GT(CountColour(img, {40, 170, 20}), 20);   // truth (green) under the others
+  EXPECT_GT(CountColour(img, {200, 60, 170}), 20);  // odometry (purple)
+  EXPECT_GT(CountColour(img, {255, 90, 40}), 10);   // planned (blue, dashed)
+  EXPECT_GT(CountColour(img, {0, 140, 255}), 10);   // estimate (orange), on top
+  if (const char* keep = std::getenv("ROVER_KEEP_PLOTS")) {
+    cv::imwrite(std::string(keep) + "/map_mobility.png", img);
+  }
   std::remove(path.c_str());
 }
 

@@ -41,6 +41,67 @@ TEST(RunReport, JsonRoundTrip) {
   EXPECT_FALSE(RunResultFromJson(nlohmann::json{{"seed", 1}}).ok());
 }
 
+TEST(RunReport, MobilityOutcomeRoundTripsAndIsPrinted) {
+  std::vector<RunResult> runs;
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+    RunResult r = MakeRun(seed, seed != 2, 0.1);
+    MobilityOutcome m;
+    m.task = "autonav";
+    m.mode = "autonav";
+    m.expect = "reached";
+    m.outcome = seed == 2 ? "NOPATH" : "reached";
+    m.state = seed == 2 ? "failed" : "succeeded";
+    m.fault = seed == 2 ? "NOPATH" : "NONE";
+    m.fault_class = seed == 2 ? "goal error" : "none";
+    m.steps = 12;
+    m.images = 13;
+    m.distance_to_goal = 0.4;
+    m.sim_start_s = 1;
+    m.sim_end_s = 300;
+    m.arcs.push_back({1, 2, 0.5, false, 0.25, -1, 0});
+    m.last_map = GoodnessGrid{};  // not written
+    r.mobility = m;
+    runs.push_back(r);
+  }
+  auto back = RunResultFromJson(ToJson(runs[1]));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ASSERT_TRUE(back->mobility.has_value());
+  EXPECT_EQ(back->mobility->outcome, "NOPATH");
+  EXPECT_EQ(back->mobility->fault_class, "goal error");
+  EXPECT_EQ(back->mobility->steps, 12u);
+  EXPECT_EQ(back->mobility->sim_end_s, 300);
+  ASSERT_EQ(back->mobility->arcs.size(), 1u);
+  EXPECT_EQ(back->mobility->arcs[0].direction, -1);
+  EXPECT_DOUBLE_EQ(back->mobility->arcs[0].curvature, 0.25);
+  EXPECT_FALSE(back->mobility->last_map.has_value());
+  // A run without a mobility task has none.
+  EXPECT_FALSE(RunResultFromJson(ToJson(MakeRun(1, true, 0.1)))->mobility.has_value());
+  const std::string table = FormatSummaryTable(runs, Summarize(runs, 10));
+  EXPECT_NE(table.find("autonav: NOPATH (goal error), expected reached"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("outcomes: NOPATH (goal error) x1; reached x2;"), std::string::npos)
+      << table;
+}
+
+TEST(RunReport, GoodnessGridCells) {
+  GoodnessGrid g;
+  g.origin_x = -1;
+  g.origin_y = 2;
+  g.resolution = 0.5;
+  g.width = 4;
+  g.height = 2;
+  g.flags = {0, 1, 0, 0, 0, 0, 0, 1};
+  EXPECT_EQ(g.CellAt(-1, 2), 0);
+  EXPECT_EQ(g.CellAt(0.99, 2.99), 7);
+  EXPECT_EQ(g.CellAt(1.0, 2.5), -1);
+  EXPECT_EQ(g.CellAt(0, 1.9), -1);
+  EXPECT_TRUE(g.Known(1, 0));
+  EXPECT_TRUE(g.Known(3, 1));
+  EXPECT_FALSE(g.Known(0, 0));
+  EXPECT_FALSE(g.Known(4, 0));
+  EXPECT_FALSE(g.Known(-1, 0));
+}
+
 TEST(RunReport, SummaryStatistics) {
   std::vector<RunResult> runs;
   for (int i = 0; i < 20; ++i) runs.push_back(MakeRun(i, i != 7, 0.01 * (i + 1)));
@@ -89,6 +150,37 @@ TEST(RunReport, RunFolderDetection) {
   auto runs = LoadRunFolder(dir);
   ASSERT_TRUE(runs.ok()) << runs.status().message();
   EXPECT_EQ(runs->size(), 1u);
+  std::filesystem::remove_all(dir);
+}
+
+// `roverctl report`: the table re-printed from the files, with the campaign's wall time.
+TEST(RunReport, CampaignReportReprintsTheTable) {
+  const std::string dir = ::testing::TempDir() + "/report_test";
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(LoadCampaignReport(dir).status().code(), StatusCode::kNotFound);
+  std::vector<RunResult> runs = {MakeRun(1, true, 0.1), MakeRun(2, false, 0.8),
+                                 MakeRun(3, true, 0.2)};
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/campaign.json") << "{}";
+  for (const auto& r : runs) {
+    const std::string run_dir = dir + "/drive-flat-seed" + std::to_string(r.seed);
+    std::filesystem::create_directories(run_dir);
+    std::ofstream(run_dir + "/result.json") << ToJson(r).dump(2);
+  }
+  std::ofstream(dir + "/summary.json") << nlohmann::json{{"wall_time_s", 120.0}}.dump();
+  auto report = LoadCampaignReport(dir);
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  EXPECT_EQ(report->runs.size(), 3u);
+  EXPECT_EQ(report->summary.wall_time_s, 120.0);
+  EXPECT_EQ(report->table, FormatSummaryTable(runs, Summarize(runs, 120.0)));
+  EXPECT_FALSE(report->all_passed);
+  // Without summary.json the wall time is unknown (0); one failed run still fails the report.
+  std::filesystem::remove(dir + "/summary.json");
+  std::filesystem::remove_all(dir + "/drive-flat-seed2");
+  report = LoadCampaignReport(dir);
+  ASSERT_TRUE(report.ok());
+  EXPECT_EQ(report->summary.wall_time_s, 0.0);
+  EXPECT_TRUE(report->all_passed);
   std::filesystem::remove_all(dir);
 }
 

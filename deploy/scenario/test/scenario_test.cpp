@@ -16,11 +16,12 @@ class ScenarioTest : public ::testing::Test {
     std::filesystem::create_directories(dir_);
     std::ofstream(dir_ + "/set.compose.yaml") << "services: {a: {command: x}}\n";
   }
-  Result<Scenario> Parse(const std::string& text, const SimSectionValidator& v = nullptr) {
-    return ParseScenario(text, dir_ + "/s.yaml", v);
+  Result<Scenario> Parse(const std::string& text, const SimSectionValidator& v = nullptr,
+                         const TaskValidator& t = nullptr) {
+    return ParseScenario(text, dir_ + "/s.yaml", v, t);
   }
-  std::string Err(const std::string& text) {
-    auto s = Parse(text);
+  std::string Err(const std::string& text, const TaskValidator& t = nullptr) {
+    auto s = Parse(text, nullptr, t);
     EXPECT_FALSE(s.ok());
     const std::string prefix = dir_ + "/s.yaml:";
     const std::string m = s.status().message();
@@ -48,30 +49,39 @@ criteria:
   heading: {deg: 0, tolerance_deg: 3}
   max_tilt_deg: 25
   max_estimate_error_percent: 2
+  max_hazard_contacts: 0
 params:
   dl-pose: {ekf: {gyro_noise: 0.001}}
 )";
 
 TEST_F(ScenarioTest, ParsesAFullScenario) {
   std::string seen_text;
-  auto s = Parse(kGood, [&](const std::string& text, const std::string&) {
-    seen_text = text;
-    return Status::Ok();
-  });
+  std::string seen_task;
+  auto s = Parse(
+      kGood,
+      [&](const std::string& text, const std::string&) {
+        seen_text = text;
+        return Status::Ok();
+      },
+      [&](const Scenario& parsed) {
+        seen_task = parsed.task.type;
+        return Status::Ok();
+      });
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->name, "drive-turns");
   EXPECT_EQ(s->compose_path, std::filesystem::path(dir_ + "/set.compose.yaml").lexically_normal().string());
   EXPECT_EQ(s->seed, 7u);
   EXPECT_EQ(s->time_budget_s, 200);
   EXPECT_NEAR(s->start_yaw, M_PI / 2, 1e-12);
-  ASSERT_EQ(s->task.steps.size(), 3u);
-  EXPECT_EQ(s->task.steps[1].primitive, Primitive::kTurnInPlace);
-  EXPECT_NEAR(s->task.steps[1].angle, -M_PI / 2, 1e-12);
-  EXPECT_EQ(s->task.steps[2].speed, 0.04);
-  EXPECT_EQ(s->task.steps[2].line, 13);
+  // The task section's keys belong to the task (deploy/runner); the scenario knows where it is.
+  EXPECT_EQ(s->task.type, "directed");
+  EXPECT_EQ(s->task.line, 9);
+  EXPECT_EQ(s->task.type_line, 9);
+  EXPECT_EQ(seen_task, "directed");
   ASSERT_TRUE(s->criteria.target_xy.has_value());
   EXPECT_EQ(s->criteria.position_tolerance, 0.5);
   EXPECT_NEAR(*s->criteria.max_estimate_error_fraction, 0.02, 1e-12);
+  EXPECT_EQ(s->criteria.max_hazard_contacts, 0);
   EXPECT_EQ(s->params.at("dl-pose").at("ekf.gyro_noise"), "0.001");
   EXPECT_EQ(seen_text, kGood);  // the simulator's sections are validated by the callback
 }
@@ -90,28 +100,32 @@ TEST_F(ScenarioTest, BadInputNamesFileLineAndKey) {
   const std::string crit = "criteria: {max_tilt_deg: 30}\n";
   EXPECT_EQ(Err(base + task + crit + "critera: {}\n"),
             "5: unknown key 'critera' (did you mean 'criteria'?) (known: name, description, "
-            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, terrain, "
-            "lander, science_targets)");
+            "compose, simulator, estimator, seed, sim, rover, task, faults, criteria, params, record, "
+            "terrain, terrain_features, lander, science_targets)");
   EXPECT_EQ(Err(base + crit), "1: missing 'task' (what the rover is to do)");
   EXPECT_EQ(Err(base + task), "1: missing 'criteria' (how the run is judged)");
   EXPECT_EQ(Err(base + task + "criteria: {max_tilt_deg: 95}\n"),
             "4: criteria.max_tilt_deg: 95 is out of range [0.1, 89.9]");
   EXPECT_EQ(Err(base + task + "criteria: {target: {x: 1, y: 2, tolerance: -1}}\n"),
             "4: criteria.target.tolerance: -1 is out of range [0.001, 100]");
+  EXPECT_EQ(Err(base + task + "criteria: {max_hazard_contacts: 1.5}\n"),
+            "4: criteria.max_hazard_contacts: 1.5 is not a whole number");
+  EXPECT_EQ(Err(base + task + "criteria: {max_hazard_contacts: -1}\n"),
+            "4: criteria.max_hazard_contacts: -1 is out of range [0, 1e+06]");
   EXPECT_EQ(Err(base + task + "criteria: {target: {x: 1}}\n"),
             "4: criteria.target: needs both 'x' and 'y'");
-  EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: arc, distance: 1}]}\n" + crit),
-            "3: task.steps[]: 'arc' needs 'curvature'");
-  EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: arc, distance: 1, curvature: 2}]}\n" + crit),
-            "3: task.steps[].curvature: 2 is out of range [-1, 1]");
-  EXPECT_EQ(Err(base + "task: {type: directed, steps: [{primitive: stop, expect: tilted}]}\n" + crit),
-            "3: task.steps[].expect: 'tilted' is not one of: nominal, tilt, suspension, motor_stall, "
-            "motor_current, motor_fault, timeout, stop_command, rejected_busy, rejected_invalid, "
-            "stale_sensor (did you mean 'tilt'?)");
-  EXPECT_EQ(Err(base + "task: {type: fly}\n" + crit),
-            "3: task.type: 'fly' is not one of: directed, waypoint, autonav, long_traverse, "
-            "lander_return, science_target");
-  EXPECT_EQ(Err(base + "task: {type: autonav}\n" + crit), "3: task: a 'autonav' task needs a 'goal'");
+  EXPECT_EQ(Err(base + "task: {steps: []}\n" + crit), "3: task: missing 'type'");
+  EXPECT_EQ(Err(base + "task: [directed]\n" + crit), "3: task: expected a map");
+  EXPECT_EQ(Err(base + "task: {type: [a]}\n" + crit), "3: task.type: expected the name of a task");
+  // The task's own errors come from the task validator, after the scenario's own checks.
+  const TaskValidator reject = [](const Scenario& sc) {
+    return InvalidArgument(sc.file + ":" + std::to_string(sc.task.type_line) + ": task.type: '" +
+                           sc.task.type + "' is not known here");
+  };
+  EXPECT_EQ(Err(base + "task: {type: fly}\n" + crit, reject),
+            "3: task.type: 'fly' is not known here");
+  EXPECT_EQ(Err(base + "task: {type: fly}\n" + "criteria: {max_tilt_deg: 95}\n", reject),
+            "4: criteria.max_tilt_deg: 95 is out of range [0.1, 89.9]");
   EXPECT_EQ(Err("name: x\ncompose: nope.yaml\n" + task + crit).rfind("2: compose: file '", 0), 0u);
   EXPECT_EQ(Err(base + task + crit + "seed: -3\n"), "5: seed: expected an integer in [0, 2^32)");
   EXPECT_EQ(Err("name: [x\n"), "2: malformed YAML: end of sequence flow not found");
@@ -127,6 +141,14 @@ TEST(SeedRange, ParsesAndRejects) {
   EXPECT_FALSE(ParseSeedRange("a..b").ok());
   EXPECT_FALSE(ParseSeedRange("1..").ok());
   EXPECT_FALSE(ParseSeedRange("0..20000").ok());
+  EXPECT_EQ(*ParseSeedRange("4294967295"), std::vector<std::uint32_t>{4294967295u});
+  EXPECT_EQ(ParseSeedRange("4294967296").status().message(),
+            "--seeds: '4294967296' is not a seed or a range A..B");
+  EXPECT_EQ(ParseSeedRange("-1..3").status().message(),
+            "--seeds: '-1..3' is not a range A..B of non-negative integers");
+  EXPECT_EQ(ParseSeedRange("1..10000")->size(), 10000u);
+  EXPECT_EQ(ParseSeedRange("0..10000").status().message(),
+            "--seeds: '0..10000' has more than 10000 seeds");
 }
 
 }  // namespace

@@ -5,13 +5,14 @@
 #include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/param_binder.hpp"
 #include "rover/dl/locomotion/ackermann.hpp"
 
 namespace rover::dl {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr const char* kWheelNames[kNumWheels] = {"LF", "LM", "LR", "RF", "RM", "RR"};
+using hwconfig::WheelName;
 
 std::string Num(double v) {
   std::ostringstream os;
@@ -33,26 +34,40 @@ GeometryIssue Issue(std::string field, std::string key, std::string message) {
 
 }  // namespace
 
+RoverGeometry::RoverGeometry() : RoverGeometry(hwconfig::RoverDescription{}) {}
+
+RoverGeometry::RoverGeometry(const hwconfig::RoverDescription& rover)
+    : wheel_radius(rover.wheel_radius),
+      rocker_pivot(rover.rocker_pivot_x, rover.rocker_pivot_z),
+      bogie_pivot(rover.bogie_pivot_x, rover.bogie_pivot_z),
+      max_steer_angle(rover.max_steer_angle),
+      min_turn_radius(rover.min_turn_radius),
+      max_wheel_speed(rover.max_wheel_speed) {
+  for (int i = 0; i < kNumWheels; ++i) {
+    wheel_centre[static_cast<std::size_t>(i)] = rover.WheelCentre(i);
+  }
+}
+
 GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
   if (!std::isfinite(g.wheel_radius) || g.wheel_radius <= 0.0) {
     return Issue("wheel_radius", "wheel_radius", Num(g.wheel_radius) + " must be > 0");
   }
   for (int i = 0; i < kNumWheels; ++i) {
     if (!g.wheel_centre[static_cast<std::size_t>(i)].allFinite()) {
-      return Issue("wheel_centre", "wheel_x",
-                   std::string("wheel ") + kWheelNames[i] + " has a non-finite coordinate");
+      return Issue("wheel_centre", "front_wheel_x",
+                   std::string("wheel ") + WheelName(i) + " has a non-finite coordinate");
     }
   }
-  if (!g.rocker_pivot.allFinite()) return Issue("rocker_pivot", "rocker_pivot", "not finite");
-  if (!g.bogie_pivot.allFinite()) return Issue("bogie_pivot", "bogie_pivot", "not finite");
+  if (!g.rocker_pivot.allFinite()) return Issue("rocker_pivot", "rocker_pivot_x", "not finite");
+  if (!g.bogie_pivot.allFinite()) return Issue("bogie_pivot", "bogie_pivot_x", "not finite");
   const auto& c = g.wheel_centre;
   for (int side = 0; side < 2; ++side) {
     const int f = 3 * side;
     const double sign = side == 0 ? 1.0 : -1.0;
     for (int i = f; i < f + 3; ++i) {
       if (sign * c[static_cast<std::size_t>(i)].y() <= 0.0) {
-        return Issue("wheel_centre", "wheel_y",
-                     std::string("wheel ") + kWheelNames[i] +
+        return Issue("wheel_centre", "half_track",
+                     std::string("wheel ") + WheelName(i) +
                          " y = " + Num(c[static_cast<std::size_t>(i)].y()) + " must be " +
                          (side == 0 ? "> 0 (left side)" : "< 0 (right side)"));
       }
@@ -61,24 +76,24 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     const double xm = c[static_cast<std::size_t>(f + 1)].x();
     const double xr = c[static_cast<std::size_t>(f + 2)].x();
     if (!(xf > xm && xm > xr)) {
-      return Issue("wheel_centre", "wheel_x",
+      return Issue("wheel_centre", "middle_wheel_x",
                    std::string("x must decrease front > middle > rear on the ") +
                        (side == 0 ? "left" : "right") + " side (got " + Num(xf) + ", " + Num(xm) +
                        ", " + Num(xr) + ")");
     }
     if (!(g.bogie_pivot.x() > xr && g.bogie_pivot.x() < xm)) {
-      return Issue("bogie_pivot", "bogie_pivot",
+      return Issue("bogie_pivot", "bogie_pivot_x",
                    "x = " + Num(g.bogie_pivot.x()) + " must lie between the rear (" + Num(xr) +
                        ") and middle (" + Num(xm) + ") wheels");
     }
     if (!(g.rocker_pivot.x() > g.bogie_pivot.x() && g.rocker_pivot.x() < xf)) {
-      return Issue("rocker_pivot", "rocker_pivot",
+      return Issue("rocker_pivot", "rocker_pivot_x",
                    "x = " + Num(g.rocker_pivot.x()) + " must lie between the bogie pivot (" +
                        Num(g.bogie_pivot.x()) + ") and the front wheel (" + Num(xf) + ")");
     }
   }
   if (std::abs(c[1].x() - c[4].x()) > 1e-9) {
-    return Issue("wheel_centre", "wheel_x",
+    return Issue("wheel_centre", "middle_wheel_x",
                  "the unsteered middle wheels LM (x = " + Num(c[1].x()) +
                      ") and RM (x = " + Num(c[4].x()) + ") must share one axle");
   }
@@ -104,7 +119,7 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
         return Issue("max_steer_angle", "max_steer_angle_deg",
                      Num(g.max_steer_angle / kDeg) + " deg is below the " +
                          Num(std::abs(a) / kDeg) + " deg the " +
-                         kWheelNames[kSteeredWheel[static_cast<std::size_t>(j)]] +
+                         WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                          " wheel needs at the minimum turn radius");
       }
     }
@@ -114,7 +129,7 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     if (std::abs(a) > g.max_steer_angle) {
       return Issue("max_steer_angle", "max_steer_angle_deg",
                    Num(g.max_steer_angle / kDeg) + " deg is below the " + Num(std::abs(a) / kDeg) +
-                       " deg the " + kWheelNames[kSteeredWheel[static_cast<std::size_t>(j)]] +
+                       " deg the " + WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                        " wheel needs to turn in place");
     }
   }
@@ -146,65 +161,14 @@ double RoverGeometry::LinkPitch(int wheel, const SuspensionAngles& s) {
 }
 
 void DeclareRoverGeometryParams(ParamSet& params, const std::string& prefix) {
-  const RoverGeometry d;
-  std::vector<double> x, y, z;
-  for (const auto& w : d.wheel_centre) {
-    x.push_back(w.x());
-    y.push_back(w.y());
-    z.push_back(w.z());
-  }
-  params.Declare(prefix + "wheel_radius", d.wheel_radius, "[m] drive wheel radius")
-      .Range(0.01, 2.0);
-  params.Declare(prefix + "wheel_x", x, "[m] wheel centre x, order LF LM LR RF RM RR")
-      .Size(6)
-      .Range(-5.0, 5.0);
-  params.Declare(prefix + "wheel_y", y, "[m] wheel centre y (left > 0), order LF..RR")
-      .Size(6)
-      .Range(-5.0, 5.0);
-  params.Declare(prefix + "wheel_z", z, "[m] wheel centre z at zero suspension angles")
-      .Size(6)
-      .Range(-5.0, 5.0);
-  params
-      .Declare(prefix + "rocker_pivot", std::vector<double>{d.rocker_pivot.x(), d.rocker_pivot.y()},
-               "[m] rocker pivot (x, z) on the body")
-      .Size(2)
-      .Range(-5.0, 5.0);
-  params
-      .Declare(prefix + "bogie_pivot", std::vector<double>{d.bogie_pivot.x(), d.bogie_pivot.y()},
-               "[m] bogie pivot (x, z) at zero angles")
-      .Size(2)
-      .Range(-5.0, 5.0);
-  params
-      .Declare(prefix + "max_steer_angle_deg", d.max_steer_angle / kDeg,
-               "[deg] steering limit of the corner wheels")
-      .Range(1.0, 89.9);
-  params
-      .Declare(prefix + "min_turn_radius", d.min_turn_radius,
-               "[m] smallest arc radius of the reference point")
-      .Range(0.1, 100.0);
-  params
-      .Declare(prefix + "max_wheel_speed", d.max_wheel_speed,
-               "[m/s] fastest rim speed commanded to a drive motor")
-      .Range(1e-4, 5.0);
+  DeclareParams<hwconfig::RoverDescription>(params, prefix);
 }
 
 Result<RoverGeometry> RoverGeometryFromParams(const ParamSet& params, const std::string& prefix) {
-  ROVER_RETURN_IF_ERROR(params.Validate());
-  RoverGeometry g;
-  g.wheel_radius = params.GetDouble(prefix + "wheel_radius");
-  const auto& x = params.GetDoubleList(prefix + "wheel_x");
-  const auto& y = params.GetDoubleList(prefix + "wheel_y");
-  const auto& z = params.GetDoubleList(prefix + "wheel_z");
-  for (std::size_t i = 0; i < g.wheel_centre.size(); ++i) {
-    g.wheel_centre[i] = Eigen::Vector3d(x[i], y[i], z[i]);
-  }
-  const auto& rp = params.GetDoubleList(prefix + "rocker_pivot");
-  const auto& bp = params.GetDoubleList(prefix + "bogie_pivot");
-  g.rocker_pivot = Eigen::Vector2d(rp[0], rp[1]);
-  g.bogie_pivot = Eigen::Vector2d(bp[0], bp[1]);
-  g.max_steer_angle = params.GetDouble(prefix + "max_steer_angle_deg") * kDeg;
-  g.min_turn_radius = params.GetDouble(prefix + "min_turn_radius");
-  g.max_wheel_speed = params.GetDouble(prefix + "max_wheel_speed");
+  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
+                         ReadParams<hwconfig::RoverDescription>(params, prefix));
+  RoverGeometry g(rover);
+  // The description's own checks cover these; a failure here names the closest key.
   const GeometryIssue issue = CheckRoverGeometry(g);
   if (issue.field.empty()) return g;
   const std::string key = prefix + issue.key;

@@ -1,5 +1,5 @@
 // dl-locomotion in-process on an isolated DDS domain, driven by a sim clock and a fake rover
-// (test/loco_harness.hpp): arc = steer then drive then DONE; rejections (NaN -> INVALID,
+// (test/locomotion_rig.hpp): arc = steer then drive then DONE; rejections (NaN -> INVALID,
 // busy -> BUSY, stale inputs -> STALE_SENSOR) as typed statuses with the rover braked; turn in
 // place closed on the dl/pose heading; 8 Hz status while running.
 #include "locomotion_service.hpp"
@@ -12,12 +12,12 @@
 #include <string>
 
 #include "rover/dl/locomotion/ackermann.hpp"
-#include "test/loco_harness.hpp"
+#include "test/locomotion_rig.hpp"
 
 namespace rover::dl {
 namespace {
 
-using testing_support::LocoHarness;
+using testing_support::LocomotionRig;
 
 bool IsStop(const rover_ddl_MotorCommand& c) {
   return c.mode == rover_ddl_GROUP_STOP && c.motor_mask == kMobilityMotorMask;
@@ -27,14 +27,14 @@ class LocomotionServiceTest : public ::testing::Test {
  protected:
   void SetUp() override { h_.Start(); }
   void TearDown() override { h_.Stop(); }
-  LocoHarness h_;
+  LocomotionRig h_;
 };
 
 TEST_F(LocomotionServiceTest, ArcSteersThenDrivesAndReportsDoneWhenTheWheelsHaveTurned) {
   h_.Advance(1.0);  // inputs fresh
   ASSERT_TRUE(h_.motor_commands().empty());
   const double k = 0.5, s = 0.3;
-  h_.Send(LocoHarness::Command(11, rover_dl_PRIMITIVE_ARC, k, s, 0.0, 0.05));
+  h_.Send(LocomotionRig::Command(11, rover_dl_PRIMITIVE_ARC, k, s, 0.0, 0.05));
   const Time accepted = h_.now();
   ASSERT_TRUE(h_.Advance(60.0, [&] { return h_.Terminal(11); })) << "no terminal status";
 
@@ -86,8 +86,8 @@ TEST_F(LocomotionServiceTest, ArcSteersThenDrivesAndReportsDoneWhenTheWheelsHave
 
 TEST_F(LocomotionServiceTest, NanCommandIsRejectedInvalidAndTheRoverStaysBraked) {
   h_.Advance(1.0);
-  h_.Send(LocoHarness::Command(21, rover_dl_PRIMITIVE_ARC, std::numeric_limits<double>::quiet_NaN(),
-                               1.0));
+  h_.Send(LocomotionRig::Command(21, rover_dl_PRIMITIVE_ARC,
+                                 std::numeric_limits<double>::quiet_NaN(), 1.0));
   const auto st = h_.StatusesOf(21);
   ASSERT_EQ(st.size(), 1u);
   EXPECT_EQ(st[0].state, rover_dl_DRIVE_REJECTED);
@@ -98,11 +98,11 @@ TEST_F(LocomotionServiceTest, NanCommandIsRejectedInvalidAndTheRoverStaysBraked)
   EXPECT_TRUE(IsStop(h_.motor_commands()[0]));
   for (double w : h_.rover().wheels()) EXPECT_EQ(w, 0.0);
   // Out-of-range values are INVALID too, naming the field.
-  h_.Send(LocoHarness::Command(22, rover_dl_PRIMITIVE_ARC, 3.0, 1.0));
+  h_.Send(LocomotionRig::Command(22, rover_dl_PRIMITIVE_ARC, 3.0, 1.0));
   EXPECT_EQ(h_.StatusesOf(22).at(0).termination, rover_dl_TERMINATION_REJECTED_INVALID);
   EXPECT_NE(std::string(h_.StatusesOf(22)[0].message).find("curvature 3"), std::string::npos);
   // The service is still up and drives the next good command.
-  h_.Send(LocoHarness::Command(23, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 0.1));
+  h_.Send(LocomotionRig::Command(23, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 0.1));
   ASSERT_TRUE(h_.Advance(60.0, [&] { return h_.Terminal(23); }));
   EXPECT_EQ(h_.StatusesOf(23).back().state, rover_dl_DRIVE_DONE);
 }
@@ -112,7 +112,7 @@ TEST_F(LocomotionServiceTest, UnknownPrimitiveIsRejectedInvalid) {
   // A value outside the IDL enum: Cyclone refuses to serialise it (write fails with "Bad
   // Parameter"), but another vendor's writer might send it; if it arrives, the service must
   // reject it INVALID. Either way nothing moves and the service keeps running.
-  rover_dl_DriveCommand c = LocoHarness::Command(31, rover_dl_PRIMITIVE_STEER, 0.2);
+  rover_dl_DriveCommand c = LocomotionRig::Command(31, rover_dl_PRIMITIVE_STEER, 0.2);
   c.primitive = static_cast<rover_dl_DrivePrimitive>(42);
   if (h_.command_writer().Write(c).ok()) {
     h_.Advance(0.5);
@@ -138,16 +138,16 @@ TEST_F(LocomotionServiceTest, UnknownPrimitiveIsRejectedInvalid) {
   EXPECT_EQ(DriveStatusToIdl(s).primitive, rover_dl_PRIMITIVE_STOP);  // wire-safe
   for (double w : h_.rover().steers()) EXPECT_EQ(w, 0.0);
   // Still serving.
-  h_.Send(LocoHarness::Command(32, rover_dl_PRIMITIVE_STOP));
+  h_.Send(LocomotionRig::Command(32, rover_dl_PRIMITIVE_STOP));
   EXPECT_EQ(h_.StatusesOf(32).back().state, rover_dl_DRIVE_DONE);
 }
 
 TEST_F(LocomotionServiceTest, SecondCommandWhileBusyIsRejectedBusyAndTheFirstGoesOn) {
   h_.Advance(1.0);
-  h_.Send(LocoHarness::Command(41, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 1.0));
+  h_.Send(LocomotionRig::Command(41, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 1.0));
   h_.Advance(1.0);
   const std::size_t commands_before = h_.motor_commands().size();
-  h_.Send(LocoHarness::Command(42, rover_dl_PRIMITIVE_ARC, 0.5, 1.0));
+  h_.Send(LocomotionRig::Command(42, rover_dl_PRIMITIVE_ARC, 0.5, 1.0));
   const auto busy = h_.StatusesOf(42);
   ASSERT_EQ(busy.size(), 1u);
   EXPECT_EQ(busy[0].state, rover_dl_DRIVE_REJECTED);
@@ -162,7 +162,7 @@ TEST_F(LocomotionServiceTest, SecondCommandWhileBusyIsRejectedBusyAndTheFirstGoe
   // STOP ends it: command 41 FAILED / STOP_COMMAND, then the STOP itself DONE. Both statuses are
   // written at once and dl/drive_status keeps only the latest sample (latched, keep-last 1), so
   // a reader that takes after both sees the STOP's; when 41's arrives it must be the failure.
-  h_.Send(LocoHarness::Command(43, rover_dl_PRIMITIVE_STOP));
+  h_.Send(LocomotionRig::Command(43, rover_dl_PRIMITIVE_STOP));
   const auto last41 = h_.StatusesOf(41).back();
   if (last41.state != rover_dl_DRIVE_DRIVING) {
     EXPECT_EQ(last41.state, rover_dl_DRIVE_FAILED);
@@ -179,13 +179,13 @@ TEST_F(LocomotionServiceTest, SecondCommandWhileBusyIsRejectedBusyAndTheFirstGoe
 TEST_F(LocomotionServiceTest, StaleInputsRejectTheCommandAndStopARunningOne) {
   h_.set_publish_joints(false);
   h_.Advance(1.0);
-  h_.Send(LocoHarness::Command(51, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 0.5));
+  h_.Send(LocomotionRig::Command(51, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 0.5));
   EXPECT_EQ(h_.StatusesOf(51).at(0).termination, rover_dl_TERMINATION_STALE_SENSOR);
   EXPECT_NE(std::string(h_.StatusesOf(51)[0].message).find("joint state"), std::string::npos);
   // Joint states come back; a drive starts; then dl/pose stops: the drive fails STALE_SENSOR.
   h_.set_publish_joints(true);
   h_.Advance(0.5);
-  h_.Send(LocoHarness::Command(52, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 2.0));
+  h_.Send(LocomotionRig::Command(52, rover_dl_PRIMITIVE_STRAIGHT, 0.0, 2.0));
   h_.Advance(2.0);
   h_.set_publish_pose(false);
   ASSERT_TRUE(h_.Advance(5.0, [&] { return h_.Terminal(52); }));
@@ -197,7 +197,7 @@ TEST_F(LocomotionServiceTest, StaleInputsRejectTheCommandAndStopARunningOne) {
 TEST_F(LocomotionServiceTest, TurnInPlaceClosesTheLoopOnTheDlPoseHeading) {
   h_.Advance(1.0);
   const double angle = 30.0 * std::numbers::pi / 180.0;
-  h_.Send(LocoHarness::Command(61, rover_dl_PRIMITIVE_TURN_IN_PLACE, 0.0, 0.0, angle));
+  h_.Send(LocomotionRig::Command(61, rover_dl_PRIMITIVE_TURN_IN_PLACE, 0.0, 0.0, angle));
   ASSERT_TRUE(h_.Advance(120.0, [&] { return h_.Terminal(61); }));
   const auto done = h_.StatusesOf(61).back();
   EXPECT_EQ(done.state, rover_dl_DRIVE_DONE) << done.message;

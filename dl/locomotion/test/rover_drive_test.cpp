@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "rover/base/process.hpp"
-#include "test/loco_harness.hpp"
+#include "test/locomotion_rig.hpp"
 
 namespace rover::dl {
 namespace {
 
-using testing_support::LocoHarness;
+using testing_support::LocomotionRig;
 
 class RoverDriveTest : public ::testing::Test {
  protected:
@@ -40,7 +40,7 @@ class RoverDriveTest : public ::testing::Test {
   std::string Err() const { return testing::ReadFile(dir_ + "/err.txt"); }
 
   std::string dir_;
-  LocoHarness h_;
+  LocomotionRig h_;
   Process child_;
 };
 

@@ -20,6 +20,32 @@ TEST(RoverGeometry, DefaultsAreValidAndMatchTheDesign) {
   EXPECT_DOUBLE_EQ(g.MiddleAxleX(), 0.0);
 }
 
+TEST(RoverGeometry, IsBuiltFromTheRoverDescription) {
+  ParamSet p("locomotion");
+  DeclareRoverGeometryParams(p);
+  ASSERT_TRUE(p.LoadYamlString("geometry: {front_wheel_x: 0.7, middle_wheel_x: 0.05, "
+                               "half_track: 0.55, rocker_pivot_x: 0.1, min_turn_radius: 1.5}\n",
+                               "rover.yaml")
+                  .ok());
+  const Result<RoverGeometry> from_params = RoverGeometryFromParams(p);
+  ASSERT_TRUE(from_params.ok()) << from_params.status().ToString();
+  const RoverGeometry& g = *from_params;
+  EXPECT_TRUE(g.wheel_centre[0].isApprox(Eigen::Vector3d(0.7, 0.55, 0.125)));
+  EXPECT_TRUE(g.wheel_centre[4].isApprox(Eigen::Vector3d(0.05, -0.55, 0.125)));
+  EXPECT_TRUE(g.rocker_pivot.isApprox(Eigen::Vector2d(0.1, 0.45)));
+  EXPECT_TRUE(g.bogie_pivot.isApprox(Eigen::Vector2d(-0.3125, 0.30)));
+  EXPECT_DOUBLE_EQ(g.min_turn_radius, 1.5);
+  EXPECT_DOUBLE_EQ(g.MiddleAxleX(), 0.05);
+  EXPECT_TRUE(g.Validate().ok()) << g.Validate().ToString();
+  // The default geometry is the default description's.
+  const RoverGeometry def;
+  const hwconfig::RoverDescription nominal;
+  for (int i = 0; i < kNumWheels; ++i) {
+    EXPECT_EQ(def.wheel_centre[static_cast<std::size_t>(i)], nominal.WheelCentre(i)) << i;
+  }
+  EXPECT_EQ(def.max_steer_angle, nominal.max_steer_angle);
+}
+
 TEST(RoverGeometry, ZeroSuspensionAnglesGiveTheNominalCentres) {
   const RoverGeometry g;
   const SuspensionAngles zero;
@@ -101,8 +127,8 @@ TEST(RoverGeometry, ParamsYamlErrorsNameFileLineAndKey) {
   Result<RoverGeometry> g = RoverGeometryFromParams(p);
   ASSERT_FALSE(g.ok());
   EXPECT_EQ(g.status().message(),
-            "params/drive.yaml:3: key 'geometry.min_turn_radius': 0.45 must exceed the largest "
-            "wheel |y| (0.5)");
+            "params/drive.yaml:3: key 'geometry.min_turn_radius': min_turn_radius = 0.45 m must "
+            "exceed the largest wheel |y|, half_track (0.5)");
 
   ParamSet q("locomotion");
   DeclareRoverGeometryParams(q);
@@ -121,8 +147,11 @@ TEST(RoverGeometry, ParamsYamlErrorsNameFileLineAndKey) {
       << g.status().message();
   ParamSet u("locomotion");
   DeclareRoverGeometryParams(u);
-  EXPECT_FALSE(u.LoadYamlString("geometry:\n  wheel_x: [1, 2]\n", "f.yaml").ok() &&
-               RoverGeometryFromParams(u).ok());
+  ASSERT_TRUE(u.LoadYamlString("geometry:\n  mast:\n    pan_joint: [1, 2]\n", "f.yaml").ok());
+  g = RoverGeometryFromParams(u);
+  ASSERT_FALSE(g.ok());
+  EXPECT_NE(g.status().message().find("geometry.mast.pan_joint"), std::string::npos)
+      << g.status().message();
 }
 
 }  // namespace

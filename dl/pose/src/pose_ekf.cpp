@@ -91,6 +91,7 @@ Status EkfOptions::Validate() const {
       {"stationary_delay_s", stationary_delay_s, false},
       {"stationary_gyro_threshold", stationary_gyro_threshold, true},
       {"wheel_motion_threshold", wheel_motion_threshold, false},
+      {"odometer_step", odometer_step, false},
       {"sun_noise", sun_noise, true},
       {"clone_interval_s", clone_interval_s, false},
       {"clone_window_s", clone_window_s, false},
@@ -156,7 +157,8 @@ Status PoseEkf::Initialize(const EkfInitialState& init) {
   last_odometry_.reset();
   velocity_.setZero();
   rejected_ = 0;
-  odometer_ = 0.0;
+  odometer_ = std::isfinite(init.odometer) ? std::max(init.odometer, 0.0) : 0.0;
+  odometer_pending_.setZero();
   initialized_ = true;
   if (options_.clone_interval_s > 0.0) AddClone();  // so relative poses may start at t0
   return Status::Ok();
@@ -239,7 +241,13 @@ Status PoseEkf::AddWheelOdometry(const OdometryIncrement& inc) {
   PropagateLive(phi, q);
   p_ += dp;
 
-  odometer_ += std::hypot(inc.dx, inc.dy);
+  // Path length in steps of odometer_step: the displacement since the last step, not the sum of
+  // the increments' lengths (which would rectify zero-mean encoder jitter into distance).
+  odometer_pending_ += dp;
+  if (odometer_pending_.norm() >= options_.odometer_step) {
+    odometer_ += odometer_pending_.norm();
+    odometer_pending_.setZero();
+  }
   const double dt = ToSeconds(inc.t_to - inc.t_from);
   if (dt > 0.0) velocity_ = d / dt;
   if (std::abs(inc.path_length) > options_.wheel_motion_threshold) {
@@ -583,6 +591,10 @@ void DeclareEkfParams(ParamSet& params, const std::string& prefix, const EkfOpti
        "[rad/s] bias-corrected rate below which the rover may be at rest", 1e-6, 1.0);
   decl("wheel_motion_threshold", d.wheel_motion_threshold,
        "[m] odometry path per increment that counts as motion", 0.0, 1.0);
+  decl("odometer_step", d.odometer_step,
+       "[m] the odometer grows in steps of planar displacement of this length (jitter at rest "
+       "does not add up)",
+       0.0, 10.0);
   decl("sun_noise", d.sun_noise, "[rad] sun vector 1-sigma angular error", 1e-6, 1.0);
   decl("gate_probability", d.gate_probability, "chi-square gate probability", 0.5, 0.999999999);
   decl("clone_interval_s", d.clone_interval_s, "[s] pose clone spacing (0: no clones)", 0.0,
@@ -606,6 +618,7 @@ Result<EkfOptions> EkfOptionsFromParams(const ParamSet& params, const std::strin
   o.stationary_delay_s = get("stationary_delay_s");
   o.stationary_gyro_threshold = get("stationary_gyro_threshold");
   o.wheel_motion_threshold = get("wheel_motion_threshold");
+  o.odometer_step = get("odometer_step");
   o.sun_noise = get("sun_noise");
   o.gate_probability = get("gate_probability");
   o.clone_interval_s = get("clone_interval_s");

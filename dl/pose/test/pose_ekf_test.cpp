@@ -439,11 +439,50 @@ TEST(PoseEkf, AccelerometerIsIgnoredWhileDriving) {
   const auto events = ekf.TakeEvents();
   ASSERT_FALSE(events.empty());
   EXPECT_GE(events.front().stamp.seconds(), 2.5 - 1e-9);
-  EXPECT_NEAR(ekf.Estimate().odometer, 0.1, 1e-12);
+  EXPECT_NEAR(ekf.Estimate().odometer, 0.1, TestOptions().odometer_step);
   // A non-gravity magnitude (a bump) is not used either.
   ASSERT_TRUE(ekf.PropagateGyro(Time::FromSeconds(10), Eigen::Vector3d::Zero()).ok());
   ASSERT_TRUE(ekf.UpdateAccelerometer(Time::FromSeconds(10), Eigen::Vector3d(0, 0, 12)).ok());
   EXPECT_TRUE(ekf.TakeEvents().empty());
+}
+
+// The odometer is path length, not the sum of increment lengths: at rest, wheel-encoder jitter
+// gives increments of either sign that cancel (the rover has not moved), and those must not add
+// up into distance (dl/pose's odometer grew 0.024 m/s at rest before).
+TEST(PoseEkf, OdometerDoesNotGrowFromJitterAtRestButCountsADrive) {
+  PoseEkf ekf = PoseEkf::Create(TestOptions()).value();
+  ASSERT_TRUE(ekf.Initialize(EkfInitialState()).ok());
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> sign(0, 1);
+  int k = 0;
+  auto step = [&](double dx, double dy) {
+    ++k;
+    OdometryIncrement inc;
+    inc.t_from = Time::FromSeconds((k - 1) * 0.02);
+    inc.t_to = Time::FromSeconds(k * 0.02);
+    inc.dx = dx;
+    inc.dy = dy;
+    inc.path_length = std::hypot(dx, dy);
+    inc.covariance.diagonal() << 1e-8, 1e-8, 1e-9;
+    ASSERT_TRUE(ekf.PropagateGyro(inc.t_to, Eigen::Vector3d::Zero()).ok());
+    ASSERT_TRUE(ekf.AddWheelOdometry(inc).ok());
+  };
+  // 100 s at 50 Hz of +-0.5 mm jitter that returns to where it was (a count up, a count down).
+  for (int i = 0; i < 2500; ++i) {
+    const double j = sign(rng) ? 5e-4 : -5e-4;
+    step(j, -j);
+    step(-j, j);
+  }
+  EXPECT_LT(ekf.Estimate().odometer, TestOptions().odometer_step);
+  // Then a 2 m drive along x: counted to within one step.
+  for (int i = 0; i < 400; ++i) step(0.005, 0.0);
+  EXPECT_NEAR(ekf.Estimate().odometer, 2.0, TestOptions().odometer_step);
+  // A resumed estimator starts from the odometer it is given.
+  EkfInitialState resumed;
+  resumed.stamp = Time::FromSeconds(k * 0.02);
+  resumed.odometer = 12.5;
+  ASSERT_TRUE(ekf.Initialize(resumed).ok());
+  EXPECT_DOUBLE_EQ(ekf.Estimate().odometer, 12.5);
 }
 
 // ---- relative poses ---------------------------------------------------------------------------

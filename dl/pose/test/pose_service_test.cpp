@@ -1,10 +1,12 @@
-// dl-pose in-process on an isolated DDS domain, driven by a sim clock the test publishes, with
-// ddl/imu (100 Hz), ddl/joint_state (50 Hz), ddl/sun_sensor and dl/relative_pose written by
-// the test: rate on the sim clock, levelling, gyro heading integration, sun heading updates with
-// the shared ephemeris, gating of a corrupted relative pose (event published).
+// dl-pose in the shared ServiceHarness (isolated DDS domain, sim clock the test publishes), with
+// ddl/imu (100 Hz, the fake IMU), ddl/joint_state (50 Hz), ddl/sun_sensor and dl/relative_pose
+// written by the test: rate on the sim clock, levelling, gyro heading integration, sun heading
+// updates with the shared ephemeris, gating of a corrupted relative pose (event published).
 #include "pose_service.hpp"
 
 #include <gtest/gtest.h>
+
+#include <stdlib.h>
 
 #include <cmath>
 #include <functional>
@@ -16,7 +18,8 @@
 
 #include "rover/dl/pose/chi_square.hpp"
 #include "rover/geometry/transforms.hpp"
-#include "rover/testing/test_support.hpp"
+#include "rover/testing/fakes/fake_imu.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::dl {
 namespace {
@@ -33,59 +36,35 @@ Eigen::Vector3d RpyOf(const rover_dl_PoseEstimate& p) {
 class PoseServiceTest : public ::testing::Test {
  protected:
   void TearDown() override {
-    if (lifecycle_) (void)lifecycle_->Shutdown();
+    h_.reset();
+    unsetenv("ROVER_STATE_DIR");
+    unsetenv("ROVER_SET_ID");
   }
 
-  void Start(std::vector<std::string> overrides = {}) {
-    lease_ = testing::IsolatedDomain();
-    options_.name = "dl-pose-test";
-    options_.domain = lease_.domain();
-    options_.clock = "sim";
+  void Start(std::vector<std::string> overrides = {}, PoseService* service = nullptr) {
     // Level on 0.5 s (the service's default of 10 s is for real drives).
     overrides.insert(overrides.begin(), "start.level_samples=50");
-    options_.overrides = std::move(overrides);
-    auto ctx = ServiceContext::Create(options_);
-    ASSERT_TRUE(ctx.ok()) << ctx.status().message();
-    ctx_ = std::move(*ctx);
-    lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
-    ASSERT_TRUE(lifecycle_->Configure().ok()) << lifecycle_->last_error();
-    ASSERT_TRUE(lifecycle_->Activate().ok()) << lifecycle_->last_error();
-    auto p = dds::Participant::Create(lease_.domain());
-    ASSERT_TRUE(p.ok());
-    participant_ = std::move(*p);
-    ASSERT_TRUE(Make(clock_w_, "sim/clock"));
-    ASSERT_TRUE(Make(imu_w_, "ddl/imu"));
-    ASSERT_TRUE(Make(joint_w_, "ddl/joint_state"));
-    ASSERT_TRUE(Make(sun_w_, "ddl/sun_sensor"));
-    ASSERT_TRUE(Make(relpose_w_, "dl/relative_pose"));
-    ASSERT_TRUE(Make(pose_r_, "dl/pose"));
-    ASSERT_TRUE(Make(event_r_, "dl/estimator_event"));
-    ASSERT_TRUE(testing::WaitFor([&] {
-      return clock_w_.MatchedReaders() >= 1 && imu_w_.MatchedReaders() >= 1 &&
-             joint_w_.MatchedReaders() >= 1 && sun_w_.MatchedReaders() >= 1 &&
-             relpose_w_.MatchedReaders() >= 1 && pose_r_.MatchedWriters() >= 1 &&
-             event_r_.MatchedWriters() >= 1;
-    }));
+    h_ = std::make_unique<testing::ServiceHarness>(service ? *service : service_, "dl-pose-test",
+                                                   std::move(overrides));
+    ASSERT_TRUE(h_->ok()) << h_->status().message();
+    ASSERT_TRUE(imu_.Create(h_->peer()).ok());
+    joint_w_ = h_->Writer<rover_ddl_JointState>("ddl/joint_state");
+    sun_w_ = h_->Writer<rover_ddl_SunSensor>("ddl/sun_sensor");
+    relpose_w_ = h_->Writer<rover_dl_RelativePose>("dl/relative_pose");
+    pose_r_ = h_->Reader<rover_dl_PoseEstimate>("dl/pose");
+    event_r_ = h_->Reader<rover_dl_EstimatorEvent>("dl/estimator_event");
+    ASSERT_TRUE(h_->SpinUntil([&] { return imu_.Matched(); }));
   }
 
-  /// Advances the run clock by `seconds` in 10 ms steps: IMU (yaw rate `yaw_rate_`, specific
-  /// force `f_`) every step, joint state every other step, optional per-step hook, then sim/clock;
+  /// Advances the run clock by `seconds` in 10 ms steps: IMU (the fake's yaw rate and specific
+  /// force) every step, joint state every other step, optional per-step hook, then sim/clock;
   /// waits until the service has seen the new time and collects its output.
   void Advance(double seconds, const std::function<void()>& each_step = nullptr) {
     const int steps = static_cast<int>(std::lround(seconds / kStep));
     for (int i = 0; i < steps; ++i) {
       ++step_;
       now_ = Time{step_ * kStepNs};
-      // The rate holds over the last step; gravity turns with the rover about its own z axis.
-      body_yaw_ += yaw_rate_ * kStep;
-      const Eigen::Vector3d f =
-          Eigen::AngleAxisd(-body_yaw_, Eigen::Vector3d::UnitZ()).toRotationMatrix() * f_;
-      rover_ddl_Imu imu{};
-      imu.header.stamp_ns = now_.ns;
-      imu.angular_velocity = {0.0, 0.0, yaw_rate_};
-      imu.linear_acceleration = {f.x(), f.y(), f.z()};
-      imu.health = rover_HEALTH_OK;
-      EXPECT_TRUE(imu_w_.Write(imu).ok());
+      EXPECT_TRUE(imu_.Publish(now_, kStep).ok());
       wheel_angle_ += wheel_rate_ * kStep;
       if (step_ % 2 == 0) {
         rover_ddl_JointState j{};
@@ -96,13 +75,7 @@ class PoseServiceTest : public ::testing::Test {
         EXPECT_TRUE(joint_w_.Write(j).ok());
       }
       if (each_step) each_step();
-      rover_sim_Clock c{};
-      c.sim_time_ns = now_.ns;
-      EXPECT_TRUE(clock_w_.Write(c).ok());
-      EXPECT_TRUE(testing::WaitFor([&] {
-        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
-        return ctx_->Now().ns == now_.ns;
-      }));
+      EXPECT_TRUE(h_->AdvanceTo(now_));
       Collect();
     }
   }
@@ -118,13 +91,12 @@ class PoseServiceTest : public ::testing::Test {
     ASSERT_TRUE(relpose_w_.Write(m).ok());
     // Converged samples always produce an event (processed now: t_to <= filter time).
     if (m.status == rover_dl_RELPOSE_CONVERGED) {
-      ASSERT_TRUE(testing::WaitFor([&] {
-        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+      ASSERT_TRUE(h_->SpinUntil([&] {
         Collect();
         return events_.size() > before;
       }));
     } else {
-      for (int i = 0; i < 5; ++i) ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+      h_->Spin(5, std::chrono::milliseconds(5));
       Collect();
     }
   }
@@ -142,30 +114,14 @@ class PoseServiceTest : public ::testing::Test {
     return m;
   }
 
-  template <class E>
-  bool Make(E& out, const std::string& topic) {
-    auto e = E::Create(participant_, topic);
-    if (!e.ok()) {
-      ADD_FAILURE() << e.status().message();
-      return false;
-    }
-    out = std::move(*e);
-    return true;
-  }
-
   struct Received {
     Time when;  // run-clock time the test had published when it arrived
     rover_dl_PoseEstimate pose;
   };
 
-  dds::DomainLease lease_;
-  ServiceOptions options_;
-  std::unique_ptr<ServiceContext> ctx_;
-  PoseService service_;
-  std::unique_ptr<Lifecycle> lifecycle_;
-  dds::Participant participant_;
-  dds::Writer<rover_sim_Clock> clock_w_;
-  dds::Writer<rover_ddl_Imu> imu_w_;
+  PoseService service_;  // outlives the harness that runs it
+  std::unique_ptr<testing::ServiceHarness> h_;
+  testing::FakeImu imu_;  // yaw rate and specific force of the rover; Mars gravity at rest
   dds::Writer<rover_ddl_JointState> joint_w_;
   dds::Writer<rover_ddl_SunSensor> sun_w_;
   dds::Writer<rover_dl_RelativePose> relpose_w_;
@@ -173,18 +129,15 @@ class PoseServiceTest : public ::testing::Test {
   dds::Reader<rover_dl_EstimatorEvent> event_r_;
   std::int64_t step_ = 0;
   Time now_;
-  double yaw_rate_ = 0.0;
-  double body_yaw_ = 0.0;    // rotation about the rover z axis since the start
   double wheel_rate_ = 0.0;  // [rad/s] all six wheels, steering straight
   double wheel_angle_ = 0.0;
-  Eigen::Vector3d f_{0.0, 0.0, 3.711};  // specific force at body_yaw_ = 0 (Mars, the default)
   std::vector<Received> poses_;
   std::vector<rover_dl_EstimatorEvent> events_;
 };
 
 TEST_F(PoseServiceTest, PublishesAtTheConfiguredRateOnTheSimClock) {
   Start({"publish_rate_hz=20"});
-  EXPECT_EQ(lifecycle_->params().GetDouble("ekf.gravity"), 3.711);  // Mars, as the simulator
+  EXPECT_EQ(h_->lifecycle().params().GetDouble("ekf.gravity"), 3.711);  // Mars, as the simulator
   Advance(1.0);
   ASSERT_FALSE(poses_.empty()) << "no dl/pose after levelling";
   const std::size_t before = poses_.size();
@@ -212,8 +165,8 @@ TEST_F(PoseServiceTest, PublishesAtTheConfiguredRateOnTheSimClock) {
 TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate) {
   Start({"start.yaw_deg=10", "start.x=2", "start.y=-3"});
   const double roll = 4.0 * kDeg, pitch = -3.0 * kDeg, g = 3.711;
-  f_ = g * Eigen::Vector3d(-std::sin(pitch), std::sin(roll) * std::cos(pitch),
-                           std::cos(roll) * std::cos(pitch));
+  imu_.specific_force = g * Eigen::Vector3d(-std::sin(pitch), std::sin(roll) * std::cos(pitch),
+                                            std::cos(roll) * std::cos(pitch));
   Advance(1.0);  // at rest: levels after 50 samples (0.5 s)
   ASSERT_FALSE(poses_.empty());
   const rover_dl_PoseEstimate start = poses_.back().pose;
@@ -228,10 +181,10 @@ TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate)
 
   // 0.2 rad/s about the rover z axis for 5 s: +1 rad of rotation about body z. On a tilted rover
   // that is not exactly +1 rad of ZYX yaw; compare rotations instead.
-  yaw_rate_ = 0.2;
+  imu_.yaw_rate = 0.2;
   Advance(5.0);
   EXPECT_FALSE(poses_.back().pose.stationary);  // turning
-  yaw_rate_ = 0.0;
+  imu_.yaw_rate = 0.0;
   Advance(0.1);
   const rover_dl_PoseEstimate end = poses_.back().pose;
   const auto q = [](const rover_dl_PoseEstimate& p) {
@@ -261,7 +214,7 @@ TEST_F(PoseServiceTest, WheelOdometryFromJointStatesMovesThePositionAlongTheHead
   const rover_dl_PoseEstimate p = poses_.back().pose;
   EXPECT_NEAR(p.pose.position.x, 0.0, 1e-6);
   EXPECT_NEAR(p.pose.position.y, 0.2, 1e-6);  // 4 s at 0.05 m/s
-  EXPECT_NEAR(p.odometer, 0.2, 1e-6);
+  EXPECT_NEAR(p.odometer, 0.2, 0.01);  // counted in ekf.odometer_step (1 cm) steps
   // Along-track variance grew by odometry.along_variance_per_m (1e-3 m^2/m) * 0.2 m.
   EXPECT_NEAR(p.covariance[7] - var_y0, 1e-3 * 0.2, 2e-5);
   EXPECT_TRUE(p.stationary);
@@ -345,18 +298,11 @@ TEST_F(PoseServiceTest, CorruptedRelativePoseIsGatedAndReported) {
 }
 
 TEST_F(PoseServiceTest, InvalidParametersKeepTheServiceUnconfigured) {
-  lease_ = testing::IsolatedDomain();
-  options_.name = "dl-pose-bad";
-  options_.domain = lease_.domain();
-  options_.overrides = {"ephemeris.mode=calendar"};
-  auto ctx = ServiceContext::Create(options_);
-  ASSERT_TRUE(ctx.ok());
-  ctx_ = std::move(*ctx);
-  lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
-  const Status s = lifecycle_->Configure();
+  testing::ServiceHarness h(service_, "dl-pose-bad", {"ephemeris.mode=calendar"});
+  const Status& s = h.status();
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message().find("ephemeris.mode"), std::string::npos) << s.message();
-  EXPECT_EQ(lifecycle_->state(), LifecycleState::kUnconfigured);
+  EXPECT_EQ(h.lifecycle().state(), LifecycleState::kUnconfigured);
 }
 
 TEST(PoseConversions, LevelAndRelativePoseAndEstimate) {
@@ -390,6 +336,87 @@ TEST(PoseConversions, LevelAndRelativePoseAndEstimate) {
   EXPECT_EQ(w.odometer, 3.5);
   EXPECT_EQ(w.rejected_measurements, 4u);
   EXPECT_EQ(w.pose.orientation.w, 1.0);
+}
+
+// ---- restart (kill -9 mid-drive) ----------------------------------------------------------------
+
+class PoseRestartTest : public PoseServiceTest {
+ protected:
+  // As roverctl runs it: a state folder and the set's id (rover/base/checkpoint.hpp).
+  void Supervised(const std::string& set_id) {
+    if (state_dir_.empty()) state_dir_ = testing::MakeTempDir("dl-pose-restart");
+    setenv("ROVER_STATE_DIR", state_dir_.c_str(), 1);
+    setenv("ROVER_SET_ID", set_id.c_str(), 1);
+  }
+  // Levels, then drives 4 s at 0.05 m/s along site x (0.2 m).
+  void LevelAndDrive() {
+    Start();
+    Advance(1.0);
+    wheel_rate_ = 0.4;
+    Advance(4.0);
+    ASSERT_FALSE(poses_.empty());
+    before_ = poses_.back().pose;
+    ASSERT_NEAR(before_.pose.position.x, 0.2, 0.01);
+  }
+  // The process is gone (nothing of it runs any more: its checkpoint file stays, as after kill
+  // -9); the rover drives on for `gap_s` of run time; the supervisor starts a new dl-pose.
+  void KillAndRestart(double gap_s, std::vector<std::string> overrides = {}) {
+    h_.reset();
+    const auto gap_steps = static_cast<std::int64_t>(std::lround(gap_s / kStep));
+    step_ += gap_steps;
+    wheel_angle_ += wheel_rate_ * kStep * static_cast<double>(gap_steps);
+    poses_.clear();
+    restarted_ = std::make_unique<PoseService>();
+    Start(std::move(overrides), restarted_.get());
+  }
+  std::string state_dir_;
+  rover_dl_PoseEstimate before_{};
+  std::unique_ptr<PoseService> restarted_;
+};
+
+TEST_F(PoseRestartTest, KillNineMidDriveResumesFromTheCheckpointWithInflatedCovariance) {
+  Supervised("drive.1.a/dl-pose");
+  LevelAndDrive();
+  KillAndRestart(2.0);  // down for 2 s while driving at 0.05 m/s: 0.1 m unseen
+  Advance(1.0);         // still driving
+  ASSERT_FALSE(poses_.empty()) << "a resumed dl-pose publishes at once";
+  const rover_dl_PoseEstimate& first = poses_.front().pose;
+  // Not the start (x = 0, yaw 0, odometer 0): where the checkpoint left it (at most 1 s of
+  // checkpoint period before the kill), then on from there.
+  EXPECT_GT(first.pose.position.x, 0.15);
+  EXPECT_LT(first.pose.position.x, 0.25);
+  EXPECT_NEAR(RpyOf(first).z(), 0.0, 1e-3);
+  EXPECT_GT(first.odometer, 0.14);
+  // The covariance grew for the unseen gap (resume.max_speed 0.1 m/s times >= 2 s).
+  EXPECT_GT(first.covariance[0], before_.covariance[0] + 0.9 * 0.04);
+  EXPECT_GT(first.covariance[35], before_.covariance[35]);
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
+  // And it drives on from there: 1 s more at 0.05 m/s.
+  EXPECT_NEAR(poses_.back().pose.pose.position.x - first.pose.position.x, 0.05, 0.01);
+}
+
+TEST_F(PoseRestartTest, ACheckpointTooOldForResumingMeansThePoseIsUnknown) {
+  Supervised("drive.1.a/dl-pose");
+  LevelAndDrive();
+  KillAndRestart(3.0, {"resume.max_age_s=2"});
+  Advance(2.0);
+  EXPECT_TRUE(poses_.empty()) << "a restarted dl-pose without a usable checkpoint must not "
+                                 "publish a pose anything could drive on";
+  EXPECT_EQ(h_->health(), rover_HEALTH_FAILED);
+  EXPECT_NE(h_->health_message().find("pose unknown after restart"), std::string::npos)
+      << h_->health_message();
+}
+
+TEST_F(PoseRestartTest, ACheckpointOfAnotherSetIsNotResumed) {
+  Supervised("drive.1.a/dl-pose");
+  LevelAndDrive();
+  Supervised("drive.2.b/dl-pose");  // a later `up` of the same project: a fresh start
+  wheel_rate_ = 0.0;
+  KillAndRestart(1.0);
+  Advance(1.0);
+  ASSERT_FALSE(poses_.empty());
+  EXPECT_NEAR(poses_.back().pose.pose.position.x, 0.0, 1e-6);  // levelled at start.*, as a first start
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// dl-stereo in-process on an isolated DDS domain, on a sim clock the test publishes. The test
-// plays the camera driver (fake_camera_driver.hpp: textured ground rendered from the rover pose,
-// known CAHV models in the rover frame) and dl-pose (dl/pose at 10 Hz), sends dl/range_request
+// dl-stereo in the shared ServiceHarness (isolated DDS domain, sim clock the test publishes). The
+// test plays the camera driver (tests/support fakes: textured ground rendered from the rover pose,
+// known CAHV models in the rover frame) and dl-pose (fake, at 10 Hz), sends dl/range_request
 // and checks dl/range_image against the scene geometry; bad frames, a missing pose and a request
 // timeout produce no range image, a warning and a DEGRADED heartbeat.
 #include "stereo_service.hpp"
@@ -14,8 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "fake_camera_driver.hpp"
-#include "rover/testing/test_support.hpp"
+#include "rover/testing/fakes/fake_camera_driver.hpp"
+#include "rover/testing/fakes/fake_pose.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::dl::stereo {
 namespace {
@@ -35,36 +36,15 @@ struct RangeImage {
 
 class StereoServiceTest : public ::testing::Test {
  protected:
-  void TearDown() override {
-    if (lifecycle_) (void)lifecycle_->Shutdown();
-  }
-
   void Start(std::vector<std::string> overrides = {}) {
-    lease_ = testing::IsolatedDomain();
-    options_.name = "dl-stereo-test";
-    options_.domain = lease_.domain();
-    options_.clock = "sim";
-    options_.overrides = std::move(overrides);
-    auto ctx = ServiceContext::Create(options_);
-    ASSERT_TRUE(ctx.ok()) << ctx.status().message();
-    ctx_ = std::move(*ctx);
-    lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
-    ASSERT_TRUE(lifecycle_->Configure().ok()) << lifecycle_->last_error();
-    ASSERT_TRUE(lifecycle_->Activate().ok()) << lifecycle_->last_error();
-    auto p = dds::Participant::Create(lease_.domain());
-    ASSERT_TRUE(p.ok());
-    participant_ = std::move(*p);
-    ASSERT_TRUE(driver_.Create(participant_).ok());
-    ASSERT_TRUE(Make(clock_w_, "sim/clock"));
-    ASSERT_TRUE(Make(pose_w_, "dl/pose"));
-    ASSERT_TRUE(Make(request_w_, "dl/range_request"));
-    ASSERT_TRUE(Make(range_r_, "dl/range_image"));
-    ASSERT_TRUE(Make(health_r_, "sys/health"));
-    ASSERT_TRUE(testing::WaitFor([&] {
-      return driver_.Matched() && clock_w_.MatchedReaders() >= 1 && pose_w_.MatchedReaders() >= 1 &&
-             request_w_.MatchedReaders() >= 1 && range_r_.MatchedWriters() >= 1 &&
-             health_r_.MatchedWriters() >= 1;
-    }));
+    h_ =
+        std::make_unique<testing::ServiceHarness>(service_, "dl-stereo-test", std::move(overrides));
+    ASSERT_TRUE(h_->ok()) << h_->status().message();
+    ASSERT_TRUE(driver_.Create(h_->peer()).ok());
+    ASSERT_TRUE(pose_.Create(h_->peer()).ok());
+    request_w_ = h_->Writer<rover_dl_RangeRequest>("dl/range_request");
+    range_r_ = h_->Reader<rover_dl_RangeImage>("dl/range_image");
+    ASSERT_TRUE(h_->SpinUntil([&] { return driver_.Matched() && pose_.Matched(); }));
   }
 
   /// Advances the run clock by `seconds` in kStep steps: dl/pose (unless `publish_pose_` is
@@ -76,29 +56,17 @@ class StereoServiceTest : public ::testing::Test {
       ++step_;
       now_ = Time{step_ * 100'000'000};
       if (publish_pose_) {
-        rover_dl_PoseEstimate pose{};
-        pose.header.stamp_ns = now_.ns;
-        const Eigen::Vector3d t = rover_.translation();
-        const Eigen::Quaterniond q(rover_.linear());
-        pose.pose.position = {t.x(), t.y(), t.z()};
-        pose.pose.orientation = {q.w(), q.x(), q.y(), q.z()};
-        pose.stationary = true;
-        EXPECT_TRUE(pose_w_.Write(pose).ok());
+        pose_.state.SetPose(rover_);
+        pose_.state.stationary = true;
+        EXPECT_TRUE(pose_.Publish(now_).ok());
       }
-      rover_sim_Clock c{};
-      c.sim_time_ns = now_.ns;
-      EXPECT_TRUE(clock_w_.Write(c).ok());
-      EXPECT_TRUE(testing::WaitFor([&] {
-        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
-        return ctx_->Now().ns == now_.ns;
-      }));
+      EXPECT_TRUE(h_->AdvanceTo(now_));
       // Let the service take this step's dl/pose before a frame stamped now arrives.
-      for (int k = 0; k < 2; ++k) ctx_->executor().SpinOnce(std::chrono::milliseconds(2));
+      h_->Spin(2, std::chrono::milliseconds(2));
       const std::uint64_t frames = service_.stats().frames;
       const int answered = driver_.Serve(now_, rover_);
       if (answered > 0) {
-        EXPECT_TRUE(testing::WaitFor([&] {
-          ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+        EXPECT_TRUE(h_->SpinUntil([&] {
           return service_.stats().frames >= frames + static_cast<std::uint64_t>(answered);
         })) << "the service did not take the frame";
       }
@@ -107,7 +75,7 @@ class StereoServiceTest : public ::testing::Test {
   }
 
   void Collect() {
-    for (int k = 0; k < 3; ++k) ctx_->executor().SpinOnce(std::chrono::milliseconds(1));
+    h_->Spin(3);
     for (auto& s : range_r_.Take()) {
       RangeImage r;
       r.request_id = s->request_id;
@@ -125,12 +93,6 @@ class StereoServiceTest : public ::testing::Test {
       r.disparity.assign(disparity.begin(), disparity.end());
       images_.push_back(std::move(r));
     }
-    for (auto& h : health_r_.Take()) {
-      if (std::string(h->service) == options_.name) {
-        health_ = h->health;
-        health_message_ = h->message;
-      }
-    }
   }
 
   void Request(std::uint32_t id, rover_CameraId camera, std::uint16_t width) {
@@ -143,8 +105,7 @@ class StereoServiceTest : public ::testing::Test {
         service_.stats().range_requests + service_.stats().rejected_requests;
     const std::uint64_t sent = service_.stats().camera_requests;
     ASSERT_TRUE(request_w_.Write(m).ok());
-    ASSERT_TRUE(testing::WaitFor([&] {
-      ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+    ASSERT_TRUE(h_->SpinUntil([&] {
       return service_.stats().range_requests + service_.stats().rejected_requests > before;
     }));
     // The camera request (if one went out at once) reaches the driver before time moves on.
@@ -155,8 +116,9 @@ class StereoServiceTest : public ::testing::Test {
 
   /// The true scene point (rover frame) seen by left-image pixel (u, v) of a `width` image.
   Eigen::Vector3d TruePoint(int width, double u, double v) const {
-    const vo::StereoCamera cam = driver_.rig.Camera(width);
-    const Eigen::Isometry3d world_from_rover = fake::WorldFromSite(driver_.scene.ground_y) * rover_;
+    const testing::PinholeStereo cam = driver_.rig.Camera(width);
+    const Eigen::Isometry3d world_from_rover =
+        testing::WorldFromSite(driver_.scene.ground_y) * rover_;
     const Eigen::Isometry3d world_from_cam = world_from_rover * driver_.rig.rover_from_left;
     const Eigen::Vector3d o = world_from_cam.translation();
     const Eigen::Vector3d d = world_from_cam.linear() * cam.Ray({u, v});
@@ -169,36 +131,17 @@ class StereoServiceTest : public ::testing::Test {
     return world_from_rover.inverse() * (o + best * d);
   }
 
-  template <class E>
-  bool Make(E& out, const std::string& topic) {
-    auto e = E::Create(participant_, topic);
-    if (!e.ok()) {
-      ADD_FAILURE() << e.status().message();
-      return false;
-    }
-    out = std::move(*e);
-    return true;
-  }
-
-  dds::DomainLease lease_;
-  ServiceOptions options_;
-  std::unique_ptr<ServiceContext> ctx_;
-  StereoService service_;
-  std::unique_ptr<Lifecycle> lifecycle_;
-  dds::Participant participant_;
-  fake::FakeCameraDriver driver_;
-  dds::Writer<rover_sim_Clock> clock_w_;
-  dds::Writer<rover_dl_PoseEstimate> pose_w_;
+  StereoService service_;  // outlives the harness that runs it
+  std::unique_ptr<testing::ServiceHarness> h_;
+  testing::FakeCameraDriver driver_;
+  testing::FakePose pose_;
   dds::Writer<rover_dl_RangeRequest> request_w_;
   dds::Reader<rover_dl_RangeImage> range_r_;
-  dds::Reader<rover_sys_Heartbeat> health_r_;
   std::int64_t step_ = 0;
   Time now_;
-  Eigen::Isometry3d rover_ = fake::RoverPose(1.5, -0.7, 0.3);
+  Eigen::Isometry3d rover_ = testing::RoverPose(1.5, -0.7, 0.3);
   bool publish_pose_ = true;
   std::vector<RangeImage> images_;
-  rover_SensorHealth health_ = rover_HEALTH_OK;
-  std::string health_message_;
 };
 
 TEST_F(StereoServiceTest, RangesTheSyntheticGroundInTheRoverFrame) {
@@ -274,7 +217,7 @@ TEST_F(StereoServiceTest, RangesTheSyntheticGroundInTheRoverFrame) {
   EXPECT_EQ(images_[1].request_id, 78u);
   EXPECT_EQ(service_.setup_cache()->misses(), 1u);
   EXPECT_EQ(service_.setup_cache()->hits(), 1u);
-  EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
 }
 
 TEST_F(StereoServiceTest, BadFramesAreDroppedWithAWarningAndNoRangeImage) {
@@ -340,15 +283,15 @@ TEST_F(StereoServiceTest, BadFramesAreDroppedWithAWarningAndNoRangeImage) {
     EXPECT_EQ(service_.stats().bad_frames, bad + 1);
     EXPECT_TRUE(images_.empty()) << "a range image was sent for a bad frame";
     EXPECT_NE(service_.last_problem().find(c.expect), std::string::npos) << service_.last_problem();
-    EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
-    EXPECT_NE(health_message_.find("dropped"), std::string::npos) << health_message_;
+    EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
+    EXPECT_NE(h_->health_message().find("dropped"), std::string::npos) << h_->health_message();
   }
   // A good frame afterwards is ranged and the health recovers.
   driver_.corrupt = nullptr;
   Request(++id, rover_CAMERA_FRONT_HAZCAM, 256);
   Advance(0.3);
   ASSERT_EQ(images_.size(), 1u) << service_.last_problem();
-  EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
   EXPECT_EQ(service_.stats().published, 1u);
 }
 
@@ -389,7 +332,7 @@ TEST_F(StereoServiceTest, RequestTimeoutIsReportedOnTheRunClock) {
   EXPECT_EQ(service_.stats().timeouts, 1u);
   EXPECT_NE(service_.last_problem().find("timed out"), std::string::npos)
       << service_.last_problem();
-  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
   EXPECT_TRUE(images_.empty());
   // The late answer is ignored; the next request is served.
   driver_.answer = true;
@@ -402,7 +345,7 @@ TEST_F(StereoServiceTest, RequestTimeoutIsReportedOnTheRunClock) {
   Advance(0.3);
   ASSERT_EQ(images_.size(), 1u) << service_.last_problem();
   EXPECT_EQ(images_[0].request_id, 10u);
-  EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
 }
 
 TEST_F(StereoServiceTest, QueuesRequestsAndDropsThoseThatOverflow) {
@@ -428,24 +371,15 @@ TEST_F(StereoServiceTest, QueuesRequestsAndDropsThoseThatOverflow) {
 }
 
 TEST(StereoServiceConfig, RejectsInconsistentParametersNamingThem) {
-  dds::DomainLease lease = testing::IsolatedDomain();
-  ServiceOptions o;
-  o.name = "dl-stereo-config";
-  o.domain = lease.domain();
-  o.overrides = {"stereo.min_range_m=5", "stereo.max_range_m=4"};
-  auto ctx = ServiceContext::Create(o);
-  ASSERT_TRUE(ctx.ok());
   StereoService svc;
-  Lifecycle lc(svc, **ctx, o);
-  const Status s = lc.Configure();
+  const testing::ServiceHarness h(svc, "dl-stereo-config",
+                                  {"stereo.min_range_m=5", "stereo.max_range_m=4"});
+  const Status& s = h.status();
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.message().find("stereo.max_range_m"), std::string::npos) << s.message();
-  o.overrides = {"stereo.window=8"};
-  auto ctx2 = ServiceContext::Create(o);
-  ASSERT_TRUE(ctx2.ok());
   StereoService svc2;
-  Lifecycle lc2(svc2, **ctx2, o);
-  const Status s2 = lc2.Configure();
+  const testing::ServiceHarness h2(svc2, "dl-stereo-config", {"stereo.window=8"});
+  const Status& s2 = h2.status();
   ASSERT_FALSE(s2.ok());
   EXPECT_NE(s2.message().find("window"), std::string::npos) << s2.message();
 }

@@ -1,10 +1,11 @@
-// dl-vo in-process on an isolated DDS domain, on a sim clock the test publishes. The test plays
-// dl-pose (a wheel-odometry-like estimate that slips: 10 % long and drifting in heading) and
-// the camera driver (fake_camera_driver.hpp: textured ground rendered from the TRUE rover pose
-// with known CAHV models in the rover frame). It checks MER's cadence (first pair at rest, a pair
-// every step_distance of odometer, one at the end of the drive), that each dl/relative_pose
-// matches the true motion between the two capture stamps far better than the odometry prior,
-// and that a featureless pair or a bad frame is published with a failure status, not a motion.
+// dl-vo in the shared ServiceHarness (isolated DDS domain, sim clock the test publishes). The
+// test plays dl-pose (the fake pose: a wheel-odometry-like estimate that slips, 10 % long and
+// drifting in heading) and the camera driver (tests/support fakes: textured ground rendered from
+// the TRUE rover pose with known CAHV models in the rover frame). It checks MER's cadence (first
+// pair at rest, a pair every step_distance of odometer, one at the end of the drive), that each
+// dl/relative_pose matches the true motion between the two capture stamps far better than the
+// odometry prior, and that a featureless pair or a bad frame is published with a failure status,
+// not a motion.
 #include "vo_service.hpp"
 
 #include <gtest/gtest.h>
@@ -18,8 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "fake_camera_driver.hpp"
-#include "rover/testing/test_support.hpp"
+#include "rover/testing/fakes/fake_camera_driver.hpp"
+#include "rover/testing/fakes/fake_pose.hpp"
+#include "rover/testing/service_harness.hpp"
 
 namespace rover::dl::vo {
 namespace {
@@ -39,53 +41,32 @@ Eigen::Isometry3d Delta(const rover_Pose3& p) {
 
 class VoServiceTest : public ::testing::Test {
  protected:
-  void TearDown() override {
-    if (lifecycle_) (void)lifecycle_->Shutdown();
-  }
-
   /// The front HAZCAM (the default camera) as the simulator has it: 0.5 m high, 45 deg down,
   /// 0.10 m baseline, 120 deg across (a pinhole here: 74 px focal length at 256 px).
-  static fake::Rig Hazcam() {
-    fake::Rig rig;
-    rig.rover_from_left = fake::CameraMount(0.785, {0.52, 0.05, 0.5});
+  static testing::Rig Hazcam() {
+    testing::Rig rig;
+    rig.rover_from_left = testing::CameraMount(0.785, {0.52, 0.05, 0.5});
     rig.baseline = 0.1;
     rig.focal_at_256 = 74.0;
     return rig;
   }
   /// A NAVCAM pointed down at the terrain as MER did for VO (25 deg, 1.5 m, 0.3 m baseline).
-  static fake::Rig Navcam() {
-    fake::Rig rig;
-    rig.rover_from_left = fake::CameraMount(0.44, {0.3, 0.15, 1.5});
+  static testing::Rig Navcam() {
+    testing::Rig rig;
+    rig.rover_from_left = testing::CameraMount(0.44, {0.3, 0.15, 1.5});
     rig.baseline = 0.3;
     rig.focal_at_256 = 200.0;
     return rig;
   }
 
-  void Start(std::vector<std::string> overrides = {}, const fake::Rig& rig = Navcam()) {
+  void Start(std::vector<std::string> overrides = {}, const testing::Rig& rig = Navcam()) {
     driver_.rig = rig;
-    lease_ = rover::testing::IsolatedDomain();
-    options_.name = "dl-vo-test";
-    options_.domain = lease_.domain();
-    options_.clock = "sim";
-    options_.overrides = std::move(overrides);
-    auto ctx = ServiceContext::Create(options_);
-    ASSERT_TRUE(ctx.ok()) << ctx.status().message();
-    ctx_ = std::move(*ctx);
-    lifecycle_ = std::make_unique<Lifecycle>(service_, *ctx_, options_);
-    ASSERT_TRUE(lifecycle_->Configure().ok()) << lifecycle_->last_error();
-    ASSERT_TRUE(lifecycle_->Activate().ok()) << lifecycle_->last_error();
-    auto p = dds::Participant::Create(lease_.domain());
-    ASSERT_TRUE(p.ok());
-    participant_ = std::move(*p);
-    ASSERT_TRUE(driver_.Create(participant_).ok());
-    ASSERT_TRUE(Make(clock_w_, "sim/clock"));
-    ASSERT_TRUE(Make(pose_w_, "dl/pose"));
-    ASSERT_TRUE(Make(relpose_r_, "dl/relative_pose"));
-    ASSERT_TRUE(Make(health_r_, "sys/health"));
-    ASSERT_TRUE(rover::testing::WaitFor([&] {
-      return driver_.Matched() && clock_w_.MatchedReaders() >= 1 && pose_w_.MatchedReaders() >= 1 &&
-             relpose_r_.MatchedWriters() >= 1 && health_r_.MatchedWriters() >= 1;
-    }));
+    h_ = std::make_unique<testing::ServiceHarness>(service_, "dl-vo-test", std::move(overrides));
+    ASSERT_TRUE(h_->ok()) << h_->status().message();
+    ASSERT_TRUE(driver_.Create(h_->peer()).ok());
+    ASSERT_TRUE(pose_.Create(h_->peer()).ok());
+    relpose_r_ = h_->Reader<rover_dl_RelativePose>("dl/relative_pose");
+    ASSERT_TRUE(h_->SpinUntil([&] { return driver_.Matched() && pose_.Matched(); }));
   }
 
   /// Drives for `seconds` at `speed` [m/s] and `yaw_rate` [rad/s] (true motion), in kStep steps.
@@ -100,28 +81,17 @@ class VoServiceTest : public ::testing::Test {
       Integrate(&estimate_, speed * kOdometryScale, moving ? yaw_rate + kHeadingDrift : 0.0);
       odometer_ += std::abs(speed) * kOdometryScale * kStep;
       truth_at_[now_.ns] = truth_;
-      rover_dl_PoseEstimate pose{};
-      pose.header.stamp_ns = now_.ns;
-      const Eigen::Vector3d t = estimate_.translation();
-      const Eigen::Quaterniond q(estimate_.linear());
-      pose.pose.position = {t.x(), t.y(), t.z()};
-      pose.pose.orientation = {q.w(), q.x(), q.y(), q.z()};
-      pose.velocity = {speed * kOdometryScale, 0.0, 0.0};
-      pose.odometer = odometer_;
-      pose.stationary = !moving;
+      pose_.state.SetPose(estimate_);
+      pose_.state.velocity = {speed * kOdometryScale, 0.0, 0.0};
+      pose_.state.odometer = odometer_;
+      pose_.state.stationary = !moving;
       if (publish_pose_) {
-        EXPECT_TRUE(pose_w_.Write(pose).ok());
+        EXPECT_TRUE(pose_.Publish(now_).ok());
       }
-      rover_sim_Clock c{};
-      c.sim_time_ns = now_.ns;
-      EXPECT_TRUE(clock_w_.Write(c).ok());
-      EXPECT_TRUE(rover::testing::WaitFor([&] {
-        ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
-        return ctx_->Now().ns == now_.ns;
-      }));
-      for (int k = 0; k < 2; ++k) ctx_->executor().SpinOnce(std::chrono::milliseconds(2));
+      EXPECT_TRUE(h_->AdvanceTo(now_));
+      h_->Spin(2, std::chrono::milliseconds(2));
       // A request sent at this tick reaches the driver before it serves (deterministic steps).
-      EXPECT_TRUE(rover::testing::WaitFor([&] {
+      EXPECT_TRUE(testing::WaitFor([&] {
         driver_.Poll();
         return driver_.seen.size() >= service_.stats().camera_requests;
       }));
@@ -129,8 +99,7 @@ class VoServiceTest : public ::testing::Test {
       const int answered = driver_.Serve(now_, truth_);
       for (int k = 0; k < answered; ++k) captures_.push_back(now_);
       if (answered > 0) {
-        EXPECT_TRUE(rover::testing::WaitFor([&] {
-          ctx_->executor().SpinOnce(std::chrono::milliseconds(5));
+        EXPECT_TRUE(h_->SpinUntil([&] {
           return service_.stats().frames >= frames + static_cast<std::uint64_t>(answered);
         }));
       }
@@ -141,20 +110,14 @@ class VoServiceTest : public ::testing::Test {
   static void Integrate(Eigen::Isometry3d* pose, double speed, double yaw_rate) {
     // Constant speed and turn rate over the step: move along the chord at the mid heading.
     const Eigen::Isometry3d step =
-        fake::RoverPose(speed * kStep * std::cos(yaw_rate * kStep / 2),
-                        speed * kStep * std::sin(yaw_rate * kStep / 2), yaw_rate * kStep);
+        testing::RoverPose(speed * kStep * std::cos(yaw_rate * kStep / 2),
+                           speed * kStep * std::sin(yaw_rate * kStep / 2), yaw_rate * kStep);
     *pose = *pose * step;
   }
 
   void Collect() {
-    for (int k = 0; k < 3; ++k) ctx_->executor().SpinOnce(std::chrono::milliseconds(1));
+    h_->Spin(3);
     for (auto& s : relpose_r_.Take()) relposes_.push_back(s.data());
-    for (auto& h : health_r_.Take()) {
-      if (std::string(h->service) == options_.name) {
-        health_ = h->health;
-        health_message_ = h->message;
-      }
-    }
   }
 
   /// True motion between two run-clock times (rover frame at `from`).
@@ -162,42 +125,23 @@ class VoServiceTest : public ::testing::Test {
     return truth_at_.at(from).inverse() * truth_at_.at(to);
   }
 
-  template <class E>
-  bool Make(E& out, const std::string& topic) {
-    auto e = E::Create(participant_, topic);
-    if (!e.ok()) {
-      ADD_FAILURE() << e.status().message();
-      return false;
-    }
-    out = std::move(*e);
-    return true;
-  }
-
   static constexpr double kOdometryScale = 1.10;  // wheel odometry 10 % long (slip)
   static constexpr double kHeadingDrift = 0.01;   // [rad/s] heading error while driving
 
-  dds::DomainLease lease_;
-  ServiceOptions options_;
-  std::unique_ptr<ServiceContext> ctx_;
-  VoService service_;
-  std::unique_ptr<Lifecycle> lifecycle_;
-  dds::Participant participant_;
-  fake::FakeCameraDriver driver_;
-  dds::Writer<rover_sim_Clock> clock_w_;
-  dds::Writer<rover_dl_PoseEstimate> pose_w_;
+  VoService service_;  // outlives the harness that runs it
+  std::unique_ptr<testing::ServiceHarness> h_;
+  testing::FakeCameraDriver driver_;
+  testing::FakePose pose_;
   dds::Reader<rover_dl_RelativePose> relpose_r_;
-  dds::Reader<rover_sys_Heartbeat> health_r_;
   std::int64_t step_ = 0;
   Time now_;
-  Eigen::Isometry3d truth_ = fake::RoverPose(0.0, 0.0, 0.0);
-  Eigen::Isometry3d estimate_ = fake::RoverPose(0.0, 0.0, 0.0);
+  Eigen::Isometry3d truth_ = testing::RoverPose(0.0, 0.0, 0.0);
+  Eigen::Isometry3d estimate_ = testing::RoverPose(0.0, 0.0, 0.0);
   double odometer_ = 0.0;
   bool publish_pose_ = true;
   std::map<std::int64_t, Eigen::Isometry3d> truth_at_;
   std::vector<Time> captures_;
   std::vector<rover_dl_RelativePose> relposes_;
-  rover_SensorHealth health_ = rover_HEALTH_OK;
-  std::string health_message_;
 
   /// Drives 0.7 m on an arc and stops; checks the pairs, the steps against the truth and the
   /// odometry prior, and the cadence.
@@ -255,7 +199,7 @@ class VoServiceTest : public ::testing::Test {
       EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
       EXPECT_LT(std::sqrt(cov(0, 0)), 0.05);
     }
-    EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+    EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
     // Parked: nothing more to measure.
     Drive(3.0, 0.0, 0.0);
     EXPECT_EQ(captures_.size(), 3u);
@@ -285,9 +229,9 @@ TEST_F(VoServiceTest, FeaturelessPairIsPublishedAsAFailureNotAMotion) {
   EXPECT_EQ(r.t_to_ns, captures_[1].ns);
   EXPECT_LT(r.features, 10u);
   EXPECT_EQ(service_.stats().converged, 0u);
-  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
-  EXPECT_NE(health_message_.find("visual odometry step failed"), std::string::npos)
-      << health_message_;
+  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_NE(h_->health_message().find("visual odometry step failed"), std::string::npos)
+      << h_->health_message();
 }
 
 TEST_F(VoServiceTest, BadFrameIsReportedAndTheReferenceKept) {
@@ -305,7 +249,7 @@ TEST_F(VoServiceTest, BadFrameIsReportedAndTheReferenceKept) {
   EXPECT_EQ(service_.stats().bad_frames, 1u);
   EXPECT_NE(service_.last_problem().find("stereo rectification"), std::string::npos)
       << service_.last_problem();
-  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
   // After retry_delay_s the next pair measures from the kept reference.
   driver_.corrupt = nullptr;
   Drive(1.5, 0.1, 0.0);
@@ -319,7 +263,7 @@ TEST_F(VoServiceTest, BadFrameIsReportedAndTheReferenceKept) {
   EXPECT_EQ(r.t_to_ns, captures_[2].ns);
   const Eigen::Isometry3d truth = TrueDelta(r.t_from_ns, r.t_to_ns);
   EXPECT_LT((Delta(r.delta).translation() - truth.translation()).norm(), 0.015);
-  EXPECT_EQ(health_, rover_HEALTH_OK) << health_message_;
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
 }
 
 TEST_F(VoServiceTest, TimeoutIsReportedOnTheRunClockAndTheRequestRepeated) {
@@ -332,7 +276,7 @@ TEST_F(VoServiceTest, TimeoutIsReportedOnTheRunClockAndTheRequestRepeated) {
   Drive(0.4, 0.0, 0.0);  // > 1.5 s of run-clock time since the request
   EXPECT_EQ(service_.stats().timeouts, 1u);
   EXPECT_NE(service_.last_problem().find("timed out"), std::string::npos);
-  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
+  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
   EXPECT_EQ(service_.stats().camera_requests, 2u);  // asked again at once (still no reference)
 }
 
@@ -343,8 +287,8 @@ TEST_F(VoServiceTest, StalePosePausesTheCadence) {
   publish_pose_ = false;  // dl-pose stops while the rover drives on
   Drive(8.0, 0.1, 0.0);
   EXPECT_EQ(captures_.size(), 1u) << "no pair may be requested on a stale pose";
-  EXPECT_EQ(health_, rover_HEALTH_DEGRADED);
-  EXPECT_NE(health_message_.find("stale"), std::string::npos) << health_message_;
+  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_NE(h_->health_message().find("stale"), std::string::npos) << h_->health_message();
   publish_pose_ = true;  // back: the odometer has moved on, so a pair is due at once
   Drive(0.3, 0.1, 0.0);
   EXPECT_EQ(captures_.size(), 2u);

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "rover/hwconfig/rover_description.hpp"
+
 namespace rover::sim {
 namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
@@ -31,9 +33,13 @@ std::string Fmt1(const char* f, double a) {
 
 RoverFootprint RoverFootprint::MerDefault() {
   RoverFootprint f;
-  for (double x : {0.625, 0.0, -0.625}) {
-    for (double y : {0.5, -0.5}) f.wheels.emplace_back(x, y);
+  const hwconfig::RoverDescription rover;
+  for (double x : {rover.front_wheel_x, rover.middle_wheel_x, rover.rear_wheel_x}) {
+    for (double y : {rover.half_track, -rover.half_track}) f.wheels.emplace_back(x, y);
   }
+  const hwconfig::Footprint g = rover.GroundFootprint();
+  f.body_min = {g.min_x, g.min_y};
+  f.body_max = {g.max_x, g.max_y};
   return f;
 }
 
@@ -59,6 +65,9 @@ Status JudgeCriteria::Validate() const {
   if (max_estimate_heading_error) {
     ROVER_RETURN_IF_ERROR(positive(*max_estimate_heading_error, "max_estimate_heading_error"));
   }
+  if (max_hazard_contacts && *max_hazard_contacts < 0) {
+    return InvalidArgument("criteria.max_hazard_contacts must be >= 0");
+  }
   if (min_distance && (*min_distance < 0 || !std::isfinite(*min_distance))) {
     return InvalidArgument("criteria.min_distance must be >= 0");
   }
@@ -77,6 +86,7 @@ Result<Judge> Judge::Create(JudgeCriteria criteria, std::vector<JudgeRock> rocks
     if (r.height > criteria.traversable_height) j.rocks_.push_back(r);
   }
   j.hit_.assign(j.rocks_.size(), false);
+  j.hazard_hit_.assign(j.rocks_.size(), false);
   if (!j.rocks_.empty()) {
     Eigen::Vector2d lo = j.rocks_[0].xy, hi = lo;
     for (const auto& r : j.rocks_) {
@@ -105,7 +115,11 @@ void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
   const Eigen::Vector2d t2 = pose.translation().head<2>();
   const Eigen::Matrix2d r2_inv = r2.inverse();
   // Candidate rocks near the rover.
-  const double reach = 1.2 + max_rock_radius_;
+  const double reach =
+      std::max({1.2, footprint_.body_min.norm(), footprint_.body_max.norm(),
+                Eigen::Vector2d(footprint_.body_min.x(), footprint_.body_max.y()).norm(),
+                Eigen::Vector2d(footprint_.body_max.x(), footprint_.body_min.y()).norm()}) +
+      max_rock_radius_;
   const int x0 = std::max(0, static_cast<int>((t2.x() - reach - grid_min_.x()) / cell_));
   const int x1 = std::min(grid_nx_ - 1, static_cast<int>((t2.x() + reach - grid_min_.x()) / cell_));
   const int y0 = std::max(0, static_cast<int>((t2.y() - reach - grid_min_.y()) / cell_));
@@ -114,9 +128,15 @@ void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
     for (int cx = x0; cx <= x1; ++cx) {
       for (std::size_t i : grid_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(grid_nx_) +
                                  static_cast<std::size_t>(cx)]) {
-        if (hit_[i]) continue;
         const JudgeRock& rock = rocks_[i];
         const double radius = rock.diameter / 2;
+        const Eigen::Vector2d local = r2_inv * (rock.xy - t2);
+        if (!hazard_hit_[i]) {
+          const Eigen::Vector2d nearest =
+              local.cwiseMax(footprint_.body_min).cwiseMin(footprint_.body_max);
+          hazard_hit_[i] = (local - nearest).norm() < radius;
+        }
+        if (hit_[i]) continue;
         bool hit = false;
         for (const auto& w : footprint_.wheels) {
           const Eigen::Vector2d wp = r2 * w + t2;
@@ -127,7 +147,6 @@ void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
         }
         if (!hit && rock.height > footprint_.belly_clearance) {
           // Rock disc against the belly box, in the rover frame.
-          const Eigen::Vector2d local = r2_inv * (rock.xy - t2);
           const Eigen::Vector2d nearest =
               local.cwiseMax(footprint_.belly_min).cwiseMin(footprint_.belly_max);
           hit = (local - nearest).norm() < radius;
@@ -246,17 +265,30 @@ Verdict Judge::Evaluate() const {
                         max_tilt_ <= criteria_.max_tilt, ""});
   for (std::size_t i = 0; i < rocks_.size(); ++i) {
     if (hit_[i]) v.rocks_hit.push_back(rocks_[i].id);
+    if (hazard_hit_[i]) v.hazards_hit.push_back(rocks_[i].id);
   }
-  {
-    std::string detail;
-    for (std::size_t i = 0; i < v.rocks_hit.size() && i < 5; ++i) {
-      detail += (i ? ", " : "rocks ") + std::to_string(v.rocks_hit[i]);
+  // "rocks 3, 9 (rocks taller than 0.20 m<where>)": the first five ids and what counted.
+  auto detail = [&](const std::vector<int>& ids, const char* where) {
+    std::string list;
+    for (std::size_t i = 0; i < ids.size() && i < 5; ++i) {
+      list += (i ? ", " : "rocks ") + std::to_string(ids[i]);
     }
-    char taller[64];
-    std::snprintf(taller, sizeof taller, "rocks taller than %.2f m", criteria_.traversable_height);
-    v.criteria.push_back({"rock_contacts", static_cast<double>(v.rocks_hit.size()), 0, "count",
-                          v.rocks_hit.empty(),
-                          detail.empty() ? std::string(taller) : detail + " (" + taller + ")"});
+    const std::string taller =
+        Fmt1("rocks taller than %.2f m", criteria_.traversable_height) + where;
+    return list.empty() ? taller : list + " (" + taller + ")";
+  };
+  v.criteria.push_back({"rock_contacts", static_cast<double>(v.rocks_hit.size()), 0, "count",
+                        v.rocks_hit.empty(), detail(v.rocks_hit, "")});
+  {
+    const double n = static_cast<double>(v.hazards_hit.size());
+    const std::string d = detail(v.hazards_hit, " under the rover's footprint");
+    if (criteria_.max_hazard_contacts) {
+      v.criteria.push_back({"hazard_contacts", n, static_cast<double>(*criteria_.max_hazard_contacts),
+                            "count", n <= *criteria_.max_hazard_contacts, d});
+    } else {
+      v.figures.push_back(
+          {"hazard_contacts", n, std::numeric_limits<double>::quiet_NaN(), "count", true, d});
+    }
   }
   if (criteria_.min_distance) {
     v.criteria.push_back({"distance_driven", distance_, *criteria_.min_distance, "m",

@@ -68,6 +68,49 @@ TEST(Judge, BellyHitsOnlyAboveClearance) {
   EXPECT_EQ(v.rocks_hit[0], 2);
 }
 
+TEST(Judge, HazardContactsCountRocksUnderAnyPartOfTheFootprint) {
+  // Drive along x from 0 to 5 m. The ground footprint of the default rover reaches |y| <= 0.58 m
+  // (wheel outer edges) and 0.75 m ahead of the centre.
+  const std::vector<JudgeRock> rocks = {
+      {1, {2.0, 0.0}, 0.3, 0.25},   // between the wheels, under the belly: a hazard contact only
+      {2, {3.0, 0.66}, 0.2, 0.30},  // its edge 0.56 m from the line: beside a wheel, touching
+      {3, {3.0, -0.9}, 0.2, 0.30},  // 0.8 m off: clear
+      {4, {4.0, 0.0}, 0.3, 0.10},   // under the rover but traversable
+      {5, {5.85, 0.0}, 0.3, 0.40},  // 0.85 m ahead of the last pose: its edge within 0.75 m
+  };
+  JudgeCriteria judged;
+  judged.max_hazard_contacts = 0;
+  auto j = Judge::Create(judged, rocks);
+  ASSERT_TRUE(j.ok());
+  DriveStraight(*j, 5.0);
+  const Verdict v = j->Evaluate();
+  EXPECT_EQ(v.hazards_hit, (std::vector<int>{1, 2, 5}));
+  const Criterion* h = v.Find("hazard_contacts");
+  ASSERT_NE(h, nullptr);
+  EXPECT_EQ(h->measured, 3);
+  EXPECT_FALSE(h->pass);
+  EXPECT_FALSE(v.pass);
+  EXPECT_NE(h->detail.find("rocks 1, 2, 5"), std::string::npos) << h->detail;
+  // The wheel-and-belly check sees only rock 2 at a wheel: rock 1 passes under the belly and
+  // rock 5 is ahead of the body, between the wheel tracks.
+  EXPECT_EQ(v.rocks_hit, (std::vector<int>{2}));
+
+  // Without the criterion it is a figure, and a rover that kept clear has none.
+  auto f = Judge::Create(JudgeCriteria{}, {{3, {3.0, -0.9}, 0.2, 0.30}});
+  ASSERT_TRUE(f.ok());
+  DriveStraight(*f, 5.0);
+  const Verdict clear = f->Evaluate();
+  EXPECT_EQ(clear.Find("hazard_contacts"), nullptr);
+  bool figure = false;
+  for (const auto& fig : clear.figures) {
+    if (fig.name == "hazard_contacts") figure = fig.measured == 0;
+  }
+  EXPECT_TRUE(figure);
+  JudgeCriteria bad;
+  bad.max_hazard_contacts = -1;
+  EXPECT_FALSE(Judge::Create(bad, {}).ok());
+}
+
 TEST(Judge, TiltAndFinalErrorsAreMeasured) {
   JudgeCriteria c;
   c.target_xy = Eigen::Vector2d(2, 0);

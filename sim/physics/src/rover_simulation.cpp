@@ -26,6 +26,11 @@ using SimTK::Rotation;
 using SimTK::Transform;
 using SimTK::Vec3;
 
+// Simbody's rocker and bogie pins turn about +y of their parent, so their coordinate grows as the
+// link pitches nose-down; the rover description's angles grow as the front rises. Readings and
+// PoseModel convert with this sign (the model itself is unchanged).
+constexpr double kSuspensionSign = -1.0;
+
 Vec3 ToVec3(const Eigen::Vector3d& v) { return Vec3(v.x(), v.y(), v.z()); }
 Eigen::Vector3d ToEigen(const Vec3& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
@@ -137,7 +142,7 @@ class TerrainForce : public SimTK::Force::Custom::Implementation {
     k.angular_velocity = ToEigen(b.getBodyAngularVelocity(s));
     const SimTK::Vector& z = s.getZ(forces_ix_);
     const Eigen::Vector2d shear(z[z0_ + 2 * w], z[z0_ + 2 * w + 1]);
-    const RoverGeometry& g = params_->geometry;
+    const hwconfig::RoverDescription& g = params_->geometry;
     return EvaluateWheelContact(*terrain_, params_->contact, g.wheel_radius, g.wheel_width, k,
                                 shear);
   }
@@ -212,6 +217,7 @@ struct RoverSimulation::Impl {
   void ControlTick();
   const MobilizedBody& Body(MobilizedBodyIndex ix) const { return matter.getMobilizedBody(ix); }
   const MobilizedBody& Joint(int motor) const { return *joints[motor]; }
+  BodyPoses Poses(const SimTK::State& s) const;
   void InitializeIntegrator(const SimTK::State& s);
 
   RoverModelParams params;
@@ -223,6 +229,7 @@ struct RoverSimulation::Impl {
   MobilizedBodyIndex chassis_ix;
   std::array<MobilizedBodyIndex, 2> rocker_ix, bogie_ix;  // left, right
   std::array<MobilizedBodyIndex, kNumWheels> wheel_ix;
+  std::array<MobilizedBodyIndex, hwconfig::kNumSteered> steer_ix;  // LF LR RF RR
   std::array<MobilizedBodyIndex, kNumMotors> joint_ix;    // joint driven by each motor
   std::array<const MobilizedBody*, kNumMotors> joints{};  // the same, cached after Build()
   MobilizedBodyIndex tilt_ix;
@@ -232,6 +239,7 @@ struct RoverSimulation::Impl {
   std::array<double, kNumMotors> counts_per_rad{};
   Eigen::Isometry3d hazcam_front_c = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d hazcam_rear_c = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> belly_points;  // chassis frame
   double period = 1e-3;
   std::int64_t tick = 0;
   bool broken = false;
@@ -240,7 +248,7 @@ struct RoverSimulation::Impl {
 };
 
 void RoverSimulation::Impl::Build() {
-  const RoverGeometry& g = params.geometry;
+  const hwconfig::RoverDescription& g = params.geometry;
   const RoverMasses& m = params.masses;
   period = 1.0 / params.integrator.control_rate_hz;
 
@@ -248,8 +256,8 @@ void RoverSimulation::Impl::Build() {
   motor_forces = SimTK::Force::DiscreteForces(forces, matter);
 
   // Chassis: free joint to Ground (= site frame).
-  const Vec3 box_half = ToVec3(g.chassis_box_size) / 2;
-  const Vec3 box_center = ToVec3(g.chassis_box_center);
+  const Vec3 box_half = ToVec3(g.body_size) / 2;
+  const Vec3 box_center = ToVec3(g.body_centre);
   MobilizedBody::Free chassis(matter.Ground(), Transform(),
                               SimTK::Body::Rigid(BoxMass(m.chassis, box_center, box_half)),
                               Transform());
@@ -268,7 +276,6 @@ void RoverSimulation::Impl::Build() {
     return SimTK::Body::Rigid(WithRotor(steer_mass, 2, params.motors[motor].ReflectedInertia()));
   };
 
-  std::array<MobilizedBodyIndex, 4> steer_ix;  // LF LR RF RR
   for (int side = 0; side < 2; ++side) {
     const double sy = side == 0 ? 1.0 : -1.0;
     const Vec3 pivot(g.rocker_pivot_x, sy * g.rocker_pivot_y, g.rocker_pivot_z);
@@ -287,8 +294,8 @@ void RoverSimulation::Impl::Build() {
     SimTK::Force::MobilityLinearStop(forces, rocker, SimTK::MobilizerQIndex(0), 5000.0, 0.5,
                                      -g.rocker_limit, g.rocker_limit);
 
-    const int w0 = side == 0 ? kWheelLF : kWheelRF;
-    const int s0 = side == 0 ? kSteerLF : kSteerRF;  // front; rear = s0 + 1
+    const int w0 = side == 0 ? hwconfig::kWheelLF : hwconfig::kWheelRF;
+    const int s0 = side == 0 ? hw::kSteerLF : hw::kSteerRF;  // front; rear = s0 + 1
     MobilizedBody::Pin steer_f(rocker, Transform(front_steer), steer_body(s0), Transform());
     MobilizedBody::Pin wheel_f(steer_f, Transform(PinAboutY(), Vec3(0, 0, -hs)), wheel_body(w0),
                                Transform(PinAboutY(), Vec3(0)));
@@ -326,28 +333,26 @@ void RoverSimulation::Impl::Build() {
 
   // Mast: pan about +z at the base, tilt about -y at the head.
   MobilizedBody::Pin pan(
-      chassis, Transform(ToVec3(g.mast_base)),
+      chassis, Transform(ToVec3(g.mast.pan_joint)),
       SimTK::Body::Rigid(
           WithRotor(SimTK::MassProperties(
-                        m.mast_pan, Vec3(0, 0, g.mast_height / 2),
-                        SimTK::UnitInertia::cylinderAlongZ(0.04, std::max(g.mast_height / 2, 0.01))
-                            .shiftFromCentroid(Vec3(0, 0, -g.mast_height / 2))),
-                    2, params.motors[kMastPan].ReflectedInertia())),
+                        m.mast_pan, Vec3(0, 0, g.mast.head_height / 2),
+                        SimTK::UnitInertia::cylinderAlongZ(0.04,
+                                                           std::max(g.mast.head_height / 2, 0.01))
+                            .shiftFromCentroid(Vec3(0, 0, -g.mast.head_height / 2))),
+                    2, params.motors[hw::kMastPan].ReflectedInertia())),
       Transform());
   MobilizedBody::Pin tilt(
-      pan, Transform(PinAboutMinusY(), Vec3(0, 0, g.mast_height)),
+      pan, Transform(PinAboutMinusY(), Vec3(0, 0, g.mast.head_height)),
       SimTK::Body::Rigid(WithRotor(BoxMass(m.mast_head, Vec3(0), Vec3(0.05, 0.15, 0.05)), 1,
-                                   params.motors[kMastTilt].ReflectedInertia())),
+                                   params.motors[hw::kMastTilt].ReflectedInertia())),
       Transform(PinAboutMinusY(), Vec3(0)));
   tilt_ix = tilt.getMobilizedBodyIndex();
 
   for (int w = 0; w < kNumWheels; ++w) joint_ix[w] = wheel_ix[w];
-  joint_ix[kSteerLF] = steer_ix[0];
-  joint_ix[kSteerLR] = steer_ix[1];
-  joint_ix[kSteerRF] = steer_ix[2];
-  joint_ix[kSteerRR] = steer_ix[3];
-  joint_ix[kMastPan] = pan.getMobilizedBodyIndex();
-  joint_ix[kMastTilt] = tilt_ix;
+  for (int j = 0; j < hwconfig::kNumSteered; ++j) joint_ix[hwconfig::SteerMotor(j)] = steer_ix[j];
+  joint_ix[hw::kMastPan] = pan.getMobilizedBodyIndex();
+  joint_ix[hw::kMastTilt] = tilt_ix;
 
   // Belly contact points: bottom face corners, edge midpoints and centre.
   std::vector<Vec3> belly;
@@ -357,19 +362,15 @@ void RoverSimulation::Impl::Build() {
       belly.emplace_back(box_center[0] + ix * box_half[0], box_center[1] + iy * box_half[1], zb);
     }
   }
+  for (const Vec3& p : belly) belly_points.push_back(ToEigen(p));
   auto* tf = new TerrainForce(matter, forces.getMySubsystemIndex(), terrain.get(), &params,
                               wheel_ix, chassis_ix, std::move(belly));
   terrain_force = tf;
   SimTK::Force::Custom(forces, tf);  // the force subsystem takes ownership
 
   // Fixed HAZCAM mounts in the chassis frame (x boresight pitched down, y left, z up).
-  const Eigen::AngleAxisd down(g.hazcam_depression, Eigen::Vector3d::UnitY());
-  hazcam_front_c.linear() = down.toRotationMatrix();
-  hazcam_front_c.translation() = g.hazcam_front;
-  hazcam_rear_c.linear() =
-      Eigen::AngleAxisd(SimTK::Pi, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-      down.toRotationMatrix();
-  hazcam_rear_c.translation() = g.hazcam_rear;
+  hazcam_front_c = g.front_hazcam.Pose();
+  hazcam_rear_c = g.rear_hazcam.Pose();
 
   for (int i = 0; i < kNumMotors; ++i) counts_per_rad[i] = params.motors[i].CountsPerRad();
   system.realizeTopology();
@@ -399,7 +400,7 @@ Status RoverSimulation::Impl::Place(const StartPose& start) {
                       Num(terrain->max_x()) + "] x [" + Num(terrain->min_y()) + ", " +
                       Num(terrain->max_y()) + "]");
   }
-  const RoverGeometry& g = params.geometry;
+  const hwconfig::RoverDescription& g = params.geometry;
   SimTK::State s = system.getDefaultState();
   const MobilizedBody& chassis = Body(chassis_ix);
 
@@ -548,7 +549,7 @@ Status RoverSimulation::SetMotorGoal(int motor, MotorMode mode, double position_
   }
   const Status st =
       impl_->motors[motor].SetGoal(mode, position_counts, velocity_counts_per_s, current_limit_a);
-  if (!st.ok()) return st.WithPrefix(std::string("motor ") + MotorName(motor));
+  if (!st.ok()) return st.WithPrefix(std::string("motor ") + hw::MotorName(motor));
   return st;
 }
 
@@ -641,10 +642,10 @@ RoverReadings RoverSimulation::Readings() const {
     wr.contact_point_site = c.point;
     wr.center_site = ToEigen(im.Body(im.wheel_ix[w]).getBodyTransform(s).p());
   }
-  out.rocker_left_rad = im.Body(im.rocker_ix[0]).getOneQ(s, 0);
-  out.rocker_right_rad = im.Body(im.rocker_ix[1]).getOneQ(s, 0);
-  out.bogie_left_rad = im.Body(im.bogie_ix[0]).getOneQ(s, 0);
-  out.bogie_right_rad = im.Body(im.bogie_ix[1]).getOneQ(s, 0);
+  out.rocker_left_rad = kSuspensionSign * im.Body(im.rocker_ix[0]).getOneQ(s, 0);
+  out.rocker_right_rad = kSuspensionSign * im.Body(im.rocker_ix[1]).getOneQ(s, 0);
+  out.bogie_left_rad = kSuspensionSign * im.Body(im.bogie_ix[0]).getOneQ(s, 0);
+  out.bogie_right_rad = kSuspensionSign * im.Body(im.bogie_ix[1]).getOneQ(s, 0);
 
   const MobilizedBody& chassis = im.Body(im.chassis_ix);
   const Transform& x_gc = chassis.getBodyTransform(s);
@@ -655,18 +656,10 @@ RoverReadings RoverSimulation::Readings() const {
   c.linear_velocity_body = r_gc.transpose() * c.linear_velocity_site;
   c.angular_velocity_body = r_gc.transpose() * ToEigen(chassis.getBodyAngularVelocity(s));
   const Eigen::Vector3d a =
-      ToEigen(chassis.findStationAccelerationInGround(s, ToVec3(im.params.geometry.imu_station)));
+      ToEigen(chassis.findStationAccelerationInGround(s, ToVec3(im.params.geometry.imu_position)));
   c.specific_force_body = r_gc.transpose() * (a + Eigen::Vector3d(0, 0, im.params.gravity));
 
-  BodyPoses& bodies = out.bodies;
-  for (int side = 0; side < 2; ++side) {
-    bodies.rockers[side] = ToIsometry(im.Body(im.rocker_ix[side]).getBodyTransform(s));
-    bodies.bogies[side] = ToIsometry(im.Body(im.bogie_ix[side]).getBodyTransform(s));
-  }
-  for (int w = 0; w < kNumWheels; ++w) {
-    bodies.wheels[w] = ToIsometry(im.Body(im.wheel_ix[w]).getBodyTransform(s));
-  }
-  bodies.mast_pan = ToIsometry(im.Joint(kMastPan).getBodyTransform(s));
+  out.bodies = im.Poses(s);
 
   CameraFrames& cam = out.cameras;
   cam.mast_head_site = ToIsometry(im.Body(im.tilt_ix).getBodyTransform(s));
@@ -676,6 +669,48 @@ RoverReadings RoverSimulation::Readings() const {
   cam.hazcam_front_site = c.pose_site * im.hazcam_front_c;
   cam.hazcam_rear_site = c.pose_site * im.hazcam_rear_c;
   return out;
+}
+
+BodyPoses RoverSimulation::Impl::Poses(const SimTK::State& s) const {
+  BodyPoses bodies;
+  for (int side = 0; side < 2; ++side) {
+    bodies.rockers[side] = ToIsometry(Body(rocker_ix[side]).getBodyTransform(s));
+    bodies.bogies[side] = ToIsometry(Body(bogie_ix[side]).getBodyTransform(s));
+  }
+  for (int w = 0; w < kNumWheels; ++w) {
+    bodies.wheels[w] = ToIsometry(Body(wheel_ix[w]).getBodyTransform(s));
+  }
+  bodies.mast_pan = ToIsometry(Joint(hw::kMastPan).getBodyTransform(s));
+  return bodies;
+}
+
+ModelGeometry RoverSimulation::PoseModel(const ModelJointAngles& q) const {
+  const Impl& im = *impl_;
+  // The default state has the chassis at the site origin with the site's axes and every other
+  // joint at zero.
+  SimTK::State s = im.system.getDefaultState();
+  for (int side = 0; side < 2; ++side) {
+    im.Body(im.rocker_ix[side]).setOneQ(s, 0, kSuspensionSign * q.rocker[side]);
+    im.Body(im.bogie_ix[side]).setOneQ(s, 0, kSuspensionSign * q.bogie[side]);
+  }
+  for (int j = 0; j < hwconfig::kNumSteered; ++j) {
+    im.Joint(hwconfig::SteerMotor(j)).setOneQ(s, 0, q.steer[j]);
+  }
+  im.Joint(hw::kMastPan).setOneQ(s, 0, q.pan);
+  im.Joint(hw::kMastTilt).setOneQ(s, 0, q.tilt);
+  im.system.realize(s, SimTK::Stage::Position);
+  ModelGeometry m;
+  m.bodies = im.Poses(s);
+  for (int j = 0; j < hwconfig::kNumSteered; ++j) {
+    m.steer_brackets[j] = ToIsometry(im.Body(im.steer_ix[j]).getBodyTransform(s));
+  }
+  m.cameras.mast_head_site = ToIsometry(im.Body(im.tilt_ix).getBodyTransform(s));
+  m.cameras.mast_head_chassis = m.cameras.mast_head_site;
+  m.cameras.hazcam_front_site = m.cameras.hazcam_front_chassis = im.hazcam_front_c;
+  m.cameras.hazcam_rear_site = m.cameras.hazcam_rear_chassis = im.hazcam_rear_c;
+  m.belly_points = im.belly_points;
+  m.imu_station = im.params.geometry.imu_position;
+  return m;
 }
 
 }  // namespace rover::sim

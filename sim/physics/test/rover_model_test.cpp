@@ -16,11 +16,11 @@ TEST(RoverModelParams, DefaultsAreValidAndMerLike) {
   EXPECT_NEAR(p.geometry.front_wheel_x - p.geometry.rear_wheel_x, 1.25, 1e-12);
   EXPECT_NEAR(2 * p.geometry.half_track, 1.0, 1e-12);
   // Mast head (tilt axis) at ~1.5 m and HAZCAMs at ~0.5 m above nominal ground (C origin).
-  EXPECT_NEAR(p.geometry.mast_base.z() + p.geometry.mast_height, 1.5, 0.05);
-  EXPECT_NEAR(p.geometry.hazcam_front.z(), 0.5, 0.05);
-  EXPECT_NEAR(p.geometry.hazcam_rear.z(), 0.5, 0.05);
+  EXPECT_NEAR(p.geometry.mast.pan_joint.z() + p.geometry.mast.head_height, 1.5, 0.05);
+  EXPECT_NEAR(p.geometry.front_hazcam.position.z(), 0.5, 0.05);
+  EXPECT_NEAR(p.geometry.rear_hazcam.position.z(), 0.5, 0.05);
   // Equal static wheel loads need the rocker pivot to split front wheel / bogie pivot 2:1.
-  const RoverGeometry& g = p.geometry;
+  const hwconfig::RoverDescription& g = p.geometry;
   EXPECT_NEAR((g.front_wheel_x - g.rocker_pivot_x), 2 * (g.rocker_pivot_x - g.bogie_pivot_x), 1e-9);
   EXPECT_NEAR(g.bogie_pivot_x, 0.5 * (g.middle_wheel_x + g.rear_wheel_x), 1e-9);
 }
@@ -37,7 +37,7 @@ TEST(RoverModelParams, ValidateRejectsBadValuesWithTheirName) {
   EXPECT_FALSE(p.Validate().ok());
 
   p = RoverModelParams{};
-  p.motors[kSteerRR].kp = std::nan("");
+  p.motors[hw::kSteerRR].kp = std::nan("");
   st = p.Validate();
   EXPECT_NE(st.message().find("steer_rr"), std::string::npos) << st.message();
 
@@ -54,21 +54,12 @@ TEST(RoverModelParams, ValidateRejectsBadValuesWithTheirName) {
   EXPECT_FALSE(p.Validate().ok());
 }
 
-TEST(RoverModelParams, MotorNamesAndSteering) {
-  EXPECT_STREQ(MotorName(kDriveLF), "drive_lf");
-  EXPECT_STREQ(MotorName(kSteerRR), "steer_rr");
-  EXPECT_STREQ(MotorName(kMastTilt), "mast_tilt");
-  EXPECT_STREQ(MotorName(12), "?");
-  EXPECT_EQ(SteeredWheel(kSteerLF), kWheelLF);
-  EXPECT_EQ(SteeredWheel(kSteerLR), kWheelLR);
-  EXPECT_EQ(SteeredWheel(kSteerRF), kWheelRF);
-  EXPECT_EQ(SteeredWheel(kSteerRR), kWheelRR);
-  EXPECT_EQ(SteeredWheel(kDriveLM), -1);
+TEST(RoverModelParams, DefaultMotorsByKind) {
   const auto m = RoverModelParams::DefaultMotors();
   // Drive: 64 counts/motor rev through 1500:1 -> 96000 counts per wheel turn.
-  EXPECT_NEAR(m[kDriveLF].CountsPerRad() * 2 * 3.14159265358979, 96000.0, 1e-3);
-  EXPECT_GT(m[kSteerLF].CountsPerRad(), m[kDriveLF].CountsPerRad());
-  EXPECT_LT(m[kMastTilt].max_angle, m[kMastPan].max_angle);
+  EXPECT_NEAR(m[hw::kDriveLF].CountsPerRad() * 2 * 3.14159265358979, 96000.0, 1e-3);
+  EXPECT_GT(m[hw::kSteerLF].CountsPerRad(), m[hw::kDriveLF].CountsPerRad());
+  EXPECT_LT(m[hw::kMastTilt].max_angle, m[hw::kMastPan].max_angle);
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ double CountsPerRad(const RoverSimulation& sim, int motor) {
 // Commands all six drive motors to roll at `speed` [m/s] of rim speed.
 void DriveAll(RoverSimulation& sim, double speed, double current_limit = 1.0) {
   const double r = sim.params().geometry.wheel_radius;
-  for (int m = kDriveLF; m <= kDriveRR; ++m) {
+  for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) {
     ASSERT_TRUE(sim.SetMotorGoal(m, MotorMode::kVelocity, 0.0, speed / r * CountsPerRad(sim, m),
                                  current_limit)
                     .ok());
@@ -60,7 +60,7 @@ void DriveAll(RoverSimulation& sim, double speed, double current_limit = 1.0) {
 // Mean wheel rim travel [m] from the drive encoders.
 double WheelTravel(const RoverSimulation& sim) {
   double sum = 0.0;
-  for (int m = kDriveLF; m <= kDriveRR; ++m) {
+  for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) {
     sum += sim.Motor(m).position_counts / CountsPerRad(sim, m);
   }
   return sum / 6.0 * sim.params().geometry.wheel_radius;
@@ -107,11 +107,11 @@ TEST(RoverSimulation, RestsOnFlatGroundWithoutDrift) {
   EXPECT_GT(bore.x(), 0.6);
   EXPECT_LT(r1.cameras.hazcam_rear_site.linear().col(0).x(), -0.6);
   // Part poses: wheel frames at the wheel centres, axles along y.
-  const RoverGeometry& g = sim->params().geometry;
-  EXPECT_TRUE(r1.bodies.wheels[kWheelLF].translation().isApprox(r1.wheels[kWheelLF].center_site));
-  EXPECT_NEAR(r1.bodies.wheels[kWheelRR].translation().x(), g.rear_wheel_x, 0.01);
-  EXPECT_NEAR(r1.bodies.wheels[kWheelRR].translation().y(), -g.half_track, 0.01);
-  EXPECT_NEAR(r1.bodies.wheels[kWheelLM].linear().col(1).y(), 1.0, 1e-3);
+  const hwconfig::RoverDescription& g = sim->params().geometry;
+  EXPECT_TRUE(r1.bodies.wheels[hwconfig::kWheelLF].translation().isApprox(r1.wheels[hwconfig::kWheelLF].center_site));
+  EXPECT_NEAR(r1.bodies.wheels[hwconfig::kWheelRR].translation().x(), g.rear_wheel_x, 0.01);
+  EXPECT_NEAR(r1.bodies.wheels[hwconfig::kWheelRR].translation().y(), -g.half_track, 0.01);
+  EXPECT_NEAR(r1.bodies.wheels[hwconfig::kWheelLM].linear().col(1).y(), 1.0, 1e-3);
   EXPECT_NEAR(r1.bodies.bogies[0].translation().z(), g.bogie_pivot_z, 0.01);
 }
 
@@ -147,7 +147,7 @@ TEST(RoverSimulation, StraightDriveOnFlatFirmGroundMatchesOdometry) {
   const double w0 = WheelTravel(*sim);
   DriveAll(*sim, kSpeed);
   ASSERT_TRUE(sim->Advance(20.0).ok());
-  for (int m = kDriveLF; m <= kDriveRR; ++m) {
+  for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) {
     ASSERT_TRUE(sim->SetMotorGoal(m, MotorMode::kOff, 0, 0, 0).ok());
   }
   ASSERT_TRUE(sim->Advance(1.0).ok());
@@ -158,7 +158,7 @@ TEST(RoverSimulation, StraightDriveOnFlatFirmGroundMatchesOdometry) {
   EXPECT_LT(travelled, commanded);  // some slip, never more distance than the wheels turned
   const RoverReadings r = sim->Readings();
   EXPECT_NEAR(r.chassis.pose_site.translation().y(), 0.0, 0.01);  // went straight
-  for (int m = kDriveLF; m <= kDriveRR; ++m) EXPECT_EQ(r.motors[m].faults, kMotorFaultNone);
+  for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) EXPECT_EQ(r.motors[m].faults, kMotorFaultNone);
 }
 
 // Drives uphill on a uniform slope and returns the slip 1 - distance / wheel travel over the
@@ -202,22 +202,22 @@ TEST(RoverSimulation, DrivingIntoAWallStallsTheDriveMotors) {
   for (int k = 0; k < 200 && stalled < 6; ++k) {  // up to 20 s
     ASSERT_TRUE(sim->Advance(0.1).ok());
     stalled = 0;
-    for (int m = kDriveLF; m <= kDriveRR; ++m) {
+    for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) {
       if (sim->Motor(m).faults & kMotorFaultStall) ++stalled;
     }
   }
   EXPECT_EQ(stalled, 6);
   const RoverReadings r = sim->Readings();
   EXPECT_LT(r.chassis.pose_site.translation().x(), 1.05 - 0.625 - 0.1);
-  for (int m = kDriveLF; m <= kDriveRR; ++m) {
+  for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) {
     EXPECT_EQ(r.motors[m].mode, MotorMode::kOff);
     EXPECT_EQ(r.motors[m].faults & (kMotorFaultOverCurrent | kMotorFaultOverTemperature), 0u);
   }
   // Latched: new goals are refused until the faults are cleared.
-  EXPECT_EQ(sim->SetMotorGoal(kDriveLF, MotorMode::kVelocity, 0, 100, 0.2).code(),
+  EXPECT_EQ(sim->SetMotorGoal(hw::kDriveLF, MotorMode::kVelocity, 0, 100, 0.2).code(),
             StatusCode::kFailedPrecondition);
-  ASSERT_TRUE(sim->ClearMotorFaults(kDriveLF).ok());
-  EXPECT_TRUE(sim->SetMotorGoal(kDriveLF, MotorMode::kVelocity, 0, -100, 0.2).ok());
+  ASSERT_TRUE(sim->ClearMotorFaults(hw::kDriveLF).ok());
+  EXPECT_TRUE(sim->SetMotorGoal(hw::kDriveLF, MotorMode::kVelocity, 0, -100, 0.2).ok());
 }
 
 TEST(RoverSimulation, SteersCornerWheelsToCommandedAngles) {
@@ -225,35 +225,35 @@ TEST(RoverSimulation, SteersCornerWheelsToCommandedAngles) {
       MakeSim(MakeTerrain(-3, 6, 4, 0.05, Soil::kFirmSoil, [](double, double) { return 0; }));
   ASSERT_NE(sim, nullptr);
   // Turn-in-place pattern (MER): corner wheels square to the line to the rover centre.
-  const RoverGeometry& g = sim->params().geometry;
+  const hwconfig::RoverDescription& g = sim->params().geometry;
   const double angle = std::atan2(g.front_wheel_x, g.half_track);  // 51 deg
   const double corner_radius = std::hypot(g.front_wheel_x, g.half_track);
   const double goals[4] = {-angle, angle, angle, -angle};  // LF LR RF RR
   for (int i = 0; i < 4; ++i) {
-    const int m = kSteerLF + i;
+    const int m = hw::kSteerLF + i;
     const double cpr = CountsPerRad(*sim, m);
     ASSERT_TRUE(sim->SetMotorGoal(m, MotorMode::kPosition, goals[i] * cpr, 0.2 * cpr, 0.8).ok());
   }
   // The mast pans and tilts too.
-  const double pan_cpr = CountsPerRad(*sim, kMastPan), tilt_cpr = CountsPerRad(*sim, kMastTilt);
+  const double pan_cpr = CountsPerRad(*sim, hw::kMastPan), tilt_cpr = CountsPerRad(*sim, hw::kMastTilt);
   ASSERT_TRUE(
-      sim->SetMotorGoal(kMastPan, MotorMode::kPosition, Deg(90) * pan_cpr, 0.5 * pan_cpr, 0.8)
+      sim->SetMotorGoal(hw::kMastPan, MotorMode::kPosition, Deg(90) * pan_cpr, 0.5 * pan_cpr, 0.8)
           .ok());
   ASSERT_TRUE(
-      sim->SetMotorGoal(kMastTilt, MotorMode::kPosition, Deg(-30) * tilt_cpr, 0.5 * tilt_cpr, 0.8)
+      sim->SetMotorGoal(hw::kMastTilt, MotorMode::kPosition, Deg(-30) * tilt_cpr, 0.5 * tilt_cpr, 0.8)
           .ok());
   ASSERT_TRUE(sim->Advance(5.0).ok());
   const RoverReadings r = sim->Readings();
   for (int i = 0; i < 4; ++i) {
-    const int m = kSteerLF + i;
-    EXPECT_NEAR(r.joint_angle_rad[m], goals[i], Deg(0.5)) << MotorName(m);
+    const int m = hw::kSteerLF + i;
+    EXPECT_NEAR(r.joint_angle_rad[m], goals[i], Deg(0.5)) << hw::MotorName(m);
     EXPECT_NEAR(r.motors[m].position_counts, goals[i] * CountsPerRad(*sim, m),
                 Deg(0.5) * CountsPerRad(*sim, m));
-    EXPECT_TRUE(r.motors[m].goal_reached) << MotorName(m);
+    EXPECT_TRUE(r.motors[m].goal_reached) << hw::MotorName(m);
     EXPECT_EQ(r.motors[m].faults, kMotorFaultNone);
   }
-  EXPECT_NEAR(r.joint_angle_rad[kMastPan], Deg(90), Deg(0.5));
-  EXPECT_NEAR(r.joint_angle_rad[kMastTilt], Deg(-30), Deg(0.5));
+  EXPECT_NEAR(r.joint_angle_rad[hw::kMastPan], Deg(90), Deg(0.5));
+  EXPECT_NEAR(r.joint_angle_rad[hw::kMastTilt], Deg(-30), Deg(0.5));
   // The mast head now looks left (+y) and down.
   const Eigen::Vector3d look = r.cameras.mast_head_site.linear().col(0);
   EXPECT_NEAR(look.y(), std::cos(Deg(30)), 0.02);
@@ -264,9 +264,9 @@ TEST(RoverSimulation, SteersCornerWheelsToCommandedAngles) {
   const double rr = sim->params().geometry.wheel_radius;
   // Left wheels backwards, right wheels forwards: counter-clockwise (positive) yaw; wheel
   // speeds proportional to their distance from the centre.
-  for (int m = kDriveLF; m <= kDriveRR; ++m) {
-    const double dir = m < kDriveRF ? -1.0 : 1.0;
-    const bool middle = m == kDriveLM || m == kDriveRM;
+  for (int m = hw::kDriveLF; m <= hw::kDriveRR; ++m) {
+    const double dir = m < hw::kDriveRF ? -1.0 : 1.0;
+    const bool middle = m == hw::kDriveLM || m == hw::kDriveRM;
     const double v = kSpeed * (middle ? g.half_track / corner_radius : 1.0);
     ASSERT_TRUE(
         sim->SetMotorGoal(m, MotorMode::kVelocity, 0, dir * v / rr * CountsPerRad(*sim, m), 1.0)
@@ -300,7 +300,7 @@ TEST(RoverSimulation, SameInputsGiveTheSameTrajectory) {
   EXPECT_DOUBLE_EQ(a->time(), 0.0);
   EXPECT_NEAR(WheelTravel(*a), 0.0, 1e-3);
   EXPECT_GT((Position(*a) - start).norm(), 0.05);
-  EXPECT_EQ(a->Motor(kDriveLF).mode, MotorMode::kOff);
+  EXPECT_EQ(a->Motor(hw::kDriveLF).mode, MotorMode::kOff);
 }
 
 TEST(RoverSimulation, RejectsBadInput) {
@@ -317,7 +317,7 @@ TEST(RoverSimulation, RejectsBadInput) {
   ASSERT_NE(sim, nullptr);
   EXPECT_EQ(sim->SetMotorGoal(12, MotorMode::kVelocity, 0, 0, 1).code(), StatusCode::kOutOfRange);
   EXPECT_EQ(sim->SetMotorGoal(-1, MotorMode::kVelocity, 0, 0, 1).code(), StatusCode::kOutOfRange);
-  EXPECT_EQ(sim->SetMotorGoal(kSteerLF, MotorMode::kPosition, 1e9, 100, 0.5).code(),
+  EXPECT_EQ(sim->SetMotorGoal(hw::kSteerLF, MotorMode::kPosition, 1e9, 100, 0.5).code(),
             StatusCode::kOutOfRange);
   EXPECT_EQ(sim->Advance(0.0).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(sim->Advance(std::nan("")).code(), StatusCode::kInvalidArgument);

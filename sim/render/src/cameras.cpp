@@ -12,20 +12,15 @@ using geometry::CameraModel;
 
 constexpr int kDefinitionSize = 1024;
 
-// NAVCAM (MER: 45 deg FOV, 1024 x 1024, 20 cm baseline on the mast head).
+// Lenses; the mounts (positions, boresights, baselines) are the rover description's.
+// NAVCAM (MER: 45 deg FOV, 1024 x 1024).
 constexpr double kNavcamFovDeg = 45.0;
-constexpr double kNavcamHalfBaseline = 0.10;
-constexpr double kNavcamForward = 0.05;  // [m] in front of the tilt axis
-constexpr double kNavcamR1 = -0.01;      // mild barrel distortion
+constexpr double kNavcamR1 = -0.01;  // mild barrel distortion
 
-// HAZCAM (MER: 124 deg FOV, 10 cm baseline, ~0.5 m high, 45 deg down). CAHVOR with 120 deg
-// across the width, as deploy/config/cameras.yaml (what ddl-camera attaches to its frames).
+// HAZCAM (MER: 124 deg FOV). CAHVOR with 120 deg across the width, as deploy/config/cameras.yaml
+// (what ddl-camera attaches to its frames).
 constexpr double kHazcamFovDeg = 120.0;
-constexpr double kHazcamHalfBaseline = 0.05;
 constexpr double kHazcamR1 = -0.01;
-const Eigen::Vector3d kFrontHazcam(0.52, 0.0, 0.50);
-const Eigen::Vector3d kRearHazcam(-0.52, 0.0, 0.50);
-constexpr double kHazcamDepressionDeg = 45.0;
 
 double Deg(double d) { return d * std::numbers::pi / 180.0; }
 
@@ -37,27 +32,10 @@ Axes AxesOf(const Eigen::Matrix3d& r) {
   return {r.col(0), -r.col(1), -r.col(2)};
 }
 
-CameraModel MakeNavcam(const Eigen::Vector3d& c) {
+// A CAHVOR camera at optical centre `c` with axes from the pair rotation `r`, focal length
+// `f` [px] and radial term r1, defined at kDefinitionSize.
+CameraModel MakeCamera(const Eigen::Vector3d& c, const Eigen::Matrix3d& r, double f, double r1) {
   const double centre = 0.5 * (kDefinitionSize - 1);
-  const double f = 0.5 * kDefinitionSize / std::tan(Deg(0.5 * kNavcamFovDeg));
-  const Axes ax = AxesOf(Eigen::Matrix3d::Identity());
-  geometry::Cahvor m;
-  m.c = c;
-  m.a = ax.a;
-  m.h = f * ax.h + centre * ax.a;
-  m.v = f * ax.v + centre * ax.a;
-  m.o = ax.a;
-  m.r = Eigen::Vector3d(0.0, kNavcamR1, 0.0);
-  auto model = CameraModel::Create(m, kDefinitionSize, kDefinitionSize);
-  ROVER_DEMAND(model.ok());
-  return *model;
-}
-
-CameraModel MakeHazcam(const Eigen::Vector3d& c, const Eigen::Matrix3d& r) {
-  const double centre = 0.5 * (kDefinitionSize - 1);
-  // CAHVOR radial term: a point at angle theta off O images at f tan(theta) (1 + r1 tan^2).
-  const double t_edge = std::tan(Deg(0.5 * kHazcamFovDeg));
-  const double f = 0.5 * kDefinitionSize / (t_edge * (1.0 + kHazcamR1 * t_edge * t_edge));
   const Axes ax = AxesOf(r);
   geometry::Cahvor m;
   m.c = c;
@@ -65,41 +43,25 @@ CameraModel MakeHazcam(const Eigen::Vector3d& c, const Eigen::Matrix3d& r) {
   m.h = f * ax.h + centre * ax.a;
   m.v = f * ax.v + centre * ax.a;
   m.o = ax.a;
-  m.r = Eigen::Vector3d(0.0, kHazcamR1, 0.0);
+  m.r = Eigen::Vector3d(0.0, r1, 0.0);
   auto model = CameraModel::Create(m, kDefinitionSize, kDefinitionSize);
   ROVER_DEMAND(model.ok());
   return *model;
 }
 
-StereoCameraDefinition HazcamPair(const std::string& name, const Eigen::Vector3d& centre,
-                                  double yaw) {
-  const Eigen::Matrix3d r = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                             Eigen::AngleAxisd(Deg(kHazcamDepressionDeg), Eigen::Vector3d::UnitY()))
-                                .toRotationMatrix();
-  StereoCameraDefinition d{name, CameraMount::kBody,
-                           MakeHazcam(centre + r * Eigen::Vector3d(0, kHazcamHalfBaseline, 0), r),
-                           MakeHazcam(centre + r * Eigen::Vector3d(0, -kHazcamHalfBaseline, 0), r)};
-  return d;
+// The two cameras of a pair on `mount`, the left one at +baseline/2 along the pair's y.
+StereoCameraDefinition Pair(const std::string& name, CameraMount where,
+                            const hwconfig::StereoMount& mount, double f, double r1) {
+  const Eigen::Matrix3d r = mount.Pose().linear();
+  const Eigen::Vector3d half(0, 0.5 * mount.baseline, 0);
+  return {name, where, MakeCamera(mount.position + r * half, r, f, r1),
+          MakeCamera(mount.position + r * -half, r, f, r1)};
 }
 
 }  // namespace
 
-Status MastGeometry::Validate() const {
-  if (!pan_joint.allFinite()) return InvalidArgument("mast.pan_joint: not finite");
-  if (!(std::isfinite(head_height) && head_height >= 0.0 && head_height <= 10.0)) {
-    return InvalidArgument("mast.head_height: " + std::to_string(head_height) +
-                           " is out of range [0, 10] m");
-  }
-  return Status::Ok();
-}
-
-Eigen::Isometry3d MastHeadPose(const MastState& mast, const MastGeometry& geometry) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() = geometry.pan_joint + Eigen::Vector3d(0.0, 0.0, geometry.head_height);
-  t.linear() = (Eigen::AngleAxisd(mast.pan, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(-mast.tilt, Eigen::Vector3d::UnitY()))
-                   .toRotationMatrix();
-  return t;
+Eigen::Isometry3d MastHeadPose(const MastState& mast, const hwconfig::MastDescription& geometry) {
+  return geometry.HeadPose(mast.pan, mast.tilt);
 }
 
 geometry::CameraModel CameraPairSpec::LeftInRover() const {
@@ -109,14 +71,17 @@ geometry::CameraModel CameraPairSpec::RightInRover() const {
   return geometry::Transform(right, rover_from_head);
 }
 
-std::vector<StereoCameraDefinition> DefaultStereoCameras(int image_size) {
+std::vector<StereoCameraDefinition> DefaultStereoCameras(int image_size,
+                                                         const hwconfig::RoverDescription& rover) {
   ROVER_DEMAND(image_size >= 16 && image_size <= 4096);
+  const double navcam_f = 0.5 * kDefinitionSize / std::tan(Deg(0.5 * kNavcamFovDeg));
+  // CAHVOR radial term: a point at angle theta off O images at f tan(theta) (1 + r1 tan^2).
+  const double t_edge = std::tan(Deg(0.5 * kHazcamFovDeg));
+  const double hazcam_f = 0.5 * kDefinitionSize / (t_edge * (1.0 + kHazcamR1 * t_edge * t_edge));
   std::vector<StereoCameraDefinition> cams;
-  cams.push_back({"navcam", CameraMount::kMastHead,
-                  MakeNavcam(Eigen::Vector3d(kNavcamForward, kNavcamHalfBaseline, 0.0)),
-                  MakeNavcam(Eigen::Vector3d(kNavcamForward, -kNavcamHalfBaseline, 0.0))});
-  cams.push_back(HazcamPair("front_hazcam", kFrontHazcam, 0.0));
-  cams.push_back(HazcamPair("rear_hazcam", kRearHazcam, std::numbers::pi));
+  cams.push_back(Pair("navcam", CameraMount::kMastHead, rover.navcam, navcam_f, kNavcamR1));
+  cams.push_back(Pair("front_hazcam", CameraMount::kBody, rover.front_hazcam, hazcam_f, kHazcamR1));
+  cams.push_back(Pair("rear_hazcam", CameraMount::kBody, rover.rear_hazcam, hazcam_f, kHazcamR1));
   if (image_size != kDefinitionSize) {
     const double s = static_cast<double>(image_size) / kDefinitionSize;
     for (auto& c : cams) {
@@ -138,7 +103,8 @@ Result<StereoCameraDefinition> FindStereoCamera(const std::vector<StereoCameraDe
 }
 
 Result<CameraPairSpec> MakeCameraPairSpec(const StereoCameraDefinition& camera,
-                                          const MastState& mast, const MastGeometry& geometry) {
+                                          const MastState& mast,
+                                          const hwconfig::MastDescription& geometry) {
   if (!std::isfinite(mast.pan) || !std::isfinite(mast.tilt)) {
     return InvalidArgument("mast: pan/tilt must be finite");
   }
@@ -155,22 +121,24 @@ Eigen::Isometry3d RoverPoseFromXyYaw(double x, double y, double z, double yaw) {
   return t;
 }
 
-Eigen::Isometry3d RoverPoseOnGround(const HeightField& ground, double x, double y, double yaw) {
-  // Least-squares plane z = z0 + a u + b v over the wheel contact points (u forward, v left).
+Eigen::Isometry3d RoverPoseOnGround(const HeightField& ground, double x, double y, double yaw,
+                                    const hwconfig::RoverDescription& rover) {
+  // Least-squares plane z = z0 + a (u - u_m) + b v over the wheel contact points (u forward,
+  // v left; u_m their mean x). The wheels are mirror-symmetric, so sum v = sum (u - u_m) v = 0.
   const double c = std::cos(yaw), s = std::sin(yaw);
-  double suu = 0, svv = 0, su = 0, sv = 0, sz = 0, suz = 0, svz = 0;
+  const double wheel_x[3] = {rover.front_wheel_x, rover.middle_wheel_x, rover.rear_wheel_x};
+  const double um = (wheel_x[0] + wheel_x[1] + wheel_x[2]) / 3.0;
+  double suu = 0, svv = 0, sz = 0, suz = 0, svz = 0;
   int n = 0;
-  for (double u : {0.625, 0.0, -0.625}) {
-    for (double v : {0.5, -0.5}) {
+  for (double u : wheel_x) {
+    for (double v : {rover.half_track, -rover.half_track}) {
       const double z = ground.Height(x + c * u - s * v, y + s * u + c * v);
-      suu += u * u; svv += v * v; su += u; sv += v; sz += z; suz += u * z; svz += v * z;
+      const double du = u - um;
+      suu += du * du; svv += v * v; sz += z; suz += du * z; svz += v * z;
       ++n;
     }
   }
-  // The sample grid is symmetric (sum u = sum v = sum uv = 0).
-  const double a = suz / suu, b = svz / svv, z0 = sz / n;
-  (void)su;
-  (void)sv;
+  const double a = suz / suu, b = svz / svv, z0 = sz / n - a * um;
   const Eigen::Vector3d fwd(c, s, 0.0), left(-s, c, 0.0);
   const Eigen::Vector3d x_axis = (fwd + a * Eigen::Vector3d::UnitZ()).normalized();
   const Eigen::Vector3d y_tmp = (left + b * Eigen::Vector3d::UnitZ()).normalized();

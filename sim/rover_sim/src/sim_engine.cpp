@@ -2,8 +2,13 @@
 
 #include <cmath>
 
+#include "rover/base/param_binder.hpp"
+
 namespace rover::sim {
 namespace {
+
+// The rover description's keys: the same as the stack's (dl-locomotion, dl-pose).
+constexpr const char* kGeometryPrefix = "geometry.";
 
 MotorMode ToPhysics(hw::MotorMode m) {
   switch (m) {
@@ -48,6 +53,7 @@ void SimEngine::DeclareParams(ParamSet& p) {
   DeclareWorldParams(p);
   DeclareSimSensorParams(p, "sensors");
   DeclareHardwareParams(p, "hardware");
+  rover::DeclareParams<hwconfig::RoverDescription>(p, kGeometryPrefix);
   p.Declare("sim.period_s", 0.01, "[s] simulation step and sim/clock period").Range(0.001, 0.1);
   p.Declare("sim.truth_rate_hz", 50.0, "[Hz] sim/truth rate (simulated time)").Range(1.0, 1000.0);
   p.Declare("sim.seed", 1, "sensor noise seed").Min(0);
@@ -62,18 +68,21 @@ Result<std::unique_ptr<SimEngine>> SimEngine::Create(const ParamSet& p) {
   if (!hw.ok()) return hw.status();
   auto sensors = SimSensorOptionsFromParams(p, "sensors");
   if (!sensors.ok()) return sensors.status();
+  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
+                         ReadParams<hwconfig::RoverDescription>(p, kGeometryPrefix));
   EngineOptions o;
   o.period_s = p.GetDouble("sim.period_s");
   o.truth_rate_hz = p.GetDouble("sim.truth_rate_hz");
   o.seed = static_cast<std::uint64_t>(p.GetInt("sim.seed"));
   o.traversable_height = p.GetDouble("sim.traversable_height");
   sensors->seed = o.seed;
-  return Create(std::move(*world), *hw, *sensors, o);
+  return Create(std::move(*world), *hw, *sensors, o, rover);
 }
 
 Result<std::unique_ptr<SimEngine>> SimEngine::Create(World world, const HardwareConfig& hw,
                                                      const SimSensorOptions& sensors,
-                                                     const EngineOptions& options) {
+                                                     const EngineOptions& options,
+                                                     const hwconfig::RoverDescription& rover) {
   ROVER_RETURN_IF_ERROR(options.Validate());
   ROVER_RETURN_IF_ERROR(hw.Validate());
   std::unique_ptr<SimEngine> e(new SimEngine());
@@ -83,6 +92,7 @@ Result<std::unique_ptr<SimEngine>> SimEngine::Create(World world, const Hardware
   e->sensor_options_ = sensors;
   e->ground_ = std::make_shared<const HeightField>(e->world_.terrain.ground);
   RoverModelParams mp;
+  mp.geometry = rover;
   ApplyHardware(hw, &mp);
   auto physics = RoverSimulation::Create(
       mp, e->ground_, StartPose{e->world_.start_x, e->world_.start_y, e->world_.start_yaw});

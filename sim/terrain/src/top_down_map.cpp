@@ -18,7 +18,7 @@ const cv::Scalar kFirmSoil(88, 128, 184);
 const cv::Scalar kLooseSand(128, 184, 222);
 const cv::Scalar kBedrock(96, 104, 128);
 const cv::Scalar kRed(0, 0, 255);
-const cv::Scalar kOrange(0, 150, 255);
+const cv::Scalar kYellow(0, 230, 255);
 const cv::Scalar kDark(30, 40, 60);
 const cv::Scalar kCyan(255, 255, 0);
 const cv::Scalar kWhite(255, 255, 255);
@@ -74,6 +74,18 @@ Status MapOptions::Validate() const {
   }
   if (!(obstacle_height > 0.0)) {
     return InvalidArgument("map.obstacle_height: " + Num(obstacle_height) + " must be > 0");
+  }
+  for (std::size_t i = 0; i < cell_layers.size(); ++i) {
+    const MapCellLayer& l = cell_layers[i];
+    const std::size_t n = static_cast<std::size_t>(std::max(0, l.width)) *
+                          static_cast<std::size_t>(std::max(0, l.height));
+    if (!(l.resolution > 0) || l.width < 0 || l.height < 0 || l.value.size() != n ||
+        l.known.size() != n || !std::isfinite(l.origin_x) || !std::isfinite(l.origin_y) ||
+        !(l.opacity > 0 && l.opacity <= 1)) {
+      return InvalidArgument("map.cell_layers[" + std::to_string(i) + "] '" + l.label +
+                             "': needs resolution > 0, width x height values and known flags, "
+                             "opacity in (0, 1]");
+    }
   }
   for (std::size_t i = 0; i < polylines.size(); ++i) {
     const MapPolyline& pl = polylines[i];
@@ -146,6 +158,37 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
   Painter p(&img, s, h.max_x(), h.max_y());
   const double font = std::clamp(std::min(width, height) / 1600.0, 0.35, 1.0);
 
+  // Cell layers (a goodness map): grey by value, unknown cells untouched, bounds dashed.
+  for (const MapCellLayer& l : o.cell_layers) {
+    for (int j = 0; j < l.height; ++j) {
+      for (int i = 0; i < l.width; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(l.width) +
+                              static_cast<std::size_t>(i);
+        if (!l.known[k]) continue;
+        const double x0 = l.origin_x + i * l.resolution, y0 = l.origin_y + j * l.resolution;
+        // North up, west left: the cell's (x1, y1) corner is its top-left pixel.
+        const cv::Point a = p.Pi(x0 + l.resolution, y0 + l.resolution), b = p.Pi(x0, y0);
+        const cv::Rect cell = cv::Rect(a, b) & cv::Rect(0, 0, width, height);
+        if (cell.area() <= 0) continue;
+        cv::Mat roi = img(cell);
+        const double v = l.value[k];
+        roi = roi * (1.0 - l.opacity) + cv::Scalar(v, v, v) * l.opacity;
+      }
+    }
+    const double x0 = l.origin_x, y0 = l.origin_y;
+    const double x1 = x0 + l.width * l.resolution, y1 = y0 + l.height * l.resolution;
+    const std::vector<Eigen::Vector2d> edges = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}};
+    for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
+      const Eigen::Vector2d d = edges[e + 1] - edges[e];
+      const int dashes = std::max(2, static_cast<int>(d.norm() * s / 12.0));
+      for (int q = 0; q < dashes; q += 2) {
+        cv::line(img, p.Pi((edges[e] + d * q / dashes).x(), (edges[e] + d * q / dashes).y()),
+                 p.Pi((edges[e] + d * (q + 1) / dashes).x(), (edges[e] + d * (q + 1) / dashes).y()),
+                 kWhite, 1, cv::LINE_AA);
+      }
+    }
+  }
+
   // Keep-out disc.
   const StartParams& st = t.params.start;
   if (o.draw_keep_out && st.keep_out_radius > 0.0) {
@@ -176,7 +219,7 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
         colour = kRed;
         thick = rad_px > 8.0 ? 2 : 1;
       } else if (rock.height > 0.5 * o.obstacle_height) {
-        colour = kOrange;
+        colour = kYellow;
       } else if (rad_px >= 1.5) {
         colour = kDark;
       } else {
@@ -232,7 +275,26 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
   for (const MapPolyline& pl : o.polylines) {
     if (pl.points.empty()) continue;
     const std::vector<cv::Point> poly = p.Poly(pl.points);
-    cv::polylines(img, poly, false, Bgr(pl.color), pl.thickness, cv::LINE_AA);
+    if (pl.dashed) {
+      // Dashes of ~10 px along the whole polyline, gaps as long.
+      double run = 0;
+      for (std::size_t k = 0; k + 1 < poly.size(); ++k) {
+        const cv::Point2d a = poly[k], b = poly[k + 1];
+        const double len = cv::norm(b - a);
+        if (len <= 0) continue;
+        const int pieces = std::max(1, static_cast<int>(len / 2.0));
+        for (int q = 0; q < pieces; ++q) {
+          const cv::Point2d u = a + (b - a) * (static_cast<double>(q) / pieces);
+          const cv::Point2d v = a + (b - a) * (static_cast<double>(q + 1) / pieces);
+          if (std::fmod(run, 20.0) < 10.0) {
+            cv::line(img, u, v, Bgr(pl.color), pl.thickness, cv::LINE_AA);
+          }
+          run += len / pieces;
+        }
+      }
+    } else {
+      cv::polylines(img, poly, false, Bgr(pl.color), pl.thickness, cv::LINE_AA);
+    }
     if (pl.mark_ends) {
       const int r = 2 + 2 * pl.thickness;
       cv::circle(img, poly.front(), r, Bgr(pl.color), std::max(1, pl.thickness / 2 + 1),
@@ -273,21 +335,34 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
       std::string text;
       cv::Scalar colour;
       bool swatch;
+      int line = 0;  // > 0: a line of this width, not a box (paths)
     };
     std::vector<Entry> entries = {
         {"firm soil", kFirmSoil, true},
         {"loose sand", kLooseSand, true},
         {"bedrock", kBedrock, true},
         {"rock > " + Num(o.obstacle_height) + " m high", kRed, false},
-        {"rock > " + Num(0.5 * o.obstacle_height) + " m high", kOrange, false},
+        {"rock > " + Num(0.5 * o.obstacle_height) + " m high", kYellow, false},
         {"smaller rock", kDark, false},
     };
     bool any_target = false;
     for (const Rock& r : t.rocks) any_target = any_target || r.science_target;
     if (any_target) entries.push_back({"science target", kCyan, false});
-    for (const MapPolyline& pl : o.polylines) {
-      if (!pl.label.empty()) entries.push_back({pl.label, Bgr(pl.color), false});
+    if (o.draw_keep_out && st.keep_out_radius > 0.0) {
+      entries.push_back({"rock-free start disc (+ = start)", kWhite, false});
     }
+    for (const MapCellLayer& l : o.cell_layers) {
+      if (!l.label.empty()) entries.push_back({l.label, cv::Scalar(128, 128, 128), true});
+    }
+    bool any_ends = false;
+    for (const MapPolyline& pl : o.polylines) {
+      if (!pl.label.empty()) {
+        entries.push_back({pl.label + (pl.dashed ? " (dashed)" : ""), Bgr(pl.color), false,
+                           pl.thickness});
+      }
+      any_ends = any_ends || (pl.mark_ends && !pl.label.empty());
+    }
+    if (any_ends) entries.push_back({"path: o start, [] end", kBlack, false});
     const int line = static_cast<int>(26 * font) + 4;
     int text_w = 0;
     for (const Entry& e : entries) {
@@ -307,6 +382,10 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
         const cv::Rect sw(org + cv::Point(0, line / 6), cv::Size(line - 8, line - 8));
         if (e.swatch) {
           cv::rectangle(img, sw, e.colour, cv::FILLED);
+        } else if (e.line > 0) {
+          const int mid = sw.y + sw.height / 2;
+          cv::line(img, {sw.x, mid}, {sw.x + sw.width, mid}, e.colour, std::max(2, e.line),
+                   cv::LINE_AA);
         } else {
           cv::rectangle(img, sw, e.colour, 2);
         }

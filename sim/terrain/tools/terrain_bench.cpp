@@ -1,4 +1,4 @@
-// sim_terrain-bench: time to generate a 50 m x 50 m terrain at 4 cm (1251 x 1251 cells) per
+// sim-terrain-bench: time to generate a 50 m x 50 m terrain at 4 cm (1251 x 1251 cells) per
 // rock preset, against a baseline measured in the same run on the same grid size: one 5x5
 // Gaussian blur of a float image (OpenCV), i.e. "how many cheap image passes is a terrain".
 #include <algorithm>

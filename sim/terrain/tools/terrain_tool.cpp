@@ -1,8 +1,8 @@
-// sim_terrain-tool: generates a terrain from a scenario YAML (keys terrain.*, lander.*,
+// rover-terrain: generates a terrain from a scenario YAML (keys terrain.*, lander.*,
 // science_targets) and writes its top-down map as a PNG, with a summary on stdout.
 //
-//   sim_terrain-tool --params scenario.yaml --set terrain.rocks.preset=vl2 --out map.png
-//   sim_terrain-tool --help-params
+//   rover-terrain --params scenario.yaml --set terrain.rocks.preset=vl2 --out map.png
+//   rover-terrain --help-params
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>

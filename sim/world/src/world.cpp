@@ -2,13 +2,15 @@
 
 #include <numbers>
 
+#include "rover/sim/terrain/features.hpp"
 #include "rover/sim/terrain/lander.hpp"
 #include "rover/sim/terrain/terrain_params.hpp"
 
 namespace rover::sim {
 
 const std::vector<std::string>& WorldSections() {
-  static const std::vector<std::string> k = {"terrain", "lander", "science_targets", "rover"};
+  static const std::vector<std::string> k = {"terrain", "terrain_features", "lander",
+                                             "science_targets", "rover"};
   return k;
 }
 
@@ -16,6 +18,7 @@ void DeclareWorldParams(ParamSet& params) {
   DeclareTerrainParams(params, "terrain");
   DeclareLanderParams(params, "lander");
   DeclareScienceTargets(params, "science_targets");
+  DeclareTerrainFeatures(params, "terrain_features");
   params.Declare("rover.start.x", 0.0, "[m] rover start, site frame").Range(-1e4, 1e4);
   params.Declare("rover.start.y", 0.0, "[m] rover start, site frame").Range(-1e4, 1e4);
   params.Declare("rover.start.yaw_deg", 0.0, "[deg] initial heading, from +x towards +y")
@@ -37,6 +40,7 @@ Result<World> BuildWorld(const ParamSet& params) {
   tp->start.y = params.GetDouble("rover.start.y");
   auto terrain = GenerateTerrain(*tp);
   if (!terrain.ok()) return terrain.status();
+  ROVER_RETURN_IF_ERROR(PlaceScenarioFeatures(&*terrain, params, "terrain_features"));
   ROVER_RETURN_IF_ERROR(PlaceScenarioObjects(&*terrain, params, "lander", "science_targets"));
   World w;
   w.start_x = tp->start.x;

@@ -21,14 +21,21 @@ std::string BinDir() {
   return BinaryDir() + "/bin";
 }
 
+void UseLoopbackDds() { setenv("CYCLONEDDS_URI", dds::LoopbackConfigUri(SourceDir()).c_str(), 1); }
+
 dds::DomainLease IsolatedDomain() {
-  setenv("CYCLONEDDS_URI", dds::LoopbackConfigUri(SourceDir()).c_str(), 1);
+  UseLoopbackDds();
   auto lease = dds::DomainLease::AcquireFree();
   if (!lease.ok()) {
     ADD_FAILURE() << lease.status().message();
     return {};
   }
   return std::move(*lease);
+}
+
+Result<dds::Participant> JoinDomain(int domain) {
+  UseLoopbackDds();
+  return dds::Participant::Create(domain);
 }
 
 std::string MakeTempDir(const std::string& prefix) {

@@ -46,7 +46,8 @@ cv::Mat RenderGoodnessMap(const nav_core::GoodnessMap& map, const RenderOptions&
       if (!v.known()) continue;
       const cv::Vec3b c = GoodnessColour(v.goodness, (v.flags & nav_core::kCellBorder) != 0);
       const int row = (map.height - 1 - j) * ppc;
-      cv::rectangle(img, cv::Rect(i * ppc, row, ppc, ppc), cv::Scalar(c[0], c[1], c[2]), cv::FILLED);
+      cv::rectangle(img, cv::Rect(i * ppc, row, ppc, ppc), cv::Scalar(c[0], c[1], c[2]),
+                    cv::FILLED);
     }
   }
   return img;
@@ -58,8 +59,8 @@ void DrawRocks(const nav_core::GoodnessMap& map, const std::vector<sim::Rock>& r
     const std::vector<Eigen::Vector2d> outline = sim::RockOutline(rock, 16);
     std::vector<cv::Point> pts;
     for (const auto& p : outline) pts.push_back(Pixel(map, o, p.x(), p.y()));
-    const cv::Scalar colour = rock.height >= o.hazard_height ? cv::Scalar(0, 0, 160)
-                                                             : cv::Scalar(235, 235, 235);
+    const cv::Scalar colour =
+        rock.height >= o.hazard_height ? cv::Scalar(0, 0, 160) : cv::Scalar(235, 235, 235);
     cv::polylines(*image, pts, true, colour, 1, cv::LINE_AA);
   }
 }
@@ -68,7 +69,8 @@ void DrawRover(const nav_core::GoodnessMap& map, const Eigen::Isometry3d& site_f
                const RenderOptions& o, cv::Mat* image) {
   const Pose2 pose = PlanarPose(site_from_rover);
   const cv::Point c = Pixel(map, o, pose.x, pose.y);
-  const cv::Point h = Pixel(map, o, pose.x + 0.6 * std::cos(pose.yaw), pose.y + 0.6 * std::sin(pose.yaw));
+  const cv::Point h =
+      Pixel(map, o, pose.x + 0.6 * std::cos(pose.yaw), pose.y + 0.6 * std::sin(pose.yaw));
   cv::circle(*image, c, o.pixels_per_cell, cv::Scalar(200, 80, 0), cv::FILLED, cv::LINE_AA);
   cv::line(*image, c, h, cv::Scalar(200, 80, 0), 2, cv::LINE_AA);
 }
@@ -87,9 +89,17 @@ void DrawArcs(const nav_core::GoodnessMap& map, const Eigen::Isometry3d& site_fr
       pts.push_back(Pixel(map, o, pose.x + c * p.x() - s * p.y(), pose.y + s * p.x() + c * p.y()));
     }
     if (e.hazard[k].goodness == 0 && !chosen) continue;  // forbidden: not drawn
-    cv::polylines(*image, pts, false, chosen ? cv::Scalar(255, 255, 255) : cv::Scalar(140, 140, 140),
-                  chosen ? 3 : 1, cv::LINE_AA);
+    cv::polylines(*image, pts, false,
+                  chosen ? cv::Scalar(255, 255, 255) : cv::Scalar(140, 140, 140), chosen ? 3 : 1,
+                  cv::LINE_AA);
   }
+}
+
+void DrawPath(const nav_core::GoodnessMap& map, const std::vector<Eigen::Vector2d>& path,
+              const RenderOptions& o, cv::Mat* image) {
+  std::vector<cv::Point> pts;
+  for (const auto& p : path) pts.push_back(Pixel(map, o, p.x(), p.y()));
+  if (pts.size() >= 2) cv::polylines(*image, pts, false, cv::Scalar(255, 160, 60), 2, cv::LINE_AA);
 }
 
 Status WritePng(const cv::Mat& image, const std::string& path) {

@@ -35,6 +35,9 @@ void DrawRover(const nav_core::GoodnessMap& map, const Eigen::Isometry3d& site_f
 void DrawArcs(const nav_core::GoodnessMap& map, const Eigen::Isometry3d& site_from_rover,
               const nav_core::ArcEvaluation& evaluation, const RenderOptions& options,
               cv::Mat* image);
+/// The rover's path so far (site x, y), as a thin blue line.
+void DrawPath(const nav_core::GoodnessMap& map, const std::vector<Eigen::Vector2d>& path,
+              const RenderOptions& options, cv::Mat* image);
 /// Writes a PNG. Errors: Unavailable naming the path.
 Status WritePng(const cv::Mat& image, const std::string& path);
 

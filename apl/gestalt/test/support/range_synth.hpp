@@ -33,13 +33,13 @@ namespace rover::apl::gestalt::testing {
 struct PinholeCamera {
   int width = 256;
   int height = 256;
-  double hfov = 120.0 * std::numbers::pi / 180.0;             ///< [rad] horizontal
+  double hfov = 120.0 * std::numbers::pi / 180.0;               ///< [rad] horizontal
   Eigen::Vector3d position = Eigen::Vector3d(0.52, 0.0, 0.50);  ///< [m] rover frame
-  double depression = 45.0 * std::numbers::pi / 180.0;        ///< [rad] below horizontal
-  double yaw = 0.0;          ///< [rad] about rover z
-  double min_range = 0.3;    ///< [m] along the ray
-  double max_range = 6.0;    ///< [m]
-  double noise_at_1m = 0.0;  ///< [m] range 1-sigma at 1 m
+  double depression = 45.0 * std::numbers::pi / 180.0;          ///< [rad] below horizontal
+  double yaw = 0.0;                                             ///< [rad] about rover z
+  double min_range = 0.3;                                       ///< [m] along the ray
+  double max_range = 6.0;                                       ///< [m]
+  double noise_at_1m = 0.0;                                     ///< [m] range 1-sigma at 1 m
   std::uint64_t seed = 1;
 
   double focal_px() const;

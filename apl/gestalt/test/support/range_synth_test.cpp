@@ -31,7 +31,7 @@ TEST(RangeSynth, CentrePixelLooksDownAtFortyFiveDegrees) {
       worst_z = std::max(worst_z, std::abs(scan.point(u, v).z()));
     }
   }
-  EXPECT_GT(valid, 30000);    // the ground below the horizon out to max_range
+  EXPECT_GT(valid, 30000);      // the ground below the horizon out to max_range
   EXPECT_LT(valid, 256 * 256);  // the rows above the far range edge are empty
   EXPECT_LT(worst_z, 2e-3);
 }

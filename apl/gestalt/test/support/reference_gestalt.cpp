@@ -183,11 +183,11 @@ ReferenceResult ReferenceAssess(const GestaltOptions& o, const nav_core::RangeSc
           if (!goodness.Contains(i + di, j + dj) || goodness.at(i + di, j + dj) < 0) border = true;
         }
       }
-      map.goodness[k] = Byte(border ? std::min<int>(goodness.at(i, j), o.border_goodness)
-                                    : goodness.at(i, j));
+      map.goodness[k] =
+          Byte(border ? std::min<int>(goodness.at(i, j), o.border_goodness) : goodness.at(i, j));
       map.certainty[k] = Byte(border ? o.border_certainty : 255);
-      map.flags[k] = static_cast<std::uint8_t>(nav_core::kCellKnown |
-                                               (border ? nav_core::kCellBorder : 0));
+      map.flags[k] =
+          static_cast<std::uint8_t>(nav_core::kCellKnown | (border ? nav_core::kCellBorder : 0));
     }
   }
   return out;
@@ -217,7 +217,8 @@ nav_core::ArcEvaluation ReferenceEvaluate(const GestaltOptions& o, const nav_cor
   const double bearing = std::atan2(gy, gx);
   const bool backup = std::abs(k_goal) > o.max_curvature;
   e.mode = backup ? nav_core::GoalMode::kBackUp : nav_core::GoalMode::kNormal;
-  const double length = std::clamp(e.distance_to_goal, o.plan_min_dist + o.cell_size, o.plan_max_dist);
+  const double length =
+      std::clamp(e.distance_to_goal, o.plan_min_dist + o.cell_size, o.plan_max_dist);
   for (std::size_t k = 0; k < nc; ++k) {
     nav_core::Candidate& cand = e.candidates[k];
     // Hazard: test every cell of the map.
@@ -257,15 +258,18 @@ nav_core::ArcEvaluation ReferenceEvaluate(const GestaltOptions& o, const nav_cor
       if (backup) {
         centre = cand.direction < 0 ? -std::copysign(o.max_curvature, gy)
                                     : std::clamp(k_goal, -o.max_curvature, o.max_curvature);
-        peak = o.backup_vote_scale * (cand.direction < 0 ? o.waypoint_peak_toward : o.waypoint_peak_away);
+        peak = o.backup_vote_scale *
+               (cand.direction < 0 ? o.waypoint_peak_toward : o.waypoint_peak_away);
       } else {
-        peak = cand.direction == (gx >= 0.0 ? 1 : -1) ? o.waypoint_peak_toward : o.waypoint_peak_away;
+        peak =
+            cand.direction == (gx >= 0.0 ? 1 : -1) ? o.waypoint_peak_toward : o.waypoint_peak_away;
       }
       expo = (cand.curvature - centre) * (cand.curvature - centre) / (2.0 * o.arc_vote_variance);
     } else {
       peak = backup ? o.waypoint_peak_toward : o.waypoint_peak_away;
-      double da = std::fmod(cand.turn_angle - bearing + 3.0 * std::numbers::pi, 2.0 * std::numbers::pi) -
-                  std::numbers::pi;
+      double da =
+          std::fmod(cand.turn_angle - bearing + 3.0 * std::numbers::pi, 2.0 * std::numbers::pi) -
+          std::numbers::pi;
       expo = da * da / (2.0 * o.turn_vote_variance);
     }
     e.waypoint[k] = {static_cast<int>(std::lround(peak * std::exp(-expo))), o.waypoint_certainty};

@@ -63,7 +63,8 @@ TEST_P(ReferenceAgreement, AssessmentAndVotesMatch) {
   // Votes toward a goal ahead and one behind, over the fast map.
   auto evaluator = ArcEvaluator::Create(o);
   ASSERT_TRUE(evaluator.ok());
-  for (const Eigen::Vector2d& goal_rover : {Eigen::Vector2d(6.0, 1.0), Eigen::Vector2d(-2.0, -3.0)}) {
+  for (const Eigen::Vector2d& goal_rover :
+       {Eigen::Vector2d(6.0, 1.0), Eigen::Vector2d(-2.0, -3.0)}) {
     nav_core::ArcRequest req;
     req.site_from_rover = pose;
     req.goal = (pose * Eigen::Vector3d(goal_rover.x(), goal_rover.y(), 0.0)).head<2>();

@@ -21,10 +21,10 @@
 namespace rover::apl::gestalt::testing {
 
 struct HazardQuality {
-  int hazards_seen = 0;      ///< truth hazards with a known centre cell
-  int hazards_marked = 0;    ///< ... whose centre cell is an obstacle
-  int obstacle_cells = 0;    ///< known obstacle cells within the radius
-  int false_obstacles = 0;   ///< ... with no truth reason
+  int hazards_seen = 0;     ///< truth hazards with a known centre cell
+  int hazards_marked = 0;   ///< ... whose centre cell is an obstacle
+  int obstacle_cells = 0;   ///< known obstacle cells within the radius
+  int false_obstacles = 0;  ///< ... with no truth reason
   double recall() const { return hazards_seen > 0 ? double(hazards_marked) / hazards_seen : 1.0; }
   double false_rate() const {
     return obstacle_cells > 0 ? double(false_obstacles) / obstacle_cells : 0.0;

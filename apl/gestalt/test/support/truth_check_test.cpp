@@ -3,27 +3,17 @@
 #include <gtest/gtest.h>
 
 #include "range_synth.hpp"
+#include "test_maps.hpp"
 
 namespace rover::apl::gestalt::testing {
 namespace {
 
-nav_core::GoodnessMap Known(int g) {
-  nav_core::GoodnessMap m;
-  m.resolution = 0.2;
-  m.width = m.height = 50;
-  m.origin_x = m.origin_y = -5.0;
-  m.goodness.assign(m.cell_count(), static_cast<std::uint8_t>(g));
-  m.certainty.assign(m.cell_count(), 255);
-  m.flags.assign(m.cell_count(), nav_core::kCellKnown);
-  return m;
-}
-
 TEST(TruthCheck, CountsMarkedHazardsAndUnexplainedObstacles) {
   sim::Terrain world = FlatWorld(14.0);
-  AddRock(&world, 2.0, 1.0, 0.6, 0.3);   // a hazard
+  AddRock(&world, 2.0, 1.0, 0.6, 0.3);    // a hazard
   AddRock(&world, -3.0, 0.0, 0.3, 0.12);  // small: excuses obstacles next to it, is no hazard
   const GestaltOptions o;
-  nav_core::GoodnessMap m = Known(255);
+  nav_core::GoodnessMap m = KnownMap(255);
   const Eigen::Vector2d rover(0.0, 0.0);
   HazardQuality q = CompareWithTruth(m, world, rover, o);
   EXPECT_EQ(q.hazards_seen, 1);

@@ -136,5 +136,12 @@ class ParamSet {
 
 /// Levenshtein distance, for "did you mean" hints.
 std::size_t EditDistance(const std::string& a, const std::string& b);
+/// " (did you mean 'x'?)" for the entry of `known` within edit distance 2 of `key`, else "".
+std::string DidYouMean(const std::string& key, const std::vector<std::string>& known);
+
+/// " (did you mean 'k'?)" naming the entry of `known` closest to `key` (edit distance at most 2;
+/// the first of equals), or "" when none is that close. The one form of the hint in messages
+/// about unknown keys, names and choices.
+std::string DidYouMean(const std::string& key, const std::vector<std::string>& known);
 
 }  // namespace rover

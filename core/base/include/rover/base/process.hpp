@@ -2,13 +2,15 @@
 /// @file
 /// Child processes for the supervisor (roverctl) and for multi-process tests: spawn in a new
 /// process group with per-process log files, poll, signal the whole group, stop with a grace
-/// period. No DDS.
+/// period; find and stop a process tree by a marker in its environment, even after its parent
+/// died. No DDS.
 
 #include <sys/types.h>
 
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rover/base/status.hpp"
@@ -70,5 +72,39 @@ bool ProcessGroupAlive(pid_t pgid);
 bool ProcessAlive(pid_t pid);
 /// Resolves `program` through PATH; empty if not found or not executable.
 std::string FindInPath(const std::string& program, const std::string& path_env);
+
+/// How ProcessesWithEnvironment compares an environment entry's value.
+enum class EnvMatch { kExact, kPrefix };
+
+/// Live processes (zombies excluded), other than the caller, whose environment holds `key` with
+/// the value `value` (kExact) or a value starting with `value` (kPrefix). Reads /proc/<pid>/environ,
+/// which is readable for processes of the same user: the only ones the caller may signal anyway.
+/// The environment a process started with is inherited by everything it starts, so a marker set
+/// by a supervisor finds a whole process tree, whichever process group or parent it ended up
+/// with (unless a process cleared its environment or exec'd a set-uid program).
+std::vector<pid_t> ProcessesWithEnvironment(std::string_view key, std::string_view value,
+                                            EnvMatch match = EnvMatch::kExact);
+
+/// The process group of `pid`, or -1 if it does not exist.
+pid_t ProcessGroupOf(pid_t pid);
+/// When `pid` started, in clock ticks after boot (/proc/<pid>/stat field 22), or -1 if it does
+/// not exist: with the pid, it names one process even after the pid is reused.
+long long ProcessStartTicks(pid_t pid);
+
+/// What StopMarkedProcesses found and did.
+struct MarkedStop {
+  std::vector<pid_t> found;   ///< alive when it started (marked, or in a group with one that is)
+  std::vector<pid_t> killed;  ///< still alive after the grace period: SIGKILLed
+  bool all_gone = true;       ///< nothing of them was left when it returned
+};
+
+/// Stops a process tree that may have lost its supervisor: every process whose environment
+/// matches (see ProcessesWithEnvironment) and every process in a process group with one of them
+/// (so a child that cleared its environment but stayed in its group goes too; a group with no
+/// marked process is never signalled, so a re-used group id is safe). SIGTERM to each group and
+/// process, up to `grace` for them to end, then SIGKILL to what is left; waits up to 5 s more
+/// for them to disappear. Never signals the caller or its process group.
+MarkedStop StopMarkedProcesses(std::string_view key, std::string_view value, EnvMatch match,
+                               Duration grace);
 
 }  // namespace rover

@@ -34,6 +34,7 @@
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/hw_bus.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover {
 
@@ -84,8 +85,9 @@ struct PotSpec {
   std::array<double, hw::kNumPots> offset_counts{2048.0, 2048.0, 2048.0, 2048.0};  ///< at 0 rad
   /// [counts/rad]; negative for a pot mounted mirrored.
   std::array<double, hw::kNumPots> gain_counts_per_rad{690.0, -690.0, 690.0, -690.0};
-  double rocker_limit = 0.6;  ///< [rad] mechanical stops at +-limit
-  double bogie_limit = 0.8;   ///< [rad]
+  /// [rad] mechanical stops at +-limit (defaults: the rover description's).
+  double rocker_limit = hwconfig::RoverDescription().rocker_limit;
+  double bogie_limit = hwconfig::RoverDescription().bogie_limit;  ///< [rad]
   double noise_counts = 1.5;  ///< [counts] 1-sigma
   /// [rad] |left + right| rocker angle above this is inconsistent with the differential.
   double differential_tolerance = 0.03;

@@ -7,7 +7,7 @@
 /// factories return Result<>. Samples with sequences: a writer borrows the caller's memory
 /// (see BorrowSequence); a reader hands out Sample<T>, which owns what DDS allocated.
 ///
-/// Every Writer<T>::Write and Reader<T>::Take passes through the fault seam (seam.hpp).
+/// Every Writer<T>::Write and Reader<T>::Take / TakeEach passes through the fault seam (seam.hpp).
 
 #include <dds/dds.h>
 
@@ -82,6 +82,19 @@ Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
                                  const dds_topic_descriptor_t* desc, QosProfile profile);
 Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
                                     bool writer);
+/// Deep-copies a sample of `type` into `dst` (zeroed), which then owns its buffers
+/// (type_layout.hpp); dds_sample_free(dst, type, DDS_FREE_CONTENTS) frees them.
+void CopySample(void* dst, const void* src, const dds_topic_descriptor_t* type);
+/// A SampleSink that calls a callable.
+template <class F>
+class SinkOf final : public SampleSink {
+ public:
+  explicit SinkOf(F& f) : f_(f) {}
+  void Deliver(const void* sample, const dds_sample_info_t& info) override { f_(sample, info); }
+
+ private:
+  F& f_;
+};
 }  // namespace internal
 
 /// A sample taken from a reader, owning its contents (sequences, unbounded strings).
@@ -128,7 +141,12 @@ class Sample {
   const dds_sample_info_t* info_;
 };
 
-/// A typed writer on one topic.
+/// Types whose samples start with a rover::Header (every topic type of the catalog).
+template <class T>
+concept HasHeader = requires(T t) { t.header.seq; };
+
+/// A typed writer on one topic. It numbers the samples it writes (header.seq = 1, 2, 3, ... per
+/// writer, as the IDL says) unless the caller set a non-zero header.seq itself.
 template <class T>
 class Writer {
  public:
@@ -152,14 +170,23 @@ class Writer {
     return out;
   }
 
-  /// Publishes one sample (through the fault seam, if any).
+  /// Publishes one sample (numbered, then through the fault seam, if any: a dropped sample
+  /// leaves a gap in header.seq).
   Status Write(const T& sample) {
     ROVER_DEMAND(writer_.valid());
-    dds_return_t rc = seam_ ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
-                            : dds_write(writer_.handle(), &sample);
-    if (rc < 0) return DdsError("write on " + name_, rc);
-    return Status::Ok();
+    if constexpr (HasHeader<T>) {
+      if (sample.header.seq == 0) {
+        T numbered = sample;  // shallow: sequences stay borrowed from the caller
+        if (++seq_ == 0) seq_ = 1;
+        numbered.header.seq = seq_;
+        return WriteAsIs(numbered);
+      }
+    }
+    return WriteAsIs(sample);
   }
+
+  /// The header.seq of the last sample this writer numbered (0 before the first).
+  std::uint32_t last_seq() const { return seq_; }
 
   /// Readers currently matched.
   int MatchedReaders() const {
@@ -172,16 +199,28 @@ class Writer {
   QosProfile profile() const { return profile_; }
   dds_entity_t handle() const { return writer_.handle(); }
   bool valid() const { return writer_.valid(); }
+  /// The fault seam samples pass through (nullptr when injection is off).
+  TopicSeam* seam() const { return seam_.get(); }
 
  private:
   Entity writer_;
   Entity topic_;
+  Status WriteAsIs(const T& sample) {
+    dds_return_t rc = seam_ && !seam_->Idle()
+                          ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
+                          : dds_write(writer_.handle(), &sample);
+    if (rc < 0) return DdsError("write on " + name_, rc);
+    return Status::Ok();
+  }
+
   std::string name_;
   QosProfile profile_ = QosProfile::kState;
   std::shared_ptr<TopicSeam> seam_;
+  std::uint32_t seq_ = 0;
 };
 
-/// A typed reader on one topic.
+/// A typed reader on one topic. Under a "fresh only" profile (commands, qos.hpp) it drops
+/// samples written before the reader was created.
 template <class T>
 class Reader {
  public:
@@ -200,11 +239,13 @@ class Reader {
     out.name_ = topic;
     out.profile_ = *prof;
     out.seam_ = SeamFor(topic, Direction::kRead);
+    if (DescribeQos(*prof).fresh_only) out.fresh_after_ = dds_time();
     return out;
   }
 
   /// Calls `fn(const Sample<T>&)` for every sample with valid data, oldest first, on memory
-  /// DDS lends (no copy); passes each through the fault seam. Returns the number delivered.
+  /// DDS lends (no copy); passes each through the fault seam, and first hands out the samples
+  /// the seam held back that are now due. Returns the number delivered.
   template <class F>
   std::size_t TakeEach(F&& fn) {
     ROVER_DEMAND(reader_.valid());
@@ -212,15 +253,23 @@ class Reader {
     void* ptrs[kBatch];
     dds_sample_info_t infos[kBatch];
     std::size_t delivered = 0;
+    auto deliver = [&](const void* p, const dds_sample_info_t& info) {
+      ++delivered;
+      fn(Sample<T>(static_cast<const T*>(p), &info));
+    };
+    internal::SinkOf<decltype(deliver)> sink(deliver);
+    if (seam_ && seam_->Holding()) seam_->ReleaseDue(sink);
     while (true) {
       ptrs[0] = nullptr;  // ask DDS to lend its buffers
       const dds_return_t n = dds_take(reader_.handle(), ptrs, infos, kBatch, kBatch);
       if (n <= 0) break;
       for (dds_return_t i = 0; i < n; ++i) {
-        if (!infos[i].valid_data) continue;
-        if (seam_ && !seam_->OnRead(ptrs[i], TopicType<T>::Descriptor())) continue;
-        ++delivered;
-        fn(Sample<T>(static_cast<const T*>(ptrs[i]), &infos[i]));
+        if (!infos[i].valid_data || Stale(infos[i])) continue;
+        if (seam_ && !seam_->Idle()) {
+          seam_->OnRead(ptrs[i], infos[i], TopicType<T>::Descriptor(), sink);
+        } else {
+          deliver(ptrs[i], infos[i]);
+        }
       }
       dds_return_loan(reader_.handle(), ptrs, n);
       if (static_cast<std::size_t>(n) < kBatch) break;
@@ -229,24 +278,44 @@ class Reader {
   }
 
   /// Takes up to `max` samples with valid data, oldest first, as owned copies (through the fault
-  /// seam, if any). Buffers are pooled: only samples actually taken cost an allocation.
+  /// seam, if any, after the held-back samples that are due). Buffers are pooled: only samples
+  /// actually taken cost an allocation.
   std::vector<OwnedSample<T>> Take(std::size_t max = 32) {
     ROVER_DEMAND(reader_.valid() && max > 0);
     if (pool_.size() < max) pool_.resize(max);
     std::vector<void*> ptrs(max);
     std::vector<dds_sample_info_t> infos(max);
+    std::vector<OwnedSample<T>> out;
+    std::size_t current = max;  // the pool slot being passed through the seam
+    auto deliver = [&](const void* p, const dds_sample_info_t& info) {
+      if (current < max && p == &pool_[current].data()) {  // the taken sample itself
+        pool_[current].mutable_info() = info;
+        out.push_back(std::move(pool_[current]));
+        pool_[current] = OwnedSample<T>();
+        current = max;
+      } else {  // a copy the seam made: deep-copy it into a sample of our own
+        OwnedSample<T> copy;
+        internal::CopySample(&copy.data(), p, TopicType<T>::Descriptor());
+        copy.mutable_info() = info;
+        out.push_back(std::move(copy));
+      }
+    };
+    internal::SinkOf<decltype(deliver)> sink(deliver);
+    if (seam_ && seam_->Holding()) seam_->ReleaseDue(sink);
     for (std::size_t i = 0; i < max; ++i) ptrs[i] = &pool_[i].data();
     const dds_return_t n = dds_take(reader_.handle(), ptrs.data(), infos.data(), max,
                                     static_cast<uint32_t>(max));
-    std::vector<OwnedSample<T>> out;
     if (n <= 0) return out;
-    out.reserve(static_cast<std::size_t>(n));
+    out.reserve(out.size() + static_cast<std::size_t>(n));
     for (dds_return_t i = 0; i < n; ++i) {
-      if (!infos[i].valid_data) continue;
-      if (seam_ && !seam_->OnRead(&pool_[i].data(), TopicType<T>::Descriptor())) continue;
-      pool_[i].mutable_info() = infos[i];
-      out.push_back(std::move(pool_[i]));
-      pool_[i] = OwnedSample<T>();
+      if (!infos[i].valid_data || Stale(infos[i])) continue;
+      current = static_cast<std::size_t>(i);
+      if (seam_ && !seam_->Idle()) {
+        seam_->OnRead(&pool_[current].data(), infos[i], TopicType<T>::Descriptor(), sink);
+      } else {
+        deliver(&pool_[current].data(), infos[i]);
+      }
+      current = max;
     }
     return out;
   }
@@ -262,14 +331,23 @@ class Reader {
   QosProfile profile() const { return profile_; }
   dds_entity_t handle() const { return reader_.handle(); }
   bool valid() const { return reader_.valid(); }
+  /// The fault seam samples pass through (nullptr when injection is off).
+  TopicSeam* seam() const { return seam_.get(); }
 
  private:
   Entity reader_;
   Entity topic_;
+  // Written before this reader existed (fresh-only profiles): an old command from a writer's
+  // history, not one for us.
+  bool Stale(const dds_sample_info_t& info) const {
+    return fresh_after_ != 0 && info.source_timestamp < fresh_after_;
+  }
+
   std::string name_;
   QosProfile profile_ = QosProfile::kState;
   std::shared_ptr<TopicSeam> seam_;
   std::vector<OwnedSample<T>> pool_;
+  dds_time_t fresh_after_ = 0;  // 0: every sample counts
 };
 
 /// A condition the program triggers itself (e.g. to wake a WaitSet for shutdown).

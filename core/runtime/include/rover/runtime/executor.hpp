@@ -7,6 +7,10 @@
 /// real-time factor. Wall timers are only for liveness (the heartbeat). Callbacks run on the
 /// thread that calls Spin(); an exception thrown by a callback is logged and counted, and the
 /// loop goes on (a bad sample must never take a service down).
+///
+/// Fault seams (seam.hpp): on every pass the executor runs the process's seam pump and drains
+/// the readers whose seams hold samples that are now due, and it does not sleep past the
+/// pump's next due time (under a simulated clock it still wakes at least every 200 ms).
 
 #include <atomic>
 #include <functional>
@@ -44,7 +48,8 @@ class Executor {
     auto drain = [&reader, cb = std::move(callback), this]() {
       reader.TakeEach([&](const dds::Sample<T>& s) { Invoke(reader.topic_name(), [&] { cb(s); }); });
     };
-    return AddSubscription(reader.handle(), reader.topic_name(), std::move(drain), always);
+    return AddSubscription(reader.handle(), reader.topic_name(), std::move(drain), always,
+                           reader.seam());
   }
 
   /// Active: every subscription and timer runs. Inactive: only `always` ones.
@@ -88,12 +93,16 @@ class Executor {
     std::string topic;
     std::function<void()> drain;
     bool always;
+    dds::TopicSeam* seam;  // the reader's fault seam (held-back samples), or nullptr
     bool attached = false;
   };
 
   Executor(const Clock& clock, dds::WaitSet ws, dds::GuardCondition guard);
   Status AddSubscription(dds_entity_t handle, const std::string& topic,
-                         std::function<void()> drain, bool always);
+                         std::function<void()> drain, bool always, dds::TopicSeam* seam);
+  // The fault seams' deferred work: writes delayed samples, drains readers whose seams hold
+  // samples that are due now.
+  void RunSeams();
   void Invoke(const std::string& what, const std::function<void()>& fn);
   void RunDueTimers();
   Time TimerNow(const Timer& t) const;

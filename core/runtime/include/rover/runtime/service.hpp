@@ -18,9 +18,17 @@
 ///   --clock wall|sim [ROVER_CLOCK]      run clock: wall time, or sim/clock from the simulator
 ///   --params FILE ... [ROVER_PARAMS]    YAML parameter files (ROVER_PARAMS is ':'-separated)
 ///   --set key=value ...                 overrides, applied after the files
-///   --validate                          load and validate parameters, then exit (no DDS)
+///   --faults FILE [ROVER_FAULTS]         faults to inject from the start (docs/faults.md)
+///   --validate                          load and validate parameters and faults, then exit
+///                                       (no DDS)
 ///   --help-params / --print-params      list declared / effective parameters
 /// Exit codes: 0 clean stop, 1 runtime failure, 2 bad configuration.
+///
+/// Fault injection: every service installs the fault engine (fault_control.hpp) before it
+/// creates any reader or writer, so faults can be added at run time over sys/fault_control.
+/// ROVER_FAULTS_EPOCH_NS (run-clock ns) is what start_s of the faults counts from (default:
+/// run clock zero under sim/clock, the service's start under wall time);
+/// ROVER_FAULT_INJECTION=off leaves the seam out entirely.
 
 #include <functional>
 #include <map>
@@ -33,6 +41,7 @@
 #include "rover/base/status.hpp"
 #include "rover/runtime/dds.hpp"
 #include "rover/runtime/executor.hpp"
+#include "rover/runtime/fault_control.hpp"
 
 namespace rover {
 
@@ -46,7 +55,14 @@ struct ServiceOptions {
   std::vector<std::string> param_files;  ///< YAML files, applied in order
   std::vector<std::string> overrides;    ///< key=value, applied after the files
   double heartbeat_period_s = 1.0;       ///< wall seconds between heartbeats
+  bool fault_injection = true;           ///< install the fault seam (ROVER_FAULT_INJECTION)
+  std::string faults_file;               ///< initial faults (ROVER_FAULTS / --faults)
+  std::vector<faults::FaultSpec> faults; ///< initial faults, parsed (LoadFaults fills it)
+  std::optional<std::int64_t> fault_epoch_ns;  ///< ROVER_FAULTS_EPOCH_NS
 };
+
+/// Parses options.faults_file into options.faults (nothing when the name is empty).
+Status LoadFaults(ServiceOptions* options);
 
 /// Checks the options themselves (clock name, domain range, heartbeat period).
 Status ValidateOptions(const ServiceOptions& options);
@@ -84,7 +100,8 @@ class ServiceContext {
     return executor_->Subscribe<T>(*holder, std::move(callback), always);
   }
 
-  /// Stamps a header from the run clock with a per-frame-id sequence number.
+  /// Stamps a header: the run clock's time and `frame_id`; header.seq is set to 0, so that the
+  /// writer that publishes the sample numbers it (per writer, dds::Writer).
   void Stamp(rover_Header& header, std::string_view frame_id);
 
   /// The service's own health, reported in every heartbeat.
@@ -93,6 +110,8 @@ class ServiceContext {
   LifecycleState lifecycle_state() const { return state_; }
   /// Sends a heartbeat now.
   void PublishHeartbeat();
+  /// The fault agent (nullptr when injection is off).
+  faults::FaultAgent* faults() { return faults_.get(); }
 
  private:
   ServiceContext() = default;
@@ -101,6 +120,8 @@ class ServiceContext {
   dds::Participant participant_;
   std::unique_ptr<Clock> clock_;
   ManualClock* sim_clock_ = nullptr;  // == clock_ when simulated
+  // Before every reader and writer (and destroyed after the executor that serves its reader).
+  std::unique_ptr<faults::FaultAgent> faults_;
   std::vector<std::shared_ptr<void>> readers_;
   std::unique_ptr<dds::Reader<rover_sim_Clock>> clock_reader_;
   std::unique_ptr<Executor> executor_;
@@ -116,7 +137,6 @@ class ServiceContext {
   rover_SensorHealth health_ = rover_HEALTH_OK;
   std::string health_message_;
   std::uint64_t heartbeat_count_ = 0;
-  std::map<std::string, std::uint32_t, std::less<>> seq_;
 };
 
 /// Base class of every service. Override OnConfigure at least.

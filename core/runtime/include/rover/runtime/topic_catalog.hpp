@@ -5,6 +5,8 @@
 /// docs/topics.md lists the same table with publishers, subscribers and rates (a test keeps the
 /// two in step).
 
+#include <dds/dds.h>
+
 #include <optional>
 #include <string>
 #include <string_view>
@@ -24,5 +26,7 @@ struct TopicInfo {
 const std::vector<TopicInfo>& TopicCatalog();
 /// The catalog entry for `name`, if any.
 std::optional<TopicInfo> FindTopic(std::string_view name);
+/// The descriptor of an @topic type by its idlc C name ("rover_dl_PoseEstimate"), or nullptr.
+const dds_topic_descriptor_t* DescriptorForType(std::string_view type_name);
 
 }  // namespace rover::dds

@@ -8,7 +8,10 @@
 /// condition service_started | service_healthy | service_completed_successfully), restart
 /// (no | always | on-failure[:N] | unless-stopped), stop_grace_period; image, build, network_mode,
 /// working_dir, volumes, container_name and x-* keys are accepted (working_dir is honoured, the
-/// others only matter in containers). Project settings live under the top-level `x-rover` key:
+/// others only matter in containers). A service's own `x-rover: {ready: RULE}` says when it counts
+/// as ready (ReadyRule). `environment` may not set what roverctl sets for every service of the set
+/// (ROVER_DOMAIN, ROVER_CLOCK, ROVER_SIM_*, CYCLONEDDS_URI, ...: ReservedEnvironment). Project
+/// settings live under the top-level `x-rover` key:
 ///
 ///   x-rover:
 ///     project: smoke             # name (default: file name up to the first '.')
@@ -19,6 +22,8 @@
 ///     qos: {dl/pose: stream}     # per-topic QoS profile overrides
 ///     sim: {...}                 # simulator settings, passed to the simulator as ROVER_SIM_*
 ///     faults: [...]              # fault injection (list of maps; see docs/faults.md)
+///     record: {path, topics, exclude, size_cap_mb, compression}   # MCAP recording of the set
+///                                # while it is up (or true/false; rover/recording/record_options.hpp)
 ///
 /// Every error names the file, line and key: "deploy/x.yaml:12: services.loco: unknown key
 /// 'comand' (did you mean 'command'?)".
@@ -29,6 +34,7 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/recording/record_options.hpp"
 
 namespace rover::deploy {
 
@@ -44,6 +50,25 @@ struct Dependency {
 enum class RestartPolicy { kNo, kAlways, kOnFailure, kUnlessStopped };
 const char* RestartPolicyName(RestartPolicy p);
 
+/// When a running service counts as ready (`roverctl up --wait`, `ps`, a scenario run):
+///   healthy    its heartbeat on sys/health is from this process, fresh, lifecycle ACTIVE and
+///              health OK (the default for rover services);
+///   active     the same, whatever the health says;
+///   started    the process is running (the default for other commands, which send no heartbeat);
+///   completed  it has exited with code 0 (a one-shot job).
+/// A service that exited with code 0 counts as ready under every rule.
+enum class ReadyRule { kHealthy, kActive, kStarted, kCompleted };
+const char* ReadyRuleName(ReadyRule r);
+
+/// The environment variables roverctl sets for every service (see ServiceEnvironment), each with
+/// where the set chooses it; an `environment:` entry may not override them. A key ending in '*'
+/// is a prefix.
+struct ReservedVariable {
+  const char* key;
+  const char* what;
+};
+const std::vector<ReservedVariable>& ReservedEnvironment();
+
 struct ServiceSpec {
   std::string name;
   int line = 0;          ///< line of the service's key
@@ -55,6 +80,7 @@ struct ServiceSpec {
   int max_restarts = -1;  ///< on-failure:N; -1 = unlimited
   double stop_grace_s = 10.0;
   std::string working_dir;
+  std::optional<ReadyRule> ready;  ///< x-rover.ready; unset: by kind of command (ReadyRule)
 };
 
 struct FaultSpec {
@@ -71,6 +97,9 @@ struct RoverSettings {
   std::map<std::string, std::string> qos;  ///< topic -> profile name (validated)
   std::map<std::string, std::string> sim;  ///< flattened simulator settings
   std::vector<FaultSpec> faults;
+  /// x-rover.record; nullopt (or enabled = false) records nothing. A relative path is taken
+  /// from the directory roverctl runs in; no path: <state>/<project>/recording.mcap.
+  std::optional<recording::RecordOptions> record;
 };
 
 struct ComposeProject {

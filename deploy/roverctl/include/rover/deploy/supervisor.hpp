@@ -8,8 +8,19 @@
 /// sys/health says ACTIVE; service_completed_successfully: exited 0). If any service fails to
 /// start or exits non-zero during start-up, everything already started is stopped and the error
 /// names the compose file, line and service. Afterwards crashed services are restarted per their
-/// restart policy with exponential back-off. Stop() sends SIGTERM to each process group in
-/// reverse start order, then SIGKILL after the grace period: no process is left behind.
+/// restart policy with exponential back-off.
+///
+/// Readiness: "up" means every process runs; "ready" means every service is ready by its rule
+/// (ReadyRule in compose.hpp; by default a rover service's heartbeat says ACTIVE and health OK,
+/// so an estimator still levelling is not ready). Poll() keeps it current; ps and the state file
+/// show it, `roverctl up --wait` and a scenario run wait for it.
+///
+/// Process trees: every service runs in its own process group, and its environment carries
+/// ROVER_SET_ID=<set id>/<service>, which everything it starts inherits. Stop() sends SIGTERM to
+/// each process group in reverse start order, then SIGKILL after the grace period, then stops
+/// whatever still carries the service's ROVER_SET_ID (a grandchild that left the group). The
+/// state file records the set id and the process groups, so `roverctl down` can do the same
+/// when the supervisor itself is gone (StopMarkedProcesses in rover/base/process.hpp).
 
 #include <atomic>
 #include <map>
@@ -36,11 +47,22 @@ struct SupervisorOptions {
   const std::atomic<bool>* abort = nullptr;      ///< set (e.g. by SIGINT) to abandon Start()
 };
 
-/// The environment a service runs with on `domain` (PATH, CYCLONEDDS_URI, ROVER_* variables,
-/// then the compose file's own `environment`, which has the last word).
+/// The environment a service runs with on `domain`: PATH, CYCLONEDDS_URI and the ROVER_*
+/// variables roverctl sets (ReservedEnvironment in compose.hpp; ROVER_SET_ID=<set_id>/<service>
+/// when `set_id` is given), options.extra_env, then the compose file's own `environment` (which
+/// the compose parser keeps off the reserved variables).
 std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& project,
                                                       const ServiceSpec& service,
-                                                      const SupervisorOptions& options, int domain);
+                                                      const SupervisorOptions& options, int domain,
+                                                      const std::string& set_id = "");
+
+/// The environment variable that marks every process of a set (value "<set id>/<service>").
+inline constexpr const char* kSetIdVariable = "ROVER_SET_ID";
+
+/// True if the service's command is a rover executable (in options.bin_dir): one that takes
+/// --validate and sends heartbeats.
+bool IsRoverService(const ComposeProject& project, const ServiceSpec& service,
+                    const SupervisorOptions& options);
 
 /// Checks that every command exists and runs `<command> --validate` for rover services (those
 /// in options.bin_dir), so bad parameters are reported before anything starts. Needs no DDS.
@@ -58,7 +80,30 @@ struct ServiceStatus {
   std::int64_t started_wall_ns = 0;
   std::int64_t last_heartbeat_wall_ns = 0;
   std::string lifecycle;            ///< from the last heartbeat
+  std::string health;               ///< from the last heartbeat: ok, degraded, failed, stale
+  std::string message;              ///< the last heartbeat's message ("" when healthy)
   std::string log_path;
+  ReadyRule ready_rule = ReadyRule::kHealthy;
+  bool ready = false;
+  std::string waiting_for;          ///< why it is not ready ("" when it is)
+};
+
+/// Whether one service is ready by its rule at wall time `now_wall_ns` (see ReadyRule); a
+/// heartbeat older than `heartbeat_timeout_s` does not count. `reason` says why not, e.g.
+/// "health degraded: levelling: waiting for stationary ddl/imu samples". No DDS, no processes.
+struct Readiness {
+  bool ready = false;
+  std::string reason;
+};
+Readiness ServiceReadiness(const ServiceStatus& s, std::int64_t now_wall_ns,
+                           double heartbeat_timeout_s);
+
+/// The whole set: ready when every service is; `not_ready` holds "service: reason".
+struct SetReadiness {
+  bool ready = false;
+  std::vector<std::string> not_ready;
+  /// "a: reason; b: reason".
+  std::string Summary() const;
 };
 
 class Supervisor {
@@ -77,7 +122,15 @@ class Supervisor {
   int domain() const { return lease_.domain(); }
   const ComposeProject& project() const { return project_; }
   const std::string& state_dir() const { return options_.state_dir; }
+  /// "<project>.<pid>.<random>": the value every process of the set carries in ROVER_SET_ID
+  /// (followed by "/<service>").
+  const std::string& set_id() const { return set_id_; }
   std::vector<ServiceStatus> Snapshot() const;
+  /// Readiness as of the last Poll() (or Start()).
+  const SetReadiness& readiness() const { return readiness_; }
+  /// Wall seconds from the start of Start() to the first Poll() that found the set ready; < 0
+  /// while it never was.
+  double ready_after_s() const { return ready_after_s_; }
   /// Writes state.json atomically; `phase` is "starting", "up", "stopping", "stopped" or "failed".
   void WriteState(const std::string& phase) const;
 
@@ -96,6 +149,9 @@ class Supervisor {
   Status Spawn(Child& c);
   Status WaitForDependencies(const ServiceSpec& s, std::int64_t deadline_mono_ns);
   void ReadHeartbeats();
+  void UpdateReadiness();
+  // Stops whatever of the service's process tree is still alive (it carries its ROVER_SET_ID).
+  void StopLeftovers(const Child& c, Duration grace);
   std::string LastLogLine(const Child& c) const;
   Status StartupError(const Child& c, const std::string& what) const;
 
@@ -107,6 +163,11 @@ class Supervisor {
   dds::Participant participant_;
   std::unique_ptr<dds::Reader<rover_sys_Heartbeat>> heartbeats_;
   std::string phase_ = "starting";
+  std::string set_id_;
+  std::int64_t started_wall_ns_ = 0;  // when Start() began
+  std::int64_t started_mono_ns_ = 0;
+  SetReadiness readiness_;
+  double ready_after_s_ = -1;
 };
 
 /// Resolves the default state root: $ROVER_STATE_DIR or /tmp/rover-<uid>.

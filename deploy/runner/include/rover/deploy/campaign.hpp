@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct CampaignOptions {
   std::string dds_config_uri;
   bool tty = false;                      ///< draw a progress bar (stderr is a terminal)
   const std::atomic<bool>* abort = nullptr;
+  /// Runs one seed; RunScenario unless set (tests run the campaign without processes).
+  std::function<Result<RunResult>(const Scenario&, std::uint32_t seed, const RunOptions&)> run_one;
 };
 
 struct CampaignResult {
@@ -33,11 +36,14 @@ struct CampaignResult {
   CampaignSummary summary;
   bool interrupted = false;
   std::vector<std::string> errors;       ///< runs that could not be made at all
+  std::vector<MissingRun> missing;       ///< seeds without a result (interrupted, errors)
   bool all_passed() const;
 };
 
-/// Checks the output folder: it may not exist, be empty, or be an earlier campaign folder.
-Status CheckOutputFolder(const std::string& dir);
+/// Checks the output folder: it may not exist, be empty, or be an earlier campaign folder of the
+/// same scenario (`scenario`; "" accepts any): a folder holds one scenario's runs, so that a
+/// report never mixes two.
+Status CheckOutputFolder(const std::string& dir, const std::string& scenario = "");
 
 Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptions& options);
 

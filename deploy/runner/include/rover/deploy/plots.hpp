@@ -1,8 +1,11 @@
 #pragma once
 /// @file
 /// Plots a person would rather look at than read, written into each run folder:
-///  - `map.png`: top-down terrain map with rocks, the planned path (blue), the driven path from
-///    truth (green) and the stack's estimated path (orange);
+///  - `map.png`: top-down terrain map with rocks, the driven path from truth (green, widest,
+///    drawn first), the odometry-only path (purple), the stack's estimated path (orange,
+///    narrower), the chosen arcs of a mobility run (pink, 1 m of each from where it was chosen)
+///    and the planned path (blue, dashed, on top), over the run's last goodness map (grey from
+///    black = obstacle to white = perfect; unknown cells show the terrain; bounds dashed);
 ///  - `estimate_error.png`: horizontal position error [m] and heading error [deg] of the pose
 ///    estimate against truth over simulated time.
 
@@ -12,12 +15,16 @@
 
 #include "rover/base/status.hpp"
 #include "rover/deploy/run_report.hpp"
+#include "rover/sim/terrain/top_down_map.hpp"
 
 namespace rover::sim {
 struct Terrain;
 }
 
 namespace rover::deploy {
+
+/// The goodness map as a map layer: known cells (flag bit 0) grey by goodness.
+sim::MapCellLayer GoodnessLayer(const GoodnessGrid& grid);
 
 Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
                      const std::vector<Eigen::Vector2d>& planned, const std::string& path);

@@ -25,6 +25,49 @@ struct StepResult {
   double sim_start_s = 0, sim_end_s = 0;
 };
 
+/// The last apl/goodness_map of a run (GESTALT's 8-bit cells), for the judge and the map plot.
+/// Cell (i, j) covers x in [origin_x + i r, origin_x + (i+1) r), y likewise; index j * width + i.
+struct GoodnessGrid {
+  double origin_x = 0, origin_y = 0;  ///< [m] site frame
+  double resolution = 0.2;            ///< [m]
+  int width = 0, height = 0;          ///< cells
+  std::uint8_t unknown_goodness = 0;
+  std::vector<std::uint8_t> goodness;  ///< 0 = obstacle, 255 = perfect
+  std::vector<std::uint8_t> flags;     ///< bit 0 known, bit 1 border of unknown, bit 2 FOV edge
+  bool Known(int i, int j) const;
+  /// Index of the cell holding site point (x, y); -1 outside the grid.
+  int CellAt(double x, double y) const;
+};
+
+/// One decision of arc voting (apl/arc_votes): where the rover was and what it chose.
+struct ChosenArc {
+  double x = 0, y = 0, yaw = 0;  ///< [m], [rad] pose the votes were computed from
+  bool point_turn = false;
+  double curvature = 0;   ///< [1/m] arcs
+  int direction = 1;      ///< arcs: +1 forward, -1 backward
+  double turn_angle = 0;  ///< [rad] point turns
+};
+
+/// The mobility manager's verdict on the run's command (mobility tasks only).
+struct MobilityOutcome {
+  std::string task;         ///< "autonav", "goto_waypoint", "guarded", "guarded_arc"
+  std::string mode;         ///< the IDL mode ("autonav_visodom", ...)
+  std::string expect;       ///< what the scenario expects ("reached", "NOPATH", ...)
+  std::string outcome;      ///< what happened: "reached", a fault code, or "none" (no verdict)
+  std::string state;        ///< "succeeded", "failed", "rejected", "interrupted"
+  std::string fault;        ///< fault code name, "NONE" when there was none
+  std::string fault_class;  ///< "none", "goal error", "motion error"
+  std::string message;
+  double distance_to_goal = -1;  ///< [m] as the service reported it
+  std::uint32_t steps = 0, images = 0;
+  double sim_start_s = 0, sim_end_s = 0;  ///< [s] command sent, terminal status heard
+  /// Not in result.json (map.png shows them): the last goodness map and every decision.
+  std::optional<GoodnessGrid> last_map;
+  std::vector<ChosenArc> arcs;
+  /// The command's keep-out zones (site frame [m]), for the judge; not in result.json.
+  std::vector<std::vector<Eigen::Vector2d>> keep_out;
+};
+
 struct RunResult {
   std::string scenario;
   std::uint32_t seed = 0;
@@ -37,6 +80,7 @@ struct RunResult {
   double sim_time_s = 0;           ///< simulated seconds run
   double wall_time_s = 0;          ///< wall seconds of the whole run
   double startup_s = 0;            ///< wall seconds to bring the service set up
+  double ready_s = 0;              ///< wall seconds from starting the set to every service ready
   double teardown_s = 0;           ///< wall seconds to stop it
   std::vector<sim::ErrorSample> estimate_error;
   std::vector<sim::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
@@ -52,6 +96,8 @@ struct RunResult {
   std::vector<std::array<double, 3>> truth_track;     ///< t, x, y
   std::vector<std::array<double, 3>> estimate_track;  ///< t, x, y
   std::vector<std::array<double, 3>> odometry_only_track;  ///< t, x, y (dl/pose_odometry)
+  /// Set by the mobility tasks (autonav, goto_waypoint, guarded, guarded_arc).
+  std::optional<MobilityOutcome> mobility;
 };
 
 nlohmann::json ToJson(const RunResult& r);
@@ -80,11 +126,44 @@ nlohmann::json ToJson(const CampaignSummary& s);
 /// JUnit XML: one <testsuite> per scenario, one <testcase> per run, <failure> for failed runs.
 std::string ToJunitXml(const std::vector<RunResult>& runs, const std::string& suite_name);
 
-/// The human-readable table: one line per run, then the statistics.
-std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s);
+/// A seed of a campaign without a result.json: under way when the campaign stopped (its run
+/// folder exists) or never started.
+struct MissingRun {
+  std::uint32_t seed = 0;
+  bool started = false;
+};
+
+/// The seeds of a campaign of `scenario` in `dir` that none of `runs` covers.
+std::vector<MissingRun> MissingRuns(const std::string& dir, const std::string& scenario,
+                                    const std::vector<std::uint32_t>& seeds,
+                                    const std::vector<RunResult>& runs);
+
+/// The human-readable table: one line per run, the pass count ("x: 3/4 passed (75%)", then
+/// "; 2 of 6 seeds have no result" and one line per missing seed), the results left out of the
+/// report (`ignored`, one line each), then the statistics.
+std::string FormatSummaryTable(const std::vector<RunResult>& runs, const CampaignSummary& s,
+                               const std::vector<MissingRun>& missing = {},
+                               const std::vector<std::string>& ignored = {});
 
 /// Reads every `*/result.json` under a run folder (for `roverctl report`).
 Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
+
+/// A campaign folder read back (campaign.json names its scenario and seeds): its runs, their
+/// summary (with the campaign's wall time from summary.json, 0 if that is missing) and the
+/// table `roverctl run` printed. Only results of the campaign's scenario and seeds count; others
+/// (a folder mixed by hand, or older runs of seeds the last campaign did not run) are listed in
+/// `ignored`, and the campaign's seeds without a result in `missing`.
+struct CampaignReport {
+  std::vector<RunResult> runs;
+  CampaignSummary summary;
+  std::vector<MissingRun> missing;
+  std::vector<std::string> ignored;  ///< "<folder> (why)"
+  std::string table;
+  /// At least one run, every seed has a result, and every run passed (`roverctl report` exits
+  /// 0 only then).
+  bool all_passed = false;
+};
+Result<CampaignReport> LoadCampaignReport(const std::string& dir);
 /// True if `dir` looks like a campaign folder written by `roverctl run` (has campaign.json).
 bool IsRunFolder(const std::string& dir);
 

@@ -1,17 +1,22 @@
 #pragma once
 /// @file
-/// Runs one scenario end to end for one seed (`roverctl run` runs many, in parallel):
+/// Runs one scenario end to end for one seed (`roverctl run` runs many, in parallel). The run is
+/// made of four pieces with their own headers under rover/deploy/runner/:
 ///
-///  1. makes the run folder `<out>/<scenario>-seed<N>/` (result.json, map.png,
-///     estimate_error.png, logs/<service>.log, params/);
-///  2. starts the scenario's service set with the simulator's sections of the scenario
-///     (terrain, lander, science targets, start pose, speed, seed) on a leased DDS domain, run
-///     clock = sim/clock, everything validated first;
-///  3. executes the task over topics as an operator would (directed: one dl/drive_command per
-///     step, waiting for its terminal dl/drive_status), while recording sim/truth and dl/pose;
-///  4. stops at the end of the task, at the time budget (simulated), at the wall budget (a hung
-///     run), when a service crashes, or when `abort` is set; nothing is left running;
-///  5. scores the run with the judge and writes the outputs.
+///  - launching (service_set.hpp): the run folder `<out>/<scenario>-seed<N>/` (result.json,
+///    map.png, estimate_error.png, logs/<service>.log, params/), the world, the service set with
+///    the simulator's sections of the scenario on a leased DDS domain (run clock = sim/clock),
+///    everything validated first, and the operator's participant;
+///  - recording (recorder.hpp, run_loop.hpp): sim/truth, dl/pose and dl/pose_odometry into the
+///    judge and the tracks, and the one wait primitive, which stops at the time budget
+///    (simulated), at the wall budget (a hung run), when a service crashes, or when `abort` is
+///    set;
+///  - the task (task.hpp, tasks/): what the scenario asks, executed over topics as an operator
+///    would (directed: one dl/drive_command per step, waiting for its terminal dl/drive_status),
+///    chosen by `task.type` from the task registry;
+///  - judging (judging.hpp): the judge's verdict and the outputs.
+///
+/// Nothing is left running when a run ends.
 
 #include <atomic>
 #include <functional>
@@ -36,9 +41,13 @@ struct RunOptions {
 /// simulator's own parameter declarations, reporting the scenario file's lines.
 Status ValidateSimulatorSections(const std::string& text, const std::string& file);
 
-/// Everything RunScenario does before starting a process, for one seed: builds the world, checks
-/// the service set and runs every service's parameter validation. An error here means no run of
-/// the campaign could start; nothing is left behind but the run folder's params/.
+/// Loads a scenario file and validates all of it: its own keys, the task section (with the task
+/// registered for its type) and the simulator's sections.
+Result<Scenario> LoadScenario(const std::string& path);
+
+/// Everything RunScenario does before starting a process, for one seed: makes the task, builds
+/// the world, checks the service set and runs every service's parameter validation. An error
+/// here means no run of the campaign could start; nothing is left behind.
 Status PreflightScenario(const Scenario& scenario, std::uint32_t seed, const RunOptions& options);
 
 /// Runs one seed. A failed run is a RunResult with pass == false; an error Status means the run

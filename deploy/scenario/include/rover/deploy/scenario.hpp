@@ -11,15 +11,9 @@
 ///   sim: {real_time_factor: 0, time_budget_s: 120, wall_budget_s: 300}
 ///   rover: {start: {x: 0, y: 0, yaw_deg: 0}}
 ///   terrain: {...}  lander: {...}  science_targets: [...]   # for the simulator (see sim/)
-///   task:
-///     type: directed                     # directed | waypoint | autonav | long_traverse |
-///                                        # lander_return | science_target
-///     steps:                             # directed: drive primitives, in order
-///       - {primitive: straight, distance: 5}
-///       - {primitive: turn_in_place, angle_deg: 90}
-///       - {primitive: arc, curvature: 0.5, distance: 3}
-///       - {primitive: straight, distance: 9, timeout_s: 20, expect: timeout}
-///     goal: {x: 20, y: 5, tolerance: 1}  # waypoint-like tasks
+///   task:                              # what the rover is to do; `type` picks the task and
+///     type: directed                     # the task parses the rest of the section itself
+///     steps: [...]                       # (deploy/runner: task registry; docs/scenarios.md)
 ///   faults: []                           # fault injection (filled by the fault issue)
 ///   criteria:
 ///     target: {x: 5, y: 0, tolerance: 0.5}
@@ -30,9 +24,13 @@
 ///     max_estimate_error_percent: 2      # of distance driven
 ///     min_distance: 4                    # [m]
 ///   params: {dl-pose: {key: value}}      # per-service parameter overrides
+///   record: {topics: [...], exclude: [...], size_cap_mb: 500, compression: zstd}
+///                                        # the run's run.mcap: on by default; `record:
+///                                        # false` turns it off (rover/recording/record_options.hpp)
 ///
 /// Errors are one line naming file, line and key. Sections meant for the simulator (terrain,
-/// lander, science_targets) are validated by a callback, so they too report their lines.
+/// lander, science_targets) and the task section are validated by callbacks (the simulator's
+/// parameter declarations, the runner's task registry), so they too report their lines.
 
 #include <functional>
 #include <map>
@@ -41,38 +39,22 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/recording/record_options.hpp"
 #include "rover/sim/judge/judge.hpp"
 
 namespace rover::deploy {
 
-enum class TaskType { kDirected, kWaypoint, kAutonav, kLongTraverse, kLanderReturn, kScienceTarget };
-const char* TaskTypeName(TaskType t);
-
-enum class Primitive { kStraight, kArc, kTurnInPlace, kSteer, kStop };
-const char* PrimitiveName(Primitive p);
-
-struct DriveStep {
-  Primitive primitive = Primitive::kStraight;
-  double distance = 0;   ///< [m]
-  double curvature = 0;  ///< [1/m]
-  double angle = 0;      ///< [rad]
-  double speed = 0;      ///< [m/s], 0 = default
-  double timeout_s = 0;  ///< [s] the command's own time-out; 0 = the drive service's default
-  double stop_after_s = 0;  ///< [s] send STOP this long (simulated) after the step starts; 0 = never
-  /// The termination this step must end with ("nominal" unless a test wants a fault: "tilt",
-  /// "suspension", "motor_stall", "motor_current", "motor_fault", "timeout", "stop_command",
-  /// "rejected_busy", "rejected_invalid", "stale_sensor").
-  std::string expect = "nominal";
-  int line = 0;
+/// Where the scenario's `task:` section is. Its keys belong to the task named by `type`: the
+/// runner's task registry parses and validates them (deploy/runner/.../task.hpp).
+struct TaskSection {
+  std::string type;   ///< task.type as written
+  int line = 0;       ///< line of the section
+  int type_line = 0;  ///< line of task.type
 };
 
-struct TaskSpec {
-  TaskType type = TaskType::kDirected;
-  std::vector<DriveStep> steps;
-  std::optional<Eigen::Vector2d> goal;
-  double goal_tolerance = 1.0;
-  int line = 0;
-};
+/// What a scenario run records when the scenario says nothing: every topic, zstd, no cap, into
+/// run.mcap.
+recording::RecordOptions DefaultRunRecording();
 
 struct Scenario {
   std::string file;               ///< path as given
@@ -91,25 +73,35 @@ struct Scenario {
   double time_budget_s = 300;     ///< [s] simulated
   double wall_budget_s = 600;     ///< [s] wall-clock safety net
   double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]
-  TaskSpec task;
+  TaskSection task;
   std::vector<std::map<std::string, std::string>> faults;
   sim::JudgeCriteria criteria;
   /// service -> flattened key -> YAML scalar text
   std::map<std::string, std::map<std::string, std::string>> params;
+  /// The run's recording: every catalog topic into <run folder>/run.mcap unless the
+  /// scenario's `record` says otherwise (a relative path is inside the run folder).
+  recording::RecordOptions record = DefaultRunRecording();
   std::string text;               ///< the file's text (to hand sections to the simulator)
 };
 
 /// Validates the simulator's sections (terrain, lander, science_targets) of a scenario text;
 /// returns the first error with the file's line.
 using SimSectionValidator = std::function<Status(const std::string& text, const std::string& file)>;
+/// Validates the task section of a parsed scenario (its type and its own keys); returns the first
+/// error with the file's line.
+using TaskValidator = std::function<Status(const Scenario& scenario)>;
 
 /// The top-level keys that belong to the simulator.
 const std::vector<std::string>& SimulatorSections();
 
+/// Parses and validates a scenario. Without `validate_task` only the task section's `type` is
+/// checked to be there; without `validate_sim` the simulator's sections are taken as they are.
 Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
-                               const SimSectionValidator& validate_sim = nullptr);
+                               const SimSectionValidator& validate_sim = nullptr,
+                               const TaskValidator& validate_task = nullptr);
 Result<Scenario> LoadScenarioFile(const std::string& path,
-                                  const SimSectionValidator& validate_sim = nullptr);
+                                  const SimSectionValidator& validate_sim = nullptr,
+                                  const TaskValidator& validate_task = nullptr);
 
 /// Parses a seed range "A..B" or a single "A"; A <= B, at most 10000 seeds.
 Result<std::vector<std::uint32_t>> ParseSeedRange(const std::string& text);

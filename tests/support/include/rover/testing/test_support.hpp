@@ -1,19 +1,35 @@
 #pragma once
 /// @file
-/// Helpers shared by the tests: an isolated DDS domain per test process on loopback, paths to the
-/// build and source trees, and waiting on conditions with a deadline.
+/// Helpers shared by the tests: the DDS configuration and an isolated DDS domain per test, paths
+/// to the build and source trees, and waiting on conditions with a deadline. In-process service
+/// tests use rover/testing/service_harness.hpp on top of these.
+///
+/// DDS configuration: a test never relies on what the shell exported. Before it creates a
+/// participant or spawns a process that talks DDS, it calls UseLoopbackDds (IsolatedDomain and
+/// JoinDomain do), so CYCLONEDDS_URI names deploy/cyclonedds/loopback.xml in this process and in
+/// every child it spawns afterwards.
 
 #include <chrono>
 #include <functional>
 #include <string>
 
+#include "rover/base/status.hpp"
+#include "rover/runtime/dds.hpp"
 #include "rover/runtime/domain.hpp"
 
 namespace rover::testing {
 
-/// Points CYCLONEDDS_URI at deploy/cyclonedds/loopback.xml and leases a DDS domain no other
-/// test or run on this machine uses. Keep the returned lease alive for the test's duration.
+/// Points CYCLONEDDS_URI at deploy/cyclonedds/loopback.xml (whatever it was before). Cyclone
+/// reads it when a domain is first used in the process, so call it before the first participant.
+void UseLoopbackDds();
+
+/// UseLoopbackDds, then leases a DDS domain no other test or run on this machine uses. Keep the
+/// returned lease alive for the test's duration.
 dds::DomainLease IsolatedDomain();
+
+/// UseLoopbackDds, then a participant on `domain`: for a test that talks to a service set
+/// someone else started on that domain (roverctl up, a spawned service).
+Result<dds::Participant> JoinDomain(int domain);
 
 std::string SourceDir();
 std::string BinaryDir();

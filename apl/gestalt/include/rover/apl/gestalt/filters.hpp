@@ -7,11 +7,12 @@
 /// Given the summed moments M of the disc's cells (moments.hpp) and the plane fitted to them
 /// (centroid m, unit normal n with n_z >= 0, residual r = sqrt(λ0)):
 ///
-///   ramp(v; safe, limit) = 255 if v <= safe, 0 if v >= limit, else 255 (limit - v) / (limit - safe)
+///   ramp(v; safe, limit) = 255 if v <= safe, 0 if v >= limit, else 255 (limit - v) / (limit -
+///   safe)
 ///                          (rounded to the nearest integer)
 ///   tilt       θ = acos(n_z)                       g_tilt  = ramp(θ; tilt_safe, max_tilt)
-///   roughness  r = sqrt(λ0)                        g_rough = ramp(r; roughness_safe, max_roughness)
-///   step       s = max over belly discs B centred on the disc's cells of
+///   roughness  r = sqrt(λ0)                        g_rough = ramp(r; roughness_safe,
+///   max_roughness) step       s = max over belly discs B centred on the disc's cells of
 ///                  max_{c in B} top_c - min_{c in B} bottom_c,
 ///              bottom_c = z̄_c - z_plane(x̄_c, ȳ_c),  top_c = bottom_c + k σ_c
 ///                                                  g_step  = ramp(s; step_safe, max_step)
@@ -49,7 +50,7 @@ int RampGoodness(double value, double safe, double limit);
 
 /// What the step filter needs of one cell.
 struct CellStats {
-  bool covered = false;  ///< at least min_cell_points points
+  bool covered = false;              ///< at least min_cell_points points
   double x = 0.0, y = 0.0, z = 0.0;  ///< [m] mean of the cell's points
   /// [m²] population covariance of the cell's points
   double vxx = 0.0, vyy = 0.0, vzz = 0.0, vxy = 0.0, vxz = 0.0, vyz = 0.0;
@@ -61,7 +62,7 @@ struct CellStats {
 CellStats StatsOf(const Moments& m, int min_points);
 
 enum class AssessStatus : std::uint8_t {
-  kUnknown = 0,    ///< not enough data for a fit
+  kUnknown = 0,  ///< not enough data for a fit
   kAssessed = 1,
   kNotPlanar = 2,  ///< fit failed the eigen-ratio test with a residual at the obstacle level
 };

@@ -7,7 +7,8 @@
 /// first and last used pixel (the left and right image edges, or where range runs out), along
 /// each column the first and last (far and near edges). A pixel is an edge pixel when it lies
 /// within `band` pixels of the outline along its row or its column:
-///   u < first_row(v) + band,  u > last_row(v) - band,  v < first_col(u) + band,  or  v > last_col(u) - band.
+///   u < first_row(v) + band,  u > last_row(v) - band,  v < first_col(u) + band,  or  v >
+///   last_col(u) - band.
 /// Holes inside the footprint (stereo dropouts, the shadow behind a rock) are not edges: what
 /// lies behind them was not in view, but the cells around them were seen whole.
 ///

@@ -49,23 +49,25 @@ class LayeredGoodness {
   /// Merges fresh goodness (kAbsent where the scan assessed nothing); `conservative` (nonzero)
   /// marks cells where min(old, new) is kept. Preconditions: both grids match the map's size.
   void Merge(const Grid<std::int16_t>& fresh, const Grid<std::uint8_t>& conservative);
-  /// Scrolls every layer (see Grid::Shift) and recomputes the combined map.
+  /// Scrolls every layer (see Grid::Shift).
   void Shift(int di, int dj);
-  /// Makes the cells marked in `mask` unknown in every layer and recomputes the combined map.
+  /// Makes the cells marked in `mask` unknown in every layer.
   void Forget(const Grid<std::uint8_t>& mask);
   void Clear();
 
-  /// min over layers of the grown layers; kAbsent = unknown.
-  const Grid<std::int16_t>& combined() const { return combined_; }
+  /// min over layers of the grown layers; kAbsent = unknown. Recomputed on first use after a
+  /// change (so a Shift followed by a Merge recombines once).
+  const Grid<std::int16_t>& combined() const;
   /// Layer l as stored (shrunk). Preconditions: 0 <= l < num_layers().
   const Grid<std::int16_t>& layer(int l) const { return layers_[static_cast<std::size_t>(l)]; }
 
  private:
-  void Recombine();
+  void Recombine() const;
 
   std::vector<Grid<std::int16_t>> layers_;
   std::vector<DiscSpans> discs_;  ///< per layer, radius shrink_radius(l)
-  Grid<std::int16_t> combined_;
+  mutable Grid<std::int16_t> combined_;
+  mutable bool stale_ = false;
 };
 
 }  // namespace rover::apl::gestalt

@@ -57,10 +57,10 @@ struct Moments {
 };
 
 struct PlaneFit {
-  bool ok = false;       ///< at least 3 points and a well-defined smallest eigenvector
-  bool planar = false;   ///< λ1 >= eigen_ratio · λ0
+  bool ok = false;      ///< at least 3 points and a well-defined smallest eigenvector
+  bool planar = false;  ///< λ1 >= eigen_ratio · λ0
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, normal.z >= 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();      ///< unit, normal.z >= 0
   Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();  ///< λ0 <= λ1 <= λ2 [m²]
   double residual = 0.0;  ///< [m] sqrt(λ0), RMS distance of the points to the plane
   double tilt = 0.0;      ///< [rad] acos(normal.z)

@@ -29,16 +29,16 @@ struct GestaltOptions {
   double min_coverage = 0.5;        ///< share of a rover disc's cells that must be covered
 
   // ---- filters -----------------------------------------------------------------------------
-  double rover_disc_diameter = 2.6;  ///< [m] the rover modelled by its turn-in-place disc
-  double step_disc_diameter = 0.8;   ///< [m] belly-sized disc the step search runs in
-  double step_sigma_k = 1.0;         ///< cell top = mean + k sigma (tall thin obstacles)
-  double step_safe = 0.2 / 3.0;      ///< [m] steps up to this are perfect (255)
-  double max_step = 0.20;            ///< [m] steps from this on are obstacles (0)
-  double tilt_safe = 5.0 * kDeg;     ///< [rad] tilts up to this are perfect
-  double max_tilt = 20.0 * kDeg;     ///< [rad] tilts from this on are obstacles
+  double rover_disc_diameter = 2.6;    ///< [m] the rover modelled by its turn-in-place disc
+  double step_disc_diameter = 0.8;     ///< [m] belly-sized disc the step search runs in
+  double step_sigma_k = 1.0;           ///< cell top = mean + k sigma (tall thin obstacles)
+  double step_safe = 0.2 / 3.0;        ///< [m] steps up to this are perfect (255)
+  double max_step = 0.20;              ///< [m] steps from this on are obstacles (0)
+  double tilt_safe = 5.0 * kDeg;       ///< [rad] tilts up to this are perfect
+  double max_tilt = 20.0 * kDeg;       ///< [rad] tilts from this on are obstacles
   double roughness_safe = 0.07 / 3.0;  ///< [m] fit residuals up to this are perfect
-  double max_roughness = 0.07;       ///< [m] fit residuals from this on are obstacles
-  double eigen_ratio = 2.0;          ///< middle / smallest eigenvalue a planar fit needs
+  double max_roughness = 0.07;         ///< [m] fit residuals from this on are obstacles
+  double eigen_ratio = 2.0;            ///< middle / smallest eigenvalue a planar fit needs
   /// Fit discs to the latest scan's points only (MER's per-image assessment) instead of the
   /// merged map (newest data per cell, older data where the scan has none).
   bool fit_from_scan_only = false;
@@ -50,11 +50,11 @@ struct GestaltOptions {
   int num_layers = 7;             ///< layered goodness maps (1 = a single map, no layering)
   int unknown_goodness = 11;      ///< value of an unknown cell
   int unknown_certainty = 0;
-  int border_goodness = 250;      ///< cap on a known cell next to an unknown one
+  int border_goodness = 250;  ///< cap on a known cell next to an unknown one
   int border_certainty = 128;
 
   // ---- arcs and votes ----------------------------------------------------------------------
-  double max_curvature = 1.0;     ///< [1/m] tightest arc (1 m turning radius)
+  double max_curvature = 1.0;  ///< [1/m] tightest arc (1 m turning radius)
   int num_forward_arcs = 23;
   int num_backward_arcs = 23;
   int num_point_turns = 23;       ///< turns in place, evenly spaced over the full circle
@@ -65,11 +65,11 @@ struct GestaltOptions {
   int min_allowed_goodness = 10;  ///< a path over a cell below this is forbidden
   int min_vote_goodness = 26;     ///< below this, merging takes the minimum of the two votes
   int waypoint_certainty = 192;
-  int waypoint_peak_toward = 255;   ///< waypoint vote of the best arc in the goal's direction
-  int waypoint_peak_away = 128;     ///< ... in the other direction (and of turns normally)
-  double arc_vote_variance = 3.2;   ///< [1/m^2] variance of the waypoint Gaussian over curvature
+  int waypoint_peak_toward = 255;  ///< waypoint vote of the best arc in the goal's direction
+  int waypoint_peak_away = 128;    ///< ... in the other direction (and of turns normally)
+  double arc_vote_variance = 3.2;  ///< [1/m^2] variance of the waypoint Gaussian over curvature
   double turn_vote_variance = 97.0 * kDeg * kDeg;  ///< [rad^2] ... over turn angle
-  double backup_vote_scale = 0.5;   ///< back-up (K-turn) votes are scaled by this
+  double backup_vote_scale = 0.5;                  ///< back-up (K-turn) votes are scaled by this
   int min_fwd_threshold = 180;      ///< best forward vote below this: image the rear as well
   int skip_imaging_goodness = 200;  ///< all paths' hazard votes at or above: imaging may skip
 

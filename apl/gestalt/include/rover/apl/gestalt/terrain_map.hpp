@@ -21,7 +21,8 @@
 ///      within fov_edge_margin_cells of a FOV-edge cell keep min(old, new).
 ///   6. Publish: the combined layers become the goodness map; known cells next to an unknown
 ///      cell are border cells (goodness capped at border_goodness, certainty border_certainty),
-///      unknown cells read (unknown_goodness, unknown_certainty); assessed cells have certainty 255.
+///      unknown cells read (unknown_goodness, unknown_certainty); assessed cells have certainty
+///      255.
 ///
 /// Internally moments are kept relative to a fixed origin (the rover's position at the first
 /// update) so their sums stay well conditioned; Clear() drops it.
@@ -62,6 +63,8 @@ class TerrainMap final : public nav_core::TerrainAssessor {
 
  private:
   explicit TerrainMap(const GestaltOptions& options);
+  // Recentre and forget; returns whether anything changed (not yet published).
+  bool Move(const Eigen::Isometry3d& site_from_rover);
   // Scrolls the grids so the rover's cell is the centre one; returns whether anything moved.
   bool Recentre(const Eigen::Vector2d& rover_xy);
   // Forgets cells farther than forget_radius; returns whether anything was forgotten.
@@ -90,6 +93,12 @@ class TerrainMap final : public nav_core::TerrainAssessor {
   std::vector<std::uint8_t> used_px_, edge_px_;
   std::vector<std::int32_t> cell_of_px_;
   std::vector<Eigen::Vector3d> point_of_px_;
+  Grid<std::uint8_t> dirty_, conservative_;
+  Grid<CellStats> cell_stats_;
+  Grid<int> covered_;
+  RowPrefix<Moments> moment_sums_;
+  RowPrefix<int> covered_sums_;
+  Grid<std::int16_t> fresh_;
 };
 
 }  // namespace rover::apl::gestalt

@@ -43,8 +43,8 @@ struct Vote {
 
 struct ArcRequest {
   Eigen::Isometry3d site_from_rover = Eigen::Isometry3d::Identity();  ///< current pose
-  Eigen::Vector2d goal = Eigen::Vector2d::Zero();  ///< [m] site x, y of the goal
-  double goal_tolerance = 0.0;                     ///< [m] radius counted as arrived, >= 0
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();                     ///< [m] site x, y of the goal
+  double goal_tolerance = 0.0;  ///< [m] radius counted as arrived, >= 0
 };
 
 /// How the selector read the goal.

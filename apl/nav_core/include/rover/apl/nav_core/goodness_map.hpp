@@ -41,19 +41,19 @@ struct CellValue {
 };
 
 struct GoodnessMap {
-  double origin_x = 0.0;    ///< [m] site x of the corner of cell (0, 0) (its smallest x)
-  double origin_y = 0.0;    ///< [m] site y of the corner of cell (0, 0)
-  double resolution = 0.2;  ///< [m] cell side
-  int width = 0;            ///< cells along x
-  int height = 0;           ///< cells along y
-  std::vector<std::uint8_t> goodness;   ///< 0..255 per cell
+  double origin_x = 0.0;               ///< [m] site x of the corner of cell (0, 0) (its smallest x)
+  double origin_y = 0.0;               ///< [m] site y of the corner of cell (0, 0)
+  double resolution = 0.2;             ///< [m] cell side
+  int width = 0;                       ///< cells along x
+  int height = 0;                      ///< cells along y
+  std::vector<std::uint8_t> goodness;  ///< 0..255 per cell
   std::vector<std::uint8_t> certainty;  ///< 0..255 per cell
   std::vector<std::uint8_t> flags;      ///< CellFlag bits per cell
   /// Value reported for cells outside the grid (and stored in unknown cells).
   int unknown_goodness = 0;
   int unknown_certainty = 0;
-  Time stamp;                 ///< capture time of the newest range data merged
-  std::uint64_t revision = 0; ///< incremented by every change
+  Time stamp;                  ///< capture time of the newest range data merged
+  std::uint64_t revision = 0;  ///< incremented by every change
 
   std::size_t cell_count() const {
     return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);

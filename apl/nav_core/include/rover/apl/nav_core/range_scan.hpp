@@ -25,6 +25,21 @@
 
 namespace rover::apl::nav_core {
 
+/// Ok when every entry of the pose's matrix is finite; else "<name>(r, c) is nan (must be
+/// finite)" for the first bad entry.
+inline Status CheckPoseFinite(const std::string& name, const Eigen::Isometry3d& pose) {
+  const Eigen::Matrix4d m = pose.matrix();
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      if (!std::isfinite(m(r, c))) {
+        return InvalidArgument(name + "(" + std::to_string(r) + ", " + std::to_string(c) + ") is " +
+                               FormatNumber(m(r, c)) + " (must be finite)");
+      }
+    }
+  }
+  return Status::Ok();
+}
+
 struct RangeScan {
   int width = 0;   ///< [px] columns
   int height = 0;  ///< [px] rows
@@ -64,21 +79,13 @@ struct RangeScan {
       return InvalidArgument("RangeScan.valid: " + std::to_string(valid.size()) + " bytes for " +
                              std::to_string(pixel_count()) + " pixels");
     }
-    const Eigen::Matrix4d m = site_from_rover.matrix();
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) {
-        if (!std::isfinite(m(r, c))) {
-          return InvalidArgument("RangeScan.site_from_rover(" + std::to_string(r) + ", " +
-                                 std::to_string(c) + ") is " + FormatNumber(m(r, c)) +
-                                 " (must be finite)");
-        }
-      }
-    }
+    ROVER_RETURN_IF_ERROR(CheckPoseFinite("RangeScan.site_from_rover", site_from_rover));
     const Eigen::Matrix3d rot = site_from_rover.linear();
     const double err = (rot.transpose() * rot - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     if (err > 1e-6 || rot.determinant() < 0.0) {
-      return InvalidArgument("RangeScan.site_from_rover: rotation is not orthonormal (|R^T R - I| = " +
-                             FormatNumber(err) + ", det = " + FormatNumber(rot.determinant()) + ")");
+      return InvalidArgument(
+          "RangeScan.site_from_rover: rotation is not orthonormal (|R^T R - I| = " +
+          FormatNumber(err) + ", det = " + FormatNumber(rot.determinant()) + ")");
     }
     return Status::Ok();
   }

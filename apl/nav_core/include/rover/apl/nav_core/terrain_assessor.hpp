@@ -25,13 +25,13 @@ namespace rover::apl::nav_core {
 
 /// What one Update() did (counts, for logs and tests).
 struct AssessmentStats {
-  int points_total = 0;      ///< pixels marked valid
-  int points_used = 0;       ///< finite, inside the range limits and the map
-  int cells_touched = 0;     ///< map cells that received points
-  int cells_fov_edge = 0;    ///< of those, cells at the edge of the field of view
-  int cells_assessed = 0;    ///< cells whose goodness was recomputed
-  int cells_obstacle = 0;    ///< of those, cells with goodness 0
-  int cells_unknown = 0;     ///< of those, cells without enough data for a plane fit
+  int points_total = 0;    ///< pixels marked valid
+  int points_used = 0;     ///< finite, inside the range limits and the map
+  int cells_touched = 0;   ///< map cells that received points
+  int cells_fov_edge = 0;  ///< of those, cells at the edge of the field of view
+  int cells_assessed = 0;  ///< cells whose goodness was recomputed
+  int cells_obstacle = 0;  ///< of those, cells with goodness 0
+  int cells_unknown = 0;   ///< of those, cells without enough data for a plane fit
 };
 
 class TerrainAssessor {

@@ -37,6 +37,7 @@
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::ddl {
 
@@ -47,12 +48,9 @@ const char* CameraName(int camera);
 
 enum class CameraMount { kMastHead, kBody };
 
-/// Pan/tilt mast geometry (defaults = the simulator's rover: pan joint (0.35, 0, 0.65) m, tilt
+/// Pan/tilt mast geometry: the rover description's (defaults: pan joint (0.35, 0, 0.65) m, tilt
 /// axis 0.85 m above it, i.e. 1.5 m above the rover origin on the ground).
-struct MastGeometry {
-  Eigen::Vector3d pan_joint{0.35, 0.0, 0.65};  ///< [m] rover frame
-  double head_height = 0.85;                   ///< [m] tilt axis above the pan joint
-};
+using MastGeometry = hwconfig::MastDescription;
 
 /// rover_from_head for mast angles pan, tilt [rad] (see the file comment).
 Eigen::Isometry3d MastHeadPose(double pan, double tilt, const MastGeometry& mast);

@@ -17,20 +17,20 @@
 #include <string>
 
 #include "rover/base/time.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::dl {
 
-inline constexpr int kNumWheels = 6;
-inline constexpr int kNumSteered = 4;
-inline constexpr int kNumMotors = 12;
-/// Wheel index of steer actuator j (LF, LR, RF, RR).
-inline constexpr std::array<int, kNumSteered> kSteeredWheel = {0, 2, 3, 5};
-/// Motor index of steer actuator j.
-inline constexpr int SteerMotor(int j) { return 6 + j; }
-/// Bit mask of the six drive motors (0..5) and of the four steer motors (6..9).
-inline constexpr std::uint16_t kDriveMotorMask = 0x003F;
-inline constexpr std::uint16_t kSteerMotorMask = 0x03C0;
-inline constexpr std::uint16_t kMobilityMotorMask = kDriveMotorMask | kSteerMotorMask;
+// Counts, the steered wheels (kSteeredWheel, SteerMotor) and the motor masks are the rover
+// description's (core/hwconfig rover_description.hpp).
+using hw::kNumMotors;
+using hwconfig::kDriveMotorMask;
+using hwconfig::kMobilityMotorMask;
+using hwconfig::kNumSteered;
+using hwconfig::kNumWheels;
+using hwconfig::kSteeredWheel;
+using hwconfig::kSteerMotorMask;
+using hwconfig::SteerMotor;
 
 // ---- rover::dl (rover_dl.idl) -----------------------------------------------------------------
 

@@ -1,10 +1,13 @@
 #pragma once
 /// @file
-/// Mobility geometry of the six-wheel rocker-bogie rover: the only place that knows where the
-/// wheels are (after MER's DRIVE module, Biesiadecki & Maimone 2006).
+/// Mobility geometry of the six-wheel rocker-bogie rover as the locomotion library computes with
+/// it (after MER's DRIVE module, Biesiadecki & Maimone 2006). The numbers come from the rover
+/// description (core/hwconfig rover_description.hpp, parameters `geometry.*`), which the
+/// simulator reads too; this struct holds them per wheel so that the kinematics are written,
+/// and tested, for any layout.
 ///
-/// Frames and units: rover frame x forward, y left, z up, origin at the centre of the wheel
-/// contact polygon on level ground; metres and radians.
+/// Frames and units: the description's rover frame (x forward, y left, z up, origin on the
+/// ground plane below the midpoint of the rocker pivots); metres and radians.
 ///
 /// Layout: wheels LF LM LR RF RM RR (0..5); the four corner wheels LF LR RF RR are steered about
 /// vertical axes through their wheel centres; the middle wheels LM, RM are not steered, so their
@@ -28,6 +31,7 @@
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
 #include "rover/dl/locomotion/drive_types.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::dl {
 
@@ -38,18 +42,20 @@ struct SuspensionAngles {
 };
 
 struct RoverGeometry {
-  double wheel_radius = 0.125;  ///< [m]
-  /// [m] wheel centres at zero rocker/bogie angles, order LF LM LR RF RM RR. Defaults: wheelbase
-  /// 1.25 m, track 1.0 m, middle axle at x = 0.
-  std::array<Eigen::Vector3d, kNumWheels> wheel_centre = {
-      Eigen::Vector3d(0.625, 0.5, 0.125),  Eigen::Vector3d(0.0, 0.5, 0.125),
-      Eigen::Vector3d(-0.625, 0.5, 0.125), Eigen::Vector3d(0.625, -0.5, 0.125),
-      Eigen::Vector3d(0.0, -0.5, 0.125),   Eigen::Vector3d(-0.625, -0.5, 0.125)};
-  Eigen::Vector2d rocker_pivot{0.1, 0.45};     ///< [m] (x, z) on the body, both sides
-  Eigen::Vector2d bogie_pivot{-0.3125, 0.30};  ///< [m] (x, z) at zero angles, both sides
-  double max_steer_angle = 1.2217;  ///< [rad] |steer| limit of the corner wheels (70 deg)
-  double min_turn_radius = 1.0;     ///< [m] smallest arc radius (of the reference point)
-  double max_wheel_speed = 0.1;     ///< [m/s] fastest rim speed a drive motor may be asked for
+  /// The default rover description's geometry (wheelbase 1.25 m, track 1.0 m, middle axle at
+  /// x = 0, 70 deg steering, 1 m tightest arc, 0.1 m/s rim speed).
+  RoverGeometry();
+  /// The geometry of `rover`: its wheel centres, pivots (x, z) and driving limits.
+  explicit RoverGeometry(const hwconfig::RoverDescription& rover);
+
+  double wheel_radius = 0.0;  ///< [m]
+  /// [m] wheel centres at zero rocker/bogie angles, order LF LM LR RF RM RR.
+  std::array<Eigen::Vector3d, kNumWheels> wheel_centre;
+  Eigen::Vector2d rocker_pivot;  ///< [m] (x, z) on the body, both sides
+  Eigen::Vector2d bogie_pivot;   ///< [m] (x, z) at zero angles, both sides
+  double max_steer_angle = 0.0;  ///< [rad] |steer| limit of the corner wheels
+  double min_turn_radius = 0.0;  ///< [m] smallest arc radius (of the reference point)
+  double max_wheel_speed = 0.0;  ///< [m/s] fastest rim speed a drive motor may be asked for
 
   /// Checks finiteness, the wheel layout (left y > 0, right y < 0, front > middle > rear per side,
   /// LM and RM on one axle), pivot placement, min_turn_radius > every |y_i| (so no wheel is
@@ -70,8 +76,8 @@ struct RoverGeometry {
   static double LinkPitch(int wheel, const SuspensionAngles& s);
 };
 
-/// Field-level validation result: the struct member, the matching parameter key (without
-/// prefix) and the problem. Empty `field` means valid.
+/// Field-level validation result: the struct member, the rover description's parameter key
+/// (without prefix) closest to it, and the problem. Empty `field` means valid.
 struct GeometryIssue {
   std::string field;
   std::string key;
@@ -79,14 +85,16 @@ struct GeometryIssue {
 };
 GeometryIssue CheckRoverGeometry(const RoverGeometry& g);
 
-/// Declares the geometry parameters under `prefix` (e.g. "geometry."), with the defaults of
-/// RoverGeometry: wheel_radius, wheel_x[6], wheel_y[6], wheel_z[6], rocker_pivot[x,z],
-/// bogie_pivot[x,z], max_steer_angle_deg, min_turn_radius, max_wheel_speed.
+/// Declares the rover description's parameters under `prefix` (e.g. "geometry."):
+/// DeclareParams<hwconfig::RoverDescription> (keys in core/hwconfig/README.md: wheel_radius,
+/// front_wheel_x, half_track, rocker_pivot_x, ..., max_steer_angle_deg, min_turn_radius,
+/// max_wheel_speed, mast.*, navcam.*, front_hazcam.*, rear_hazcam.*).
 void DeclareRoverGeometryParams(ParamSet& params, const std::string& prefix = "geometry.");
 
-/// Reads and validates the geometry. Range errors come from ParamSet::Validate(); consistency
-/// errors name the origin of the offending key, e.g.
-///   "drive.yaml:7: key 'geometry.min_turn_radius': 0.4 must exceed the largest wheel |y| (0.5)".
+/// Reads and validates the rover description and builds its geometry. Errors name the origin of
+/// the offending key, e.g.
+///   "drive.yaml:7: key 'geometry.min_turn_radius': min_turn_radius = 0.4 m must exceed the
+///    largest wheel |y|, half_track (0.5)".
 Result<RoverGeometry> RoverGeometryFromParams(const ParamSet& params,
                                               const std::string& prefix = "geometry.");
 

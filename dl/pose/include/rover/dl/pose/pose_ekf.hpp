@@ -112,6 +112,10 @@ struct EkfOptions {
   double stationary_delay_s = 0.5;          ///< [s] without wheel motion before "stationary"
   double stationary_gyro_threshold = 0.01;  ///< [rad/s] bias-corrected rate below which at rest
   double wheel_motion_threshold = 1e-4;     ///< [m] odometry path per increment that is motion
+  /// [m] the odometer counts planar displacement in steps of this length: it grows when the
+  /// displacement since its last step reaches it, so encoder jitter at rest (increments of either
+  /// sign that cancel) never adds up, and a drive is counted to within one step.
+  double odometer_step = 0.01;
   // Sun sensor.
   double sun_noise = 0.005;  ///< [rad] 1-sigma angular error of the sun vector
   // Gating.
@@ -133,6 +137,7 @@ struct EkfInitialState {
   Eigen::Vector3d position_sigma = Eigen::Vector3d::Constant(0.01);  ///< [m]
   Eigen::Vector3d rpy_sigma = Eigen::Vector3d(0.02, 0.02, 0.1);      ///< [rad] roll pitch yaw
   double gyro_bias_sigma = 0.002;                                    ///< [rad/s] per axis
+  double odometer = 0.0;  ///< [m] the odometer's start value (a resumed estimator keeps its own)
 };
 
 /// dl/pose PoseEstimate.
@@ -255,6 +260,7 @@ class PoseEkf {
   Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();
   std::uint32_t rejected_ = 0;
   double odometer_ = 0.0;
+  Eigen::Vector3d odometer_pending_ = Eigen::Vector3d::Zero();  // [m] site frame, since the last step
 };
 
 /// Declares the EKF parameters under `prefix` ("ekf." by default) with `defaults` as their

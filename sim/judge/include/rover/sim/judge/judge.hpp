@@ -16,7 +16,13 @@
 /// Rock contact: a rock taller than `traversable_height` (MER/FIDO's 20 cm obstacle) counts as
 /// hit when, at any truth sample, its footprint disc (diameter D) overlaps a wheel's ground
 /// contact disc, or lies under the belly box while taller than the belly clearance. Tilt is the
-/// angle between the body z axis and the site z axis. Estimate error at an estimate sample is
+/// angle between the body z axis and the site z axis.
+///
+/// Hazard contact (autonomous driving's figure): a rock taller than `traversable_height` whose
+/// footprint disc overlaps the rover's ground footprint (the rectangle of
+/// hwconfig::RoverDescription::GroundFootprint(): wheels, body, mast, camera mounts) at any
+/// truth sample, i.e. the rover drove over or into it with any part. Reported as the criterion
+/// `hazard_contacts` when `max_hazard_contacts` is set, else as a figure. Estimate error at an estimate sample is
 /// the horizontal distance between the estimated and the (linearly interpolated) true position;
 /// heading error is the estimated minus the true yaw, wrapped to (-pi, pi].
 ///
@@ -47,7 +53,11 @@ struct RoverFootprint {
   double wheel_contact_radius = 0.10;   ///< [m] half the wheel width plus margin
   Eigen::Vector2d belly_min{-0.45, -0.35}, belly_max{0.45, 0.35};  ///< [m] belly box
   double belly_clearance = 0.30;        ///< [m] rocks taller than this hit the belly
-  /// MER-like defaults: wheelbase 1.25 m (front/rear +-0.625 m, middle at 0), track 1.0 m.
+  /// [m] the whole rover's ground footprint (hazard contacts)
+  Eigen::Vector2d body_min{-0.75, -0.58}, body_max{0.75, 0.58};
+  /// The default rover description's wheel centres (wheelbase 1.25 m, track 1.0 m) and ground
+  /// footprint; the contact radius, belly box and clearance above are the judge's own (with
+  /// margins).
   static RoverFootprint MerDefault();
 };
 
@@ -62,6 +72,7 @@ struct JudgeCriteria {
   std::optional<double> max_estimate_error_fraction;  ///< of distance driven (e.g. 0.01 = 1%)
   std::optional<double> max_estimate_heading_error;  ///< [rad] largest |heading error| allowed
   std::optional<double> min_distance;        ///< [m] the rover must have driven at least this
+  std::optional<int> max_hazard_contacts;    ///< judge hazard contacts (see the file comment)
   Status Validate() const;
 };
 
@@ -86,6 +97,7 @@ struct Verdict {
   double distance_driven = 0;        ///< [m] truth path length (horizontal)
   double max_tilt = 0;               ///< [rad]
   std::vector<int> rocks_hit;        ///< ids of rocks over the traversable height touched
+  std::vector<int> hazards_hit;      ///< ids of such rocks under the ground footprint
   std::vector<ErrorSample> estimate_error;  ///< over time
   std::vector<ErrorSample> odometry_only_error;  ///< over time (empty without such samples)
   /// Not judged (limit NaN, pass true): see the file comment.
@@ -134,6 +146,7 @@ class Judge {
   std::vector<Stamped> odometry_only_;
   std::vector<ErrorSample> ErrorsOf(const std::vector<Stamped>& estimates) const;
   std::vector<bool> hit_;
+  std::vector<bool> hazard_hit_;
   double distance_ = 0;
   double max_tilt_ = 0;
   std::size_t out_of_order_ = 0;

@@ -20,7 +20,8 @@
 /// caller splits time into Advance() calls when each dt is a multiple of the control period.
 ///
 /// Readings are ideal (truth): no noise, bias or quantisation. Frames: site frame S (x north,
-/// y west, z up); chassis frame C (see rover_model.hpp). Camera mount frames have x along the
+/// y west, z up); chassis frame C = the rover frame of the rover description (rover_model.hpp).
+/// Joint angles follow the description's conventions (rocker and bogie + raise the front). Camera mount frames have x along the
 /// boresight, y left, z up (rover convention; the renderer converts to x right, y down, z fwd).
 ///
 /// Errors: bad parameters, poses or goals return a Status; a numerical failure inside Simbody
@@ -32,6 +33,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "rover/base/status.hpp"
 #include "rover/sim/heightfield.hpp"
@@ -87,12 +89,33 @@ struct RoverReadings {
   double time_s = 0.0;
   std::array<MotorReading, kNumMotors> motors;  ///< counts, counts/s, A, deg C, faults
   std::array<WheelReading, kNumWheels> wheels;
-  double rocker_left_rad = 0.0, rocker_right_rad = 0.0;  ///< left = -right (differential)
-  double bogie_left_rad = 0.0, bogie_right_rad = 0.0;
+  /// [rad] + raises the front of the link; left = -right (differential).
+  double rocker_left_rad = 0.0, rocker_right_rad = 0.0;
+  double bogie_left_rad = 0.0, bogie_right_rad = 0.0;  ///< [rad] relative to the rocker
   std::array<double, kNumMotors> joint_angle_rad{};  ///< joint angle of each motor's joint
   ChassisReading chassis;
   CameraFrames cameras;
   BodyPoses bodies;
+};
+
+/// Joint angles to pose the model at (the rover description's conventions) [rad].
+struct ModelJointAngles {
+  std::array<double, 2> rocker{};  ///< left, right; + raises the front
+  std::array<double, 2> bogie{};   ///< left, right; relative to the rocker, + raises the front
+  std::array<double, hwconfig::kNumSteered> steer{};  ///< LF LR RF RR; + turns the front left
+  double pan = 0.0;                                   ///< + looks left
+  double tilt = 0.0;                                  ///< + looks up
+};
+
+/// The model as built, posed with the chassis frame at the site origin: every part's frame in
+/// the chassis frame (for checking the Simbody model against the rover description).
+struct ModelGeometry {
+  BodyPoses bodies;  ///< rockers, bogies, wheels (no wheel spin), mast pan
+  /// Steering brackets LF LR RF RR: origin at the steering joint, z along its axis.
+  std::array<Eigen::Isometry3d, hwconfig::kNumSteered> steer_brackets;
+  CameraFrames cameras;  ///< *_site equal *_chassis
+  std::vector<Eigen::Vector3d> belly_points;  ///< the body's terrain contact points
+  Eigen::Vector3d imu_station = Eigen::Vector3d::Zero();  ///< where specific force is taken
 };
 
 /// Work counters (for benchmarks).
@@ -138,6 +161,8 @@ class RoverSimulation {
   const RoverModelParams& params() const;
   const HeightField& terrain() const;
   SimulationStats stats() const;
+  /// The built model at joint angles `q` (wheel spin 0), independent of the simulated state.
+  ModelGeometry PoseModel(const ModelJointAngles& q) const;
 
  private:
   struct Impl;

@@ -4,15 +4,16 @@
 /// that the simulator renders with and that the DDL camera driver attaches to its frames), the
 /// pan/tilt mast kinematics, and CameraPairSpec, what Renderer::RenderStereoPair takes.
 ///
-/// Frames. Rover frame: x forward, y left, z up, origin on the ground below the rocker pivots
-/// (as sim/physics). Mast-head frame: origin on the tilt axis, x = boresight, y left, z up; at
-/// pan = tilt = 0 it is the rover frame moved to the tilt axis. Camera models follow
-/// core/geometry (camera frame x right, y down, z forward; pixel centre convention (0, 0)).
+/// Frames and mounts are the rover description's (core/hwconfig rover_description.hpp): rover
+/// frame x forward, y left, z up, origin on the ground below the rocker pivots; mast-head frame
+/// with origin on the tilt axis, x = boresight, y left, z up, placed by
+///   rover_from_head = Translation(pan_joint + (0, 0, head_height)) * Rz(pan) * Ry(-tilt)
+/// (pan > 0 looks left, tilt > 0 looks up); each pair's optical centres and boresight from its
+/// StereoMount. This file adds the lenses. Camera models follow core/geometry (camera frame x
+/// right, y down, z forward; pixel centre convention (0, 0)).
 ///
-/// Mast: rover_from_head = Translation(pan_joint + (0, 0, head_height)) * Rz(pan) * Ry(-tilt);
-/// pan > 0 looks left, tilt > 0 looks up (sim/physics' joint conventions).
-///
-/// Default cameras (DefaultStereoCameras(1024); README.md has the table):
+/// Default cameras (DefaultStereoCameras(1024) on the default description; README.md has the
+/// table):
 ///   navcam:       CAHVOR, 45.0 deg square field, f = 1236.1 px, mild barrel distortion
 ///                 (r1 = -0.01), 0.20 m baseline, 1024 x 1024, on the mast head 0.05 m in front
 ///                 of the tilt axis; head 1.50 m above the rover origin (the ground).
@@ -31,6 +32,7 @@
 
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 #include "rover/sim/heightfield.hpp"
 
 namespace rover::sim {
@@ -49,14 +51,6 @@ struct StereoCameraDefinition {
   geometry::CameraModel right;  ///< in the mount frame
 };
 
-/// Mast kinematics (defaults = sim/physics RoverGeometry: pan joint (0.35, 0, 0.65),
-/// tilt axis 0.85 m above it).
-struct MastGeometry {
-  Eigen::Vector3d pan_joint{0.35, 0.0, 0.65};  ///< [m] rover frame
-  double head_height = 0.85;                   ///< [m] tilt axis above the pan joint
-  Status Validate() const;
-};
-
 /// Mast joint angles [rad].
 struct MastState {
   double pan = 0.0;   ///< + looks left
@@ -64,7 +58,7 @@ struct MastState {
 };
 
 /// rover_from_head for the given joint angles (see the file comment).
-Eigen::Isometry3d MastHeadPose(const MastState& mast, const MastGeometry& geometry = {});
+Eigen::Isometry3d MastHeadPose(const MastState& mast, const hwconfig::MastDescription& geometry = {});
 
 /// A stereo pair ready to render: models in a head frame plus the head's pose in the rover
 /// frame (identity if the models are already in the rover frame).
@@ -78,26 +72,28 @@ struct CameraPairSpec {
 };
 
 /// The MER-like default cameras for a square image of `image_size` pixels (the models are
-/// defined at 1024 and resampled with geometry::Scale, so 512 is the 2x2-binned camera).
-/// Precondition: 16 <= image_size <= 4096.
-std::vector<StereoCameraDefinition> DefaultStereoCameras(int image_size = 1024);
+/// defined at 1024 and resampled with geometry::Scale, so 512 is the 2x2-binned camera),
+/// mounted where `rover` says. Precondition: 16 <= image_size <= 4096.
+std::vector<StereoCameraDefinition> DefaultStereoCameras(
+    int image_size = 1024, const hwconfig::RoverDescription& rover = {});
 
 /// The definition named `name` (NotFound naming the known names otherwise).
 Result<StereoCameraDefinition> FindStereoCamera(const std::vector<StereoCameraDefinition>& cameras,
                                                 const std::string& name);
 
 /// Pair spec of a definition: mast-mounted pairs get MastHeadPose(mast, geometry), body pairs
-/// the identity. Errors: non-finite mast angles.
+/// the identity. Errors: non-finite mast angles, an invalid mast geometry.
 Result<CameraPairSpec> MakeCameraPairSpec(const StereoCameraDefinition& camera,
                                           const MastState& mast = {},
-                                          const MastGeometry& geometry = {});
+                                          const hwconfig::MastDescription& geometry = {});
 
 /// Rover pose in the site frame from (x, y, yaw): origin at height z, zero roll and pitch.
 Eigen::Isometry3d RoverPoseFromXyYaw(double x, double y, double z, double yaw);
 
 /// Rover pose resting on `ground` at (x, y) with heading `yaw` (a renderer has no physics; for
-/// tools and tests): the rover plane is fitted to the ground heights under the six wheels
-/// (x = +-0.625 m and 0, y = +-0.5 m), the origin sits on that plane below (x, y).
-Eigen::Isometry3d RoverPoseOnGround(const HeightField& ground, double x, double y, double yaw);
+/// tools and tests): the rover plane is fitted to the ground heights under the six wheels of
+/// `rover`, the origin sits on that plane below (x, y).
+Eigen::Isometry3d RoverPoseOnGround(const HeightField& ground, double x, double y, double yaw,
+                                    const hwconfig::RoverDescription& rover = {});
 
 }  // namespace rover::sim

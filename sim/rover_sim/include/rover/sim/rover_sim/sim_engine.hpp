@@ -7,7 +7,8 @@
 /// Time: the engine's clock starts at 0 when created or reset and advances exactly `period_s`
 /// per Step(). Motor goals arrive in hw units (encoder counts) and are handed to the simulated
 /// motor controllers, whose parameters (gear ratios, encoder resolution, limits) are set from
-/// the same HardwareConfig the device drivers use, so counts mean the same on both sides.
+/// the same HardwareConfig the device drivers use, so counts mean the same on both sides; the
+/// rover's shape is the rover description (`geometry.*`), the same keys the stack reads.
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/hwconfig/hw_bus.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 #include "rover/sim/physics/rover_simulation.hpp"
 #include "rover/sim/sensors/sensor_suite.hpp"
 #include "rover/sim/world/world.hpp"
@@ -56,12 +58,13 @@ struct StepOutput {
 class SimEngine {
  public:
   /// Declares the engine's parameters: world (terrain.*, lander.*, science_targets,
-  /// rover.start.*), sensors (sensors.*), hardware (hardware.*), engine (sim.*).
+  /// rover.start.*), sensors (sensors.*), hardware (hardware.*), the rover description
+  /// (geometry.*), engine (sim.*).
   static void DeclareParams(ParamSet& params);
   static Result<std::unique_ptr<SimEngine>> Create(const ParamSet& params);
-  static Result<std::unique_ptr<SimEngine>> Create(World world, const HardwareConfig& hw,
-                                                   const SimSensorOptions& sensors,
-                                                   const EngineOptions& options);
+  static Result<std::unique_ptr<SimEngine>> Create(
+      World world, const HardwareConfig& hw, const SimSensorOptions& sensors,
+      const EngineOptions& options, const hwconfig::RoverDescription& rover = {});
 
   /// Applies hw/motor_goals: each non-idle goal clears the motor's latched faults and becomes
   /// its new goal. A goal the controller refuses (beyond its speed or joint range) is reported
@@ -77,6 +80,8 @@ class SimEngine {
   const RoverSimulation& physics() const { return *physics_; }
   const EngineOptions& options() const { return options_; }
   const HardwareConfig& hardware() const { return hw_; }
+  /// The rover description the physics model was built from.
+  const hwconfig::RoverDescription& rover() const { return physics_->params().geometry; }
   /// The true sun direction in the site frame now (for rendering).
   Eigen::Vector3d SunDirectionSite() const;
 

@@ -51,6 +51,7 @@ struct Rock {
   double diameter = 0.0;  ///< [m] nominal: the footprint area is pi D^2 / 4
   double height = 0.0;    ///< [m] top above position.z
   bool science_target = false;
+  bool placed = false;  ///< placed by the scenario (features.hpp), not generated
   int texture_id = 0;
   // Shape (for the heightfield and the renderer; see RockRelief()).
   double yaw = 0.0;             ///< [rad] long axis direction, from +x towards +y

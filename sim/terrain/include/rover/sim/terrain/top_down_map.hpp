@@ -7,12 +7,16 @@
 ///   - terrain hillshade (Lambert, sun from the north-west at 45 deg elevation) of
 ///     Terrain::natural, tinted by soil (firm soil ochre, loose sand pale yellow, bedrock
 ///     grey-brown) and lightly by elevation;
+///   - an optional cell layer (e.g. a goodness map): known cells blended in grey from black
+///     (value 0) to white (255), unknown cells left as the terrain, the layer's bounds dashed;
 ///   - rock outlines by height class: height > obstacle_height (0.2 m: a traversability
-///     hazard) red, > half of it orange, smaller ones thin dark (only where at least 3 px wide);
+///     hazard) red, > half of it yellow, smaller ones thin dark (only where at least 3 px wide);
 ///   - science targets (cyan, labelled T<id>), the lander (deck, legs, ramps, stripes filled
-///     from Lander::quads, seen from above), the start keep-out circle;
+///     from Lander::quads, seen from above), the rover start's rock-free disc (dashed white
+///     circle with a cross at the start);
 ///   - a scale bar, a north arrow, a legend and optional overlay polylines (planned / driven /
-///     estimated paths) with labels.
+///     estimated paths), drawn in the order given (so draw wide lines first, thin ones on top);
+///     a path's start is a circle and its end a square, as the legend says.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -36,6 +40,18 @@ struct MapPolyline {
   std::string label;      ///< shown in the legend (empty: not listed)
   int thickness = 2;      ///< [px]
   bool mark_ends = true;  ///< circle at the start, square at the end
+  bool dashed = false;    ///< drawn as dashes (so that lines under it show through)
+};
+
+/// A raster of 8-bit values on a site-frame grid: cell (i, j) covers x in
+/// [origin_x + i r, origin_x + (i+1) r), y likewise; index j * width + i.
+struct MapCellLayer {
+  double origin_x = 0, origin_y = 0, resolution = 0.2;  ///< [m]
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> value;  ///< 0 black .. 255 white
+  std::vector<std::uint8_t> known;  ///< non-zero = drawn
+  std::string label;                ///< legend ("goodness (black 0 .. white 255)")
+  double opacity = 0.65;            ///< of known cells, (0, 1]
 };
 
 struct MapOptions {
@@ -49,6 +65,7 @@ struct MapOptions {
   bool draw_legend = true;
   std::string title;  ///< drawn top-left when not empty
   std::vector<MapPolyline> polylines;
+  std::vector<MapCellLayer> cell_layers;  ///< drawn under the rocks and paths
 
   Status Validate() const;
 };

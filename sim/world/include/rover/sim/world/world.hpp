@@ -8,6 +8,7 @@
 /// Parameters (all under these top-level sections of a scenario or parameter file):
 ///   terrain.*          sim/terrain's TerrainParams (its rock-free keep-out disc is centred on
 ///                      the rover start; terrain.start.x/y may not be set)
+///   terrain_features   placed rocks and rock walls (sim/terrain features.hpp)
 ///   lander.*           the lander (lander.enabled, x, y, yaw_deg, ...)
 ///   science_targets    [x, y, diameter, texture_id, ...]
 ///   rover.start.x/y    [m] rover start in the site frame

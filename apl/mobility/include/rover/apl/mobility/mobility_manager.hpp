@@ -1,0 +1,238 @@
+#pragma once
+/// @file
+/// MobilityManager: MER's Mobility Manager (seed 000) as a deterministic state machine, in the
+/// style of dl/locomotion's DriveExecutor. It is fed time-stamped inputs (run-clock time `now`)
+/// and returns what to send and publish; it never reads a clock, sleeps or touches DDS. Terrain
+/// assessment and path selection are the injected nav_core interfaces (GESTALT in the service).
+///
+/// Inputs:  OnCommand (apl/mobility_command), OnPose (dl/pose), OnRangeImage (dl/range_image
+///          as a RangeScan + camera + request id), OnDriveStatus (dl/drive_status),
+///          OnMastStatus (dl/mast_status), OnVisOdom (dl/relative_pose from VO), Step (timer).
+/// Outputs: MobilityOutput: drive requests, range requests, mast requests, statuses, and the
+///          goodness map / arc votes after each assessment.
+///
+/// One command runs at a time. Its loop is a sequence of steps; each step is
+///   [image] -> [assess + choose] -> drive -> [visual odometry] -> checks -> next step
+/// where the bracketed parts depend on the mode:
+///   DIRECTED, VISODOM: the primitives in order (VISODOM splits them into steps of at most
+///     visodom_max_step / visodom_max_turn and waits for a VO result after each).
+///   GO_TO_WAYPOINT (+VISODOM): blind pose-corrected steps: a turn in place toward the goal when
+///     its bearing exceeds waypoint_turn_threshold, else the arc through the goal (at most
+///     waypoint_step_length, or the VO step).
+///   GUARDED (+VISODOM): the primitives, split into guard_segment_length pieces; before each,
+///     a HAZCAM image (front, rear when backing) is assessed and the piece's swept centre track
+///     must stay on cells of goodness >= guard_min_goodness, else the command ends NOPATH
+///     ("vetoed") before the piece moves.
+///   GUARDED_ARC (seed 003): the first primitive runs blind (the turn), the rest guarded.
+///   AUTONAV (+VISODOM): evaluate the arcs over the existing map; unless every path is already
+///     known safe (ArcEvaluation::all_paths_safe: skip imaging) request a range image (front
+///     HAZCAM; rear when the choice backs up or ArcEvaluation::image_rear), update the assessor,
+///     evaluate again and command the choice (an arc of step_length, or a point turn; K-turns
+///     are the selector's GoalMode::kBackUp arcs) until the goal is within tolerance.
+///     Drive while thinking (default; THINK_STOP_AND_GO keeps MER's stop-and-go): when an arc
+///     is commanded, the map is evaluated from the arc's predicted end pose; if that is not
+///     already all safe the next range image is requested at once, so it is captured and
+///     merged (its scan carries the pose at capture) while the arc drives, and the next choice
+///     is made the moment the drive reports DONE.
+///   LONG_TRAVERSE: a GlobalPlanner plan, then autonav legs to its waypoints; rejected
+///     (BAD_COMMAND, "not supported") when no planner is injected.
+///   STOP: ends the running command STOPPED (a STOP drive is sent); CLEAR_FAULT: clears a
+///     latched motion error. Both succeed at once.
+///
+/// Checks after each step (and in Step): goal reached -> SUCCEEDED; time budget -> WAYPT_TIMEOUT;
+/// Mars time of day past lmst_end_h -> TOD; steps >= max_steps -> NOPROGRESS; distance to the
+/// goal shrunk less than min_progress over progress_steps steps -> NOPROGRESS (limit cycle);
+/// tilt over max_tilt -> TILT; northerly tilt (atan2 of the rover's up vector's north and up
+/// components) below min_northerly_tilt -> NORTH. Before each drive: the swept centre track
+/// within keepout_margin of a keep-out zone -> KEEPOUT (nothing moves). While waiting: a range
+/// image later than image_timeout_s, from the wrong camera, malformed or with no valid pixel ->
+/// IMG; dl/pose older than pose_stale_s, non-finite or jumping by pose_jump / pose_jump_angle ->
+/// SAPP; a drive not finished by its watchdog -> DRIVE_TIMEOUT (a STOP drive is sent);
+/// dl/drive_status FAILED: TILT -> TILT, SUSPENSION -> SUSPENSION, motor terminations -> MOT,
+/// TIMEOUT -> DRIVE_TIMEOUT, STALE_SENSOR -> SAPP, STOP_COMMAND -> STOPPED; REJECTED_BUSY (some
+/// other client drives) -> ARB; REJECTED_INVALID -> BAD_COMMAND.
+///
+/// Fault classes (seed 000 Table 1): a goal error ends the command and leaves the rover ready;
+/// a motion error ends it, latches, and refuses every motion command (with the latched fault)
+/// until CLEAR_FAULT. Rejections at command time (BAD_COMMAND, BUSY, ACM, a latched motion
+/// error, stale pose) start no motion; BUSY leaves the running command running.
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "rover/apl/mobility/mobility_options.hpp"
+#include "rover/apl/mobility/mobility_types.hpp"
+#include "rover/apl/mobility/motion_geometry.hpp"
+#include "rover/apl/nav_core/arc_selector.hpp"
+#include "rover/apl/nav_core/global_planner.hpp"
+#include "rover/apl/nav_core/terrain_assessor.hpp"
+
+namespace rover::apl::mobility {
+
+/// One decision's votes (apl/arc_votes).
+struct ArcVotesSnapshot {
+  Time stamp;
+  std::uint32_t command_id = 0;
+  std::uint32_t step = 0;
+  Eigen::Isometry3d site_from_rover = Eigen::Isometry3d::Identity();
+  nav_core::ArcEvaluation evaluation;
+};
+
+/// What to send and publish after an input, in order.
+struct MobilityOutput {
+  std::vector<DriveRequest> drives;
+  std::vector<RangeRequest> range_requests;
+  std::vector<MastRequest> mast_requests;
+  std::vector<MobilityStatus> statuses;
+  std::optional<nav_core::GoodnessMap> goodness_map;  ///< after an assessment
+  std::vector<ArcVotesSnapshot> arc_votes;
+  bool empty() const {
+    return drives.empty() && range_requests.empty() && mast_requests.empty() && statuses.empty() &&
+           !goodness_map && arc_votes.empty();
+  }
+};
+
+/// Time and work counters over the manager's life (for the m/h benchmark).
+struct MotionCounters {
+  double moving_s = 0.0;  ///< [s] running with a drive primitive outstanding
+  double still_s = 0.0;   ///< [s] running without one (imaging, thinking, VO, steering waits)
+  int drives = 0;
+  int images = 0;          ///< range images requested
+  int images_skipped = 0;  ///< autonav steps that skipped imaging (all paths known safe)
+  int images_while_driving = 0;
+  double distance = 0.0;  ///< [m] path length reported by locomotion
+};
+
+class MobilityManager {
+ public:
+  /// Errors: InvalidArgument naming the field when options.Validate() fails, or a null
+  /// assessor or selector. The planner may be null (LONG_TRAVERSE is then rejected).
+  static Result<MobilityManager> Create(const MobilityOptions& options,
+                                        std::unique_ptr<nav_core::TerrainAssessor> assessor,
+                                        std::unique_ptr<nav_core::ArcSelector> selector,
+                                        std::unique_ptr<nav_core::GlobalPlanner> planner = nullptr);
+
+  MobilityOutput OnCommand(const MobilityCommand& command, Time now);
+  /// Samples older than the stored one are ignored; non-finite ones count as SAPP while a
+  /// command runs. A jump while idle clears the terrain map (it cannot be trusted).
+  MobilityOutput OnPose(const PoseSample& pose, Time now);
+  /// A range image for request `request_id` from `camera`. Images of requests this manager did
+  /// not make (or no longer waits for) are ignored.
+  MobilityOutput OnRangeImage(const nav_core::RangeScan& scan, Camera camera,
+                              std::uint32_t request_id, Time now);
+  /// Reports of drive commands this manager did not send are ignored (apart from BUSY ones).
+  MobilityOutput OnDriveStatus(const DriveReport& report, Time now);
+  MobilityOutput OnMastStatus(const MastReport& report, Time now);
+  MobilityOutput OnVisOdom(const VisOdomResult& result, Time now);
+  /// Time-outs and the periodic running status.
+  MobilityOutput Step(Time now);
+
+  /// ACM: the software enable (initially options().software_enable).
+  void SetSoftwareEnable(bool enable) { software_enable_ = enable; }
+
+  bool busy() const { return run_.has_value(); }
+  bool motion_error_latched() const { return latched_ != Fault::kNone; }
+  Fault latched_fault() const { return latched_; }
+  /// The latest status (of the running or the last command).
+  const MobilityStatus& status() const { return status_; }
+  const MotionCounters& counters() const { return counters_; }
+  const MobilityOptions& options() const { return options_; }
+  const nav_core::TerrainAssessor& assessor() const { return *assessor_; }
+
+  /// The command checks of OnCommand without the state ones (BUSY, ACM, latch, pose): Ok or
+  /// InvalidArgument naming the field and value ("tolerance = -1 m is outside [0, inf)").
+  Status ValidateCommand(const MobilityCommand& command) const;
+
+ private:
+  enum class Purpose { kStep, kThink };
+  struct PendingImage {
+    std::uint32_t request_id = 0;
+    Camera camera = Camera::kFrontHazcam;
+    Time sent;
+    Purpose purpose = Purpose::kStep;
+  };
+  struct PendingDrive {
+    std::uint32_t command_id = 0;
+    Primitive primitive;
+    Time sent;
+    Time deadline;
+    bool guarded_check_done = false;
+  };
+  struct Run {
+    MobilityCommand command;
+    Time start;
+    std::optional<Time> deadline;      // time budget
+    std::optional<Time> tod_deadline;  // Mars time of day
+    double tolerance = 0.0;
+    double max_tilt = 0.0;
+    int max_steps = 0;
+    bool think = false;
+    std::deque<Primitive> queue;            // directed / guarded pieces still to drive
+    int blind_pieces = 0;                   // guarded arc: leading pieces that run blind
+    std::vector<Eigen::Vector2d> goals;     // long traverse legs (last = the goal)
+    std::optional<Primitive> guarded_next;  // guarded piece waiting for its image
+    std::deque<Camera> camera_queue;        // further images this step needs
+    std::optional<PendingImage> image;
+    std::optional<PendingDrive> drive;
+    std::optional<Time> vo_since;     // waiting for a VO result since
+    Time vo_after;                    // VO results must end after this (the last drive's start)
+    bool think_image_merged = false;  // an image was merged while the last arc drove
+    std::uint32_t steps = 0;
+    std::uint32_t images = 0;
+    int vo_failures = 0;
+    double distance_driven = 0.0;
+    std::vector<double> goal_distance_history;  // at each step end
+    Time last_status;
+  };
+
+  MobilityManager(const MobilityOptions& options,
+                  std::unique_ptr<nav_core::TerrainAssessor> assessor,
+                  std::unique_ptr<nav_core::ArcSelector> selector,
+                  std::unique_ptr<nav_core::GlobalPlanner> planner);
+
+  // Command handling.
+  void Reject(const MobilityCommand& command, Time now, Fault fault, const std::string& message,
+              MobilityOutput* out);
+  void Start(const MobilityCommand& command, Time now, MobilityOutput* out);
+  void Finish(Time now, State state, Fault fault, const std::string& message, MobilityOutput* out);
+  void EmitStatus(Time now, MobilityOutput* out);
+  // The step loop.
+  void NextStep(Time now, MobilityOutput* out);
+  bool CheckLimits(Time now, MobilityOutput* out);
+  void AutonavStep(Time now, MobilityOutput* out);
+  void GuardedStep(Time now, MobilityOutput* out);
+  void WaypointStep(Time now, MobilityOutput* out);
+  void ChooseAndDrive(Time now, const nav_core::ArcEvaluation& eval, MobilityOutput* out);
+  void RequestImage(Camera camera, Purpose purpose, Time now, MobilityOutput* out);
+  bool SendDrive(const Primitive& p, Time now, MobilityOutput* out);
+  void StartThinking(const Primitive& p, Time now, MobilityOutput* out);
+  void StepDone(Time now, MobilityOutput* out);
+  void SendStop(Time now, MobilityOutput* out);
+  // Helpers.
+  Result<nav_core::ArcEvaluation> Evaluate(const Pose2& from, Time now) const;
+  Eigen::Vector2d CurrentGoal() const;
+  double DistanceToGoal() const;
+  bool PoseFresh(Time now, std::string* why) const;
+  Camera CameraFor(const nav_core::ArcEvaluation& eval) const;
+  std::vector<Primitive> SplitForVisOdom(const Primitive& p) const;
+  void Account(Time now);
+
+  MobilityOptions options_;
+  std::unique_ptr<nav_core::TerrainAssessor> assessor_;
+  std::unique_ptr<nav_core::ArcSelector> selector_;
+  std::unique_ptr<nav_core::GlobalPlanner> planner_;
+  bool software_enable_ = true;
+  Fault latched_ = Fault::kNone;
+  std::optional<PoseSample> pose_;
+  bool pose_bad_ = false;  // non-finite or jumping since the last good sample
+  std::string pose_bad_why_;
+  std::optional<Run> run_;
+  MobilityStatus status_;
+  MotionCounters counters_;
+  std::optional<Time> last_account_;
+  std::uint32_t next_id_ = 0;
+};
+
+}  // namespace rover::apl::mobility

@@ -1,0 +1,141 @@
+#include "mobility_service.hpp"
+
+#include <memory>
+#include <string>
+
+#include "mobility_msg.hpp"
+#include "rover/apl/gestalt/arc_evaluator.hpp"
+#include "rover/apl/gestalt/terrain_map.hpp"
+#include "rover/base/log.hpp"
+
+namespace rover::apl::mobility {
+namespace {
+
+constexpr double kStepRateHz = 10.0;
+
+// Logs a failed write; a write failure never stops the service.
+void Check(const Status& s, const char* topic) {
+  if (!s.ok()) log::Error(std::string(topic) + " write failed", {{"error", s.message()}});
+}
+
+}  // namespace
+
+void MobilityService::DeclareParameters(ParamSet& params) {
+  DeclareParams<MobilityOptions>(params, "mobility.");
+  DeclareParams<gestalt::GestaltOptions>(params, "gestalt.");
+}
+
+Status MobilityService::ValidateParameters(const ParamSet& params) const {
+  ROVER_RETURN_IF_ERROR(ReadParams<MobilityOptions>(params, "mobility.").status());
+  return ReadParams<gestalt::GestaltOptions>(params, "gestalt.").status();
+}
+
+Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
+  ctx_ = &ctx;
+  ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
+                         ReadParams<MobilityOptions>(params, "mobility."));
+  ROVER_ASSIGN_OR_RETURN(const gestalt::GestaltOptions g,
+                         ReadParams<gestalt::GestaltOptions>(params, "gestalt."));
+  ROVER_ASSIGN_OR_RETURN(gestalt::TerrainMap map, gestalt::TerrainMap::Create(g));
+  ROVER_ASSIGN_OR_RETURN(gestalt::ArcEvaluator arcs, gestalt::ArcEvaluator::Create(g));
+  ROVER_ASSIGN_OR_RETURN(
+      MobilityManager manager,
+      MobilityManager::Create(options, std::make_unique<gestalt::TerrainMap>(std::move(map)),
+                              std::make_unique<gestalt::ArcEvaluator>(std::move(arcs))));
+  manager_.emplace(std::move(manager));
+
+  ROVER_ASSIGN_OR_RETURN(drive_writer_, ctx.MakeWriter<rover_dl_DriveCommand>("dl/drive_command"));
+  ROVER_ASSIGN_OR_RETURN(range_writer_, ctx.MakeWriter<rover_dl_RangeRequest>("dl/range_request"));
+  ROVER_ASSIGN_OR_RETURN(mast_writer_, ctx.MakeWriter<rover_dl_MastCommand>("dl/mast_command"));
+  ROVER_ASSIGN_OR_RETURN(status_writer_,
+                         ctx.MakeWriter<rover_apl_MobilityStatus>("apl/mobility_status"));
+  ROVER_ASSIGN_OR_RETURN(map_writer_, ctx.MakeWriter<rover_apl_GoodnessMap>("apl/goodness_map"));
+  ROVER_ASSIGN_OR_RETURN(votes_writer_, ctx.MakeWriter<rover_apl_ArcVotes>("apl/arc_votes"));
+
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_MobilityCommand>(
+      "apl/mobility_command", [this](const dds::Sample<rover_apl_MobilityCommand>& s) {
+        const MobilityCommand c = msg::CommandFromIdl(s.data());
+        log::Info("mobility command", {{"command_id", c.command_id}, {"mode", ModeName(c.mode)}});
+        Publish(manager_->OnCommand(c, ctx_->Now()));
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
+      "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
+        Publish(manager_->OnPose(msg::PoseFromIdl(s.data()), ctx_->Now()));
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RangeImage>(
+      "dl/range_image", [this](const dds::Sample<rover_dl_RangeImage>& s) {
+        const rover_dl_RangeImage& m = s.data();
+        auto scan = msg::RangeScanFromIdl(m);
+        nav_core::RangeScan bad;  // a malformed image reaches the manager as an empty scan
+        Publish(manager_->OnRangeImage(scan.ok() ? *scan : bad, msg::CameraFromIdl(m.camera),
+                                       m.request_id, ctx_->Now()));
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_DriveStatus>(
+      "dl/drive_status", [this](const dds::Sample<rover_dl_DriveStatus>& s) {
+        Publish(manager_->OnDriveStatus(msg::DriveStatusFromIdl(s.data()), ctx_->Now()));
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastStatus>(
+      "dl/mast_status", [this](const dds::Sample<rover_dl_MastStatus>& s) {
+        Publish(manager_->OnMastStatus(msg::MastStatusFromIdl(s.data()), ctx_->Now()));
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RelativePose>(
+      "dl/relative_pose", [this](const dds::Sample<rover_dl_RelativePose>& s) {
+        const auto vo = msg::VisOdomFromIdl(s.data());
+        if (vo) Publish(manager_->OnVisOdom(*vo, ctx_->Now()));
+      }));
+  ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz),
+                          [this] { Publish(manager_->Step(ctx_->Now())); });
+  ctx.SetHealth(rover_HEALTH_OK, "");
+  return Status::Ok();
+}
+
+Status MobilityService::OnDeactivate(ServiceContext& ctx) {
+  if (manager_ && manager_->busy()) {
+    MobilityCommand stop;
+    stop.mode = Mode::kStop;
+    Publish(manager_->OnCommand(stop, ctx.Now()));
+  }
+  return Status::Ok();
+}
+
+void MobilityService::Publish(const MobilityOutput& out) {
+  for (const DriveRequest& d : out.drives) {
+    rover_dl_DriveCommand m = msg::DriveCommandToIdl(d);
+    ctx_->Stamp(m.header, "rover");
+    Check(drive_writer_.Write(m), "dl/drive_command");
+  }
+  for (const RangeRequest& r : out.range_requests) {
+    rover_dl_RangeRequest m = msg::RangeRequestToIdl(r);
+    ctx_->Stamp(m.header, "rover");
+    Check(range_writer_.Write(m), "dl/range_request");
+  }
+  for (const MastRequest& r : out.mast_requests) {
+    rover_dl_MastCommand m = msg::MastCommandToIdl(r);
+    ctx_->Stamp(m.header, "site");
+    Check(mast_writer_.Write(m), "dl/mast_command");
+  }
+  if (out.goodness_map) {
+    msg::GoodnessMapMessage m = msg::GoodnessMapToIdl(*out.goodness_map);
+    const std::int64_t stamp = m.msg.header.stamp_ns;
+    ctx_->Stamp(m.msg.header, "site");
+    m.msg.header.stamp_ns = stamp;  // capture time of the newest data
+    Check(map_writer_.Write(m.msg), "apl/goodness_map");
+  }
+  for (const ArcVotesSnapshot& v : out.arc_votes) {
+    msg::ArcVotesMessage m = msg::ArcVotesToIdl(v);
+    ctx_->Stamp(m.msg.header, "site");
+    Check(votes_writer_.Write(m.msg), "apl/arc_votes");
+  }
+  for (const MobilityStatus& st : out.statuses) {
+    rover_apl_MobilityStatus m = msg::StatusToIdl(st);
+    ctx_->Stamp(m.header, "site");
+    Check(status_writer_.Write(m), "apl/mobility_status");
+    if (st.state == State::kFailed || st.state == State::kRejected) {
+      log::Warn("mobility command ended", {{"command_id", st.command_id},
+                                           {"fault", std::string(FaultName(st.fault))},
+                                           {"message", st.message}});
+    }
+  }
+}
+
+}  // namespace rover::apl::mobility

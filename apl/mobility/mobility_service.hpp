@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// apl-mobility: the service that binds the MobilityManager (library apl_mobility) to topics,
+/// with GESTALT (apl/gestalt's TerrainMap and ArcEvaluator) injected.
+///
+///   in:  apl/mobility_command -> OnCommand      dl/pose          -> OnPose
+///        dl/range_image       -> OnRangeImage   dl/drive_status  -> OnDriveStatus
+///        dl/mast_status       -> OnMastStatus   dl/relative_pose -> OnVisOdom (VO samples only)
+///   out: dl/drive_command, dl/range_request, dl/mast_command, apl/mobility_status (latched),
+///        apl/goodness_map (after each assessment), apl/arc_votes (one per decision)
+/// A run-clock timer at 10 Hz calls Step (time-outs, the periodic running status); nothing
+/// sleeps. Every input is handed over at the run-clock time of arrival (ctx.Now()).
+///
+/// Parameters: mobility.* (MobilityOptions) and gestalt.* (GestaltOptions); an invalid one
+/// refuses configuration naming its key. A malformed range image (sizes not matching) is an IMG
+/// fault of the waiting command; nothing a sample carries can crash the service. Deactivation
+/// ends a running command STOPPED (a STOP drive is sent).
+
+#include <optional>
+
+#include "rover/apl/gestalt/options.hpp"
+#include "rover/apl/mobility/mobility_manager.hpp"
+#include "rover/runtime/service.hpp"
+
+namespace rover::apl::mobility {
+
+class MobilityService final : public Service {
+ public:
+  MobilityService() : Service("apl-mobility") {}
+
+  void DeclareParameters(ParamSet& params) override;
+  Status ValidateParameters(const ParamSet& params) const override;
+  Status OnConfigure(ServiceContext& ctx, const ParamSet& params) override;
+  Status OnDeactivate(ServiceContext& ctx) override;
+
+  /// The manager (for tests); null before configuration.
+  const MobilityManager* manager() const { return manager_ ? &*manager_ : nullptr; }
+
+ private:
+  void Publish(const MobilityOutput& out);
+
+  ServiceContext* ctx_ = nullptr;
+  std::optional<MobilityManager> manager_;
+  dds::Writer<rover_dl_DriveCommand> drive_writer_;
+  dds::Writer<rover_dl_RangeRequest> range_writer_;
+  dds::Writer<rover_dl_MastCommand> mast_writer_;
+  dds::Writer<rover_apl_MobilityStatus> status_writer_;
+  dds::Writer<rover_apl_GoodnessMap> map_writer_;
+  dds::Writer<rover_apl_ArcVotes> votes_writer_;
+};
+
+}  // namespace rover::apl::mobility

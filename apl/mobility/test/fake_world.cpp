@@ -1,0 +1,166 @@
+#include "fake_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rover/apl/gestalt/arc_evaluator.hpp"
+#include "rover/apl/gestalt/terrain_map.hpp"
+#include "rover/base/check.hpp"
+
+namespace rover::apl::mobility::testing {
+
+MobilityManager MakeGestaltManager(const MobilityOptions& options) {
+  const gestalt::GestaltOptions g;
+  auto map = gestalt::TerrainMap::Create(g);
+  auto arcs = gestalt::ArcEvaluator::Create(g);
+  ROVER_DEMAND(map.ok() && arcs.ok());
+  auto manager = MobilityManager::Create(
+      options, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
+      std::make_unique<gestalt::ArcEvaluator>(std::move(arcs).value()));
+  ROVER_DEMAND(manager.ok());
+  return std::move(manager).value();
+}
+
+FakeWorld::FakeWorld(MobilityManager* manager, WorldOptions options)
+    : manager_(manager), options_(options) {}
+
+void FakeWorld::AddWall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double spacing,
+                        double radius, double height) {
+  field_.AddWall(a, b, spacing, radius, height);
+}
+
+void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double y0, double y1,
+                        double radius, double height,
+                        const std::vector<Eigen::Vector2d>& keep_clear, double clear) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
+  int placed = 0;
+  for (int tries = 0; placed < n && tries < 100 * n; ++tries) {
+    const Eigen::Vector2d p(ux(rng), uy(rng));
+    bool ok = true;
+    for (const auto& k : keep_clear) ok = ok && (p - k).norm() > clear;
+    if (!ok) continue;
+    field_.rocks().push_back({p.x(), p.y(), radius, height});
+    ++placed;
+  }
+}
+
+double FakeWorld::HeightAt(double x, double y) const { return field_.HeightAt(x, y); }
+
+nav_core::RangeScan FakeWorld::Capture(Camera camera) const {
+  rover::testing::SyntheticScan img = field_.Capture(
+      pose_.x, pose_.y, pose_.heading, camera == Camera::kRearHazcam, options_.camera);
+  nav_core::RangeScan scan;
+  scan.width = img.width;
+  scan.height = img.height;
+  scan.xyz = std::move(img.xyz);
+  scan.valid = std::move(img.valid);
+  scan.capture_time = now_;
+  scan.camera = std::string(CameraName(camera));
+  scan.site_from_rover = PoseNow().site_from_rover;
+  return scan;
+}
+
+PoseSample FakeWorld::PoseNow() const {
+  PoseSample ps;
+  ps.stamp = now_;
+  ps.site_from_rover.linear() =
+      Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  ps.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
+  return ps;
+}
+
+void FakeWorld::Absorb(const MobilityOutput& out) {
+  for (const MobilityStatus& s : out.statuses) statuses_.push_back(s);
+  arc_votes_ += static_cast<int>(out.arc_votes.size());
+  for (const DriveRequest& d : out.drives) {
+    drives_.push_back(d);
+    if (d.kind == PrimitiveKind::kStop) {
+      if (drive_) {
+        DriveReport rep{drive_->command_id, DriveState::kFailed, DriveTermination::kStopCommand,
+                        drive_done_, "stopped"};
+        drive_.reset();
+        Absorb(manager_->OnDriveStatus(rep, now_));
+      }
+      continue;
+    }
+    if (drive_) {
+      Absorb(manager_->OnDriveStatus(
+          {d.command_id, DriveState::kRejected, DriveTermination::kRejectedBusy, 0.0, "busy"},
+          now_));
+      continue;
+    }
+    drive_ = d;
+    drive_done_ = 0.0;
+  }
+  for (const RangeRequest& r : out.range_requests) {
+    ranges_.push_back(r);
+    if (!options_.deliver_images) continue;
+    images_.push_back(
+        {Capture(r.camera), r.camera, r.request_id, now_ + Seconds(options_.image_latency_s)});
+  }
+}
+
+void FakeWorld::Tick() {
+  now_ = now_ + Seconds(options_.dt);
+  if (drive_) {
+    const bool turn = drive_->kind == PrimitiveKind::kTurnInPlace;
+    const double goal = turn ? std::abs(drive_->angle) : std::abs(drive_->distance);
+    const double inc =
+        std::min(goal - drive_done_, (turn ? options_.turn_rate : options_.speed) * options_.dt);
+    Primitive p;
+    p.kind = drive_->kind;
+    p.curvature = drive_->curvature;
+    p.distance = turn ? 0.0 : std::copysign(inc, drive_->distance);
+    p.angle = turn ? std::copysign(inc, drive_->angle) : 0.0;
+    pose_ = Propagate(pose_, p);
+    drive_done_ += inc;
+    if (drive_done_ >= goal - 1e-9) {
+      const DriveReport rep{drive_->command_id, DriveState::kDone, DriveTermination::kNominal,
+                            turn ? 0.0 : goal, ""};
+      drive_.reset();
+      Absorb(manager_->OnDriveStatus(rep, now_));
+    }
+  }
+  min_clearance_ = std::min(min_clearance_, field_.Clearance(pose_.x, pose_.y));
+  if (options_.deliver_poses) {
+    PoseSample ps = PoseNow();
+    if (tamper_pose) tamper_pose(&ps);
+    Absorb(manager_->OnPose(ps, now_));
+  }
+  for (std::size_t i = 0; i < images_.size();) {
+    if (images_[i].due <= now_) {
+      Image img = std::move(images_[i]);
+      images_.erase(images_.begin() + static_cast<std::ptrdiff_t>(i));
+      if (tamper_image) tamper_image(&img.scan, &img.camera);
+      Absorb(manager_->OnRangeImage(img.scan, img.camera, img.id, now_));
+    } else {
+      ++i;
+    }
+  }
+  Absorb(manager_->Step(now_));
+}
+
+MobilityStatus FakeWorld::Run(const MobilityCommand& command, double max_s) {
+  if (options_.deliver_poses) {
+    // A current pose so the command is not rejected for want of one.
+    Absorb(manager_->OnPose(PoseNow(), now_));
+  }
+  const std::size_t first = statuses_.size();
+  Absorb(manager_->OnCommand(command, now_));
+  const Time end = now_ + Seconds(max_s);
+  MobilityStatus last;
+  last.state = State::kRunning;
+  std::size_t seen = first;
+  while (true) {
+    for (; seen < statuses_.size(); ++seen) {
+      const MobilityStatus& s = statuses_[seen];
+      if (s.command_id == command.command_id && s.state != State::kRunning) return s;
+      if (s.command_id == command.command_id) last = s;
+    }
+    if (now_ >= end) return last;
+    Tick();
+  }
+}
+
+}  // namespace rover::apl::mobility::testing

@@ -1,0 +1,551 @@
+// The mobility manager driven in-process: GESTALT injected, the kinematic FakeWorld of
+// test/fake_world.hpp for locomotion and stereo, or scripted inputs for the fault cases.
+#include "rover/apl/mobility/mobility_manager.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "fake_world.hpp"
+#include "rover/apl/gestalt/arc_evaluator.hpp"
+#include "rover/apl/gestalt/terrain_map.hpp"
+
+namespace rover::apl::mobility {
+namespace {
+
+using testing::FakeWorld;
+using testing::MakeGestaltManager;
+using testing::WorldOptions;
+
+constexpr double kPi = 3.14159265358979323846;
+
+MobilityCommand Autonav(std::uint32_t id, double x, double y, double tol = 0.3) {
+  MobilityCommand c;
+  c.command_id = id;
+  c.mode = Mode::kAutoNav;
+  c.goal = Eigen::Vector3d(x, y, 0.0);
+  c.tolerance = tol;
+  return c;
+}
+
+MobilityCommand Directed(std::uint32_t id, Mode mode, std::vector<Primitive> prims) {
+  MobilityCommand c;
+  c.command_id = id;
+  c.mode = mode;
+  c.primitives = std::move(prims);
+  return c;
+}
+
+Primitive Straight(double s) { return {PrimitiveKind::kStraight, 0.0, s, 0.0}; }
+Primitive Turn(double a) { return {PrimitiveKind::kTurnInPlace, 0.0, 0.0, a}; }
+
+PoseSample PoseAt(Time t, double x, double y, double heading = 0.0) {
+  PoseSample p;
+  p.stamp = t;
+  p.site_from_rover.linear() =
+      Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  p.site_from_rover.translation() = Eigen::Vector3d(x, y, 0.0);
+  return p;
+}
+
+Time T(double s) { return Time::FromSeconds(s); }
+
+// ---- driving in the fake world ---------------------------------------------------------------
+
+TEST(MobilityManagerWorld, AutonavReachesGoalThroughRocks) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  // One rock right on the straight line, a gate of two behind it, and one more near the goal
+  // (rocks forbid a disc of ~1.5 m radius: the rover's 1.3 m disc plus the rock).
+  w.rocks().push_back({4.0, 0.0, 0.3, 0.45});
+  w.rocks().push_back({7.5, 2.6, 0.25, 0.4});
+  w.rocks().push_back({7.5, -2.6, 0.25, 0.4});
+  w.rocks().push_back({10.0, 3.0, 0.2, 0.35});
+  const MobilityStatus s = w.Run(Autonav(1, 12.0, 0.0), 2000.0);
+  EXPECT_EQ(s.state, State::kSucceeded) << s.message << " at " << w.pose().x << ", " << w.pose().y;
+  EXPECT_EQ(s.fault, Fault::kNone);
+  EXPECT_LE(s.distance_to_goal, 0.3 + 1e-9);
+  EXPECT_GT(w.min_rock_clearance(), 0.3);  // the rover centre never came near a rock
+  EXPECT_GT(s.steps, 15u);
+  EXPECT_GT(w.arc_vote_snapshots(), 0);
+}
+
+TEST(MobilityManagerWorld, DriveWhileThinkingStandsStillLessThanStopAndGo) {
+  double still[2] = {0, 0}, moving[2] = {0, 0};
+  for (int think = 0; think < 2; ++think) {
+    MobilityManager m = MakeGestaltManager();
+    FakeWorld w(&m);
+    w.Scatter(3, 10, 2.0, 9.0, -3.0, 3.0, 0.2, 0.35, {{0, 0}, {10, 0}}, 1.6);
+    MobilityCommand c = Autonav(1, 10.0, 0.0);
+    c.think = think ? ThinkMode::kDriveWhileThinking : ThinkMode::kStopAndGo;
+    const MobilityStatus s = w.Run(c, 2000.0);
+    ASSERT_EQ(s.state, State::kSucceeded) << s.message;
+    still[think] = m.counters().still_s;
+    moving[think] = m.counters().moving_s;
+    if (think) {
+      EXPECT_GT(m.counters().images_while_driving, 0);
+    } else {
+      EXPECT_EQ(m.counters().images_while_driving, 0);
+    }
+  }
+  // The figures, for the record (simulated seconds; the ratio is what is asserted).
+  std::printf(
+      "stop-and-go: still %.1f s, moving %.1f s (%.0f %% still); drive while thinking: "
+      "still %.1f s, moving %.1f s (%.0f %% still)\n",
+      still[0], moving[0], 100.0 * still[0] / (still[0] + moving[0]), still[1], moving[1],
+      100.0 * still[1] / (still[1] + moving[1]));
+  EXPECT_LT(still[1], 0.5 * still[0])
+      << "stop-and-go still " << still[0] << " s, moving " << moving[0] << " s; thinking still "
+      << still[1] << " s, moving " << moving[1] << " s";
+}
+
+TEST(MobilityManagerWorld, OpenGroundSkipsSomeImaging) {
+  MobilityOptions o;
+  o.drive_while_thinking = false;
+  MobilityManager m = MakeGestaltManager(o);
+  FakeWorld w(&m);
+  const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 1000.0);
+  ASSERT_EQ(s.state, State::kSucceeded) << s.message;
+  EXPECT_GT(m.counters().images_skipped, 0);
+  EXPECT_LT(s.images, s.steps);
+}
+
+TEST(MobilityManagerWorld, GoalBehindTheRoverBacksOrTurns) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  const MobilityStatus s = w.Run(Autonav(1, -3.0, 0.5), 1000.0);
+  EXPECT_EQ(s.state, State::kSucceeded) << s.message;
+}
+
+TEST(MobilityManagerWorld, GuardedDriveAtARockIsVetoed) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  w.rocks().push_back({3.5, 0.0, 0.35, 0.5});
+  const MobilityStatus s = w.Run(Directed(1, Mode::kGuarded, {Straight(6.0)}), 1000.0);
+  EXPECT_EQ(s.state, State::kFailed);
+  EXPECT_EQ(s.fault, Fault::kNoPath) << s.message;
+  EXPECT_EQ(s.fault_class, FaultClass::kGoalError);
+  EXPECT_NE(s.message.find("vetoed"), std::string::npos) << s.message;
+  EXPECT_FALSE(s.motion_error_latched);
+  EXPECT_LT(w.pose().x, 3.5 - 0.35 - 0.3);  // halted before the rock
+  EXPECT_GE(w.pose().x, 0.9);               // but drove the safe pieces first
+}
+
+TEST(MobilityManagerWorld, GuardedDriveOnClearGroundRuns) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  const MobilityStatus s =
+      w.Run(Directed(1, Mode::kGuarded, {Straight(2.5), Turn(kPi / 2)}), 1000.0);
+  EXPECT_EQ(s.state, State::kSucceeded) << s.message;
+  EXPECT_NEAR(w.pose().x, 2.5, 1e-6);
+  EXPECT_NEAR(w.pose().heading, kPi / 2, 1e-6);
+}
+
+TEST(MobilityManagerWorld, GuardedArcTurnsBlindThenChecksTheSegment) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  w.rocks().push_back({0.0, 2.5, 0.35, 0.5});  // to the left, where the turn points
+  const MobilityStatus s =
+      w.Run(Directed(1, Mode::kGuardedArc, {Turn(kPi / 2), Straight(3.0)}), 1000.0);
+  EXPECT_EQ(s.fault, Fault::kNoPath) << s.message;
+  EXPECT_NEAR(w.pose().heading, kPi / 2, 1e-6);  // the turn ran
+  EXPECT_LT(w.pose().y, 2.5 - 0.35 - 0.3);
+}
+
+TEST(MobilityManagerWorld, KeepOutZoneHaltsBeforeIt) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  MobilityCommand c = Autonav(1, 10.0, 0.0);
+  c.keep_out.push_back({"dune", {{5.0, -4.0}, {6.0, -4.0}, {6.0, 4.0}, {5.0, 4.0}}});
+  const MobilityStatus s = w.Run(c, 1000.0);
+  EXPECT_EQ(s.fault, Fault::kKeepOut) << s.message;
+  EXPECT_EQ(s.fault_class, FaultClass::kGoalError);
+  EXPECT_NE(s.message.find("dune"), std::string::npos);
+  EXPECT_LT(w.pose().x, 5.0 - m.options().keepout_margin + 1e-6);
+  EXPECT_GT(w.pose().x, 3.0);
+}
+
+TEST(MobilityManagerWorld, BlindGoToWaypointIgnoresKeepOutOnlyIfClear) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  MobilityCommand c = Autonav(1, 6.0, 3.0);
+  c.mode = Mode::kGoToWaypoint;
+  const MobilityStatus s = w.Run(c, 1000.0);
+  EXPECT_EQ(s.state, State::kSucceeded) << s.message;
+  EXPECT_TRUE(w.range_requests().empty());  // blind: no imaging
+}
+
+TEST(MobilityManagerWorld, NoPathWhenBoxedIn) {
+  MobilityManager m = MakeGestaltManager();
+  FakeWorld w(&m);
+  // A rock wall wrapped close around the rover: its own cell is unsafe, so every candidate is.
+  for (int i = 0; i < 24; ++i) {
+    const double a = 2.0 * kPi * i / 24;
+    w.rocks().push_back({1.0 * std::cos(a), 1.0 * std::sin(a), 0.2, 0.4});
+  }
+  const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 1000.0);
+  EXPECT_EQ(s.fault, Fault::kNoPath) << s.message;
+  EXPECT_EQ(s.fault_class, FaultClass::kGoalError);
+  EXPECT_LT(std::hypot(w.pose().x, w.pose().y), 0.05);  // never moved
+}
+
+TEST(MobilityManagerWorld, CulDeSacEndsNoProgress) {
+  MobilityOptions o;
+  o.progress_steps = 8;
+  o.min_progress = 0.5;
+  MobilityManager m = MakeGestaltManager(o);
+  FakeWorld w(&m);
+  // A U of rocks opening toward the rover, goal beyond its closed end.
+  w.AddWall({5.0, -4.0}, {5.0, 4.0}, 0.3, 0.2, 0.5);
+  w.AddWall({0.5, -4.0}, {5.0, -4.0}, 0.3, 0.2, 0.5);
+  w.AddWall({0.5, 4.0}, {5.0, 4.0}, 0.3, 0.2, 0.5);
+  const MobilityStatus s = w.Run(Autonav(1, 12.0, 0.0), 3000.0);
+  EXPECT_EQ(s.state, State::kFailed) << s.message;
+  EXPECT_TRUE(s.fault == Fault::kNoProgress || s.fault == Fault::kNoPath) << s.message;
+  EXPECT_EQ(s.fault_class, FaultClass::kGoalError);
+  EXPECT_GT(w.min_rock_clearance(), 0.3);
+}
+
+TEST(MobilityManagerWorld, ImagesThatStopArrivingAreImgAndLatch) {
+  MobilityManager m = MakeGestaltManager();
+  WorldOptions wo;
+  wo.deliver_images = false;
+  FakeWorld w(&m, wo);
+  const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 100.0);
+  EXPECT_EQ(s.fault, Fault::kImg) << s.message;
+  EXPECT_EQ(s.fault_class, FaultClass::kMotionError);
+  EXPECT_TRUE(s.motion_error_latched);
+  EXPECT_NE(s.message.find("image_timeout_s"), std::string::npos);
+  EXPECT_TRUE(w.drives().empty());
+}
+
+TEST(MobilityManagerWorld, WrongCameraAndAllInvalidAreImg) {
+  for (int variant = 0; variant < 2; ++variant) {
+    MobilityManager m = MakeGestaltManager();
+    FakeWorld w(&m);
+    w.tamper_image = [variant](nav_core::RangeScan* scan, Camera* cam) {
+      if (variant == 0) *cam = Camera::kNavcam;
+      if (variant == 1) std::fill(scan->valid.begin(), scan->valid.end(), 0);
+    };
+    const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 100.0);
+    EXPECT_EQ(s.fault, Fault::kImg) << s.message;
+    EXPECT_NE(s.message.find(variant == 0 ? "navcam" : "invalid"), std::string::npos) << s.message;
+    EXPECT_TRUE(w.drives().empty());
+  }
+}
+
+TEST(MobilityManagerWorld, PoseThatStopsOrJumpsIsSapp) {
+  {
+    MobilityManager m = MakeGestaltManager();
+    FakeWorld w(&m);
+    int n = 0;
+    w.tamper_pose = [&n](PoseSample* p) {
+      if (++n > 30) p->site_from_rover.translation().x() += 2.0;  // a 2 m jump mid-drive
+    };
+    const MobilityStatus s = w.Run(Directed(1, Mode::kDirected, {Straight(3.0)}), 100.0);
+    EXPECT_EQ(s.fault, Fault::kSapp) << s.message;
+    EXPECT_NE(s.message.find("jumped"), std::string::npos);
+    EXPECT_TRUE(s.motion_error_latched);
+    ASSERT_FALSE(w.drives().empty());
+    EXPECT_EQ(w.drives().back().kind, PrimitiveKind::kStop);
+  }
+  {
+    MobilityManager m = MakeGestaltManager();
+    WorldOptions wo;
+    FakeWorld w(&m, wo);
+    int n = 0;
+    w.tamper_pose = [&n](PoseSample* p) {
+      if (++n > 20) p->stamp = Time::FromSeconds(2.0);  // stuck: no newer sample
+    };
+    const MobilityStatus s = w.Run(Directed(1, Mode::kDirected, {Straight(3.0)}), 100.0);
+    EXPECT_EQ(s.fault, Fault::kSapp) << s.message;
+    EXPECT_NE(s.message.find("pose_stale_s"), std::string::npos);
+  }
+}
+
+TEST(MobilityManagerWorld, VisOdomSplitsStepsAndCountsFailures) {
+  MobilityOptions o;
+  o.max_visodom_failures = 1;
+  MobilityManager m = MakeGestaltManager(o);
+  FakeWorld w(&m);
+  // No VO results arrive: each step waits visodom_timeout_s and counts as failed.
+  const MobilityStatus s = w.Run(Directed(1, Mode::kVisOdom, {Straight(3.0)}), 1000.0);
+  EXPECT_EQ(s.fault, Fault::kVisOdom) << s.message;
+  EXPECT_EQ(s.fault_class, FaultClass::kGoalError);
+  EXPECT_EQ(w.drives().size(), 2u);  // two 0.6 m steps, then the second failure ends it
+  EXPECT_NEAR(w.drives()[0].distance, 0.6, 1e-9);
+}
+
+// ---- scripted inputs -------------------------------------------------------------------------
+
+class MobilityManagerScripted : public ::testing::Test {
+ protected:
+  MobilityManager m_ = MakeGestaltManager();
+  MobilityOutput Cmd(const MobilityCommand& c, double t) {
+    m_.OnPose(PoseAt(T(t), 0, 0), T(t));
+    return m_.OnCommand(c, T(t));
+  }
+  // Runs a directed 1 m drive and reports its drive command back with `state` / `term`.
+  MobilityStatus FailDrive(DriveState state, DriveTermination term, double t) {
+    MobilityOutput out = Cmd(Directed(10, Mode::kDirected, {Straight(1.0)}), t);
+    EXPECT_EQ(out.drives.size(), 1u);
+    m_.OnPose(PoseAt(T(t + 1), 0.1, 0), T(t + 1));
+    out = m_.OnDriveStatus({out.drives[0].command_id, state, term, 0.1, "x"}, T(t + 1));
+    EXPECT_FALSE(out.statuses.empty());
+    return out.statuses.back();
+  }
+};
+
+TEST_F(MobilityManagerScripted, DriveTerminationsMapToMotionErrorsThatLatch) {
+  const std::pair<DriveTermination, Fault> cases[] = {
+      {DriveTermination::kTilt, Fault::kTilt},
+      {DriveTermination::kSuspension, Fault::kSuspension},
+      {DriveTermination::kMotorStall, Fault::kMot},
+      {DriveTermination::kMotorCurrent, Fault::kMot},
+      {DriveTermination::kMotorFault, Fault::kMot},
+      {DriveTermination::kTimeout, Fault::kDriveTimeout},
+      {DriveTermination::kStaleSensor, Fault::kSapp},
+  };
+  double t = 0;
+  for (const auto& [term, fault] : cases) {
+    const MobilityStatus s = FailDrive(DriveState::kFailed, term, t += 10);
+    EXPECT_EQ(s.fault, fault) << FaultName(fault);
+    EXPECT_EQ(s.fault_class, FaultClass::kMotionError);
+    EXPECT_TRUE(s.motion_error_latched);
+    // Every motion command is refused, with the latched fault, until CLEAR_FAULT.
+    MobilityOutput out = Cmd(Autonav(11, 3, 0), t += 1);
+    ASSERT_EQ(out.statuses.size(), 1u);
+    EXPECT_EQ(out.statuses[0].state, State::kRejected);
+    EXPECT_EQ(out.statuses[0].fault, fault);
+    EXPECT_TRUE(out.drives.empty() && out.range_requests.empty());
+    MobilityCommand clear;
+    clear.command_id = 12;
+    clear.mode = Mode::kClearFault;
+    out = Cmd(clear, t += 1);
+    EXPECT_EQ(out.statuses.back().state, State::kSucceeded);
+    EXPECT_FALSE(m_.motion_error_latched());
+  }
+}
+
+TEST_F(MobilityManagerScripted, GoalErrorsFromLocomotionLeaveTheRoverReady) {
+  MobilityStatus s = FailDrive(DriveState::kRejected, DriveTermination::kRejectedBusy, 1);
+  EXPECT_EQ(s.fault, Fault::kArb);
+  EXPECT_EQ(s.fault_class, FaultClass::kGoalError);
+  EXPECT_FALSE(s.motion_error_latched);
+  s = FailDrive(DriveState::kFailed, DriveTermination::kStopCommand, 10);
+  EXPECT_EQ(s.fault, Fault::kStopped);
+  s = FailDrive(DriveState::kRejected, DriveTermination::kRejectedInvalid, 20);
+  EXPECT_EQ(s.fault, Fault::kBadCommand);
+  const MobilityOutput out = Cmd(Directed(13, Mode::kDirected, {Straight(1.0)}), 30);
+  EXPECT_EQ(out.drives.size(), 1u);  // still ready
+}
+
+TEST_F(MobilityManagerScripted, DriveWatchdogStopsAndLatches) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  ASSERT_EQ(out.drives.size(), 1u);
+  for (double t = 0.5; t < 200; t += 0.5) {
+    m_.OnPose(PoseAt(T(t), 0, 0), T(t));
+    out = m_.Step(T(t));
+    if (!m_.busy()) break;
+  }
+  ASSERT_FALSE(m_.busy());
+  EXPECT_EQ(m_.status().fault, Fault::kDriveTimeout);
+  EXPECT_TRUE(m_.motion_error_latched());
+  ASSERT_EQ(out.drives.size(), 1u);
+  EXPECT_EQ(out.drives[0].kind, PrimitiveKind::kStop);
+}
+
+TEST_F(MobilityManagerScripted, BusyRejectsTheSecondCommandAndTheFirstContinues) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  ASSERT_EQ(out.drives.size(), 1u);
+  const std::uint32_t drive = out.drives[0].command_id;
+  out = Cmd(Autonav(2, 5, 0), 1);
+  ASSERT_EQ(out.statuses.size(), 2u);
+  EXPECT_EQ(out.statuses[0].command_id, 2u);
+  EXPECT_EQ(out.statuses[0].state, State::kRejected);
+  EXPECT_EQ(out.statuses[0].fault, Fault::kBusy);
+  EXPECT_EQ(out.statuses[0].fault_class, FaultClass::kGoalError);
+  EXPECT_EQ(out.statuses[1].command_id, 1u);  // the latched status stays the running one
+  EXPECT_EQ(out.statuses[1].state, State::kRunning);
+  EXPECT_TRUE(out.drives.empty());
+  m_.OnPose(PoseAt(T(20), 0.4, 0), T(20));
+  out = m_.OnDriveStatus({drive, DriveState::kDone, DriveTermination::kNominal, 1.0, ""}, T(20));
+  ASSERT_FALSE(out.statuses.empty());
+  EXPECT_EQ(out.statuses.back().command_id, 1u);
+  EXPECT_EQ(out.statuses.back().state, State::kSucceeded);
+  EXPECT_DOUBLE_EQ(out.statuses.back().distance_driven, 1.0);
+}
+
+TEST_F(MobilityManagerScripted, StopEndsTheRunningCommandStopped) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  MobilityCommand stop;
+  stop.command_id = 2;
+  stop.mode = Mode::kStop;
+  out = Cmd(stop, 1);
+  ASSERT_EQ(out.statuses.size(), 2u);
+  EXPECT_EQ(out.statuses[0].command_id, 2u);
+  EXPECT_EQ(out.statuses[0].state, State::kSucceeded);
+  EXPECT_EQ(out.statuses[1].command_id, 1u);
+  EXPECT_EQ(out.statuses[1].fault, Fault::kStopped);
+  EXPECT_EQ(out.statuses[1].fault_class, FaultClass::kGoalError);
+  ASSERT_EQ(out.drives.size(), 1u);
+  EXPECT_EQ(out.drives[0].kind, PrimitiveKind::kStop);
+  EXPECT_FALSE(m_.busy());
+}
+
+TEST_F(MobilityManagerScripted, BadCommandsAreRejectedNamingTheFieldAndNothingMoves) {
+  auto expect_bad = [&](MobilityCommand c, const std::string& field) {
+    const MobilityOutput out = Cmd(c, 1);
+    ASSERT_EQ(out.statuses.size(), 1u) << field;
+    EXPECT_EQ(out.statuses[0].state, State::kRejected) << field;
+    EXPECT_EQ(out.statuses[0].fault, Fault::kBadCommand) << field;
+    EXPECT_EQ(out.statuses[0].fault_class, FaultClass::kGoalError) << field;
+    EXPECT_NE(out.statuses[0].message.find(field), std::string::npos) << out.statuses[0].message;
+    EXPECT_TRUE(out.drives.empty() && out.range_requests.empty()) << field;
+    EXPECT_FALSE(m_.busy());
+  };
+  expect_bad(Autonav(1, std::nan(""), 0), "goal.x is nan");
+  expect_bad(Autonav(1, 5000, 0), "max_goal_distance_m");
+  expect_bad(Autonav(1, 5, 0, -1.0), "tolerance = -1");
+  MobilityCommand c = Autonav(1, 5, 0);
+  c.mode = static_cast<Mode>(42);
+  expect_bad(c, "mode = 42");
+  c = Autonav(1, 5, 0);
+  c.keep_out.push_back({"bowtie", {{0, 0}, {2, 2}, {2, 0}, {0, 1}}});
+  expect_bad(c, "keep_out[0] ('bowtie').vertices: edges 0 and 2 cross");
+  c = Autonav(1, 5, 0);
+  c.keep_out.push_back({"line", {{3, 0}, {4, 0}}});
+  expect_bad(c, "2 vertices");
+  expect_bad(Directed(1, Mode::kGuarded, {}), "primitives: 0 given");
+  expect_bad(Directed(1, Mode::kDirected, {{PrimitiveKind::kArc, 3.0, 1.0, 0.0}}),
+             "primitives[0].curvature = 3");
+  expect_bad(Directed(1, Mode::kDirected, {Straight(std::nan(""))}),
+             "primitives[0].distance is nan");
+  c = Autonav(1, 5, 0);
+  c.lmst_end_h = 30;
+  expect_bad(c, "lmst_end_h = 30");
+  c = Autonav(1, 5, 0);
+  c.mode = Mode::kLongTraverse;
+  expect_bad(c, "not supported");
+}
+
+TEST_F(MobilityManagerScripted, SoftwareEnableOffIsAcm) {
+  m_.SetSoftwareEnable(false);
+  const MobilityOutput out = Cmd(Autonav(1, 5, 0), 1);
+  EXPECT_EQ(out.statuses.back().fault, Fault::kAcm);
+  EXPECT_EQ(out.statuses.back().fault_class, FaultClass::kGoalError);
+  EXPECT_TRUE(out.range_requests.empty() && out.drives.empty());
+}
+
+TEST_F(MobilityManagerScripted, NoPoseIsSappAtCommandTime) {
+  const MobilityOutput out = m_.OnCommand(Autonav(1, 5, 0), T(0));
+  EXPECT_EQ(out.statuses.back().fault, Fault::kSapp);
+  EXPECT_NE(out.statuses.back().message.find("no dl/pose"), std::string::npos);
+  EXPECT_TRUE(m_.motion_error_latched());
+}
+
+TEST_F(MobilityManagerScripted, NonFinitePoseWhileDrivingIsSapp) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  PoseSample p = PoseAt(T(1), 0, 0);
+  p.site_from_rover.translation().y() = std::nan("");
+  out = m_.OnPose(p, T(1));
+  ASSERT_FALSE(out.statuses.empty());
+  EXPECT_EQ(out.statuses.back().fault, Fault::kSapp);
+  EXPECT_NE(out.statuses.back().message.find("not finite"), std::string::npos);
+}
+
+TEST_F(MobilityManagerScripted, TimeBudgetIsWaypointTimeout) {
+  MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0)});
+  c.time_budget_s = 5.0;
+  Cmd(c, 0);
+  MobilityOutput out;
+  for (double t = 0.5; t < 10 && m_.busy(); t += 0.5) {
+    m_.OnPose(PoseAt(T(t), 0.01 * t, 0), T(t));
+    out = m_.Step(T(t));
+  }
+  EXPECT_EQ(m_.status().fault, Fault::kWaypointTimeout);
+  EXPECT_EQ(m_.status().fault_class, FaultClass::kGoalError);
+  ASSERT_FALSE(out.drives.empty());
+  EXPECT_EQ(out.drives.back().kind, PrimitiveKind::kStop);
+}
+
+TEST_F(MobilityManagerScripted, TimeOfDayLimit) {
+  // Run-clock 0 is J2000 noon; find the LMST there and ask to stop 0.01 Mars hours later.
+  const double lmst = MarsLocalMeanSolarTimeHours(m_.options().run_clock_epoch_unix_s,
+                                                  m_.options().site_longitude_east);
+  MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0)});
+  c.lmst_end_h = std::fmod(lmst + 0.01, 24.0);
+  Cmd(c, 0);
+  for (double t = 0.5; t < 100 && m_.busy(); t += 0.5) {
+    m_.OnPose(PoseAt(T(t), 0.001 * t, 0), T(t));
+    m_.Step(T(t));
+  }
+  EXPECT_EQ(m_.status().fault, Fault::kTod);
+  // 0.01 Mars hours = 37 s.
+  EXPECT_NEAR(m_.status().stamp.seconds(), 0.01 * kSecondsPerMarsHour, 0.6);
+}
+
+TEST_F(MobilityManagerScripted, TiltAndNortherlyTiltFromThePose) {
+  MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0), Straight(1.0)});
+  c.min_northerly_tilt = 0.05;     // the deck must face north by 3 deg
+  MobilityOutput out = Cmd(c, 0);  // flat: checked before the first step, nothing moves
+  EXPECT_TRUE(out.drives.empty());
+  EXPECT_EQ(m_.status().fault, Fault::kNorth) << m_.status().message;
+  EXPECT_EQ(m_.status().fault_class, FaultClass::kMotionError);
+  MobilityCommand clear;
+  clear.command_id = 5;
+  clear.mode = Mode::kClearFault;
+  Cmd(clear, 1);
+  out = Cmd(Directed(2, Mode::kDirected, {Straight(1.0)}), 2);
+  PoseSample tilted = PoseAt(T(2.5), 0, 0);
+  tilted.site_from_rover.linear() =
+      Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitX()).toRotationMatrix();  // 34 deg roll
+  m_.OnPose(tilted, T(2.5));
+  out = m_.Step(T(2.6));
+  EXPECT_EQ(m_.status().fault, Fault::kTilt) << m_.status().message;
+}
+
+// A planner that returns one detour waypoint.
+class OneWaypointPlanner final : public nav_core::GlobalPlanner {
+ public:
+  Status AddScan(const nav_core::RangeScan&) override { return Status::Ok(); }
+  Result<nav_core::GlobalPlan> MakePlan(const nav_core::PlanRequest& r) override {
+    nav_core::GlobalPlan p;
+    p.waypoints = {{2.0, 2.0}, r.goal};
+    return p;
+  }
+  void Clear() override {}
+};
+
+TEST(MobilityManagerWorld, LongTraverseWithAPlannerDrivesItsLegs) {
+  const gestalt::GestaltOptions g;
+  auto manager = MobilityManager::Create(
+      MobilityOptions{},
+      std::make_unique<gestalt::TerrainMap>(gestalt::TerrainMap::Create(g).value()),
+      std::make_unique<gestalt::ArcEvaluator>(gestalt::ArcEvaluator::Create(g).value()),
+      std::make_unique<OneWaypointPlanner>());
+  ASSERT_TRUE(manager.ok());
+  FakeWorld w(&manager.value());
+  MobilityCommand c = Autonav(1, 4.0, 0.0);
+  c.mode = Mode::kLongTraverse;
+  const MobilityStatus s = w.Run(c, 2000.0);
+  EXPECT_EQ(s.state, State::kSucceeded) << s.message;
+}
+
+TEST(MobilityManagerCreate, RejectsBadOptionsAndMissingInterfaces) {
+  MobilityOptions o;
+  o.step_length = -1;
+  const gestalt::GestaltOptions g;
+  auto r = MobilityManager::Create(
+      o, std::make_unique<gestalt::TerrainMap>(gestalt::TerrainMap::Create(g).value()),
+      std::make_unique<gestalt::ArcEvaluator>(gestalt::ArcEvaluator::Create(g).value()));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("step_length"), std::string::npos);
+  r = MobilityManager::Create(MobilityOptions{}, nullptr, nullptr);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("assessor"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rover::apl::mobility

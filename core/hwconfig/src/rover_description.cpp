@@ -1,0 +1,312 @@
+#include "rover/hwconfig/rover_description.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
+#include "rover/base/param_binder.hpp"
+#include "rover/base/range_check.hpp"
+
+namespace rover::hwconfig {
+namespace {
+
+using Binder = ParamBinder<RoverDescription>;
+
+std::span<const double> Span(const Eigen::Vector3d& v) { return {v.data(), 3}; }
+
+// "name = 1.2 m" for the other side of a cross-field rule.
+std::string Ref(const char* name, double v) {
+  return std::string(name) + " (" + FormatNumber(v) + ")";
+}
+
+// A number reached through `field` (a generic lambda returning a reference to the member),
+// given in the key's unit: member = value * scale.
+template <class Field>
+Binder::Binding BindNumber(Binder& b, std::string key, Field field, double scale, std::string unit,
+                           std::string doc) {
+  return b.BindCustom(
+      std::move(key), ParamType::kDouble, std::move(unit), std::move(doc),
+      [field, scale](const RoverDescription& d) -> ParamValue { return field(d) / scale; },
+      [field, scale](RoverDescription& d, const ParamValue& v) {
+        field(d) = std::get<double>(v) * scale;
+      });
+}
+
+// A point [m] given as [x, y, z].
+template <class Field>
+Binder::Binding BindPoint(Binder& b, std::string key, Field field, std::string doc) {
+  return b
+      .BindCustom(
+          std::move(key), ParamType::kDoubleList, "m", std::move(doc),
+          [field](const RoverDescription& d) -> ParamValue {
+            const Eigen::Vector3d& v = field(d);
+            return std::vector<double>{v.x(), v.y(), v.z()};
+          },
+          [field](RoverDescription& d, const ParamValue& v) {
+            const auto& l = std::get<std::vector<double>>(v);
+            field(d) = Eigen::Vector3d(l[0], l[1], l[2]);
+          })
+      .Size(3);
+}
+
+void BindMount(Binder& b, const std::string& name, StereoMount RoverDescription::*m,
+               const std::string& what) {
+  BindPoint(
+      b, name + ".position", [m](auto& d) -> auto& { return (d.*m).position; },
+      what + ": pair centre (midway between the optical centres)");
+  BindNumber(
+      b, name + ".yaw_deg", [m](auto& d) -> auto& { return (d.*m).yaw; }, kDegree, "deg",
+      name + " boresight azimuth about the parent z (180 = backwards)");
+  BindNumber(
+      b, name + ".depression_deg", [m](auto& d) -> auto& { return (d.*m).depression; }, kDegree,
+      "deg", name + " boresight below the parent x-y plane");
+  BindNumber(
+      b, name + ".baseline", [m](auto& d) -> auto& { return (d.*m).baseline; }, 1.0, "m",
+      name + " distance between the two optical centres");
+}
+
+// Points whose distance from `c` bounds the rectangle [x0, x1] x [y0, y1].
+double FarthestCorner(const Eigen::Vector2d& c, double x0, double x1, double y0, double y1) {
+  const double dx = std::max(std::abs(x0 - c.x()), std::abs(x1 - c.x()));
+  const double dy = std::max(std::abs(y0 - c.y()), std::abs(y1 - c.y()));
+  return std::hypot(dx, dy);
+}
+
+}  // namespace
+
+const char* WheelName(int wheel) {
+  static constexpr const char* kNames[kNumWheels] = {"LF", "LM", "LR", "RF", "RM", "RR"};
+  return wheel >= 0 && wheel < kNumWheels ? kNames[wheel] : "?";
+}
+
+Eigen::Isometry3d StereoMount::Pose() const {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = position;
+  t.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(depression, Eigen::Vector3d::UnitY()))
+                   .toRotationMatrix();
+  return t;
+}
+
+Eigen::Vector3d StereoMount::CameraCentre(int side) const {
+  ROVER_DEMAND(side == kLeft || side == kRight);
+  const double half = side == kLeft ? 0.5 * baseline : -0.5 * baseline;
+  return position + Pose().linear() * Eigen::Vector3d(0.0, half, 0.0);
+}
+
+Status StereoMount::Validate(const std::string& name) const {
+  ROVER_RETURN_IF_ERROR(
+      CheckAllInRange(name + ".position", Span(position), Bounds::Closed(-10, 10), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".yaw", yaw / kDegree, -360.0, 360.0, "deg"));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".depression", depression / kDegree, -90.0, 90.0, "deg"));
+  return CheckRange(name + ".baseline", baseline, Bounds::OpenLow(0.0, 5.0), "m");
+}
+
+Status MastDescription::Validate() const {
+  ROVER_RETURN_IF_ERROR(
+      CheckAllInRange("mast.pan_joint", Span(pan_joint), Bounds::Closed(-10, 10), "m"));
+  return CheckRange("mast.head_height", head_height, 0.0, 10.0, "m");
+}
+
+Eigen::Isometry3d MastDescription::HeadPose(double pan, double tilt) const {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = pan_joint + Eigen::Vector3d(0.0, 0.0, head_height);
+  t.linear() = (Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(-tilt, Eigen::Vector3d::UnitY()))
+                   .toRotationMatrix();
+  return t;
+}
+
+void RoverDescription::BindParams(Binder& b) {
+  using D = RoverDescription;
+  b.Bind("wheel_radius", &D::wheel_radius, "m", "drive wheel radius");
+  b.Bind("wheel_width", &D::wheel_width, "m", "drive wheel width");
+  b.Bind("front_wheel_x", &D::front_wheel_x, "m", "x of the front wheel centres");
+  b.Bind("middle_wheel_x", &D::middle_wheel_x, "m", "x of the unsteered middle axle");
+  b.Bind("rear_wheel_x", &D::rear_wheel_x, "m", "x of the rear wheel centres");
+  b.Bind("half_track", &D::half_track, "m", "|y| of every wheel centre");
+  b.Bind("steer_height", &D::steer_height, "m", "steering joint above the wheel centre");
+  b.Bind("rocker_pivot_x", &D::rocker_pivot_x, "m", "x of the rocker (differential) pivots");
+  b.Bind("rocker_pivot_y", &D::rocker_pivot_y, "m", "|y| of the rocker pivots on the body");
+  b.Bind("rocker_pivot_z", &D::rocker_pivot_z, "m", "z of the rocker pivots");
+  b.Bind("bogie_pivot_x", &D::bogie_pivot_x, "m", "x of the bogie pivots at zero angles");
+  b.Bind("bogie_pivot_z", &D::bogie_pivot_z, "m", "z of the bogie pivots at zero angles");
+  b.Bind("rocker_limit", &D::rocker_limit, "rad", "rocker mechanical stops at +-limit");
+  b.Bind("bogie_limit", &D::bogie_limit, "rad", "bogie mechanical stops at +-limit");
+  BindPoint(
+      b, "body_size", [](auto& d) -> auto& { return d.body_size; },
+      "body box extents along x, y, z");
+  BindPoint(
+      b, "body_centre", [](auto& d) -> auto& { return d.body_centre; },
+      "body box centre (and centre of mass)");
+  BindPoint(
+      b, "imu_position", [](auto& d) -> auto& { return d.imu_position; }, "IMU reference point");
+  BindPoint(
+      b, "mast.pan_joint", [](auto& d) -> auto& { return d.mast.pan_joint; },
+      "mast pan joint (the pan axis is vertical through it)");
+  BindNumber(
+      b, "mast.head_height", [](auto& d) -> auto& { return d.mast.head_height; }, 1.0, "m",
+      "tilt axis (mast-head frame origin) above the pan joint");
+  BindMount(b, "navcam", &D::navcam, "NAVCAM, mast-head frame");
+  BindMount(b, "front_hazcam", &D::front_hazcam, "front HAZCAM, rover frame");
+  BindMount(b, "rear_hazcam", &D::rear_hazcam, "rear HAZCAM, rover frame");
+  b.BindDegrees("max_steer_angle_deg", &D::max_steer_angle,
+                "corner-wheel steering limit for driving");
+  b.Bind("min_turn_radius", &D::min_turn_radius, "m",
+         "tightest arc radius (middle-axle centre point)");
+  b.Bind("max_wheel_speed", &D::max_wheel_speed, "m/s",
+         "fastest rim speed commanded to a drive motor");
+}
+
+Status RoverDescription::Validate() const {
+  ROVER_RETURN_IF_ERROR(CheckRange("wheel_radius", wheel_radius, 0.01, 2.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("wheel_width", wheel_width, 0.005, 2.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("front_wheel_x", front_wheel_x, -5.0, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("middle_wheel_x", middle_wheel_x, -5.0, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("rear_wheel_x", rear_wheel_x, -5.0, 5.0, "m"));
+  if (!(middle_wheel_x < front_wheel_x)) {
+    return InvalidArgument(Describe("middle_wheel_x", middle_wheel_x, "m") + " must be behind " +
+                           Ref("front_wheel_x", front_wheel_x));
+  }
+  if (!(rear_wheel_x < middle_wheel_x)) {
+    return InvalidArgument(Describe("rear_wheel_x", rear_wheel_x, "m") + " must be behind " +
+                           Ref("middle_wheel_x", middle_wheel_x));
+  }
+  ROVER_RETURN_IF_ERROR(CheckRange("half_track", half_track, wheel_width, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("steer_height", steer_height, 0.0, 2.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("bogie_pivot_x", bogie_pivot_x, -5.0, 5.0, "m"));
+  if (!(bogie_pivot_x > rear_wheel_x && bogie_pivot_x < middle_wheel_x)) {
+    return InvalidArgument(Describe("bogie_pivot_x", bogie_pivot_x, "m") + " must lie between " +
+                           Ref("rear_wheel_x", rear_wheel_x) + " and " +
+                           Ref("middle_wheel_x", middle_wheel_x));
+  }
+  ROVER_RETURN_IF_ERROR(CheckRange("rocker_pivot_x", rocker_pivot_x, -5.0, 5.0, "m"));
+  if (!(rocker_pivot_x > bogie_pivot_x && rocker_pivot_x < front_wheel_x)) {
+    return InvalidArgument(Describe("rocker_pivot_x", rocker_pivot_x, "m") + " must lie between " +
+                           Ref("bogie_pivot_x", bogie_pivot_x) + " and " +
+                           Ref("front_wheel_x", front_wheel_x));
+  }
+  ROVER_RETURN_IF_ERROR(CheckRange("rocker_pivot_y", rocker_pivot_y, 0.0, half_track, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("rocker_pivot_z", rocker_pivot_z, wheel_radius, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("bogie_pivot_z", bogie_pivot_z, wheel_radius, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("rocker_limit", rocker_limit, 0.01, 1.5, "rad"));
+  ROVER_RETURN_IF_ERROR(CheckRange("bogie_limit", bogie_limit, 0.01, 1.5, "rad"));
+  ROVER_RETURN_IF_ERROR(
+      CheckAllInRange("body_size", Span(body_size), Bounds::Closed(0.01, 10), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckAllInRange("body_centre", Span(body_centre), Bounds::Closed(-10, 10), "m"));
+  if (!(BellyClearance() > 0.0)) {
+    return InvalidArgument("body_centre: the body's underside (z = " +
+                           FormatNumber(BellyClearance()) + " m) must be above the ground plane");
+  }
+  ROVER_RETURN_IF_ERROR(
+      CheckAllInRange("imu_position", Span(imu_position), Bounds::Closed(-10, 10), "m"));
+  ROVER_RETURN_IF_ERROR(mast.Validate());
+  ROVER_RETURN_IF_ERROR(navcam.Validate("navcam"));
+  ROVER_RETURN_IF_ERROR(front_hazcam.Validate("front_hazcam"));
+  ROVER_RETURN_IF_ERROR(rear_hazcam.Validate("rear_hazcam"));
+  ROVER_RETURN_IF_ERROR(CheckRange("max_steer_angle", max_steer_angle / kDegree,
+                                   Bounds{0.0, 90.0, true, true}, "deg"));
+  ROVER_RETURN_IF_ERROR(CheckRange("min_turn_radius", min_turn_radius, 0.1, 100.0, "m"));
+  if (!(min_turn_radius > half_track)) {
+    return InvalidArgument(Describe("min_turn_radius", min_turn_radius, "m") +
+                           " must exceed the largest wheel |y|, " + Ref("half_track", half_track));
+  }
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("max_wheel_speed", max_wheel_speed, Bounds::OpenLow(0.0, 5.0), "m/s"));
+  // Steering the corner wheels need (steer angles atan2(k (x - x_m), 1 - k y), dl/locomotion's
+  // ackermann.hpp): the inner corner on the tightest arc, and tangent to the turn-in-place circle.
+  const double lever = std::max(front_wheel_x - middle_wheel_x, middle_wheel_x - rear_wheel_x);
+  const std::pair<double, const char*> needs[] = {
+      {std::atan2(lever, min_turn_radius - half_track), "on the tightest arc (min_turn_radius)"},
+      {std::atan2(lever, half_track), "to turn in place"}};
+  for (const auto& [angle, what] : needs) {
+    if (angle > max_steer_angle) {
+      return InvalidArgument(Describe("max_steer_angle", max_steer_angle / kDegree, "deg") +
+                             " is below the " + FormatNumber(angle / kDegree, 3) +
+                             " deg the inner corner wheels need " + what);
+    }
+  }
+  return Status::Ok();
+}
+
+Eigen::Vector3d RoverDescription::WheelCentre(int wheel) const {
+  ROVER_DEMAND(wheel >= 0 && wheel < kNumWheels);
+  const double x[3] = {front_wheel_x, middle_wheel_x, rear_wheel_x};
+  const double y = SideOfWheel(wheel) == kLeft ? half_track : -half_track;
+  return Eigen::Vector3d(x[wheel % 3], y, wheel_radius);
+}
+
+Eigen::Vector3d RoverDescription::RockerPivot(int side) const {
+  ROVER_DEMAND(side == kLeft || side == kRight);
+  return Eigen::Vector3d(rocker_pivot_x, side == kLeft ? rocker_pivot_y : -rocker_pivot_y,
+                         rocker_pivot_z);
+}
+
+Eigen::Vector3d RoverDescription::BogiePivot(int side) const {
+  ROVER_DEMAND(side == kLeft || side == kRight);
+  return Eigen::Vector3d(bogie_pivot_x, side == kLeft ? half_track : -half_track, bogie_pivot_z);
+}
+
+Footprint RoverDescription::GroundFootprint() const {
+  // The wheels, straight ahead.
+  Footprint f{rear_wheel_x - wheel_radius, front_wheel_x + wheel_radius,
+              -(half_track + 0.5 * wheel_width), half_track + 0.5 * wheel_width};
+  auto include = [&f](double x, double y) {
+    f.min_x = std::min(f.min_x, x);
+    f.max_x = std::max(f.max_x, x);
+    f.min_y = std::min(f.min_y, y);
+    f.max_y = std::max(f.max_y, y);
+  };
+  const Eigen::Vector3d half_body = 0.5 * body_size;
+  include(body_centre.x() - half_body.x(), body_centre.y() - half_body.y());
+  include(body_centre.x() + half_body.x(), body_centre.y() + half_body.y());
+  include(mast.pan_joint.x(), mast.pan_joint.y());
+  for (const StereoMount* m : {&front_hazcam, &rear_hazcam}) {
+    for (int side : {kLeft, kRight}) {
+      const Eigen::Vector3d c = m->CameraCentre(side);
+      include(c.x(), c.y());
+    }
+  }
+  return f;
+}
+
+TurnCircle RoverDescription::TurnInPlaceCircle() const {
+  TurnCircle c;
+  c.centre = TurnCentre();
+  // Corner wheels: any steering angle, i.e. a disc about the wheel centre.
+  const double wheel_reach = std::hypot(wheel_radius, 0.5 * wheel_width);
+  for (int wheel : kSteeredWheel) {
+    const Eigen::Vector2d w = WheelCentre(wheel).head<2>();
+    c.radius = std::max(c.radius, (w - c.centre).norm() + wheel_reach);
+  }
+  // Middle wheels (never steered) and the body: their rectangles.
+  const double hw = 0.5 * wheel_width;
+  c.radius = std::max(
+      c.radius, FarthestCorner(c.centre, middle_wheel_x - wheel_radius,
+                               middle_wheel_x + wheel_radius, -half_track - hw, half_track + hw));
+  const Eigen::Vector3d half_body = 0.5 * body_size;
+  c.radius = std::max(
+      c.radius,
+      FarthestCorner(c.centre, body_centre.x() - half_body.x(), body_centre.x() + half_body.x(),
+                     body_centre.y() - half_body.y(), body_centre.y() + half_body.y()));
+  // Whatever else the footprint holds (mast, camera mounts) as points.
+  c.radius = std::max(c.radius, (mast.pan_joint.head<2>() - c.centre).norm());
+  for (const StereoMount* m : {&front_hazcam, &rear_hazcam}) {
+    for (int side : {kLeft, kRight}) {
+      c.radius = std::max(c.radius, (m->CameraCentre(side).head<2>() - c.centre).norm());
+    }
+  }
+  return c;
+}
+
+Eigen::Isometry3d RoverDescription::NavcamPose(double pan, double tilt) const {
+  return mast.HeadPose(pan, tilt) * navcam.Pose();
+}
+
+}  // namespace rover::hwconfig

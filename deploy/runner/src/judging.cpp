@@ -1,0 +1,75 @@
+#include "rover/deploy/runner/judging.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include "rover/deploy/plots.hpp"
+#include "rover/deploy/runner/autonav_judging.hpp"
+#include "rover/hwconfig/rover_description.hpp"
+
+namespace rover::deploy::runner {
+
+namespace {
+std::vector<sim::JudgeRock> JudgeRocks(const sim::World& world) {
+  std::vector<sim::JudgeRock> rocks;
+  for (const auto& r : world.terrain.rocks) {
+    rocks.push_back({r.id, r.position.head<2>(), r.diameter, r.height});
+  }
+  return rocks;
+}
+}  // namespace
+
+Result<sim::Judge> MakeJudge(const Scenario& scenario, const sim::World& world) {
+  return sim::Judge::Create(scenario.criteria, JudgeRocks(world));
+}
+
+void AddMobilityFigures(const Scenario& scenario, const sim::World& world, RunResult* result,
+                        std::string* failure) {
+  if (!result->mobility) return;
+  const MobilityOutcome& mob = *result->mobility;
+  const auto figures = AutonavFigures(mob, result->truth_track, JudgeRocks(world),
+                                      scenario.criteria.traversable_height);
+  result->figures.insert(result->figures.end(), figures.begin(), figures.end());
+  if (mob.keep_out.empty()) return;
+  const double front = hwconfig::RoverDescription{}.GroundFootprint().max_x;
+  const int entries = KeepOutEntries(result->truth_track, mob.keep_out, front);
+  char detail[128];
+  std::snprintf(detail, sizeof detail,
+                "sim/truth points with the rover's front (%.2f m ahead of its centre) in a zone",
+                front);
+  result->criteria.push_back(
+      {"keep_out_entries", static_cast<double>(entries), 0, "count", entries == 0, detail});
+  if (entries > 0 && failure->empty()) {
+    *failure = "keep_out_entries: " + std::to_string(entries) + " count (limit 0); " + detail;
+  }
+}
+
+void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_figures,
+              RunResult* result, std::string* failure) {
+  const sim::Verdict v = judge.Evaluate();
+  result->criteria = v.criteria;
+  result->distance_driven = v.distance_driven;
+  result->estimate_error = v.estimate_error;
+  result->odometry_only_error = v.odometry_only_error;
+  result->figures = v.figures;
+  result->figures.insert(result->figures.end(), extra_figures.begin(), extra_figures.end());
+  if (failure->empty() && !v.pass) {
+    const std::string all = v.FailureSummary();
+    *failure = all.substr(0, all.find('\n'));
+  }
+}
+
+Status WriteRunOutputs(RunResult* result, const std::string& failure, const sim::Terrain& terrain,
+                       const std::vector<Eigen::Vector2d>& planned) {
+  if (!failure.empty() && result->failure.empty()) result->failure = failure;
+  result->pass = result->failure.empty();
+  const std::string path = result->run_dir + "/result.json";
+  std::ofstream out(path);
+  out << ToJson(*result).dump(2) << "\n";
+  if (!out) return Unavailable("cannot write " + path);
+  (void)WriteTrackMap(terrain, *result, planned, result->run_dir + "/map.png");
+  (void)WriteErrorPlot(*result, result->run_dir + "/estimate_error.png");
+  return Status::Ok();
+}
+
+}  // namespace rover::deploy::runner

@@ -1,0 +1,203 @@
+#include "rover/deploy/runner/service_set.hpp"
+
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+
+#include "rover/base/format.hpp"
+
+namespace rover::deploy::runner {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+// The simulator's parameter file for this run: the scenario's world sections, with the start
+// pose and seeds of the run.
+std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
+  YAML::Node root = YAML::Load(s.text);
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& sec : sim::WorldSections()) {
+    if (root[sec]) out[sec] = root[sec];
+  }
+  if (!out["terrain"]) out["terrain"] = YAML::Node(YAML::NodeType::Map);
+  // A scenario that fixes terrain.seed keeps its terrain; otherwise each run seed is a new one.
+  if (!out["terrain"]["seed"]) out["terrain"]["seed"] = seed;
+  out["rover"]["start"]["x"] = s.start_x;
+  out["rover"]["start"]["y"] = s.start_y;
+  out["rover"]["start"]["yaw_deg"] = s.start_yaw * kRadToDeg;
+  out["sim"]["seed"] = seed;
+  out["sim"]["real_time_factor"] = s.real_time_factor;
+  out["sim"]["lockstep_lead_s"] = s.lockstep_lead_s;
+  // Simulated time starts when the runner says so, once every service is up.
+  out["sim"]["start_paused"] = true;
+  YAML::Emitter e;
+  e << out;
+  return std::string(e.c_str()) + "\n";
+}
+
+std::string ParamsYaml(const std::map<std::string, std::string>& flat) {
+  std::string out;
+  for (const auto& [k, v] : flat) out += k + ": " + v + "\n";
+  return out;
+}
+
+std::string UniqueProject(const Scenario& s, std::uint32_t seed) {
+  std::random_device rd;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%04x", static_cast<unsigned>(rd() & 0xffff));
+  return s.name + "-seed" + std::to_string(seed) + "-" + std::to_string(getpid()) + buf;
+}
+
+// The parameter files of one service: the simulator's world file, then its overrides.
+Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
+                      const std::string& sim_params_path, ServiceSpec* svc) {
+  std::vector<std::string> files;
+  if (svc->name == scenario.simulator) files.push_back(sim_params_path);
+  std::map<std::string, std::string> overrides;
+  if (svc->name == scenario.estimator) {
+    overrides["start.x"] = FormatNumber(scenario.start_x, 9);
+    overrides["start.y"] = FormatNumber(scenario.start_y, 9);
+    overrides["start.yaw_deg"] = FormatNumber(scenario.start_yaw * kRadToDeg, 9);
+  }
+  if (auto it = scenario.params.find(svc->name); it != scenario.params.end()) {
+    for (const auto& [k, v] : it->second) overrides[k] = v;
+  }
+  if (!overrides.empty()) {
+    const std::string path = run_dir + "/params/" + svc->name + ".overrides.yaml";
+    std::ofstream out(path);
+    out << ParamsYaml(overrides);
+    if (!out) return Unavailable("cannot write " + path);
+    files.push_back(path);
+  }
+  std::string joined;
+  for (const auto& f : files) joined += (joined.empty() ? "" : ":") + f;
+  if (!joined.empty()) svc->environment["ROVER_PARAMS"] = joined;
+  return Status::Ok();
+}
+
+}  // namespace
+
+std::string TerrainDigest(const sim::Terrain& t) {
+  std::uint64_t h = 1469598103934665603ULL;
+  auto mix = [&h](const void* data, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ULL;
+  };
+  const auto& heights = t.ground.heights();
+  mix(heights.data(), heights.size() * sizeof(float));
+  for (const auto& r : t.rocks) {
+    mix(r.position.data(), 3 * sizeof(double));
+    mix(&r.diameter, sizeof r.diameter);
+  }
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
+                               const RunOptions& options) {
+  const std::string run_dir =
+      options.out_dir + "/" + scenario.name + "-seed" + std::to_string(seed);
+  std::error_code ec;
+  fs::remove_all(run_dir, ec);
+  fs::create_directories(run_dir + "/params", ec);
+  if (ec) return Unavailable("cannot create " + run_dir + ": " + ec.message());
+
+  // The world, exactly as the simulator will build it.
+  const std::string sim_yaml = SimParamsYaml(scenario, seed);
+  const std::string sim_params_path = run_dir + "/params/" + scenario.simulator + ".yaml";
+  std::ofstream(sim_params_path) << sim_yaml;
+  ParamSet world_params("world");
+  sim::DeclareWorldParams(world_params);
+  ROVER_RETURN_IF_ERROR(
+      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::WorldSections()));
+  ROVER_RETURN_IF_ERROR(world_params.Validate());
+  ROVER_ASSIGN_OR_RETURN(sim::World world, sim::BuildWorld(world_params));
+
+  // The service set.
+  ROVER_ASSIGN_OR_RETURN(ComposeProject project, LoadComposeFile(scenario.compose_path));
+  project.rover.project = UniqueProject(scenario, seed);
+  project.rover.clock = "sim";
+  project.rover.domain.reset();
+  if (project.Find(scenario.simulator) == nullptr) {
+    return InvalidArgument(scenario.file + ": simulator service '" + scenario.simulator +
+                           "' is not in " + scenario.compose_path);
+  }
+  for (auto& svc : project.services) {
+    ROVER_RETURN_IF_ERROR(GiveParameters(scenario, run_dir, sim_params_path, &svc));
+  }
+  for (const auto& [svc, _] : scenario.params) {
+    if (project.Find(svc) == nullptr) {
+      return InvalidArgument(scenario.file + ": params." + svc + ": no such service in " +
+                             scenario.compose_path);
+    }
+  }
+
+  SupervisorOptions sup;
+  sup.bin_dir = options.bin_dir;
+  sup.state_dir = run_dir;
+  sup.dds_config_uri = options.dds_config_uri;
+  sup.abort = options.abort;
+  ROVER_RETURN_IF_ERROR(Preflight(project, sup));
+  return PreparedRun{run_dir, std::move(world), std::move(project), sup};
+}
+
+// ---- ServiceSet --------------------------------------------------------------------------------
+
+Result<std::unique_ptr<ServiceSet>> ServiceSet::Create(const PreparedRun& prepared) {
+  ROVER_ASSIGN_OR_RETURN(std::unique_ptr<Supervisor> sup,
+                         Supervisor::Create(prepared.project, prepared.supervisor));
+  return std::unique_ptr<ServiceSet>(new ServiceSet(std::move(sup)));
+}
+
+ServiceSet::~ServiceSet() = default;
+
+Status ServiceSet::Start() { return supervisor_->Start(); }
+
+Status ServiceSet::OpenOperator() {
+  ROVER_ASSIGN_OR_RETURN(participant_, dds::Participant::Create(domain()));
+  ROVER_ASSIGN_OR_RETURN(control_,
+                         dds::Writer<rover_sim_Control>::Create(participant_, "sim/control"));
+  return Status::Ok();
+}
+
+bool ServiceSet::SimulatorHearsUs() const {
+  return control_.valid() && control_.MatchedReaders() > 0;
+}
+
+Status ServiceSet::ResumeSimulator() {
+  rover_sim_Control resume{};
+  dds::CopyString(resume.header.frame_id, "sim");
+  resume.command_id = 1;
+  resume.command = rover_sim_SIM_RESUME;
+  if (!control_.Write(resume).ok()) return Unavailable("cannot resume the simulator");
+  return Status::Ok();
+}
+
+std::string ServiceSet::CheckServices(std::vector<std::string>* crashes) {
+  supervisor_->Poll();
+  for (const auto& st : supervisor_->Snapshot()) {
+    if (st.state == ServiceState::kFailed || st.state == ServiceState::kBackoff ||
+        (st.state == ServiceState::kExited && st.restarts == 0 && !st.last_exit.empty())) {
+      std::ifstream log(st.log_path);
+      std::string line, last;
+      while (std::getline(log, line)) {
+        if (!line.empty() && line.rfind("---- roverctl:", 0) != 0) last = line;
+      }
+      crashes->push_back(st.name + ": " + st.last_exit + (last.empty() ? "" : "; " + last));
+      return "service '" + st.name + "' crashed (" + st.last_exit + ")";
+    }
+  }
+  return "";
+}
+
+void ServiceSet::Stop() { supervisor_->Stop(); }
+
+}  // namespace rover::deploy::runner

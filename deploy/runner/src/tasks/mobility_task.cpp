@@ -1,0 +1,485 @@
+#include "rover/deploy/runner/tasks/mobility_task.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "rover/base/format.hpp"
+
+#include "src/idl_conversions.hpp"
+
+namespace rover::deploy::runner {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+constexpr std::size_t kMaxPrimitives = 32;  // MobilityCommand.primitives' bound
+constexpr std::size_t kMaxZones = 8;        // MobilityCommand.keep_out's bound
+constexpr std::size_t kMaxVertices = 16;    // KeepOutZone.vertices' bound
+constexpr std::size_t kMaxZoneName = 31;    // KeepOutZone.name's bound
+
+bool NeedsGoal(MobilityTaskType t) {
+  return t == MobilityTaskType::kAutonav || t == MobilityTaskType::kGoToWaypoint;
+}
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// Whether closed segments ab and cd share a point.
+bool SegmentsTouch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d) {
+  const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, d - a);
+  const double d3 = Cross(d - c, a - c), d4 = Cross(d - c, b - c);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
+    return true;
+  }
+  auto on = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r,
+               double cr) {
+    return cr == 0 && r.x() >= std::min(p.x(), q.x()) && r.x() <= std::max(p.x(), q.x()) &&
+           r.y() >= std::min(p.y(), q.y()) && r.y() <= std::max(p.y(), q.y());
+  };
+  return on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4);
+}
+
+// "" if the polygon is simple (no two non-adjacent edges touch, non-zero area); else why not.
+std::string NotSimple(const std::vector<Eigen::Vector2d>& v) {
+  const std::size_t n = v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
+      if (adjacent) continue;
+      if (SegmentsTouch(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
+        return "edges " + std::to_string(i) + " and " + std::to_string(j) + " cross";
+      }
+    }
+  }
+  double area2 = 0;
+  for (std::size_t i = 0; i < n; ++i) area2 += Cross(v[i], v[(i + 1) % n]);
+  if (std::abs(area2) < 1e-9) return "the polygon has no area";
+  return "";
+}
+
+Result<KeepOut> ParseZone(const YAML::Node& z, const yaml::FileErrors& err) {
+  const char* where = "task.keep_out[]";
+  ROVER_RETURN_IF_ERROR(yaml::CheckKeys(z, where, {"name", "vertices"}, err));
+  ROVER_RETURN_IF_ERROR(yaml::RequireKey(z, where, "name", err));
+  ROVER_RETURN_IF_ERROR(yaml::RequireKey(z, where, "vertices", err));
+  KeepOut zone;
+  zone.name = yaml::ScalarText(z["name"]);
+  if (zone.name.empty() || zone.name.size() > kMaxZoneName) {
+    return err.At(z["name"], "task.keep_out[].name: '" + zone.name + "' must be 1.." +
+                                 std::to_string(kMaxZoneName) + " characters");
+  }
+  const YAML::Node vs = z["vertices"];
+  if (!vs.IsSequence()) {
+    return err.At(vs, "task.keep_out[].vertices: expected a list of [x, y] points");
+  }
+  for (const auto& p : vs) {
+    if (!p.IsSequence() || p.size() != 2) {
+      return err.At(p, "task.keep_out[].vertices: expected [x, y], got '" +
+                           yaml::ScalarText(p) + "'");
+    }
+    ROVER_ASSIGN_OR_RETURN(const double x, yaml::Number(p[0], "task.keep_out[].vertices[].x", err));
+    ROVER_ASSIGN_OR_RETURN(const double y, yaml::Number(p[1], "task.keep_out[].vertices[].y", err));
+    zone.vertices.emplace_back(x, y);
+  }
+  if (zone.vertices.size() < 3 || zone.vertices.size() > kMaxVertices) {
+    return err.At(vs, "task.keep_out[].vertices: zone '" + zone.name + "' has " +
+                          std::to_string(zone.vertices.size()) + " vertices, a zone needs 3.." +
+                          std::to_string(kMaxVertices));
+  }
+  if (const std::string why = NotSimple(zone.vertices); !why.empty()) {
+    return err.At(vs, "task.keep_out[].vertices: zone '" + zone.name + "' is not a simple polygon: " +
+                          why);
+  }
+  return zone;
+}
+
+Result<std::vector<DriveStep>> ParsePrimitives(const YAML::Node& n, const yaml::FileErrors& err) {
+  const char* where = "task.primitives[]";
+  std::vector<DriveStep> out;
+  for (const auto& p : n) {
+    ROVER_RETURN_IF_ERROR(
+        yaml::CheckKeys(p, where, {"primitive", "distance", "curvature", "angle_deg"}, err));
+    ROVER_ASSIGN_OR_RETURN(DriveStep step, ParseDriveStep(p, where, err));
+    if (step.primitive == Primitive::kSteer || step.primitive == Primitive::kStop) {
+      return err.At(p["primitive"], std::string(where) + ".primitive: '" +
+                                        PrimitiveName(step.primitive) +
+                                        "' is not a mobility primitive (straight, arc, turn_in_place)");
+    }
+    out.push_back(step);
+  }
+  return out;
+}
+
+std::vector<std::string> ExpectChoices(MobilityTaskType type) {
+  std::vector<std::string> out = {"reached"};
+  if (type == MobilityTaskType::kGuarded || type == MobilityTaskType::kGuardedArc) {
+    out.push_back("vetoed");
+  }
+  const auto& names = MobilityFaultNames();
+  out.insert(out.end(), names.begin() + 1, names.end());
+  return out;
+}
+
+const char* StateName(rover_apl_MobilityState s) {
+  switch (s) {
+    case rover_apl_MOBILITY_IDLE:
+      return "idle";
+    case rover_apl_MOBILITY_RUNNING:
+      return "running";
+    case rover_apl_MOBILITY_SUCCEEDED:
+      return "succeeded";
+    case rover_apl_MOBILITY_FAILED:
+      return "failed";
+    case rover_apl_MOBILITY_REJECTED:
+      return "rejected";
+  }
+  return "?";
+}
+
+bool Terminal(rover_apl_MobilityState s) {
+  return s == rover_apl_MOBILITY_SUCCEEDED || s == rover_apl_MOBILITY_FAILED ||
+         s == rover_apl_MOBILITY_REJECTED;
+}
+
+std::string ModeName(rover_apl_MobilityMode m) {
+  static const char* const kNames[] = {"directed",        "visodom",
+                                       "goto_waypoint",   "visodom_goto_waypoint",
+                                       "guarded",         "guarded_visodom",
+                                       "autonav",         "autonav_visodom",
+                                       "guarded_arc",     "long_traverse",
+                                       "stop",            "clear_fault"};
+  const auto i = static_cast<std::size_t>(m);
+  return i < std::size(kNames) ? kNames[i] : "?";
+}
+
+}  // namespace
+
+const char* MobilityTaskTypeName(MobilityTaskType t) {
+  switch (t) {
+    case MobilityTaskType::kAutonav:
+      return "autonav";
+    case MobilityTaskType::kGoToWaypoint:
+      return "goto_waypoint";
+    case MobilityTaskType::kGuarded:
+      return "guarded";
+    case MobilityTaskType::kGuardedArc:
+      return "guarded_arc";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& MobilityFaultNames() {
+  // Index = rover_apl_MobilityFault (idl/rover_apl.idl's order).
+  static const std::vector<std::string> k = {
+      "NONE",       "ARB",  "ACM",         "POT",    "TOD",  "STOPPED", "WAYPT-TIMEOUT",
+      "NOPATH",     "NOPROGRESS", "BUSY",  "VISODOM", "KEEPOUT", "BAD-COMMAND", "IMG",
+      "SAPP",       "MOT",  "DRIVE-TIMEOUT", "TILT", "SUSPENSION", "NORTH"};
+  return k;
+}
+
+const char* MobilityFaultName(rover_apl_MobilityFault f) {
+  const auto i = static_cast<std::size_t>(f);
+  return i < MobilityFaultNames().size() ? MobilityFaultNames()[i].c_str() : "?";
+}
+
+const char* FaultClassName(rover_apl_FaultClass c) {
+  switch (c) {
+    case rover_apl_FAULT_NONE:
+      return "none";
+    case rover_apl_FAULT_GOAL_ERROR:
+      return "goal error";
+    case rover_apl_FAULT_MOTION_ERROR:
+      return "motion error";
+  }
+  return "?";
+}
+
+rover_apl_MobilityMode MobilityModeOf(MobilityTaskType type, bool visodom) {
+  switch (type) {
+    case MobilityTaskType::kAutonav:
+      return visodom ? rover_apl_MOBILITY_AUTONAV_VISODOM : rover_apl_MOBILITY_AUTONAV;
+    case MobilityTaskType::kGoToWaypoint:
+      return visodom ? rover_apl_MOBILITY_VISODOM_GO_TO_WAYPOINT
+                     : rover_apl_MOBILITY_GO_TO_WAYPOINT;
+    case MobilityTaskType::kGuarded:
+      return visodom ? rover_apl_MOBILITY_GUARDED_VISODOM : rover_apl_MOBILITY_GUARDED;
+    case MobilityTaskType::kGuardedArc:
+      return rover_apl_MOBILITY_GUARDED_ARC;
+  }
+  return rover_apl_MOBILITY_AUTONAV;
+}
+
+Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTaskType type) {
+  const YAML::Node& n = source.section;
+  const yaml::FileErrors& err = source.errors;
+  const std::string type_name = MobilityTaskTypeName(type);
+  std::vector<std::string> keys = {"type",      "visodom",      "think", "time_budget_s",
+                                   "max_steps", "max_tilt_deg", "keep_out", "expect"};
+  keys.push_back(NeedsGoal(type) ? "goal" : "primitives");
+  ROVER_RETURN_IF_ERROR(yaml::CheckKeys(n, "task", keys, err));
+  MobilityTaskSpec spec;
+  spec.type = type;
+  if (NeedsGoal(type)) {
+    ROVER_ASSIGN_OR_RETURN(spec.goal, ParseTaskGoal(source));
+    if (!spec.goal) return err.At(n, "task: a '" + type_name + "' task needs a 'goal'");
+  } else {
+    const YAML::Node p = n["primitives"];
+    if (!p || !p.IsSequence() || p.size() == 0 || p.size() > kMaxPrimitives) {
+      return err.At(p ? p : n, "task.primitives: a '" + type_name + "' task needs a list of 1.." +
+                                   std::to_string(kMaxPrimitives) + " primitives");
+    }
+    ROVER_ASSIGN_OR_RETURN(spec.primitives, ParsePrimitives(p, err));
+  }
+  if (const YAML::Node v = n["visodom"]) {
+    ROVER_ASSIGN_OR_RETURN(const std::string b, yaml::OneOf(v, "task.visodom", {"false", "true"}, err));
+    spec.visodom = b == "true";
+    if (spec.visodom && type == MobilityTaskType::kGuardedArc) {
+      return err.At(v, "task.visodom: 'guarded_arc' has no VisOdom variant");
+    }
+  }
+  if (const YAML::Node t = n["think"]) {
+    const std::vector<std::string> modes = {"default", "stop_and_go", "drive_while_thinking"};
+    ROVER_ASSIGN_OR_RETURN(const std::string m, yaml::OneOf(t, "task.think", modes, err));
+    spec.think = static_cast<rover_apl_ThinkMode>(std::find(modes.begin(), modes.end(), m) -
+                                                  modes.begin());
+  }
+  ROVER_RETURN_IF_ERROR(
+      yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
+  double steps = 0;
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "max_steps", "task", 0, 65535, err, &steps));
+  if (steps != std::floor(steps)) {
+    return err.At(n["max_steps"], "task.max_steps: " + yaml::ScalarText(n["max_steps"]) +
+                                      " is not a whole number");
+  }
+  spec.max_steps = static_cast<int>(steps);
+  double tilt_deg = 0;
+  ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "max_tilt_deg", "task", 0, 89, err, &tilt_deg));
+  spec.max_tilt = tilt_deg * kDegToRad;
+  if (const YAML::Node k = n["keep_out"]) {
+    if (!k.IsSequence() || k.size() > kMaxZones) {
+      return err.At(k, "task.keep_out: expected a list of at most " + std::to_string(kMaxZones) +
+                           " zones {name, vertices}");
+    }
+    for (const auto& z : k) {
+      ROVER_ASSIGN_OR_RETURN(KeepOut zone, ParseZone(z, err));
+      spec.keep_out.push_back(std::move(zone));
+    }
+  }
+  if (const YAML::Node e = n["expect"]) {
+    ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(e, "task.expect", ExpectChoices(type), err));
+  }
+  return spec;
+}
+
+rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec,
+                                              std::uint32_t command_id, double now_s,
+                                              MobilityCommandStorage* storage) {
+  rover_apl_MobilityCommand c{};
+  c.header.stamp_ns = Time::FromSeconds(now_s).ns;
+  dds::CopyString(c.header.frame_id, "site");
+  c.command_id = command_id;
+  c.mode = MobilityModeOf(spec.type, spec.visodom);
+  if (spec.goal) {
+    c.goal = {spec.goal->xy.x(), spec.goal->xy.y(), 0.0};
+    c.tolerance = spec.goal->tolerance;
+  }
+  c.time_budget_s = spec.time_budget_s;
+  c.think = spec.think;
+  c.max_tilt = spec.max_tilt;
+  c.max_steps = static_cast<std::uint16_t>(spec.max_steps);
+  storage->primitives.clear();
+  for (const auto& p : spec.primitives) {
+    rover_apl_MobilityPrimitive m{};
+    m.primitive = ToIdl(p.primitive);
+    m.curvature = p.primitive == Primitive::kArc ? p.curvature : 0.0;
+    m.distance = p.primitive == Primitive::kTurnInPlace ? 0.0 : p.distance;
+    m.angle = p.primitive == Primitive::kTurnInPlace ? p.angle : 0.0;
+    storage->primitives.push_back(m);
+  }
+  storage->vertices.assign(spec.keep_out.size(), {});
+  storage->zones.assign(spec.keep_out.size(), rover_apl_KeepOutZone{});
+  for (std::size_t i = 0; i < spec.keep_out.size(); ++i) {
+    for (const auto& v : spec.keep_out[i].vertices) storage->vertices[i].push_back({v.x(), v.y()});
+    dds::CopyString(storage->zones[i].name, spec.keep_out[i].name);
+    dds::BorrowSequence(storage->zones[i].vertices, storage->vertices[i]);
+  }
+  dds::BorrowSequence(c.primitives, storage->primitives);
+  dds::BorrowSequence(c.keep_out, storage->zones);
+  return c;
+}
+
+std::string OutcomeName(const rover_apl_MobilityStatus& s) {
+  if (s.state == rover_apl_MOBILITY_SUCCEEDED) return "reached";
+  if (s.fault == rover_apl_MOBFAULT_NONE) {
+    return s.state == rover_apl_MOBILITY_REJECTED ? "BAD-COMMAND" : "NONE";
+  }
+  return MobilityFaultName(s.fault);
+}
+
+bool OutcomeMatches(const std::string& expect, const rover_apl_MobilityStatus& s) {
+  if (!Terminal(s.state)) return false;
+  if (expect == "vetoed") {
+    return s.state == rover_apl_MOBILITY_FAILED && s.fault == rover_apl_MOBFAULT_NOPATH;
+  }
+  return OutcomeName(s) == expect;
+}
+
+Status MobilityTask::Open(TaskContext& ctx) {
+  ROVER_ASSIGN_OR_RETURN(command_,
+                         ctx.MakeWriter<rover_apl_MobilityCommand>("apl/mobility_command"));
+  ROVER_ASSIGN_OR_RETURN(status_,
+                         ctx.MakeReader<rover_apl_MobilityStatus>("apl/mobility_status"));
+  MobilityOutcome& mob = ctx.recorder.Mobility();
+  mob.task = MobilityTaskTypeName(spec_.type);
+  mob.mode = ModeName(MobilityModeOf(spec_.type, spec_.visodom));
+  mob.expect = spec_.expect;
+  mob.outcome = "none";
+  mob.state = "interrupted";
+  mob.fault = "NONE";
+  mob.fault_class = "none";
+  mob.keep_out.clear();
+  for (const auto& z : spec_.keep_out) mob.keep_out.push_back(z.vertices);
+  // The last goodness map and the chosen arc of each decision, however the run ends.
+  Recorder& rec = ctx.recorder;
+  ROVER_RETURN_IF_ERROR(rec.Record<rover_apl_GoodnessMap>(
+      "apl/goodness_map", [&rec](const dds::Sample<rover_apl_GoodnessMap>& s) {
+        GoodnessGrid g;
+        g.origin_x = s->origin_x;
+        g.origin_y = s->origin_y;
+        g.resolution = s->resolution;
+        g.width = s->width;
+        g.height = s->height;
+        g.unknown_goodness = s->unknown_goodness;
+        const auto good = dds::View(s->goodness);
+        const auto flags = dds::View(s->flags);
+        const std::size_t cells = static_cast<std::size_t>(g.width) * g.height;
+        if (good.size() != cells || flags.size() != cells || !(g.resolution > 0)) return;
+        g.goodness.assign(good.begin(), good.end());
+        g.flags.assign(flags.begin(), flags.end());
+        rec.Mobility().last_map = std::move(g);
+      }));
+  ROVER_RETURN_IF_ERROR(rec.Record<rover_apl_ArcVotes>(
+      "apl/arc_votes", [&rec](const dds::Sample<rover_apl_ArcVotes>& s) {
+        const auto votes = dds::View(s->votes);
+        if (s->chosen < 0 || static_cast<std::size_t>(s->chosen) >= votes.size()) return;
+        const rover_apl_ArcVote& v = votes[static_cast<std::size_t>(s->chosen)];
+        const Eigen::Isometry3d pose = ToIsometry(s->rover_pose);
+        ChosenArc a;
+        a.x = pose.translation().x();
+        a.y = pose.translation().y();
+        a.yaw = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+        a.point_turn = v.kind == rover_apl_CANDIDATE_POINT_TURN;
+        a.curvature = v.curvature;
+        a.direction = v.direction < 0 ? -1 : 1;
+        a.turn_angle = v.turn_angle;
+        rec.Mobility().arcs.push_back(a);
+      }));
+  return Status::Ok();
+}
+
+bool MobilityTask::Ready() const { return command_.valid() && command_.MatchedReaders() > 0; }
+
+TaskOutcome MobilityTask::Run(TaskContext& ctx) {
+  TaskOutcome out;
+  MobilityOutcome& mob = ctx.recorder.Mobility();
+  MobilityCommandStorage storage;
+  const rover_apl_MobilityCommand c = MakeMobilityCommand(spec_, kCommandId, ctx.Now(), &storage);
+  StepResult step;
+  step.primitive = mob.mode;
+  step.command_id = kCommandId;
+  step.sim_start_s = ctx.Now();
+  mob.sim_start_s = step.sim_start_s;
+  ctx.Note(mob.task);
+  if (!command_.Write(c).ok()) {
+    out.failure = "cannot send the mobility command";
+    return out;
+  }
+  std::optional<rover_apl_MobilityStatus> terminal;
+  bool overdue = false;
+  const double deadline = spec_.time_budget_s > 0
+                              ? step.sim_start_s + spec_.time_budget_s + kGraceS
+                              : std::numeric_limits<double>::infinity();
+  out.failure = ctx.WaitUntil([&] {
+    status_.TakeEach([&](const dds::Sample<rover_apl_MobilityStatus>& s) {
+      if (s->command_id != kCommandId) return;
+      mob.steps = s->steps;
+      mob.images = s->images;
+      mob.distance_to_goal = s->distance_to_goal;
+      if (Terminal(s->state) && !terminal) terminal = s.data();
+    });
+    overdue = !terminal && ctx.Now() > deadline;
+    return terminal.has_value() || overdue;
+  });
+  step.sim_end_s = ctx.Now();
+  mob.sim_end_s = step.sim_end_s;
+  if (overdue) {
+    rover_apl_MobilityCommand stop{};
+    stop.header.stamp_ns = Time::FromSeconds(ctx.Now()).ns;
+    stop.command_id = kStopId;
+    stop.mode = rover_apl_MOBILITY_STOP;
+    (void)command_.Write(stop);
+    out.failure = "no terminal apl/mobility_status within the command's time budget of " +
+                  FormatNumber(spec_.time_budget_s) + " s plus " + FormatNumber(kGraceS) +
+                  " s (STOP sent)";
+  }
+  if (!terminal) {
+    step.state = "interrupted";
+    out.steps.push_back(step);
+    return out;
+  }
+  step.state = StateName(terminal->state);
+  step.termination = OutcomeName(*terminal);
+  step.message = terminal->message;
+  out.steps.push_back(step);
+  mob.state = step.state;
+  mob.outcome = step.termination;
+  mob.fault = MobilityFaultName(terminal->fault);
+  mob.fault_class = FaultClassName(terminal->fault_class);
+  mob.message = terminal->message;
+  if (!OutcomeMatches(spec_.expect, *terminal)) {
+    out.failure = mob.task + " ended " + step.state + " " + mob.outcome +
+                  (mob.fault_class == "none" ? "" : " (" + mob.fault_class + ")") + ", expected " +
+                  spec_.expect + (mob.message.empty() ? "" : ": " + mob.message);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector2d> MobilityTask::PlannedPath() const {
+  if (spec_.goal) return {{start_x_, start_y_}, spec_.goal->xy};
+  DirectedTaskSpec directed;
+  directed.steps = spec_.primitives;
+  return DirectedPlannedPath(directed, start_x_, start_y_, start_yaw_);
+}
+
+void RegisterMobilityTasks(TaskRegistry& registry) {
+  struct Entry {
+    MobilityTaskType type;
+    const char* summary;
+  };
+  const Entry entries[] = {
+      {MobilityTaskType::kAutonav,
+       "one apl/mobility_command in autonav to `goal`, waiting for its terminal status"},
+      {MobilityTaskType::kGoToWaypoint,
+       "one apl/mobility_command in go-to-waypoint (blind) to `goal`"},
+      {MobilityTaskType::kGuarded,
+       "guarded `primitives`: each vetoed if terrain assessment forbids it"},
+      {MobilityTaskType::kGuardedArc,
+       "guarded arc: a turn, then arcs that run only if the HAZCAMs show them safe"},
+  };
+  for (const Entry& e : entries) {
+    const MobilityTaskType type = e.type;
+    registry.Register(MobilityTaskTypeName(type), e.summary,
+                      [type](const TaskSource& source) -> Result<std::unique_ptr<Task>> {
+                        ROVER_ASSIGN_OR_RETURN(MobilityTaskSpec spec,
+                                               ParseMobilityTask(source, type));
+                        const Scenario& s = source.scenario;
+                        return std::unique_ptr<Task>(std::make_unique<MobilityTask>(
+                            std::move(spec), s.start_x, s.start_y, s.start_yaw));
+                      });
+  }
+}
+
+}  // namespace rover::deploy::runner
