@@ -49,9 +49,15 @@ class GlobalPlanner {
   /// Replanning: the corridor of half-width `half_width` around the segment from -> to (site
   /// x, y, metres) is not traversable (the mobility manager ended a leg there with NOPATH or
   /// NOPROGRESS); later plans route around it until Clear(). Errors: InvalidArgument for a
-  /// non-finite point or a half-width that is not > 0.
+  /// non-finite point or a half-width that is not > 0. A planner that cannot route around
+  /// reports (the default) returns FailedPrecondition, and the caller ends the traverse there.
   virtual Status ReportBlocked(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
-                               double half_width) = 0;
+                               double half_width) {
+    (void)from;
+    (void)to;
+    (void)half_width;
+    return FailedPrecondition("this global planner does not replan around blocked corridors");
+  }
   /// Forgets the planner's map and the blocked corridors.
   virtual void Clear() = 0;
 };
