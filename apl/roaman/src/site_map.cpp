@@ -44,7 +44,8 @@ Eigen::Vector2d SiteMap::center() const {
 }
 
 Result<ScanStats> SiteMap::AddScan(const nav_core::RangeScan& scan) {
-  const std::string name = "RangeScan '" + (scan.camera.empty() ? std::string("?") : scan.camera) + "'";
+  const std::string name =
+      "RangeScan '" + (scan.camera.empty() ? std::string("?") : scan.camera) + "'";
   const Status shape = scan.Validate();
   if (!shape.ok()) return InvalidArgument(name + ": " + shape.message());
 
@@ -73,7 +74,8 @@ Result<ScanStats> SiteMap::AddScan(const nav_core::RangeScan& scan) {
 
   // Where the grid will be for this scan: decided before anything changes, so that a scan
   // with no usable point leaves the map as it was.
-  const bool recentre = data_cells_ == 0 || (rover_xy - center()).norm() > options_.recenter_distance;
+  const bool recentre =
+      data_cells_ == 0 || (rover_xy - center()).norm() > options_.recenter_distance;
   const GridGeometry target =
       recentre ? CenteredOn(rover_xy, geometry_.cell, geometry_.width) : geometry_;
   std::size_t on_map = 0;
@@ -142,19 +144,11 @@ void SiteMap::AddPoint(const Eigen::Vector3d& p) {
   geometry_.CellOf(p.x(), p.y(), &i, &j);
   if (!geometry_.Contains(i, j)) return;
   CellStats& c = cells_.at(i, j);
-  if (c.count > 0 && c.panorama < static_cast<std::uint32_t>(panorama_)) c = CellStats{};
-  if (c.count == 0) {
-    ++data_cells_;
-    if (bound_i1_ < bound_i0_) {
-      bound_i0_ = bound_i1_ = i;
-      bound_j0_ = bound_j1_ = j;
-    } else {
-      bound_i0_ = std::min(bound_i0_, i);
-      bound_i1_ = std::max(bound_i1_, i);
-      bound_j0_ = std::min(bound_j0_, j);
-      bound_j1_ = std::max(bound_j1_, j);
-    }
+  if (c.count > 0 && c.panorama < static_cast<std::uint32_t>(panorama_)) {
+    c = CellStats{};  // a newer panorama replaces the cell: it is counted again below
+    --data_cells_;
   }
+  if (c.count == 0) ExtendBounds(i, j);
   const float z = static_cast<float>(p.z());
   c.panorama = static_cast<std::uint32_t>(panorama_);
   ++c.count;
@@ -166,8 +160,10 @@ void SiteMap::AddPoint(const Eigen::Vector3d& p) {
 
 void SiteMap::Recenter(const Eigen::Vector2d& xy) {
   const GridGeometry target = CenteredOn(xy, geometry_.cell, geometry_.width);
-  const int di = static_cast<int>(std::lround((target.origin_x - geometry_.origin_x) / geometry_.cell));
-  const int dj = static_cast<int>(std::lround((target.origin_y - geometry_.origin_y) / geometry_.cell));
+  const int di =
+      static_cast<int>(std::lround((target.origin_x - geometry_.origin_x) / geometry_.cell));
+  const int dj =
+      static_cast<int>(std::lround((target.origin_y - geometry_.origin_y) / geometry_.cell));
   if (di == 0 && dj == 0) return;
   Layer<CellStats> moved(geometry_.width, geometry_.height);
   for (int j = 0; j < geometry_.height; ++j) {
@@ -187,22 +183,25 @@ void SiteMap::Recenter(const Eigen::Vector2d& xy) {
   ++revision_;
 }
 
+void SiteMap::ExtendBounds(int i, int j) {
+  if (data_cells_++ == 0) {
+    bound_i0_ = bound_i1_ = i;
+    bound_j0_ = bound_j1_ = j;
+    return;
+  }
+  bound_i0_ = std::min(bound_i0_, i);
+  bound_i1_ = std::max(bound_i1_, i);
+  bound_j0_ = std::min(bound_j0_, j);
+  bound_j1_ = std::max(bound_j1_, j);
+}
+
 void SiteMap::RecomputeBounds() {
   data_cells_ = 0;
   bound_i0_ = bound_j0_ = 0;
   bound_i1_ = bound_j1_ = -1;
   for (int j = 0; j < geometry_.height; ++j) {
     for (int i = 0; i < geometry_.width; ++i) {
-      if (cells_.at(i, j).count == 0) continue;
-      if (data_cells_++ == 0) {
-        bound_i0_ = bound_i1_ = i;
-        bound_j0_ = bound_j1_ = j;
-      } else {
-        bound_i0_ = std::min(bound_i0_, i);
-        bound_i1_ = std::max(bound_i1_, i);
-        bound_j0_ = std::min(bound_j0_, j);
-        bound_j1_ = std::max(bound_j1_, j);
-      }
+      if (cells_.at(i, j).count > 0) ExtendBounds(i, j);
     }
   }
 }

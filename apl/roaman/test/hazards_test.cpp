@@ -10,13 +10,7 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) {
-  GridGeometry g;
-  g.cell = 0.05;
-  g.width = w;
-  g.height = h;
-  return g;
-}
+GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h); }
 
 struct Classified {
   ElevationMap elevation;
@@ -67,9 +61,10 @@ TEST(Hazards, SmallSteepPatchesAreLeftToTheStepTest) {
   // clearance). With 15 cm plane fits its face is a region of 3 x 6 cells (0.045 m^2), smaller
   // than min_steep_area.
   const double t = std::tan(50.0 * kDeg);
-  const sim::HeightField f = testing::HeightFieldOf(-0.5, -0.5, 3.5, 2.5, 0.01, [t](double x, double y) {
-    return (x >= 1.0 && x <= 1.25 && std::abs(y - 1.0) < 0.2) ? t * (x - 1.0) : 0.0;
-  });
+  const sim::HeightField f =
+      testing::HeightFieldOf(-0.5, -0.5, 3.5, 2.5, 0.01, [t](double x, double y) {
+        return (x >= 1.0 && x <= 1.25 && std::abs(y - 1.0) < 0.2) ? t * (x - 1.0) : 0.0;
+      });
   RoamanOptions o;
   o.normal_window = 0.15;
   const Classified c = Classify(f, 60, 40, o);
@@ -117,7 +112,8 @@ TEST(Hazards, DiscontinuitiesAboveTheBodyClearance) {
   for (int j = 0; j < 40; ++j) {
     for (int i = 0; i < 60; ++i) {
       const Eigen::Vector2d p = d.elevation.geometry.Center(i, j);
-      if ((p - Eigen::Vector2d(2.3, 1.0)).norm() < 0.3) now_low += d.cls.at(i, j) == CellClass::kStep;
+      if ((p - Eigen::Vector2d(2.3, 1.0)).norm() < 0.3)
+        now_low += d.cls.at(i, j) == CellClass::kStep;
     }
   }
   EXPECT_GT(now_low, 0);

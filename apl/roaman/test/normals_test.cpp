@@ -10,15 +10,7 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) {
-  GridGeometry g;
-  g.origin_x = 1.0;
-  g.origin_y = -2.0;
-  g.cell = 0.05;
-  g.width = w;
-  g.height = h;
-  return g;
-}
+GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h, 1.0, -2.0); }
 
 ElevationMap Plane(double a, double b, int w = 20, int h = 20) {
   const sim::HeightField f = testing::HeightFieldOf(

@@ -26,8 +26,8 @@ TEST(PlanningGrid, RowsRunAcrossTheGoalDirection) {
   const TraversabilityMap t = ClassMap(-5, -5, 15, 15, 0.05, CellClass::kSafe);
   RoamanOptions o;
   const PlanningGrid g = BuildPlanningGrid(t, {0.0, 0.0}, {6.0, 8.0}, 11.5, o);
-  EXPECT_EQ(g.width, 120);                 // 6 m across
-  EXPECT_EQ(g.height, 260);                // from -1.5 m to 11.5 m along
+  EXPECT_EQ(g.width, 120);   // 6 m across
+  EXPECT_EQ(g.height, 260);  // from -1.5 m to 11.5 m along
   EXPECT_NEAR(g.across0, -3.0, 1e-12);
   EXPECT_NEAR(g.along0, -1.5, 1e-12);
   // Moving along a row (i) moves across the goal direction; along a column (j) toward it.
@@ -70,7 +70,7 @@ TEST(PlanningGrid, TheGroundUnderTheRoverCountsAsSafe) {
   EXPECT_EQ(g.ClassAt({0.0, 0.0}), CellClass::kSafe);
   EXPECT_EQ(g.ClassAt({-0.9, 1.3}), CellClass::kSafe);  // within start_clear_radius 2 m
   EXPECT_EQ(g.ClassAt({2.2, 0.0}), CellClass::kMissing);
-  EXPECT_EQ(g.ClassAt({0.5, 0.5}), CellClass::kStep);   // real hazards stay
+  EXPECT_EQ(g.ClassAt({0.5, 0.5}), CellClass::kStep);  // real hazards stay
 }
 
 TEST(PlanningGrid, ClearanceIsTheDistanceToHazardsAndTheEdge) {

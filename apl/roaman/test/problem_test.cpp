@@ -128,8 +128,9 @@ TEST(Problem, TheStartAnchorAndNoSafeCellNearTheRover) {
   p = PreparePlan(ring, Request({6.0, 0.0}), RoamanOptions{}, &f);
   ASSERT_FALSE(p.ok());
   EXPECT_EQ(f, PlanFailure::kNoSafeStart);
-  EXPECT_TRUE(Contains(p.status(), "no safe cell near the rover at (0, 0): no cell within "
-                                   "start_search_radius 2 m has the 0.948 m clearance"));
+  EXPECT_TRUE(Contains(p.status(),
+                       "no safe cell near the rover at (0, 0): no cell within "
+                       "start_search_radius 2 m has the 0.948 m clearance"));
   EXPECT_TRUE(Contains(p.status(), "(nearest hazard: step at ("));
 
   // Standing on a blocked cell.

@@ -9,13 +9,7 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) {
-  GridGeometry g;
-  g.cell = 0.05;
-  g.width = w;
-  g.height = h;
-  return g;
-}
+GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h); }
 
 // Flat for x < 1 m, then a 50° ramp up to x = 1.5 m, then flat again (a mesa).
 double Mesa(double x, double) {

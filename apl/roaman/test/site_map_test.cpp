@@ -38,7 +38,8 @@ nav_core::RangeScan ScanOf(const std::vector<Eigen::Vector3d>& points, double x,
 
 TEST(SiteMap, BinsHeightsIntoCellStatistics) {
   SiteMap map(SmallMap());
-  ASSERT_TRUE(map.AddScan(ScanOf({{0.51, 0.51, 0.1}, {0.52, 0.53, 0.3}, {0.99, 0.0, 0.0}}, 0, 0)).ok());
+  ASSERT_TRUE(
+      map.AddScan(ScanOf({{0.51, 0.51, 0.1}, {0.52, 0.53, 0.3}, {0.99, 0.0, 0.0}}, 0, 0)).ok());
   // The first scan centres the map on the rover: cell corners at multiples of 5 cm.
   EXPECT_NEAR(map.center().x(), 0.0, 1e-12);
   EXPECT_NEAR(map.geometry().origin_x, -2.0, 1e-12);
@@ -59,7 +60,8 @@ TEST(SiteMap, BinsHeightsIntoCellStatistics) {
 TEST(SiteMap, SkipsNonFiniteAndFarPointsAndCountsThem) {
   SiteMap map(SmallMap());
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto r = map.AddScan(ScanOf({{0.5, 0.0, 0.0}, {nan, 0.0, 0.0}, {0.5, 0.0, nan}, {3.0, 0.0, 0.0}}, 0, 0));
+  auto r = map.AddScan(
+      ScanOf({{0.5, 0.0, 0.0}, {nan, 0.0, 0.0}, {0.5, 0.0, nan}, {3.0, 0.0, 0.0}}, 0, 0));
   ASSERT_TRUE(r.ok()) << r.status().message();
   EXPECT_EQ(r->pixels, 4u);
   EXPECT_EQ(r->valid, 4u);
@@ -134,6 +136,8 @@ TEST(SiteMap, ANewPanoramaReplacesOlderDataCellByCell) {
   EXPECT_NEAR(map.cells().at(i, j).mean(), 0.0, 1e-6);
   map.geometry().CellOf(0.52, 0.52, &i, &j);
   EXPECT_NEAR(map.cells().at(i, j).mean(), 0.4, 1e-6);
+  // A replaced cell is still one cell with data.
+  EXPECT_EQ(map.data_cells(), 2u);
 }
 
 TEST(SiteMap, BlockedCorridorsAreMarkedKeptAcrossRecentringAndChecked) {

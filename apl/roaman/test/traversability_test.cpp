@@ -74,9 +74,10 @@ TEST(Traversability, RocksTheirShadowsAndTheEndOfTheRange) {
 
 TEST(Traversability, SteepTerrainFromTheMast) {
   // A 50° bank 3 m wide rising across the view 5 m ahead: a steep region.
-  static const sim::HeightField bank = testing::HeightFieldOf(-3, -9, 15, 9, 0.04, [](double x, double) {
-    return std::tan(50.0 * testing::kDeg) * std::clamp(x - 5.0, 0.0, 0.6);
-  });
+  static const sim::HeightField bank =
+      testing::HeightFieldOf(-3, -9, 15, 9, 0.04, [](double x, double) {
+        return std::tan(50.0 * testing::kDeg) * std::clamp(x - 5.0, 0.0, 0.6);
+      });
   const RoamanOptions o;
   const TraversabilityMap t = ComputeTraversability(MapOf(bank, o), o);
   EXPECT_EQ(t.ClassAt(5.3, 0.0), CellClass::kSteep);
@@ -110,8 +111,9 @@ TEST(Traversability, TallRocksOfASeededFieldAreHazards) {
   cam.height = 120;
   SiteMap map(o);
   for (const auto& scan : testing::SynthesizePanorama(
-           field.natural, testing::PanoramaPointings(cam, 157.5 * testing::kDeg, 8,
-                                                     {-6.0 * testing::kDeg, -26.0 * testing::kDeg}),
+           field.natural,
+           testing::PanoramaPointings(cam, 157.5 * testing::kDeg, 8,
+                                      {-6.0 * testing::kDeg, -26.0 * testing::kDeg}),
            testing::RoverPose(field.natural, 0, 0, 0))) {
     ASSERT_TRUE(map.AddScan(scan).ok());
   }
@@ -158,7 +160,8 @@ TEST(Traversability, TallRocksOfASeededFieldAreHazards) {
     for (int dj = -1; dj <= 1; ++dj) {
       for (int di = -1; di <= 1; ++di) {
         const int i = c.x() + di, j = c.y() + dj;
-        if (!t.cls.Contains(i, j) || reached.at(i, j) || t.cls.at(i, j) != CellClass::kSafe) continue;
+        if (!t.cls.Contains(i, j) || reached.at(i, j) || t.cls.at(i, j) != CellClass::kSafe)
+          continue;
         reached.at(i, j) = 1;
         stack.emplace_back(i, j);
       }

@@ -12,7 +12,8 @@ namespace rover::apl::roaman::testing {
 namespace {
 
 // Raises every sample within half_width of any of `segments` (pairs a, b) by `height`, once.
-void RaiseNear(sim::HeightField* g, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& segments,
+void RaiseNear(sim::HeightField* g,
+               const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& segments,
                double half_width, double height) {
   for (int j = 0; j < g->ny(); ++j) {
     for (int i = 0; i < g->nx(); ++i) {
@@ -93,6 +94,16 @@ sim::Terrain RockField(double k, std::uint64_t seed, double size, double resolut
   return std::move(t).value();
 }
 
+GridGeometry CellGeometry(int w, int h, double origin_x, double origin_y) {
+  GridGeometry g;
+  g.origin_x = origin_x;
+  g.origin_y = origin_y;
+  g.cell = 0.05;
+  g.width = w;
+  g.height = h;
+  return g;
+}
+
 ElevationMap SampledElevation(const sim::HeightField& ground, const GridGeometry& geometry) {
   ElevationMap m;
   m.geometry = geometry;
@@ -114,7 +125,8 @@ ElevationMap SampledElevation(const sim::HeightField& ground, const GridGeometry
   return m;
 }
 
-TraversabilityMap ClassMap(double x0, double y0, double x1, double y1, double cell, CellClass fill) {
+TraversabilityMap ClassMap(double x0, double y0, double x1, double y1, double cell,
+                           CellClass fill) {
   TraversabilityMap t;
   t.geometry.origin_x = x0;
   t.geometry.origin_y = y0;

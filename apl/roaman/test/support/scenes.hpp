@@ -38,6 +38,9 @@ void AddCulDeSac(sim::HeightField* ground, const Eigen::Vector2d& base,
 /// craters, square of side `size` centred on the origin, rock-free within 1.5 m of the origin.
 sim::Terrain RockField(double k, std::uint64_t seed, double size, double resolution = 0.04);
 
+/// A w x h grid of 5 cm cells with its origin at (origin_x, origin_y) [m].
+GridGeometry CellGeometry(int w, int h, double origin_x = 0.0, double origin_y = 0.0);
+
 /// Input of steps 3-7 without range data: every cell of `geometry` measured once at the
 /// ground's height at its centre (sigma 0, top = bottom = mean).
 ElevationMap SampledElevation(const sim::HeightField& ground, const GridGeometry& geometry);

@@ -77,7 +77,8 @@ class SiteMap {
   Result<ScanStats> AddScan(const nav_core::RangeScan& scan);
   /// Bins site-frame points seen from `rover_xy` (the same rules as AddScan, without a scan:
   /// no panorama detection or recentring). Non-finite points are counted and skipped.
-  ScanStats AddPoints(std::span<const Eigen::Vector3d> site_points, const Eigen::Vector2d& rover_xy);
+  ScanStats AddPoints(std::span<const Eigen::Vector3d> site_points,
+                      const Eigen::Vector2d& rover_xy);
 
   /// Starts a new panorama: later points replace older panoramas' data cell by cell.
   void BeginPanorama() { ++panorama_; }
@@ -112,6 +113,7 @@ class SiteMap {
   void RasterizeBlocked();
   template <class F>
   void ForEachCorridorCell(const BlockedCorridor& c, F&& f) const;
+  void ExtendBounds(int i, int j);  // a cell gets its first point: count it, grow the bounds
   void RecomputeBounds();
 
   RoamanOptions options_;
