@@ -127,5 +127,29 @@ TEST(ArcEvaluation, ChoiceRefersToTheChosenCandidate) {
   EXPECT_EQ(e.choice().kind, MotionKind::kPointTurn);
 }
 
+// A planner without replanning: only the required members.
+class StraightLinePlanner final : public GlobalPlanner {
+ public:
+  Status AddScan(const RangeScan&) override { return Status::Ok(); }
+  Result<GlobalPlan> MakePlan(const PlanRequest& r) override {
+    GlobalPlan p;
+    p.waypoints = {r.goal};
+    return p;
+  }
+  void Clear() override {}
+};
+
+TEST(GlobalPlanner, ReportBlockedDefaultsToAPreconditionError) {
+  StraightLinePlanner planner;
+  const Status s = planner.ReportBlocked({0, 0}, {1, 0}, 0.6);
+  EXPECT_EQ(s.code(), StatusCode::kFailedPrecondition);
+  EXPECT_NE(s.message().find("does not replan"), std::string::npos);
+  const PlanRequest request;
+  EXPECT_FALSE(request.allow_partial);
+  auto plan = planner.MakePlan(request);
+  ASSERT_TRUE(plan.ok());
+  EXPECT_TRUE(plan->reaches_goal);
+}
+
 }  // namespace
 }  // namespace rover::apl::nav_core

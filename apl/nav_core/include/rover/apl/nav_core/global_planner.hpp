@@ -7,7 +7,8 @@
 /// TerrainAssessor and ArcSelector for local avoidance; as in ROAMAN the planner keeps its own
 /// map, since long traverses accumulate localisation error and the maps are not shared.
 ///
-/// Declared here so that apl/mobility can depend on it now; apl/planner (ROAMAN) implements it.
+/// Declared here so that apl/mobility can depend on it now; apl/roaman (ROAMAN) implements it and
+/// the apl/planner service runs it.
 /// Frames: site frame (x north, y west, z up), metres.
 
 #include <Eigen/Core>
@@ -22,11 +23,18 @@ struct PlanRequest {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();  ///< [m] site x, y
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();   ///< [m] site x, y
   double goal_tolerance = 0.0;                      ///< [m]
+  /// The goal may lie beyond what the planner's map covers (a long traverse, FIDO's panorama ->
+  /// plan -> drive -> panorama loop): plan toward it as far as the map allows; the plan then
+  /// ends short of the goal (GlobalPlan::reaches_goal false). When false, such a goal is an
+  /// error (NotFound naming it).
+  bool allow_partial = false;
 };
 
 struct GlobalPlan {
   std::vector<Eigen::Vector2d> waypoints;  ///< [m] site x, y, first leg first; ends near the goal
   double cost = 0.0;                       ///< planner-defined, comparable between plans
+  /// The last waypoint is within goal_tolerance of the goal (false only for partial plans).
+  bool reaches_goal = true;
 };
 
 class GlobalPlanner {
@@ -38,7 +46,19 @@ class GlobalPlanner {
   /// Plans from start to goal over the planner's map. Errors: NotFound when no path exists
   /// (the mobility manager's NOPATH), InvalidArgument for a non-finite request.
   virtual Result<GlobalPlan> MakePlan(const PlanRequest& request) = 0;
-  /// Forgets the planner's map.
+  /// Replanning: the corridor of half-width `half_width` around the segment from -> to (site
+  /// x, y, metres) is not traversable (the mobility manager ended a leg there with NOPATH or
+  /// NOPROGRESS); later plans route around it until Clear(). Errors: InvalidArgument for a
+  /// non-finite point or a half-width that is not > 0. A planner that cannot route around
+  /// reports (the default) returns FailedPrecondition, and the caller ends the traverse there.
+  virtual Status ReportBlocked(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                               double half_width) {
+    (void)from;
+    (void)to;
+    (void)half_width;
+    return FailedPrecondition("this global planner does not replan around blocked corridors");
+  }
+  /// Forgets the planner's map and the blocked corridors.
   virtual void Clear() = 0;
 };
 
