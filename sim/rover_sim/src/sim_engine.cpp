@@ -7,6 +7,9 @@
 namespace rover::sim::rover_sim {
 
 using hw::kNumMotors;
+using physics::kMotorFaultOverCurrent;
+using physics::kMotorFaultOverTemperature;
+using physics::kMotorFaultStall;
 using physics::MotorMode;
 using physics::MotorParams;
 using physics::MotorReading;
