@@ -170,6 +170,17 @@ nlohmann::json ToJson(const RunResult& r) {
                            {"end_s", f.end_s}, {"samples_seen", f.samples_seen},
                            {"samples_hit", f.samples_hit}, {"services", f.services}});
   }
+  j["health_changes"] = nlohmann::json::array();
+  for (const auto& h : r.health_changes) {
+    j["health_changes"].push_back({{"t_s", h.t_s}, {"service", h.service}, {"health", h.health},
+                                   {"message", h.message}});
+  }
+  j["health_changes_dropped"] = r.health_changes_dropped;
+  j["kills"] = nlohmann::json::array();
+  for (const auto& k : r.kills) {
+    j["kills"].push_back({{"service", k.service}, {"at_s", k.at_s}, {"killed_s", k.killed_s},
+                          {"restarted_s", k.restarted_s}, {"error", k.error}});
+  }
   return j;
 }
 
@@ -231,6 +242,15 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
       x.samples_hit = f.value("samples_hit", std::uint64_t{0});
       x.services = f.value("services", std::vector<std::string>{});
       r.faults.push_back(std::move(x));
+    }
+    for (const auto& h : j.value("health_changes", nlohmann::json::array())) {
+      r.health_changes.push_back(
+          {h.at("t_s"), h.at("service"), h.at("health"), h.value("message", "")});
+    }
+    r.health_changes_dropped = j.value("health_changes_dropped", std::uint64_t{0});
+    for (const auto& k : j.value("kills", nlohmann::json::array())) {
+      r.kills.push_back({k.at("service"), k.at("at_s"), k.value("killed_s", -1.0),
+                         k.value("restarted_s", -1.0), k.value("error", "")});
     }
     return r;
   } catch (const nlohmann::json::exception& e) {
