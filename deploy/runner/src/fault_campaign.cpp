@@ -149,7 +149,7 @@ Result<std::vector<CampaignFault>> ParseCampaignFaults(const std::string& text,
     }
   }
   for (std::size_t i = 0; i < out.size(); ++i) {
-    char index[8];
+    char index[24];
     std::snprintf(index, sizeof index, "%02zu-", i + 1);
     out[i].label = index + Slug(out[i].name);
   }

@@ -151,7 +151,12 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
     });
   }
   // The kills asked for: each at its run-clock time, then watched until the service runs again.
-  for (const auto& k : options.kills) result.kills.push_back({k.service, k.at_s});
+  for (const auto& k : options.kills) {
+    KillRecord record;
+    record.service = k.service;
+    record.at_s = k.at_s;
+    result.kills.push_back(std::move(record));
+  }
   if (!result.kills.empty()) {
     run_loop.AddPump([&] {
       for (auto& k : result.kills) {
