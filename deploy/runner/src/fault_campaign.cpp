@@ -570,7 +570,7 @@ Result<FaultCampaignTable> LoadFaultCampaignReport(const std::string& dir) {
     for (const auto& f : faults) labels.push_back(f.label);
     for (const auto& label : labels) {
       if (!fs::is_directory(dir + "/" + label)) continue;
-      ROVER_ASSIGN_OR_RETURN(results[label], LoadRunFolder(dir + "/" + label));
+      ROVER_ASSIGN_OR_RETURN(results[label], LoadRunResults(dir + "/" + label));
     }
     FaultCampaignTable t = MakeCampaignTable(c.value("scenario", ""), file,
                                              c.at("seeds").get<std::vector<std::uint32_t>>(),

@@ -184,6 +184,15 @@ nlohmann::json ToJson(const RunResult& r) {
   return j;
 }
 
+namespace {
+
+// A number written by nlohmann::json: NaN and infinities are written as null.
+double NumberOrNaN(const nlohmann::json& v) {
+  return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+}
+
+}  // namespace
+
 Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
   try {
     RunResult r;
@@ -193,8 +202,9 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.pass = j.at("pass");
     r.failure = j.value("failure", "");
     for (const auto& c : j.at("criteria")) {
-      r.criteria.push_back({c.at("name"), c.at("measured"), c.at("limit"), c.at("unit"),
-                            c.at("pass"), c.value("detail", "")});
+      r.criteria.push_back({c.at("name"), NumberOrNaN(c.at("measured")),
+                            NumberOrNaN(c.at("limit")), c.at("unit"), c.at("pass"),
+                            c.value("detail", "")});
     }
     for (const auto& s : j.value("steps", nlohmann::json::array())) {
       r.steps.push_back({s.at("primitive"), s.at("command_id"), s.at("state"),
@@ -215,8 +225,9 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
       r.odometry_only_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
     }
     for (const auto& f : j.value("figures", nlohmann::json::array())) {
-      r.figures.push_back({f.at("name"), f.at("measured"), std::numeric_limits<double>::quiet_NaN(),
-                           f.at("unit"), true, f.value("detail", "")});
+      r.figures.push_back({f.at("name"), NumberOrNaN(f.at("measured")),
+                           std::numeric_limits<double>::quiet_NaN(), f.at("unit"), true,
+                           f.value("detail", "")});
     }
     r.crashes = j.value("crashes", std::vector<std::string>{});
     r.run_dir = j.value("run_dir", "");
@@ -455,6 +466,11 @@ Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir) {
   if (!IsRunFolder(dir)) {
     return InvalidArgument(dir + ": not a run folder (no campaign.json; made by `roverctl run`)");
   }
+  return LoadRunResults(dir);
+}
+
+Result<std::vector<RunResult>> LoadRunResults(const std::string& dir) {
+  if (!fs::is_directory(dir)) return NotFound(dir + ": no such folder");
   std::vector<RunResult> out;
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir)) {

@@ -193,6 +193,10 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
 
 /// Reads every `*/result.json` under a run folder (for `roverctl report`).
 Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
+/// The result.json of every run sub-folder of `dir`, by seed, without requiring `dir` to be a
+/// campaign folder (a fault campaign's per-fault folders). Errors: no such folder, a result
+/// that does not parse (naming the file).
+Result<std::vector<RunResult>> LoadRunResults(const std::string& dir);
 
 /// A campaign folder read back (campaign.json names its scenario and seeds): its runs, their
 /// summary (with the campaign's wall time from summary.json, 0 if that is missing) and the
