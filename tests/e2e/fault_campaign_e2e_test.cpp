@@ -8,48 +8,35 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "rover/base/process.hpp"
+#include "rover/testing/roverctl_runner.hpp"
 #include "rover/testing/test_support.hpp"
 
 namespace rover {
 namespace {
 namespace fs = std::filesystem;
 
-// Every process the test's roverctl starts inherits this variable (value unique to the test),
-// so that the clean-up kills only what this test started.
-constexpr const char* kMarkVariable = "ROVER_E2E_TEST_RUN";
-
 class FaultCampaignE2e : public ::testing::Test {
  protected:
   void SetUp() override {
     testing::UseLoopbackDds();
     dir_ = testing::MakeTempDir("fault-campaign-e2e");
-    mark_ = std::to_string(getpid()) + "-" + dir_;
+    roverctl_.emplace(dir_);
   }
   void TearDown() override {
-    for (pid_t pid : ProcessesWithEnvironment(kMarkVariable, mark_)) kill(pid, SIGKILL);
+    roverctl_->KillLeftovers();
     std::error_code ec;
     fs::remove_all(dir_, ec);
   }
   std::pair<ExitInfo, std::string> Run(const std::vector<std::string>& args) {
-    const std::string log = dir_ + "/roverctl-" + std::to_string(n_++) + ".log";
-    SpawnOptions o;
-    o.argv = {testing::BinDir() + "/roverctl"};
-    o.argv.insert(o.argv.end(), args.begin(), args.end());
-    o.env[kMarkVariable] = mark_;
-    o.stdout_path = log;
-    o.stderr_path = log;
-    auto p = Process::Spawn(o);
-    EXPECT_TRUE(p.ok()) << p.status().message();
-    auto e = p->WaitFor(std::chrono::minutes(5));
-    if (!e) e = p->Terminate(std::chrono::seconds(10));
-    return {*e, testing::ReadFile(log)};
+    return roverctl_->Run(args, std::chrono::minutes(5));
   }
   static std::string Source(const std::string& rel) { return testing::SourceDir() + "/" + rel; }
-  std::string dir_, mark_;
-  int n_ = 0;
+  std::string dir_;
+  std::optional<testing::RoverctlRunner> roverctl_;
 };
 
 TEST_F(FaultCampaignE2e, ShortCampaignDetectsALostPose) {
