@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <csignal>
 #include <fstream>
 #include <map>
 #include <random>
@@ -187,6 +188,13 @@ Status ServiceSet::ResumeSimulator() {
 std::string ServiceSet::CheckServices(std::vector<std::string>* crashes) {
   supervisor_->Poll();
   for (const auto& st : supervisor_->Snapshot()) {
+    // A service killed on purpose is expected to end once and be restarted; waiting for that
+    // restart is not a crash (ending again afterwards is).
+    if (auto k = killed_.find(st.name); k != killed_.end() &&
+                                        st.state == ServiceState::kBackoff &&
+                                        st.restarts == k->second) {
+      continue;
+    }
     if (st.state == ServiceState::kFailed || st.state == ServiceState::kBackoff ||
         (st.state == ServiceState::kExited && st.restarts == 0 && !st.last_exit.empty())) {
       std::ifstream log(st.log_path);
@@ -202,5 +210,24 @@ std::string ServiceSet::CheckServices(std::vector<std::string>* crashes) {
 }
 
 void ServiceSet::Stop() { supervisor_->Stop(); }
+
+Status ServiceSet::Kill(const std::string& service) {
+  int restarts = 0;
+  for (const auto& st : supervisor_->Snapshot()) {
+    if (st.name == service) restarts = st.restarts;
+  }
+  ROVER_RETURN_IF_ERROR(supervisor_->Signal(service, SIGKILL));
+  killed_[service] = restarts;
+  return Status::Ok();
+}
+
+bool ServiceSet::RunsAgain(const std::string& service) const {
+  auto k = killed_.find(service);
+  if (k == killed_.end()) return false;
+  for (const auto& st : supervisor_->Snapshot()) {
+    if (st.name == service) return st.state == ServiceState::kRunning && st.restarts > k->second;
+  }
+  return false;
+}
 
 }  // namespace rover::deploy::runner

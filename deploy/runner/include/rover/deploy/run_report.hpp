@@ -88,6 +88,24 @@ struct InjectedFault {
 /// One line: "fault 1 drop dl/pose (writer of *): 20.0 s to 30.0 s, 55 of 110 samples hit in dl-pose".
 std::string DescribeInjected(const InjectedFault& f);
 
+/// A change of one service's health as its sys/health heartbeats said it (the runner records
+/// the first heartbeat of each service and every change of health or message after it).
+struct HealthChange {
+  double t_s = 0;       ///< [s] run clock when the runner took the heartbeat
+  std::string service;
+  std::string health;   ///< "ok", "degraded", "failed", "stale"
+  std::string message;  ///< the heartbeat's message ("" when healthy)
+};
+
+/// A kill -9 of a service during the run (RunOptions::kills) and whether it came back.
+struct KillRecord {
+  std::string service;
+  double at_s = 0;          ///< [s] run clock, as asked
+  double killed_s = -1;     ///< [s] run clock when it was killed; < 0: never (see error)
+  double restarted_s = -1;  ///< [s] run clock when it ran again; < 0: not in the run
+  std::string error;        ///< why it was not killed ("" when it was)
+};
+
 struct RunResult {
   std::string scenario;
   std::uint32_t seed = 0;
@@ -120,6 +138,12 @@ struct RunResult {
   std::optional<MobilityOutcome> mobility;
   /// Every fault of the run's set, in id order, with what it did.
   std::vector<InjectedFault> faults;
+  /// The services' health over the run (sys/health), in arrival order; at most
+  /// kMaxHealthChanges are kept (`health_changes_dropped` counts the rest).
+  std::vector<HealthChange> health_changes;
+  std::uint64_t health_changes_dropped = 0;
+  std::vector<KillRecord> kills;
+  static constexpr std::size_t kMaxHealthChanges = 500;
 };
 
 nlohmann::json ToJson(const RunResult& r);
@@ -169,6 +193,10 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
 
 /// Reads every `*/result.json` under a run folder (for `roverctl report`).
 Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
+/// The result.json of every run sub-folder of `dir`, by seed, without requiring `dir` to be a
+/// campaign folder (a fault campaign's per-fault folders). Errors: no such folder, a result
+/// that does not parse (naming the file).
+Result<std::vector<RunResult>> LoadRunResults(const std::string& dir);
 
 /// A campaign folder read back (campaign.json names its scenario and seeds): its runs, their
 /// summary (with the campaign's wall time from summary.json, 0 if that is missing) and the

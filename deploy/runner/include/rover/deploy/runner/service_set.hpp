@@ -5,6 +5,7 @@
 /// operator's participant on that domain, and the simulator's start switch (simulated time starts
 /// paused and runs once the runner says so).
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,12 +70,19 @@ class ServiceSet {
   double ready_after_s() const { return supervisor_->ready_after_s(); }
   /// Stops every service; nothing is left running.
   void Stop();
+  /// kill -9 of one service (a fault campaign's `kill:`). From then on its exit is expected:
+  /// CheckServices does not call it a crash while its restart policy brings it back (it still
+  /// does if the service is not restarted, or fails again later).
+  Status Kill(const std::string& service);
+  /// The service was killed by Kill() and runs again (restarted by the supervisor).
+  bool RunsAgain(const std::string& service) const;
 
  private:
   explicit ServiceSet(std::unique_ptr<Supervisor> supervisor)
       : supervisor_(std::move(supervisor)) {}
 
   std::unique_ptr<Supervisor> supervisor_;
+  std::map<std::string, int> killed_;  // service -> its restart count when it was killed
   dds::Participant participant_;
   dds::Writer<rover_sim_Control> control_;
 };
