@@ -22,12 +22,12 @@ using namespace runner;  // NOLINT(google-build-using-namespace): this file is t
 
 Status ValidateSimulatorSections(const std::string& text, const std::string& file) {
   ParamSet p("rover-sim");
-  sim::DeclareWorldParams(p);
-  ROVER_RETURN_IF_ERROR(p.LoadYamlSections(text, file, sim::WorldSections()));
+  sim::world::DeclareWorldParams(p);
+  ROVER_RETURN_IF_ERROR(p.LoadYamlSections(text, file, sim::world::WorldSections()));
   // Ranges and cross-field rules (rock density, objects on the map) need the world itself; the
   // runner builds it anyway (for the judge and the map), so do it now, before anything starts.
   ROVER_RETURN_IF_ERROR(p.Validate());
-  auto w = sim::BuildWorld(p);
+  auto w = sim::world::BuildWorld(p);
   return w.ok() ? Status::Ok() : w.status();
 }
 

@@ -24,7 +24,7 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
   YAML::Node root = YAML::Load(s.text);
   YAML::Node out(YAML::NodeType::Map);
-  for (const auto& sec : sim::WorldSections()) {
+  for (const auto& sec : sim::world::WorldSections()) {
     if (root[sec]) out[sec] = root[sec];
   }
   if (!out["terrain"]) out["terrain"] = YAML::Node(YAML::NodeType::Map);
@@ -85,7 +85,7 @@ Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
 
 }  // namespace
 
-std::string TerrainDigest(const sim::Terrain& t) {
+std::string TerrainDigest(const sim::terrain::Terrain& t) {
   std::uint64_t h = 1469598103934665603ULL;
   auto mix = [&h](const void* data, std::size_t n) {
     const auto* b = static_cast<const unsigned char*>(data);
@@ -116,11 +116,11 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
   const std::string sim_params_path = run_dir + "/params/" + scenario.simulator + ".yaml";
   std::ofstream(sim_params_path) << sim_yaml;
   ParamSet world_params("world");
-  sim::DeclareWorldParams(world_params);
+  sim::world::DeclareWorldParams(world_params);
   ROVER_RETURN_IF_ERROR(
-      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::WorldSections()));
+      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::world::WorldSections()));
   ROVER_RETURN_IF_ERROR(world_params.Validate());
-  ROVER_ASSIGN_OR_RETURN(sim::World world, sim::BuildWorld(world_params));
+  ROVER_ASSIGN_OR_RETURN(sim::world::World world, sim::world::BuildWorld(world_params));
 
   // The service set.
   ROVER_ASSIGN_OR_RETURN(ComposeProject project, LoadComposeFile(scenario.compose_path));

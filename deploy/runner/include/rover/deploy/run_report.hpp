@@ -112,7 +112,7 @@ struct RunResult {
   int domain = -1;
   bool pass = false;
   std::string failure;             ///< one line: why it failed ("" when it passed)
-  std::vector<sim::Criterion> criteria;
+  std::vector<sim::judge::Criterion> criteria;
   std::vector<StepResult> steps;
   double distance_driven = 0;      ///< [m]
   double sim_time_s = 0;           ///< simulated seconds run
@@ -120,10 +120,10 @@ struct RunResult {
   double startup_s = 0;            ///< wall seconds to bring the service set up
   double ready_s = 0;              ///< wall seconds from starting the set to every service ready
   double teardown_s = 0;           ///< wall seconds to stop it
-  std::vector<sim::ErrorSample> estimate_error;
-  std::vector<sim::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
-  /// Measured, not judged (sim::Verdict::figures): estimate and odometry-only errors.
-  std::vector<sim::Criterion> figures;
+  std::vector<sim::judge::ErrorSample> estimate_error;
+  std::vector<sim::judge::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
+  /// Measured, not judged (sim::judge::Verdict::figures): estimate and odometry-only errors.
+  std::vector<sim::judge::Criterion> figures;
   std::vector<std::string> crashes;  ///< "service: how it ended; last log line"
   std::string run_dir;
   /// Distinct sim/truth writers heard: 1 unless another run's simulator leaked into this one.

@@ -23,7 +23,7 @@ namespace rover::deploy::runner {
 /// Everything a run needs before a process starts.
 struct PreparedRun {
   std::string run_dir;     ///< <out>/<scenario>-seed<N>
-  sim::World world;        ///< exactly as the simulator will build it
+  sim::world::World world;        ///< exactly as the simulator will build it
   ComposeProject project;  ///< the set, each service given its parameter files
   SupervisorOptions supervisor;
 };
@@ -38,7 +38,7 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
                                const RunOptions& options);
 
 /// FNV-1a digest of a terrain's heights and rock list, 16 hex digits (same seed, same digest).
-std::string TerrainDigest(const sim::Terrain& terrain);
+std::string TerrainDigest(const sim::terrain::Terrain& terrain);
 
 /// The running set of one run.
 class ServiceSet {
