@@ -6,7 +6,9 @@
 
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
+#include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/drive_idl.hpp"
 #include "rover/msg/mast_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
@@ -29,24 +31,46 @@ void Dropped(const Status& s, const char* topic) {
   log::Warn(std::string(topic) + " sample dropped", {{"error", s.message()}});
 }
 
+// GESTALT's options for this rover. The rover disc is the rover description's turn-in-place
+// disc (core/hwconfig: 1.90 m for the default rover), not the library default, MER's 2.6 m,
+// unless gestalt.rover_disc_diameter_m is set: a disc larger than the rover grows every rock's
+// obstacle and spreads each tall rock's step over more of the map.
+Result<gestalt::GestaltOptions> GestaltForRover(const ParamSet& params) {
+  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
+                         ReadParams<hwconfig::RoverDescription>(params, "geometry."));
+  ROVER_ASSIGN_OR_RETURN(gestalt::GestaltOptions g,
+                         ReadParams<gestalt::GestaltOptions>(params, "gestalt."));
+  if (params.Origin("gestalt.rover_disc_diameter_m").source == "default") {
+    g.rover_disc_diameter = rover.TurnInPlaceCircle().Diameter();
+    if (Status s = g.Validate(); !s.ok()) {
+      return InvalidArgument("the rover description's turn-in-place disc (" +
+                             FormatNumber(g.rover_disc_diameter, 3) +
+                             " m) does not suit GESTALT: " + s.message());
+    }
+  }
+  return g;
+}
+
 }  // namespace
 
 void MobilityService::DeclareParameters(ParamSet& params) {
   DeclareParams<MobilityOptions>(params, "mobility.");
   DeclareParams<gestalt::GestaltOptions>(params, "gestalt.");
+  DeclareParams<hwconfig::RoverDescription>(params, "geometry.");
 }
 
 Status MobilityService::ValidateParameters(const ParamSet& params) const {
   ROVER_RETURN_IF_ERROR(ReadParams<MobilityOptions>(params, "mobility.").status());
-  return ReadParams<gestalt::GestaltOptions>(params, "gestalt.").status();
+  return GestaltForRover(params).status();
 }
 
 Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
   ctx_ = &ctx;
   ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
                          ReadParams<MobilityOptions>(params, "mobility."));
-  ROVER_ASSIGN_OR_RETURN(const gestalt::GestaltOptions g,
-                         ReadParams<gestalt::GestaltOptions>(params, "gestalt."));
+  ROVER_ASSIGN_OR_RETURN(const gestalt::GestaltOptions g, GestaltForRover(params));
+  log::Info("gestalt configured", {{"rover_disc_diameter_m", g.rover_disc_diameter},
+                                   {"stereo_noise_coeff", g.stereo_noise_coeff}});
   ROVER_ASSIGN_OR_RETURN(gestalt::TerrainMap map, gestalt::TerrainMap::Create(g));
   ROVER_ASSIGN_OR_RETURN(gestalt::ArcEvaluator arcs, gestalt::ArcEvaluator::Create(g));
   ROVER_ASSIGN_OR_RETURN(

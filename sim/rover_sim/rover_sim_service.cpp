@@ -23,10 +23,8 @@ using rover::Status;
 namespace dds = rover::dds;
 namespace hw = rover::hw;
 
-// Lock-step: smallest lead (the services acknowledge every 25 ms of simulated time), and how
-// long (wall) a service may go without acknowledging before the simulator stops waiting for it.
+// Lock-step: smallest lead (the services acknowledge every 25 ms of simulated time).
 constexpr double kMinLockstepLeadS = 0.05;
-constexpr double kAckStallS = 2.0;
 
 // Integration time of the sensor model's relative exposure 1 (MER NAVCAM exposures are tens to
 // hundreds of milliseconds in daylight).
@@ -49,8 +47,16 @@ class RoverSim final : public rover::Service {
     p.Declare("sim.start_paused", false, "wait for a SIM_RESUME on sim/control before running");
     p.Declare("sim.lockstep_lead_s", 0.0,
               "[s] run at most this far ahead of the slowest service's sim/clock_ack (0 = free "
-              "running); a service silent for 2 s of wall time is not waited for")
+              "running)")
         .Range(0.0, 10.0);
+    // Generous by default: at a load of 10+ on two cores ddl-camera (rendering) and dl-pose went
+    // silent for over 2 s, the simulator ran on without them, and dl-locomotion then saw an
+    // attitude over 1 s old in simulated time (SAPP) in runs a loaded machine should only have
+    // slowed. A service that really died is restarted by the supervisor and acknowledges again.
+    p.Declare("sim.lockstep_stall_s", 30.0,
+              "[s] wall time a service may go without acknowledging before lock-step stops "
+              "waiting for it (until it acknowledges again)")
+        .Range(0.1, 3600.0);
     p.Declare("camera.image_size", 1024, "[px] side of the rendered camera images (MER: 1024)")
         .Range(64, 2048);
     p.Declare("camera.render_seed", 1, "seed of the rendered textures and image noise").Min(0);
@@ -78,6 +84,7 @@ class RoverSim final : public rover::Service {
     terrain_ = std::make_shared<const rover::sim::terrain::Terrain>(engine_->world().terrain);
     paused_ = p.GetBool("sim.start_paused");
     lockstep_lead_s_ = p.GetDouble("sim.lockstep_lead_s");
+    lockstep_stall_s_ = p.GetDouble("sim.lockstep_stall_s");
     ctx_ = &ctx;
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/truth", &truth_w_));
@@ -195,7 +202,7 @@ class RoverSim final : public rover::Service {
     const rover::Time now = rover::MonotonicNow();
     for (auto& [name, s] : acks_) {
       if (!s.waited_on || s.sim_time_ns >= need) continue;
-      if (now - s.changed > rover::Seconds(kAckStallS)) {
+      if (now - s.changed > rover::Seconds(lockstep_stall_s_)) {
         rover::log::Warn("lock-step: not waiting for a service that stopped acknowledging",
                          {{"service", name},
                           {"acknowledged_s", rover::Time{s.sim_time_ns}.seconds()},
@@ -411,6 +418,7 @@ class RoverSim final : public rover::Service {
 
   std::unique_ptr<rover::sim::rover_sim::SimEngine> engine_;
   double lockstep_lead_s_ = 0.0;
+  double lockstep_stall_s_ = 30.0;
   std::map<std::string, AckState> acks_;
   std::shared_ptr<const rover::sim::terrain::Terrain> terrain_;
   std::unique_ptr<rover::sim::render::Renderer> renderer_;

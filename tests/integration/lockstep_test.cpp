@@ -1,6 +1,7 @@
 // rover-sim's lock-step (sim.lockstep_lead_s): the simulator must not run further ahead of a
 // service's sim/clock_ack than the lead, must follow the acknowledgements as they advance, and
-// must stop waiting for a service that goes silent (2 s of wall time) instead of hanging.
+// must stop waiting for a service that goes silent (sim.lockstep_stall_s, 2 s here) instead of
+// hanging.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@ TEST(LockstepTest, SimulatorWaitsForTheSlowestServiceAndNotForASilentOne) {
             "sim",                              "--set",
             "sim.real_time_factor=0",           "--set",
             "sim.lockstep_lead_s=0.1",          "--set",
+            "sim.lockstep_stall_s=2",           "--set",
             "terrain.size_x=10",                "--set",
             "terrain.size_y=10",                "--set",
             "sim.start_paused=true"};

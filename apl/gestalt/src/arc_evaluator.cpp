@@ -32,7 +32,8 @@ Status CheckRequest(const ArcRequest& r) {
   ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
   ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.x", r.goal.x()));
   ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.y", r.goal.y()));
-  return CheckNonNegative("ArcRequest.goal_tolerance", r.goal_tolerance, "m");
+  ROVER_RETURN_IF_ERROR(CheckNonNegative("ArcRequest.goal_tolerance", r.goal_tolerance, "m"));
+  return CheckIntRange("ArcRequest.last_direction", r.last_direction, -1, 1);
 }
 
 }  // namespace
@@ -158,7 +159,11 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
   const double bearing = std::atan2(gy, gx);
   const bool backup = std::abs(k_goal) > o.max_curvature;
   e.mode = backup ? GoalMode::kBackUp : GoalMode::kNormal;
-  const int toward_direction = gx >= 0.0 ? 1 : -1;
+  // How far the goal lies behind abeam (> 0 behind, < 0 ahead), and the direction toward it.
+  const double behind_abeam = std::abs(bearing) - 0.5 * std::numbers::pi;
+  int toward_direction = behind_abeam <= 0.0 ? 1 : -1;
+  if (request.last_direction > 0 && behind_abeam <= o.direction_hysteresis) toward_direction = 1;
+  if (request.last_direction < 0 && behind_abeam >= -o.direction_hysteresis) toward_direction = -1;
   const double k_backup = (gy >= 0.0 ? -1.0 : 1.0) * o.max_curvature;
   const double k_clamped = std::clamp(k_goal, -o.max_curvature, o.max_curvature);
   const double length =

@@ -106,6 +106,8 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckPositive("turn_vote_variance", turn_vote_variance, "rad^2"));
   ROVER_RETURN_IF_ERROR(
       CheckRange("backup_vote_scale", backup_vote_scale, Bounds::OpenLow(0.0, 1.0)));
+  ROVER_RETURN_IF_ERROR(CheckRange("direction_hysteresis", direction_hysteresis,
+                                   Bounds::Closed(0.0, 90.0 * kDeg), "rad"));
   ROVER_RETURN_IF_ERROR(CheckByte("min_fwd_threshold", min_fwd_threshold));
   ROVER_RETURN_IF_ERROR(CheckByte("skip_imaging_goodness", skip_imaging_goodness));
   return Status::Ok();
@@ -210,6 +212,10 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
   b.Bind("backup_vote_scale", &G::backup_vote_scale, "",
          "scale of the back-up (K-turn) votes (MER 0.5: halved)")
       .Range(0.001, 1.0);
+  b.BindDegrees("direction_hysteresis_deg", &G::direction_hysteresis,
+                "after an arc, its direction stays the goal's until the goal is this far past "
+                "abeam (MER 0: flips at abeam)")
+      .Range(0.0, 90.0);
   byte("min_fwd_threshold", &G::min_fwd_threshold,
        "best forward vote below this advises imaging the rear (MER 180)");
   byte("skip_imaging_goodness", &G::skip_imaging_goodness,

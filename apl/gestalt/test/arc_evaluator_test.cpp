@@ -181,6 +181,56 @@ TEST(ArcEvaluator, KTurnForAGoalInsideTheTurningCircle) {
   EXPECT_NEAR(t->choice().turn_angle, 75.0 * std::numbers::pi / 180.0, 1e-9);  // bearing 68 deg
 }
 
+TEST(ArcEvaluator, DirectionHysteresisKeepsDrivingForwardPastAbeam) {
+  // The goal 8 m away, 100 deg to the left: 10 deg behind abeam. MER (no hysteresis) makes
+  // backward the goal's direction there whatever the rover drove last.
+  const double b = 100.0 * std::numbers::pi / 180.0;
+  ArcRequest r = Toward(8.0 * std::cos(b), 8.0 * std::sin(b));
+  r.last_direction = 1;
+  auto mer = Make().Evaluate(KnownMap(), r);
+  ASSERT_TRUE(mer.ok());
+  ASSERT_TRUE(mer->has_choice());
+  EXPECT_EQ(mer->choice().direction, -1);
+  // With 20 deg of hysteresis the rover that drove forward keeps forward (peak 255)...
+  GestaltOptions o;
+  o.direction_hysteresis = 20.0 * std::numbers::pi / 180.0;
+  const ArcEvaluator ev = Make(o);
+  auto fwd = ev.Evaluate(KnownMap(), r);
+  ASSERT_TRUE(fwd.ok());
+  ASSERT_TRUE(fwd->has_choice());
+  EXPECT_EQ(fwd->choice().direction, 1);
+  EXPECT_GT(fwd->waypoint[11].goodness, 200);  // straight ahead: the forward peak's Gaussian
+  EXPECT_LT(fwd->waypoint[34].goodness, 129);  // straight back: the away peak's
+  // ... one that drove backward, or none yet, reverses as MER does...
+  r.last_direction = -1;
+  auto back = ev.Evaluate(KnownMap(), r);
+  ASSERT_TRUE(back.ok());
+  EXPECT_EQ(back->choice().direction, -1);
+  r.last_direction = 0;
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r)->choice().direction, -1);
+  // ... and beyond the hysteresis (the goal 30 deg behind abeam) forward no longer holds.
+  const double far = 120.0 * std::numbers::pi / 180.0;
+  ArcRequest r2 = Toward(8.0 * std::cos(far), 8.0 * std::sin(far));
+  r2.last_direction = 1;
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r2)->choice().direction, -1);
+  // Symmetric for backward: 10 deg ahead of abeam, a rover that backed keeps backing.
+  const double ahead = 80.0 * std::numbers::pi / 180.0;
+  ArcRequest r3 = Toward(8.0 * std::cos(ahead), 8.0 * std::sin(ahead));
+  r3.last_direction = -1;
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r3)->choice().direction, -1);
+  r3.last_direction = 1;
+  EXPECT_EQ(ev.Evaluate(KnownMap(), r3)->choice().direction, 1);
+}
+
+TEST(ArcEvaluator, RequestWithABadLastDirectionIsRefused) {
+  ArcRequest r = Toward(4.0, 0.0);
+  r.last_direction = 2;
+  auto e = Make().Evaluate(KnownMap(), r);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.status().message().find("ArcRequest.last_direction"), std::string::npos)
+      << e.status().message();
+}
+
 TEST(ArcEvaluator, FramesFollowTheRoverHeading) {
   // Rover facing site +y (yaw 90 deg); a goal at site (0, 4) is straight ahead.
   const ArcEvaluator ev = Make();

@@ -702,10 +702,17 @@ void MobilityManager::NextStep(Time now, MobilityOutput* out) {
     const auto& h = run_->goal_distance_history;
     const std::size_t n = static_cast<std::size_t>(options_.progress_steps);
     if (h.size() > n && h[h.size() - 1 - n] - h.back() < options_.min_progress) {
+      const std::string window = "distance to the goal went from " +
+                                 FormatNumber(h[h.size() - 1 - n], 4) + " to " +
+                                 FormatNumber(h.back(), 4) + " m in " + std::to_string(n) +
+                                 " steps (min_progress_m = " +
+                                 FormatNumber(options_.min_progress) + ")";
+      if (LimitCycleTurn(now, out)) return;
       Finish(now, State::kFailed, Fault::kNoProgress,
-             "distance to the goal went from " + FormatNumber(h[h.size() - 1 - n], 4) + " to " +
-                 FormatNumber(h.back(), 4) + " m in " + std::to_string(n) +
-                 " steps (min_progress_m = " + FormatNumber(options_.min_progress) + ")",
+             window + (run_->limit_cycle_turns > 0
+                           ? " after " + std::to_string(run_->limit_cycle_turns) +
+                                 " limit-cycle turn(s)"
+                           : std::string()),
              out);
       return;
     }
@@ -791,6 +798,7 @@ Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Tim
   req.goal = CurrentGoal();
   req.goal_tolerance =
       run_->goals.size() > 1 ? std::max(kLegTolerance, run_->tolerance) : run_->tolerance;
+  req.last_direction = run_->last_direction;
   return selector_->Evaluate(assessor_->goodness_map(), req);
 }
 
@@ -821,6 +829,55 @@ void MobilityManager::AutonavStep(Time now, MobilityOutput* out) {
     run_->camera_queue.push_back(CameraId::kRearHazcam);
   }
   RequestImage(cam, Purpose::kStep, now, out);
+}
+
+bool MobilityManager::LimitCycleTurn(Time now, MobilityOutput* out) {
+  const Mode mode = run_->command.mode;
+  const bool votes_arcs =
+      mode == Mode::kAutoNav || mode == Mode::kAutoNavVisOdom || mode == Mode::kLongTraverse;
+  if (!votes_arcs || run_->limit_cycle_turns >= options_.limit_cycle_turns) return false;
+  const Pose2 here = PlanarPose(pose_->site_from_rover);
+  auto eval = Evaluate(here, now);
+  if (!eval.ok()) return false;
+  // The side of the best forward arcs: the mean curvature of those with the top merged vote.
+  int top = -1;
+  double k_sum = 0.0;
+  int k_count = 0;
+  for (std::size_t k = 0; k < eval->candidates.size(); ++k) {
+    const nav_core::Candidate& c = eval->candidates[k];
+    // Every turn in place sweeps the rover's own cells: one forbidden means all are.
+    if (c.kind == nav_core::MotionKind::kPointTurn && eval->hazard[k].goodness == 0) return false;
+    if (c.kind != nav_core::MotionKind::kArc || c.direction < 0) continue;
+    const int g = eval->merged[k].goodness;
+    if (g > top) {
+      top = g;
+      k_sum = 0.0;
+      k_count = 0;
+    }
+    if (g == top) {
+      k_sum += c.curvature;
+      k_count += 1;
+    }
+  }
+  const Eigen::Vector2d d = CurrentGoal() - here.xy();
+  const double bearing = WrapAngle(std::atan2(d.y(), d.x()) - here.heading);
+  Primitive p;
+  p.kind = PrimitiveKind::kTurnInPlace;
+  if (std::abs(bearing) >= options_.limit_cycle_min_bearing) {
+    p.angle = bearing;
+  } else {
+    const double side = k_count > 0 && k_sum < 0.0 ? -1.0 : 1.0;  // right only if the best lie right
+    p.angle = side * options_.limit_cycle_turn;
+  }
+  if (ModeUsesVisOdom(mode)) {
+    p.angle = std::clamp(p.angle, -options_.visodom_max_turn, options_.visodom_max_turn);
+  }
+  run_->limit_cycle_turns += 1;
+  run_->last_direction = 0;
+  run_->goal_distance_history.assign(1, DistanceToGoal());
+  EmitStatus(now, out);
+  SendDrive(p, now, out);  // a keep-out hit ends the command there
+  return true;
 }
 
 void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& eval,
@@ -863,6 +920,7 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
     p.kind = std::abs(c.curvature) < 1e-9 ? PrimitiveKind::kStraight : PrimitiveKind::kArc;
     p.curvature = std::abs(c.curvature) < 1e-9 ? 0.0 : c.curvature;
     p.distance = c.direction < 0 ? -len : len;
+    run_->last_direction = c.direction;
   }
   if (!SendDrive(p, now, out)) return;
   if (run_->think && p.kind != PrimitiveKind::kTurnInPlace) StartThinking(p, now, out);

@@ -31,6 +31,11 @@ Status MobilityOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckIntRange("guard_min_goodness", guard_min_goodness, 0, 255));
   ROVER_RETURN_IF_ERROR(CheckIntRange("progress_steps", progress_steps, 1, 10000));
   ROVER_RETURN_IF_ERROR(CheckNonNegative("min_progress", min_progress, "m"));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("limit_cycle_turns", limit_cycle_turns, 0, 100));
+  ROVER_RETURN_IF_ERROR(CheckRange("limit_cycle_min_bearing", limit_cycle_min_bearing,
+                                   Bounds::Closed(0.0, kPi), "rad"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("limit_cycle_turn", limit_cycle_turn, Bounds::OpenLow(0.0, kPi), "rad"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("max_visodom_failures", max_visodom_failures, 0, 10000));
   ROVER_RETURN_IF_ERROR(CheckPositive("visodom_timeout_s", visodom_timeout_s, "s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("image_timeout_s", image_timeout_s, "s"));
@@ -86,6 +91,17 @@ void MobilityOptions::BindParams(ParamBinder<MobilityOptions>& b) {
   b.Bind("min_progress_m", &O::min_progress, "m",
          "the distance to the goal must shrink this much per window (stack 0.5)")
       .Min(0.0);
+  b.Bind("limit_cycle_turns", &O::limit_cycle_turns, "",
+         "arc voting: turns in place after a failed NOPROGRESS window before it ends the "
+         "command (stack 2; 0 = end at once)")
+      .Range(0, 100);
+  b.BindDegrees("limit_cycle_min_bearing_deg", &O::limit_cycle_min_bearing,
+                "a limit-cycle turn faces the goal when it is at least this far off ahead "
+                "(stack 30)")
+      .Range(0.0, 180.0);
+  b.BindDegrees("limit_cycle_turn_deg", &O::limit_cycle_turn,
+                "otherwise it turns this much toward the better forward arcs (MER 90)")
+      .Range(1.0, 180.0);
   b.Bind("max_visodom_failures", &O::max_visodom_failures, "",
          "VISODOM after this many failed VO steps in one command (stack 3)")
       .Min(0);

@@ -208,6 +208,34 @@ TEST(MobilityManagerWorld, CulDeSacEndsNoProgress) {
   EXPECT_GT(w.min_rock_clearance(), 0.3);
 }
 
+// A rover whose pose never moves (100 % slip) fails every NOPROGRESS window. MER's limit-cycle
+// turn comes first: with the goal ahead, 90 deg toward the better forward arcs (left on flat
+// ground, where the straight arc is best), and the window starts again; after the last turn
+// the command ends NOPROGRESS, saying how many turns it took.
+TEST(MobilityManagerWorld, NoProgressTurnsInPlaceBeforeItGivesUp) {
+  for (const int turns : {0, 2}) {
+    MobilityOptions o;
+    o.progress_steps = 4;
+    o.limit_cycle_turns = turns;
+    MobilityManager m = MakeGestaltManager(o);
+    FakeWorld w(&m);
+    w.tamper_pose = [](PoseSample* p) { p->site_from_rover.translation().setZero(); };
+    const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 2000.0);
+    EXPECT_EQ(s.fault, Fault::kNoProgress) << s.message;
+    std::vector<double> angles;
+    for (const DriveCommand& d : w.drives()) {
+      if (d.primitive == PrimitiveKind::kTurnInPlace) angles.push_back(d.angle);
+    }
+    ASSERT_EQ(static_cast<int>(angles.size()), turns) << s.message;
+    if (turns > 0) {
+      EXPECT_NEAR(angles[0], o.limit_cycle_turn, 1e-9);  // the goal was ahead: 90 deg left
+      // The arcs driven since point the rover off the goal: the second turn faces it.
+      EXPECT_GE(std::abs(angles[1]), o.limit_cycle_min_bearing);
+    }
+    EXPECT_EQ(s.message.find("limit-cycle turn") != std::string::npos, turns > 0) << s.message;
+  }
+}
+
 TEST(MobilityManagerWorld, ImagesThatStopArrivingAreImgAndLatch) {
   MobilityManager m = MakeGestaltManager();
   WorldOptions wo;

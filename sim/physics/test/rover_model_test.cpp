@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "rover/sim/physics/motor_controller.hpp"
+
 namespace rover::sim::physics {
 namespace {
 
@@ -52,6 +54,33 @@ TEST(RoverModelParams, ValidateRejectsBadValuesWithTheirName) {
   p = RoverModelParams{};
   p.gravity = -3.7;
   EXPECT_FALSE(p.Validate().ok());
+}
+
+// A steered wheel pushed by the terrain (a rim edge on a bump: ~7 N m about the steering axis)
+// must stay inside the 5 mrad band in which ddl-motor counts a steering move done
+// (deploy/config/rover_hardware.yaml), or steering times out (MOT). The load: the gearhead's
+// reflected inertia plus a wheel, with some viscous scrub, 1 ms steps.
+TEST(RoverModelParams, SteerMotorHoldsItsGoalAgainstTerrainTorque) {
+  const MotorParams p = DefaultSteerMotorParams();
+  MotorController mc(p, -40.0, 0.0);
+  const double cpr = p.CountsPerRad();
+  const double goal = 0.25;  // [rad]
+  ASSERT_TRUE(mc.SetGoal(MotorMode::kPosition, goal * cpr, 0.3 * cpr, p.max_current).ok());
+  const double inertia = p.ReflectedInertia() + 0.05, friction = 2.0, dt = 1e-3;
+  double angle = 0.0, rate = 0.0;
+  auto run = [&](double seconds, double external) {
+    for (int k = 0; k < static_cast<int>(seconds / dt); ++k) {
+      rate += (mc.Update(angle, rate, dt) + external - friction * rate) / inertia * dt;
+      angle += rate * dt;
+    }
+  };
+  run(2.0, 0.0);
+  EXPECT_NEAR(angle, goal, 0.002);
+  for (const double push : {7.0, -7.0}) {
+    run(1.0, push);
+    EXPECT_NEAR(angle, goal, 0.005) << "pushed with " << push << " N m";
+  }
+  EXPECT_EQ(mc.Reading().faults, kMotorFaultNone);
 }
 
 TEST(RoverModelParams, DefaultMotorsByKind) {

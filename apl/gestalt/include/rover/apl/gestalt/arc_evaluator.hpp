@@ -16,7 +16,11 @@
 /// Cells off the map count as unknown. A turn in place sweeps the cells at the rover centre.
 ///
 /// Waypoint vote (goal g in the rover frame, bearing β = atan2(g_y, g_x), k* = 2 g_y / |g|²):
-///   normal:  arc in the goal's direction (forward when g_x >= 0)
+///   the goal's direction is forward when |β| <= 90°, backward otherwise, except that after an
+///   arc in direction d (request.last_direction) it stays d while the goal is within
+///   direction_hysteresis of abeam on the other side (forward while |β| <= 90° + h, backward
+///   while |β| >= 90° - h);
+///   normal:  arc in the goal's direction
 ///                peak_toward exp(-(k - k*)² / (2 arc_vote_variance)),
 ///            arc in the other direction: peak_away exp(...same...),
 ///            turn by θ: peak_away exp(-wrap(θ - β)² / (2 turn_vote_variance));

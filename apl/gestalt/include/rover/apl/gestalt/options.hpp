@@ -78,6 +78,12 @@ struct GestaltOptions {
   double arc_vote_variance = 3.2;  ///< [1/m^2] variance of the waypoint Gaussian over curvature
   double turn_vote_variance = 97.0 * kDeg * kDeg;  ///< [rad^2] ... over turn angle
   double backup_vote_scale = 0.5;                  ///< back-up (K-turn) votes are scaled by this
+  /// [rad] Drive-direction hysteresis: after a forward arc, forward stays the goal's direction
+  /// until the goal is this far behind abeam (|bearing| > 90 deg + h), and after a backward arc
+  /// backward stays it until the goal is this far ahead of abeam. 0 = MER (the direction flips
+  /// at abeam, which makes a rover skirting an obstacle with the goal abeam drive forward and
+  /// back over the same half metre).
+  double direction_hysteresis = 0.0;
   int min_fwd_threshold = 180;      ///< best forward vote below this: image the rear as well
   int skip_imaging_goodness = 200;  ///< all paths' hazard votes at or above: imaging may skip
 

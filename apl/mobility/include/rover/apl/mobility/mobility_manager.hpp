@@ -41,7 +41,13 @@
 ///
 /// Checks after each step (and in Step): goal reached -> SUCCEEDED; time budget -> WAYPT_TIMEOUT;
 /// Mars time of day past lmst_end_h -> TOD; steps >= max_steps -> NOPROGRESS; distance to the
-/// goal shrunk less than min_progress over progress_steps steps -> NOPROGRESS (limit cycle);
+/// goal shrunk less than min_progress over progress_steps steps -> in the arc-voting modes
+/// (AUTONAV, AUTONAV_VISODOM, LONG_TRAVERSE) a limit-cycle turn in place (up to
+/// limit_cycle_turns per command, each where the turn's own cells are not forbidden: to face
+/// the goal, or when it is within limit_cycle_min_bearing of ahead by limit_cycle_turn toward
+/// the side of the best forward arc), after which the window starts again; otherwise
+/// NOPROGRESS (limit cycle). GESTALT is told the direction of the last arc
+/// (ArcRequest::last_direction);
 /// tilt over max_tilt -> TILT; northerly tilt (atan2 of the rover's up vector's north and up
 /// components) below min_northerly_tilt -> NORTH. Before each drive: the swept centre track
 /// within keepout_margin of a keep-out zone -> KEEPOUT (nothing moves). While waiting: a range
@@ -192,6 +198,8 @@ class MobilityManager {
     int vo_failures = 0;
     double distance_driven = 0.0;
     std::vector<double> goal_distance_history;  // at each step end
+    int last_direction = 0;                     // of the last arc driven: +1, -1, 0 none yet
+    int limit_cycle_turns = 0;                  // limit-cycle turns taken
     Time last_status;
   };
 
@@ -210,6 +218,7 @@ class MobilityManager {
   void NextStep(Time now, MobilityOutput* out);
   bool CheckLimits(Time now, MobilityOutput* out);
   void AutonavStep(Time now, MobilityOutput* out);
+  bool LimitCycleTurn(Time now, MobilityOutput* out);
   void GuardedStep(Time now, MobilityOutput* out);
   void WaypointStep(Time now, MobilityOutput* out);
   void ChooseAndDrive(Time now, const nav_core::ArcEvaluation& eval, MobilityOutput* out);

@@ -40,6 +40,13 @@ struct MobilityOptions {
   // ---- limit cycle, VisOdom ----------------------------------------------------------------
   int progress_steps = 10;       ///< NOPROGRESS window (steps) (stack)
   double min_progress = 0.5;     ///< [m] the distance to the goal must shrink this much per window
+  /// Arc-voting modes: limit-cycle turns in place (seed 000's second off-nominal behaviour)
+  /// before a failed window ends the command NOPROGRESS; 0 = end it at once (MER's other
+  /// choice). A turn faces the goal, or when the goal is already within
+  /// limit_cycle_min_bearing of ahead turns limit_cycle_turn toward the better forward arcs.
+  int limit_cycle_turns = 2;                        ///< (stack)
+  double limit_cycle_min_bearing = 30.0 * kDegree;  ///< [rad] (stack)
+  double limit_cycle_turn = 90.0 * kDegree;         ///< [rad] (MER's point-turn-amount)
   int max_visodom_failures = 3;  ///< VISODOM after this many failed VO steps in one command
   double visodom_timeout_s = 30.0;  ///< [s] a VO result not arriving in time counts as failed
   // ---- inputs ------------------------------------------------------------------------------

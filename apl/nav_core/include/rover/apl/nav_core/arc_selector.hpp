@@ -45,6 +45,9 @@ struct ArcRequest {
   Eigen::Isometry3d site_from_rover = Eigen::Isometry3d::Identity();  ///< current pose
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();                     ///< [m] site x, y of the goal
   double goal_tolerance = 0.0;  ///< [m] radius counted as arrived, >= 0
+  /// Direction of the arc driven last: +1 forward, -1 backward, 0 none yet (selectors may keep
+  /// driving that way while the goal is near abeam instead of reversing at once).
+  int last_direction = 0;
 };
 
 /// How the selector read the goal.
