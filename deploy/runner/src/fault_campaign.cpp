@@ -40,7 +40,7 @@ std::string Slug(const std::string& text) {
   return out.empty() ? "fault" : out;
 }
 
-const sim::Criterion* FindCriterion(const RunResult& r, const std::string& name) {
+const sim::judge::Criterion* FindCriterion(const RunResult& r, const std::string& name) {
   for (const auto& c : r.criteria) {
     if (c.name == name) return &c;
   }
@@ -222,7 +222,7 @@ std::string Response(const RunResult& r, double after_s) {
 
 bool IsSafe(const RunResult& r, std::string* why) {
   std::string w;
-  const sim::Criterion* tilt = FindCriterion(r, "max_tilt");
+  const sim::judge::Criterion* tilt = FindCriterion(r, "max_tilt");
   if (tilt == nullptr) {
     w = "not judged: " + (r.failure.empty() ? std::string("no verdict") : r.failure);
   } else {
@@ -246,7 +246,7 @@ bool GoalReached(const RunResult& r) {
   for (const auto& s : r.steps) {
     if (s.state != "done") return false;
   }
-  const sim::Criterion* p = FindCriterion(r, "final_position_error");
+  const sim::judge::Criterion* p = FindCriterion(r, "final_position_error");
   return p == nullptr || p->pass;
 }
 
