@@ -197,7 +197,16 @@ void ServiceContext::SetInputMonitor(runtime::InputMonitor monitor) {
   *inputs_ = std::move(monitor);
 }
 
+bool ServiceContext::InputsStarted() {
+  if (inputs_started_) return true;
+  if (state_ != LifecycleState::kActive || !clock_->valid()) return false;
+  inputs_->Start(Now());
+  inputs_started_ = true;
+  return true;
+}
+
 void ServiceContext::UpdateInputHealth() {
+  if (!InputsStarted()) return;
   const runtime::InputReport r = inputs_->Report(Now());
   const rover_SensorHealth h = HealthOfInputs(r);
   // Published at once when the level or the worst finding changes; a changed reason alone goes
@@ -227,7 +236,8 @@ void ServiceContext::LogCallbackFailure(const std::string& topic, const Status& 
 void ServiceContext::SetLifecycleState(LifecycleState state) {
   state_ = state;
   if (state == LifecycleState::kActive) {
-    inputs_->Start(Now());
+    inputs_started_ = false;
+    (void)InputsStarted();
     input_health_ = rover_HEALTH_OK;
     input_reason_.clear();
     input_key_.clear();

@@ -120,10 +120,14 @@ class ServiceContext {
     std::function<void(const dds::Sample<T>&)> wrapped =
         [this, input, topic, cb = std::move(callback)](const dds::Sample<T>& s) mutable {
           const Time now = Now();
+          const bool watched = InputsStarted();  // not before the run clock is valid
           bool changed = false;
           Time stamp{0};
           if constexpr (dds::HasHeader<T>) {
-            changed = inputs_->OnArrival(input, s.info().publication_handle, s->header.seq, now);
+            if (watched) {
+              changed =
+                  inputs_->OnArrival(input, s.info().publication_handle, s->header.seq, now);
+            }
             stamp = Time{s->header.stamp_ns};
           }
           Status result = Status::Ok();
@@ -141,6 +145,7 @@ class ServiceContext {
             result = Internal("handling the sample threw a non-standard exception");
             LogCallbackFailure(topic, result);
           }
+          if (!watched) return;
           if (result.ok()) {
             inputs_->OnAccepted(input, stamp, now);
           } else {
@@ -176,7 +181,8 @@ class ServiceContext {
 
   /// The service's own health, reported in every heartbeat.
   void SetHealth(rover_SensorHealth health, std::string message);
-  /// Also starts the input monitor when the state becomes ACTIVE (ages count from there).
+  /// Also (re)starts the input monitor when the state becomes ACTIVE (ages count from there, or
+  /// from the first valid run-clock time after it).
   void SetLifecycleState(LifecycleState state);
   LifecycleState lifecycle_state() const { return state_; }
   /// Sends a heartbeat now.
@@ -210,6 +216,10 @@ class ServiceContext {
   std::uint64_t heartbeat_count_ = 0;
   // Input monitoring.
   void LogCallbackFailure(const std::string& topic, const Status& s);
+  // Starts the monitor at the first valid run-clock time after activation (under sim/clock a
+  // service may be activated before the clock is heard, or restarted mid-run); true once it is.
+  bool InputsStarted();
+  bool inputs_started_ = false;
   std::unique_ptr<runtime::InputMonitor> inputs_;
   int subscriptions_ = 0;  // made through Subscribe
   rover_SensorHealth input_health_ = rover_HEALTH_OK;
