@@ -1,6 +1,5 @@
 #include "mobility_service.hpp"
 
-#include <limits>
 #include <memory>
 #include <string>
 
@@ -24,11 +23,6 @@ constexpr double kStepRateHz = 10.0;
 // Logs a failed write; a write failure never stops the service.
 void Check(const Status& s, const char* topic) {
   if (!s.ok()) log::Error(std::string(topic) + " write failed", {{"error", s.message()}});
-}
-
-// Logs a sample the conversion refused; it does not reach the manager.
-void Dropped(const Status& s, const char* topic) {
-  log::Warn(std::string(topic) + " sample dropped", {{"error", s.message()}});
 }
 
 // GESTALT's options for this rover. The rover disc is the rover description's turn-in-place
@@ -94,46 +88,47 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
                   {{"command_id", c.command_id}, {"mode", msg::MobilityModeName(c.mode)}});
         Publish(manager_->OnCommand(c, ctx_->Now()));
       }));
+  // A rejected sample goes to the manager (its typed fault) and, returned, to sys/health.
+  const auto rejected = [this](MobilityInput input, const Status& s, std::uint32_t id = 0) {
+    Publish(manager_->OnInputRejected(input, s.message(), ctx_->Now(), id));
+    return s;
+  };
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
-      "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
-        const Result<PoseSample> sample = msg::PoseSampleFromIdl(s.data());
-        PoseSample pose;
-        if (sample.ok()) {
-          pose = *sample;
-        } else {  // a bad orientation reaches the manager as a non-finite pose (SAPP)
-          pose.stamp = Time{s.data().header.stamp_ns};
-          pose.site_from_rover.linear().setConstant(std::numeric_limits<double>::quiet_NaN());
-        }
-        Publish(manager_->OnPose(pose, ctx_->Now()));
+      "dl/pose", [this, rejected](const dds::Sample<rover_dl_PoseEstimate>& s) {
+        const Result<PoseSample> pose = msg::PoseSampleFromIdl(s.data());
+        if (!pose.ok()) return rejected(MobilityInput::kPose, pose.status());
+        Publish(manager_->OnPose(*pose, ctx_->Now()));
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RangeImage>(
-      "dl/range_image", [this](const dds::Sample<rover_dl_RangeImage>& s) {
+      "dl/range_image", [this, rejected](const dds::Sample<rover_dl_RangeImage>& s) {
         const rover_dl_RangeImage& m = s.data();
         const Result<msg::RangeImage> image = msg::RangeImageFromIdl(m);
-        if (!image.ok()) Dropped(image.status(), "dl/range_image");
-        // A malformed image reaches the manager as an empty scan (IMG when it waits for it).
-        const nav_core::RangeScan scan =
-            image.ok() ? nav_core::RangeScanFromImage(*image) : nav_core::RangeScan{};
-        const CameraId camera = image.ok() ? image->camera : static_cast<CameraId>(m.camera);
-        Publish(manager_->OnRangeImage(scan, camera, m.request_id, ctx_->Now()));
+        if (!image.ok()) return rejected(MobilityInput::kRangeImage, image.status(), m.request_id);
+        Publish(manager_->OnRangeImage(nav_core::RangeScanFromImage(*image), image->camera,
+                                       m.request_id, ctx_->Now()));
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_DriveStatus>(
-      "dl/drive_status", [this](const dds::Sample<rover_dl_DriveStatus>& s) {
+      "dl/drive_status", [this, rejected](const dds::Sample<rover_dl_DriveStatus>& s) {
         const Result<DriveStatus> status = msg::DriveStatusFromIdl(s.data());
-        if (!status.ok()) return Dropped(status.status(), "dl/drive_status");
+        if (!status.ok()) return rejected(MobilityInput::kDriveStatus, status.status());
         Publish(manager_->OnDriveStatus(*status, ctx_->Now()));
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastStatus>(
-      "dl/mast_status", [this](const dds::Sample<rover_dl_MastStatus>& s) {
+      "dl/mast_status", [this, rejected](const dds::Sample<rover_dl_MastStatus>& s) {
         const Result<MastStatus> status = msg::MastStatusFromIdl(s.data());
-        if (!status.ok()) return Dropped(status.status(), "dl/mast_status");
+        if (!status.ok()) return rejected(MobilityInput::kMastStatus, status.status());
         Publish(manager_->OnMastStatus(*status, ctx_->Now()));
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RelativePose>(
-      "dl/relative_pose", [this](const dds::Sample<rover_dl_RelativePose>& s) {
+      "dl/relative_pose", [this, rejected](const dds::Sample<rover_dl_RelativePose>& s) {
         const Result<RelativePose> vo = msg::RelativePoseFromIdl(s.data());
-        if (!vo.ok()) return Dropped(vo.status(), "dl/relative_pose");
+        if (!vo.ok()) return rejected(MobilityInput::kVisOdom, vo.status());
         Publish(manager_->OnVisOdom(*vo, ctx_->Now()));
+        return Status::Ok();
       }));
   ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz),
                           [this] { Publish(manager_->Step(ctx_->Now())); });

@@ -11,10 +11,12 @@
 /// A run-clock timer at 10 Hz calls Step (time-outs, the periodic running status); nothing
 /// sleeps. Every input is handed over at the run-clock time of arrival (ctx.Now()).
 ///
-/// Parameters: mobility.* (MobilityOptions) and gestalt.* (GestaltOptions); an invalid one
-/// refuses configuration naming its key. A malformed range image (sizes not matching) is an IMG
-/// fault of the waiting command; nothing a sample carries can crash the service. Deactivation
-/// ends a running command STOPPED (a STOP drive is sent).
+/// Parameters: mobility.* (MobilityOptions), gestalt.* (GestaltOptions) and the input limits
+/// inputs.* (dl/pose: 1 s); an invalid one refuses configuration naming its key. A sample the
+/// conversion rejects (non-finite, out of range, malformed) goes to OnInputRejected with the
+/// conversion's message (dl/pose while running: SAPP; the pending range image: IMG; ...) and to
+/// sys/health through the harness's input monitor; nothing a sample carries can crash the
+/// service. Deactivation ends a running command STOPPED (a STOP drive is sent).
 
 #include <optional>
 
@@ -28,6 +30,11 @@ class MobilityService final : public Service {
  public:
   MobilityService() : Service("apl-mobility") {}
 
+  /// Staleness limits of the periodic inputs (parameters inputs.*): dl/pose (10 Hz); the manager's
+  /// pose_stale_s also stops a drive on it.
+  std::vector<runtime::InputSpec> Inputs() const override {
+    return {{"dl/pose", {.max_age_s = 1.0}}};
+  }
   void DeclareParameters(ParamSet& params) override;
   Status ValidateParameters(const ParamSet& params) const override;
   Status OnConfigure(ServiceContext& ctx, const ParamSet& params) override;

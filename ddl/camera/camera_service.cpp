@@ -93,10 +93,10 @@ Status CameraService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
       [this](const dds::Sample<rover_ddl_StereoRequest>& s) { OnRequest(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state",
-      [this](const dds::Sample<rover_ddl_JointState>& s) { OnJointState(s.data()); }));
+      [this](const dds::Sample<rover_ddl_JointState>& s) { return OnJointState(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_CameraFrame>(
       "hw/camera_frame",
-      [this](const dds::Sample<rover_hw_CameraFrame>& s) { OnFrame(s.data()); }));
+      [this](const dds::Sample<rover_hw_CameraFrame>& s) { return OnFrame(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("watchdog_rate_hz")), [this] { OnWatchdog(); });
   log::Info("camera calibration loaded", {{"file", path}});
   return Status::Ok();
@@ -132,29 +132,31 @@ void CameraService::OnRequest(const rover_ddl_StereoRequest& request) {
   }
 }
 
-void CameraService::OnJointState(const rover_ddl_JointState& joints) {
+Status CameraService::OnJointState(const rover_ddl_JointState& joints) {
   const Time now = Now();
   // Stale or failed joint states do not vouch for the mast angles: they are not used and do not
   // count as fresh input; frames then carry the age of the last usable sample.
   const auto js = msg::JointStateFromIdl(joints);
-  if (!js.ok() || !msg::IsUsable(js->health)) return;
+  if (!js.ok()) return js.status();
+  if (!msg::IsUsable(js->health)) return Status::Ok();  // valid, but not for the mast angles
   const Status s = joints_->Accept(joints.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
     if (IsLogWorthy(joints_->rejected())) {
       log::Warn("ddl/joint_state sample dropped", {{"reason", s.message()}});
     }
-    return;
+    return s;
   }
   const Status m = driver_->HandleMast({js->stamp.ns, js->mast_pan, js->mast_tilt});
   if (!m.ok()) log::Warn("ddl/joint_state mast angles ignored", {{"reason", m.message()}});
+  return Status::Ok();
 }
 
-void CameraService::OnFrame(const rover_hw_CameraFrame& frame) {
+Status CameraService::OnFrame(const rover_hw_CameraFrame& frame) {
   const Time now = Now();
   const Status s = frames_->Accept(frame.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
     log::Warn("hw/camera_frame dropped", {{"reason", s.message()}});
-    return;
+    return s;
   }
   auto data = driver_->HandleFrame(msg::CameraFrameFromIdl(frame));
   if (!data.ok()) {
@@ -164,8 +166,9 @@ void CameraService::OnFrame(const rover_hw_CameraFrame& frame) {
       camera_error_ = data.status().message();
       log::Warn("hw/camera_frame rejected; no frame will be sent",
                 {{"reason", data.status().message()}});
+      return data.status();
     }
-    return;
+    return Status::Ok();
   }
   camera_error_.clear();
   if (!data->note.empty()) log::Info("stereo frame note", {{"note", data->note}});
@@ -184,6 +187,7 @@ void CameraService::OnFrame(const rover_hw_CameraFrame& frame) {
   } else {
     write_error_.clear();
   }
+  return Status::Ok();
 }
 
 void CameraService::OnWatchdog() {

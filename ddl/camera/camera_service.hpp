@@ -45,8 +45,8 @@ class CameraService final : public Service {
   static Result<CameraDriver> MakeDriver(const ParamSet& p, std::string* path);
   Time Now();
   void OnRequest(const rover_ddl_StereoRequest& request);
-  void OnJointState(const rover_ddl_JointState& joints);
-  void OnFrame(const rover_hw_CameraFrame& frame);
+  Status OnJointState(const rover_ddl_JointState& joints);
+  Status OnFrame(const rover_hw_CameraFrame& frame);
   void OnWatchdog();
 
   ServiceContext* ctx_ = nullptr;

@@ -42,7 +42,7 @@ Status ImuService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   if (!w.ok()) return w.status();
   writer_ = std::move(*w);
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_ImuRaw>(
-      "hw/imu", [this](const dds::Sample<rover_hw_ImuRaw>& s) { OnSample(s.data()); }));
+      "hw/imu", [this](const dds::Sample<rover_hw_ImuRaw>& s) { return OnSample(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("watchdog_rate_hz")), [this] { OnWatchdog(); });
   ctx.SetHealth(rover_HEALTH_STALE, input_->StaleReason(ctx.Now()));
   return Status::Ok();
@@ -54,7 +54,7 @@ Time ImuService::Now() {
   return now;
 }
 
-void ImuService::OnSample(const rover_hw_ImuRaw& raw) {
+Status ImuService::OnSample(const rover_hw_ImuRaw& raw) {
   const Time now = Now();
   const Status s = input_->Accept(raw.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
@@ -62,7 +62,7 @@ void ImuService::OnSample(const rover_hw_ImuRaw& raw) {
       log::Warn("hw/imu sample dropped",
                 {{"reason", s.message()}, {"dropped_so_far", input_->rejected()}});
     }
-    return;
+    return s;
   }
   const Imu imu = driver_->Convert(msg::ImuRawFromIdl(raw));
   rover_ddl_Imu out{};
@@ -79,6 +79,7 @@ void ImuService::OnSample(const rover_hw_ImuRaw& raw) {
     }
   }
   last_reason_ = imu.health_reason;
+  return Status::Ok();
 }
 
 void ImuService::OnWatchdog() {

@@ -30,7 +30,7 @@ class ImuService final : public Service {
 
  private:
   Time Now();
-  void OnSample(const rover_hw_ImuRaw& raw);
+  Status OnSample(const rover_hw_ImuRaw& raw);
   void OnWatchdog();
 
   ServiceContext* ctx_ = nullptr;

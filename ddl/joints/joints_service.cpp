@@ -83,10 +83,10 @@ Status JointsService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   writer_ = std::move(*w);
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MotorTelemetry>(
       "hw/motor_telemetry",
-      [this](const dds::Sample<rover_hw_MotorTelemetry>& s) { OnTelemetry(s.data()); }));
+      [this](const dds::Sample<rover_hw_MotorTelemetry>& s) { return OnTelemetry(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_SuspensionPots>(
       "hw/suspension_pots",
-      [this](const dds::Sample<rover_hw_SuspensionPots>& s) { OnPots(s.data()); }));
+      [this](const dds::Sample<rover_hw_SuspensionPots>& s) { return OnPots(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("rate_hz")), [this] { OnTimer(); });
   ctx.SetHealth(rover_HEALTH_STALE, telemetry_->StaleReason(ctx.Now()));
   return Status::Ok();
@@ -106,24 +106,26 @@ Time JointsService::Now() {
   return now;
 }
 
-void JointsService::OnTelemetry(const rover_hw_MotorTelemetry& t) {
+Status JointsService::OnTelemetry(const rover_hw_MotorTelemetry& t) {
   const Time now = Now();
   const Status s = telemetry_->Accept(t.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
     WarnDropped(*telemetry_, s);
-    return;
+    return s;
   }
   reader_->OnMotorTelemetry(msg::MotorTelemetryFromIdl(t));
+  return Status::Ok();
 }
 
-void JointsService::OnPots(const rover_hw_SuspensionPots& p) {
+Status JointsService::OnPots(const rover_hw_SuspensionPots& p) {
   const Time now = Now();
   const Status s = pots_->Accept(p.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
     WarnDropped(*pots_, s);
-    return;
+    return s;
   }
   reader_->OnSuspensionPots(msg::SuspensionPotsFromIdl(p));
+  return Status::Ok();
 }
 
 void JointsService::OnTimer() {

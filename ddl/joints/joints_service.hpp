@@ -31,8 +31,8 @@ class JointsService final : public Service {
 
  private:
   Time Now();
-  void OnTelemetry(const rover_hw_MotorTelemetry& t);
-  void OnPots(const rover_hw_SuspensionPots& p);
+  Status OnTelemetry(const rover_hw_MotorTelemetry& t);
+  Status OnPots(const rover_hw_SuspensionPots& p);
   void OnTimer();
 
   ServiceContext* ctx_ = nullptr;

@@ -56,7 +56,7 @@ Status MotorService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
       [this](const dds::Sample<rover_ddl_MotorCommand>& s) { OnCommand(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MotorTelemetry>(
       "hw/motor_telemetry",
-      [this](const dds::Sample<rover_hw_MotorTelemetry>& s) { OnTelemetry(s.data()); }));
+      [this](const dds::Sample<rover_hw_MotorTelemetry>& s) { return OnTelemetry(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("status_rate_hz")), [this] { OnTick(); });
   ctx.SetHealth(rover_HEALTH_STALE, telemetry_->StaleReason(ctx.Now()));
   return Status::Ok();
@@ -92,7 +92,7 @@ void MotorService::OnCommand(const rover_ddl_MotorCommand& command) {
   Publish(out);
 }
 
-void MotorService::OnTelemetry(const rover_hw_MotorTelemetry& telemetry) {
+Status MotorService::OnTelemetry(const rover_hw_MotorTelemetry& telemetry) {
   const Time now = Now();
   const Status s = telemetry_->Accept(telemetry.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
@@ -100,9 +100,10 @@ void MotorService::OnTelemetry(const rover_hw_MotorTelemetry& telemetry) {
       log::Warn("motor telemetry dropped",
                 {{"reason", s.message()}, {"dropped_so_far", telemetry_->rejected()}});
     }
-    return;
+    return s;
   }
   Publish(manager_->HandleTelemetry(msg::MotorTelemetryFromIdl(telemetry), now));
+  return Status::Ok();
 }
 
 void MotorService::OnTick() {

@@ -37,7 +37,7 @@ class MotorService final : public Service {
   /// The run-clock time; if the clock went back, stops every group and forgets the telemetry.
   Time Now();
   void OnCommand(const rover_ddl_MotorCommand& command);
-  void OnTelemetry(const rover_hw_MotorTelemetry& telemetry);
+  Status OnTelemetry(const rover_hw_MotorTelemetry& telemetry);
   void OnTick();
   void Publish(const ManagerOutput& out);
   void UpdateHealth(Time now);

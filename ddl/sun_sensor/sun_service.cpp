@@ -44,7 +44,7 @@ Status SunService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   writer_ = std::move(*w);
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_SunSensorRaw>(
       "hw/sun_sensor",
-      [this](const dds::Sample<rover_hw_SunSensorRaw>& s) { OnSample(s.data()); }));
+      [this](const dds::Sample<rover_hw_SunSensorRaw>& s) { return OnSample(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("watchdog_rate_hz")), [this] { OnWatchdog(); });
   ctx.SetHealth(rover_HEALTH_STALE, input_->StaleReason(ctx.Now()));
   return Status::Ok();
@@ -56,7 +56,7 @@ Time SunService::Now() {
   return now;
 }
 
-void SunService::OnSample(const rover_hw_SunSensorRaw& raw) {
+Status SunService::OnSample(const rover_hw_SunSensorRaw& raw) {
   const Time now = Now();
   const Status s = input_->Accept(raw.header.stamp_ns, now, ctx_->clock().valid());
   if (!s.ok()) {
@@ -64,7 +64,7 @@ void SunService::OnSample(const rover_hw_SunSensorRaw& raw) {
       log::Warn("hw/sun_sensor sample dropped",
                 {{"reason", s.message()}, {"dropped_so_far", input_->rejected()}});
     }
-    return;
+    return s;
   }
   const SunSensor sun = driver_->Convert(msg::SunSensorRawFromIdl(raw));
   rover_ddl_SunSensor out{};
@@ -81,6 +81,7 @@ void SunService::OnSample(const rover_hw_SunSensorRaw& raw) {
     }
   }
   last_reason_ = sun.health != msg::SensorHealth::kOk ? sun.reason : std::string();
+  return Status::Ok();
 }
 
 void SunService::OnWatchdog() {

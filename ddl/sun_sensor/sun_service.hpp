@@ -31,7 +31,7 @@ class SunService final : public Service {
 
  private:
   Time Now();
-  void OnSample(const rover_hw_SunSensorRaw& raw);
+  Status OnSample(const rover_hw_SunSensorRaw& raw);
   void OnWatchdog();
 
   ServiceContext* ctx_ = nullptr;

@@ -50,21 +50,26 @@ Status LocomotionService::OnConfigure(ServiceContext& ctx, const ParamSet& param
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
         const auto j = msg::JointStateFromIdl(s.data());
-        if (!j.ok()) return;  // an unknown health value: not usable
+        if (!j.ok()) return j.status();  // an unknown health value: not usable
         if (msg::IsUsable(j->health) && j->AllFinite()) last_joint_ = j->stamp;
         executor_->OnJointState(*j);  // ignores unhealthy, non-finite and out-of-order samples
+        if (!j->AllFinite()) return InvalidArgument("a joint angle or rate is not finite");
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
         const auto a = msg::AttitudeSampleFromIdl(s.data());
-        if (!a.ok()) return;  // a degenerate quaternion
+        if (!a.ok()) return a.status();  // a degenerate quaternion
         last_attitude_ = a->stamp;
         executor_->OnAttitude(*a);
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_MotorStatus>(
       "ddl/motor_status", [this](const dds::Sample<rover_ddl_MotorStatus>& s) {
         const auto m = msg::MotorStatusFromIdl(s.data());
-        if (m.ok()) executor_->OnMotorStatus(*m);
+        if (!m.ok()) return m.status();
+        executor_->OnMotorStatus(*m);
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_DriveCommand>(
       "dl/drive_command", [this](const dds::Sample<rover_dl_DriveCommand>& s) {

@@ -45,21 +45,23 @@ Status MastService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
         const auto joints = msg::JointStateFromIdl(s.data());
-        if (joints.ok()) executor_->OnJoints(*joints);  // an unreadable one is not fresh
+        if (!joints.ok()) return joints.status();  // an unreadable one is not fresh
+        executor_->OnJoints(*joints);
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
         const auto pose = msg::PoseSampleFromIdl(s.data());
-        if (pose.ok()) executor_->OnPose(*pose);  // a bad quaternion: the pose goes stale
+        if (!pose.ok()) return pose.status();  // a bad quaternion: the pose goes stale
+        executor_->OnPose(*pose);
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_MotorStatus>(
       "ddl/motor_status", [this](const dds::Sample<rover_ddl_MotorStatus>& s) {
         const auto status = msg::MotorStatusFromIdl(s.data());
-        if (status.ok()) {
-          Publish(executor_->OnMotorStatus(*status, ctx_->Now()));
-        } else {
-          log::Warn("ddl/motor_status sample dropped", {{"reason", status.status().message()}});
-        }
+        if (!status.ok()) return status.status();  // on sys/health through the input monitor
+        Publish(executor_->OnMotorStatus(*status, ctx_->Now()));
+        return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastCommand>(
       "dl/mast_command", [this](const dds::Sample<rover_dl_MastCommand>& s) {

@@ -32,6 +32,12 @@ class MastService final : public Service {
  public:
   MastService() : Service("dl-mast") {}
 
+  /// Staleness limits of the periodic inputs (parameters inputs.*): joint angles (50 Hz), pose (10
+  /// Hz) and motor status (8 Hz).
+  std::vector<runtime::InputSpec> Inputs() const override {
+    return {{"ddl/joint_state", {.max_age_s = 0.5}}, {"dl/pose", {.max_age_s = 1.0}},
+            {"ddl/motor_status", {.max_age_s = 1.0}}};
+  }
   void DeclareParameters(ParamSet& params) override;
   Status ValidateParameters(const ParamSet& params) const override;
   Status OnConfigure(ServiceContext& ctx, const ParamSet& params) override;

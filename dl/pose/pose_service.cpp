@@ -40,15 +40,17 @@ Result<Config> ConfigFromParams(const ParamSet& p) {
   return c;
 }
 
-// Hands a converted sample to the estimator, or counts it as dropped.
+// Hands a converted sample to the estimator, or counts it as dropped; returns the conversion's
+// status (the input monitor's verdict on the sample).
 template <class T, class F>
-void Forward(PoseEstimator& estimator, const char* topic, const Result<T>& sample, F&& use) {
+Status Forward(PoseEstimator& estimator, const char* topic, const Result<T>& sample, F&& use) {
   if (sample.ok()) {
     use(*sample);
   } else {
     estimator.WarnCounted(std::string(topic) + " sample dropped: unreadable",
                           sample.status().message());
   }
+  return sample.status();
 }
 
 }  // namespace
@@ -91,24 +93,26 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
 
   ROVER_RETURN_IF_ERROR(
       ctx.Subscribe<rover_ddl_Imu>("ddl/imu", [this](const dds::Sample<rover_ddl_Imu>& s) {
-        Forward(*estimator_, "ddl/imu", msg::ImuFromIdl(s.data()),
-                [this](const msg::Imu& imu) { estimator_->OnImu(imu); });
+        const Status read = Forward(*estimator_, "ddl/imu", msg::ImuFromIdl(s.data()),
+                                    [this](const msg::Imu& imu) { estimator_->OnImu(imu); });
         PublishEvents();
+        return read;
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
-        Forward(*estimator_, "ddl/joint_state", msg::JointStateFromIdl(s.data()),
-                [this](const msg::JointState& j) { estimator_->OnJointState(j); });
+        return Forward(*estimator_, "ddl/joint_state", msg::JointStateFromIdl(s.data()),
+                       [this](const msg::JointState& j) { estimator_->OnJointState(j); });
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_SunSensor>(
       "ddl/sun_sensor", [this](const dds::Sample<rover_ddl_SunSensor>& s) {
         const auto sun = msg::SunSensorFromIdl(s.data());
         if (sun.ok()) estimator_->OnSunSensor(*sun);  // an unreadable one is not a measurement
         PublishEvents();
+        return sun.status();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RelativePose>(
       "dl/relative_pose",
-      [this](const dds::Sample<rover_dl_RelativePose>& s) { OnRelativePose(s.data()); }));
+      [this](const dds::Sample<rover_dl_RelativePose>& s) { return OnRelativePose(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("publish_rate_hz")), [this] { OnTimer(); });
   OnTimer();  // the first heartbeat's health
   return Status::Ok();
@@ -144,8 +148,8 @@ void PoseService::SaveCheckpointIfDue() {
   last_checkpoint_ = t;
 }
 
-void PoseService::OnRelativePose(const rover_dl_RelativePose& m) {
-  if (m.status != rover_dl_RELPOSE_CONVERGED) return;  // not a measurement
+Status PoseService::OnRelativePose(const rover_dl_RelativePose& m) {
+  if (m.status != rover_dl_RELPOSE_CONVERGED) return Status::Ok();  // not a measurement
   const auto r = msg::RelativePoseFromIdl(m);
   if (r.ok()) {
     estimator_->OnRelativePose(*r);
@@ -155,6 +159,7 @@ void PoseService::OnRelativePose(const rover_dl_RelativePose& m) {
                                    r.status().message());
   }
   PublishEvents();
+  return r.status();
 }
 
 void PoseService::PublishEvents() {

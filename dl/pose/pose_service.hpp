@@ -58,6 +58,12 @@ class PoseService final : public Service {
  public:
   PoseService() : Service("dl-pose") {}
 
+  /// Staleness limits of the periodic inputs (parameters inputs.*): IMU (100 Hz), joint angles (50
+  /// Hz) and the sun sensor (2 Hz).
+  std::vector<runtime::InputSpec> Inputs() const override {
+    return {{"ddl/imu", {.max_age_s = 0.5}}, {"ddl/joint_state", {.max_age_s = 0.5}},
+            {"ddl/sun_sensor", {.max_age_s = 5.0}}};
+  }
   void DeclareParameters(ParamSet& params) override;
   Status ValidateParameters(const ParamSet& params) const override;
   Status OnConfigure(ServiceContext& ctx, const ParamSet& params) override;
@@ -70,7 +76,7 @@ class PoseService final : public Service {
   }
 
  private:
-  void OnRelativePose(const rover_dl_RelativePose& m);
+  Status OnRelativePose(const rover_dl_RelativePose& m);
   void OnTimer();
   /// Reads this set's checkpoint at configuration: arms the estimator's resume, or declares the
   /// pose unknown on an unreadable one.

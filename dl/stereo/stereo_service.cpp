@@ -87,7 +87,8 @@ Status StereoService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
       "ddl/stereo_frame",
       [this](const dds::Sample<rover_ddl_StereoFrame>& s) { OnStereoFrame(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
-      "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) { OnPose(s.data()); }));
+      "dl/pose",
+      [this](const dds::Sample<rover_dl_PoseEstimate>& s) { return OnPose(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("poll_rate_hz")), [this] { OnTimer(); });
   ctx.SetHealth(rover_HEALTH_OK, "");
   return Status::Ok();
@@ -137,12 +138,9 @@ void StereoService::SendNext() {
                                      {"width", r.width}});
 }
 
-void StereoService::OnPose(const rover_dl_PoseEstimate& m) {
+Status StereoService::OnPose(const rover_dl_PoseEstimate& m) {
   auto sample = msg::PoseSampleFromIdl(m);
-  if (!sample.ok()) {
-    log::Warn("dl/pose sample dropped", {{"reason", sample.status().message()}});
-    return;
-  }
+  if (!sample.ok()) return sample.status();  // on sys/health through the input monitor
   Status s = poses_.Add(*sample);
   if (s.code() == StatusCode::kOutOfRange &&
       poses_.WentBackBy(sample->stamp, Seconds(camera_client::kClockResetS))) {
@@ -150,6 +148,7 @@ void StereoService::OnPose(const rover_dl_PoseEstimate& m) {
     s = poses_.Add(*sample);
   }
   if (!s.ok()) log::Debug("dl/pose sample dropped", {{"reason", s.message()}});
+  return Status::Ok();  // an out-of-order sample is readable: not a rejection
 }
 
 void StereoService::OnStereoFrame(const rover_ddl_StereoFrame& m) {

@@ -49,6 +49,11 @@ class StereoService final : public Service {
  public:
   StereoService() : Service("dl-stereo") {}
 
+  /// Staleness limits of the periodic inputs (parameters inputs.*): the pose (10 Hz) that range
+  /// images are registered with.
+  std::vector<runtime::InputSpec> Inputs() const override {
+    return {{"dl/pose", {.max_age_s = 1.0}}};
+  }
   void DeclareParameters(ParamSet& params) override;
   /// Rules across parameters (range limits, the pipeline's own checks, e.g. an odd window).
   Status ValidateParameters(const ParamSet& params) const override;
@@ -74,7 +79,7 @@ class StereoService final : public Service {
  private:
   void OnRangeRequest(const rover_dl_RangeRequest& m);
   void OnStereoFrame(const rover_ddl_StereoFrame& m);
-  void OnPose(const rover_dl_PoseEstimate& m);
+  Status OnPose(const rover_dl_PoseEstimate& m);
   void OnTimer();
   void SendNext();
   /// Ranges an answered frame; returns the reason if it is bad (nothing published then).

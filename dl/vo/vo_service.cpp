@@ -31,7 +31,8 @@ Status VoService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   ROVER_ASSIGN_OR_RETURN(relpose_writer_,
                          ctx.MakeWriter<rover_dl_RelativePose>("dl/relative_pose"));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
-      "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) { OnPose(s.data()); }));
+      "dl/pose",
+      [this](const dds::Sample<rover_dl_PoseEstimate>& s) { return OnPose(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_StereoFrame>(
       "ddl/stereo_frame",
       [this](const dds::Sample<rover_ddl_StereoFrame>& s) { OnStereoFrame(s.data()); }));
@@ -42,12 +43,9 @@ Status VoService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
 
 // ---- inputs -----------------------------------------------------------------------------------
 
-void VoService::OnPose(const rover_dl_PoseEstimate& m) {
+Status VoService::OnPose(const rover_dl_PoseEstimate& m) {
   auto sample = msg::PoseSampleFromIdl(m);
-  if (!sample.ok()) {
-    log::Warn("dl/pose sample dropped", {{"reason", sample.status().message()}});
-    return;
-  }
+  if (!sample.ok()) return sample.status();  // on sys/health through the input monitor
   Status s = poses_.Add(*sample);
   if (s.code() == StatusCode::kOutOfRange &&
       poses_.WentBackBy(sample->stamp, Seconds(camera_client::kClockResetS))) {
@@ -56,10 +54,11 @@ void VoService::OnPose(const rover_dl_PoseEstimate& m) {
   }
   if (!s.ok()) {
     log::Debug("dl/pose sample dropped", {{"reason", s.message()}});
-    return;
+    return Status::Ok();  // readable but out of order: not a rejection
   }
   cadence_->OnPose(sample->stamp, sample->odometer, sample->velocity.norm(),
                    Eigen::Quaterniond(sample->site_from_rover.linear()), sample->stationary);
+  return Status::Ok();
 }
 
 void VoService::OnTimer() {

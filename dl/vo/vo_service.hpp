@@ -47,6 +47,11 @@ class VoService final : public Service {
  public:
   VoService() : Service("dl-vo") {}
 
+  /// Staleness limits of the periodic inputs (parameters inputs.*): the pose (10 Hz) that paces and
+  /// seeds the VO steps.
+  std::vector<runtime::InputSpec> Inputs() const override {
+    return {{"dl/pose", {.max_age_s = 1.0}}};
+  }
   void DeclareParameters(ParamSet& params) override;
   /// Rules across parameters (VoServiceOptions::Validate: the cadence, client, prior and VO
   /// options' own checks; a step below vo.max_translation).
@@ -67,7 +72,7 @@ class VoService final : public Service {
   const VoCadence* cadence() const { return cadence_.get(); }
 
  private:
-  void OnPose(const rover_dl_PoseEstimate& m);
+  Status OnPose(const rover_dl_PoseEstimate& m);
   void OnStereoFrame(const rover_ddl_StereoFrame& m);
   void OnTimer();
   void MaybeRequest(Time now);

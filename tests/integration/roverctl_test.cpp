@@ -404,7 +404,10 @@ TEST_F(RoverctlTest, FaultAddListClearAgainstARunningSet) {
   const std::string xr = "x-rover: {project: " + project + "}\n";
   text.replace(text.find(xr), xr.size(),
                "x-rover:\n  project: " + project + "\n  faults:\n"
-               "    - {kind: duplicate, topic: dl/pose, service: smoke-dl, probability: 0.5, seed: 4}\n");
+               // Noise, not a duplicate: repeated seqs would make smoke-apl's inputs DEGRADED
+               // (detection, docs/faults.md) and the set would never be ready for --wait.
+               "    - {kind: noise, topic: dl/pose, service: smoke-dl, field: pose.position.x, "
+               "sigma: 0.001, seed: 4}\n");
   std::ofstream(file) << text;
   auto [up, up_out] = RunRoverctl({"up", "-d", "--wait=60", file});
   ASSERT_TRUE(up.success()) << up_out;

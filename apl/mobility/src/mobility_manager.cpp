@@ -89,6 +89,17 @@ Fault FaultOfTermination(DriveTermination t) {
 
 }  // namespace
 
+const char* MobilityInputTopic(MobilityInput input) {
+  switch (input) {
+    case MobilityInput::kPose: return "dl/pose";
+    case MobilityInput::kRangeImage: return "dl/range_image";
+    case MobilityInput::kDriveStatus: return "dl/drive_status";
+    case MobilityInput::kVisOdom: return "dl/relative_pose";
+    case MobilityInput::kMastStatus: return "dl/mast_status";
+  }
+  return "?";
+}
+
 Result<MobilityManager> MobilityManager::Create(const MobilityOptions& options,
                                                 std::unique_ptr<nav_core::TerrainAssessor> assessor,
                                                 std::unique_ptr<nav_core::ArcSelector> selector,
@@ -403,6 +414,8 @@ MobilityOutput MobilityManager::OnDriveStatus(const DriveStatus& r, Time now) {
   Account(now);
   MobilityOutput out;
   if (!run_ || !run_->drive || r.command_id != run_->drive->command_id) return out;
+  run_->drive->last_report = now;
+  run_->drive->rejected_note.clear();
   switch (r.state) {
     case DriveState::kDone: {
       const double done = std::abs(r.distance_done);
@@ -458,6 +471,43 @@ MobilityOutput MobilityManager::OnVisOdom(const RelativePose& result, Time now) 
   return out;
 }
 
+MobilityOutput MobilityManager::OnInputRejected(MobilityInput input, const std::string& why,
+                                                Time now, std::uint32_t request_id) {
+  Account(now);
+  MobilityOutput out;
+  if (!run_) return out;  // idle: nothing moves, the next command checks the pose afresh
+  const std::string what = std::string(MobilityInputTopic(input)) + " rejected: " + why;
+  switch (input) {
+    case MobilityInput::kPose:
+      // Position unknown: stop now rather than drive on the last good pose.
+      Finish(now, State::kFailed, Fault::kSapp, what, &out);
+      return out;
+    case MobilityInput::kRangeImage:
+      if (!run_->image || run_->image->request_id != request_id) return out;  // not ours
+      Finish(now, State::kFailed, Fault::kImg,
+             "range image for request " + std::to_string(request_id) + " (" +
+                 std::string(CameraName(run_->image->camera)) + ") " + what,
+             &out);
+      return out;
+    case MobilityInput::kDriveStatus:
+      // Whose report it was cannot be told: it refreshes nothing, so a drive whose reports
+      // all fail ends MOT at its status time-out (Step), naming this.
+      if (run_->drive) run_->drive->rejected_note = why;
+      return out;
+    case MobilityInput::kVisOdom: {
+      if (!run_->vo_since) return out;
+      RelativePose failed;  // counts as a failed VO step
+      failed.source = msg::MotionSource::kVisualOdometry;
+      failed.t_to = now;
+      failed.status = msg::RelativePoseStatus::kTooFewFeatures;
+      return OnVisOdom(failed, now);
+    }
+    case MobilityInput::kMastStatus:
+      return out;  // the mast is not used yet
+  }
+  return out;
+}
+
 MobilityOutput MobilityManager::Step(Time now) {
   Account(now);
   MobilityOutput out;
@@ -475,6 +525,18 @@ MobilityOutput MobilityManager::Step(Time now) {
            "drive " + std::to_string(run_->drive->command_id) + " (" +
                DescribePrimitive(run_->drive->primitive) + ") did not finish in " +
                FormatNumber(ToSeconds(run_->drive->deadline - run_->drive->sent), 4) + " s",
+           &out);
+    return out;
+  }
+  if (run_->drive && options_.drive_status_timeout_s > 0.0 &&
+      ToSeconds(now - run_->drive->last_report) > options_.drive_status_timeout_s) {
+    const PendingDrive& d = *run_->drive;
+    Finish(now, State::kFailed, Fault::kMot,
+           "no dl/drive_status for drive " + std::to_string(d.command_id) + " (" +
+               DescribePrimitive(d.primitive) + ") in " +
+               FormatNumber(ToSeconds(now - d.last_report), 3) + " s (drive_status_timeout_s = " +
+               FormatNumber(options_.drive_status_timeout_s) + ")" +
+               (d.rejected_note.empty() ? "" : "; last one rejected: " + d.rejected_note),
            &out);
     return out;
   }
@@ -984,6 +1046,7 @@ bool MobilityManager::SendDrive(const Primitive& p, Time now, MobilityOutput* ou
   pd.command_id = d.command_id;
   pd.primitive = p;
   pd.sent = now;
+  pd.last_report = now;
   pd.deadline =
       now + Seconds(options_.drive_timeout_factor * planned + options_.drive_timeout_margin_s);
   run_->drive = pd;

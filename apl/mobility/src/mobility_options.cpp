@@ -49,6 +49,7 @@ Status MobilityOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckPositive("nominal_turn_rate", nominal_turn_rate, "rad/s"));
   ROVER_RETURN_IF_ERROR(CheckRange("drive_timeout_factor", drive_timeout_factor, 1.0, 100.0));
   ROVER_RETURN_IF_ERROR(CheckNonNegative("drive_timeout_margin_s", drive_timeout_margin_s, "s"));
+  ROVER_RETURN_IF_ERROR(CheckNonNegative("drive_status_timeout_s", drive_status_timeout_s, "s"));
   ROVER_RETURN_IF_ERROR(CheckRange("keepout_margin", keepout_margin, 0.0, 10.0, "m"));
   ROVER_RETURN_IF_ERROR(
       CheckRange("site_longitude_east", site_longitude_east, -2.0 * kPi, 2.0 * kPi, "rad"));
@@ -124,6 +125,9 @@ void MobilityOptions::BindParams(ParamBinder<MobilityOptions>& b) {
   b.Bind("drive_timeout_factor", &O::drive_timeout_factor, "",
          "DRIVE_TIMEOUT after factor * planned time + margin");
   b.Bind("drive_timeout_margin_s", &O::drive_timeout_margin_s, "s", "see drive_timeout_factor");
+  b.Bind("drive_status_timeout_s", &O::drive_status_timeout_s, "s",
+         "MOT when the running drive reports no dl/drive_status this long (0 = off)")
+      .Min(0.0);
   b.Bind("keepout_margin_m", &O::keepout_margin, "m",
          "the rover centre keeps this far from keep-out zones (about half its width)");
   b.BindDegrees("site_longitude_east_deg", &O::site_longitude_east,

@@ -131,6 +131,11 @@ void FakeWorld::Tick() {
                                           DriveTermination::kNominal, turn ? 0.0 : goal, "");
       drive_.reset();
       Absorb(manager_->OnDriveStatus(rep, now_));
+    } else if (options_.report_progress) {
+      const DriveStatus rep =
+          DriveReport(drive_->command_id, turn ? DriveState::kTurning : DriveState::kDriving,
+                      DriveTermination::kNominal, turn ? 0.0 : drive_done_, "");
+      Absorb(manager_->OnDriveStatus(rep, now_));
     }
   }
   min_clearance_ = std::min(min_clearance_, field_.Clearance(pose_.x, pose_.y));

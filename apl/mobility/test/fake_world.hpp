@@ -3,7 +3,8 @@
 /// A small kinematic world for driving the MobilityManager in-process (test code only):
 ///  - terrain: tests/support's RockField (flat ground with half-ellipsoid rocks);
 ///  - locomotion: drive requests are integrated into the rover's planar pose at `speed` [m/s]
-///    (arcs, straights) or `turn_rate` [rad/s] (turns in place) and reported DONE when finished;
+///    (arcs, straights) or `turn_rate` [rad/s] (turns in place), reported DRIVING / TURNING every
+///    tick while they run (as locomotion does at 8 Hz) and DONE when finished;
 ///    STOP ends a running drive at once (FAILED / STOP_COMMAND);
 ///  - stereo: a range request is captured at the time and pose it arrives and delivered
 ///    `image_latency_s` later: RockField's synthetic HAZCAM image (exact, occluded points
@@ -36,6 +37,7 @@ struct WorldOptions {
   rover::testing::HazcamSpec camera;  ///< the synthetic HAZCAMs (tests/support rock_field.hpp)
   bool deliver_images = true;         ///< false: range requests are never answered
   bool deliver_poses = true;          ///< false: dl/pose stops
+  bool report_progress = true;        ///< false: a running drive reports nothing until it ends
 };
 
 class FakeWorld {

@@ -324,6 +324,20 @@ class MobilityManagerScripted : public ::testing::Test {
     EXPECT_FALSE(out.statuses.empty());
     return out.statuses.back();
   }
+  // Locomotion's report that drive `id` is still running at `t` (it reports every cycle).
+  void StillDriving(std::uint32_t id, double t) {
+    m_.OnDriveStatus(DriveReport(id, DriveState::kDriving, DriveTermination::kNominal, 0.0, ""),
+                     T(t));
+  }
+  // The command ended with motion error `fault`, latched, and `out` stopped the drive.
+  void ExpectStoppedWith(Fault fault, const MobilityOutput& out) {
+    EXPECT_FALSE(m_.busy());
+    EXPECT_EQ(m_.status().fault, fault) << m_.status().message;
+    EXPECT_EQ(m_.status().fault_class, FaultClass::kMotionError);
+    EXPECT_TRUE(m_.motion_error_latched());
+    ASSERT_EQ(out.drives.size(), 1u);
+    EXPECT_EQ(out.drives[0].primitive, PrimitiveKind::kStop);
+  }
 };
 
 TEST_F(MobilityManagerScripted, DriveTerminationsMapToMotionErrorsThatLatch) {
@@ -373,16 +387,15 @@ TEST_F(MobilityManagerScripted, GoalErrorsFromLocomotionLeaveTheRoverReady) {
 TEST_F(MobilityManagerScripted, DriveWatchdogStopsAndLatches) {
   MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
   ASSERT_EQ(out.drives.size(), 1u);
+  const std::uint32_t drive = out.drives[0].command_id;
   for (double t = 0.5; t < 200; t += 0.5) {
     m_.OnPose(PoseAt(T(t), 0, 0), T(t));
+    // Locomotion reports the drive running but it never ends.
+    StillDriving(drive, t);
     out = m_.Step(T(t));
     if (!m_.busy()) break;
   }
-  ASSERT_FALSE(m_.busy());
-  EXPECT_EQ(m_.status().fault, Fault::kDriveTimeout);
-  EXPECT_TRUE(m_.motion_error_latched());
-  ASSERT_EQ(out.drives.size(), 1u);
-  EXPECT_EQ(out.drives[0].primitive, PrimitiveKind::kStop);
+  ExpectStoppedWith(Fault::kDriveTimeout, out);
 }
 
 TEST_F(MobilityManagerScripted, BusyRejectsTheSecondCommandAndTheFirstContinues) {
@@ -551,13 +564,140 @@ TEST_F(MobilityManagerScripted, NonFinitePoseWhileDrivingIsSapp) {
   EXPECT_NE(out.statuses.back().message.find("not finite"), std::string::npos);
 }
 
+// ---- input faults (issue 12) -----------------------------------------------------------------
+
+TEST_F(MobilityManagerScripted, DriveStatusThatStopsArrivingIsMotAndStops) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  ASSERT_EQ(out.drives.size(), 1u);
+  const std::uint32_t drive = out.drives[0].command_id;
+  double ended = -1;
+  for (double t = 0.1; t < 60; t += 0.1) {
+    m_.OnPose(PoseAt(T(t), 0, 0), T(t));
+    if (t < 1.0) {  // reports for a second, then silence
+      m_.OnDriveStatus(
+          DriveReport(drive, DriveState::kDriving, DriveTermination::kNominal, 0.01, ""), T(t));
+    }
+    out = m_.Step(T(t));
+    if (!m_.busy()) {
+      ended = t;
+      break;
+    }
+  }
+  ASSERT_GT(ended, 0.0);
+  // The last report came at 0.9 s; drive_status_timeout_s = 2 s.
+  EXPECT_NEAR(ended, 0.9 + m_.options().drive_status_timeout_s, 0.15);
+  ExpectStoppedWith(Fault::kMot, out);
+  EXPECT_NE(m_.status().message.find("no dl/drive_status"), std::string::npos);
+}
+
+TEST_F(MobilityManagerScripted, RejectedDriveStatusesDoNotKeepTheDriveAliveAndAreNamed) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  ASSERT_EQ(out.drives.size(), 1u);
+  for (double t = 0.1; t < 10 && m_.busy(); t += 0.1) {
+    m_.OnPose(PoseAt(T(t), 0, 0), T(t));
+    out = m_.OnInputRejected(MobilityInput::kDriveStatus, "state = 9 is not a DriveState", T(t));
+    EXPECT_TRUE(out.statuses.empty());  // one bad report alone stops nothing
+    out = m_.Step(T(t));
+  }
+  ASSERT_FALSE(m_.busy());
+  EXPECT_EQ(m_.status().fault, Fault::kMot);
+  EXPECT_NE(m_.status().message.find("last one rejected: state = 9"), std::string::npos)
+      << m_.status().message;
+  // The drive-status time-out can be turned off: then the watchdog is what remains.
+  MobilityOptions o;
+  o.drive_status_timeout_s = 0.0;
+  MobilityManager quiet = MakeGestaltManager(o);
+  quiet.OnPose(PoseAt(T(0), 0, 0), T(0));
+  out = quiet.OnCommand(Directed(1, Mode::kDirected, {Straight(1.0)}), T(0));
+  ASSERT_EQ(out.drives.size(), 1u);
+  for (double t = 0.5; t < 20; t += 0.5) {
+    quiet.OnPose(PoseAt(T(t), 0, 0), T(t));
+    quiet.Step(T(t));
+  }
+  EXPECT_TRUE(quiet.busy());
+}
+
+TEST_F(MobilityManagerScripted, RejectedPoseWhileDrivingIsSappAndStops) {
+  // Idle: a bad pose sample changes nothing.
+  MobilityOutput out = m_.OnInputRejected(MobilityInput::kPose, "pose.position.x is nan", T(0));
+  EXPECT_TRUE(out.empty());
+  EXPECT_FALSE(m_.motion_error_latched());
+  out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 1);
+  ASSERT_EQ(out.drives.size(), 1u);
+  out = m_.OnInputRejected(MobilityInput::kPose,
+                           "pose.position.x is nan (must be finite)", T(1.5));
+  ASSERT_FALSE(out.statuses.empty());
+  EXPECT_EQ(out.statuses.back().state, State::kFailed);
+  EXPECT_EQ(out.statuses.back().message,
+            "dl/pose rejected: pose.position.x is nan (must be finite)");
+  ExpectStoppedWith(Fault::kSapp, out);
+}
+
+TEST_F(MobilityManagerScripted, StalePoseWhileDrivingIsSappAndStops) {
+  MobilityOutput out = Cmd(Directed(1, Mode::kDirected, {Straight(1.0)}), 0);
+  ASSERT_EQ(out.drives.size(), 1u);
+  const std::uint32_t drive = out.drives[0].command_id;
+  double ended = -1;
+  for (double t = 0.1; t < 10; t += 0.1) {  // no pose after the command's
+    StillDriving(drive, t);
+    out = m_.Step(T(t));
+    if (!m_.busy()) {
+      ended = t;
+      break;
+    }
+  }
+  EXPECT_NEAR(ended, m_.options().pose_stale_s, 0.15);
+  ExpectStoppedWith(Fault::kSapp, out);
+}
+
+TEST_F(MobilityManagerScripted, RejectedRangeImageOfThePendingRequestIsImg) {
+  MobilityOutput out = Cmd(Autonav(1, 5, 0), 0);
+  ASSERT_EQ(out.range_requests.size(), 1u);
+  const std::uint32_t id = out.range_requests[0].request_id;
+  // Another client's image (or one whose id was corrupted): not ours.
+  out = m_.OnInputRejected(MobilityInput::kRangeImage, "width = 0", T(0.5), id + 100);
+  EXPECT_TRUE(out.statuses.empty());
+  EXPECT_TRUE(m_.busy());
+  out = m_.OnInputRejected(MobilityInput::kRangeImage, "xyz[12] is nan (must be finite)", T(0.6),
+                           id);
+  ASSERT_FALSE(out.statuses.empty());
+  EXPECT_EQ(out.statuses.back().fault, Fault::kImg);
+  EXPECT_EQ(out.statuses.back().fault_class, FaultClass::kMotionError);
+  EXPECT_NE(out.statuses.back().message.find("dl/range_image rejected: xyz[12] is nan"),
+            std::string::npos)
+      << out.statuses.back().message;
+  EXPECT_TRUE(m_.motion_error_latched());
+  EXPECT_TRUE(out.drives.empty());  // nothing was moving
+}
+
+TEST(MobilityManagerInputs, RejectedVisualOdometryIsAFailedStep) {
+  MobilityOptions o;
+  o.max_visodom_failures = 0;
+  MobilityManager m = MakeGestaltManager(o);
+  m.OnPose(PoseAt(T(0), 0, 0), T(0));
+  MobilityOutput out = m.OnCommand(Directed(1, Mode::kVisOdom, {Straight(0.5)}), T(0));
+  ASSERT_EQ(out.drives.size(), 1u);
+  // Not waiting for VO yet: ignored.
+  EXPECT_TRUE(m.OnInputRejected(MobilityInput::kVisOdom, "bad", T(0.5)).statuses.empty());
+  m.OnPose(PoseAt(T(2), 0.5, 0), T(2));
+  m.OnDriveStatus(DriveReport(out.drives[0].command_id, DriveState::kDone,
+                              DriveTermination::kNominal, 0.5, ""),
+                  T(2));
+  ASSERT_TRUE(m.busy());
+  out = m.OnInputRejected(MobilityInput::kVisOdom, "covariance[0] is nan", T(2.5));
+  ASSERT_FALSE(out.statuses.empty());
+  EXPECT_EQ(out.statuses.back().fault, Fault::kVisOdom);
+  EXPECT_STREQ(MobilityInputTopic(MobilityInput::kVisOdom), "dl/relative_pose");
+}
+
 TEST_F(MobilityManagerScripted, TimeBudgetIsWaypointTimeout) {
   MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0)});
   c.time_budget_s = 5.0;
-  Cmd(c, 0);
+  const std::uint32_t drive = Cmd(c, 0).drives.at(0).command_id;
   MobilityOutput out;
   for (double t = 0.5; t < 10 && m_.busy(); t += 0.5) {
     m_.OnPose(PoseAt(T(t), 0.01 * t, 0), T(t));
+    StillDriving(drive, t);
     out = m_.Step(T(t));
   }
   EXPECT_EQ(m_.status().fault, Fault::kWaypointTimeout);
@@ -572,9 +712,10 @@ TEST_F(MobilityManagerScripted, TimeOfDayLimit) {
                                                   m_.options().site_longitude_east);
   MobilityCommand c = Directed(1, Mode::kDirected, {Straight(1.0)});
   c.lmst_end_h = std::fmod(lmst + 0.01, 24.0);
-  Cmd(c, 0);
+  const std::uint32_t drive = Cmd(c, 0).drives.at(0).command_id;
   for (double t = 0.5; t < 100 && m_.busy(); t += 0.5) {
     m_.OnPose(PoseAt(T(t), 0.001 * t, 0), T(t));
+    StillDriving(drive, t);
     m_.Step(T(t));
   }
   EXPECT_EQ(m_.status().fault, Fault::kTod);

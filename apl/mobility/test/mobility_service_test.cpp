@@ -133,6 +133,48 @@ TEST_F(MobilityServiceTest, WrongCameraIsAnImgMotionErrorUntilCleared) {
   EXPECT_EQ(loco_.accepted(), 0);
 }
 
+// Issue 12: a corrupted dl/pose while driving is SAPP (the drive stopped) and shows on sys/health
+// as a rejected input; dl/pose that then stays away is a stale input there.
+TEST_F(MobilityServiceTest, CorruptPoseWhileDrivingIsSappAndAnInputFinding) {
+  Start();
+  MobilityCommand c;
+  c.command_id = 1;
+  c.mode = Mode::kDirected;
+  c.primitives = {{PrimitiveKind::kStraight, 0.0, 3.0, 0.0}};
+  Send(c);
+  for (int i = 0; i < 50 && !loco_.busy(); ++i) ASSERT_TRUE(Tick());
+  ASSERT_TRUE(loco_.busy());
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(Tick());  // driving
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK) << harness_->health_message();
+  loco_.publish_pose = false;
+  auto bad_pose = harness_->Writer<rover_dl_PoseEstimate>("dl/pose");
+  rover_dl_PoseEstimate m =
+      rover::testing::PoseEstimateMessage(Time::FromSeconds(t_), loco_.pose_publisher().state);
+  m.pose.position.x = std::nan("");
+  ASSERT_TRUE(bad_pose.Write(m).ok());
+  const auto end = WaitEnd(1, 5.0);
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->state, State::kFailed);
+  EXPECT_EQ(end->fault, Fault::kSapp);
+  EXPECT_EQ(end->message, "dl/pose rejected: pose.position.x is nan (must be finite)");
+  EXPECT_TRUE(end->motion_error_latched);
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(Tick());
+  EXPECT_FALSE(loco_.busy());  // the STOP reached locomotion
+  const auto said = [&](const std::string& text) {
+    for (const rover_sys_Heartbeat& hb : harness_->heartbeats()) {
+      if (std::string(hb.message).find(text) != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(said("dl/pose rejected: pose.position.x is nan"));
+  // No dl/pose since: stale after inputs.dl_pose.max_age_s (1 s).
+  for (int i = 0; i < 15; ++i) ASSERT_TRUE(Tick());
+  EXPECT_TRUE(harness_->SpinUntil([&] { return harness_->health() == rover_HEALTH_STALE; }))
+      << harness_->health_message();
+  EXPECT_EQ(harness_->health_message().rfind("dl/pose stale: no sample since", 0), 0u)
+      << harness_->health_message();
+}
+
 TEST(MobilityServiceParams, InvalidParametersRefuseConfigurationNamingTheKey) {
   for (const std::string bad : {"mobility.step_length_m=0", "gestalt.max_step_m=-1"}) {
     MobilityService service;

@@ -4,6 +4,7 @@
 
 #include "idl_enum.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/range_check.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover::msg {
@@ -11,6 +12,12 @@ namespace {
 
 Eigen::Vector3d Vec(const rover_Vector3& v) { return {v.x, v.y, v.z}; }
 rover_Vector3 Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+// Every component finite; the message names it ("pose.position.x is nan (must be finite)").
+Status CheckVecFinite(const std::string& name, const rover_Vector3& v) {
+  ROVER_RETURN_IF_ERROR(CheckFinite(name + ".x", v.x));
+  ROVER_RETURN_IF_ERROR(CheckFinite(name + ".y", v.y));
+  return CheckFinite(name + ".z", v.z);
+}
 Eigen::Quaterniond Quat(const rover_Quaternion& q) { return {q.w, q.x, q.y, q.z}; }
 rover_Quaternion Quat(const Eigen::Quaterniond& q) { return {q.w(), q.x(), q.y(), q.z()}; }
 
@@ -94,6 +101,9 @@ Result<PoseEstimate> PoseEstimateFromIdl(const rover_dl_PoseEstimate& in) {
 
 Result<PoseSample> PoseSampleFromIdl(const rover_dl_PoseEstimate& in) {
   ROVER_ASSIGN_OR_RETURN(const Eigen::Quaterniond q, PoseOrientation(in));
+  ROVER_RETURN_IF_ERROR(CheckVecFinite("pose.position", in.pose.position));
+  ROVER_RETURN_IF_ERROR(CheckVecFinite("velocity", in.velocity));
+  ROVER_RETURN_IF_ERROR(CheckFinite("odometer", in.odometer));
   PoseSample s;
   s.stamp = Time{in.header.stamp_ns};
   s.site_from_rover.linear() = q.toRotationMatrix();

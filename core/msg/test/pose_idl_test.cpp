@@ -107,6 +107,24 @@ TEST(PoseIdl, PoseSampleAndAttitudeFromAnEstimate) {
   EXPECT_FALSE(AttitudeSampleFromIdl(p).ok());
 }
 
+TEST(PoseIdl, PoseSampleRejectsNonFinitePositionVelocityAndOdometer) {
+  rover_dl_PoseEstimate p{};
+  p.pose.orientation = {1.0, 0.0, 0.0, 0.0};
+  ASSERT_TRUE(PoseSampleFromIdl(p).ok());
+  p.pose.position.y = std::numeric_limits<double>::quiet_NaN();
+  auto bad = PoseSampleFromIdl(p);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "pose.position.y is nan (must be finite)");
+  p.pose.position.y = 0.0;
+  p.velocity.z = std::numeric_limits<double>::infinity();
+  bad = PoseSampleFromIdl(p);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "velocity.z is inf (must be finite)");
+  p.velocity.z = 0.0;
+  p.odometer = -std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(PoseSampleFromIdl(p).ok());
+}
+
 TEST(PoseIdl, RelativePoseRoundTripAndBadInput) {
   rover_dl_RelativePose m{};
   idl::SetRawEnum(&m.source, 9);

@@ -35,6 +35,24 @@ rover_sys_LifecycleState ToIdl(LifecycleState s) {
   return rover_sys_LIFECYCLE_ERROR;
 }
 
+// FAILED > STALE > DEGRADED > OK (as msg::WorseHealth orders them).
+int HealthRank(rover_SensorHealth h) {
+  switch (h) {
+    case rover_HEALTH_OK: return 0;
+    case rover_HEALTH_DEGRADED: return 1;
+    case rover_HEALTH_STALE: return 2;
+    case rover_HEALTH_FAILED: return 3;
+  }
+  return 3;
+}
+
+rover_SensorHealth HealthOfInputs(const runtime::InputReport& r) {
+  if (r.verdict == runtime::InputVerdict::kNominal) return rover_HEALTH_OK;
+  if (r.verdict == runtime::InputVerdict::kDegraded) return rover_HEALTH_DEGRADED;
+  return r.findings.front().problem == runtime::InputProblem::kStale ? rover_HEALTH_STALE
+                                                                     : rover_HEALTH_FAILED;
+}
+
 rover_sys_Severity ToSeverity(log::Level l) {
   switch (l) {
     case log::Level::kDebug: return rover_sys_SEVERITY_DEBUG;
@@ -66,6 +84,9 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
   ROVER_RETURN_IF_ERROR(ValidateOptions(options));
   std::unique_ptr<ServiceContext> ctx(new ServiceContext());
   ctx->name_ = options.name;
+  auto monitor = runtime::InputMonitor::Create(runtime::InputMonitorOptions{});
+  if (!monitor.ok()) return monitor.status();
+  ctx->inputs_ = std::make_unique<runtime::InputMonitor>(std::move(*monitor));
   auto p = dds::Participant::Create(options.domain);
   if (!p.ok()) return p.status();
   ctx->participant_ = std::move(*p);
@@ -117,6 +138,8 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
   ctx->executor_->AddTimer(Seconds(options.heartbeat_period_s),
                            [raw] { raw->PublishHeartbeat(); }, Executor::TimerBase::kWall,
                            /*always=*/true);
+  // Stale inputs show without any sample arriving: re-evaluate on the run clock while active.
+  ctx->executor_->AddTimer(Seconds(kInputCheckPeriodS), [raw] { raw->UpdateInputHealth(); });
   // Warnings and errors also go out on sys/event for operators and the run report.
   log::SetSink(
       [raw](log::Level level, std::string_view message, std::string_view fields) {
@@ -163,8 +186,62 @@ void ServiceContext::SetHealth(rover_SensorHealth health, std::string message) {
   if (changed) PublishHeartbeat();
 }
 
+double ServiceContext::ToleratedLoss(dds::QosProfile profile) {
+  const dds::QosSpec q = dds::DescribeQos(profile);
+  if (q.history_depth == 1) return 1.0;
+  return q.reliable ? 0.0 : runtime::kStreamTolerableLoss;
+}
+
+void ServiceContext::SetInputMonitor(runtime::InputMonitor monitor) {
+  ROVER_DEMAND_MSG(subscriptions_ == 0, "SetInputMonitor after Subscribe");
+  *inputs_ = std::move(monitor);
+}
+
+bool ServiceContext::InputsStarted() {
+  if (inputs_started_) return true;
+  if (state_ != LifecycleState::kActive || !clock_->valid()) return false;
+  inputs_->Start(Now());
+  inputs_started_ = true;
+  return true;
+}
+
+void ServiceContext::UpdateInputHealth() {
+  if (!InputsStarted()) return;
+  const runtime::InputReport r = inputs_->Report(Now());
+  const rover_SensorHealth h = HealthOfInputs(r);
+  // Published at once when the level or the worst finding changes; a changed reason alone goes
+  // out with the next periodic heartbeat (so a flickering message cannot flood sys/health).
+  std::string key = std::to_string(static_cast<int>(h));
+  if (!r.findings.empty()) {
+    key += " " + r.findings.front().topic + " " +
+           runtime::InputProblemName(r.findings.front().problem) + " " +
+           std::to_string(r.findings.size());
+  }
+  const bool worse = HealthRank(h) > HealthRank(input_health_);
+  input_health_ = h;
+  input_reason_ = r.reason;
+  if (key == input_key_) return;
+  input_key_ = std::move(key);
+  if (worse) {
+    log::Warn("input problem", {{"verdict", runtime::InputVerdictName(r.verdict)},
+                                {"reason", input_reason_}});
+  }
+  PublishHeartbeat();
+}
+
+void ServiceContext::LogCallbackFailure(const std::string& topic, const Status& s) {
+  log::Error("sample handler failed", {{"topic", topic}, {"error", s.message()}});
+}
+
 void ServiceContext::SetLifecycleState(LifecycleState state) {
   state_ = state;
+  if (state == LifecycleState::kActive) {
+    inputs_started_ = false;
+    (void)InputsStarted();
+    input_health_ = rover_HEALTH_OK;
+    input_reason_.clear();
+    input_key_.clear();
+  }
   PublishHeartbeat();
 }
 
@@ -174,10 +251,12 @@ void ServiceContext::PublishHeartbeat() {
   dds::CopyString(hb.service, name_);
   hb.pid = static_cast<int32_t>(getpid());
   hb.state = ToIdl(state_);
-  hb.health = health_;
+  // The worse of the service's own health and its inputs' (the service's own on a tie).
+  const bool inputs_worse = HealthRank(input_health_) > HealthRank(health_);
+  hb.health = inputs_worse ? input_health_ : health_;
   hb.count = ++heartbeat_count_;
   hb.wall_time_ns = WallNow().ns;
-  dds::CopyString(hb.message, health_message_);
+  dds::CopyString(hb.message, inputs_worse ? input_reason_ : health_message_);
   (void)heartbeat_writer_.Write(hb);
 }
 
@@ -198,10 +277,12 @@ Status LoadFaults(ServiceOptions* options) {
 
 Status LoadParameters(Service& service, const ServiceOptions& options, ParamSet* params) {
   *params = ParamSet(options.name.empty() ? service.kind() : options.name);
+  runtime::DeclareInputParams(*params, service.Inputs());
   service.DeclareParameters(*params);
   for (const auto& f : options.param_files) ROVER_RETURN_IF_ERROR(params->LoadYamlFile(f));
   for (const auto& o : options.overrides) ROVER_RETURN_IF_ERROR(params->SetFromString(o));
   ROVER_RETURN_IF_ERROR(params->Validate());
+  ROVER_RETURN_IF_ERROR(runtime::InputMonitor::FromParams(*params, service.Inputs()).status());
   return service.ValidateParameters(*params);
 }
 
@@ -225,6 +306,9 @@ Status Lifecycle::Configure() {
   }
   Status s = LoadParameters(service_, options_, &params_);
   if (!s.ok()) return Fail(s);
+  auto monitor = runtime::InputMonitor::FromParams(params_, service_.Inputs());
+  if (!monitor.ok()) return Fail(monitor.status());
+  ctx_.SetInputMonitor(std::move(*monitor));
   s = service_.OnConfigure(ctx_, params_);
   if (!s.ok()) return Fail(s.WithPrefix("configure"));
   last_error_.clear();
@@ -323,6 +407,7 @@ int RunServiceMain(Service& service, int argc, char** argv) {
   ParamSet params;
   if (help_params) {
     params = ParamSet(options.name);
+    runtime::DeclareInputParams(params, service.Inputs());
     service.DeclareParameters(params);
     std::cout << "Parameters of " << service.kind() << ":\n" << params.DescribeAll();
     return 0;

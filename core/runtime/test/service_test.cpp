@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
+
+#include "rover/base/range_check.hpp"
+#include "rover/testing/service_harness.hpp"
 #include "rover/testing/test_support.hpp"
 
 namespace rover {
@@ -207,6 +212,112 @@ TEST_F(ServiceTest, HeaderSeqCountsPerWriterNotPerFrameId) {
     }));
     EXPECT_EQ(seqs, (std::vector<std::uint32_t>{1, 2, 3})) << r->topic_name();
   }
+}
+
+// ---- input monitoring through the harness (issue 12) ---------------------------------------
+
+// Reads dl/pose (limit 0.5 s): rejects a non-finite x, throws on y = 7 (a handler bug), and
+// counts what it used.
+class PoseReader : public Service {
+ public:
+  PoseReader() : Service("pose-reader") {}
+  std::vector<runtime::InputSpec> Inputs() const override {
+    return {{"dl/pose", {.max_age_s = 0.5}}};
+  }
+  Status OnConfigure(ServiceContext& ctx, const ParamSet&) override {
+    return ctx.Subscribe<rover_dl_PoseEstimate>(
+        "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
+          ROVER_RETURN_IF_ERROR(CheckFinite("pose.position.x", s->pose.position.x));
+          if (s->pose.position.y == 7.0) throw std::runtime_error("y = 7 is not handled");
+          ++used;
+          return Status::Ok();
+        });
+  }
+  int used = 0;
+};
+
+class InputHealthTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    h_ = std::make_unique<testing::ServiceHarness>(svc_, "pose-reader-test",
+                                                   std::vector<std::string>{"inputs.hold_s=1"});
+    ASSERT_TRUE(h_->ok()) << h_->status().message();
+    pose_ = h_->Writer<rover_dl_PoseEstimate>("dl/pose");
+  }
+  // Publishes a pose stamped now (x, y), then moves the clock on by dt.
+  void Send(double t, double x = 0.0, double y = 0.0) {
+    ASSERT_TRUE(h_->AdvanceTo(Time::FromSeconds(t)));
+    rover_dl_PoseEstimate m{};
+    m.header.stamp_ns = Time::FromSeconds(t).ns;
+    m.pose.position.x = x;
+    m.pose.position.y = y;
+    ASSERT_TRUE(pose_.Write(m).ok());
+  }
+  bool HealthBecomes(rover_SensorHealth want) {
+    return h_->SpinUntil([&] { return h_->health() == want; });
+  }
+
+  PoseReader svc_;
+  std::unique_ptr<testing::ServiceHarness> h_;
+  dds::Writer<rover_dl_PoseEstimate> pose_;
+};
+
+TEST_F(InputHealthTest, RejectedStaleAndRecoveredInputsReachTheHeartbeat) {
+  Send(0.1);
+  ASSERT_TRUE(h_->SpinUntil([&] { return svc_.used == 1; }));
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK) << h_->health_message();
+  // A non-finite sample: rejected with the check's message, at once.
+  Send(0.2, std::nan(""));
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_DEGRADED)) << h_->health_message();
+  EXPECT_EQ(h_->health_message(), "dl/pose rejected: pose.position.x is nan (must be finite)");
+  EXPECT_EQ(svc_.used, 1);
+  EXPECT_EQ(h_->ctx().inputs().rejected("dl/pose"), 1u);
+  // Nothing usable for longer than 0.5 s: stale (a fault).
+  ASSERT_TRUE(h_->AdvanceTo(Time::FromSeconds(0.8)));
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_STALE)) << h_->health_message();
+  const std::string stale = "dl/pose stale: no sample since t = 0.1 s (limit 0.5 s)";
+  EXPECT_EQ(h_->health_message().rfind(stale, 0), 0u) << h_->health_message();
+  // Good samples again: stale clears at once, the rejection hold_s (1 s) after it happened.
+  for (double t = 0.9; t < 2.0; t += 0.1) Send(t);
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_OK)) << h_->health_message();
+  EXPECT_EQ(h_->health_message(), "");
+}
+
+TEST_F(InputHealthTest, AHandlerThatThrowsIsARejectionNotACrash) {
+  Send(0.1);
+  Send(0.2, 0.0, 7.0);
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_DEGRADED)) << h_->health_message();
+  EXPECT_NE(h_->health_message().find("dl/pose rejected: handling the sample threw: y = 7"),
+            std::string::npos)
+      << h_->health_message();
+  Send(0.3);
+  ASSERT_TRUE(h_->SpinUntil([&] { return svc_.used == 2; }));  // still serving
+}
+
+TEST_F(InputHealthTest, TheWorseOfOwnAndInputHealthIsReported) {
+  Send(0.1);
+  Send(0.2, std::nan(""));
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_DEGRADED));
+  h_->ctx().SetHealth(rover_HEALTH_FAILED, "calibration lost");
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_FAILED));
+  EXPECT_EQ(h_->health_message(), "calibration lost");
+  h_->ctx().SetHealth(rover_HEALTH_OK, "");
+  ASSERT_TRUE(HealthBecomes(rover_HEALTH_DEGRADED));
+  EXPECT_NE(h_->health_message().find("dl/pose rejected"), std::string::npos);
+}
+
+TEST(InputParamsOfServices, DeclaredAndCheckedLikeAnyParameter) {
+  PoseReader svc;
+  ServiceOptions o;
+  o.name = "pose-reader";
+  o.overrides = {"inputs.dl_pose.max_age_s=-2"};
+  ParamSet params;
+  const Status s = LoadParameters(svc, o, &params);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("inputs.dl_pose.max_age_s"), std::string::npos) << s.message();
+  o.overrides = {"inputs.dl_pose.max_age_s=2", "inputs.startup_s=1"};
+  ASSERT_TRUE(LoadParameters(svc, o, &params).ok());
+  EXPECT_DOUBLE_EQ(params.GetDouble("inputs.dl_pose.max_age_s"), 2.0);
 }
 
 }  // namespace

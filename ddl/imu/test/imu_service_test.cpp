@@ -122,7 +122,12 @@ TEST_F(ImuServiceTest, StatusBitsAndSilenceSetTheHealth) {
   EXPECT_EQ(out_.size(), before);
   EXPECT_EQ(harness_->health(), rover_HEALTH_STALE);
   Run(15);
-  EXPECT_EQ(harness_->health(), rover_HEALTH_OK);
+  // Fresh again; the dropped sample stays on sys/health as a rejected input for inputs.hold_s.
+  EXPECT_EQ(harness_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_EQ(harness_->health_message().rfind("hw/imu rejected: hw/imu: sample stamped", 0), 0u)
+      << harness_->health_message();
+  Run(200);
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK) << harness_->health_message();
 }
 
 }  // namespace

@@ -292,10 +292,17 @@ TEST_F(MotorServiceTest, BadCommandsAreRejectedWithAReasonAndTheServiceCarriesOn
       << Final(3)->message;
   EXPECT_TRUE(goal_log_.empty());  // nothing was sent to the motors
 
-  // Telemetry stamped far in the future is dropped; the service is still healthy.
+  // Telemetry stamped far in the future is dropped: the service carries on, and sys/health
+  // names the rejected input (for inputs.hold_s).
   rover_hw_MotorTelemetry bad = fake_.Telemetry(now_ + Seconds(100.0));
   ASSERT_TRUE(telemetry_.Write(bad).ok());
-  ASSERT_TRUE(StepUntil([&] { return Healthy(); }, 0.5));
+  ASSERT_TRUE(StepUntil(
+      [&] {
+        return harness_->health() == rover_HEALTH_DEGRADED &&
+               harness_->health_message().rfind("hw/motor_telemetry rejected: ", 0) == 0;
+      },
+      0.5))
+      << harness_->health_message();
   // Telemetry stops: STALE after telemetry_timeout_s (0.5 s).
   ASSERT_TRUE(StepUntil(
       [&] {

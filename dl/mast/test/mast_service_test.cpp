@@ -216,7 +216,9 @@ TEST_F(MastServiceTest, BadCommandsAreRejectedNamingFieldAndValueAndNothingMoves
   EXPECT_EQ(s.state, rover_dl_MAST_REJECTED);
   EXPECT_NE(std::string(s.message).find("ddl/joint_state is stale"), std::string::npos)
       << s.message;
-  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
+  // The service's own DEGRADED, and the input monitor's STALE (the worse) on sys/health.
+  EXPECT_EQ(h_->health(), rover_HEALTH_STALE);
+  EXPECT_EQ(h_->health_message().rfind("ddl/joint_state stale: ", 0), 0u) << h_->health_message();
   // And the service still serves a good command afterwards.
   publish_joints_ = true;
   Advance(0.1);

@@ -287,8 +287,9 @@ TEST_F(VoServiceTest, StalePosePausesTheCadence) {
   publish_pose_ = false;  // dl-pose stops while the rover drives on
   Drive(8.0, 0.1, 0.0);
   EXPECT_EQ(captures_.size(), 1u) << "no pair may be requested on a stale pose";
-  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
-  EXPECT_NE(h_->health_message().find("stale"), std::string::npos) << h_->health_message();
+  // dl/pose older than inputs.dl_pose.max_age_s (1 s): STALE on sys/health.
+  EXPECT_EQ(h_->health(), rover_HEALTH_STALE);
+  EXPECT_NE(h_->health_message().find("dl/pose stale"), std::string::npos) << h_->health_message();
   publish_pose_ = true;  // back: the odometer has moved on, so a pair is due at once
   Drive(0.3, 0.1, 0.0);
   EXPECT_EQ(captures_.size(), 2u);

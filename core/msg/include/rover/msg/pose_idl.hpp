@@ -23,7 +23,8 @@ Result<MotionSource> MotionSourceFromIdl(const rover_dl_MotionSource& s,
 void PoseEstimateToIdl(const PoseEstimate& in, rover_dl_PoseEstimate* out);
 /// rpy from the orientation. Errors: an orientation whose norm is not within 1e-3 of 1 (or NaN).
 Result<PoseEstimate> PoseEstimateFromIdl(const rover_dl_PoseEstimate& in);
-/// What a pose history keeps (quaternion renormalised). Errors: as PoseEstimateFromIdl.
+/// What a pose history keeps (quaternion renormalised). Errors: as PoseEstimateFromIdl, and a
+/// non-finite pose.position, velocity or odometer ("pose.position.x is nan (must be finite)").
 Result<PoseSample> PoseSampleFromIdl(const rover_dl_PoseEstimate& in);
 /// ZYX roll, pitch, yaw of the (normalised) orientation, healthy. Errors: a non-finite or
 /// degenerate quaternion (norm outside [0.5, 2]).

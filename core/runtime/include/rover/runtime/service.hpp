@@ -29,11 +29,24 @@
 /// ROVER_FAULTS_EPOCH_NS (run-clock ns) is what start_s of the faults counts from (default:
 /// run clock zero under sim/clock, the service's start under wall time);
 /// ROVER_FAULT_INJECTION=off leaves the seam out entirely.
+///
+/// Input monitoring (issue 12, input_monitor.hpp): every typed subscription made with
+/// ServiceContext::Subscribe passes through the context's InputMonitor: header.seq per writer,
+/// the callback's verdict (a callback that returns a non-ok Status rejected the sample, with
+/// that message; one that throws did too) and the age of the newest accepted sample against
+/// the limits the service declares in Service::Inputs() (parameters `inputs.<topic>.*`). Every
+/// heartbeat carries the worse of the service's own health (SetHealth) and the monitor's worst
+/// finding: a stale input is HEALTH_STALE, a rejection or a seq gap HEALTH_DEGRADED, with the
+/// finding's reason ("dl/pose stale: last sample 1.8 s ago (limit 0.5 s)"). A change of the
+/// verdict is published at once; findings are re-evaluated every kInputCheckPeriodS of run time
+/// while active.
 
+#include <exception>
 #include <functional>
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "rover/base/clock.hpp"
@@ -42,6 +55,7 @@
 #include "rover/runtime/dds.hpp"
 #include "rover/runtime/executor.hpp"
 #include "rover/runtime/fault_control.hpp"
+#include "rover/runtime/input_monitor.hpp"
 
 namespace rover {
 
@@ -89,16 +103,77 @@ class ServiceContext {
   }
 
   /// Subscribes `callback` to a topic; the context owns the reader. `always` subscriptions are
-  /// served in every lifecycle state.
-  template <class T>
-  Status Subscribe(const std::string& topic, std::function<void(const dds::Sample<T>&)> callback,
+  /// served in every lifecycle state. The callback takes a `const dds::Sample<T>&` and returns
+  /// void (every sample counts as accepted) or Status (non-ok: the sample was rejected, e.g. its
+  /// conversion failed; the message reaches sys/health). Every sample passes through the input
+  /// monitor (see the file comment); an exception out of the callback is caught, logged and
+  /// counts as a rejection, so no sample can stop the service.
+  template <class T, class F>
+  Status Subscribe(const std::string& topic, F callback,
                    std::optional<dds::QosProfile> profile = std::nullopt, bool always = false) {
     auto r = dds::Reader<T>::Create(participant_, topic, profile);
     if (!r.ok()) return r.status();
     auto holder = std::make_shared<dds::Reader<T>>(std::move(*r));
     readers_.push_back(holder);
-    return executor_->Subscribe<T>(*holder, std::move(callback), always);
+    const std::size_t input = inputs_->Watch(topic, ToleratedLoss(holder->profile()));
+    ++subscriptions_;
+    std::function<void(const dds::Sample<T>&)> wrapped =
+        [this, input, topic, cb = std::move(callback)](const dds::Sample<T>& s) mutable {
+          const Time now = Now();
+          const bool watched = InputsStarted();  // not before the run clock is valid
+          bool changed = false;
+          Time stamp{0};
+          if constexpr (dds::HasHeader<T>) {
+            if (watched) {
+              changed =
+                  inputs_->OnArrival(input, s.info().publication_handle, s->header.seq, now);
+            }
+            stamp = Time{s->header.stamp_ns};
+          }
+          Status result = Status::Ok();
+          try {
+            if constexpr (std::is_same_v<std::invoke_result_t<F&, const dds::Sample<T>&>,
+                                         Status>) {
+              result = cb(s);
+            } else {
+              cb(s);
+            }
+          } catch (const std::exception& e) {
+            result = Internal(std::string("handling the sample threw: ") + e.what());
+            LogCallbackFailure(topic, result);
+          } catch (...) {
+            result = Internal("handling the sample threw a non-standard exception");
+            LogCallbackFailure(topic, result);
+          }
+          if (!watched) return;
+          if (result.ok()) {
+            inputs_->OnAccepted(input, stamp, now);
+          } else {
+            inputs_->OnRejected(input, result.message(), now);
+            changed = true;
+          }
+          if (changed || input_health_ != rover_HEALTH_OK) UpdateInputHealth();
+        };
+    return executor_->Subscribe<T>(*holder, std::move(wrapped), always);
   }
+
+  /// The input monitor (Lifecycle::Configure installs the one the parameters describe).
+  runtime::InputMonitor& inputs() { return *inputs_; }
+  const runtime::InputMonitor& inputs() const { return *inputs_; }
+  /// Replaces the input monitor; only before the first Subscribe (a programming error after).
+  void SetInputMonitor(runtime::InputMonitor monitor);
+  /// Re-evaluates the input findings at Now(); publishes a heartbeat at once when the level or
+  /// the worst finding (topic, problem, number of findings) changed.
+  void UpdateInputHealth();
+  /// The input part of the heartbeat: health and reason.
+  rover_SensorHealth input_health() const { return input_health_; }
+  const std::string& input_reason() const { return input_reason_; }
+  /// The lost-sample share of a reader that is no finding (input_monitor.hpp): keep-last-1
+  /// topics may overwrite samples (1: gaps never count), best-effort streams lose some by design
+  /// (runtime::kStreamTolerableLoss), keep-all topics none (0).
+  static double ToleratedLoss(dds::QosProfile profile);
+  /// Period of the run-clock timer that re-evaluates the input findings (while active).
+  static constexpr double kInputCheckPeriodS = 0.1;
 
   /// Stamps a header: the run clock's time and `frame_id`; header.seq is set to 0, so that the
   /// writer that publishes the sample numbers it (per writer, dds::Writer).
@@ -106,6 +181,8 @@ class ServiceContext {
 
   /// The service's own health, reported in every heartbeat.
   void SetHealth(rover_SensorHealth health, std::string message);
+  /// Also (re)starts the input monitor when the state becomes ACTIVE (ages count from there, or
+  /// from the first valid run-clock time after it).
   void SetLifecycleState(LifecycleState state);
   LifecycleState lifecycle_state() const { return state_; }
   /// Sends a heartbeat now.
@@ -137,6 +214,17 @@ class ServiceContext {
   rover_SensorHealth health_ = rover_HEALTH_OK;
   std::string health_message_;
   std::uint64_t heartbeat_count_ = 0;
+  // Input monitoring.
+  void LogCallbackFailure(const std::string& topic, const Status& s);
+  // Starts the monitor at the first valid run-clock time after activation (under sim/clock a
+  // service may be activated before the clock is heard, or restarted mid-run); true once it is.
+  bool InputsStarted();
+  bool inputs_started_ = false;
+  std::unique_ptr<runtime::InputMonitor> inputs_;
+  int subscriptions_ = 0;  // made through Subscribe
+  rover_SensorHealth input_health_ = rover_HEALTH_OK;
+  std::string input_reason_;
+  std::string input_key_;  // level and worst finding last published
 };
 
 /// Base class of every service. Override OnConfigure at least.
@@ -152,6 +240,10 @@ class Service {
 
   /// Declare every parameter the service reads.
   virtual void DeclareParameters(ParamSet& params) { (void)params; }
+  /// The inputs whose limits the service declares (staleness, seq checks); their parameters
+  /// `inputs.<topic>.*` are declared for it. Inputs subscribed but not listed are still
+  /// monitored for rejections and seq problems, with no staleness limit.
+  virtual std::vector<runtime::InputSpec> Inputs() const { return {}; }
   /// Checks rules that span several parameters (ranges are already checked). Runs in
   /// `--validate`, so `roverctl up` reports these errors before anything starts. No DDS here.
   virtual Status ValidateParameters(const ParamSet& params) const {

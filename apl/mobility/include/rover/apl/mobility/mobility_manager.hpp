@@ -53,10 +53,19 @@
 /// within keepout_margin of a keep-out zone -> KEEPOUT (nothing moves). While waiting: a range
 /// image later than image_timeout_s, from the wrong camera, malformed or with no valid pixel ->
 /// IMG; dl/pose older than pose_stale_s, non-finite or jumping by pose_jump / pose_jump_angle ->
-/// SAPP; a drive not finished by its watchdog -> DRIVE_TIMEOUT (a STOP drive is sent);
+/// SAPP; a drive not finished by its watchdog -> DRIVE_TIMEOUT (a STOP drive is sent); no
+/// dl/drive_status of the running drive for drive_status_timeout_s (locomotion reports every
+/// cycle, 8 Hz, while a primitive runs) -> MOT (a STOP drive is sent);
 /// dl/drive_status FAILED: TILT -> TILT, SUSPENSION -> SUSPENSION, motor terminations -> MOT,
 /// TIMEOUT -> DRIVE_TIMEOUT, STALE_SENSOR -> SAPP, STOP_COMMAND -> STOPPED; REJECTED_BUSY (some
 /// other client drives) -> ARB; REJECTED_INVALID -> BAD_COMMAND.
+///
+/// Input faults (OnInputRejected: a sample the service could not convert, or whose range checks
+/// failed; issue 12): dl/pose while a command runs -> SAPP at once (motion stops, as MER's
+/// manager did on a bad pose); dl/range_image of the pending request -> IMG; dl/relative_pose
+/// while waiting for visual odometry -> a failed VO step; dl/drive_status -> not a report: the
+/// drive's status time-out runs on (MOT when it expires, naming the rejection). Stale inputs are
+/// the time-outs above (pose_stale_s, image_timeout_s, drive_status_timeout_s).
 ///
 /// Fault classes (seed 000 Table 1): a goal error ends the command and leaves the rover ready;
 /// a motion error ends it, latches, and refuses every motion command (with the latched fault)
@@ -117,6 +126,11 @@ struct MotionCounters {
   double distance = 0.0;  ///< [m] path length reported by locomotion
 };
 
+/// The manager's inputs, for OnInputRejected.
+enum class MobilityInput { kPose, kRangeImage, kDriveStatus, kVisOdom, kMastStatus };
+/// "dl/pose", "dl/range_image", "dl/drive_status", "dl/relative_pose", "dl/mast_status".
+const char* MobilityInputTopic(MobilityInput input);
+
 class MobilityManager {
  public:
   /// Errors: InvalidArgument naming the field when options.Validate() fails, or a null
@@ -140,6 +154,10 @@ class MobilityManager {
   /// A dl/relative_pose: only visual-odometry results count (other sources are ignored); a
   /// status other than CONVERGED is a failed VO step.
   MobilityOutput OnVisOdom(const RelativePose& result, Time now);
+  /// A sample of `input` that could not be used (`why`: the conversion's message); for a range
+  /// image, `request_id` is the id it carried. See "Input faults" above.
+  MobilityOutput OnInputRejected(MobilityInput input, const std::string& why, Time now,
+                                 std::uint32_t request_id = 0);
   /// Time-outs and the periodic running status.
   MobilityOutput Step(Time now);
 
@@ -172,6 +190,8 @@ class MobilityManager {
     Primitive primitive;
     Time sent;
     Time deadline;
+    Time last_report;           // the latest dl/drive_status of this drive (or `sent`)
+    std::string rejected_note;  // the latest dl/drive_status rejected meanwhile
     bool guarded_check_done = false;
   };
   struct Run {

@@ -61,6 +61,9 @@ struct MobilityOptions {
   double nominal_turn_rate = 0.05;    ///< [rad/s] for the watchdog
   double drive_timeout_factor = 3.0;  ///< DRIVE_TIMEOUT after factor * planned time + margin
   double drive_timeout_margin_s = 30.0;
+  double drive_status_timeout_s =
+      2.0;  ///< [s] MOT when the running drive reports no dl/drive_status this long; 0 = off
+            ///< (stack; locomotion reports at 8 Hz)
   // ---- keep-out, time of day -----------------------------------------------------------------
   double keepout_margin = 0.6;       ///< [m] the rover centre keeps this far from keep-out zones
                                      ///< (about half the rover's width)

@@ -6,8 +6,10 @@
 ///
 ///   FakeLocomotion: takes dl/drive_command; integrates the running primitive into a planar
 ///     pose at `speed` [m/s] or `turn_rate` [rad/s] on each Advance(now); publishes dl/drive_status
-///     (DRIVING on acceptance, DONE at the end, REJECTED_BUSY for a second primitive, FAILED /
-///     STOP_COMMAND for a STOP while one runs) and the pose on dl/pose.
+///     (DRIVING on acceptance and on every Advance while it runs, as dl-locomotion reports each
+///     cycle, unless `report_progress` is off; DONE at the end, REJECTED_BUSY for a second
+///     primitive, FAILED / STOP_COMMAND for a STOP while one runs) and the pose on dl/pose
+///     (unless `publish_pose` is off).
 ///   FakeStereo: takes dl/range_request; answers each with dl/range_image, a RockField capture
 ///     (rock_field.hpp) from the locomotion's pose at the time of the request, `camera` and
 ///     `rover_pose` filled in as dl-stereo does.
@@ -67,11 +69,15 @@ class FakeLocomotion {
         Publish(running_->command_id, running_->primitive, rover_dl_DRIVE_DONE,
                 rover_dl_TERMINATION_NOMINAL, now);
         running_.reset();
+      } else if (report_progress) {
+        Publish(running_->command_id, running_->primitive,
+                turn ? rover_dl_DRIVE_TURNING : rover_dl_DRIVE_DRIVING, rover_dl_TERMINATION_NONE,
+                now);
       }
     }
     last_ = now;
     pose_.state.SetPose(Pose());
-    (void)pose_.Publish(now);
+    if (publish_pose) (void)pose_.Publish(now);
   }
 
   Eigen::Isometry3d Pose() const {
@@ -86,6 +92,10 @@ class FakeLocomotion {
   double x = 0.0, y = 0.0, heading = 0.0;  ///< [m, m, rad] planar pose
   double speed = 0.25;                     ///< [m/s]
   double turn_rate = 0.5;                  ///< [rad/s]
+  bool report_progress = true;             ///< DRIVING / TURNING on every Advance while running
+  bool publish_pose = true;                ///< dl/pose on every Advance
+  /// The pose writer (a test may publish its own samples, e.g. corrupted ones).
+  FakePose& pose_publisher() { return pose_; }
 
  private:
   void Accept(const rover_dl_DriveCommand& c, Time now) {
