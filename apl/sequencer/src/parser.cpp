@@ -22,9 +22,14 @@ namespace {
 using internal::Token;
 using internal::TokenKind;
 
-const std::vector<std::string> kKeywords = {"TARGET", "CONST", "IF",   "ELSE",    "END",
-                                            "REPEAT", "WHILE", "MAX",  "WAIT",    "UNTIL",
-                                            "TIMEOUT", "ON_ABORT", "AND", "OR",   "NOT"};
+// Reserved words: they open, branch or close blocks, or separate the parts of a statement
+// (MAX, UNTIL, TIMEOUT, AND, OR, NOT come right after a value). No TARGET or CONST may be named
+// like one, in any case. The words that only ever start a statement of their own (TARGET,
+// CONST, WAIT) and the command names are not reserved: a name is only read where a value
+// goes, never at the start of a statement, so `TARGET target = (6, 0)` and `WAIT wait` are
+// unambiguous.
+const std::vector<std::string> kReserved = {"IF",  "ELSE",    "END",   "REPEAT", "WHILE", "MAX",
+                                            "UNTIL", "TIMEOUT", "ON_ABORT", "AND", "OR", "NOT"};
 
 constexpr int kMaxLoopCount = 10000;      // REPEAT n and WHILE ... MAX n
 constexpr double kMaxWaitS = 86400.0;     // WAIT and TIMEOUT
@@ -43,9 +48,9 @@ std::string Lower(std::string_view s) {
   return out;
 }
 
-bool IsKeyword(std::string_view word) {
+bool IsReserved(std::string_view word) {
   const std::string u = Upper(word);
-  return std::find(kKeywords.begin(), kKeywords.end(), u) != kKeywords.end();
+  return std::find(kReserved.begin(), kReserved.end(), u) != kReserved.end();
 }
 
 std::string Quote(std::string_view s) { return "'" + std::string(s) + "'"; }
@@ -66,7 +71,7 @@ class Parser {
   Parser(std::string_view text, const ParseOptions& options) : text_(text), options_(options) {
     std::vector<internal::LexError> lex_errors;
     tokens_ = internal::Lex(text, &lex_errors);
-    for (auto& e : lex_errors) Error(e.pos, e.message);
+    for (auto& e : lex_errors) Report(e.pos, std::move(e.message));
     std::size_t start = 0;
     for (std::size_t k = 0; k <= text.size(); ++k) {
       if (k == text.size() || text[k] == '\n') {
@@ -151,12 +156,29 @@ class Parser {
     return all;
   }
 
-  bool Error(SourcePos pos, std::string message) {
+  /// Records an error; returns false (for `return Error(...)` in checks).
+  bool Report(SourcePos pos, std::string message) {
     ++error_count_;
     if (static_cast<int>(errors_.size()) < options_.max_errors) {
       errors_.push_back({pos, std::move(message)});
     }
     return false;
+  }
+  /// A parse error. One about a character the language does not use (a kBad token, which the
+  /// lexer has reported already) is counted but not reported a second time.
+  bool Error(SourcePos pos, std::string message) {
+    if (Peek().kind == TokenKind::kBad && Peek().pos == pos) {
+      ++error_count_;
+      return false;
+    }
+    return Report(pos, std::move(message));
+  }
+  /// True (the error counted, not reported) when `name` is a TARGET or CONST whose definition
+  /// had an error: its uses fail without repeating it.
+  bool DefinitionFailed(const std::string& name) {
+    if (broken_definitions_.count(name) == 0) return false;
+    ++error_count_;
+    return true;
   }
 
   // ---- blocks --------------------------------------------------------------------------------
@@ -174,9 +196,11 @@ class Parser {
       const std::string word = Upper(t.text);
       if (word == "END") {
         const SourcePos pos = Next().pos;
-        ExpectLineEnd("END");
+        // A line is reported for its first error only: "END x" is a syntax error on its own, and
+        // inside a block it still closes the block.
+        const bool clean = ExpectLineEnd("END");
         if (ctx.depth == 0) {
-          Error(pos, "END without an open block");
+          if (clean) Error(pos, "END without an open block");
           continue;
         }
         return BlockEnd::kEnd;
@@ -412,8 +436,8 @@ class Parser {
     std::string problem;
     if (name.text.find('.') != std::string::npos || name.text.find('/') != std::string::npos) {
       problem = "may not contain '.' or '/'";
-    } else if (IsKeyword(name.text)) {
-      problem = "is a keyword";
+    } else if (IsReserved(name.text)) {
+      problem = "is a reserved word";
     } else if (FindQuantity(name.text)) {
       problem = "is the name of a quantity";
     } else if (auto it = definitions_.find(name.text); it != definitions_.end()) {
@@ -449,7 +473,7 @@ class Parser {
     tokens_ = internal::Lex(it->second, &lex_errors);
     i_ = 0;
     const std::size_t first_error = errors_.size();
-    for (auto& e : lex_errors) Error(e.pos, e.message);
+    for (auto& e : lex_errors) Report(e.pos, std::move(e.message));
     auto result = parse();
     if (!AtLineEnd()) {
       Error(Peek().pos, "unexpected " + internal::Describe(Peek()) + " after the value");
@@ -473,10 +497,14 @@ class Parser {
       return ParseTuple(*name, 2, 3, "m", Bounds::Closed(-1e4, 1e4), "(x, y) or (x, y, z)");
     });
     if (!p) {
+      broken_definitions_.insert(*name);
       if (options_.overrides.count(*name) == 0) SkipLine();
       return;
     }
-    if (options_.overrides.count(*name) == 0 && !ExpectLineEnd("the TARGET point")) return;
+    if (options_.overrides.count(*name) == 0 && !ExpectLineEnd("the TARGET point")) {
+      broken_definitions_.insert(*name);
+      return;
+    }
     seq_.targets[*name] = Vec3{(*p)[0], (*p)[1], p->size() > 2 ? (*p)[2] : 0.0};
   }
 
@@ -486,10 +514,14 @@ class Parser {
     if (!name) return;
     std::optional<Constant> c = WithOverride(*name, pos, [&] { return ParseConstantValue(*name); });
     if (!c) {
+      broken_definitions_.insert(*name);
       if (options_.overrides.count(*name) == 0) SkipLine();
       return;
     }
-    if (options_.overrides.count(*name) == 0 && !ExpectLineEnd("the CONST value")) return;
+    if (options_.overrides.count(*name) == 0 && !ExpectLineEnd("the CONST value")) {
+      broken_definitions_.insert(*name);
+      return;
+    }
     seq_.constants[*name] = *c;
   }
 
@@ -525,7 +557,7 @@ class Parser {
   /// True when the next token is a unit written after a number: an identifier that is no
   /// keyword and does not start the next `name=value`.
   bool UnitFollows() const {
-    return Peek().kind == TokenKind::kIdent && !IsKeyword(Peek().text) &&
+    return Peek().kind == TokenKind::kIdent && !IsReserved(Peek().text) &&
            Peek(1).kind != TokenKind::kAssign;
   }
 
@@ -558,10 +590,11 @@ class Parser {
       }
       return *v;
     }
-    if (t.kind == TokenKind::kIdent && !IsKeyword(t.text)) {
+    if (t.kind == TokenKind::kIdent && !IsReserved(t.text)) {
       Next();
       auto it = seq_.constants.find(t.text);
       if (it == seq_.constants.end()) {
+        if (DefinitionFailed(t.text)) return std::nullopt;
         if (seq_.targets.count(t.text) > 0) {
           Error(t.pos, Quote(t.text) + " is a TARGET (a point); " + what + " takes a number");
         } else {
@@ -583,10 +616,12 @@ class Parser {
     return std::nullopt;
   }
 
+  /// ParseScalar, then the range check. A value out of range is reported at `range_at` (the
+  /// argument's name=, which the message names) when given, else at the value.
   std::optional<double> ParseChecked(const std::string& what, std::string_view unit,
-                                     const Bounds& bounds, SourcePos* where = nullptr) {
-    const SourcePos pos = Peek().pos;
-    if (where != nullptr) *where = pos;
+                                     const Bounds& bounds,
+                                     std::optional<SourcePos> range_at = std::nullopt) {
+    const SourcePos pos = range_at.value_or(Peek().pos);
     std::optional<double> v = ParseScalar(what, unit);
     if (!v) return std::nullopt;
     const Status s = CheckRange(what, *v, bounds, unit);
@@ -617,10 +652,12 @@ class Parser {
     return static_cast<int>(*v);
   }
 
-  /// "(a, b, ...)" with between `min_n` and `max_n` numbers, each in `unit` and `bounds`.
+  /// "(a, b, ...)" with between `min_n` and `max_n` numbers, each in `unit` and `bounds`
+  /// (`range_at` as in ParseChecked).
   std::optional<std::vector<double>> ParseTuple(const std::string& what, int min_n, int max_n,
                                                 std::string_view unit, const Bounds& bounds,
-                                                std::string_view shape) {
+                                                std::string_view shape,
+                                                std::optional<SourcePos> range_at = std::nullopt) {
     const Token& open = Peek();
     if (open.kind != TokenKind::kLParen) {
       Error(open.pos, what + " expects " + std::string(shape) + ", got " +
@@ -631,7 +668,7 @@ class Parser {
     std::vector<double> out;
     while (true) {
       const std::string element = what + "[" + std::to_string(out.size()) + "]";
-      std::optional<double> v = ParseChecked(element, unit, bounds);
+      std::optional<double> v = ParseChecked(element, unit, bounds, range_at);
       if (!v) return std::nullopt;
       out.push_back(*v);
       if (Peek().kind == TokenKind::kComma) {
@@ -657,9 +694,10 @@ class Parser {
     return out;
   }
 
-  /// A point literal or a TARGET name.
+  /// A point literal or a TARGET name (`range_at` as in ParseChecked).
   std::optional<ArgValue> ParsePoint(const std::string& what, int min_n, int max_n,
-                                     std::string_view shape) {
+                                     std::string_view shape,
+                                     std::optional<SourcePos> range_at = std::nullopt) {
     ArgValue v;
     v.pos = Peek().pos;
     const Token& t = Peek();
@@ -667,6 +705,7 @@ class Parser {
       Next();
       auto it = seq_.targets.find(t.text);
       if (it == seq_.targets.end()) {
+        if (DefinitionFailed(t.text)) return std::nullopt;
         if (seq_.constants.count(t.text) > 0) {
           Error(t.pos, Quote(t.text) + " is a CONST (a number); " + what +
                            " takes a point or a TARGET name");
@@ -683,26 +722,28 @@ class Parser {
       return v;
     }
     std::optional<std::vector<double>> p =
-        ParseTuple(what, min_n, max_n, "m", Bounds::Closed(-1e4, 1e4), shape);
+        ParseTuple(what, min_n, max_n, "m", Bounds::Closed(-1e4, 1e4), shape, range_at);
     if (!p) return std::nullopt;
     v.numbers = std::move(*p);
     return v;
   }
 
-  std::optional<ArgValue> ParseArgValue(const ArgSpec& a) {
+  /// The value of argument `a`, written at `at` (its name=, or the value itself when positional):
+  /// shape and unit errors are reported where they are, range errors at `at`.
+  std::optional<ArgValue> ParseArgValue(const ArgSpec& a, SourcePos at) {
     const std::string what(a.name);
     ArgValue v;
     v.type = a.type;
     v.given = true;
-    v.pos = Peek().pos;
+    v.pos = at;
     switch (a.type) {
       case ArgType::kNumber:
       case ArgType::kInteger: {
         if (Peek().kind == TokenKind::kIdent) v.name = Peek().text;
-        std::optional<double> n = ParseChecked(what, a.unit, a.bounds);
+        std::optional<double> n = ParseChecked(what, a.unit, a.bounds, at);
         if (!n) return std::nullopt;
         if (a.type == ArgType::kInteger && *n != std::floor(*n)) {
-          Error(v.pos, what + " = " + FormatNumber(*n) + " is not a whole number");
+          Error(at, what + " = " + FormatNumber(*n) + " is not a whole number");
           return std::nullopt;
         }
         v.number = *n;
@@ -712,17 +753,19 @@ class Parser {
       case ArgType::kPoint3: {
         const bool three = a.type == ArgType::kPoint3;
         std::optional<ArgValue> p =
-            ParsePoint(what, three ? 3 : 2, three ? 3 : 2, three ? "(x, y, z)" : "(x, y)");
+            ParsePoint(what, three ? 3 : 2, three ? 3 : 2, three ? "(x, y, z)" : "(x, y)", at);
         if (!p) return std::nullopt;
         p->type = a.type;
         p->given = true;
+        p->pos = at;
         return p;
       }
       case ArgType::kPixel:
       case ArgType::kTuple: {
         const int n = a.type == ArgType::kPixel ? 2 : a.size;
         const std::string shape = a.type == ArgType::kPixel ? "(u, v)" : "(a, b, ...)";
-        std::optional<std::vector<double>> t = ParseTuple(what, n, n, a.unit, a.bounds, shape);
+        std::optional<std::vector<double>> t =
+            ParseTuple(what, n, n, a.unit, a.bounds, shape, at);
         if (!t) return std::nullopt;
         v.numbers = std::move(*t);
         return v;
@@ -766,27 +809,44 @@ class Parser {
     return words;
   }
 
+  /// Reports the unknown command that starts at `first`; `words` are CandidateWords().
+  ///
+  /// What is quoted is what the hint was matched on: the longest run of leading words (two or
+  /// more) that is close to a command name of as many words ("DRIV ARC" -> DRIVE ARC, "DRIVE
+  /// ARK" -> DRIVE ARC); else, when the first word starts command names, the list of those; else
+  /// the first word alone, with a hint among names, first words and statement keywords.
   void UnknownCommand(const Token& first, const std::vector<std::string>& words) {
-    std::vector<std::string> names = CommandNames();
+    const std::vector<std::string> names = CommandNames();
+    auto word_count = [](const std::string& n) {
+      return 1 + static_cast<std::size_t>(std::count(n.begin(), n.end(), ' '));
+    };
+    for (std::size_t n = words.size(); n >= 2; --n) {
+      std::vector<std::string> same_length;
+      for (const auto& name : names) {
+        if (word_count(name) == n) same_length.push_back(name);
+      }
+      std::string joined;
+      std::string as_written;
+      for (std::size_t k = 0; k < n; ++k) {
+        joined += (k ? " " : "") + words[k];
+        as_written += (k ? " " : "") + Peek(k).text;
+      }
+      const std::string hint = DidYouMean(joined, same_length);
+      if (!hint.empty()) {
+        Error(first.pos, "unknown command " + Quote(as_written) + hint);
+        return;
+      }
+    }
     std::vector<std::string> with_prefix;
     for (const auto& n : names) {
       if (n.rfind(words[0] + " ", 0) == 0) with_prefix.push_back(n);
     }
     if (!with_prefix.empty()) {
-      if (words.size() >= 2) {
-        const std::string two = words[0] + " " + words[1];
-        const std::string hint = DidYouMean(two, with_prefix);
-        if (!hint.empty()) {
-          Error(first.pos, "unknown command " + Quote(two) + hint);
-          return;
-        }
-      }
       std::string list;
       for (const auto& n : with_prefix) list += (list.empty() ? "" : ", ") + n;
       Error(first.pos, words[0] + " needs one of: " + list);
       return;
     }
-    // Suggest among whole names, their first words and the statement keywords.
     std::vector<std::string> known = names;
     for (const auto& n : names) known.push_back(n.substr(0, n.find(' ')));
     for (const char* k : {"TARGET", "CONST", "IF", "REPEAT", "WHILE", "WAIT", "ON_ABORT"}) {
@@ -794,11 +854,7 @@ class Parser {
     }
     std::sort(known.begin(), known.end());
     known.erase(std::unique(known.begin(), known.end()), known.end());
-    // A whole name first ("DRIV ARC" -> DRIVE ARC), then names, first words and keywords.
-    std::string hint;
-    if (words.size() >= 2) hint = DidYouMean(words[0] + " " + words[1], names);
-    if (hint.empty()) hint = DidYouMean(words[0], known);
-    Error(first.pos, "unknown command " + Quote(first.text) + hint);
+    Error(first.pos, "unknown command " + Quote(first.text) + DidYouMean(words[0], known));
   }
 
   std::optional<Statement> ParseCommand() {
@@ -869,12 +925,11 @@ class Parser {
         SkipLine();
         return std::nullopt;
       }
-      std::optional<ArgValue> v = ParseArgValue(*a);
+      std::optional<ArgValue> v = ParseArgValue(*a, t.pos);
       if (!v) {
         SkipLine();
         return std::nullopt;
       }
-      v->pos = t.pos;
       call.args[arg_name] = std::move(*v);
     }
     if (!ExpectLineEnd(cmd) || !CheckArguments(*spec, &call)) return std::nullopt;
@@ -1113,6 +1168,7 @@ class Parser {
   Sequence seq_;
   std::map<std::string, int> definitions_;  // TARGET and CONST names -> line
   std::set<std::string> used_overrides_;
+  std::set<std::string> broken_definitions_;  // TARGET and CONST names whose value had an error
   int abort_line_ = 0;
 };
 

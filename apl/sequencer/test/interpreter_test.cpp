@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <map>
+#include <optional>
 #include <numbers>
 
 #include "rover/base/param_binder.hpp"
@@ -465,6 +467,174 @@ TEST(Interpreter, ControlStepsPerCallAreBounded) {
   EXPECT_EQ(a.status.state, SequenceState::kFailed);
   EXPECT_NE(a.status.message.find("more than 1000 control statements without a command or wait"),
             std::string::npos);
+}
+
+/// The services on a run clock, as the apl-sequencer service would see them: each command ends
+/// `kCommandS` after it went out (a mobility STRAIGHT moves the rover, or not on a fault); the
+/// pose estimate arrives every second (at k + 0.5 s) and the VisOdom failure count after each
+/// VISODOM command. Inputs go to the interpreter in time order and Step() follows each, as the
+/// service's subscriptions and timer do.
+class FakeStatusStream {
+ public:
+  static constexpr double kCommandS = 5.25;  // never on a pose tick
+
+  struct Dispatch {
+    double sent;      // [s] run clock
+    double answered;  // [s] when its result came (-1: none)
+    std::string text;
+  };
+
+  FakeStatusStream(double pitch, std::function<Outcome(const Command&)> answer,
+                   std::function<bool(int visodom_command)> vo_fails)
+      : answer_(std::move(answer)), vo_fails_(std::move(vo_fails)) {
+    pose_.pitch = pitch;
+    for (int k = 0; k < 400; ++k) {
+      events_.emplace(k + 0.5, [this](double t) {
+        pose_.stamp = T(t);
+        it_->OnPose(pose_);
+      });
+    }
+  }
+
+  std::vector<Dispatch> Run(Interpreter& it) {
+    it_ = &it;
+    double t = 0.0;
+    Step(t);
+    for (int guard = 0; guard < 10000 && it.busy() && !events_.empty(); ++guard) {
+      const double next = events_.begin()->first;
+      if (wake_ && *wake_ <= next) {
+        t = *wake_;
+      } else {
+        t = next;
+        auto apply = std::move(events_.begin()->second);
+        events_.erase(events_.begin());
+        apply(t);
+      }
+      Step(t);
+    }
+    EXPECT_FALSE(it.busy());
+    return sent_;
+  }
+
+ private:
+  void Step(double t) {
+    StepOutput out = it_->Step(T(t));
+    wake_.reset();
+    if (out.wake_at) wake_ = out.wake_at->seconds();
+    if (!out.command) return;
+    // Event-driven: nothing goes out before the previous command has answered.
+    if (!sent_.empty()) {
+      EXPECT_GE(sent_.back().answered, 0.0) << out.command->text;
+      EXPECT_LE(sent_.back().answered, t) << out.command->text;
+    }
+    sent_.push_back({t, -1.0, out.command->text});
+    const std::size_t index = sent_.size() - 1;
+    const Command c = *out.command;
+    events_.emplace(t + kCommandS, [this, c, index](double done) {
+      Outcome o = answer_(c);
+      o.stamp = T(done);
+      if (const auto* m = std::get_if<MobilityRequest>(&c.request)) {
+        if (m->primitive == Primitive::kStraight && o.termination == Termination::kNominal) {
+          pose_.position.x += m->distance;
+        }
+        if (m->mode == MobilityMode::kVisodom && vo_fails_(++visodom_commands_)) {
+          it_->OnVisOdomFailures(++vo_failures_);
+        }
+      }
+      sent_[index].answered = done;
+      EXPECT_TRUE(it_->OnCommandResult(c.id, o).ok()) << c.text;
+    });
+  }
+
+  std::function<Outcome(const Command&)> answer_;
+  std::function<bool(int)> vo_fails_;
+  Interpreter* it_ = nullptr;
+  std::multimap<double, std::function<void(double)>> events_;
+  std::optional<double> wake_;
+  std::vector<Dispatch> sent_;
+  PoseSample pose_;
+  int visodom_commands_ = 0;
+  int vo_failures_ = 0;
+};
+
+// Every construct on one time-ordered stream of statuses: dispatch only after the previous
+// command completed, a WHILE on the distance bounded by MAX, a goal error let through by
+// on_fault=CONTINUE, an IF on the VisOdom failure count with a WAIT, IF / ELSE on tilt, and a
+// motion error that runs the ON_ABORT block and ends FAILED.
+TEST(Interpreter, AStatusStreamDrivesEveryConstruct) {
+  const std::string text =
+      "ON_ABORT\n  STOP\n  MAST pan_deg=0 tilt_deg=-30\nEND\n"
+      "TARGET rock = (3, 0, 0)\n"
+      "MAST LOOK_AT rock\n"
+      "WHILE distance_to(rock) > 1.3 m MAX 6\n"
+      "  VISODOM STRAIGHT distance=0.5 on_fault=CONTINUE\n"
+      "  IF visodom.failures >= 2\n    WAIT 10 s\n  END\n"
+      "END\n"
+      "IF tilt > 20 deg\n  STOP\nELSE\n  ARM UNSTOW\nEND\n"
+      "DRIVE STRAIGHT distance=1\n";
+  // The second VISODOM step makes no progress (a goal error); the drive at the end hits a
+  // motor fault. VisOdom fails on the 3rd and 4th VISODOM commands.
+  auto answer = [visodom = 0](const Command& c) mutable {
+    if (c.kind == CommandKind::kVisodomStraight && ++visodom == 2) {
+      return Outcome::Failed(Fault::kNoProgress, "stuck");
+    }
+    if (c.kind == CommandKind::kDriveStraight) return Outcome::Failed(Fault::kMot, "stall");
+    return Outcome::Nominal();
+  };
+  auto vo_fails = [](int n) { return n == 3 || n == 4; };
+
+  {  // level: the ELSE branch
+    Interpreter it = Started(text);
+    FakeStatusStream stream(0.0, answer, vo_fails);
+    const auto sent = stream.Run(it);
+    std::vector<std::string> texts;
+    for (const auto& d : sent) texts.push_back(d.text);
+    // 3 m to go, 0.5 m per nominal step, the 2nd step stuck: 5 steps reach 1.0 m (<= 1.3).
+    EXPECT_EQ(texts, (std::vector<std::string>{
+                         "MAST LOOK_AT rock",
+                         "VISODOM STRAIGHT distance=0.5 on_fault=CONTINUE",
+                         "VISODOM STRAIGHT distance=0.5 on_fault=CONTINUE",
+                         "VISODOM STRAIGHT distance=0.5 on_fault=CONTINUE",
+                         "VISODOM STRAIGHT distance=0.5 on_fault=CONTINUE",
+                         "VISODOM STRAIGHT distance=0.5 on_fault=CONTINUE", "ARM UNSTOW",
+                         "DRIVE STRAIGHT distance=1", "STOP", "MAST pan_deg=0 tilt_deg=-30"}));
+    ASSERT_EQ(sent.size(), 10u);
+    // A command whose dispatch follows a condition on the pose goes out once a pose newer
+    // than the previous answer has come: the next tick at .5 s past a second, 0.25 s after the
+    // mast's answer and 0.75 s after each step's. After the 4th and 5th VISODOM steps the
+    // failure count is 2, so WAIT 10 s comes first (the pose is fresh by then). The rest (DRIVE
+    // after ARM UNSTOW, the abort block) need no pose and go at once.
+    const std::vector<double> gaps = {0.25, 0.75, 0.75, 0.75, 10.0, 10.0, 0.0, 0.0, 0.0};
+    for (std::size_t k = 1; k < sent.size(); ++k) {
+      SCOPED_TRACE(sent[k].text);
+      EXPECT_DOUBLE_EQ(sent[k].sent - sent[k - 1].answered, gaps[k - 1]) << k;
+    }
+    EXPECT_EQ(it.status().state, SequenceState::kFailed);
+    EXPECT_EQ(it.status().failed_outcome.fault, Fault::kMot);
+    EXPECT_EQ(it.status().message,
+              "step 8 (line 18: DRIVE STRAIGHT distance=1) failed: MOT (motion error): stall");
+  }
+  {  // tilted 25 deg: the IF branch
+    Interpreter it = Started(text);
+    FakeStatusStream stream(25 * kDeg, answer, vo_fails);
+    const auto sent = stream.Run(it);
+    ASSERT_EQ(sent.size(), 10u);
+    EXPECT_EQ(sent[6].text, "STOP");
+  }
+  {  // the loop bound: MAX 6 with a rover that never moves
+    Interpreter it = Started(text);
+    FakeStatusStream stream(
+        0.0, [](const Command& c) {
+          return c.kind == CommandKind::kVisodomStraight
+                     ? Outcome::Failed(Fault::kNoProgress, "stuck")
+                     : Outcome::Nominal();
+        },
+        [](int) { return false; });
+    const auto sent = stream.Run(it);
+    ASSERT_EQ(sent.size(), 9u);  // MAST, 6 steps, ARM UNSTOW, DRIVE
+    EXPECT_EQ(sent[7].text, "ARM UNSTOW");
+    EXPECT_EQ(it.status().state, SequenceState::kDone);
+  }
 }
 
 TEST(Interpreter, StateNames) {

@@ -35,6 +35,14 @@ TEST(ParserErrors, UnknownCommandsSuggestTheClosest) {
   ExpectError("distance=5\n", {1, 1, "expected a command, got 'distance'="});
   ExpectError("(1, 2)\n", {1, 1, "expected a statement, got '('"});
   ExpectError("MAX 5\n", {1, 1, "MAX cannot start a statement"});
+  // Three words, as written (the hint in the table's spelling).
+  ExpectError("VISODM TURN TO (1, 2)\n",
+              {1, 1, "unknown command 'VISODM TURN TO' (did you mean 'VISODOM TURN TO'?)"});
+  ExpectError("drive arK curvature=1\n",
+              {1, 1, "unknown command 'drive arK' (did you mean 'DRIVE ARC'?)"});
+  // A positional value after an unknown one-word name is not part of the quoted name.
+  ExpectError("TARGET rock1 = (1, 2)\nGOT rock1\n",
+              {2, 1, "unknown command 'GOT' (did you mean 'GOTO'?)"});
 }
 
 TEST(ParserErrors, UnknownMissingAndRepeatedArguments) {
@@ -65,6 +73,10 @@ TEST(ParserErrors, ValuesOutOfRangeNameTheUnit) {
   ExpectError("AUTOFOCUS steps=2.5\n", {1, 11, "steps = 2.5 is not a whole number"});
   ExpectError("WAIT 2 h\nWAIT 25 h\n", {2, 6, "WAIT = 90000 s is outside [0, 86400]"});
   ExpectError("WAIT -1\n", {1, 6, "WAIT = -1 s is outside [0, 86400]"});
+  // Positional: at the value, which is where the argument is written.
+  ExpectError("GOTO (2e4, 0)\n", {1, 6, "goal[0] = 20000 m is outside [-10000, 10000]"});
+  ExpectError("MAST LOOK_AT point=(1, 2, 30 km)\n",
+              {1, 14, "point[2] = 30000 m is outside [-10000, 10000]"});
 }
 
 TEST(ParserErrors, UnitsOfTheWrongDimensionOrUnknown) {
@@ -114,7 +126,11 @@ TEST(ParserErrors, UnknownTargetsAndConstants) {
   ExpectError("TARGET a = (1, 2)\nTARGET a = (3, 4)\nSTOP\n",
               {2, 8, "TARGET name 'a' is already defined at line 1"});
   ExpectError("CONST tilt = 3\nSTOP\n", {1, 7, "CONST name 'tilt' is the name of a quantity"});
-  ExpectError("TARGET end = (1, 1)\nSTOP\n", {1, 8, "TARGET name 'end' is a keyword"});
+  ExpectError("TARGET end = (1, 1)\nSTOP\n", {1, 8, "TARGET name 'end' is a reserved word"});
+  // Reserved in any case: they separate the parts of a statement or close blocks.
+  ExpectError("CONST Max = 3\nSTOP\n", {1, 7, "CONST name 'Max' is a reserved word"});
+  ExpectError("CONST timeout = 3\nSTOP\n", {1, 7, "CONST name 'timeout' is a reserved word"});
+  ExpectError("TARGET else = (1, 1)\nSTOP\n", {1, 8, "TARGET name 'else' is a reserved word"});
   ExpectError("TARGET a.b = (1, 1)\nSTOP\n", {1, 8, "TARGET name 'a.b' may not contain '.' or '/'"});
   ExpectError("TARGET a (1, 1)\nSTOP\n", {1, 10, "expected '=' after TARGET a, got '('"});
   ExpectError("CONST a = fast\nSTOP\n",
@@ -131,6 +147,8 @@ TEST(ParserErrors, UnbalancedBlocks) {
               {5, 1, "a second ELSE for the IF at line 1"});
   ExpectError("IF tilt > 5\nSTOP\nELSE IF tilt > 3\nSTOP\n", {3, 6, "IF at line 3 has no END"});
   ExpectError("STOP\nEND now\n", {2, 5, "unexpected 'now' after END"});
+  // Inside a block "END x" is reported for the x and still closes the block.
+  ExpectError("IF tilt > 5\n  STOP\nEND now\nSTOP\n", {3, 5, "unexpected 'now' after END"});
   ExpectError("ON_ABORT\n  STOP\n", {1, 1, "ON_ABORT at line 1 has no END"});
   ExpectError("ON_ABORT\nSTOP\nEND\nON_ABORT\nSTOP\nEND\nSTOP\n",
               {4, 1, "a second ON_ABORT block (the first is at line 1)"});
@@ -178,7 +196,11 @@ TEST(ParserErrors, Conditions) {
 }
 
 TEST(ParserErrors, BadCharactersEmptyTextsAndOverrides) {
+  // A character the language does not use is reported once, wherever the parser meets it.
   ExpectError("TURN angle_deg=90;\n", {1, 18, "unexpected character ';'"});
+  ExpectError(";STOP\n", {1, 1, "unexpected character ';'"});
+  ExpectError("IF tilt > 5 ;\n  STOP\nEND\n", {1, 13, "unexpected character ';'"});
+  ExpectError("GOTO (1; 2)\n", {1, 8, "unexpected character ';'"});
   ExpectError("# only a comment\n\n", {1, 1, "the sequence has no statements to run"});
   ExpectError("ON_ABORT\n  STOP\nEND\n", {1, 1, "the sequence has no statements to run"});
 
@@ -196,6 +218,10 @@ TEST(ParserErrors, BadCharactersEmptyTextsAndOverrides) {
   EXPECT_EQ(errors[0].pos, (SourcePos{1, 1}));
   EXPECT_EQ(errors[0].message,
             "override target=(1, 2: expected ',' or ')' in target, got end of line");
+  // A use of a name whose definition failed is not reported again.
+  errors = ErrorsOf("CONST step = 3 parsecs\nDRIVE STRAIGHT distance=step\nWAIT step\n");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].message, "unknown unit 'parsecs'");
   o.overrides = {{"step", "3 s"}};
   errors = ErrorsOf("CONST step = 1 m\nDRIVE STRAIGHT distance=step\n", o);
   ASSERT_EQ(errors.size(), 1u);
@@ -230,6 +256,40 @@ TEST(ParserErrors, EveryErrorIsReportedAndNothingIsReturned) {
   EXPECT_EQ(s.status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(s.status().message(),
             "bad.seq:1:6: angle_deg = 400 deg is outside [-360, 360] (and 4 more errors)");
+}
+
+// The bad input, end to end through ParseSequence / ParseSequenceFile: a syntax error
+// with its line and column, an unknown command or argument with the nearest valid name, an
+// unbounded loop; each yields no Sequence at all, so no command of the text can run, not even
+// the valid ones before the error.
+TEST(ParserErrors, BadInputYieldsNoSequenceSoNothingRuns) {
+  const std::string valid = "VISODOM TURN TO (6, 0)\nDRIVE STRAIGHT distance=30 cm\n";
+  struct Case {
+    std::string bad_line;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"IF tilt > 5 deg )", "approach.seq:3:17: unexpected ')' after the IF condition"},
+      {"VISODOM STRAIT distance=1",
+       "approach.seq:3:1: unknown command 'VISODOM STRAIT' (did you mean 'VISODOM STRAIGHT'?)"},
+      {"VISODOM STRAIGHT distanse=1",
+       "approach.seq:3:18: VISODOM STRAIGHT has no argument 'distanse' (did you mean "
+       "'distance'?)"},
+      {"WHILE distance_to((6, 0)) > 1.3 m", "approach.seq:3:1: unbounded loop: WHILE needs MAX "
+                                            "n (the most times the body runs)"},
+  };
+  ParseOptions o;
+  o.source = "approach.seq";
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.bad_line);
+    const std::string text = valid + c.bad_line + "\n  STOP\nEND\n";
+    ParseReport r = ParseSequenceText(text, o);
+    EXPECT_FALSE(r.sequence.has_value());
+    Result<Sequence> s = ParseSequence(text, o);
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.status().code(), StatusCode::kInvalidArgument);
+    EXPECT_EQ(s.status().message().substr(0, c.message.size()), c.message);
+  }
 }
 
 TEST(ParserErrors, ReportsAtMostMaxErrors) {

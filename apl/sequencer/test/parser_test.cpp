@@ -114,6 +114,28 @@ TEST(Parser, ConstantsKeepTheirUnitAndConvertWhereUsed) {
   EXPECT_DOUBLE_EQ(s.statements[2].condition.compare.number, 0.3);
 }
 
+// TARGET, CONST and WAIT are keywords only at the start of a statement and command words only
+// in the command name, so they may name targets and constants (the shipped template's
+// `target`); names stay case-sensitive.
+TEST(Parser, NamesMaySpellStatementKeywordsAndCommandWords) {
+  Sequence s = MustParse(
+      "TARGET target = (6, 0, 0)\nTARGET Target = (1, 1)\nCONST wait = 2 s\nCONST const = 1.3 m\n"
+      "CONST stop = 3\n"
+      "VISODOM TURN TO target\nTURN TO target=Target\nWAIT wait\nREPEAT stop\n  STOP\nEND\n"
+      "WHILE distance_to(target) > const MAX stop\n  VISODOM STRAIGHT distance=const\nEND\n");
+  EXPECT_EQ(s.targets.at("target"), (Vec3{6, 0, 0}));
+  EXPECT_EQ(s.targets.at("Target"), (Vec3{1, 1, 0}));
+  ASSERT_EQ(s.statements.size(), 5u);
+  EXPECT_EQ(s.statements[0].command.kind, CommandKind::kVisodomTurnTo);
+  EXPECT_EQ(s.statements[0].command.Get("target").name, "target");
+  EXPECT_EQ(s.statements[1].command.Get("target").numbers, (std::vector<double>{1, 1}));
+  EXPECT_DOUBLE_EQ(s.statements[2].seconds, 2.0);
+  EXPECT_EQ(s.statements[3].count, 3);
+  EXPECT_EQ(s.statements[4].count, 3);
+  EXPECT_DOUBLE_EQ(s.statements[4].condition.compare.number, 1.3);
+  EXPECT_DOUBLE_EQ(s.statements[4].body[0].command.Get("distance").number, 1.3);
+}
+
 TEST(Parser, Waits) {
   Sequence s = MustParse(
       "WAIT 5 s\nWAIT 5\nWAIT 250 ms\nWAIT 0\n"

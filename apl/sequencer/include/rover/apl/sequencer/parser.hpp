@@ -6,8 +6,8 @@
 /// any error yields no Sequence, so nothing of it can run.
 ///
 /// Messages name what is wrong and, where it helps, the closest known name:
-///   approach.seq:7:1: unknown command 'DRIV' (did you mean 'DRIVE ARC'?)
-///   approach.seq:9:18: distance = 60 m is outside [-50, 50]
+///   approach.seq:7:1: unknown command 'DRIV ARC' (did you mean 'DRIVE ARC'?)
+///   approach.seq:9:16: distance = 60 m is outside [-50, 50]
 ///   approach.seq:12:1: unbounded loop: WHILE needs MAX n (the most times the body runs)
 
 #include <map>
