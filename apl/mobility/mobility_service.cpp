@@ -1,12 +1,18 @@
 #include "mobility_service.hpp"
 
+#include <limits>
 #include <memory>
 #include <string>
 
-#include "mobility_msg.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
 #include "rover/base/log.hpp"
+#include "rover/msg/drive_idl.hpp"
+#include "rover/msg/mast_idl.hpp"
+#include "rover/msg/mobility_idl.hpp"
+#include "rover/msg/navigation_idl.hpp"
+#include "rover/msg/pose_idl.hpp"
+#include "rover/msg/range_idl.hpp"
 
 namespace rover::apl::mobility {
 namespace {
@@ -16,6 +22,11 @@ constexpr double kStepRateHz = 10.0;
 // Logs a failed write; a write failure never stops the service.
 void Check(const Status& s, const char* topic) {
   if (!s.ok()) log::Error(std::string(topic) + " write failed", {{"error", s.message()}});
+}
+
+// Logs a sample the conversion refused; it does not reach the manager.
+void Dropped(const Status& s, const char* topic) {
+  log::Warn(std::string(topic) + " sample dropped", {{"error", s.message()}});
 }
 
 }  // namespace
@@ -54,34 +65,51 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
 
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_MobilityCommand>(
       "apl/mobility_command", [this](const dds::Sample<rover_apl_MobilityCommand>& s) {
-        const MobilityCommand c = msg::CommandFromIdl(s.data());
-        log::Info("mobility command", {{"command_id", c.command_id}, {"mode", ModeName(c.mode)}});
+        const MobilityCommand c = msg::MobilityCommandFromIdl(s.data());
+        log::Info("mobility command",
+                  {{"command_id", c.command_id}, {"mode", msg::MobilityModeName(c.mode)}});
         Publish(manager_->OnCommand(c, ctx_->Now()));
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
-        Publish(manager_->OnPose(msg::PoseFromIdl(s.data()), ctx_->Now()));
+        const Result<PoseSample> sample = msg::PoseSampleFromIdl(s.data());
+        PoseSample pose;
+        if (sample.ok()) {
+          pose = *sample;
+        } else {  // a bad orientation reaches the manager as a non-finite pose (SAPP)
+          pose.stamp = Time{s.data().header.stamp_ns};
+          pose.site_from_rover.linear().setConstant(std::numeric_limits<double>::quiet_NaN());
+        }
+        Publish(manager_->OnPose(pose, ctx_->Now()));
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RangeImage>(
       "dl/range_image", [this](const dds::Sample<rover_dl_RangeImage>& s) {
         const rover_dl_RangeImage& m = s.data();
-        auto scan = msg::RangeScanFromIdl(m);
-        nav_core::RangeScan bad;  // a malformed image reaches the manager as an empty scan
-        Publish(manager_->OnRangeImage(scan.ok() ? *scan : bad, msg::CameraFromIdl(m.camera),
-                                       m.request_id, ctx_->Now()));
+        const Result<msg::RangeImage> image = msg::RangeImageFromIdl(m);
+        if (!image.ok()) Dropped(image.status(), "dl/range_image");
+        // A malformed image reaches the manager as an empty scan (IMG when it waits for it).
+        const nav_core::RangeScan scan =
+            image.ok() ? nav_core::RangeScanFromImage(*image) : nav_core::RangeScan{};
+        const CameraId camera = image.ok() ? image->camera : static_cast<CameraId>(m.camera);
+        Publish(manager_->OnRangeImage(scan, camera, m.request_id, ctx_->Now()));
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_DriveStatus>(
       "dl/drive_status", [this](const dds::Sample<rover_dl_DriveStatus>& s) {
-        Publish(manager_->OnDriveStatus(msg::DriveStatusFromIdl(s.data()), ctx_->Now()));
+        const Result<DriveStatus> status = msg::DriveStatusFromIdl(s.data());
+        if (!status.ok()) return Dropped(status.status(), "dl/drive_status");
+        Publish(manager_->OnDriveStatus(*status, ctx_->Now()));
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastStatus>(
       "dl/mast_status", [this](const dds::Sample<rover_dl_MastStatus>& s) {
-        Publish(manager_->OnMastStatus(msg::MastStatusFromIdl(s.data()), ctx_->Now()));
+        const Result<MastStatus> status = msg::MastStatusFromIdl(s.data());
+        if (!status.ok()) return Dropped(status.status(), "dl/mast_status");
+        Publish(manager_->OnMastStatus(*status, ctx_->Now()));
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_RelativePose>(
       "dl/relative_pose", [this](const dds::Sample<rover_dl_RelativePose>& s) {
-        const auto vo = msg::VisOdomFromIdl(s.data());
-        if (vo) Publish(manager_->OnVisOdom(*vo, ctx_->Now()));
+        const Result<RelativePose> vo = msg::RelativePoseFromIdl(s.data());
+        if (!vo.ok()) return Dropped(vo.status(), "dl/relative_pose");
+        Publish(manager_->OnVisOdom(*vo, ctx_->Now()));
       }));
   ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz),
                           [this] { Publish(manager_->Step(ctx_->Now())); });
@@ -99,40 +127,50 @@ Status MobilityService::OnDeactivate(ServiceContext& ctx) {
 }
 
 void MobilityService::Publish(const MobilityOutput& out) {
-  for (const DriveRequest& d : out.drives) {
-    rover_dl_DriveCommand m = msg::DriveCommandToIdl(d);
+  for (const DriveCommand& d : out.drives) {
+    rover_dl_DriveCommand m{};
+    msg::DriveCommandToIdl(d, &m);
     ctx_->Stamp(m.header, "rover");
     Check(drive_writer_.Write(m), "dl/drive_command");
   }
   for (const RangeRequest& r : out.range_requests) {
-    rover_dl_RangeRequest m = msg::RangeRequestToIdl(r);
+    rover_dl_RangeRequest m{};
+    msg::RangeRequestToIdl(r, &m);
     ctx_->Stamp(m.header, "rover");
     Check(range_writer_.Write(m), "dl/range_request");
   }
-  for (const MastRequest& r : out.mast_requests) {
-    rover_dl_MastCommand m = msg::MastCommandToIdl(r);
+  for (const MastCommand& r : out.mast_requests) {
+    rover_dl_MastCommand m{};
+    msg::MastCommandToIdl(r, &m);
     ctx_->Stamp(m.header, "site");
     Check(mast_writer_.Write(m), "dl/mast_command");
   }
   if (out.goodness_map) {
-    msg::GoodnessMapMessage m = msg::GoodnessMapToIdl(*out.goodness_map);
-    const std::int64_t stamp = m.msg.header.stamp_ns;
-    ctx_->Stamp(m.msg.header, "site");
-    m.msg.header.stamp_ns = stamp;  // capture time of the newest data
-    Check(map_writer_.Write(m.msg), "apl/goodness_map");
+    const msg::GoodnessMap map = nav_core::GoodnessMapToMessage(*out.goodness_map);
+    rover_apl_GoodnessMap m{};
+    const Status filled = msg::GoodnessMapToIdl(map, &m);
+    if (filled.ok()) {
+      ctx_->Stamp(m.header, "site");
+      m.header.stamp_ns = map.stamp.ns;  // capture time of the newest data
+      Check(map_writer_.Write(m), "apl/goodness_map");
+    } else {
+      Check(filled, "apl/goodness_map");
+    }
   }
   for (const ArcVotesSnapshot& v : out.arc_votes) {
-    msg::ArcVotesMessage m = msg::ArcVotesToIdl(v);
+    msg::ArcVotesMessage m;
+    msg::ArcVotesToIdl(ArcVotesOf(v), &m);
     ctx_->Stamp(m.msg.header, "site");
     Check(votes_writer_.Write(m.msg), "apl/arc_votes");
   }
   for (const MobilityStatus& st : out.statuses) {
-    rover_apl_MobilityStatus m = msg::StatusToIdl(st);
+    rover_apl_MobilityStatus m{};
+    msg::MobilityStatusToIdl(st, &m);
     ctx_->Stamp(m.header, "site");
     Check(status_writer_.Write(m), "apl/mobility_status");
     if (st.state == State::kFailed || st.state == State::kRejected) {
       log::Warn("mobility command ended", {{"command_id", st.command_id},
-                                           {"fault", std::string(FaultName(st.fault))},
+                                           {"fault", std::string(msg::MobilityFaultName(st.fault))},
                                            {"message", st.message}});
     }
   }

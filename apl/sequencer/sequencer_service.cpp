@@ -2,10 +2,10 @@
 
 #include <string>
 
-#include "mobility_msg.hpp"
 #include "rover/apl/sequencer/parser.hpp"
 #include "rover/base/log.hpp"
 #include "rover/msg/mast_idl.hpp"
+#include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
 #include "rover/msg/sequence_idl.hpp"
 #include "service_links.hpp"
@@ -54,9 +54,13 @@ Status SequencerService::OnConfigure(ServiceContext& ctx, const ParamSet& params
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_MobilityStatus>(
       "apl/mobility_status", [this](const dds::Sample<rover_apl_MobilityStatus>& s) {
-        const mobility::MobilityStatus st = mobility::msg::StatusFromIdl(s.data());
-        if (const std::optional<Outcome> o = OutcomeOfMobilityStatus(st)) {
-          OnResult(st.command_id, Family::kMobility, *o);
+        const Result<msg::MobilityStatus> st = msg::MobilityStatusFromIdl(s.data());
+        if (!st.ok()) {  // a value no enumerator has ends nothing
+          log::Warn("apl/mobility_status refused", {{"error", st.status().message()}});
+          return;
+        }
+        if (const std::optional<Outcome> o = OutcomeOfMobilityStatus(*st)) {
+          OnResult(st->command_id, Family::kMobility, *o);
         }
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastStatus>(
@@ -152,9 +156,10 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
   const Time now = ctx_->Now();
   switch (c.family) {
     case Family::kMobility: {
-      Result<mobility::MobilityCommand> m = MobilityCommandOf(c);
+      Result<msg::MobilityCommand> m = MobilityCommandOf(c, now);
       if (!m.ok()) return Outcome::Rejected(Fault::kInvalid, m.status().message(), now);
-      mobility::msg::CommandMessage out = mobility::msg::CommandToIdl(*m, now.ns);
+      msg::MobilityCommandMessage out;
+      msg::MobilityCommandToIdl(*m, &out);
       ctx_->Stamp(out.msg.header, "site");
       Check(mobility_writer_.Write(out.msg), "apl/mobility_command");
       break;
@@ -180,8 +185,8 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
 void SequencerService::Cancel(const Command& c) {
   outstanding_family_.reset();
   if (c.family != Family::kMobility) return;  // a mast move ends by itself
-  mobility::msg::CommandMessage stop =
-      mobility::msg::CommandToIdl(MobilityStopCommand(c.id), ctx_->Now().ns);
+  msg::MobilityCommandMessage stop;
+  msg::MobilityCommandToIdl(MobilityStopCommand(c.id, ctx_->Now()), &stop);
   ctx_->Stamp(stop.msg.header, "site");
   Check(mobility_writer_.Write(stop.msg), "apl/mobility_command");
 }

@@ -3,6 +3,6 @@
 #include "camera_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::ddl::CameraService service;
+  rover::ddl::camera::CameraService service;
   return rover::RunServiceMain(service, argc, argv);
 }

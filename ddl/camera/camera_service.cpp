@@ -9,7 +9,12 @@
 #include "rover/msg/hw_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
+
+using driver_support::HealthSummary;
+using driver_support::IsLogWorthy;
+using driver_support::ResolveConfigFile;
+
 namespace {
 std::string Num(double v) {
   char buf[32];
@@ -201,4 +206,4 @@ void CameraService::OnWatchdog() {
   ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

@@ -29,7 +29,7 @@
 #include "rover/ddl/driver_support/driver_health.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 
 class CameraService final : public Service {
  public:
@@ -51,13 +51,13 @@ class CameraService final : public Service {
 
   ServiceContext* ctx_ = nullptr;
   std::optional<CameraDriver> driver_;
-  std::optional<InputMonitor> joints_;
-  std::optional<InputMonitor> frames_;
-  ClockJumpDetector clock_jump_;
+  std::optional<driver_support::InputMonitor> joints_;
+  std::optional<driver_support::InputMonitor> frames_;
+  driver_support::ClockJumpDetector clock_jump_;
   std::string camera_error_;  // last unanswered request or corrupt frame; cleared by a good frame
   std::string write_error_;
   dds::Writer<rover_hw_CameraRequest> request_writer_;
   dds::Writer<rover_ddl_StereoFrame> frame_writer_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

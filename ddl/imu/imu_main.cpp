@@ -2,6 +2,6 @@
 #include "imu_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::ddl::ImuService service;
+  rover::ddl::imu::ImuService service;
   return rover::RunServiceMain(service, argc, argv);
 }

@@ -6,7 +6,12 @@
 #include "rover/msg/hw_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::imu {
+
+using driver_support::DeclareDriverHardwareParams;
+using driver_support::DriverHardwareConfig;
+using driver_support::HealthSummary;
+using driver_support::IsLogWorthy;
 
 void ImuService::DeclareParameters(ParamSet& p) {
   DeclareDriverHardwareParams(p);
@@ -84,4 +89,4 @@ void ImuService::OnWatchdog() {
   ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::imu

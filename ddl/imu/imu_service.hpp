@@ -17,7 +17,7 @@
 #include "rover/ddl/imu/imu_driver.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::imu {
 
 class ImuService final : public Service {
  public:
@@ -35,12 +35,12 @@ class ImuService final : public Service {
 
   ServiceContext* ctx_ = nullptr;
   std::optional<ImuDriver> driver_;
-  std::optional<InputMonitor> input_;
-  ClockJumpDetector clock_jump_;
-  HealthSummary since_check_;  // worst sample health since the last watchdog run
+  std::optional<driver_support::InputMonitor> input_;
+  driver_support::ClockJumpDetector clock_jump_;
+  driver_support::HealthSummary since_check_;  // worst sample health since the last watchdog run
   std::uint64_t unhealthy_samples_ = 0;
   std::string last_reason_;  // of the previous sample (log on change)
   dds::Writer<rover_ddl_Imu> writer_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::imu

@@ -2,6 +2,6 @@
 #include "motor_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::ddl::MotorService service;
+  rover::ddl::motor::MotorService service;
   return rover::RunServiceMain(service, argc, argv);
 }

@@ -6,7 +6,12 @@
 #include "rover/msg/hw_idl.hpp"
 #include "rover/msg/motor_idl.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
+
+using driver_support::DeclareDriverHardwareParams;
+using driver_support::DriverHardwareConfig;
+using driver_support::HealthSummary;
+using driver_support::IsLogWorthy;
 
 void MotorService::DeclareParameters(ParamSet& p) {
   DeclareDriverHardwareParams(p);
@@ -135,4 +140,4 @@ void MotorService::UpdateHealth(Time now) {
   ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

@@ -21,7 +21,7 @@
 #include "rover/ddl/motor/motor_group_manager.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 
 class MotorService final : public Service {
  public:
@@ -44,11 +44,11 @@ class MotorService final : public Service {
 
   ServiceContext* ctx_ = nullptr;
   std::optional<MotorGroupManager> manager_;
-  std::optional<InputMonitor> telemetry_;
-  ClockJumpDetector clock_jump_;
+  std::optional<driver_support::InputMonitor> telemetry_;
+  driver_support::ClockJumpDetector clock_jump_;
   dds::Writer<rover_hw_MotorGoals> goals_writer_;
   dds::Writer<rover_ddl_MotorStatus> status_writer_;
   std::string write_error_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

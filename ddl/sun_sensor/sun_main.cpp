@@ -2,6 +2,6 @@
 #include "sun_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::ddl::SunService service;
+  rover::ddl::sun_sensor::SunService service;
   return rover::RunServiceMain(service, argc, argv);
 }

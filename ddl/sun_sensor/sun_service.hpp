@@ -18,7 +18,7 @@
 #include "rover/ddl/sun_sensor/sun_sensor_driver.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::sun_sensor {
 
 class SunService final : public Service {
  public:
@@ -36,12 +36,12 @@ class SunService final : public Service {
 
   ServiceContext* ctx_ = nullptr;
   std::optional<SunSensorDriver> driver_;
-  std::optional<InputMonitor> input_;
-  ClockJumpDetector clock_jump_;
-  HealthSummary since_check_;
+  std::optional<driver_support::InputMonitor> input_;
+  driver_support::ClockJumpDetector clock_jump_;
+  driver_support::HealthSummary since_check_;
   std::uint64_t unhealthy_samples_ = 0;
   std::string last_reason_;
   dds::Writer<rover_ddl_SunSensor> writer_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::sun_sensor

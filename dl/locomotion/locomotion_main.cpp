@@ -2,6 +2,6 @@
 #include "locomotion_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::dl::LocomotionService service;
+  rover::dl::locomotion::LocomotionService service;
   return rover::RunServiceMain(service, argc, argv);
 }

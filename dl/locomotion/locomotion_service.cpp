@@ -12,7 +12,7 @@
 #include "rover/msg/pose_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 // ---- service ----------------------------------------------------------------------------------
 
@@ -153,4 +153,4 @@ void LocomotionService::UpdateHealth(Time now) {
   }
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

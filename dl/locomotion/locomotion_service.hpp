@@ -33,7 +33,7 @@
 #include "rover/dl/locomotion/drive_executor.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 class LocomotionService final : public Service {
  public:
@@ -66,4 +66,4 @@ class LocomotionService final : public Service {
   std::optional<Time> last_timer_;     // run-clock time of the previous timer tick
 };
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

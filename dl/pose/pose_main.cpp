@@ -2,6 +2,6 @@
 #include "pose_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::dl::PoseService service;
+  rover::dl::pose::PoseService service;
   return rover::RunServiceMain(service, argc, argv);
 }

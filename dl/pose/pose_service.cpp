@@ -8,7 +8,15 @@
 #include "rover/msg/pose_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
+
+using locomotion::DeclareRoverGeometryParams;
+using locomotion::DeclareWheelOdometryParams;
+using locomotion::RoverGeometry;
+using locomotion::RoverGeometryFromParams;
+using locomotion::WheelOdometryOptions;
+using locomotion::WheelOdometryOptionsFromParams;
+
 namespace {
 
 // [m/s^2] default of ekf.gravity: Mars, as the simulator's rover model (sim/physics).
@@ -193,4 +201,4 @@ void PoseService::OnTimer() {
   }
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

@@ -52,7 +52,7 @@
 #include "rover/dl/pose/pose_estimator.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 class PoseService final : public Service {
  public:
@@ -92,4 +92,4 @@ class PoseService final : public Service {
   dds::Writer<rover_dl_PoseEstimate> odometry_only_writer_;
 };
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

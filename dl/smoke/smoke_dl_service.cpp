@@ -56,7 +56,7 @@ class SmokeDl final : public rover::Service {
 
   std::int64_t warmup_ = 0;
   std::int64_t samples_ = 0;
-  rover::dl::HeadingIntegrator integrator_;
+  rover::dl::smoke::HeadingIntegrator integrator_;
   rover::dds::Writer<rover_dl_PoseEstimate> writer_;
 };
 

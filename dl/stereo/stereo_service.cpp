@@ -4,6 +4,8 @@
 #include "stereo_service.hpp"
 
 #include <algorithm>
+#include <string>
+#include <utility>
 
 #include "rover/msg/camera_idl.hpp"
 #include "rover/msg/health_idl.hpp"
@@ -19,6 +21,8 @@ using camera_client::CameraClientOptions;
 
 Status StereoService::ValidateParameters(const ParamSet& p) const {
   ROVER_RETURN_IF_ERROR(ReadParams<CameraClientOptions>(p, "").status());
+  ROVER_RETURN_IF_ERROR(ReadParams<hwconfig::RoverDescription>(p, "geometry.").status());
+  ROVER_RETURN_IF_ERROR(ReadParams<VehicleMaskOptions>(p, "vehicle_mask.").status());
   return ReadParams<StereoRangerOptions>(p, "").status();
 }
 
@@ -29,6 +33,8 @@ void StereoService::DeclareParameters(ParamSet& p) {
       .Range(0, 4096);
   DeclareParams<CameraClientOptions>(p, "");
   DeclareParams<StereoRangerOptions>(p, "");
+  DeclareParams<VehicleMaskOptions>(p, "vehicle_mask.");
+  DeclareParams<hwconfig::RoverDescription>(p, "geometry.");
   p.Declare("max_queue", 4, "range requests waiting behind the outstanding one, at most")
       .Range(1, 64);
   p.Declare("pose_max_age_s", 1.0,
@@ -51,7 +57,22 @@ Status StereoService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   ROVER_ASSIGN_OR_RETURN(const CameraClientOptions client, ReadParams<CameraClientOptions>(p, ""));
   ROVER_ASSIGN_OR_RETURN(const StereoRangerOptions ranger, ReadParams<StereoRangerOptions>(p, ""));
   client_ = std::make_unique<camera_client::CameraRequestClient>(client);
-  ranger_ = std::make_unique<StereoRanger>(ranger);
+  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
+                         ReadParams<hwconfig::RoverDescription>(p, "geometry."));
+  ROVER_ASSIGN_OR_RETURN(const VehicleMaskOptions mask,
+                         ReadParams<VehicleMaskOptions>(p, "vehicle_mask."));
+  ranger_ = std::make_unique<StereoRanger>(ranger, VehicleMask(rover, mask));
+  const std::pair<msg::CameraId, std::string> pixel_masks[] = {
+      {msg::CameraId::kFrontHazcam, mask.front_hazcam_pixels},
+      {msg::CameraId::kRearHazcam, mask.rear_hazcam_pixels},
+      {msg::CameraId::kNavcam, mask.navcam_pixels}};
+  for (const auto& [camera, path] : pixel_masks) {
+    if (path.empty()) continue;
+    const std::string key = std::string("vehicle_mask.") + msg::CameraName(camera) + "_pixels";
+    auto pixels = LoadPixelMask(path);
+    if (!pixels.ok()) return pixels.status().WithPrefix(key);
+    ROVER_RETURN_IF_ERROR(ranger_->SetPixelMask(camera, std::move(*pixels)).WithPrefix(key));
+  }
   // Enough dl/pose history to cover a request that takes the whole timeout (>= 8 Hz poses).
   poses_ =
       msg::PoseHistory(static_cast<std::size_t>(std::max(64.0, 50.0 * client.request_timeout_s)));
@@ -165,6 +186,7 @@ Status StereoService::Process(const camera_client::Outstanding& o, const rover_d
              {"camera", msg::CameraName(frame.camera)},
              {"size", std::to_string(image.width) + "x" + std::to_string(image.height)},
              {"valid_fraction", image.valid.empty() ? 0.0 : valid / image.valid.size()},
+             {"vehicle_masked", ranger_->last_masked()},
              {"processing_ms", ranger_->last_timings().total_ms}});
   return Status::Ok();
 }

@@ -16,7 +16,9 @@
 ///                           "rover", the range request's id and camera, the processed size,
 ///                           rover_pose = the dl/pose estimate interpolated at the capture time,
 ///                           XYZ [m] in the rover frame (NaN where invalid), valid (1/0),
-///                           disparity [px of the processed image] (-1 where invalid)
+///                           disparity [px of the processed image] (-1 where invalid);
+///                           points on or behind the rover's own wheels and body (VehicleMask,
+///                           vehicle_mask.*, the rover description geometry.*) are invalid
 ///
 /// Failures never crash the service and never produce a range image with bogus data: a frame
 /// with the wrong camera or size, a byte count that is not width x height, missing, corrupt or

@@ -43,7 +43,7 @@ class RoverSim final : public rover::Service {
   RoverSim() : Service("rover-sim") {}
 
   void DeclareParameters(rover::ParamSet& p) override {
-    rover::sim::SimEngine::DeclareParams(p);
+    rover::sim::rover_sim::SimEngine::DeclareParams(p);
     p.Declare("sim.real_time_factor", 1.0,
               "simulated seconds per wall second; 0 = as fast as possible").Range(0.0, 1000.0);
     p.Declare("sim.start_paused", false, "wait for a SIM_RESUME on sim/control before running");
@@ -68,14 +68,14 @@ class RoverSim final : public rover::Service {
   }
 
   Status OnConfigure(rover::ServiceContext& ctx, const rover::ParamSet& p) override {
-    auto engine = rover::sim::SimEngine::Create(p);
+    auto engine = rover::sim::rover_sim::SimEngine::Create(p);
     if (!engine.ok()) return engine.status();
     engine_ = std::move(*engine);
     rtf_ = p.GetDouble("sim.real_time_factor");
     image_size_ = static_cast<int>(p.GetInt("camera.image_size"));
     render_seed_ = static_cast<std::uint64_t>(p.GetInt("camera.render_seed"));
-    cameras_ = rover::sim::DefaultStereoCameras(image_size_, engine_->rover());
-    terrain_ = std::make_shared<const rover::sim::Terrain>(engine_->world().terrain);
+    cameras_ = rover::sim::render::DefaultStereoCameras(image_size_, engine_->rover());
+    terrain_ = std::make_shared<const rover::sim::terrain::Terrain>(engine_->world().terrain);
     paused_ = p.GetBool("sim.start_paused");
     lockstep_lead_s_ = p.GetDouble("sim.lockstep_lead_s");
     ctx_ = &ctx;
@@ -208,7 +208,7 @@ class RoverSim final : public rover::Service {
     return true;
   }
 
-  void Publish(const rover::sim::StepOutput& o) {
+  void Publish(const rover::sim::rover_sim::StepOutput& o) {
     PublishClock();
     const auto& s = o.sensors;
     if (s.motor_telemetry) {
@@ -340,9 +340,9 @@ class RoverSim final : public rover::Service {
       return;
     }
     if (!renderer_) {
-      rover::sim::RenderOptions o;
+      rover::sim::render::RenderOptions o;
       o.seed = render_seed_;
-      auto r = rover::sim::Renderer::Create(terrain_, o);
+      auto r = rover::sim::render::Renderer::Create(terrain_, o);
       if (!r.ok()) {
         rover::log::Error("cannot render camera images", {{"error", r.status().message()}});
         ctx_->SetHealth(rover_HEALTH_DEGRADED, "cameras unavailable: " + r.status().message());
@@ -353,7 +353,7 @@ class RoverSim final : public rover::Service {
     // The true sun; shadows are recomputed only when it has moved noticeably (0.5 deg).
     const Eigen::Vector3d sun = engine_->SunDirectionSite();
     if (!sun_set_ || std::acos(std::clamp(sun.dot(last_sun_), -1.0, 1.0)) > 0.5 * M_PI / 180) {
-      rover::sim::SunOptions so;
+      rover::sim::render::SunOptions so;
       so.azimuth_deg = std::atan2(sun.y(), sun.x()) * 180.0 / M_PI;
       // Below the horizon the cameras would see nothing; light the scene from just above it.
       so.elevation_deg = std::max(2.0, std::asin(std::clamp(sun.z(), -1.0, 1.0)) * 180.0 / M_PI);
@@ -362,19 +362,19 @@ class RoverSim final : public rover::Service {
         sun_set_ = true;
       }
     }
-    auto def = rover::sim::FindStereoCamera(cameras_, name);
+    auto def = rover::sim::render::FindStereoCamera(cameras_, name);
     if (!def.ok()) return;
     const auto readings = engine_->physics().Readings();
-    rover::sim::MastState mast{readings.joint_angle_rad[rover::hw::kMastPan],
+    rover::sim::render::MastState mast{readings.joint_angle_rad[rover::hw::kMastPan],
                                readings.joint_angle_rad[rover::hw::kMastTilt]};
-    auto spec = rover::sim::MakeCameraPairSpec(*def, mast, engine_->rover().mast);
+    auto spec = rover::sim::render::MakeCameraPairSpec(*def, mast, engine_->rover().mast);
     if (!spec.ok()) {
       rover::log::Error("camera pair", {{"error", spec.status().message()}});
       return;
     }
     // Exposure: the sensor model's relative exposure 1 (radiance 1 fills the well) is
     // kExposureUnitUs of integration time; exposure_us 0 asks for auto-exposure.
-    rover::sim::SensorOptions sensor = renderer_->options().sensor;
+    rover::sim::render::SensorOptions sensor = renderer_->options().sensor;
     sensor.auto_exposure = req.exposure_us == 0;
     if (req.exposure_us != 0) sensor.exposure = req.exposure_us / kExposureUnitUs;
     if (auto st = renderer_->SetSensor(sensor); !st.ok()) {
@@ -409,12 +409,12 @@ class RoverSim final : public rover::Service {
                                      {"sim_time", engine_->time()}});
   }
 
-  std::unique_ptr<rover::sim::SimEngine> engine_;
+  std::unique_ptr<rover::sim::rover_sim::SimEngine> engine_;
   double lockstep_lead_s_ = 0.0;
   std::map<std::string, AckState> acks_;
-  std::shared_ptr<const rover::sim::Terrain> terrain_;
-  std::unique_ptr<rover::sim::Renderer> renderer_;
-  std::vector<rover::sim::StereoCameraDefinition> cameras_;
+  std::shared_ptr<const rover::sim::terrain::Terrain> terrain_;
+  std::unique_ptr<rover::sim::render::Renderer> renderer_;
+  std::vector<rover::sim::render::StereoCameraDefinition> cameras_;
   int image_size_ = 1024;
   std::uint64_t render_seed_ = 1;
   std::uint64_t frames_ = 0;

@@ -30,17 +30,17 @@ double MaxPixelDifference(const rover::geometry::CameraModel& a,
 }
 
 TEST(CameraConsistencyTest, DriverCalibrationEqualsSimulatedCameras) {
-  auto calibration =
-      rover::ddl::LoadCameraCalibration(rover::testing::SourceDir() + "/deploy/config/cameras.yaml");
+  auto calibration = rover::ddl::camera::LoadCameraCalibration(rover::testing::SourceDir() +
+                                                               "/deploy/config/cameras.yaml");
   ASSERT_TRUE(calibration.ok()) << calibration.status().message();
-  const auto sim_cameras = rover::sim::DefaultStereoCameras(1024);
+  const auto sim_cameras = rover::sim::render::DefaultStereoCameras(1024);
   ASSERT_EQ(calibration->cameras.size(), sim_cameras.size());
   for (const auto& cal : calibration->cameras) {
     SCOPED_TRACE(cal.name);
-    auto sim = rover::sim::FindStereoCamera(sim_cameras, cal.name);
+    auto sim = rover::sim::render::FindStereoCamera(sim_cameras, cal.name);
     ASSERT_TRUE(sim.ok()) << sim.status().message();
-    EXPECT_EQ(cal.mount == rover::ddl::CameraMount::kMastHead,
-              sim->mount == rover::sim::CameraMount::kMastHead);
+    EXPECT_EQ(cal.mount == rover::ddl::camera::CameraMount::kMastHead,
+              sim->mount == rover::sim::render::CameraMount::kMastHead);
     EXPECT_EQ(cal.left.width(), sim->left.width());
     EXPECT_EQ(cal.left.height(), sim->left.height());
     EXPECT_LT(MaxPixelDifference(cal.left, sim->left), 1e-3);

@@ -29,14 +29,14 @@ using hwconfig::RoverDescription;
 constexpr double kTol = 1e-9;  // [m] / [rad]: the same numbers, up to rounding
 
 // The simulator as rover-sim builds it: its parameters with defaults, on a small flat world.
-std::unique_ptr<sim::SimEngine> SimulatorAsDeployed() {
+std::unique_ptr<sim::rover_sim::SimEngine> SimulatorAsDeployed() {
   ParamSet p("rover-sim");
-  sim::SimEngine::DeclareParams(p);
+  sim::rover_sim::SimEngine::DeclareParams(p);
   const char* world =
       "terrain: {size_x: 10, size_y: 10, resolution: 0.05, seed: 3, hills: {amplitude: 0},"
       " craters: {count: 0}, rocks: {preset: none}}\n";
   EXPECT_TRUE(p.LoadYamlSections(world, "world.yaml", {"terrain"}).ok());
-  auto e = sim::SimEngine::Create(p);
+  auto e = sim::rover_sim::SimEngine::Create(p);
   EXPECT_TRUE(e.ok()) << e.status().message();
   return e.ok() ? std::move(*e) : nullptr;
 }
@@ -45,18 +45,18 @@ std::unique_ptr<sim::SimEngine> SimulatorAsDeployed() {
 // DeclareRoverGeometryParams, the application layer through DeclareParams).
 RoverDescription StackDescription() {
   ParamSet p("dl-locomotion");
-  dl::DeclareRoverGeometryParams(p, "geometry.");
+  dl::locomotion::DeclareRoverGeometryParams(p, "geometry.");
   auto d = ReadParams<RoverDescription>(p, "geometry.");
   EXPECT_TRUE(d.ok()) << d.status().message();
   return d.ok() ? *d : RoverDescription{};
 }
 
-dl::RoverGeometry StackKinematics() {
+dl::locomotion::RoverGeometry StackKinematics() {
   ParamSet p("dl-locomotion");
-  dl::DeclareRoverGeometryParams(p, "geometry.");
-  auto g = dl::RoverGeometryFromParams(p, "geometry.");
+  dl::locomotion::DeclareRoverGeometryParams(p, "geometry.");
+  auto g = dl::locomotion::RoverGeometryFromParams(p, "geometry.");
   EXPECT_TRUE(g.ok()) << g.status().message();
-  return g.ok() ? *g : dl::RoverGeometry{};
+  return g.ok() ? *g : dl::locomotion::RoverGeometry{};
 }
 
 void ExpectSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const char* what) {
@@ -75,11 +75,11 @@ class RoverDescriptionConsistency : public ::testing::Test {
     stack_ = StackDescription();
     kinematics_ = StackKinematics();
   }
-  const sim::RoverSimulation& physics() const { return engine_->physics(); }
+  const sim::physics::RoverSimulation& physics() const { return engine_->physics(); }
 
-  std::unique_ptr<sim::SimEngine> engine_;
+  std::unique_ptr<sim::rover_sim::SimEngine> engine_;
   RoverDescription stack_;
-  dl::RoverGeometry kinematics_;
+  dl::locomotion::RoverGeometry kinematics_;
 };
 
 TEST_F(RoverDescriptionConsistency, SimulatorReadsTheSameParameters) {
@@ -96,7 +96,7 @@ TEST_F(RoverDescriptionConsistency, SimulatorReadsTheSameParameters) {
 }
 
 TEST_F(RoverDescriptionConsistency, WheelsPivotsAndSteeringAxesAtZeroAngles) {
-  const sim::ModelGeometry m = physics().PoseModel({});
+  const sim::physics::ModelGeometry m = physics().PoseModel({});
   for (int w = 0; w < hwconfig::kNumWheels; ++w) {
     SCOPED_TRACE(hwconfig::WheelName(w));
     const Eigen::Isometry3d& wheel = m.bodies.wheels[static_cast<std::size_t>(w)];
@@ -129,11 +129,11 @@ TEST_F(RoverDescriptionConsistency, WheelsPivotsAndSteeringAxesAtZeroAngles) {
 
 TEST_F(RoverDescriptionConsistency, SuspensionKinematicsAndSignsAgree) {
   // Left rocker front up, right rocker down (the differential), bogies either way.
-  sim::ModelJointAngles q;
+  sim::physics::ModelJointAngles q;
   q.rocker = {0.12, -0.12};
   q.bogie = {0.2, -0.07};
-  const sim::ModelGeometry m = physics().PoseModel(q);
-  dl::SuspensionAngles s;
+  const sim::physics::ModelGeometry m = physics().PoseModel(q);
+  dl::locomotion::SuspensionAngles s;
   s.rocker = q.rocker;
   s.bogie = q.bogie;
   for (int w = 0; w < hwconfig::kNumWheels; ++w) {
@@ -143,7 +143,8 @@ TEST_F(RoverDescriptionConsistency, SuspensionKinematicsAndSignsAgree) {
         << kinematics_.WheelCentre(w, s).transpose();
     // The link pitch the stack assumes is the wheel frame's pitch in the model (front up > 0).
     const Eigen::Vector3d forward = m.bodies.wheels[static_cast<std::size_t>(w)].linear().col(0);
-    EXPECT_NEAR(std::atan2(forward.z(), forward.x()), dl::RoverGeometry::LinkPitch(w, s), kTol)
+    EXPECT_NEAR(std::atan2(forward.z(), forward.x()),
+                dl::locomotion::RoverGeometry::LinkPitch(w, s), kTol)
         << hwconfig::WheelName(w);
   }
   // + raises the front: the left front wheel goes up, the left bogie pivot down.
@@ -152,9 +153,9 @@ TEST_F(RoverDescriptionConsistency, SuspensionKinematicsAndSignsAgree) {
 }
 
 TEST_F(RoverDescriptionConsistency, SteeringTurnsTheWheelFrontLeftAboutItsCentre) {
-  sim::ModelJointAngles q;
+  sim::physics::ModelJointAngles q;
   q.steer = {0.5, -0.3, 0.2, -0.9};
-  const sim::ModelGeometry m = physics().PoseModel(q);
+  const sim::physics::ModelGeometry m = physics().PoseModel(q);
   for (int j = 0; j < hwconfig::kNumSteered; ++j) {
     const int w = hwconfig::kSteeredWheel[static_cast<std::size_t>(j)];
     const Eigen::Isometry3d& wheel = m.bodies.wheels[static_cast<std::size_t>(w)];
@@ -168,22 +169,23 @@ TEST_F(RoverDescriptionConsistency, SteeringTurnsTheWheelFrontLeftAboutItsCentre
 TEST_F(RoverDescriptionConsistency, MastHeadAndCameraMounts) {
   for (const auto& [pan, tilt] :
        {std::pair{0.0, 0.0}, std::pair{0.7, -0.4}, std::pair{-2.0, 0.9}}) {
-    sim::ModelJointAngles q;
+    sim::physics::ModelJointAngles q;
     q.pan = pan;
     q.tilt = tilt;
-    const sim::ModelGeometry m = physics().PoseModel(q);
+    const sim::physics::ModelGeometry m = physics().PoseModel(q);
     ExpectSamePose(m.cameras.mast_head_chassis, stack_.mast.HeadPose(pan, tilt), "mast head");
     // The renderer's mast kinematics (rover-sim renders the NAVCAM with them).
-    ExpectSamePose(sim::MastHeadPose(sim::MastState{pan, tilt}, engine_->rover().mast),
-                   stack_.mast.HeadPose(pan, tilt), "rendered mast head");
+    ExpectSamePose(
+        sim::render::MastHeadPose(sim::render::MastState{pan, tilt}, engine_->rover().mast),
+        stack_.mast.HeadPose(pan, tilt), "rendered mast head");
   }
-  const sim::ModelGeometry m = physics().PoseModel({});
+  const sim::physics::ModelGeometry m = physics().PoseModel({});
   ExpectSamePose(m.cameras.hazcam_front_chassis, stack_.front_hazcam.Pose(), "front HAZCAM");
   ExpectSamePose(m.cameras.hazcam_rear_chassis, stack_.rear_hazcam.Pose(), "rear HAZCAM");
 }
 
 TEST_F(RoverDescriptionConsistency, BellyIsTheBodyBox) {
-  const sim::ModelGeometry m = physics().PoseModel({});
+  const sim::physics::ModelGeometry m = physics().PoseModel({});
   ASSERT_FALSE(m.belly_points.empty());
   const Eigen::Vector3d lo = stack_.body_centre - 0.5 * stack_.body_size;
   const Eigen::Vector3d hi = stack_.body_centre + 0.5 * stack_.body_size;
@@ -210,20 +212,21 @@ TEST_F(RoverDescriptionConsistency, BellyIsTheBodyBox) {
 TEST_F(RoverDescriptionConsistency, CamerasAreMountedWhereTheDescriptionSays) {
   // Rendered cameras (what rover-sim renders with) and the camera driver's calibration file
   // (what ddl-camera attaches): optical centres and boresights on the described mounts.
-  auto file = ddl::LoadCameraCalibration(testing::SourceDir() + "/deploy/config/cameras.yaml");
+  auto file =
+      ddl::camera::LoadCameraCalibration(testing::SourceDir() + "/deploy/config/cameras.yaml");
   ASSERT_TRUE(file.ok()) << file.status().message();
   EXPECT_LT((file->mast.pan_joint - stack_.mast.pan_joint).norm(), kTol);
   EXPECT_NEAR(file->mast.head_height, stack_.mast.head_height, kTol);
-  const auto rendered = sim::DefaultStereoCameras(1024, engine_->rover());
+  const auto rendered = sim::render::DefaultStereoCameras(1024, engine_->rover());
   const std::pair<const char*, const hwconfig::StereoMount*> mounts[] = {
       {"navcam", &stack_.navcam},
       {"front_hazcam", &stack_.front_hazcam},
       {"rear_hazcam", &stack_.rear_hazcam}};
   for (const auto& [name, mount] : mounts) {
     SCOPED_TRACE(name);
-    auto sim_pair = sim::FindStereoCamera(rendered, name);
+    auto sim_pair = sim::render::FindStereoCamera(rendered, name);
     ASSERT_TRUE(sim_pair.ok());
-    const ddl::StereoCameraCalibration* cal = nullptr;
+    const ddl::camera::StereoCameraCalibration* cal = nullptr;
     for (const auto& c : file->cameras) {
       if (c.name == name) cal = &c;
     }

@@ -38,24 +38,25 @@ struct Pair {
 class VoOnSimImagesTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    sim::TerrainParams p;
+    sim::terrain::TerrainParams p;
     p.size_x = 30;
     p.size_y = 16;
     p.center_x = 8;
     p.slope.angle_deg = 15;
     p.hills.amplitude = 0;
     p.craters.count = 0;
-    p.rocks.preset = sim::RockPreset::kNone;
+    p.rocks.preset = sim::terrain::RockPreset::kNone;
     p.soil.sand_fraction = 1.0;
     p.soil.bedrock_fraction = 0.0;
     p.seed = 1;
-    auto t = sim::GenerateTerrain(p);
+    auto t = sim::terrain::GenerateTerrain(p);
     ASSERT_TRUE(t.ok()) << t.status().message();
-    terrain_ = std::make_shared<sim::Terrain>(std::move(*t));
-    auto r = sim::Renderer::Create(terrain_, sim::RenderOptions{});
+    terrain_ = std::make_shared<sim::terrain::Terrain>(std::move(*t));
+    auto r = sim::render::Renderer::Create(terrain_, sim::render::RenderOptions{});
     if (!r.ok()) GTEST_SKIP() << "no EGL renderer: " << r.status().message();
     renderer_ = std::move(*r);
-    auto cal = ddl::LoadCameraCalibration(testing::SourceDir() + "/deploy/config/cameras.yaml");
+    auto cal =
+        ddl::camera::LoadCameraCalibration(testing::SourceDir() + "/deploy/config/cameras.yaml");
     ASSERT_TRUE(cal.ok()) << cal.status().message();
     calibration_ = *cal;
   }
@@ -63,9 +64,10 @@ class VoOnSimImagesTest : public ::testing::Test {
   // The pair the driver would publish at `site_from_rover`: rendered at 1024, area-averaged to
   // kWidth.
   Pair Capture(const Eigen::Isometry3d& site_from_rover, std::uint64_t frame) {
-    auto def = sim::FindStereoCamera(sim::DefaultStereoCameras(1024), "front_hazcam");
+    auto def =
+        sim::render::FindStereoCamera(sim::render::DefaultStereoCameras(1024), "front_hazcam");
     EXPECT_TRUE(def.ok());
-    auto spec = sim::MakeCameraPairSpec(*def, {});
+    auto spec = sim::render::MakeCameraPairSpec(*def, {});
     EXPECT_TRUE(spec.ok());
     auto images = renderer_->RenderStereoPair(site_from_rover, *spec, frame);
     EXPECT_TRUE(images.ok()) << images.status().message();
@@ -75,9 +77,9 @@ class VoOnSimImagesTest : public ::testing::Test {
     return out;
   }
 
-  std::shared_ptr<sim::Terrain> terrain_;
-  std::unique_ptr<sim::Renderer> renderer_;
-  ddl::CameraCalibration calibration_;
+  std::shared_ptr<sim::terrain::Terrain> terrain_;
+  std::unique_ptr<sim::render::Renderer> renderer_;
+  ddl::camera::CameraCalibration calibration_;
 };
 
 TEST_F(VoOnSimImagesTest, HazcamStepUpTheSandSlopeMatchesTruth) {
@@ -90,9 +92,9 @@ TEST_F(VoOnSimImagesTest, HazcamStepUpTheSandSlopeMatchesTruth) {
   dl::vo::StereoCamera cam;
   cv::Mat rl, rr;
 
-  const Eigen::Isometry3d a = sim::RoverPoseOnGround(terrain_->ground, 1.0, 0.0, 0.0);
+  const Eigen::Isometry3d a = sim::render::RoverPoseOnGround(terrain_->ground, 1.0, 0.0, 0.0);
   const Eigen::Isometry3d b =
-      sim::RoverPoseOnGround(terrain_->ground, 1.0 + StepFromEnv(), 0.005, 0.01);
+      sim::render::RoverPoseOnGround(terrain_->ground, 1.0 + StepFromEnv(), 0.005, 0.01);
   const Pair pa = Capture(a, 1);
   const Pair pb = Capture(b, 2);
 

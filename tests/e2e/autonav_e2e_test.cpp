@@ -12,15 +12,12 @@
 #include <string>
 
 #include "rover/base/process.hpp"
+#include "rover/testing/roverctl_runner.hpp"
 #include "rover/testing/test_support.hpp"
 
 namespace rover {
 namespace {
 namespace fs = std::filesystem;
-
-// Every process this test's roverctl starts inherits this variable with a value unique to the
-// test, so the clean-up kills only what this test started.
-constexpr const char* kMarkVariable = "ROVER_E2E_TEST_RUN";
 
 // The criterion `name` of result.json's "criteria", or null.
 nlohmann::json Criterion(const nlohmann::json& result, const std::string& name) {
@@ -33,21 +30,12 @@ nlohmann::json Criterion(const nlohmann::json& result, const std::string& name) 
 TEST(AutonavE2e, ShortAutonavReachesItsGoalWithoutFaultOrHazardContact) {
   testing::UseLoopbackDds();
   const std::string dir = testing::MakeTempDir("autonav-e2e");
-  const std::string mark = std::to_string(getpid()) + "-" + dir;
-  const std::string log = dir + "/roverctl.log";
-  SpawnOptions o;
-  o.argv = {testing::BinDir() + "/roverctl", "run",
-            testing::SourceDir() + "/tests/e2e/scenarios/short_autonav.yaml", "--out",
-            dir + "/out"};
-  o.env[kMarkVariable] = mark;
-  o.stdout_path = log;
-  o.stderr_path = log;
-  auto p = Process::Spawn(o);
-  ASSERT_TRUE(p.ok()) << p.status().message();
-  auto e = p->WaitFor(std::chrono::minutes(8));
-  if (!e) e = p->Terminate(std::chrono::seconds(10));
-  for (pid_t pid : ProcessesWithEnvironment(kMarkVariable, mark)) kill(pid, SIGKILL);
-  const std::string out = testing::ReadFile(log);
+  testing::RoverctlRunner roverctl(dir);
+  const auto [e, out] =
+      roverctl.Run({"run", testing::SourceDir() + "/tests/e2e/scenarios/short_autonav.yaml",
+                    "--out", dir + "/out"},
+                   std::chrono::minutes(8));
+  roverctl.KillLeftovers();
 
   const std::string result_path = dir + "/out/short-autonav-seed1/result.json";
   ASSERT_TRUE(fs::exists(result_path)) << out;
@@ -70,7 +58,7 @@ TEST(AutonavE2e, ShortAutonavReachesItsGoalWithoutFaultOrHazardContact) {
   EXPECT_TRUE(contacts["pass"].get<bool>());
 
   EXPECT_TRUE(result["pass"].get<bool>()) << result.value("failure", "") << "\n" << out;
-  EXPECT_EQ(e->code, 0) << out;
+  EXPECT_EQ(e.code, 0) << out;
 
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);

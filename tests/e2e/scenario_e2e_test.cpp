@@ -6,67 +6,49 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "rover/base/process.hpp"
 #include "rover/deploy/run_report.hpp"
+#include "rover/testing/roverctl_runner.hpp"
 #include "rover/testing/test_support.hpp"
 
 namespace rover {
 namespace {
 namespace fs = std::filesystem;
 
-// Every process a test's roverctl starts (and everything those start) inherits this variable from
-// it, with a value unique to the test: the clean-up kills only what this test started, never
-// another engineer's run of the same scenario on this machine.
-constexpr const char* kMarkVariable = "ROVER_E2E_TEST_RUN";
-
 class ScenarioE2e : public ::testing::Test {
  protected:
   void SetUp() override {
     testing::UseLoopbackDds();  // roverctl inherits it, whatever the shell exported
     dir_ = testing::MakeTempDir("scenario-e2e");
-    mark_ = std::to_string(getpid()) + "-" + dir_;
+    roverctl_.emplace(dir_);
   }
   void TearDown() override {
     KillLeftovers();
     std::error_code ec;
     fs::remove_all(dir_, ec);
   }
-  // The processes this test's runs started that are still alive.
-  std::vector<pid_t> Leftovers() const { return ProcessesWithEnvironment(kMarkVariable, mark_); }
-  // Whatever this test's runs left behind.
-  void KillLeftovers() {
-    for (pid_t pid : Leftovers()) kill(pid, SIGKILL);
-  }
+  // What this test's runs started and left behind (testing::RoverctlRunner).
+  std::vector<pid_t> Leftovers() const { return roverctl_->Leftovers(); }
+  void KillLeftovers() { roverctl_->KillLeftovers(); }
   std::string Scenario(const std::string& name) {
     return testing::SourceDir() + "/tests/e2e/scenarios/" + name;
   }
   Process Start(const std::vector<std::string>& args, const std::string& log) {
-    SpawnOptions o;
-    o.argv = {testing::BinDir() + "/roverctl"};
-    o.argv.insert(o.argv.end(), args.begin(), args.end());
-    o.env[kMarkVariable] = mark_;
-    o.stdout_path = log;
-    o.stderr_path = log;
-    auto p = Process::Spawn(o);
-    EXPECT_TRUE(p.ok()) << p.status().message();
+    auto p = roverctl_->Start(args, log);
     return std::move(*p);
   }
   std::pair<ExitInfo, std::string> Run(const std::vector<std::string>& args) {
-    const std::string log = dir_ + "/roverctl-" + std::to_string(n_++) + ".log";
-    Process p = Start(args, log);
-    auto e = p.WaitFor(std::chrono::minutes(10));
-    if (!e) e = p.Terminate(std::chrono::seconds(10));
-    return {*e, testing::ReadFile(log)};
+    return roverctl_->Run(args);
   }
   static nlohmann::json Json(const std::string& path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in);
   }
   std::string dir_;
-  std::string mark_;
-  int n_ = 0;
+  std::optional<testing::RoverctlRunner> roverctl_;
 };
 
 TEST_F(ScenarioE2e, PassingAndDeliberatelyFailingScenarios) {

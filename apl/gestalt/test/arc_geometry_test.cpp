@@ -44,7 +44,7 @@ ArcProjection SampledProjection(const ArcPath& path, const Eigen::Vector2d& p) {
 }
 
 TEST(ProjectOntoArc, MatchesDenseSampling) {
-  sim::Rng rng(21);
+  sim::terrain::Rng rng(21);
   for (double k : {-2.0, -1.0, -0.3, 0.0, 0.45, 1.0}) {
     for (int dir : {1, -1}) {
       const ArcPath path{k, dir, 0.3, 3.0};

@@ -32,7 +32,7 @@ TEST(DiscSpans, MersRoverDiscHas137Cells) {
 }
 
 Grid<double> RandomGrid(int w, int h, std::uint64_t seed) {
-  sim::Rng rng(seed);
+  sim::terrain::Rng rng(seed);
   Grid<double> g(w, h);
   for (auto& v : g.cells()) v = rng.Uniform(-1.0, 1.0);
   return g;
@@ -71,7 +71,7 @@ TEST(RowPrefix, SumsMoments) {
 }
 
 Grid<std::int16_t> RandomGoodness(int w, int h, std::uint64_t seed) {
-  sim::Rng rng(seed);
+  sim::terrain::Rng rng(seed);
   Grid<std::int16_t> g(w, h);
   for (auto& v : g.cells()) {
     v = rng.Uniform() < 0.2 ? std::int16_t{-1} : static_cast<std::int16_t>(rng.UniformInt(256));

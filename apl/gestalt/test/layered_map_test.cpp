@@ -21,7 +21,7 @@ Grid<std::int16_t> Blob(int n, int ci, int cj, int radius) {
 }
 
 TEST(LayeredGoodness, OneScanIntoAnEmptyMapIsTheScan) {
-  sim::Rng rng(9);
+  sim::terrain::Rng rng(9);
   Grid<std::int16_t> fresh(40, 40, kAbsent);
   for (auto& v : fresh.cells()) {
     const double u = rng.Uniform();

@@ -15,7 +15,7 @@ namespace {
 // centred at (cx, cy).
 std::vector<Eigen::Vector3d> NoisyPlane(double a, double b, double c, double sigma, double cx,
                                         double cy, double size, int n, std::uint64_t seed) {
-  sim::Rng rng(seed);
+  sim::terrain::Rng rng(seed);
   std::vector<Eigen::Vector3d> pts;
   for (int k = 0; k < n; ++k) {
     const double x = cx + rng.Uniform(-0.5, 0.5) * size, y = cy + rng.Uniform(-0.5, 0.5) * size;
@@ -105,13 +105,13 @@ TEST(PlaneFit, ResidualIsTheRmsDistanceAlongTheNormal) {
 
 TEST(PlaneFit, EigenRatioRejectsPointsThatAreNotAPlane) {
   // A thin rod of points: the second eigenvalue is as small as the first.
-  sim::Rng rod_rng(4);
+  sim::terrain::Rng rod_rng(4);
   Moments line;
   for (int k = 0; k < 200; ++k)
     line.Add(0.01 * k, 0.002 * rod_rng.Normal(), 0.002 * rod_rng.Normal());
   EXPECT_FALSE(FitPlane(line, 2.0).planar);
   // A cube of points: all three eigenvalues equal.
-  sim::Rng rng(5);
+  sim::terrain::Rng rng(5);
   Moments cube;
   for (int k = 0; k < 500; ++k) cube.Add(rng.Uniform(), rng.Uniform(), rng.Uniform());
   const PlaneFit f = FitPlane(cube, 2.0);

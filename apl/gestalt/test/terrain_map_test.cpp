@@ -26,7 +26,8 @@ TerrainMap Make(const GestaltOptions& o = {}) {
   return std::move(m).value();
 }
 
-RangeScan Look(const sim::Terrain& world, double x, double y, double yaw, std::uint64_t seed = 1) {
+RangeScan Look(const sim::terrain::Terrain& world, double x, double y, double yaw,
+               std::uint64_t seed = 1) {
   PinholeCamera cam = FrontHazcam();
   cam.noise_at_1m = 0.002;
   cam.seed = seed;
@@ -48,7 +49,7 @@ TEST(TerrainMap, CreateValidatesOptions) {
 }
 
 TEST(TerrainMap, MalformedScansAreRejectedAndChangeNothing) {
-  const sim::Terrain world = FlatWorld(14.0);
+  const sim::terrain::Terrain world = FlatWorld(14.0);
   TerrainMap m = Make();
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
   const std::uint64_t rev = m.goodness_map().revision;
@@ -71,7 +72,7 @@ TEST(TerrainMap, MalformedScansAreRejectedAndChangeNothing) {
 }
 
 TEST(TerrainMap, FlatGroundIsPerfectAndTheRestUnknown) {
-  const sim::Terrain world = FlatWorld(14.0);
+  const sim::terrain::Terrain world = FlatWorld(14.0);
   TerrainMap m = Make();
   auto s = m.Update(Look(world, 0, 0, 0));
   ASSERT_TRUE(s.ok());
@@ -107,7 +108,7 @@ TEST(TerrainMap, FlatGroundIsPerfectAndTheRestUnknown) {
 
 // Flat ground with a 0.3 m rock 2.5 m ahead, seen once.
 struct OneRock {
-  sim::Terrain world = FlatWorld(14.0);
+  sim::terrain::Terrain world = FlatWorld(14.0);
   TerrainMap map = Make();
   OneRock() {
     AddRock(&world, 2.5, 0.0, 0.5, 0.3);
@@ -131,7 +132,7 @@ TEST(TerrainMap, ARockIsAnObstacleBlobTheSizeOfTheRoverDisc) {
 }
 
 TEST(TerrainMap, TallThinRocksAreFoundThroughTheCellSpread) {
-  sim::Terrain world = FlatWorld(14.0);
+  sim::terrain::Terrain world = FlatWorld(14.0);
   AddRock(&world, 2.2, 0.3, 0.09, 0.32, 0.05);  // a 9 cm wide, 32 cm tall flat-topped post
   GestaltOptions mean_only;
   mean_only.step_sigma_k = 0.0;
@@ -148,7 +149,7 @@ TEST(TerrainMap, StepEstimateTracksRockHeight) {
   // Round rocks twice as wide as tall, 2.5 m ahead. Cell means alone read a rock low (its cells
   // average its flanks with its top); mean + 1 sigma reads it within a few centimetres.
   for (double h : {0.10, 0.15, 0.20, 0.25, 0.30}) {
-    sim::Terrain world = FlatWorld(14.0);
+    sim::terrain::Terrain world = FlatWorld(14.0);
     AddRock(&world, 2.5, 0.0, 2.0 * h, h);
     GestaltOptions mean_only;
     mean_only.step_sigma_k = 0.0;
@@ -165,7 +166,7 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
   // A hill rising at 13 deg from 2 m ahead of the rover, seen by the HAZCAM. Searching for steps
   // anywhere in the 2.6 m rover disc (MER's first flight software) finds the flat-to-hill bend
   // an obstacle in front of the hill; the belly-sized disc does not, so the rover can climb.
-  sim::Terrain world = FlatWorld(14.0);
+  sim::terrain::Terrain world = FlatWorld(14.0);
   const double s = std::tan(13.0 * kDeg);
   for (int j = 0; j < world.bare.ny(); ++j) {
     for (int i = 0; i < world.bare.nx(); ++i) {
@@ -173,7 +174,7 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
       world.bare.at(i, j) = static_cast<float>(s * std::clamp(x - 2.0, 0.0, 2.5));
     }
   }
-  sim::RebuildHeights(&world);
+  sim::terrain::RebuildHeights(&world);
   GestaltOptions whole;
   whole.step_disc_diameter = whole.rover_disc_diameter;
   TerrainMap old_way = Make(whole), belly = Make();
@@ -205,12 +206,12 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
 
 TEST(TerrainMap, NewDataOverridesOld) {
   OneRock scene;
-  sim::Terrain& world = scene.world;
+  sim::terrain::Terrain& world = scene.world;
   TerrainMap& m = scene.map;
   ASSERT_EQ(At(m, 2.5, 0.0).goodness, 0);
   // The "rock" was a stereo artefact (or a pose error): the next look shows flat ground.
   world.rocks.clear();
-  sim::RebuildHeights(&world);
+  sim::terrain::RebuildHeights(&world);
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0, 2)).ok());
   EXPECT_EQ(At(m, 2.5, 0.0).goodness, 255);
 }
@@ -218,7 +219,7 @@ TEST(TerrainMap, NewDataOverridesOld) {
 TEST(TerrainMap, UpdatesAreIncremental) {
   // After two overlapping scans, every cell's stored assessment equals a fresh assessment of the
   // final moment grid: the cells the second scan did not reach kept valid results.
-  const sim::Terrain world = testing::RockField("vl1", 8, 20.0);
+  const sim::terrain::Terrain world = testing::RockField("vl1", 8, 20.0);
   GestaltOptions o;
   o.num_layers = 1;
   TerrainMap m = Make(o);
@@ -254,7 +255,7 @@ TEST(TerrainMap, UpdatesAreIncremental) {
 }
 
 TEST(TerrainMap, FollowRecentresAndForgetsFarData) {
-  const sim::Terrain world = FlatWorld(30.0);
+  const sim::terrain::Terrain world = FlatWorld(30.0);
   TerrainMap m = Make();
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
   ASSERT_TRUE(At(m, 2.5, 0.0).known());
@@ -270,7 +271,7 @@ TEST(TerrainMap, FollowRecentresAndForgetsFarData) {
 TEST(TerrainMap, PartialViewsAtTheFovEdgeAreMergedConservatively) {
   // A small tall rock inside one cell, seen whole; then the rover turns right until the left
   // edge of the image cuts through that cell and only a sliver of the rock is in view.
-  sim::Terrain world = FlatWorld(14.0);
+  sim::terrain::Terrain world = FlatWorld(14.0);
   AddRock(&world, 2.1, 0.1, 0.18, 0.3, 0.3);
   const double yaw = -48.0 * kDeg;
   GestaltOptions overwrite;  // no FOV-edge handling: new data always replaces old
@@ -301,7 +302,7 @@ TEST(TerrainMap, PartialViewsAtTheFovEdgeAreMergedConservatively) {
 TEST(TerrainMap, LayersRememberAnObstacleThatLeftTheView) {
   // MER's per-image assessment (discs fitted to the latest scan only): after the rover turns
   // away, partial discs near the edge of the new view rate the rock's surroundings safe.
-  sim::Terrain world = FlatWorld(14.0);
+  sim::terrain::Terrain world = FlatWorld(14.0);
   AddRock(&world, 2.0, 0.8, 0.5, 0.3);
   GestaltOptions single;
   single.fit_from_scan_only = true;
@@ -340,7 +341,7 @@ TEST(TerrainMap, LayersRememberAnObstacleThatLeftTheView) {
 }
 
 TEST(TerrainMap, SkipImagingOnceTheMapCoversEveryPath) {
-  sim::Terrain world = FlatWorld(20.0);
+  sim::terrain::Terrain world = FlatWorld(20.0);
   auto evaluator = ArcEvaluator::Create(GestaltOptions{});
   ASSERT_TRUE(evaluator.ok());
   auto request_at = [&](double x) {
@@ -385,7 +386,7 @@ TEST(TerrainMap, MarksTheHazardsItSawAndFewCellsWithoutCause) {
   };
   for (const char* preset : {"vl1", "vl2"}) {
     for (std::uint64_t seed : {1u, 2u, 3u}) {
-      const sim::Terrain world = testing::RockField(preset, seed, 24.0);
+      const sim::terrain::Terrain world = testing::RockField(preset, seed, 24.0);
       TerrainMap m = Make(o);
       // A hazard counts as seen when its own cell holds a few points (a rock glimpsed past the
       // edge of a view is not assessed yet; later views will). An obstacle cell is explained
@@ -393,7 +394,7 @@ TEST(TerrainMap, MarksTheHazardsItSawAndFewCellsWithoutCause) {
       // the limit may read just over it), or, strictly, of at least max_step.
       testing::TruthCheckOptions lenient, strict;
       lenient.excuse_height = 0.15;
-      lenient.seen = [&m](const sim::Rock& rock) {
+      lenient.seen = [&m](const sim::terrain::Rock& rock) {
         int i = 0, j = 0;
         m.goodness_map().CellOf(rock.position.x(), rock.position.y(), &i, &j);
         return m.moments().Contains(i, j) && m.moments().at(i, j).n >= 5.0;

@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const g::GestaltOptions options;
-  const rover::sim::Terrain world = g::testing::RockField(preset.c_str(), seed, 24.0);
+  const rover::sim::terrain::Terrain world = g::testing::RockField(preset.c_str(), seed, 24.0);
   g::testing::PinholeCamera cam = g::testing::FrontHazcam();
   cam.noise_at_1m = noise;
   const Eigen::Isometry3d pose0 = g::testing::RoverPose(world.natural, 0.0, 0.0, 0.0);

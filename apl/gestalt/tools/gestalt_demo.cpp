@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   }
   g::TerrainMap& map = *map_or;
   const g::ArcEvaluator& evaluator = *eval_or;
-  const rover::sim::Terrain world =
+  const rover::sim::terrain::Terrain world =
       flat ? g::testing::FlatWorld(2.0 * goal_x + 12.0)
            : g::testing::RockField(preset.c_str(), seed, 2.0 * goal_x + 12.0);
   g::testing::PinholeCamera cam = g::testing::FrontHazcam();

@@ -137,7 +137,7 @@ Status MobilityManager::ValidateCommand(const MobilityCommand& c) const {
   if (ModeHasPrimitives(c.mode)) {
     if (c.primitives.empty() || c.primitives.size() > 32) {
       return InvalidArgument("primitives: " + std::to_string(c.primitives.size()) +
-                             " given (mode " + ModeName(c.mode) + " needs 1..32)");
+                             " given (mode " + msg::MobilityModeName(c.mode) + " needs 1..32)");
     }
     for (std::size_t i = 0; i < c.primitives.size(); ++i) {
       const Primitive& p = c.primitives[i];
@@ -216,7 +216,7 @@ MobilityOutput MobilityManager::OnCommand(const MobilityCommand& c, Time now) {
   if (run_) {
     Reject(c, now, Fault::kBusy,
            "command " + std::to_string(run_->command.command_id) + " (" +
-               ModeName(run_->command.mode) + ") is running; send STOP first",
+               msg::MobilityModeName(run_->command.mode) + ") is running; send STOP first",
            &out);
     EmitStatus(now, &out);  // the running command stays the latched status
     return out;
@@ -235,7 +235,8 @@ MobilityOutput MobilityManager::OnCommand(const MobilityCommand& c, Time now) {
         State::kSucceeded,
         FaultClass::kNone,
         Fault::kNone,
-        was == Fault::kNone ? "no motion error latched" : "cleared " + std::string(FaultName(was)),
+        was == Fault::kNone ? "no motion error latched"
+                            : "cleared " + std::string(msg::MobilityFaultName(was)),
         -1.0,
         0.0,
         0,
@@ -247,7 +248,8 @@ MobilityOutput MobilityManager::OnCommand(const MobilityCommand& c, Time now) {
   if (latched_ != Fault::kNone) {
     Reject(
         c, now, latched_,
-        "motion error " + std::string(FaultName(latched_)) + " is latched; send CLEAR_FAULT first",
+        "motion error " + std::string(msg::MobilityFaultName(latched_)) +
+            " is latched; send CLEAR_FAULT first",
         &out);
     return out;
   }
@@ -324,7 +326,7 @@ MobilityOutput MobilityManager::OnPose(const PoseSample& pose, Time now) {
   return out;
 }
 
-MobilityOutput MobilityManager::OnRangeImage(const nav_core::RangeScan& scan, Camera camera,
+MobilityOutput MobilityManager::OnRangeImage(const nav_core::RangeScan& scan, CameraId camera,
                                              std::uint32_t request_id, Time now) {
   Account(now);
   MobilityOutput out;
@@ -363,7 +365,7 @@ MobilityOutput MobilityManager::OnRangeImage(const nav_core::RangeScan& scan, Ca
     return out;
   }
   if (!run_->camera_queue.empty()) {
-    const Camera next = run_->camera_queue.front();
+    const CameraId next = run_->camera_queue.front();
     run_->camera_queue.pop_front();
     RequestImage(next, Purpose::kStep, now, &out);
     return out;
@@ -397,7 +399,7 @@ MobilityOutput MobilityManager::OnRangeImage(const nav_core::RangeScan& scan, Ca
   return out;
 }
 
-MobilityOutput MobilityManager::OnDriveStatus(const DriveReport& r, Time now) {
+MobilityOutput MobilityManager::OnDriveStatus(const DriveStatus& r, Time now) {
   Account(now);
   MobilityOutput out;
   if (!run_ || !run_->drive || r.command_id != run_->drive->command_id) return out;
@@ -429,18 +431,19 @@ MobilityOutput MobilityManager::OnDriveStatus(const DriveReport& r, Time now) {
   }
 }
 
-MobilityOutput MobilityManager::OnMastStatus(const MastReport& report, Time now) {
+MobilityOutput MobilityManager::OnMastStatus(const MastStatus& report, Time now) {
   Account(now);
   (void)report;  // the HAZCAM-only manager does not point the mast yet (README: missing)
   return {};
 }
 
-MobilityOutput MobilityManager::OnVisOdom(const VisOdomResult& result, Time now) {
+MobilityOutput MobilityManager::OnVisOdom(const RelativePose& result, Time now) {
   Account(now);
   MobilityOutput out;
+  if (result.source != msg::MotionSource::kVisualOdometry) return out;
   if (!run_ || !run_->vo_since || result.t_to < run_->vo_after) return out;
   run_->vo_since.reset();
-  if (!result.converged) {
+  if (result.status != msg::RelativePoseStatus::kConverged) {
     run_->vo_failures += 1;
     if (run_->vo_failures > options_.max_visodom_failures) {
       Finish(now, State::kFailed, Fault::kVisOdom,
@@ -476,9 +479,10 @@ MobilityOutput MobilityManager::Step(Time now) {
     return out;
   }
   if (run_->vo_since && ToSeconds(now - *run_->vo_since) > options_.visodom_timeout_s) {
-    VisOdomResult missing;
+    RelativePose missing;
+    missing.source = msg::MotionSource::kVisualOdometry;
     missing.t_to = now;
-    missing.converged = false;
+    missing.status = msg::RelativePoseStatus::kTooFewFeatures;  // counts as a failed step
     MobilityOutput more = OnVisOdom(missing, now);
     return more;
   }
@@ -749,7 +753,8 @@ void MobilityManager::GuardedStep(Time now, MobilityOutput* out) {
   }
   run_->guarded_next = p;
   const bool backward = p.kind != PrimitiveKind::kTurnInPlace && p.distance < 0.0;
-  RequestImage(backward ? Camera::kRearHazcam : Camera::kFrontHazcam, Purpose::kStep, now, out);
+  RequestImage(backward ? CameraId::kRearHazcam : CameraId::kFrontHazcam, Purpose::kStep, now,
+               out);
 }
 
 void MobilityManager::WaypointStep(Time now, MobilityOutput* out) {
@@ -789,12 +794,12 @@ Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Tim
   return selector_->Evaluate(assessor_->goodness_map(), req);
 }
 
-Camera MobilityManager::CameraFor(const nav_core::ArcEvaluation& eval) const {
+CameraId MobilityManager::CameraFor(const nav_core::ArcEvaluation& eval) const {
   if (eval.has_choice() && eval.choice().kind == nav_core::MotionKind::kArc &&
       eval.choice().direction < 0) {
-    return Camera::kRearHazcam;
+    return CameraId::kRearHazcam;
   }
-  return Camera::kFrontHazcam;
+  return CameraId::kFrontHazcam;
 }
 
 void MobilityManager::AutonavStep(Time now, MobilityOutput* out) {
@@ -810,10 +815,10 @@ void MobilityManager::AutonavStep(Time now, MobilityOutput* out) {
     ChooseAndDrive(now, *eval, out);
     return;
   }
-  const Camera cam = CameraFor(*eval);
+  const CameraId cam = CameraFor(*eval);
   run_->camera_queue.clear();
-  if (eval->image_rear && cam == Camera::kFrontHazcam) {
-    run_->camera_queue.push_back(Camera::kRearHazcam);
+  if (eval->image_rear && cam == CameraId::kFrontHazcam) {
+    run_->camera_queue.push_back(CameraId::kRearHazcam);
   }
   RequestImage(cam, Purpose::kStep, now, out);
 }
@@ -867,11 +872,12 @@ void MobilityManager::StartThinking(const Primitive& p, Time now, MobilityOutput
   const Pose2 predicted = Propagate(PlanarPose(pose_->site_from_rover), p);
   auto eval = Evaluate(predicted, now);
   if (eval.ok() && eval->all_paths_safe) return;  // the next step will not need an image
-  RequestImage(eval.ok() ? CameraFor(*eval) : Camera::kFrontHazcam, Purpose::kThink, now, out);
+  RequestImage(eval.ok() ? CameraFor(*eval) : CameraId::kFrontHazcam, Purpose::kThink, now, out);
   counters_.images_while_driving += 1;
 }
 
-void MobilityManager::RequestImage(Camera camera, Purpose purpose, Time now, MobilityOutput* out) {
+void MobilityManager::RequestImage(CameraId camera, Purpose purpose, Time now,
+                                   MobilityOutput* out) {
   PendingImage img;
   img.request_id = next_id_++;
   img.camera = camera;
@@ -903,9 +909,9 @@ bool MobilityManager::SendDrive(const Primitive& p, Time now, MobilityOutput* ou
       return false;
     }
   }
-  DriveRequest d;
+  DriveCommand d;
   d.command_id = next_id_++;
-  d.kind = p.kind;
+  d.primitive = p.kind;
   d.curvature = p.kind == PrimitiveKind::kArc ? p.curvature : 0.0;
   d.distance = p.kind == PrimitiveKind::kTurnInPlace ? 0.0 : p.distance;
   d.angle = p.kind == PrimitiveKind::kTurnInPlace ? p.angle : 0.0;
@@ -944,9 +950,9 @@ void MobilityManager::StepDone(Time now, MobilityOutput* out) {
 }
 
 void MobilityManager::SendStop(Time now, MobilityOutput* out) {
-  DriveRequest d;
+  DriveCommand d;
   d.command_id = next_id_++;
-  d.kind = PrimitiveKind::kStop;
+  d.primitive = PrimitiveKind::kStop;
   d.stamp = now;
   out->drives.push_back(d);
 }
@@ -957,6 +963,31 @@ void MobilityManager::Account(Time now) {
     (run_->drive ? counters_.moving_s : counters_.still_s) += dt;
   }
   if (!last_account_ || now > *last_account_) last_account_ = now;
+}
+
+msg::ArcVotes ArcVotesOf(const ArcVotesSnapshot& s) {
+  const auto vote = [](int v) { return static_cast<std::uint8_t>(std::clamp(v, 0, 255)); };
+  msg::ArcVotes a;
+  a.stamp = s.stamp;
+  a.command_id = s.command_id;
+  a.step = s.step;
+  a.rover_pose = s.site_from_rover;
+  const nav_core::ArcEvaluation& e = s.evaluation;
+  for (std::size_t i = 0; i < e.candidates.size(); ++i) {
+    const nav_core::Candidate& c = e.candidates[i];
+    msg::ArcVote v;
+    v.kind = c.kind == nav_core::MotionKind::kArc ? msg::CandidateKind::kArc
+                                                  : msg::CandidateKind::kPointTurn;
+    v.curvature = c.curvature;
+    v.direction = c.direction < 0 ? -1 : 1;
+    v.turn_angle = c.turn_angle;
+    v.hazard = i < e.hazard.size() ? vote(e.hazard[i].goodness) : 0;
+    v.waypoint = i < e.waypoint.size() ? vote(e.waypoint[i].goodness) : 0;
+    v.merged = i < e.merged.size() ? vote(e.merged[i].goodness) : 0;
+    a.votes.push_back(v);
+  }
+  a.chosen = e.chosen;
+  return a;
 }
 
 }  // namespace rover::apl::mobility

@@ -9,6 +9,17 @@
 
 namespace rover::apl::mobility::testing {
 
+DriveStatus DriveReport(std::uint32_t command_id, DriveState state, DriveTermination termination,
+                        double distance_done, std::string message) {
+  DriveStatus r;
+  r.command_id = command_id;
+  r.state = state;
+  r.termination = termination;
+  r.distance_done = distance_done;
+  r.message = std::move(message);
+  return r;
+}
+
 MobilityManager MakeGestaltManager(const MobilityOptions& options) {
   const gestalt::GestaltOptions g;
   auto map = gestalt::TerrainMap::Create(g);
@@ -47,9 +58,9 @@ void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double 
 
 double FakeWorld::HeightAt(double x, double y) const { return field_.HeightAt(x, y); }
 
-nav_core::RangeScan FakeWorld::Capture(Camera camera) const {
+nav_core::RangeScan FakeWorld::Capture(CameraId camera) const {
   rover::testing::SyntheticScan img = field_.Capture(
-      pose_.x, pose_.y, pose_.heading, camera == Camera::kRearHazcam, options_.camera);
+      pose_.x, pose_.y, pose_.heading, camera == CameraId::kRearHazcam, options_.camera);
   nav_core::RangeScan scan;
   scan.width = img.width;
   scan.height = img.height;
@@ -73,21 +84,21 @@ PoseSample FakeWorld::PoseNow() const {
 void FakeWorld::Absorb(const MobilityOutput& out) {
   for (const MobilityStatus& s : out.statuses) statuses_.push_back(s);
   arc_votes_ += static_cast<int>(out.arc_votes.size());
-  for (const DriveRequest& d : out.drives) {
+  for (const DriveCommand& d : out.drives) {
     drives_.push_back(d);
-    if (d.kind == PrimitiveKind::kStop) {
+    if (d.primitive == PrimitiveKind::kStop) {
       if (drive_) {
-        DriveReport rep{drive_->command_id, DriveState::kFailed, DriveTermination::kStopCommand,
-                        drive_done_, "stopped"};
+        const DriveStatus rep = DriveReport(drive_->command_id, DriveState::kFailed,
+                                            DriveTermination::kStopCommand, drive_done_, "stopped");
         drive_.reset();
         Absorb(manager_->OnDriveStatus(rep, now_));
       }
       continue;
     }
     if (drive_) {
-      Absorb(manager_->OnDriveStatus(
-          {d.command_id, DriveState::kRejected, DriveTermination::kRejectedBusy, 0.0, "busy"},
-          now_));
+      Absorb(manager_->OnDriveStatus(DriveReport(d.command_id, DriveState::kRejected,
+                                                 DriveTermination::kRejectedBusy, 0.0, "busy"),
+                                     now_));
       continue;
     }
     drive_ = d;
@@ -104,20 +115,20 @@ void FakeWorld::Absorb(const MobilityOutput& out) {
 void FakeWorld::Tick() {
   now_ = now_ + Seconds(options_.dt);
   if (drive_) {
-    const bool turn = drive_->kind == PrimitiveKind::kTurnInPlace;
+    const bool turn = drive_->primitive == PrimitiveKind::kTurnInPlace;
     const double goal = turn ? std::abs(drive_->angle) : std::abs(drive_->distance);
     const double inc =
         std::min(goal - drive_done_, (turn ? options_.turn_rate : options_.speed) * options_.dt);
     Primitive p;
-    p.kind = drive_->kind;
+    p.kind = drive_->primitive;
     p.curvature = drive_->curvature;
     p.distance = turn ? 0.0 : std::copysign(inc, drive_->distance);
     p.angle = turn ? std::copysign(inc, drive_->angle) : 0.0;
     pose_ = Propagate(pose_, p);
     drive_done_ += inc;
     if (drive_done_ >= goal - 1e-9) {
-      const DriveReport rep{drive_->command_id, DriveState::kDone, DriveTermination::kNominal,
-                            turn ? 0.0 : goal, ""};
+      const DriveStatus rep = DriveReport(drive_->command_id, DriveState::kDone,
+                                          DriveTermination::kNominal, turn ? 0.0 : goal, "");
       drive_.reset();
       Absorb(manager_->OnDriveStatus(rep, now_));
     }

@@ -14,12 +14,17 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "rover/apl/mobility/mobility_manager.hpp"
 #include "rover/testing/fakes/rock_field.hpp"
 
 namespace rover::apl::mobility::testing {
+
+/// A dl/drive_status as locomotion reports the end of a drive (the fields the manager reads).
+DriveStatus DriveReport(std::uint32_t command_id, DriveState state, DriveTermination termination,
+                        double distance_done, std::string message);
 
 using Rock = rover::testing::FieldRock;
 
@@ -52,7 +57,7 @@ class FakeWorld {
   /// The rover's exact pose now, as dl/pose would carry it.
   PoseSample PoseNow() const;
   /// The synthetic scan from the current pose (for tests of the world itself).
-  nav_core::RangeScan Capture(Camera camera) const;
+  nav_core::RangeScan Capture(CameraId camera) const;
 
   /// Sends a command and steps until its terminal status (or `max_s` of simulated time).
   /// Returns the terminal status of that command (state kRunning if it never ended).
@@ -65,18 +70,18 @@ class FakeWorld {
   /// Closest approach of the rover centre to any rock's edge over all ticks [m].
   double min_rock_clearance() const { return min_clearance_; }
   const std::vector<MobilityStatus>& statuses() const { return statuses_; }
-  const std::vector<DriveRequest>& drives() const { return drives_; }
+  const std::vector<DriveCommand>& drives() const { return drives_; }
   const std::vector<RangeRequest>& range_requests() const { return ranges_; }
   int arc_vote_snapshots() const { return arc_votes_; }
   /// Called on every range scan before delivery (tests corrupt it here).
-  std::function<void(nav_core::RangeScan*, Camera*)> tamper_image;
+  std::function<void(nav_core::RangeScan*, CameraId*)> tamper_image;
   /// Called on every pose before delivery.
   std::function<void(PoseSample*)> tamper_pose;
 
  private:
   struct Image {
     nav_core::RangeScan scan;
-    Camera camera;
+    CameraId camera;
     std::uint32_t id;
     Time due;
   };
@@ -87,11 +92,11 @@ class FakeWorld {
   rover::testing::RockField field_;
   Pose2 pose_;
   Time now_;
-  std::optional<DriveRequest> drive_;
+  std::optional<DriveCommand> drive_;
   double drive_done_ = 0.0;  // [m] or [rad] so far
   std::vector<Image> images_;
   std::vector<MobilityStatus> statuses_;
-  std::vector<DriveRequest> drives_;
+  std::vector<DriveCommand> drives_;
   std::vector<RangeRequest> ranges_;
   int arc_votes_ = 0;
   double min_clearance_ = 1e9;

@@ -12,7 +12,7 @@ TEST(FakeWorld, RocksRaiseTheGroundAndHideWhatIsBehind) {
   w.rocks().push_back({2.0, 0.0, 0.3, 0.5});
   EXPECT_NEAR(w.HeightAt(2.0, 0.0), 0.5, 1e-12);
   EXPECT_EQ(w.HeightAt(3.0, 0.0), 0.0);
-  const nav_core::RangeScan scan = w.Capture(Camera::kFrontHazcam);
+  const nav_core::RangeScan scan = w.Capture(CameraId::kFrontHazcam);
   ASSERT_TRUE(scan.Validate().ok());
   // The middle column looks straight at the rock: something right behind it is hidden.
   const int u = scan.width / 2;
@@ -22,7 +22,7 @@ TEST(FakeWorld, RocksRaiseTheGroundAndHideWhatIsBehind) {
     (scan.point(u, v).x() > 2.4 ? valid_far : valid_near) += 1;
   }
   EXPECT_GT(valid_near, 10);
-  const nav_core::RangeScan open = FakeWorld(&m).Capture(Camera::kFrontHazcam);
+  const nav_core::RangeScan open = FakeWorld(&m).Capture(CameraId::kFrontHazcam);
   int open_far = 0;
   for (int v = 0; v < open.height; ++v) open_far += open.point(u, v).x() > 2.4 ? 1 : 0;
   EXPECT_LT(valid_far, open_far);
@@ -31,7 +31,7 @@ TEST(FakeWorld, RocksRaiseTheGroundAndHideWhatIsBehind) {
 TEST(FakeWorld, RearCameraLooksBackward) {
   MobilityManager m = MakeGestaltManager();
   FakeWorld w(&m);
-  const nav_core::RangeScan scan = w.Capture(Camera::kRearHazcam);
+  const nav_core::RangeScan scan = w.Capture(CameraId::kRearHazcam);
   EXPECT_LT(scan.point(scan.width / 2, 0).x(), -4.0);
 }
 

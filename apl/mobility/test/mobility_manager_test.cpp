@@ -14,6 +14,7 @@
 namespace rover::apl::mobility {
 namespace {
 
+using testing::DriveReport;
 using testing::FakeWorld;
 using testing::MakeGestaltManager;
 using testing::WorldOptions;
@@ -224,8 +225,8 @@ TEST(MobilityManagerWorld, WrongCameraAndAllInvalidAreImg) {
   for (int variant = 0; variant < 2; ++variant) {
     MobilityManager m = MakeGestaltManager();
     FakeWorld w(&m);
-    w.tamper_image = [variant](nav_core::RangeScan* scan, Camera* cam) {
-      if (variant == 0) *cam = Camera::kNavcam;
+    w.tamper_image = [variant](nav_core::RangeScan* scan, CameraId* cam) {
+      if (variant == 0) *cam = CameraId::kNavcam;
       if (variant == 1) std::fill(scan->valid.begin(), scan->valid.end(), 0);
     };
     const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 100.0);
@@ -248,7 +249,7 @@ TEST(MobilityManagerWorld, PoseThatStopsOrJumpsIsSapp) {
     EXPECT_NE(s.message.find("jumped"), std::string::npos);
     EXPECT_TRUE(s.motion_error_latched);
     ASSERT_FALSE(w.drives().empty());
-    EXPECT_EQ(w.drives().back().kind, PrimitiveKind::kStop);
+    EXPECT_EQ(w.drives().back().primitive, PrimitiveKind::kStop);
   }
   {
     MobilityManager m = MakeGestaltManager();
@@ -291,7 +292,7 @@ class MobilityManagerScripted : public ::testing::Test {
     MobilityOutput out = Cmd(Directed(10, Mode::kDirected, {Straight(1.0)}), t);
     EXPECT_EQ(out.drives.size(), 1u);
     m_.OnPose(PoseAt(T(t + 1), 0.1, 0), T(t + 1));
-    out = m_.OnDriveStatus({out.drives[0].command_id, state, term, 0.1, "x"}, T(t + 1));
+    out = m_.OnDriveStatus(DriveReport(out.drives[0].command_id, state, term, 0.1, "x"), T(t + 1));
     EXPECT_FALSE(out.statuses.empty());
     return out.statuses.back();
   }
@@ -310,7 +311,7 @@ TEST_F(MobilityManagerScripted, DriveTerminationsMapToMotionErrorsThatLatch) {
   double t = 0;
   for (const auto& [term, fault] : cases) {
     const MobilityStatus s = FailDrive(DriveState::kFailed, term, t += 10);
-    EXPECT_EQ(s.fault, fault) << FaultName(fault);
+    EXPECT_EQ(s.fault, fault) << msg::MobilityFaultName(fault);
     EXPECT_EQ(s.fault_class, FaultClass::kMotionError);
     EXPECT_TRUE(s.motion_error_latched);
     // Every motion command is refused, with the latched fault, until CLEAR_FAULT.
@@ -353,7 +354,7 @@ TEST_F(MobilityManagerScripted, DriveWatchdogStopsAndLatches) {
   EXPECT_EQ(m_.status().fault, Fault::kDriveTimeout);
   EXPECT_TRUE(m_.motion_error_latched());
   ASSERT_EQ(out.drives.size(), 1u);
-  EXPECT_EQ(out.drives[0].kind, PrimitiveKind::kStop);
+  EXPECT_EQ(out.drives[0].primitive, PrimitiveKind::kStop);
 }
 
 TEST_F(MobilityManagerScripted, BusyRejectsTheSecondCommandAndTheFirstContinues) {
@@ -370,11 +371,78 @@ TEST_F(MobilityManagerScripted, BusyRejectsTheSecondCommandAndTheFirstContinues)
   EXPECT_EQ(out.statuses[1].state, State::kRunning);
   EXPECT_TRUE(out.drives.empty());
   m_.OnPose(PoseAt(T(20), 0.4, 0), T(20));
-  out = m_.OnDriveStatus({drive, DriveState::kDone, DriveTermination::kNominal, 1.0, ""}, T(20));
+  out = m_.OnDriveStatus(DriveReport(drive, DriveState::kDone, DriveTermination::kNominal, 1.0, ""),
+                        T(20));
   ASSERT_FALSE(out.statuses.empty());
   EXPECT_EQ(out.statuses.back().command_id, 1u);
   EXPECT_EQ(out.statuses.back().state, State::kSucceeded);
   EXPECT_DOUBLE_EQ(out.statuses.back().distance_driven, 1.0);
+}
+
+TEST(MobilityArcVotes, SnapshotBecomesTheMessageValue) {
+  ArcVotesSnapshot s;
+  s.stamp = T(3);
+  s.command_id = 4;
+  s.step = 2;
+  s.site_from_rover.translation() = Eigen::Vector3d(1, 2, 0);
+  s.evaluation.candidates = {{nav_core::MotionKind::kArc, 0.5, -1, 2.0, 0.0},
+                             {nav_core::MotionKind::kPointTurn, 0.0, 1, 0.0, 1.5}};
+  s.evaluation.hazard = {{200, 255}, {100, 255}};
+  s.evaluation.waypoint = {{10, 192}, {300, 192}};
+  s.evaluation.merged = {{-5, 255}};  // shorter than the candidates: 0 for the rest
+  s.evaluation.chosen = 1;
+  const msg::ArcVotes a = ArcVotesOf(s);
+  EXPECT_EQ(a.stamp, T(3));
+  EXPECT_EQ(a.command_id, 4u);
+  EXPECT_EQ(a.step, 2u);
+  EXPECT_EQ(a.rover_pose.translation(), Eigen::Vector3d(1, 2, 0));
+  ASSERT_EQ(a.votes.size(), 2u);
+  EXPECT_EQ(a.votes[0].kind, msg::CandidateKind::kArc);
+  EXPECT_EQ(a.votes[0].direction, -1);
+  EXPECT_EQ(a.votes[0].curvature, 0.5);
+  EXPECT_EQ(a.votes[0].hazard, 200);
+  EXPECT_EQ(a.votes[0].merged, 0);  // clamped to a byte
+  EXPECT_EQ(a.votes[1].kind, msg::CandidateKind::kPointTurn);
+  EXPECT_EQ(a.votes[1].turn_angle, 1.5);
+  EXPECT_EQ(a.votes[1].waypoint, 255);  // clamped to a byte
+  EXPECT_EQ(a.votes[1].merged, 0);
+  EXPECT_EQ(a.chosen, 1);
+}
+
+// dl/relative_pose reaches the manager whole: only visual-odometry results end a VO wait.
+TEST(MobilityManagerVisOdom, OnlyVisualOdometryResultsCountAndNotConvergedFails) {
+  for (const bool converged : {true, false}) {
+    MobilityOptions o;
+    o.max_visodom_failures = 0;
+    MobilityManager m = MakeGestaltManager(o);
+    m.OnPose(PoseAt(T(0), 0, 0), T(0));
+    MobilityOutput out = m.OnCommand(Directed(1, Mode::kVisOdom, {Straight(0.3)}), T(0));
+    ASSERT_EQ(out.drives.size(), 1u);
+    m.OnPose(PoseAt(T(10), 0.3, 0), T(10));
+    out = m.OnDriveStatus(DriveReport(out.drives[0].command_id, DriveState::kDone,
+                                      DriveTermination::kNominal, 0.3, ""),
+                          T(10));
+    ASSERT_TRUE(m.busy());  // waiting for visual odometry
+    RelativePose wheels;
+    wheels.source = msg::MotionSource::kWheelOdometry;
+    wheels.t_to = T(10.5);
+    wheels.status = msg::RelativePoseStatus::kNotConverged;
+    EXPECT_TRUE(m.OnVisOdom(wheels, T(10.5)).empty());
+    EXPECT_TRUE(m.busy());
+    m.OnPose(PoseAt(T(11), 0.3, 0), T(11));
+    RelativePose vo;
+    vo.source = msg::MotionSource::kVisualOdometry;
+    vo.t_to = T(10.5);
+    vo.status = converged ? msg::RelativePoseStatus::kConverged
+                          : msg::RelativePoseStatus::kNotConverged;
+    out = m.OnVisOdom(vo, T(11));
+    ASSERT_FALSE(out.statuses.empty());
+    if (converged) {
+      EXPECT_EQ(out.statuses.back().state, State::kSucceeded) << out.statuses.back().message;
+    } else {
+      EXPECT_EQ(out.statuses.back().fault, Fault::kVisOdom) << out.statuses.back().message;
+    }
+  }
 }
 
 TEST_F(MobilityManagerScripted, StopEndsTheRunningCommandStopped) {
@@ -390,7 +458,7 @@ TEST_F(MobilityManagerScripted, StopEndsTheRunningCommandStopped) {
   EXPECT_EQ(out.statuses[1].fault, Fault::kStopped);
   EXPECT_EQ(out.statuses[1].fault_class, FaultClass::kGoalError);
   ASSERT_EQ(out.drives.size(), 1u);
-  EXPECT_EQ(out.drives[0].kind, PrimitiveKind::kStop);
+  EXPECT_EQ(out.drives[0].primitive, PrimitiveKind::kStop);
   EXPECT_FALSE(m_.busy());
 }
 
@@ -467,7 +535,7 @@ TEST_F(MobilityManagerScripted, TimeBudgetIsWaypointTimeout) {
   EXPECT_EQ(m_.status().fault, Fault::kWaypointTimeout);
   EXPECT_EQ(m_.status().fault_class, FaultClass::kGoalError);
   ASSERT_FALSE(out.drives.empty());
-  EXPECT_EQ(out.drives.back().kind, PrimitiveKind::kStop);
+  EXPECT_EQ(out.drives.back().primitive, PrimitiveKind::kStop);
 }
 
 TEST_F(MobilityManagerScripted, TimeOfDayLimit) {

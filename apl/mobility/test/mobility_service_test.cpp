@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "mobility_msg.hpp"
+#include "rover/msg/mobility_idl.hpp"
 #include "rover/testing/fakes/fake_mobility_dl.hpp"
 #include "rover/testing/service_harness.hpp"
 
@@ -40,7 +40,10 @@ class MobilityServiceTest : public ::testing::Test {
     return ok;
   }
   void Send(const MobilityCommand& c) {
-    const msg::CommandMessage m = msg::CommandToIdl(c, Time::FromSeconds(t_).ns);
+    MobilityCommand stamped = c;
+    stamped.stamp = Time::FromSeconds(t_);
+    msg::MobilityCommandMessage m;
+    msg::MobilityCommandToIdl(stamped, &m);
     ASSERT_TRUE(commands_.Write(m.msg).ok());
   }
   // Steps until a terminal status of `id` (or `max_s` of simulated time).
@@ -48,7 +51,10 @@ class MobilityServiceTest : public ::testing::Test {
     const double end = t_ + max_s;
     while (t_ < end) {
       for (auto& s : status_.Take()) {
-        const MobilityStatus st = msg::StatusFromIdl(s.data());
+        const Result<MobilityStatus> read = msg::MobilityStatusFromIdl(s.data());
+        EXPECT_TRUE(read.ok()) << read.status().message();
+        if (!read.ok()) continue;
+        const MobilityStatus& st = *read;
         if (st.command_id == id && st.state != State::kRunning) return st;
       }
       if (!Tick()) return std::nullopt;

@@ -151,5 +151,51 @@ TEST(GlobalPlanner, ReportBlockedDefaultsToAPreconditionError) {
   EXPECT_TRUE(plan->reaches_goal);
 }
 
+TEST(NavCore, RangeScanFromImageCarriesPixelsPoseAndCamera) {
+  msg::RangeImage image;
+  image.stamp = Time{9};
+  image.camera = msg::CameraId::kRearHazcam;
+  image.width = 2;
+  image.height = 1;
+  image.rover_pose =
+      Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ());
+  image.xyz = {1, 2, 3, 4, 5, 6};
+  image.valid = {1, 0};
+  image.disparity = {3.5f, -1.0f};
+  const RangeScan s = RangeScanFromImage(image);
+  EXPECT_TRUE(s.Validate().ok()) << s.Validate().message();
+  EXPECT_EQ(s.width, 2);
+  EXPECT_EQ(s.height, 1);
+  EXPECT_EQ(s.xyz, image.xyz);
+  EXPECT_EQ(s.valid, image.valid);
+  EXPECT_EQ(s.capture_time.ns, 9);
+  EXPECT_EQ(s.camera, "rear_hazcam");
+  EXPECT_TRUE(s.site_from_rover.isApprox(image.rover_pose, 1e-12));
+  image.xyz.pop_back();  // not checked here: Validate names it
+  const Status bad = RangeScanFromImage(image).Validate();
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("RangeScan.xyz: 5 floats"), std::string::npos) << bad.message();
+}
+
+TEST(NavCore, GoodnessMapToMessageCopiesTheGrid) {
+  GoodnessMap g = SmallMap();
+  g.goodness[5] = 200;
+  g.certainty[6] = 90;
+  g.flags[7] = kCellKnown | kCellBorder;
+  g.stamp = Time{77};
+  const msg::GoodnessMap m = GoodnessMapToMessage(g);
+  EXPECT_TRUE(m.CheckSizes().ok());
+  EXPECT_EQ(m.origin_x, -1.0);
+  EXPECT_EQ(m.origin_y, 2.0);
+  EXPECT_EQ(m.resolution, 0.5);
+  EXPECT_EQ(m.width, 4);
+  EXPECT_EQ(m.height, 3);
+  EXPECT_EQ(m.unknown_goodness, 11);
+  EXPECT_EQ(m.goodness, g.goodness);
+  EXPECT_EQ(m.certainty, g.certainty);
+  EXPECT_EQ(m.flags, g.flags);
+  EXPECT_EQ(m.stamp.ns, 77);
+}
+
 }  // namespace
 }  // namespace rover::apl::nav_core

@@ -13,7 +13,7 @@ GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h); }
 
 // A measured map of a tilted plane z = 0.1 x + 0.05 y with `holes` (cells set to kNone).
 ElevationMap PlaneWithHoles(int w, int h, const std::vector<Eigen::Vector2i>& holes) {
-  const sim::HeightField plane = testing::HeightFieldOf(
+  const sim::terrain::HeightField plane = testing::HeightFieldOf(
       -1, -1, 5, 5, 0.01, [](double x, double y) { return 0.1 * x + 0.05 * y; });
   ElevationMap m = testing::SampledElevation(plane, Geometry(w, h));
   for (const Eigen::Vector2i& c : holes) {

@@ -18,7 +18,7 @@ struct Classified {
   Layer<float> step;
 };
 
-Classified Classify(const sim::HeightField& f, int w, int h, const RoamanOptions& o,
+Classified Classify(const sim::terrain::HeightField& f, int w, int h, const RoamanOptions& o,
                     const Layer<std::uint8_t>& blocked = {}) {
   Classified c;
   c.elevation = testing::SampledElevation(f, Geometry(w, h));
@@ -35,7 +35,7 @@ int Count(const Layer<CellClass>& cls, CellClass k) {
 }
 
 // A ramp of `deg` degrees for 1 m <= x < 2 m, flat elsewhere.
-sim::HeightField Ramp(double deg) {
+sim::terrain::HeightField Ramp(double deg) {
   const double t = std::tan(deg * kDeg);
   return testing::HeightFieldOf(-0.5, -0.5, 3.5, 2.5, 0.01, [t](double x, double) {
     return t * std::clamp(x - 1.0, 0.0, 1.0);
@@ -61,7 +61,7 @@ TEST(Hazards, SmallSteepPatchesAreLeftToTheStepTest) {
   // clearance). With 15 cm plane fits its face is a region of 3 x 6 cells (0.045 m^2), smaller
   // than min_steep_area.
   const double t = std::tan(50.0 * kDeg);
-  const sim::HeightField f =
+  const sim::terrain::HeightField f =
       testing::HeightFieldOf(-0.5, -0.5, 3.5, 2.5, 0.01, [t](double x, double y) {
         return (x >= 1.0 && x <= 1.25 && std::abs(y - 1.0) < 0.2) ? t * (x - 1.0) : 0.0;
       });
@@ -78,7 +78,7 @@ TEST(Hazards, SmallSteepPatchesAreLeftToTheStepTest) {
 
 TEST(Hazards, DiscontinuitiesAboveTheBodyClearance) {
   // Rocks on flat ground: 0.5 m tall (> 0.35 m belly clearance) and 0.2 m tall.
-  sim::HeightField f = testing::FlatGround(-0.5, -0.5, 3.5, 2.5, 0.01);
+  sim::terrain::HeightField f = testing::FlatGround(-0.5, -0.5, 3.5, 2.5, 0.01);
   testing::AddRock(&f, 0.8, 1.0, 0.8, 0.5);
   testing::AddRock(&f, 2.3, 1.0, 0.5, 0.2);
   const RoamanOptions o;
@@ -120,7 +120,7 @@ TEST(Hazards, DiscontinuitiesAboveTheBodyClearance) {
 }
 
 TEST(Hazards, MissingDataAndBlockedCells) {
-  const sim::HeightField f = testing::FlatGround(-0.5, -0.5, 2.0, 2.0, 0.01);
+  const sim::terrain::HeightField f = testing::FlatGround(-0.5, -0.5, 2.0, 2.0, 0.01);
   ElevationMap m = testing::SampledElevation(f, Geometry(20, 20));
   for (int j = 0; j < 20; ++j) {
     for (int i = 8; i < 12; ++i) m.source.at(i, j) = HeightSource::kNone;

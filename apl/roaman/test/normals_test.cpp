@@ -13,7 +13,7 @@ namespace {
 GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h, 1.0, -2.0); }
 
 ElevationMap Plane(double a, double b, int w = 20, int h = 20) {
-  const sim::HeightField f = testing::HeightFieldOf(
+  const sim::terrain::HeightField f = testing::HeightFieldOf(
       0.0, -3.0, 3.0, 0.0, 0.01, [a, b](double x, double y) { return a * x + b * y + 1.0; });
   return testing::SampledElevation(f, Geometry(w, h));
 }

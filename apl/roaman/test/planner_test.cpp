@@ -23,7 +23,7 @@ nav_core::PlanRequest Request(Eigen::Vector2d start, Eigen::Vector2d goal, bool 
 
 // A planner that has seen all of `ground` in [x0, x1] x [y0, y1] (within max_range) from a
 // rover at (x, y).
-std::unique_ptr<RoamanPlanner> Seen(const sim::HeightField& ground, const RoamanOptions& o,
+std::unique_ptr<RoamanPlanner> Seen(const sim::terrain::HeightField& ground, const RoamanOptions& o,
                                     double x, double y, double x0, double y0, double x1,
                                     double y1) {
   auto planner = RoamanPlanner::Create(o);
@@ -55,9 +55,9 @@ void ExpectSafe(const RoamanPlanner& p, const RoamanPlan& plan) {
 
 // The U-shaped wall of the cul-de-sac tests: base at x = 6 across the way to the goal, its
 // mouth facing the rover, 3 m wide inside, 3 m deep, 0.8 m high.
-const sim::HeightField& CulDeSac() {
-  static const sim::HeightField g = [] {
-    sim::HeightField f = testing::FlatGround(-3, -7, 14, 7, 0.04);
+const sim::terrain::HeightField& CulDeSac() {
+  static const sim::terrain::HeightField g = [] {
+    sim::terrain::HeightField f = testing::FlatGround(-3, -7, 14, 7, 0.04);
     testing::AddCulDeSac(&f, {6.0, 0.0}, {-1.0, 0.0}, 3.0, 3.0, 0.3, 0.8);
     return f;
   }();
@@ -93,7 +93,7 @@ TEST(Planner, NoMapNoPlanAndBadRequestsAreNamed) {
 TEST(Planner, ScansThatAreAllInvalidOrNaNAreRejectedByName) {
   auto planner = RoamanPlanner::Create(RoamanOptions{});
   ASSERT_TRUE(planner.ok());
-  const sim::HeightField flat = testing::FlatGround(-2, -3, 8, 3, 0.04);
+  const sim::terrain::HeightField flat = testing::FlatGround(-2, -3, 8, 3, 0.04);
   // Points at the cell centres, one per cell.
   nav_core::RangeScan s =
       testing::OverheadScan(flat, 0.025, -1.975, 6.0, 2.0, 0.05, testing::RoverPose(flat, 0, 0, 0));
@@ -115,7 +115,7 @@ TEST(Planner, ScansThatAreAllInvalidOrNaNAreRejectedByName) {
 }
 
 TEST(Planner, OpenGroundIsOneStraightLeg) {
-  const sim::HeightField flat = testing::FlatGround(-3, -5, 12, 5, 0.04);
+  const sim::terrain::HeightField flat = testing::FlatGround(-3, -5, 12, 5, 0.04);
   auto p = Seen(flat, RoamanOptions{}, 0, 0, -2, -4, 11, 4);
   for (const Algorithm a : {Algorithm::kRoaman, Algorithm::kAStar}) {
     auto plan = p->Plan(Request({0, 0}, {8, 0}), a);
@@ -202,9 +202,9 @@ TEST(Planner, PlansTowardAGoalInTheShadowOfTheCulDeSac) {
 }
 
 // Two corridors to the goal either side of a wall, closed outside by walls at |y| = 3.5.
-const sim::HeightField& TwoCorridors() {
-  static const sim::HeightField g = [] {
-    sim::HeightField f = testing::FlatGround(-3, -5, 14, 5, 0.04);
+const sim::terrain::HeightField& TwoCorridors() {
+  static const sim::terrain::HeightField g = [] {
+    sim::terrain::HeightField f = testing::FlatGround(-3, -5, 14, 5, 0.04);
     testing::AddWall(&f, {2.0, 0.0}, {8.0, 0.0}, 0.25, 0.6);
     testing::AddWall(&f, {-3.0, 3.75}, {14.0, 3.75}, 0.25, 0.6);
     testing::AddWall(&f, {-3.0, -3.75}, {14.0, -3.75}, 0.25, 0.6);
@@ -260,9 +260,10 @@ TEST(Planner, ReplansAroundABlockedCorridorUntilEveryRouteIsBlocked) {
 
 TEST(Planner, AGoalNoRouteReachesIsAGoalErrorThatSaysSo) {
   // A closed ring of wall 0.3 m thick and 0.6 m high, 1.6 m in radius, around the goal.
-  const sim::HeightField f = testing::HeightFieldOf(-3, -5, 14, 5, 0.04, [](double x, double y) {
-    return std::abs(std::hypot(x - 7.0, y) - 1.6) <= 0.15 ? 0.6 : 0.0;
-  });
+  const sim::terrain::HeightField f =
+      testing::HeightFieldOf(-3, -5, 14, 5, 0.04, [](double x, double y) {
+        return std::abs(std::hypot(x - 7.0, y) - 1.6) <= 0.15 ? 0.6 : 0.0;
+      });
   auto p = Seen(f, RoamanOptions{}, 0, 0, -2, -4, 11, 4);
   auto plan = p->Plan(Request({0, 0}, {7.0, 0}));
   ASSERT_FALSE(plan.ok());
@@ -275,7 +276,7 @@ TEST(Planner, AGoalNoRouteReachesIsAGoalErrorThatSaysSo) {
 }
 
 TEST(Planner, GoalsInHazardsOffTheMapAndRoversBoxedIn) {
-  sim::HeightField f = testing::FlatGround(-3, -5, 14, 5, 0.04);
+  sim::terrain::HeightField f = testing::FlatGround(-3, -5, 14, 5, 0.04);
   testing::AddRock(&f, 6.0, 0.0, 1.0, 0.6);
   auto p = Seen(f, RoamanOptions{}, 0, 0, -2, -4, 11, 4);
   auto r = p->Plan(Request({0, 0}, {6.0, 0}));
@@ -290,7 +291,7 @@ TEST(Planner, GoalsInHazardsOffTheMapAndRoversBoxedIn) {
   EXPECT_FALSE(r->reaches_goal);
   EXPECT_GT(r->waypoints.back().x(), 8.5);  // near the end of the data (11 m), a turn short
 
-  sim::HeightField boxed = testing::FlatGround(-3, -5, 14, 5, 0.04);
+  sim::terrain::HeightField boxed = testing::FlatGround(-3, -5, 14, 5, 0.04);
   for (int k = 0; k < 12; ++k) {
     const double a = 2.0 * M_PI * k / 12;
     testing::AddRock(&boxed, 0.9 * std::cos(a), 0.9 * std::sin(a), 0.5, 0.5);
@@ -305,7 +306,7 @@ TEST(Planner, GoalsInHazardsOffTheMapAndRoversBoxedIn) {
 TEST(Planner, FallsBackToAStarWhenTheRoadMapHasNoRoute) {
   RoamanOptions o;
   o.connect_radius = 0.0;  // the start connects to no axis cell: the road map cannot begin
-  const sim::HeightField flat = testing::FlatGround(-3, -5, 12, 5, 0.04);
+  const sim::terrain::HeightField flat = testing::FlatGround(-3, -5, 12, 5, 0.04);
   auto p = Seen(flat, o, 0, 0, -2, -4, 11, 4);
   auto plan = p->Plan(Request({0, 0}, {8, 0}));
   ASSERT_TRUE(plan.ok()) << plan.status().message();
@@ -320,7 +321,7 @@ TEST(Planner, FallsBackToAStarWhenTheRoadMapHasNoRoute) {
 TEST(Planner, TheMapMemoryMergesPanoramasAsTheRoverMoves) {
   // A 26 m strip; the first "panorama" sees 12 m around the start, the second 12 m around
   // x = 8 m. After the second the goal 16 m out is on the grid and reached.
-  sim::HeightField f = testing::FlatGround(-3, -5, 24, 5, 0.04);
+  sim::terrain::HeightField f = testing::FlatGround(-3, -5, 24, 5, 0.04);
   testing::AddRock(&f, 4.0, 0.0, 1.0, 0.6);
   auto p = Seen(f, RoamanOptions{}, 0, 0, -2, -4, 23, 4);
   const double centre = p->site_map().center().x();

@@ -20,7 +20,7 @@ double Mesa(double x, double) {
 }
 
 TEST(Regions, SplitTerrainAtSlopeChanges) {
-  const sim::HeightField f = testing::HeightFieldOf(-0.5, -0.5, 3.0, 2.0, 0.01, Mesa);
+  const sim::terrain::HeightField f = testing::HeightFieldOf(-0.5, -0.5, 3.0, 2.0, 0.01, Mesa);
   const ElevationMap m = testing::SampledElevation(f, Geometry(50, 30));  // x 0..2.5 m
   const RoamanOptions o;
   const NormalMap n = FitNormals(m, o);
@@ -47,7 +47,7 @@ TEST(Regions, SplitTerrainAtSlopeChanges) {
 TEST(Regions, AHeightJumpEndsARegionEvenWhenTheSlopeIsTheSame) {
   // Two flat terraces 0.3 m apart with a sharp edge: the fits next to the edge tilt, but the
   // terraces' far parts have the same normal and must still be two regions.
-  const sim::HeightField f = testing::HeightFieldOf(
+  const sim::terrain::HeightField f = testing::HeightFieldOf(
       -0.5, -0.5, 3.0, 2.0, 0.01, [](double x, double) { return x < 1.0 ? 0.0 : 0.3; });
   const ElevationMap m = testing::SampledElevation(f, Geometry(40, 20));
   RoamanOptions o;
@@ -60,7 +60,7 @@ TEST(Regions, AHeightJumpEndsARegionEvenWhenTheSlopeIsTheSame) {
 }
 
 TEST(Regions, CellsWithoutANormalBelongToNone) {
-  const sim::HeightField f = testing::FlatGround(-0.5, -0.5, 2.0, 2.0);
+  const sim::terrain::HeightField f = testing::FlatGround(-0.5, -0.5, 2.0, 2.0);
   ElevationMap m = testing::SampledElevation(f, Geometry(10, 10));
   for (int j = 0; j < 10; ++j) m.source.at(4, j) = m.source.at(5, j) = HeightSource::kNone;
   const RoamanOptions o;

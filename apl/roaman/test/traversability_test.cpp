@@ -22,7 +22,7 @@ std::vector<MastCamera> Pointings() {
                                     {-8.0 * testing::kDeg, -28.0 * testing::kDeg});
 }
 
-SiteMap MapOf(const sim::HeightField& ground, const RoamanOptions& o) {
+SiteMap MapOf(const sim::terrain::HeightField& ground, const RoamanOptions& o) {
   SiteMap map(o);
   for (const auto& scan :
        testing::SynthesizePanorama(ground, Pointings(), testing::RoverPose(ground, 0, 0, 0))) {
@@ -32,9 +32,9 @@ SiteMap MapOf(const sim::HeightField& ground, const RoamanOptions& o) {
 }
 
 // Flat ground with a 0.6 m rock 4 m ahead and a 0.1 m pebble 2.5 m ahead, left.
-const sim::HeightField& RockScene() {
-  static const sim::HeightField g = [] {
-    sim::HeightField f = testing::FlatGround(-3, -9, 15, 9, 0.04);
+const sim::terrain::HeightField& RockScene() {
+  static const sim::terrain::HeightField g = [] {
+    sim::terrain::HeightField f = testing::FlatGround(-3, -9, 15, 9, 0.04);
     testing::AddRock(&f, 4.0, 0.0, 0.8, 0.6);
     testing::AddRock(&f, 2.5, 1.0, 0.2, 0.1);
     return f;
@@ -74,7 +74,7 @@ TEST(Traversability, RocksTheirShadowsAndTheEndOfTheRange) {
 
 TEST(Traversability, SteepTerrainFromTheMast) {
   // A 50° bank 3 m wide rising across the view 5 m ahead: a steep region.
-  static const sim::HeightField bank =
+  static const sim::terrain::HeightField bank =
       testing::HeightFieldOf(-3, -9, 15, 9, 0.04, [](double x, double) {
         return std::tan(50.0 * testing::kDeg) * std::clamp(x - 5.0, 0.0, 0.6);
       });
@@ -104,7 +104,7 @@ TEST(Traversability, EmptyMapsAndBlockedCorridors) {
 TEST(Traversability, TallRocksOfASeededFieldAreHazards) {
   // Seed 3 of a rock field of FIDO's medium density (15 %), a full panorama: every rock taller
   // than the body clearance within 9 m has hazard cells on it (its flanks, or its shadow).
-  const sim::Terrain field = testing::RockField(0.15, 3, 24.0);
+  const sim::terrain::Terrain field = testing::RockField(0.15, 3, 24.0);
   const RoamanOptions o;
   MastCamera cam;
   cam.width = 160;
@@ -119,7 +119,7 @@ TEST(Traversability, TallRocksOfASeededFieldAreHazards) {
   }
   const TraversabilityMap t = ComputeTraversability(map, o);
   int checked = 0;
-  for (const sim::Rock& r : field.rocks) {
+  for (const sim::terrain::Rock& r : field.rocks) {
     const Eigen::Vector2d c = r.position.head<2>();
     if (r.height <= o.body_clearance || c.norm() > 9.0) continue;
     int hazard = 0;

@@ -99,7 +99,8 @@ SeedResult RunSeed(int seed, double cover, int repeats, const std::string& pictu
   SeedResult r;
   r.seed = seed;
   ro::RoamanOptions o = FigureThreeOptions();
-  const rover::sim::Terrain field = rt::RockField(cover, static_cast<std::uint64_t>(seed), 30.0);
+  const rover::sim::terrain::Terrain field =
+      rt::RockField(cover, static_cast<std::uint64_t>(seed), 30.0);
   const auto scans =
       rt::SynthesizePanorama(field.natural, Pointings(), rt::RoverPose(field.natural, 0, 0, 0));
   std::vector<double> bin, map, prep, rm, as, dj;
@@ -221,7 +222,7 @@ void ScenarioPictures(const std::string& dir) {
   ro::RoamanOptions o;
   o.plan_width = 10.0;
   {
-    rover::sim::HeightField g = rt::FlatGround(-3, -7, 14, 7, 0.04);
+    rover::sim::terrain::HeightField g = rt::FlatGround(-3, -7, 14, 7, 0.04);
     rt::AddCulDeSac(&g, {6.0, 0.0}, {-1.0, 0.0}, 3.0, 3.0, 0.3, 0.8);
     ro::RoamanPlanner p(o);
     for (const auto& s :
@@ -245,7 +246,7 @@ void ScenarioPictures(const std::string& dir) {
                 a.ok() ? "planned" : a.status().message().c_str());
   }
   {
-    rover::sim::HeightField g = rt::FlatGround(-3, -5, 14, 5, 0.04);
+    rover::sim::terrain::HeightField g = rt::FlatGround(-3, -5, 14, 5, 0.04);
     rt::AddWall(&g, {2.0, 0.0}, {8.0, 0.0}, 0.25, 0.6);
     rt::AddWall(&g, {-3.0, 3.75}, {14.0, 3.75}, 0.25, 0.6);
     rt::AddWall(&g, {-3.0, -3.75}, {14.0, -3.75}, 0.25, 0.6);

@@ -9,31 +9,29 @@
 namespace rover::apl::sequencer {
 namespace {
 
-namespace mob = ::rover::apl::mobility;
-
-mob::Mode ModeOf(MobilityMode m) {
+msg::MobilityMode ModeOf(MobilityMode m) {
   switch (m) {
-    case MobilityMode::kDirected: return mob::Mode::kDirected;
-    case MobilityMode::kVisodom: return mob::Mode::kVisOdom;
-    case MobilityMode::kGoToWaypoint: return mob::Mode::kGoToWaypoint;
-    case MobilityMode::kVisodomGoToWaypoint: return mob::Mode::kVisOdomGoToWaypoint;
-    case MobilityMode::kGuarded: return mob::Mode::kGuarded;
-    case MobilityMode::kGuardedVisodom: return mob::Mode::kGuardedVisOdom;
-    case MobilityMode::kGuardedArc: return mob::Mode::kGuardedArc;
-    case MobilityMode::kAutonav: return mob::Mode::kAutoNav;
-    case MobilityMode::kAutonavVisodom: return mob::Mode::kAutoNavVisOdom;
-    case MobilityMode::kLongTraverse: return mob::Mode::kLongTraverse;
-    case MobilityMode::kStop: return mob::Mode::kStop;
-    case MobilityMode::kClearFault: return mob::Mode::kClearFault;
+    case MobilityMode::kDirected: return msg::MobilityMode::kDirected;
+    case MobilityMode::kVisodom: return msg::MobilityMode::kVisOdom;
+    case MobilityMode::kGoToWaypoint: return msg::MobilityMode::kGoToWaypoint;
+    case MobilityMode::kVisodomGoToWaypoint: return msg::MobilityMode::kVisOdomGoToWaypoint;
+    case MobilityMode::kGuarded: return msg::MobilityMode::kGuarded;
+    case MobilityMode::kGuardedVisodom: return msg::MobilityMode::kGuardedVisOdom;
+    case MobilityMode::kGuardedArc: return msg::MobilityMode::kGuardedArc;
+    case MobilityMode::kAutonav: return msg::MobilityMode::kAutoNav;
+    case MobilityMode::kAutonavVisodom: return msg::MobilityMode::kAutoNavVisOdom;
+    case MobilityMode::kLongTraverse: return msg::MobilityMode::kLongTraverse;
+    case MobilityMode::kStop: return msg::MobilityMode::kStop;
+    case MobilityMode::kClearFault: return msg::MobilityMode::kClearFault;
   }
   ROVER_UNREACHABLE();
 }
 
-mob::PrimitiveKind PrimitiveOf(Primitive p) {
+msg::DrivePrimitive PrimitiveOf(Primitive p) {
   switch (p) {
-    case Primitive::kArc: return mob::PrimitiveKind::kArc;
-    case Primitive::kStraight: return mob::PrimitiveKind::kStraight;
-    case Primitive::kTurnInPlace: return mob::PrimitiveKind::kTurnInPlace;
+    case Primitive::kArc: return msg::DrivePrimitive::kArc;
+    case Primitive::kStraight: return msg::DrivePrimitive::kStraight;
+    case Primitive::kTurnInPlace: return msg::DrivePrimitive::kTurnInPlace;
     case Primitive::kNone: break;
   }
   ROVER_UNREACHABLE();
@@ -65,14 +63,15 @@ Status CheckDispatchable(const Sequence& sequence) {
                          FamilyName(c->spec().family) + " commands yet");
 }
 
-Result<mob::MobilityCommand> MobilityCommandOf(const Command& c) {
+Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp) {
   const auto& r = std::get<MobilityRequest>(c.request);
   if (r.speed != 0.0) {
     return InvalidArgument("speed = " + FormatNumber(r.speed) +
                            " m/s: apl/mobility_command carries no speed (the mobility "
                            "manager's drive speed is its parameter); leave speed at 0");
   }
-  mob::MobilityCommand m;
+  msg::MobilityCommand m;
+  m.stamp = stamp;
   m.command_id = c.id;
   m.mode = ModeOf(r.mode);
   m.goal = Eigen::Vector3d(r.goal_x, r.goal_y, 0.0);
@@ -84,10 +83,11 @@ Result<mob::MobilityCommand> MobilityCommandOf(const Command& c) {
   return m;
 }
 
-mob::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id) {
-  mob::MobilityCommand m;
+msg::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id, Time stamp) {
+  msg::MobilityCommand m;
+  m.stamp = stamp;
   m.command_id = cancel_id | kCancelIdBit;
-  m.mode = mob::Mode::kStop;
+  m.mode = msg::MobilityMode::kStop;
   return m;
 }
 
@@ -107,8 +107,8 @@ msg::MastCommand MastCommandOf(const Command& c, Time stamp) {
   return m;
 }
 
-Fault FaultOfMobilityFault(mob::Fault f) {
-  using F = mob::Fault;
+Fault FaultOfMobilityFault(msg::MobilityFault f) {
+  using F = msg::MobilityFault;
   switch (f) {
     case F::kNone: return Fault::kNone;
     case F::kArb: return Fault::kArb;
@@ -134,18 +134,18 @@ Fault FaultOfMobilityFault(mob::Fault f) {
   return Fault::kOther;  // a value from the wire no enumerator has
 }
 
-std::optional<Outcome> OutcomeOfMobilityStatus(const mob::MobilityStatus& s) {
+std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s) {
   Outcome o;
   o.stamp = s.stamp;
   o.message = s.message;
   switch (s.state) {
-    case mob::State::kSucceeded:
+    case msg::MobilityState::kSucceeded:
       o.termination = Termination::kNominal;
       return o;
-    case mob::State::kFailed:
+    case msg::MobilityState::kFailed:
       o.termination = Termination::kFault;
       break;
-    case mob::State::kRejected:
+    case msg::MobilityState::kRejected:
       o.termination = Termination::kRejected;
       break;
     default:
@@ -153,8 +153,8 @@ std::optional<Outcome> OutcomeOfMobilityStatus(const mob::MobilityStatus& s) {
   }
   o.fault = FaultOfMobilityFault(s.fault);
   if (o.fault == Fault::kNone) o.fault = Fault::kOther;  // an end off nominal names a fault
-  o.fault_class = s.fault_class == mob::FaultClass::kMotionError ? FaultClass::kMotionError
-                  : s.fault_class == mob::FaultClass::kGoalError ? FaultClass::kGoalError
+  o.fault_class = s.fault_class == msg::FaultClass::kMotionError ? FaultClass::kMotionError
+                  : s.fault_class == msg::FaultClass::kGoalError ? FaultClass::kGoalError
                                                                   : DefaultFaultClass(o.fault);
   return o;
 }

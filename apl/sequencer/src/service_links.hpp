@@ -1,10 +1,9 @@
 #pragma once
 // How apl-sequencer links the interpreter to its neighbours' messages (private to the service and
 // its tests; pure functions, no DDS). The typed requests of commands.hpp become
-// apl::mobility::MobilityCommand (written by apl/mobility's own IDL conversions, until core/msg
-// takes the mobility messages over) and msg::MastCommand; the neighbours' statuses become an
-// Outcome when they end the command; dl/pose becomes a PoseSample; the interpreter's status
-// becomes apl/sequence_status.
+// msg::MobilityCommand and msg::MastCommand (core/msg's values; the service writes them with
+// core/msg's conversions); the neighbours' statuses become an Outcome when they end the command;
+// dl/pose becomes a PoseSample; the interpreter's status becomes apl/sequence_status.
 //
 // Command ids: the sequencer's command ids are the interpreter's (increasing, never repeated in
 // a run of the service); the STOP it sends to cancel a mobility command has its own id, with
@@ -14,10 +13,10 @@
 #include <optional>
 #include <string>
 
-#include "rover/apl/mobility/mobility_types.hpp"
 #include "rover/apl/sequencer/commands.hpp"
 #include "rover/apl/sequencer/interpreter.hpp"
 #include "rover/msg/mast.hpp"
+#include "rover/msg/mobility.hpp"
 #include "rover/msg/pose.hpp"
 #include "rover/msg/sequence.hpp"
 
@@ -33,24 +32,26 @@ bool ServiceDispatches(Family f);
 /// "line 5: APPROACH_TARGET: apl-sequencer does not dispatch rendezvous commands yet".
 Status CheckDispatchable(const Sequence& sequence);
 
-/// The apl/mobility_command of a mobility command. Errors: a speed other than 0 (the mobility
-/// manager's command carries none; its drive speed is a parameter), naming the value.
-Result<mobility::MobilityCommand> MobilityCommandOf(const Command& c);
-/// The mobility manager's STOP, as sent to cancel an outstanding mobility command.
-mobility::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id);
+/// The apl/mobility_command of a mobility command, stamped `stamp`. Errors: a speed other than 0
+/// (the mobility manager's command carries none; its drive speed is a parameter), naming the
+/// value.
+Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp);
+/// The mobility manager's STOP, as sent to cancel an outstanding mobility command, stamped
+/// `stamp`.
+msg::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id, Time stamp);
 /// The dl/mast_command of a mast command, stamped `stamp`.
 msg::MastCommand MastCommandOf(const Command& c, Time stamp);
 
 /// The outcome a mobility status gives its command: SUCCEEDED -> NOMINAL, FAILED -> FAULT,
 /// REJECTED -> REJECTED (with the fault mapped by name and the status's class), stamped with
 /// the status's stamp; nullopt while IDLE or RUNNING.
-std::optional<Outcome> OutcomeOfMobilityStatus(const mobility::MobilityStatus& s);
+std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s);
 /// The outcome a mast status gives its command: AT_GOAL -> NOMINAL, FAULT -> FAULT OTHER (goal
 /// error), REJECTED -> REJECTED INVALID; nullopt while IDLE or MOVING.
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s);
 /// The sequencer's fault of a mobility fault (same names; KEEPOUT -> OTHER, BAD_COMMAND ->
 /// INVALID).
-Fault FaultOfMobilityFault(mobility::Fault f);
+Fault FaultOfMobilityFault(msg::MobilityFault f);
 
 /// dl/pose as the interpreter's pose input (ZYX roll, pitch, yaw of the estimate).
 PoseSample PoseOfEstimate(const msg::PoseEstimate& p);

@@ -11,9 +11,9 @@
 #include <memory>
 #include <numbers>
 
-#include "mobility_msg.hpp"
 #include "service_links.hpp"
 #include "rover/msg/mast_idl.hpp"
+#include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
 #include "rover/msg/sequence_idl.hpp"
 #include "rover/testing/service_harness.hpp"
@@ -21,11 +21,10 @@
 namespace rover::apl::sequencer {
 namespace {
 
-namespace mob = ::rover::apl::mobility;
 
 struct Sent {
   std::string topic;  // "mobility" or "mast"
-  mob::MobilityCommand mobility;
+  msg::MobilityCommand mobility;
   msg::MastCommand mast;
 };
 
@@ -56,18 +55,20 @@ class SequencerServiceTest : public ::testing::Test {
   // One 0.1 s step: answer what came in the last step, publish the pose, move time on, and
   // collect what the service sent.
   bool Tick() {
-    for (const mob::MobilityCommand& c : hold_answers_ ? std::vector<mob::MobilityCommand>{}
+    for (const msg::MobilityCommand& c : hold_answers_ ? std::vector<msg::MobilityCommand>{}
                                                        : to_answer_mobility_) {
-      mob::MobilityStatus s;
+      msg::MobilityStatus s;
       s.stamp = Time::FromSeconds(t_);
       s.command_id = c.command_id;
       s.mode = c.mode;
-      s.state = mob::State::kSucceeded;
+      s.state = msg::MobilityState::kSucceeded;
       if (mobility_answer) mobility_answer(c, &s);
-      if (s.state == mob::State::kSucceeded && !c.primitives.empty()) {
+      if (s.state == msg::MobilityState::kSucceeded && !c.primitives.empty()) {
         x_ += c.primitives[0].distance;
       }
-      if (!mobility_status_.Write(mob::msg::StatusToIdl(s)).ok()) return false;
+      rover_apl_MobilityStatus sm{};
+      msg::MobilityStatusToIdl(s, &sm);
+      if (!mobility_status_.Write(sm).ok()) return false;
     }
     if (!hold_answers_) to_answer_mobility_.clear();
     for (const msg::MastCommand& c : to_answer_mast_) {
@@ -91,10 +92,10 @@ class SequencerServiceTest : public ::testing::Test {
     if (!harness_->AdvanceTo(Time::FromSeconds(t_))) return false;
     harness_->Spin();
     for (auto& s : mobility_.Take()) {
-      const mob::MobilityCommand c = mob::msg::CommandFromIdl(s.data());
+      const msg::MobilityCommand c = msg::MobilityCommandFromIdl(s.data());
       // Event-driven: a new command only once every earlier one was answered (a STOP that
       // cancels one is the exception).
-      if (c.mode != mob::Mode::kStop || (c.command_id & 0x80000000u) == 0) {
+      if (c.mode != msg::MobilityMode::kStop || (c.command_id & 0x80000000u) == 0) {
         EXPECT_EQ(unanswered(), 0) << "mobility command " << c.command_id;
       }
       sent_.push_back({"mobility", c, {}});
@@ -142,8 +143,8 @@ class SequencerServiceTest : public ::testing::Test {
   dds::Reader<rover_apl_MobilityCommand> mobility_;
   dds::Reader<rover_dl_MastCommand> mast_;
   dds::Reader<rover_apl_SequenceStatus> status_;
-  std::function<void(const mob::MobilityCommand&, mob::MobilityStatus*)> mobility_answer;
-  std::vector<mob::MobilityCommand> to_answer_mobility_;
+  std::function<void(const msg::MobilityCommand&, msg::MobilityStatus*)> mobility_answer;
+  std::vector<msg::MobilityCommand> to_answer_mobility_;
   std::vector<msg::MastCommand> to_answer_mast_;
   std::vector<Sent> sent_;
   std::vector<msg::SequenceStatus> statuses_;
@@ -170,11 +171,11 @@ TEST_F(SequencerServiceTest, RunsASequenceCommandByCommandOverTopics) {
   EXPECT_NEAR(sent_[0].mast.pan, 10 * std::numbers::pi / 180, 1e-12);
   for (int k = 1; k <= 3; ++k) {
     EXPECT_EQ(sent_[k].topic, "mobility");
-    EXPECT_EQ(sent_[k].mobility.mode, mob::Mode::kVisOdom);
+    EXPECT_EQ(sent_[k].mobility.mode, msg::MobilityMode::kVisOdom);
     ASSERT_EQ(sent_[k].mobility.primitives.size(), 1u);
     EXPECT_DOUBLE_EQ(sent_[k].mobility.primitives[0].distance, 0.4);
   }
-  EXPECT_EQ(sent_[4].mobility.primitives.at(0).kind, mob::PrimitiveKind::kTurnInPlace);
+  EXPECT_EQ(sent_[4].mobility.primitives.at(0).kind, msg::DrivePrimitive::kTurnInPlace);
   // Every command id differs, so each status ends only its own command.
   for (std::size_t k = 1; k < sent_.size(); ++k) {
     const std::uint32_t a = sent_[k - 1].topic == "mast" ? sent_[k - 1].mast.command_id
@@ -220,11 +221,11 @@ TEST_F(SequencerServiceTest, BadSequencesAreRefusedAndNothingMoves) {
 }
 
 TEST_F(SequencerServiceTest, AFailedDriveRunsTheAbortBlockAndASecondSequenceWaits) {
-  mobility_answer = [](const mob::MobilityCommand& c, mob::MobilityStatus* s) {
-    if (c.mode == mob::Mode::kAutoNav) {
-      s->state = mob::State::kFailed;
-      s->fault = mob::Fault::kNoPath;
-      s->fault_class = mob::FaultClass::kGoalError;
+  mobility_answer = [](const msg::MobilityCommand& c, msg::MobilityStatus* s) {
+    if (c.mode == msg::MobilityMode::kAutoNav) {
+      s->state = msg::MobilityState::kFailed;
+      s->fault = msg::MobilityFault::kNoPath;
+      s->fault_class = msg::FaultClass::kGoalError;
       s->message = "every arc forbidden";
     }
   };
@@ -248,10 +249,10 @@ TEST_F(SequencerServiceTest, AFailedDriveRunsTheAbortBlockAndASecondSequenceWait
             "step 3 (line 5: AUTONAV goal=(9, 0)) failed: NOPATH (goal error): every arc "
             "forbidden");
   ASSERT_EQ(sent_.size(), 3u);
-  EXPECT_EQ(sent_[0].mobility.mode, mob::Mode::kDirected);
-  EXPECT_EQ(sent_[1].mobility.mode, mob::Mode::kAutoNav);
+  EXPECT_EQ(sent_[0].mobility.mode, msg::MobilityMode::kDirected);
+  EXPECT_EQ(sent_[1].mobility.mode, msg::MobilityMode::kAutoNav);
   EXPECT_EQ(sent_[1].mobility.goal, Eigen::Vector3d(9, 0, 0));
-  EXPECT_EQ(sent_[2].mobility.mode, mob::Mode::kStop);  // the ON_ABORT block
+  EXPECT_EQ(sent_[2].mobility.mode, msg::MobilityMode::kStop);  // the ON_ABORT block
 }
 
 TEST_F(SequencerServiceTest, DeactivationStopsTheRunningSequenceAndItsDrive) {
@@ -262,10 +263,10 @@ TEST_F(SequencerServiceTest, DeactivationStopsTheRunningSequenceAndItsDrive) {
   const std::uint32_t autonav = sent_[0].mobility.command_id;
   ASSERT_TRUE(harness_->lifecycle().Deactivate().ok());
   // The service no longer serves its timer; what it wrote on deactivation is read directly.
-  std::vector<mob::MobilityCommand> stops;
+  std::vector<msg::MobilityCommand> stops;
   std::optional<msg::SequenceStatus> end;
   ASSERT_TRUE(harness_->SpinUntil([&] {
-    for (auto& m : mobility_.Take()) stops.push_back(mob::msg::CommandFromIdl(m.data()));
+    for (auto& m : mobility_.Take()) stops.push_back(msg::MobilityCommandFromIdl(m.data()));
     for (auto& m : status_.Take()) {
       Result<msg::SequenceStatus> st = msg::SequenceStatusFromIdl(m.data());
       if (st.ok() && st->command_id == 3 && st->state == msg::SequenceState::kFailed) end = *st;
@@ -273,7 +274,7 @@ TEST_F(SequencerServiceTest, DeactivationStopsTheRunningSequenceAndItsDrive) {
     return !stops.empty() && end.has_value();
   }));
   ASSERT_EQ(stops.size(), 1u);  // the STOP, not the ON_ABORT block's MAST
-  EXPECT_EQ(stops[0].mode, mob::Mode::kStop);
+  EXPECT_EQ(stops[0].mode, msg::MobilityMode::kStop);
   EXPECT_EQ(stops[0].command_id, autonav | kCancelIdBit);
   EXPECT_TRUE(mast_.Take().empty());
   EXPECT_NE(end->message.find("apl-sequencer deactivated"), std::string::npos) << end->message;

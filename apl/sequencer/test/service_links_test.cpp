@@ -13,7 +13,6 @@
 namespace rover::apl::sequencer {
 namespace {
 
-namespace mob = ::rover::apl::mobility;
 using testing::MustParse;
 
 Command Built(const std::string& line, std::uint32_t id = 7) {
@@ -40,39 +39,44 @@ TEST(ServiceLinks, OnlyMobilityAndMastAreDispatched) {
 }
 
 TEST(ServiceLinks, MobilityCommandsCarryModeGoalAndOnePrimitive) {
-  const mob::MobilityCommand arc =
-      *MobilityCommandOf(Built("VISODOM ARC curvature=0.5 distance=2 timeout=90 s"));
+  const msg::MobilityCommand arc =
+      *MobilityCommandOf(Built("VISODOM ARC curvature=0.5 distance=2 timeout=90 s"), Time{5});
+  EXPECT_EQ(arc.stamp, Time{5});
   EXPECT_EQ(arc.command_id, 7u);
-  EXPECT_EQ(arc.mode, mob::Mode::kVisOdom);
+  EXPECT_EQ(arc.mode, msg::MobilityMode::kVisOdom);
   EXPECT_DOUBLE_EQ(arc.time_budget_s, 90.0);
   ASSERT_EQ(arc.primitives.size(), 1u);
-  EXPECT_EQ(arc.primitives[0].kind, mob::PrimitiveKind::kArc);
+  EXPECT_EQ(arc.primitives[0].kind, msg::DrivePrimitive::kArc);
   EXPECT_DOUBLE_EQ(arc.primitives[0].curvature, 0.5);
   EXPECT_DOUBLE_EQ(arc.primitives[0].distance, 2.0);
 
-  const mob::MobilityCommand turn = *MobilityCommandOf(Built("TURN angle_deg=90"));
-  EXPECT_EQ(turn.mode, mob::Mode::kDirected);
-  EXPECT_EQ(turn.primitives.at(0).kind, mob::PrimitiveKind::kTurnInPlace);
+  const msg::MobilityCommand turn = *MobilityCommandOf(Built("TURN angle_deg=90"), Time{5});
+  EXPECT_EQ(turn.mode, msg::MobilityMode::kDirected);
+  EXPECT_EQ(turn.primitives.at(0).kind, msg::DrivePrimitive::kTurnInPlace);
   EXPECT_NEAR(turn.primitives.at(0).angle, std::numbers::pi / 2, 1e-12);
 
-  const mob::MobilityCommand go = *MobilityCommandOf(Built("AUTONAV goal=(5, -2) tolerance=0.4"));
-  EXPECT_EQ(go.mode, mob::Mode::kAutoNav);
+  const msg::MobilityCommand go =
+      *MobilityCommandOf(Built("AUTONAV goal=(5, -2) tolerance=0.4"), Time{5});
+  EXPECT_EQ(go.mode, msg::MobilityMode::kAutoNav);
   EXPECT_EQ(go.goal, Eigen::Vector3d(5, -2, 0));
   EXPECT_DOUBLE_EQ(go.tolerance, 0.4);
   EXPECT_TRUE(go.primitives.empty());
-  EXPECT_EQ(MobilityCommandOf(Built("LONG_TRAVERSE goal=(9, 9)"))->mode, mob::Mode::kLongTraverse);
-  EXPECT_EQ(MobilityCommandOf(Built("CLEAR_FAULT"))->mode, mob::Mode::kClearFault);
+  EXPECT_EQ(MobilityCommandOf(Built("LONG_TRAVERSE goal=(9, 9)"), Time{5})->mode,
+            msg::MobilityMode::kLongTraverse);
+  EXPECT_EQ(MobilityCommandOf(Built("CLEAR_FAULT"), Time{5})->mode,
+            msg::MobilityMode::kClearFault);
 
-  const Result<mob::MobilityCommand> fast =
-      MobilityCommandOf(Built("DRIVE STRAIGHT distance=1 speed=5 cm/s"));
+  const Result<msg::MobilityCommand> fast =
+      MobilityCommandOf(Built("DRIVE STRAIGHT distance=1 speed=5 cm/s"), Time{5});
   ASSERT_FALSE(fast.ok());
   EXPECT_EQ(fast.status().message(),
             "speed = 0.05 m/s: apl/mobility_command carries no speed (the mobility manager's "
             "drive speed is its parameter); leave speed at 0");
 
-  const mob::MobilityCommand stop = MobilityStopCommand(12);
-  EXPECT_EQ(stop.mode, mob::Mode::kStop);
+  const msg::MobilityCommand stop = MobilityStopCommand(12, Time{5});
+  EXPECT_EQ(stop.mode, msg::MobilityMode::kStop);
   EXPECT_EQ(stop.command_id, 12u | kCancelIdBit);
+  EXPECT_EQ(stop.stamp, Time{5});
 }
 
 TEST(ServiceLinks, MastCommandsPointByAnglesOrAtAPoint) {
@@ -88,40 +92,40 @@ TEST(ServiceLinks, MastCommandsPointByAnglesOrAtAPoint) {
 }
 
 TEST(ServiceLinks, StatusesEndTheirCommandOnlyWhenTerminal) {
-  mob::MobilityStatus s;
+  msg::MobilityStatus s;
   s.stamp = Time::FromSeconds(12);
   s.command_id = 3;
-  s.state = mob::State::kRunning;
+  s.state = msg::MobilityState::kRunning;
   EXPECT_FALSE(OutcomeOfMobilityStatus(s).has_value());
-  s.state = mob::State::kSucceeded;
+  s.state = msg::MobilityState::kSucceeded;
   Outcome o = *OutcomeOfMobilityStatus(s);
   EXPECT_EQ(o.termination, Termination::kNominal);
   EXPECT_EQ(o.stamp, s.stamp);
   EXPECT_TRUE(o.Validate().ok());
 
-  s.state = mob::State::kFailed;
-  s.fault = mob::Fault::kNoProgress;
-  s.fault_class = mob::FaultClass::kGoalError;
+  s.state = msg::MobilityState::kFailed;
+  s.fault = msg::MobilityFault::kNoProgress;
+  s.fault_class = msg::FaultClass::kGoalError;
   s.message = "limit cycle";
   o = *OutcomeOfMobilityStatus(s);
   EXPECT_EQ(o.Describe(), "NOPROGRESS (goal error): limit cycle");
   EXPECT_TRUE(o.Validate().ok());
-  s.fault = mob::Fault::kTilt;
-  s.fault_class = mob::FaultClass::kMotionError;
+  s.fault = msg::MobilityFault::kTilt;
+  s.fault_class = msg::FaultClass::kMotionError;
   EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault_class, FaultClass::kMotionError);
 
-  s.state = mob::State::kRejected;
-  s.fault = mob::Fault::kBadCommand;
-  s.fault_class = mob::FaultClass::kGoalError;
+  s.state = msg::MobilityState::kRejected;
+  s.fault = msg::MobilityFault::kBadCommand;
+  s.fault_class = msg::FaultClass::kGoalError;
   o = *OutcomeOfMobilityStatus(s);
   EXPECT_EQ(o.termination, Termination::kRejected);
   EXPECT_EQ(o.fault, Fault::kInvalid);
-  s.fault = mob::Fault::kNone;  // an off-nominal end always names a fault
+  s.fault = msg::MobilityFault::kNone;  // an off-nominal end always names a fault
   EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault, Fault::kOther);
   EXPECT_TRUE(OutcomeOfMobilityStatus(s)->Validate().ok());
-  EXPECT_EQ(FaultOfMobilityFault(mob::Fault::kKeepOut), Fault::kOther);
-  EXPECT_EQ(FaultOfMobilityFault(mob::Fault::kVisOdom), Fault::kVisodom);
-  EXPECT_EQ(FaultOfMobilityFault(static_cast<mob::Fault>(99)), Fault::kOther);
+  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kKeepOut), Fault::kOther);
+  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kVisOdom), Fault::kVisodom);
+  EXPECT_EQ(FaultOfMobilityFault(static_cast<msg::MobilityFault>(99)), Fault::kOther);
 
   msg::MastStatus m;
   m.state = msg::MastState::kMoving;

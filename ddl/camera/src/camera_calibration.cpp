@@ -4,7 +4,7 @@
 
 #include "rover/msg/camera.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 constexpr std::array<const char*, 2> kSides = {"left", "right"};
@@ -179,4 +179,4 @@ Result<CameraCalibration> LoadCameraCalibration(const std::string& path) {
   return CameraCalibrationFromParams(p);
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

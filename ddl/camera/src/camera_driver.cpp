@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 std::string Num(double v) {
@@ -242,4 +242,4 @@ void CameraDriver::Reset() {
   mast_.clear();
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 struct Tap {
@@ -125,4 +125,4 @@ Result<DownsampledStereo> DownsampleStereo(const GrayImage& left, const GrayImag
                            sy};
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

@@ -12,7 +12,7 @@
 
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 const std::string kDeployFile = std::string(ROVER_SOURCE_DIR) + "/deploy/config/cameras.yaml";
@@ -211,4 +211,4 @@ TEST_F(CalibrationFile, CahvAndCahvoreKindsLoad) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 constexpr int kSize = 64;
@@ -286,4 +286,4 @@ TEST(CameraDriver, OptionsAreValidated) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

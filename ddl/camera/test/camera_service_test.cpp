@@ -12,7 +12,7 @@
 
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 using testing::ServiceHarness;
@@ -270,4 +270,4 @@ TEST_F(CameraServiceTest, UnansweredRequestsAndStaleJointsDegradeTheHealth) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

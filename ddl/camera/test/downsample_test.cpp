@@ -6,7 +6,7 @@
 
 #include "test_models.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 namespace {
 
 GrayImage Image(int w, int h, std::uint8_t fill = 0) {
@@ -140,4 +140,4 @@ TEST(DownsampleStereo, FullSizeAndErrors) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

@@ -3,7 +3,7 @@
 
 #include "rover/geometry/camera_model.hpp"
 
-namespace rover::ddl::test {
+namespace rover::ddl::camera::test {
 
 // A NAVCAM-like CAHVOR (1024 x 768, 45 deg, mild barrel distortion) looking along +z, with the
 // optical axis O slightly off A.
@@ -19,4 +19,4 @@ inline geometry::CameraModel NavcamCahvor(double baseline_x = 0.0) {
   return *geometry::CameraModel::Create(m, 1024, 768);
 }
 
-}  // namespace rover::ddl::test
+}  // namespace rover::ddl::camera::test

@@ -4,7 +4,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::driver_support {
 namespace {
 std::string Num(double v) {
   char buf[32];
@@ -58,4 +58,4 @@ void HealthSummary::Worsen(msg::SensorHealth h, const std::string& why) {
   }
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::driver_support

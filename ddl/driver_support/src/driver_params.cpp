@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string_view>
 
-namespace rover::ddl {
+namespace rover::ddl::driver_support {
 
 void DeclareDriverHardwareParams(ParamSet& params) {
   DeclareHardwareParams(params, kHardwarePrefix);
@@ -60,4 +60,4 @@ Result<HardwareConfig> DriverHardwareConfig(const ParamSet& params) {
   return LoadHardwareConfig(*path);
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::driver_support

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace rover::ddl {
+namespace rover::ddl::driver_support {
 namespace {
 
 Time T(double s) { return Time::FromSeconds(s); }
@@ -76,4 +76,4 @@ TEST(IsLogWorthy, PowersOfTen) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::driver_support

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-namespace rover::ddl {
+namespace rover::ddl::driver_support {
 namespace {
 
 const std::string kDeployFile =
@@ -103,4 +103,4 @@ TEST(DriverParams, RelativePathsFallBackToTheSourceDir) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::driver_support

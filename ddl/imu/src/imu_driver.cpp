@@ -3,7 +3,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
-namespace rover::ddl {
+namespace rover::ddl::imu {
 
 Result<ImuDriver> ImuDriver::Create(const ImuSpec& spec) {
   HardwareConfig c;
@@ -56,4 +56,4 @@ Imu ImuDriver::Convert(const hw::ImuRaw& raw) const {
   return out;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::imu

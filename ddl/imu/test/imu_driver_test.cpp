@@ -10,7 +10,7 @@
 #include "rover/sim/sensors/sim_sensor_options.hpp"
 #endif
 
-namespace rover::ddl {
+namespace rover::ddl::imu {
 namespace {
 
 // Exact nominal encoding (the measurement model without noise).
@@ -83,8 +83,8 @@ TEST(ImuDriver, RoundTripThroughTheSimulatedImu) {
   const ImuSpec spec;
   auto driver = ImuDriver::Create(spec);
   ASSERT_TRUE(driver.ok());
-  sim::ImuModel ideal(spec, sim::ImuErrors{}, 0.0, 1);
-  sim::ImuTruth truth;
+  sim::sensors::ImuModel ideal(spec, sim::sensors::ImuErrors{}, 0.0, 1);
+  sim::sensors::ImuTruth truth;
   truth.angular_velocity_rover = Eigen::Vector3d(0.1, 0.2, -0.3);
   truth.specific_force_rover = Eigen::Vector3d(-0.5, 0.25, 3.71);
   truth.temperature_c = -33.21;
@@ -108,10 +108,11 @@ TEST(ImuDriver, SimulatorCalibrationErrorsShowUpInTheOutput) {
   const ImuSpec spec;
   auto driver = ImuDriver::Create(spec);
   ASSERT_TRUE(driver.ok());
-  sim::ImuErrors errors = sim::SimSensorOptions().imu;          // defaults: bias, scale, mounting
+  sim::sensors::ImuErrors errors =
+      sim::sensors::SimSensorOptions().imu;                     // defaults: bias, scale, mounting
   errors.gyro_bias_error = Eigen::Vector3d(1e-4, -5e-5, 2e-5);  // 20 deg/h: visible in 10 s
-  sim::ImuModel imu(spec, errors, 1.0, 42);
-  sim::ImuTruth truth;
+  sim::sensors::ImuModel imu(spec, errors, 1.0, 42);
+  sim::sensors::ImuTruth truth;
   truth.specific_force_rover = Eigen::Vector3d(0.0, 0.0, 3.71);
   Eigen::Vector3d mean_w = Eigen::Vector3d::Zero(), mean_f = Eigen::Vector3d::Zero();
   const int n = 1000;
@@ -144,4 +145,4 @@ TEST(ImuDriver, RoundTripThroughTheSimulatedImu) {
 #endif
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::imu

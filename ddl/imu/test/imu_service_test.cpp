@@ -10,7 +10,7 @@
 
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::imu {
 namespace {
 
 using testing::ServiceHarness;
@@ -126,4 +126,4 @@ TEST_F(ImuServiceTest, StatusBitsAndSilenceSetTheHealth) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::imu

@@ -7,7 +7,7 @@
 #include "rover/base/check.hpp"
 #include "rover/ddl/motor/sync_planner.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 namespace {
 
 constexpr std::size_t kMaxMessage = 127;  // string<127> in the IDL
@@ -504,4 +504,4 @@ ManagerOutput MotorGroupManager::Tick(Time now) {
   return out;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

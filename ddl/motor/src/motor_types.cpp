@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 
 const char* CommandErrorName(CommandError e) {
   switch (e) {
@@ -152,4 +152,4 @@ Result<MotorManagerOptions> MotorManagerOptionsFromParams(const ParamSet& ps,
   return o;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

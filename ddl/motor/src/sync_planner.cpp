@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 
 double ProfileDuration(double d, double v, double a) {
   ROVER_DEMAND(d >= 0.0 && v > 0.0 && a > 0.0);
@@ -59,4 +59,4 @@ SyncPlan PlanSynchronisedMove(const std::vector<AxisMove>& axes) {
   return plan;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

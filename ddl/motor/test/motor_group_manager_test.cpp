@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 namespace {
 
 // A kinematic stand-in for the motor controllers: applies hw goals, runs trapezoidal profiles
@@ -513,4 +513,4 @@ TEST(MotorGroupManager, CreateRejectsBadOptions) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

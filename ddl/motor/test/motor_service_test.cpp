@@ -12,7 +12,7 @@
 #include "rover/ddl/motor/sync_planner.hpp"
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 namespace {
 
 using testing::ServiceHarness;
@@ -309,4 +309,4 @@ TEST_F(MotorServiceTest, BadCommandsAreRejectedWithAReasonAndTheServiceCarriesOn
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 namespace {
 
 TEST(MotorTypes, NamesAreStable) {
@@ -63,4 +63,4 @@ TEST(MotorTypes, OptionsValidateAndLoad) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 namespace {
 
 TEST(SyncPlanner, ProfileDurationTrapezoidAndTriangle) {
@@ -59,4 +59,4 @@ TEST(SyncPlanner, TriangleLimitedAxisSetsTheDuration) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

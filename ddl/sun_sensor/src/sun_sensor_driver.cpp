@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace rover::ddl {
+namespace rover::ddl::sun_sensor {
 
 Result<SunSensorDriver> SunSensorDriver::Create(const SunSensorSpec& spec) {
   HardwareConfig c;
@@ -36,4 +36,4 @@ SunSensor SunSensorDriver::Convert(const hw::SunSensorRaw& raw) const {
   return out;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::sun_sensor

@@ -12,7 +12,7 @@
 #include "rover/sim/sensors/sun_sensor_model.hpp"
 #endif
 
-namespace rover::ddl {
+namespace rover::ddl::sun_sensor {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -77,9 +77,9 @@ TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {
   const SunSensorSpec spec;
   auto driver = SunSensorDriver::Create(spec);
   ASSERT_TRUE(driver.ok());
-  sim::SunSensorErrors clear;
+  sim::sensors::SunSensorErrors clear;
   clear.optical_depth = 0.0;
-  sim::SunSensorModel ideal(spec, clear, 0.0, 1);
+  sim::sensors::SunSensorModel ideal(spec, clear, 0.0, 1);
   geometry::SunEphemerisOptions eo;  // Gusev, Ls 330
   const geometry::SunEphemeris eph(eo);
   const Eigen::Matrix3d attitude = geometry::RotationFromRpy(0.05, -0.1, 1.3);
@@ -103,7 +103,7 @@ TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {
 
   // With the simulator's default mounting and principal-point errors the nominal driver is off
   // by a fraction of a degree.
-  sim::SunSensorModel real(spec, sim::SimSensorOptions().sun_sensor, 0.0, 1);
+  sim::sensors::SunSensorModel real(spec, sim::sensors::SimSensorOptions().sun_sensor, 0.0, 1);
   const geometry::SunState noon = eph.At((12.0 - eo.ltst_hours) * geometry::kMarsSolSeconds / 24.0);
   const SunSensor s = driver->Convert(real.Sample(noon.direction_site, attitude, Time{}));
   ASSERT_TRUE(s.valid);
@@ -118,4 +118,4 @@ TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {
 #endif
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::sun_sensor

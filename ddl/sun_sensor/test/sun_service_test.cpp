@@ -12,7 +12,7 @@
 
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::sun_sensor {
 namespace {
 
 using testing::ServiceHarness;
@@ -114,4 +114,4 @@ TEST_F(SunServiceTest, DimSpotIsNotValidImpossibleSpotFailsSilenceIsStale) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::sun_sensor

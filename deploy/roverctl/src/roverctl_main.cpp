@@ -6,6 +6,7 @@
 //   roverctl logs SERVICE [-p PROJECT] [-f] [-n LINES]          a service's log
 //   roverctl config FILE                                        validate a compose file
 //   roverctl run SCENARIO [--seeds A..B] [--jobs J] [--out DIR] end-to-end scenario campaign
+//   roverctl run SCENARIO --faults FILE [--seeds ..] [--jobs ..]  fault campaign (each fault alone)
 //   roverctl report DIR                                         re-print a campaign's summary
 //   roverctl record [-p P | --domain D] -o FILE [--topics G...] record a set's topics to MCAP
 //   roverctl replay FILE [--topics G...] [--rate R] (--domain D | -p P)   republish a recording
@@ -36,6 +37,7 @@
 #include "rover/base/log.hpp"
 #include "rover/base/process.hpp"
 #include "rover/deploy/campaign.hpp"
+#include "rover/deploy/fault_campaign.hpp"
 #include "rover/deploy/compose.hpp"
 #include "rover/deploy/fault_commands.hpp"
 #include "rover/deploy/run_report.hpp"
@@ -600,7 +602,13 @@ std::string NowStamp() {
   return b;
 }
 
-int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out) {
+// A fault campaign's exit code: 0 when every run has a result and every fault run was safe.
+int FaultCampaignExit(const rover::deploy::FaultCampaignTable& t) {
+  return t.missing == 0 && t.errors.empty() && !t.interrupted && t.safe_runs == t.fault_runs ? 0 : 1;
+}
+
+int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out,
+        const std::string& faults_file) {
   auto scenario = rover::deploy::LoadScenario(file);
   if (!scenario.ok()) return Fail(scenario.status().message(), 2);
   std::vector<std::uint32_t> seeds = {scenario->seed};
@@ -609,8 +617,28 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     if (!s.ok()) return Fail(s.status().message(), 2);
     seeds = *s;
   }
-  if (out.empty()) out = "runs/" + scenario->name + "-" + NowStamp();
-  if (const Status s = rover::deploy::CheckOutputFolder(out, scenario->name); !s.ok()) {
+  // A fault campaign's file is checked whole before anything else happens.
+  std::vector<rover::deploy::CampaignFault> faults;
+  if (!faults_file.empty()) {
+    auto f = rover::deploy::LoadCampaignFaults(faults_file);
+    if (!f.ok()) return Fail(f.status().message(), 2);
+    faults = std::move(*f);
+    for (const auto& one : faults) {
+      if (one.kill) continue;
+      std::vector<rover::deploy::SetFault> joined = scenario->faults;
+      if (const Status s = rover::deploy::AppendSetFaults({one.fault}, &joined); !s.ok()) {
+        return Fail(s.message(), 2);
+      }
+    }
+  }
+  if (out.empty()) {
+    out = "runs/" + scenario->name + (faults_file.empty() ? "" : "-faults") + "-" + NowStamp();
+  }
+  const Status folder = faults_file.empty()
+                            ? rover::deploy::CheckOutputFolder(out, scenario->name)
+                            : rover::deploy::CheckFaultCampaignFolder(out, scenario->name);
+  if (!folder.ok()) return Fail(folder.message(), 2);
+  if (const Status s = rover::deploy::CheckCampaignKills(*scenario, faults); !s.ok()) {
     return Fail(s.message(), 2);
   }
   rover::deploy::CampaignOptions o;
@@ -633,6 +661,25 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     if (std::filesystem::exists(out) && std::filesystem::is_empty(out)) std::filesystem::remove(out, ec);
     if (!s.ok()) return Fail(s.message(), 2);
   }
+  if (!faults_file.empty()) {
+    std::printf("roverctl: fault campaign '%s': %zu faults x %zu seed%s + baseline, %d at a time, "
+                "into %s\n",
+                scenario->name.c_str(), faults.size(), seeds.size(), seeds.size() == 1 ? "" : "s",
+                jobs, out.c_str());
+    std::fflush(stdout);
+    rover::deploy::FaultCampaignOptions fo;
+    fo.seeds = seeds;
+    fo.jobs = jobs;
+    fo.out_dir = out;
+    fo.bin_dir = o.bin_dir;
+    fo.dds_config_uri = o.dds_config_uri;
+    fo.abort = &g_stop;
+    auto t = rover::deploy::RunFaultCampaign(*scenario, faults_file, faults, fo);
+    if (!t.ok()) return Fail(t.status().message(), 2);
+    std::printf("\n%s\ntable: %s/campaign.txt  %s/campaign.json\n",
+                rover::deploy::FormatCampaignTable(*t).c_str(), out.c_str(), out.c_str());
+    return FaultCampaignExit(*t);
+  }
   std::printf("roverctl: running '%s' for %zu seed%s, %d at a time, into %s\n",
               scenario->name.c_str(), seeds.size(), seeds.size() == 1 ? "" : "s", jobs, out.c_str());
   std::fflush(stdout);
@@ -651,6 +698,12 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
 }
 
 int Report(const std::string& dir) {
+  if (rover::deploy::IsFaultCampaignFolder(dir)) {
+    auto t = rover::deploy::LoadFaultCampaignReport(dir);
+    if (!t.ok()) return Fail(t.status().message(), 2);
+    std::printf("%s", rover::deploy::FormatCampaignTable(*t).c_str());
+    return FaultCampaignExit(*t);
+  }
   auto report = rover::deploy::LoadCampaignReport(dir);
   if (!report.ok()) return Fail(report.status().message(), 2);
   std::printf("%s", report->table.c_str());
@@ -714,6 +767,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--seeds", seeds, "seed or range A..B (default: the scenario's seed)");
   run_cmd->add_option("--jobs", jobs, "runs at a time")->check(CLI::Range(1, 16));
   run_cmd->add_option("--out", out_dir, "campaign folder (default: runs/<scenario>-<time>)");
+  std::string faults_file;
+  run_cmd->add_option("--faults", faults_file,
+                      "fault campaign: run each fault of FILE alone over the seeds, plus a "
+                      "fault-free baseline per seed (docs/faults.md \"Campaigns\")");
   auto* report_cmd = app.add_subcommand("report", "print the summary of a campaign folder");
   report_cmd->add_option("dir", report_dir, "campaign folder")->required();
 
@@ -828,7 +885,7 @@ int main(int argc, char** argv) {
   if (*ps_cmd) return Ps(state_root, project, json);
   if (*logs_cmd) return Logs(state_root, project, service, follow, lines);
   if (*config_cmd) return Config(config_file);
-  if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir);
+  if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir, faults_file);
   if (*report_cmd) return Report(report_dir);
   if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);
   if (*fault_cmd) {

@@ -10,15 +10,15 @@
 
 namespace rover::deploy {
 
-namespace {
-
-std::string FlowText(const YAML::Node& n) {
+std::string FlowYaml(const YAML::Node& n) {
   YAML::Emitter e;
   e.SetMapFormat(YAML::Flow);
   e.SetSeqFormat(YAML::Flow);
   e << n;
   return e.c_str();
 }
+
+namespace {
 
 bool SetsId(const faults::FaultSpec& s) { return s.key_lines.count("id") > 0; }
 
@@ -32,7 +32,7 @@ Result<std::vector<SetFault>> ParseSetFaults(const YAML::Node& list, const std::
   ROVER_ASSIGN_OR_RETURN(std::vector<faults::FaultSpec> specs, faults::ParseFaults(list, file));
   std::vector<SetFault> out;
   for (std::size_t i = 0; i < specs.size(); ++i) {
-    out.push_back({std::move(specs[i]), FlowText(list[i])});
+    out.push_back({std::move(specs[i]), FlowYaml(list[i])});
   }
   return out;
 }
@@ -67,7 +67,7 @@ std::string SetFaultsFileText(const std::vector<SetFault>& faults) {
   for (const auto& f : faults) {
     YAML::Node n = YAML::Load(f.yaml);
     n["id"] = f.spec.id;
-    out += "- " + FlowText(n) + "\n";
+    out += "- " + FlowYaml(n) + "\n";
   }
   return out;
 }

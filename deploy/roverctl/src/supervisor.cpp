@@ -458,6 +458,18 @@ void Supervisor::Poll() {
   WriteState(phase_);
 }
 
+Status Supervisor::Signal(const std::string& service, int sig) {
+  auto it = by_name_.find(service);
+  if (it == by_name_.end()) return NotFound("no service '" + service + "' in the set");
+  Child& c = *it->second;
+  if (c.stopping || c.status.state != ServiceState::kRunning || c.process.pid() <= 0) {
+    return FailedPrecondition("service '" + service + "' is not running (" +
+                              ServiceStateName(c.status.state) + ")");
+  }
+  c.process.Signal(sig);
+  return Status::Ok();
+}
+
 void Supervisor::Stop() {
   if (phase_ == "stopped") return;
   if (phase_ == "up") phase_ = "stopping";

@@ -17,6 +17,11 @@ Result<std::vector<SetFault>> Parse(const std::string& text, const std::string& 
   return ParseSetFaults(doc["faults"], file);
 }
 
+TEST(SetFaults, FlowYamlIsOneLine) {
+  const YAML::Node n = YAML::Load("kind: drop\ntopic: dl/pose\nlist: [1, 2]\n");
+  EXPECT_EQ(FlowYaml(n), "{kind: drop, topic: dl/pose, list: [1, 2]}");
+}
+
 TEST(SetFaults, ParsesValidatesAndKeepsTheDocumentsLines) {
   auto f = Parse(
       "name: x\nfaults:\n  - {kind: drop, topic: dl/pose, probability: 0.5, seed: 3}\n"

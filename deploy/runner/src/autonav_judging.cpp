@@ -86,17 +86,18 @@ double HazardMapQuality::FalseObstacleRate() const {
   return obstacle_cells > 0 ? static_cast<double>(false_obstacle_cells) / obstacle_cells : kNan;
 }
 
-HazardMapQuality EvaluateHazardMap(const GoodnessGrid& map, const std::vector<sim::JudgeRock>& rocks,
+HazardMapQuality EvaluateHazardMap(const GoodnessGrid& map,
+                                   const std::vector<sim::judge::JudgeRock>& rocks,
                                    double traversable_height, const Track& truth_track,
                                    const HazardMapOptions& options) {
   HazardMapQuality q;
-  std::vector<const sim::JudgeRock*> hazards;
+  std::vector<const sim::judge::JudgeRock*> hazards;
   for (const auto& r : rocks) {
     if (r.height > traversable_height) hazards.push_back(&r);
   }
   const double res = map.resolution;
   if (!(res > 0) || map.width <= 0 || map.height <= 0) return q;
-  for (const sim::JudgeRock* r : hazards) {
+  for (const sim::judge::JudgeRock* r : hazards) {
     if (truth_track.empty() || NearestTrackDistance(truth_track, r->xy) > options.path_radius) {
       continue;
     }
@@ -152,11 +153,12 @@ MotionFigures EvaluateMotion(const Track& track, double t0, double t1, double st
   return m;
 }
 
-std::vector<sim::Criterion> AutonavFigures(const MobilityOutcome& mob, const Track& truth_track,
-                                           const std::vector<sim::JudgeRock>& rocks,
-                                           double traversable_height,
-                                           const HazardMapOptions& options) {
-  std::vector<sim::Criterion> out;
+std::vector<sim::judge::Criterion> AutonavFigures(const MobilityOutcome& mob,
+                                                  const Track& truth_track,
+                                                  const std::vector<sim::judge::JudgeRock>& rocks,
+                                                  double traversable_height,
+                                                  const HazardMapOptions& options) {
+  std::vector<sim::judge::Criterion> out;
   out.push_back({"mobility_steps", static_cast<double>(mob.steps), kNan, "count", true,
                  "drive steps apl/mobility_status reported"});
   out.push_back({"mobility_images", static_cast<double>(mob.images), kNan, "count", true,

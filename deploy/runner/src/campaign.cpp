@@ -45,7 +45,13 @@ Status CheckOutputFolder(const std::string& dir, const std::string& scenario) {
     std::string earlier;
     try {
       std::ifstream in(dir + "/campaign.json");
-      earlier = nlohmann::json::parse(in).value("scenario", "");
+      const nlohmann::json c = nlohmann::json::parse(in);
+      if (c.value("type", "") == "fault_campaign") {
+        return InvalidArgument("--out " + dir +
+                               ": holds a fault campaign (roverctl run --faults); choose another "
+                               "folder");
+      }
+      earlier = c.value("scenario", "");
     } catch (const nlohmann::json::exception&) {
     }
     if (!scenario.empty() && !earlier.empty() && earlier != scenario) {

@@ -10,8 +10,8 @@
 namespace rover::deploy::runner {
 
 namespace {
-std::vector<sim::JudgeRock> JudgeRocks(const sim::World& world) {
-  std::vector<sim::JudgeRock> rocks;
+std::vector<sim::judge::JudgeRock> JudgeRocks(const sim::world::World& world) {
+  std::vector<sim::judge::JudgeRock> rocks;
   for (const auto& r : world.terrain.rocks) {
     rocks.push_back({r.id, r.position.head<2>(), r.diameter, r.height});
   }
@@ -19,11 +19,11 @@ std::vector<sim::JudgeRock> JudgeRocks(const sim::World& world) {
 }
 }  // namespace
 
-Result<sim::Judge> MakeJudge(const Scenario& scenario, const sim::World& world) {
-  return sim::Judge::Create(scenario.criteria, JudgeRocks(world));
+Result<sim::judge::Judge> MakeJudge(const Scenario& scenario, const sim::world::World& world) {
+  return sim::judge::Judge::Create(scenario.criteria, JudgeRocks(world));
 }
 
-void AddMobilityFigures(const Scenario& scenario, const sim::World& world, RunResult* result,
+void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world, RunResult* result,
                         std::string* failure) {
   if (!result->mobility) return;
   const MobilityOutcome& mob = *result->mobility;
@@ -44,9 +44,10 @@ void AddMobilityFigures(const Scenario& scenario, const sim::World& world, RunRe
   }
 }
 
-void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_figures,
-              RunResult* result, std::string* failure) {
-  const sim::Verdict v = judge.Evaluate();
+void ScoreRun(const sim::judge::Judge& judge,
+              const std::vector<sim::judge::Criterion>& extra_figures, RunResult* result,
+              std::string* failure) {
+  const sim::judge::Verdict v = judge.Evaluate();
   result->criteria = v.criteria;
   result->distance_driven = v.distance_driven;
   result->estimate_error = v.estimate_error;
@@ -59,7 +60,8 @@ void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_
   }
 }
 
-Status WriteRunOutputs(RunResult* result, const std::string& failure, const sim::Terrain& terrain,
+Status WriteRunOutputs(RunResult* result, const std::string& failure,
+                       const sim::terrain::Terrain& terrain,
                        const std::vector<Eigen::Vector2d>& planned) {
   if (!failure.empty() && result->failure.empty()) result->failure = failure;
   result->pass = result->failure.empty();

@@ -100,8 +100,8 @@ std::vector<Eigen::Vector2d> ArcPoints(const ChosenArc& a) {
 
 }  // namespace
 
-sim::MapCellLayer GoodnessLayer(const GoodnessGrid& g) {
-  sim::MapCellLayer l;
+sim::terrain::MapCellLayer GoodnessLayer(const GoodnessGrid& g) {
+  sim::terrain::MapCellLayer l;
   l.origin_x = g.origin_x;
   l.origin_y = g.origin_y;
   l.resolution = g.resolution;
@@ -114,9 +114,9 @@ sim::MapCellLayer GoodnessLayer(const GoodnessGrid& g) {
   return l;
 }
 
-Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
+Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
                      const std::vector<Eigen::Vector2d>& planned, const std::string& path) {
-  sim::MapOptions o;
+  sim::terrain::MapOptions o;
   o.title = run.scenario + " seed " + std::to_string(run.seed) + (run.pass ? "  PASS" : "  FAIL");
   if (run.mobility) {
     o.title += "  " + run.mobility->task + ": " + run.mobility->outcome;
@@ -144,7 +144,7 @@ Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
   if (planned.size() >= 2) {
     o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
   }
-  return sim::WriteTopDownMap(terrain, path, o);
+  return sim::terrain::WriteTopDownMap(terrain, path, o);
 }
 
 Status WriteErrorPlot(const RunResult& run, const std::string& path) {

@@ -22,7 +22,7 @@ void AddTrackPoint(Time t, const rover_Pose3& pose, double* last_s,
 }  // namespace
 
 Result<std::unique_ptr<Recorder>> Recorder::Create(const dds::Participant& participant,
-                                                   sim::Judge* judge, RunResult* result) {
+                                                   sim::judge::Judge* judge, RunResult* result) {
   std::unique_ptr<Recorder> r(new Recorder(participant, judge, result));
   ROVER_ASSIGN_OR_RETURN(r->truth_, dds::Reader<rover_sim_Truth>::Create(participant, "sim/truth"));
   ROVER_ASSIGN_OR_RETURN(r->pose_,
@@ -61,8 +61,8 @@ std::string Recorder::CrossTalk(int domain) const {
          std::to_string(domain);
 }
 
-std::vector<sim::Criterion> Recorder::Figures() const {
-  std::vector<sim::Criterion> out;
+std::vector<sim::judge::Criterion> Recorder::Figures() const {
+  std::vector<sim::judge::Criterion> out;
   if (rejected_measurements_) {
     out.push_back({"estimator_rejected_measurements", *rejected_measurements_,
                    std::numeric_limits<double>::quiet_NaN(), "count", true,

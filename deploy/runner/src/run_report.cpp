@@ -170,8 +170,28 @@ nlohmann::json ToJson(const RunResult& r) {
                            {"end_s", f.end_s}, {"samples_seen", f.samples_seen},
                            {"samples_hit", f.samples_hit}, {"services", f.services}});
   }
+  j["health_changes"] = nlohmann::json::array();
+  for (const auto& h : r.health_changes) {
+    j["health_changes"].push_back({{"t_s", h.t_s}, {"service", h.service}, {"health", h.health},
+                                   {"message", h.message}});
+  }
+  j["health_changes_dropped"] = r.health_changes_dropped;
+  j["kills"] = nlohmann::json::array();
+  for (const auto& k : r.kills) {
+    j["kills"].push_back({{"service", k.service}, {"at_s", k.at_s}, {"killed_s", k.killed_s},
+                          {"restarted_s", k.restarted_s}, {"error", k.error}});
+  }
   return j;
 }
+
+namespace {
+
+// A number written by nlohmann::json: NaN and infinities are written as null.
+double NumberOrNaN(const nlohmann::json& v) {
+  return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+}
+
+}  // namespace
 
 Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
   try {
@@ -182,8 +202,9 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.pass = j.at("pass");
     r.failure = j.value("failure", "");
     for (const auto& c : j.at("criteria")) {
-      r.criteria.push_back({c.at("name"), c.at("measured"), c.at("limit"), c.at("unit"),
-                            c.at("pass"), c.value("detail", "")});
+      r.criteria.push_back({c.at("name"), NumberOrNaN(c.at("measured")),
+                            NumberOrNaN(c.at("limit")), c.at("unit"), c.at("pass"),
+                            c.value("detail", "")});
     }
     for (const auto& s : j.value("steps", nlohmann::json::array())) {
       r.steps.push_back({s.at("primitive"), s.at("command_id"), s.at("state"),
@@ -204,8 +225,9 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
       r.odometry_only_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
     }
     for (const auto& f : j.value("figures", nlohmann::json::array())) {
-      r.figures.push_back({f.at("name"), f.at("measured"), std::numeric_limits<double>::quiet_NaN(),
-                           f.at("unit"), true, f.value("detail", "")});
+      r.figures.push_back({f.at("name"), NumberOrNaN(f.at("measured")),
+                           std::numeric_limits<double>::quiet_NaN(), f.at("unit"), true,
+                           f.value("detail", "")});
     }
     r.crashes = j.value("crashes", std::vector<std::string>{});
     r.run_dir = j.value("run_dir", "");
@@ -231,6 +253,15 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
       x.samples_hit = f.value("samples_hit", std::uint64_t{0});
       x.services = f.value("services", std::vector<std::string>{});
       r.faults.push_back(std::move(x));
+    }
+    for (const auto& h : j.value("health_changes", nlohmann::json::array())) {
+      r.health_changes.push_back(
+          {h.at("t_s"), h.at("service"), h.at("health"), h.value("message", "")});
+    }
+    r.health_changes_dropped = j.value("health_changes_dropped", std::uint64_t{0});
+    for (const auto& k : j.value("kills", nlohmann::json::array())) {
+      r.kills.push_back({k.at("service"), k.at("at_s"), k.value("killed_s", -1.0),
+                         k.value("restarted_s", -1.0), k.value("error", "")});
     }
     return r;
   } catch (const nlohmann::json::exception& e) {
@@ -435,6 +466,11 @@ Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir) {
   if (!IsRunFolder(dir)) {
     return InvalidArgument(dir + ": not a run folder (no campaign.json; made by `roverctl run`)");
   }
+  return LoadRunResults(dir);
+}
+
+Result<std::vector<RunResult>> LoadRunResults(const std::string& dir) {
+  if (!fs::is_directory(dir)) return NotFound(dir + ": no such folder");
   std::vector<RunResult> out;
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir)) {

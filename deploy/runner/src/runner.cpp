@@ -3,6 +3,7 @@
 #include "rover/deploy/runner.hpp"
 
 #include <filesystem>
+#include <map>
 #include <optional>
 
 #include "rover/base/clock.hpp"
@@ -12,6 +13,7 @@
 #include "rover/deploy/runner/run_loop.hpp"
 #include "rover/deploy/runner/service_set.hpp"
 #include "rover/deploy/runner/task.hpp"
+#include "rover/msg/health_idl.hpp"
 #include "rover/runtime/fault_control.hpp"
 
 namespace rover::deploy {
@@ -20,12 +22,12 @@ using namespace runner;  // NOLINT(google-build-using-namespace): this file is t
 
 Status ValidateSimulatorSections(const std::string& text, const std::string& file) {
   ParamSet p("rover-sim");
-  sim::DeclareWorldParams(p);
-  ROVER_RETURN_IF_ERROR(p.LoadYamlSections(text, file, sim::WorldSections()));
+  sim::world::DeclareWorldParams(p);
+  ROVER_RETURN_IF_ERROR(p.LoadYamlSections(text, file, sim::world::WorldSections()));
   // Ranges and cross-field rules (rock density, objects on the map) need the world itself; the
   // runner builds it anyway (for the judge and the map), so do it now, before anything starts.
   ROVER_RETURN_IF_ERROR(p.Validate());
-  auto w = sim::BuildWorld(p);
+  auto w = sim::world::BuildWorld(p);
   return w.ok() ? Status::Ok() : w.status();
 }
 
@@ -119,11 +121,56 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   if (!loop.ok()) {
     return finish("cannot create the runner's DDS endpoints: " + loop.status().message());
   }
+  // The services' health (sys/health), for fault campaigns: each service's first heartbeat and
+  // every change of its health or message, at the run-clock time the runner heard it (a
+  // restarted service's first stamps may not be on the run clock yet).
+  std::map<std::string, std::pair<std::string, std::string>> last_health;
+  const Status health_recorded = (*recorder)->Record<rover_sys_Heartbeat>(
+      "sys/health", [&](const dds::Sample<rover_sys_Heartbeat>& s) {
+        auto h = msg::HealthFromIdl(s->health);
+        const std::string health = h.ok() ? msg::SensorHealthName(*h) : "?";
+        std::pair<std::string, std::string> now{health, s->message};
+        auto [it, first] = last_health.try_emplace(s->service, now);
+        if (!first && it->second == now) return;
+        it->second = now;
+        if (result.health_changes.size() >= RunResult::kMaxHealthChanges) {
+          ++result.health_changes_dropped;
+          return;
+        }
+        result.health_changes.push_back(
+            {(**loop).now(), s->service, health, s->message});
+      });
+  if (!health_recorded.ok()) {
+    return finish("cannot create the runner's DDS endpoints: " + health_recorded.message());
+  }
   RunLoop& run_loop = **loop;
   run_loop.AddPump([&] { (*recorder)->Pump(); });
   if (fault_client) {
     run_loop.AddPump([&] {
       for (const auto& r : fault_client->TakeRecords()) fault_log.Add(r);
+    });
+  }
+  // The kills asked for: each at its run-clock time, then watched until the service runs again.
+  for (const auto& k : options.kills) {
+    KillRecord record;
+    record.service = k.service;
+    record.at_s = k.at_s;
+    result.kills.push_back(std::move(record));
+  }
+  if (!result.kills.empty()) {
+    run_loop.AddPump([&] {
+      for (auto& k : result.kills) {
+        if (k.killed_s < 0 && k.error.empty() && run_loop.now() >= k.at_s) {
+          const Status s = set->Kill(k.service);
+          if (s.ok()) {
+            k.killed_s = run_loop.now();
+          } else {
+            k.error = s.message();
+          }
+        } else if (k.killed_s >= 0 && k.restarted_s < 0 && set->RunsAgain(k.service)) {
+          k.restarted_s = run_loop.now();
+        }
+      }
     });
   }
   run_loop.AddCheck([&] { return set->CheckServices(&result.crashes); });

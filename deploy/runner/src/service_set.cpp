@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <csignal>
 #include <fstream>
 #include <map>
 #include <random>
@@ -23,7 +24,7 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
   YAML::Node root = YAML::Load(s.text);
   YAML::Node out(YAML::NodeType::Map);
-  for (const auto& sec : sim::WorldSections()) {
+  for (const auto& sec : sim::world::WorldSections()) {
     if (root[sec]) out[sec] = root[sec];
   }
   if (!out["terrain"]) out["terrain"] = YAML::Node(YAML::NodeType::Map);
@@ -84,7 +85,7 @@ Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
 
 }  // namespace
 
-std::string TerrainDigest(const sim::Terrain& t) {
+std::string TerrainDigest(const sim::terrain::Terrain& t) {
   std::uint64_t h = 1469598103934665603ULL;
   auto mix = [&h](const void* data, std::size_t n) {
     const auto* b = static_cast<const unsigned char*>(data);
@@ -115,11 +116,11 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
   const std::string sim_params_path = run_dir + "/params/" + scenario.simulator + ".yaml";
   std::ofstream(sim_params_path) << sim_yaml;
   ParamSet world_params("world");
-  sim::DeclareWorldParams(world_params);
+  sim::world::DeclareWorldParams(world_params);
   ROVER_RETURN_IF_ERROR(
-      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::WorldSections()));
+      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::world::WorldSections()));
   ROVER_RETURN_IF_ERROR(world_params.Validate());
-  ROVER_ASSIGN_OR_RETURN(sim::World world, sim::BuildWorld(world_params));
+  ROVER_ASSIGN_OR_RETURN(sim::world::World world, sim::world::BuildWorld(world_params));
 
   // The service set.
   ROVER_ASSIGN_OR_RETURN(ComposeProject project, LoadComposeFile(scenario.compose_path));
@@ -187,6 +188,13 @@ Status ServiceSet::ResumeSimulator() {
 std::string ServiceSet::CheckServices(std::vector<std::string>* crashes) {
   supervisor_->Poll();
   for (const auto& st : supervisor_->Snapshot()) {
+    // A service killed on purpose is expected to end once and be restarted; waiting for that
+    // restart is not a crash (ending again afterwards is).
+    if (auto k = killed_.find(st.name); k != killed_.end() &&
+                                        st.state == ServiceState::kBackoff &&
+                                        st.restarts == k->second) {
+      continue;
+    }
     if (st.state == ServiceState::kFailed || st.state == ServiceState::kBackoff ||
         (st.state == ServiceState::kExited && st.restarts == 0 && !st.last_exit.empty())) {
       std::ifstream log(st.log_path);
@@ -202,5 +210,24 @@ std::string ServiceSet::CheckServices(std::vector<std::string>* crashes) {
 }
 
 void ServiceSet::Stop() { supervisor_->Stop(); }
+
+Status ServiceSet::Kill(const std::string& service) {
+  int restarts = 0;
+  for (const auto& st : supervisor_->Snapshot()) {
+    if (st.name == service) restarts = st.restarts;
+  }
+  ROVER_RETURN_IF_ERROR(supervisor_->Signal(service, SIGKILL));
+  killed_[service] = restarts;
+  return Status::Ok();
+}
+
+bool ServiceSet::RunsAgain(const std::string& service) const {
+  auto k = killed_.find(service);
+  if (k == killed_.end()) return false;
+  for (const auto& st : supervisor_->Snapshot()) {
+    if (st.name == service) return st.state == ServiceState::kRunning && st.restarts > k->second;
+  }
+  return false;
+}
 
 }  // namespace rover::deploy::runner

@@ -43,7 +43,7 @@ Track StraightTrack(double speed = 0.1, double duration = 100) {
 
 TEST(HazardMap, RecallCountsSeenHazardsMarkedAsObstacles) {
   GoodnessGrid map = ClearMap();
-  const std::vector<sim::JudgeRock> rocks = {
+  const std::vector<sim::judge::JudgeRock> rocks = {
       {1, {5, 2}, 0.4, 0.3},    // hazard near the path, marked below
       {2, {7, -3}, 0.4, 0.3},   // hazard near the path, not marked
       {3, {6, 1}, 0.4, 0.1},    // too low: not a hazard
@@ -63,7 +63,7 @@ TEST(HazardMap, RecallCountsSeenHazardsMarkedAsObstacles) {
 
 TEST(HazardMap, UnseenHazardsDoNotCountAndPhantomObstaclesDo) {
   GoodnessGrid map = ClearMap();
-  const std::vector<sim::JudgeRock> rocks = {{1, {5, 2}, 0.4, 0.3}};
+  const std::vector<sim::judge::JudgeRock> rocks = {{1, {5, 2}, 0.4, 0.3}};
   // The hazard's cell is unknown: the rover never saw it.
   const int k = map.CellAt(5, 2);
   ASSERT_GE(k, 0);
@@ -85,7 +85,7 @@ TEST(HazardMap, UnseenHazardsDoNotCountAndPhantomObstaclesDo) {
 
 TEST(HazardMap, AHazardOutsideTheMapWasNotSeen) {
   GoodnessGrid map = ClearMap();
-  const std::vector<sim::JudgeRock> rocks = {{1, {-2, 0}, 0.4, 0.3}};
+  const std::vector<sim::judge::JudgeRock> rocks = {{1, {-2, 0}, 0.4, 0.3}};
   const HazardMapQuality q = EvaluateHazardMap(map, rocks, 0.2, StraightTrack());
   EXPECT_EQ(q.hazards_near_path, 1);
   EXPECT_EQ(q.hazards_seen, 0);
@@ -130,8 +130,8 @@ TEST(AutonavFigures, ListedWithUnitsAndLeftOutWhenUnmeasured) {
   mob.images = 14;
   mob.sim_start_s = 0;
   mob.sim_end_s = 100;
-  const std::vector<sim::JudgeRock> rocks = {{1, {5, 2}, 0.4, 0.3}};
-  auto names = [](const std::vector<sim::Criterion>& f) {
+  const std::vector<sim::judge::JudgeRock> rocks = {{1, {5, 2}, 0.4, 0.3}};
+  auto names = [](const std::vector<sim::judge::Criterion>& f) {
     std::vector<std::string> n;
     for (const auto& c : f) n.push_back(c.name);
     return n;

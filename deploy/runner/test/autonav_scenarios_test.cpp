@@ -20,7 +20,7 @@ namespace {
 struct Loaded {
   Scenario scenario;
   MobilityTaskSpec spec;
-  sim::World world;
+  sim::world::World world;
 };
 
 Loaded Load(const std::string& name) {
@@ -34,9 +34,9 @@ Loaded Load(const std::string& name) {
   EXPECT_NE(mobility, nullptr) << name << " is not a mobility task";
   if (mobility) out.spec = mobility->spec();
   ParamSet p("rover-sim");
-  sim::DeclareWorldParams(p);
-  EXPECT_TRUE(p.LoadYamlSections(s->text, path, sim::WorldSections()).ok());
-  auto w = sim::BuildWorld(p);
+  sim::world::DeclareWorldParams(p);
+  EXPECT_TRUE(p.LoadYamlSections(s->text, path, sim::world::WorldSections()).ok());
+  auto w = sim::world::BuildWorld(p);
   EXPECT_TRUE(w.ok()) << w.status().message();
   out.world = std::move(*w);
   return out;
@@ -75,9 +75,9 @@ int BlockingRocks(const Loaded& l, const Track& line) {
 
 TEST(AutonavScenarios, RockFieldsReachTheirGoal) {
   for (const auto& [file, preset, distance] :
-       std::vector<std::tuple<std::string, sim::RockPreset, double>>{
-           {"autonav_vl1.yaml", sim::RockPreset::kVl1, 25},
-           {"autonav_vl2.yaml", sim::RockPreset::kVl2, 30}}) {
+       std::vector<std::tuple<std::string, sim::terrain::RockPreset, double>>{
+           {"autonav_vl1.yaml", sim::terrain::RockPreset::kVl1, 25},
+           {"autonav_vl2.yaml", sim::terrain::RockPreset::kVl2, 30}}) {
     const Loaded l = Load(file);
     EXPECT_EQ(l.spec.type, MobilityTaskType::kAutonav) << file;
     EXPECT_EQ(l.spec.expect, "reached") << file;

@@ -12,16 +12,16 @@ namespace rover::deploy::runner {
 namespace {
 namespace fs = std::filesystem;
 
-sim::World SmallWorld(const std::string& rocks) {
+sim::world::World SmallWorld(const std::string& rocks) {
   ParamSet p("world");
-  sim::DeclareWorldParams(p);
+  sim::world::DeclareWorldParams(p);
   const std::string text =
       "terrain: {size_x: 8, size_y: 8, resolution: 0.05, seed: 5, hills: {amplitude: 0}, "
       "craters: {count: 0}, rocks: {preset: " +
       rocks + "}}\n";
-  EXPECT_TRUE(p.LoadYamlSections(text, "w.yaml", sim::WorldSections()).ok());
+  EXPECT_TRUE(p.LoadYamlSections(text, "w.yaml", sim::world::WorldSections()).ok());
   EXPECT_TRUE(p.Validate().ok());
-  auto w = sim::BuildWorld(p);
+  auto w = sim::world::BuildWorld(p);
   EXPECT_TRUE(w.ok()) << w.status().message();
   return std::move(*w);
 }
@@ -34,11 +34,11 @@ Eigen::Isometry3d At(double x) {
 
 // A judge of a 2 m straight along x to the target (2, 0), after the drive, with the estimate
 // 5 cm to the side.
-sim::Judge JudgedDrive(double max_estimate_error) {
-  sim::JudgeCriteria criteria;
+sim::judge::Judge JudgedDrive(double max_estimate_error) {
+  sim::judge::JudgeCriteria criteria;
   criteria.target_xy = Eigen::Vector2d(2, 0);
   criteria.max_estimate_error = max_estimate_error;
-  auto j = sim::Judge::Create(criteria, {});
+  auto j = sim::judge::Judge::Create(criteria, {});
   EXPECT_TRUE(j.ok()) << j.status().message();
   for (int i = 0; i <= 20; ++i) {
     const Time t = Time::FromSeconds(i);
@@ -52,7 +52,7 @@ sim::Judge JudgedDrive(double max_estimate_error) {
 
 TEST(Judging, TheJudgeKnowsTheWorldsRocks) {
   Scenario s;
-  const sim::World world = SmallWorld("vl2");
+  const sim::world::World world = SmallWorld("vl2");
   ASSERT_FALSE(world.terrain.rocks.empty());
   auto judge = MakeJudge(s, world);
   ASSERT_TRUE(judge.ok()) << judge.status().message();
@@ -64,16 +64,16 @@ TEST(Judging, TheJudgeKnowsTheWorldsRocks) {
       judge->AddTruth(Time::FromSeconds(i * 7 + k + 3), t);
     }
   }
-  const sim::Criterion* contacts = judge->Evaluate().Find("rock_contacts");
+  const sim::judge::Criterion* contacts = judge->Evaluate().Find("rock_contacts");
   ASSERT_NE(contacts, nullptr);
   EXPECT_GT(contacts->measured, 0);
 }
 
 TEST(Judging, ScoreFillsTheResultAndNamesTheFirstFailedCriterion) {
-  const sim::Judge judge = JudgedDrive(0.01);
+  const sim::judge::Judge judge = JudgedDrive(0.01);
   RunResult r;
   std::string failure;
-  const sim::Criterion extra{"estimator_rejected_measurements", 3, 0, "count", true, ""};
+  const sim::judge::Criterion extra{"estimator_rejected_measurements", 3, 0, "count", true, ""};
   ScoreRun(judge, {extra}, &r, &failure);
   EXPECT_NEAR(r.distance_driven, 2.0, 1e-9);
   EXPECT_FALSE(r.estimate_error.empty());
@@ -100,7 +100,7 @@ TEST(Judging, APassingRunHasNoFailure) {
 
 TEST(Judging, OutputsAreWrittenAndTheFirstFailureWins) {
   const std::string dir = rover::testing::MakeTempDir("judging");
-  const sim::World world = SmallWorld("none");
+  const sim::world::World world = SmallWorld("none");
   RunResult r;
   r.scenario = "tiny";
   r.seed = 2;

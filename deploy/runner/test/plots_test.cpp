@@ -48,11 +48,11 @@ TEST(Plots, ErrorPlotHasBothCurves) {
 }
 
 TEST(Plots, TrackMapDrawsPaths) {
-  sim::TerrainParams p;
+  sim::terrain::TerrainParams p;
   p.size_x = 12;
   p.size_y = 12;
   p.resolution = 0.05;
-  auto terrain = sim::GenerateTerrain(p);
+  auto terrain = sim::terrain::GenerateTerrain(p);
   ASSERT_TRUE(terrain.ok()) << terrain.status().message();
   const std::string path = ::testing::TempDir() + "/map.png";
   const Status st = WriteTrackMap(*terrain, SampleRun(), {{0, 0}, {5, 0}}, path);
@@ -79,12 +79,12 @@ int CountColour(const cv::Mat& img, const cv::Vec3b& bgr) {
 }
 
 TEST(Plots, TrackMapShowsTheGoodnessMapTheArcsAndEveryPathOverlapping) {
-  sim::TerrainParams p;
+  sim::terrain::TerrainParams p;
   p.size_x = 12;
   p.size_y = 12;
   p.resolution = 0.05;
-  p.rocks.preset = sim::RockPreset::kNone;
-  auto terrain = sim::GenerateTerrain(p);
+  p.rocks.preset = sim::terrain::RockPreset::kNone;
+  auto terrain = sim::terrain::GenerateTerrain(p);
   ASSERT_TRUE(terrain.ok()) << terrain.status().message();
   RunResult run = SampleRun();
   // Truth, odometry, estimate and plan all on the same line: each must still show.

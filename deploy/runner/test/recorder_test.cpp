@@ -37,7 +37,7 @@ TEST(Recorder, TracksAreDownsampledAndTheJudgeGetsEverySample) {
   auto lease = rover::testing::IsolatedDomain();
   auto p = dds::Participant::Create(lease.domain());
   ASSERT_TRUE(p.ok());
-  auto judge = sim::Judge::Create({}, {});
+  auto judge = sim::judge::Judge::Create({}, {});
   ASSERT_TRUE(judge.ok());
   RunResult result;
   auto rec = Recorder::Create(*p, &*judge, &result);
@@ -80,7 +80,7 @@ TEST(Recorder, TracksAreDownsampledAndTheJudgeGetsEverySample) {
   EXPECT_EQ(result.truth_publishers, 1);
   EXPECT_EQ((*rec)->CrossTalk(lease.domain()), "");
   // The judge saw truth and estimates at full rate: up to 0.2 m driven, a 1 cm estimate error.
-  const sim::Verdict v = judge->Evaluate();
+  const sim::judge::Verdict v = judge->Evaluate();
   EXPECT_GE(v.distance_driven, 0.175);
   EXPECT_LE(v.distance_driven, 0.2 + 1e-9);
   ASSERT_FALSE(v.estimate_error.empty());

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -39,6 +42,20 @@ TEST(RunReport, JsonRoundTrip) {
   EXPECT_EQ(back->steps[0].termination, "nominal");
   EXPECT_EQ(back->estimate_error[0].t.seconds(), 1.5);
   EXPECT_FALSE(RunResultFromJson(nlohmann::json{{"seed", 1}}).ok());
+}
+
+TEST(RunReport, NotANumberSurvivesTheRoundTrip) {
+  // A figure or criterion nobody could measure is NaN, which JSON writes as null; reading the
+  // folder back (roverctl report, a fault campaign's table) must not fail on it.
+  RunResult r = MakeRun(4, false, std::numeric_limits<double>::quiet_NaN());
+  r.figures.push_back({"max_tilt", std::numeric_limits<double>::quiet_NaN(),
+                       std::numeric_limits<double>::quiet_NaN(), "deg", true, ""});
+  const nlohmann::json j = nlohmann::json::parse(ToJson(r).dump());
+  auto back = RunResultFromJson(j);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_TRUE(std::isnan(back->criteria[0].measured));
+  ASSERT_EQ(back->figures.size(), r.figures.size());
+  EXPECT_TRUE(std::isnan(back->figures.back().measured));
 }
 
 TEST(RunReport, MobilityOutcomeRoundTripsAndIsPrinted) {

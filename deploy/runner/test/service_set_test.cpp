@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "scenario_files.hpp"
 
 namespace rover::deploy::runner {
@@ -71,6 +74,41 @@ TEST_F(PrepareRunTest, AServiceSetLeasesItsOwnDomain) {
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_NE((*a)->domain(), (*b)->domain());
   EXPECT_FALSE((*a)->SimulatorHearsUs());  // no operator participant yet
+}
+
+// A fault campaign's kill -9: the killed service's exit and restart are not a crash; a second
+// exit would be, and so is a kill of a service its restart policy does not bring back.
+TEST_F(PrepareRunTest, AKilledServiceThatIsRestartedIsNotACrash) {
+  auto s = Load(testing::kSmallScenario);
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  Compose(
+      "services:\n  rover-sim: {command: \"sleep 60\", restart: \"on-failure:3\"}\n"
+      "  dl-pose: {command: \"sleep 60\", restart: \"no\"}\n");
+  auto p = PrepareRun(*s, 1, Options());
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  auto set = ServiceSet::Create(*p);
+  ASSERT_TRUE(set.ok()) << set.status().message();
+  ServiceSet& ss = **set;
+  ASSERT_TRUE(ss.Start().ok());
+  std::vector<std::string> crashes;
+  EXPECT_FALSE(ss.Kill("no-such-service").ok());
+  ASSERT_TRUE(ss.Kill("rover-sim").ok());
+  bool again = false;
+  for (int i = 0; i < 200 && !again; ++i) {
+    EXPECT_EQ(ss.CheckServices(&crashes), "");
+    again = ss.RunsAgain("rover-sim");
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  EXPECT_TRUE(again);
+  EXPECT_TRUE(crashes.empty());
+  ASSERT_TRUE(ss.Kill("dl-pose").ok());
+  std::string crash;
+  for (int i = 0; i < 200 && crash.empty(); ++i) {
+    crash = ss.CheckServices(&crashes);
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  EXPECT_NE(crash.find("service 'dl-pose' crashed"), std::string::npos) << crash;
+  ss.Stop();
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ Status ParseTaskSection(const YAML::Node& n, const Ctx& c, TaskSection* t) {
   return Status::Ok();
 }
 
-Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::JudgeCriteria* cr) {
+Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::judge::JudgeCriteria* cr) {
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "criteria",
                                   {"target", "heading", "max_tilt_deg", "traversable_height",
                                    "max_estimate_error", "max_estimate_error_percent",

@@ -6,7 +6,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 Eigen::Vector2d Axis(const RoverGeometry& g, int wheel) {
@@ -152,4 +152,4 @@ Result<DrivePlan> PlanTurnInPlace(const RoverGeometry& g, double angle, double s
   return plan;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

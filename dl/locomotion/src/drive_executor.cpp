@@ -7,7 +7,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -623,4 +623,4 @@ Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params, const std::s
   return o;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -1,6 +1,6 @@
 #include "rover/dl/locomotion/drive_types.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 const char* InvalidReasonName(InvalidReason r) {
   switch (r) {
@@ -24,4 +24,4 @@ const char* InvalidReasonName(InvalidReason r) {
   return "unknown";
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -8,7 +8,7 @@
 #include "rover/base/param_binder.hpp"
 #include "rover/dl/locomotion/ackermann.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -175,4 +175,4 @@ Result<RoverGeometry> RoverGeometryFromParams(const ParamSet& params, const std:
   return InvalidArgument(params.Origin(key).ToString() + ": key '" + key + "': " + issue.message);
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

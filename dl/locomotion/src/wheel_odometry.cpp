@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 std::string Num(double v) {
@@ -204,4 +204,4 @@ Result<WheelOdometryOptions> WheelOdometryOptionsFromParams(const ParamSet& para
   return o;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -182,4 +182,4 @@ TEST(Ackermann, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace rover::dl::tools {
+namespace rover::dl::locomotion::tools {
 namespace {
 
 ParseOutcome Parse(std::vector<std::string> args, const char* env_domain = nullptr,
@@ -144,4 +144,4 @@ TEST(DriveCli, StatusLinesAndTerminalStates) {
 }
 
 }  // namespace
-}  // namespace rover::dl::tools
+}  // namespace rover::dl::locomotion::tools

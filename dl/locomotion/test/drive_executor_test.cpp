@@ -8,7 +8,7 @@
 #include <numbers>
 #include <vector>
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -609,4 +609,4 @@ TEST(DriveOptions, ValidateAndParams) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

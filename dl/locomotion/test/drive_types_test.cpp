@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 // The message enums' ordinals and names are core/msg's (core/msg/test/drive_test.cpp,
@@ -28,4 +28,4 @@ TEST(DriveTypes, StatusCarriesTheMessageAndTheTypedReason) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -18,7 +18,7 @@
 #include "rover/testing/fakes/fake_rover.hpp"
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::dl::testing_support {
+namespace rover::dl::locomotion::testing_support {
 
 class LocomotionRig {
  public:
@@ -143,4 +143,4 @@ class LocomotionRig {
   std::vector<rover_dl_DriveStatus> statuses_;
 };
 
-}  // namespace rover::dl::testing_support
+}  // namespace rover::dl::locomotion::testing_support

@@ -15,7 +15,7 @@
 #include "rover/msg/drive_idl.hpp"
 #include "test/locomotion_rig.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 using testing_support::LocomotionRig;
@@ -223,4 +223,4 @@ TEST_F(LocomotionServiceTest, TurnInPlaceClosesTheLoopOnTheDlPoseHeading) {
 // core/msg/test/pose_idl_test.cpp and sensors_idl_test.cpp.
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

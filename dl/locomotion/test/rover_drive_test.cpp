@@ -11,7 +11,7 @@
 #include "rover/base/process.hpp"
 #include "test/locomotion_rig.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 using testing_support::LocomotionRig;
@@ -109,4 +109,4 @@ TEST_F(RoverDriveTest, NoLocomotionServiceExitsThreeAtTheHarnessTimeout) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -155,4 +155,4 @@ TEST(RoverGeometry, ParamsYamlErrorsNameFileLineAndKey) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -8,7 +8,7 @@
 
 #include "rover/dl/locomotion/ackermann.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -309,4 +309,4 @@ TEST(WheelOdometry, Params) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -11,7 +11,7 @@
 #include "rover/msg/drive_idl.hpp"
 #include "rover/runtime/dds.hpp"
 
-namespace rover::dl::tools {
+namespace rover::dl::locomotion::tools {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -220,4 +220,4 @@ bool IsTerminal(const rover_dl_DriveStatus& s) {
          s.state == rover_dl_DRIVE_REJECTED;
 }
 
-}  // namespace rover::dl::tools
+}  // namespace rover::dl::locomotion::tools

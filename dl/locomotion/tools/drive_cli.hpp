@@ -27,7 +27,7 @@
 #include "rover/dl/locomotion/drive_types.hpp"
 #include "rover/idl/types.hpp"
 
-namespace rover::dl::tools {
+namespace rover::dl::locomotion::tools {
 
 inline constexpr int kExitDone = 0;
 inline constexpr int kExitNotDone = 1;
@@ -79,4 +79,4 @@ std::string FormatDriveStatus(const rover_dl_DriveStatus& s);
 /// DONE, FAILED or REJECTED.
 bool IsTerminal(const rover_dl_DriveStatus& s);
 
-}  // namespace rover::dl::tools
+}  // namespace rover::dl::locomotion::tools

@@ -19,7 +19,7 @@ namespace {
 using rover::Duration;
 using rover::Time;
 namespace dds = rover::dds;
-namespace tools = rover::dl::tools;
+namespace tools = rover::dl::locomotion::tools;
 
 volatile std::sig_atomic_t g_interrupted = 0;
 void OnSignal(int) { g_interrupted = 1; }
@@ -109,7 +109,7 @@ class Session {
 
   void SendStop(std::uint32_t id) {
     tools::DriveCliOptions stop = options_;
-    stop.primitive = rover::dl::DrivePrimitive::kStop;
+    stop.primitive = rover::msg::DrivePrimitive::kStop;
     if (Send(stop, id).ok()) Say("rover-drive: sent STOP #" + std::to_string(id));
   }
 
@@ -149,7 +149,7 @@ int Run(const tools::DriveCliOptions& o) {
   const std::uint32_t id = o.command_id != 0 ? o.command_id : ChooseCommandId();
   const rover::Status sent = session->Send(o, id);
   if (!sent.ok()) return Fail(sent.message(), tools::kExitNotDone);
-  Say("rover-drive: sent " + std::string(rover::dl::DrivePrimitiveName(o.primitive)) + " #" +
+  Say("rover-drive: sent " + std::string(rover::msg::DrivePrimitiveName(o.primitive)) + " #" +
       std::to_string(id) + " on domain " + std::to_string(o.domain));
 
   while (true) {
@@ -161,11 +161,11 @@ int Run(const tools::DriveCliOptions& o) {
       }
     }
     if (g_interrupted != 0) {
-      if (o.primitive != rover::dl::DrivePrimitive::kStop) session->SendStop(id + 1);
+      if (o.primitive != rover::msg::DrivePrimitive::kStop) session->SendStop(id + 1);
       return Fail("interrupted", tools::kExitInterrupted);
     }
     if (session->Expired()) {
-      if (o.primitive != rover::dl::DrivePrimitive::kStop) session->SendStop(id + 1);
+      if (o.primitive != rover::msg::DrivePrimitive::kStop) session->SendStop(id + 1);
       return Fail("no terminal status for #" + std::to_string(id) + " within " +
                       SecondsText(o.timeout_s) + " (--timeout)",
                   tools::kExitTimeout);

@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 namespace {
 
 constexpr double kEps = 1e-15;
@@ -79,4 +79,4 @@ double ChiSquareQuantile(double p, int dof) {
   return 0.5 * (lo + hi);
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

@@ -11,7 +11,10 @@
 #include "rover/dl/pose/chi_square.hpp"
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
+
+using locomotion::OdometryIncrement;
+
 namespace {
 
 using geometry::ExpSo3;
@@ -618,4 +621,4 @@ Result<EkfOptions> EkfOptionsFromParams(const ParamSet& params, const std::strin
   return o;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

@@ -9,7 +9,12 @@
 #include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
+
+using locomotion::RoverGeometry;
+using locomotion::WheelOdometry;
+using locomotion::WheelOdometryOptions;
+
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -261,4 +266,4 @@ std::vector<EstimatorEvent> PoseEstimator::TakeEvents() {
   return out;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

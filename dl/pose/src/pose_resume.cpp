@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-namespace rover::dl {
+namespace rover::dl::pose {
 namespace {
 
 constexpr int kSigmas = 6;
@@ -146,4 +146,4 @@ EkfInitialState ResumedInitialState(const SavedFilter& s, Time t, const PoseResu
   return init;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

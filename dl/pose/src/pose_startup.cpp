@@ -5,7 +5,7 @@
 
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 void PoseStartOptions::BindParams(ParamBinder<PoseStartOptions>& b) {
   b.Bind("x", &PoseStartOptions::x, "m",
@@ -108,4 +108,4 @@ StartDecision Leveller::Decide(Time t, const Eigen::Vector3d& f_mean, const Eige
   return d;
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

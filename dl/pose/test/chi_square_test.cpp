@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::dl {
+namespace rover::dl::pose {
 namespace {
 
 TEST(ChiSquare, QuantilesMatchTables) {
@@ -41,4 +41,4 @@ TEST(ChiSquare, CdfBasics) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

@@ -10,7 +10,10 @@
 #include "rover/dl/pose/chi_square.hpp"
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
+
+using locomotion::OdometryIncrement;
+
 namespace {
 
 using geometry::ExpSo3;
@@ -740,4 +743,4 @@ TEST(PoseEkf, OptionsAndParams) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

@@ -9,7 +9,11 @@
 
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
+
+using locomotion::RoverGeometry;
+using locomotion::WheelOdometryOptions;
+
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -185,4 +189,4 @@ TEST(PoseFusionOptions, ParametersKeepTheirKeysAndDefaults) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

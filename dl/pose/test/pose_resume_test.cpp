@@ -9,7 +9,11 @@
 
 #include "rover/dl/pose/pose_estimator.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
+
+using locomotion::RoverGeometry;
+using locomotion::WheelOdometryOptions;
+
 namespace {
 
 constexpr double kG = 3.711;
@@ -201,4 +205,4 @@ TEST_F(PoseEstimatorResumeTest, DeclaredUnknownStopsEstimation) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

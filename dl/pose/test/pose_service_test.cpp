@@ -21,7 +21,7 @@
 #include "rover/testing/fakes/fake_imu.hpp"
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -390,4 +390,4 @@ TEST_F(PoseRestartTest, ACheckpointOfAnotherSetIsNotResumed) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

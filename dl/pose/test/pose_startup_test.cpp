@@ -9,7 +9,7 @@
 
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -134,4 +134,4 @@ TEST(PoseStartup, ParametersKeepTheirKeysAndDefaults) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

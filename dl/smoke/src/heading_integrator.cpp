@@ -4,7 +4,7 @@
 #include <numbers>
 #include <string>
 
-namespace rover::dl {
+namespace rover::dl::smoke {
 
 Status HeadingIntegrator::Add(Time t, double yaw_rate) {
   if (!std::isfinite(yaw_rate)) return InvalidArgument("yaw rate is not finite");
@@ -26,4 +26,4 @@ Status HeadingIntegrator::Add(Time t, double yaw_rate) {
   return Status::Ok();
 }
 
-}  // namespace rover::dl
+}  // namespace rover::dl::smoke

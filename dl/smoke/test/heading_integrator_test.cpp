@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::dl {
+namespace rover::dl::smoke {
 namespace {
 
 TEST(HeadingIntegrator, IntegratesConstantRate) {
@@ -43,4 +43,4 @@ TEST(HeadingIntegrator, GapRestartsWithoutIntegrating) {
 }
 
 }  // namespace
-}  // namespace rover::dl
+}  // namespace rover::dl::smoke

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
+#include <string>
 #include <utility>
 
 #include "rover/base/check.hpp"
@@ -80,8 +82,10 @@ Status StereoRangerOptions::Validate() const {
       .WithPrefix("stereo parameters");
 }
 
-StereoRanger::StereoRanger(const StereoRangerOptions& options)
-    : options_(options), cache_(static_cast<std::size_t>(options.rectification_cache_size)) {
+StereoRanger::StereoRanger(const StereoRangerOptions& options, std::optional<VehicleMask> mask)
+    : options_(options),
+      cache_(static_cast<std::size_t>(options.rectification_cache_size)),
+      mask_(std::move(mask)) {
   ROVER_DEMAND(options_.Validate().ok());
 }
 
@@ -102,6 +106,19 @@ Result<StereoPipeline*> StereoRanger::PipelineFor(const StereoSetup& setup) {
     log::Info("stereo pipeline created", {{"num_disparities", d}});
   }
   return &it->second;
+}
+
+Status StereoRanger::SetPixelMask(msg::CameraId camera, cv::Mat mask) {
+  if (!msg::IsKnownCamera(camera)) {
+    return InvalidArgument("pixel mask for unknown camera " +
+                           std::to_string(static_cast<int>(camera)));
+  }
+  if (!mask.empty() && mask.type() != CV_8UC1) {
+    return InvalidArgument(std::string("pixel mask of ") + msg::CameraName(camera) +
+                           " must be CV_8UC1");
+  }
+  pixel_masks_[static_cast<std::size_t>(camera)] = std::move(mask);
+  return Status::Ok();
 }
 
 Result<msg::RangeImage> StereoRanger::Range(const msg::StereoFrame& frame, std::uint32_t request_id,
@@ -131,12 +148,27 @@ Result<msg::RangeImage> StereoRanger::Range(const msg::StereoFrame& frame, std::
   in.left = images.left;
   in.right = images.right;
   in.rectification = &st.maps;
+  const cv::Mat fixed = msg::IsKnownCamera(frame.camera)
+                            ? pixel_masks_[static_cast<std::size_t>(frame.camera)]
+                            : cv::Mat();
+  if (!fixed.empty()) {
+    cv::resize(fixed, scaled_pixel_mask_, st.maps.rectified_size(), 0.0, 0.0, cv::INTER_NEAREST);
+    in.vehicle_mask = scaled_pixel_mask_;
+  }
   ROVER_RETURN_IF_ERROR(pipe->Process(in, &output_));
   const RectifiedStereoModel level_model = st.camera.model.Downsampled(output_.level);
   cv::Mat range, xyz;
   ROVER_RETURN_IF_ERROR(Reproject(level_model, st.camera.rover_from_camera,
                                   options_.Pipeline(0).reprojection, &output_.disparity, &range,
                                   &xyz));
+  if (mask_) {
+    ROVER_RETURN_IF_ERROR(mask_->Apply(st.camera.rover_from_camera.translation(), &xyz,
+                                       &output_.disparity.status)
+                              .status());
+    output_.counts = output_.disparity.CountStatus();
+  }
+  last_masked_ = output_.counts[static_cast<std::size_t>(PixelStatus::kVehicle)] +
+                 output_.counts[static_cast<std::size_t>(PixelStatus::kWheel)];
 
   const int w = output_.disparity.disparity.cols;
   const int h = output_.disparity.disparity.rows;

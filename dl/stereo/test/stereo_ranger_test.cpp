@@ -136,6 +136,56 @@ TEST(StereoRanger, DerivesTheSearchRangeFromTheNearestRange) {
   EXPECT_GT(std::count(image->valid.begin(), image->valid.end(), 1), 128 * 96 / 2);
 }
 
+TEST(StereoRanger, VehicleMaskRemovesPointsBehindTheRover) {
+  // A "body" between the camera (rover (0.5, +-0.1, 1.0), looking along x) and the wall at x = 3
+  // hides the left part of the wall.
+  hwconfig::RoverDescription rover;
+  rover.body_centre = Eigen::Vector3d(1.5, 0.8, 1.0);
+  rover.body_size = Eigen::Vector3d(0.4, 0.8, 3.0);
+  StereoRanger plain(Options());
+  StereoRanger masked(Options(), VehicleMask(rover, VehicleMaskOptions()));
+  const Frame f;
+  const msg::PoseHistory poses = PosesAround(4.0);
+  auto all = plain.Range(f.msg, 1, {&poses, Seconds(0.5), true});
+  auto kept = masked.Range(f.msg, 1, {&poses, Seconds(0.5), true});
+  ASSERT_TRUE(all.ok() && kept.ok());
+  const auto n_all = std::count(all->valid.begin(), all->valid.end(), 1);
+  const auto n_kept = std::count(kept->valid.begin(), kept->valid.end(), 1);
+  EXPECT_GT(masked.last_masked(), 500);
+  EXPECT_EQ(n_kept + masked.last_masked(), n_all);
+  EXPECT_EQ(plain.last_masked(), 0);
+  const Eigen::Vector3d eye(0.5, kBaseline / 2, 1.0);
+  const Eigen::AlignedBox3d body = VehicleMask(rover, VehicleMaskOptions()).volumes().back().box;
+  for (std::size_t i = 0; i < kept->valid.size(); ++i) {
+    if (kept->valid[i] == 0) continue;
+    const Eigen::Vector3d p(kept->xyz[3 * i], kept->xyz[3 * i + 1], kept->xyz[3 * i + 2]);
+    ASSERT_FALSE(SegmentMeetsBox(eye, p, body)) << p.transpose();
+  }
+}
+
+TEST(StereoRanger, FixedPixelMaskRemovesItsPixels) {
+  StereoRanger ranger(Options());
+  cv::Mat left_half(3, 4, CV_8UC1, cv::Scalar(0));  // any size: scaled to 128 x 96
+  left_half.colRange(0, 2).setTo(255);
+  ASSERT_TRUE(ranger.SetPixelMask(msg::CameraId::kFrontHazcam, left_half).ok());
+  EXPECT_FALSE(ranger.SetPixelMask(msg::CameraId::kRearHazcam, cv::Mat(2, 2, CV_32FC1)).ok());
+  EXPECT_FALSE(ranger.SetPixelMask(static_cast<msg::CameraId>(7), left_half).ok());
+  const Frame f;
+  const msg::PoseHistory poses = PosesAround(4.0);
+  auto image = ranger.Range(f.msg, 1, {&poses, Seconds(0.5), true});
+  ASSERT_TRUE(image.ok()) << image.status().ToString();
+  int left_valid = 0, right_valid = 0;
+  for (int v = 0; v < image->height; ++v) {
+    for (int u = 0; u < image->width; ++u) {
+      const bool ok = image->valid[static_cast<std::size_t>(v * image->width + u)] != 0;
+      (u < image->width / 2 ? left_valid : right_valid) += ok ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(left_valid, 0);
+  EXPECT_GT(right_valid, 128 * 96 / 4);
+  EXPECT_GT(ranger.last_masked(), 128 * 96 / 4);  // most of the left half
+}
+
 TEST(StereoRangerOptions, ValidateAndParameters) {
   EXPECT_TRUE(StereoRangerOptions().Validate().ok());
   StereoRangerOptions o;

@@ -8,7 +8,7 @@
 
 #include "rover/hwconfig/rover_description.hpp"
 
-namespace rover::sim {
+namespace rover::sim::judge {
 namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
@@ -357,4 +357,4 @@ Verdict Judge::Evaluate() const {
   return v;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::judge

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::sim {
+namespace rover::sim::judge {
 namespace {
 
 Eigen::Isometry3d Pose(double x, double y, double yaw, double roll = 0) {
@@ -204,4 +204,4 @@ TEST(Judge, RejectsBadCriteriaAndReportsMissingTruth) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::judge

@@ -7,7 +7,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
 namespace {
 
 std::string Num(double v) {
@@ -287,4 +287,4 @@ MotorReading MotorController::Reading() const {
   return r;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

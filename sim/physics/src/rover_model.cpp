@@ -4,7 +4,7 @@
 
 #include "rover/base/range_check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
 
 Status RoverMasses::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("masses.chassis", chassis, 1.0, 1e4));
@@ -104,4 +104,4 @@ Status RoverModelParams::Validate() const {
   return Status::Ok();
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

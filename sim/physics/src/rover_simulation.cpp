@@ -17,7 +17,10 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
+
+using terrain::HeightField;
+
 namespace {
 
 using SimTK::MobilizedBody;
@@ -713,4 +716,4 @@ ModelGeometry RoverSimulation::PoseModel(const ModelJointAngles& q) const {
   return m;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

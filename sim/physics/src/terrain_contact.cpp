@@ -7,7 +7,12 @@
 #include <numbers>
 #include <sstream>
 
-namespace rover::sim {
+namespace rover::sim::physics {
+
+using terrain::HeightField;
+using terrain::Soil;
+using terrain::SoilName;
+
 namespace {
 
 std::string Num(double v) {
@@ -318,4 +323,4 @@ Eigen::Vector3d EvaluatePointContact(const HeightField& terrain, const PointCont
   return fn * n + ft;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::sim {
+namespace rover::sim::physics {
 namespace {
 
 // A joint of inertia J with viscous friction b and an optional external torque, integrated with
@@ -197,4 +197,4 @@ TEST(MotorParams, ValidateNamesTheField) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

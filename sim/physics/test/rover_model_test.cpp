@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-namespace rover::sim {
+namespace rover::sim::physics {
 namespace {
 
 TEST(RoverModelParams, DefaultsAreValidAndMerLike) {
@@ -63,4 +63,4 @@ TEST(RoverModelParams, DefaultMotorsByKind) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

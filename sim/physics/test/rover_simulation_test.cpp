@@ -8,7 +8,11 @@
 #include <memory>
 #include <numbers>
 
-namespace rover::sim {
+namespace rover::sim::physics {
+
+using terrain::HeightField;
+using terrain::Soil;
+
 namespace {
 
 constexpr double kSpeed = 0.05;  // [m/s] MER-like drive speed
@@ -327,4 +331,4 @@ TEST(RoverSimulation, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

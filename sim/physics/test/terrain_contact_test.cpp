@@ -7,7 +7,11 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::sim {
+namespace rover::sim::physics {
+
+using terrain::HeightField;
+using terrain::Soil;
+
 namespace {
 
 constexpr double kR = 0.125;
@@ -224,4 +228,4 @@ TEST(TerrainContact, ParamsValidate) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

@@ -21,10 +21,10 @@
 
 namespace {
 
-using rover::sim::HeightField;
-using rover::sim::MotorMode;
-using rover::sim::RoverModelParams;
-using rover::sim::RoverSimulation;
+using rover::sim::physics::MotorMode;
+using rover::sim::physics::RoverModelParams;
+using rover::sim::physics::RoverSimulation;
+using rover::sim::terrain::HeightField;
 
 std::shared_ptr<HeightField> MakeSlope(double length, double width, double slope_deg) {
   const double res = 0.1;
@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
   params.integrator.accuracy = accuracy;
   params.contact.slices = slices;
   if (method == "see1") {
-    params.integrator.method = rover::sim::IntegratorMethod::kSemiExplicitEulerFixed;
+    params.integrator.method = rover::sim::physics::IntegratorMethod::kSemiExplicitEulerFixed;
   }
   const double len = distance + 8.0;
   struct Scenario {

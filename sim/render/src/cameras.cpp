@@ -5,7 +5,10 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
+
+using terrain::HeightField;
+
 namespace {
 
 using geometry::CameraModel;
@@ -152,4 +155,4 @@ Eigen::Isometry3d RoverPoseOnGround(const HeightField& ground, double x, double 
   return t;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::render

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <mutex>
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 std::mutex g_mutex;
@@ -124,4 +124,4 @@ Status GlContext::MakeCurrent() const {
   return Status::Ok();
 }
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

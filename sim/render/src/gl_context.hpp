@@ -11,7 +11,7 @@
 #include "gl.hpp"
 #include "rover/base/status.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 
 class GlContext {
  public:
@@ -39,4 +39,4 @@ class GlContext {
 // "GL error 0x0502 (GL_INVALID_OPERATION) after <what>" if glGetError() reports one.
 Status CheckGl(const char* what);
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -21,7 +21,19 @@
 #include "textures.hpp"
 #include "view_planner.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
+
+using terrain::FractalNoise;
+using terrain::HeightField;
+using terrain::LanderPart;
+using terrain::LanderQuad;
+using terrain::MixSeed;
+using terrain::Rng;
+using terrain::Rock;
+using terrain::RockBoundingRadius;
+using terrain::RockRelief;
+using terrain::Soil;
+using terrain::Terrain;
 
 using internal::CameraFrame;
 using internal::VirtualView;
@@ -1114,4 +1126,4 @@ const RenderOptions& Renderer::options() const { return impl_->options; }
 const RenderStats& Renderer::last_stats() const { return impl_->stats; }
 std::string Renderer::gl_renderer() const { return impl_->gl->renderer(); }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::render

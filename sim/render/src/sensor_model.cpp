@@ -8,7 +8,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
 namespace {
 
 Status Bad(const std::string& field, double value, const std::string& what) {
@@ -110,4 +110,4 @@ cv::Mat ApplySensorModel(const cv::Mat& radiance, const SensorOptions& options, 
   return out;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::render

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 constexpr const char* kVersion = "#version 330 core\n";
@@ -298,4 +298,4 @@ Result<GLuint> BuildProgram(const ProgramSource& source) {
   return p;
 }
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

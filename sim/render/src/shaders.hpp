@@ -12,7 +12,7 @@
 #include "gl.hpp"
 #include "rover/base/status.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 
 struct ProgramSource {
   const char* name;
@@ -28,4 +28,4 @@ ProgramSource ShadowProgram();
 // Compiles and links; Internal with the driver's log on failure. Needs a current context.
 Result<GLuint> BuildProgram(const ProgramSource& source);
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -5,7 +5,9 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
+
+using terrain::HeightField;
 
 std::vector<int> LodSamples(int lo, int hi, int step) {
   std::vector<int> s;
@@ -168,4 +170,4 @@ int SelectLod(const TerrainTile& tile, const Eigen::Vector3f& camera, double foc
   return 0;
 }
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -23,7 +23,7 @@
 
 #include "rover/sim/heightfield.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 
 struct TerrainTileLod {
   std::uint32_t first_index = 0;  // into TerrainMesh::indices (values relative to first_vertex)
@@ -54,7 +54,8 @@ struct TerrainMesh {
 };
 
 // Preconditions: hf has >= 2 x 2 samples; tile_cells a power of two >= 2.
-TerrainMesh BuildTerrainMesh(const HeightField& hf, int tile_cells, const Eigen::Vector3d& origin);
+TerrainMesh BuildTerrainMesh(const terrain::HeightField& hf, int tile_cells,
+                             const Eigen::Vector3d& origin);
 
 // Sample positions along one axis of a tile for a LOD step: lo, lo + step, ..., hi.
 std::vector<int> LodSamples(int lo, int hi, int step);
@@ -65,4 +66,4 @@ std::vector<int> LodSamples(int lo, int hi, int step);
 int SelectLod(const TerrainTile& tile, const Eigen::Vector3f& camera, double focal_px,
               double resolution, double error_px, double max_cell_px);
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

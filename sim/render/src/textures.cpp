@@ -9,7 +9,11 @@
 #include "rover/base/check.hpp"
 #include "rover/sim/terrain/random.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
+
+using terrain::MixSeed;
+using terrain::Rng;
+
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -410,4 +414,4 @@ TextureImage MakeRockTextures(std::uint64_t seed, int size) {
   return img;
 }
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 
 inline constexpr double kSlopeRange = 2.0;
 inline constexpr int kGenericRockLayers = 8;
@@ -46,4 +46,4 @@ TextureImage MakeRockTextures(std::uint64_t seed, int size);
 std::vector<float> PeriodicFbm(std::uint64_t seed, int size, int base_wavelength, int octaves,
                                double persistence);
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -9,7 +9,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 using geometry::CameraModel;
@@ -232,4 +232,4 @@ Result<WarpPlan> PlanWarp(const CameraModel& model, const PlanOptions& options) 
   return plan;
 }
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -27,7 +27,7 @@
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 
 struct CameraFrame {
   Eigen::Matrix3d ref_from_cam = Eigen::Matrix3d::Identity();  // columns: x right, y down, z fwd
@@ -70,4 +70,4 @@ struct WarpPlan {
 // Errors: a model with no valid ray, or an atlas larger than max_atlas_size.
 Result<WarpPlan> PlanWarp(const geometry::CameraModel& model, const PlanOptions& options);
 
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <numbers>
 
-namespace rover::sim {
+namespace rover::sim::render {
+
+using terrain::HeightField;
+
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -108,4 +111,4 @@ TEST(CamerasTest, RoverPoseOnGroundFollowsSlope) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::render

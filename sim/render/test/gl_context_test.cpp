@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 TEST(GlContextTest, CreatesHeadlessContextOrSaysWhy) {
@@ -34,4 +34,4 @@ TEST(GlContextTest, CreatesHeadlessContextOrSaysWhy) {
 }
 
 }  // namespace
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -12,7 +12,21 @@
 #include "rover/geometry/camera_model.hpp"
 #include "rover/sim/render/cameras.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
+
+using terrain::GenerateTerrain;
+using terrain::Lander;
+using terrain::LanderParams;
+using terrain::LanderPart;
+using terrain::LanderQuad;
+using terrain::PlaceLander;
+using terrain::RebuildHeights;
+using terrain::Rock;
+using terrain::RockPreset;
+using terrain::RockRelief;
+using terrain::Terrain;
+using terrain::TerrainParams;
+
 namespace {
 
 using geometry::CameraModel;
@@ -439,4 +453,4 @@ TEST(RendererTest, BadInputIsReported) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::render

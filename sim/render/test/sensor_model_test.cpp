@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::render {
 namespace {
 
 SensorOptions Plain() {
@@ -84,4 +84,4 @@ TEST(SensorModelTest, AutoExposurePlacesPercentile) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::render

@@ -4,7 +4,7 @@
 
 #include "src/gl_context.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 TEST(ShadersTest, AllProgramsCompileAndLink) {
@@ -29,4 +29,4 @@ TEST(ShadersTest, CompileErrorIsReported) {
 }
 
 }  // namespace
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

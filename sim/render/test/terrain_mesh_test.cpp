@@ -4,7 +4,10 @@
 
 #include <cmath>
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
+
+using terrain::HeightField;
+
 namespace {
 
 HeightField Plane(int n, double res, double a, double b) {
@@ -63,4 +66,4 @@ TEST(TerrainMeshTest, BumpErrorGrowsWithLodAndSkirtsCoverIt) {
 }
 
 }  // namespace
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 TEST(TexturesTest, DeterministicPerSeed) {
@@ -61,4 +61,4 @@ TEST(TexturesTest, ScienceLayersAreDistinct) {
 }
 
 }  // namespace
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

@@ -6,7 +6,7 @@
 
 #include "rover/sim/render/cameras.hpp"
 
-namespace rover::sim::internal {
+namespace rover::sim::render::internal {
 namespace {
 
 geometry::CameraModel Pinhole(double f, int w, int h) {
@@ -93,4 +93,4 @@ TEST(ViewPlannerTest, OversampleRaisesDensity) {
 }
 
 }  // namespace
-}  // namespace rover::sim::internal
+}  // namespace rover::sim::render::internal

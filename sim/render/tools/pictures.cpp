@@ -43,7 +43,8 @@ std::vector<std::string> Split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace rover::sim;
+  using namespace rover::sim::render;
+  using namespace rover::sim::terrain;
   CLI::App app{"Render the simulated rover's stereo cameras (PNG) on a scenario's terrain"};
   std::vector<std::string> files, sets;
   std::string out = "pictures", cameras = "navcam,front_hazcam,rear_hazcam";

@@ -55,7 +55,8 @@ std::vector<std::string> Split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace rover::sim;
+  using namespace rover::sim::render;
+  using namespace rover::sim::terrain;
   CLI::App app{"Renderer benchmark: ms per stereo pair vs cv::remap of the same size"};
   int reps = 3;
   std::string sizes = "512,1024", cameras = "navcam,front_hazcam";

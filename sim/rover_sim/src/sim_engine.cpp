@@ -4,7 +4,30 @@
 
 #include "rover/base/param_binder.hpp"
 
-namespace rover::sim {
+namespace rover::sim::rover_sim {
+
+using hw::kNumMotors;
+using physics::kMotorFaultOverCurrent;
+using physics::kMotorFaultOverTemperature;
+using physics::kMotorFaultStall;
+using physics::MotorMode;
+using physics::MotorParams;
+using physics::MotorReading;
+using physics::RoverModelParams;
+using physics::RoverReadings;
+using physics::RoverSimulation;
+using physics::StartPose;
+using sensors::DeclareSimSensorParams;
+using sensors::MotorPhysical;
+using sensors::SensorSuite;
+using sensors::SensorTruth;
+using sensors::SimSensorOptions;
+using sensors::SimSensorOptionsFromParams;
+using terrain::HeightField;
+using world::BuildWorld;
+using world::DeclareWorldParams;
+using world::World;
+
 namespace {
 
 // The rover description's keys: the same as the stack's (dl-locomotion, dl-pose).
@@ -228,4 +251,4 @@ Eigen::Vector3d SimEngine::SunDirectionSite() const {
   return sensors_->ephemeris().At(time_s_).direction_site;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::rover_sim

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::rover_sim {
 namespace {
 
 std::unique_ptr<SimEngine> FlatEngine(double slope_deg = 0.0) {
@@ -98,4 +98,4 @@ TEST(SimEngine, ResetRestartsTime) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::rover_sim

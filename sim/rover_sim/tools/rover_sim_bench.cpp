@@ -16,7 +16,9 @@
 
 namespace {
 using namespace rover;
-using namespace rover::sim;
+using namespace rover::sim::render;
+using namespace rover::sim::rover_sim;
+using namespace rover::sim::terrain;
 
 double PeakRssMb() {
   rusage u{};

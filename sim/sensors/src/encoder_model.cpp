@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 std::int64_t EncoderModel::Counts(double angle_rad) const {
   const double c = angle_rad * counts_per_rad_;
@@ -25,4 +25,4 @@ std::int32_t EncoderModel::RateCounts(double rate_rad_s) const {
   return static_cast<std::int32_t>(std::llround(std::clamp(c, kLo, kHi)));
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

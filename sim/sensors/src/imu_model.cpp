@@ -7,7 +7,7 @@
 #include "rover/base/check.hpp"
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 Eigen::Vector3d Draw3(NoiseRng& rng, double sigma) {
@@ -79,4 +79,4 @@ hw::ImuRaw ImuModel::Sample(const ImuTruth& truth, Time stamp) {
   return raw;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 std::uint16_t ToAdc12(double counts) {
   if (std::isnan(counts)) return 0;
@@ -61,4 +61,4 @@ hw::MotorTelemetry MotorTelemetryModel::Pack(
   return t;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -3,7 +3,7 @@
 #include "rover/base/check.hpp"
 #include "rover/sim/sensors/motor_telemetry_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 SuspensionPotModel::SuspensionPotModel(const PotSpec& spec, const PotErrors& errors,
                                        double noise_scale, std::uint64_t seed)
@@ -30,4 +30,4 @@ hw::SuspensionPots SuspensionPotModel::Sample(const std::array<double, hw::kNumP
   return p;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 std::uint64_t SensorSeed(std::uint64_t seed, std::uint64_t stream) {
   std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream + 1);
@@ -39,4 +39,4 @@ bool SampleClock::Due(Time now) {
   return true;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -1,6 +1,6 @@
 #include "rover/sim/sensors/sensor_suite.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 // Noise streams: changing one sensor's draws never changes another's.
 enum Stream : std::uint64_t { kMotorStream = 1, kPotStream = 2, kImuStream = 3, kSunStream = 4 };
@@ -51,4 +51,4 @@ SensorSamples SensorSuite::Step(const SensorTruth& truth) {
   return out;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -208,4 +208,4 @@ Result<SimSensorOptions> SimSensorOptionsFromParams(const ParamSet& ps, const st
   return o;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -8,7 +8,7 @@
 #include "rover/geometry/transforms.hpp"
 #include "rover/sim/sensors/motor_telemetry_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 SunSensorModel::SunSensorModel(const SunSensorSpec& spec, const SunSensorErrors& errors,
                                double noise_scale, std::uint64_t seed)
@@ -54,4 +54,4 @@ hw::SunSensorRaw SunSensorModel::Sample(const Eigen::Vector3d& sun_site,
   return raw;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 TEST(EncoderModel, CountsPerRadFollowGearAndEncoder) {
@@ -50,4 +50,4 @@ TEST(EncoderModel, RatesSaturateAndNonFiniteGivesZero) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -7,7 +7,7 @@
 
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 Eigen::Vector3d Decode(const std::array<std::int32_t, 3>& raw, const InertialSensorSpec& s,
@@ -163,4 +163,4 @@ TEST(ImuModel, TurnOnBiasIsDrawnFromTheSeed) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 std::array<MotorPhysical, hw::kNumMotors> Motors(double current, double temperature) {
@@ -113,4 +113,4 @@ TEST(MotorTelemetryModel, SameSeedSameTelemetry) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

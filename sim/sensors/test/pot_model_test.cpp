@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 TEST(SuspensionPotModel, IdealRoundTripWithinHalfACount) {
@@ -62,4 +62,4 @@ TEST(SuspensionPotModel, TrueErrorsMakeTheNominalInverseWrong) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 TEST(NoiseRng, SameSeedSameSequenceDifferentSeedDifferent) {
@@ -74,4 +74,4 @@ TEST(SampleClock, SteppingOverPeriodsSamplesOnceAndKeepsPhase) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 SensorTruth Truth(std::int64_t ns) {
@@ -97,4 +97,4 @@ TEST(SensorSuite, SunSampleCarriesTheTrueSun) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 TEST(SimSensorOptions, DefaultsAndIdealAreValid) {
@@ -84,4 +84,4 @@ TEST(SimSensorOptions, ValidateCatchesBadStructs) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

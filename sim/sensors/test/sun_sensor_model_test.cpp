@@ -6,7 +6,7 @@
 
 #include "rover/geometry/transforms.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -128,4 +128,4 @@ TEST(SunSensorModel, MountingErrorShiftsTheSpot) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

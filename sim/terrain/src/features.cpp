@@ -9,7 +9,7 @@
 #include "rover/sim/terrain/random.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 // The features' own random stream (terrain.cpp's streams are 1..7).
@@ -157,4 +157,4 @@ Status PlaceScenarioFeatures(Terrain* terrain, const ParamSet& ps, const std::st
   return Status(s.code(), ps.Origin(key).ToString() + ": key '" + key + "': " + s.message());
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

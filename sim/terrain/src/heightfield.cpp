@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 const char* SoilName(Soil s) {
   switch (s) {
@@ -63,4 +63,4 @@ Soil HeightField::SoilAt(double x, double y) const {
   return soil(i, j);
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -9,7 +9,7 @@
 #include "rover/base/check.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -545,4 +545,4 @@ Status PlaceScenarioObjects(Terrain* terrain, const ParamSet& ps, const std::str
   return Status::Ok();
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 ValueNoise::ValueNoise(Rng* rng, const Eigen::Vector2d& min, const Eigen::Vector2d& max,
                        double wavelength)
@@ -90,9 +90,9 @@ double FractalNoise::operator()(double x, double y) const {
   return s;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 void FractalNoise::AddToGrid(double x0, double y0, double step, int nx, int ny, double scale,
                              double* out) const {
@@ -101,4 +101,4 @@ void FractalNoise::AddToGrid(double x0, double y0, double step, int nx, int ny, 
   }
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

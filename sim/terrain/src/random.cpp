@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 std::uint64_t MixSeed(std::uint64_t seed, std::uint64_t stream) {
   std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (stream + 1);
@@ -29,4 +29,4 @@ double Rng::Normal() {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

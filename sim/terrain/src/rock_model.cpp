@@ -5,7 +5,7 @@
 
 #include "rover/base/check.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 // Composite Simpson over ln D (the integrands vary over decades of D). 2000 panels give
@@ -72,4 +72,4 @@ double SampleRockDiameter(double k, double d_min, double d_max, Rng* rng) {
   }
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

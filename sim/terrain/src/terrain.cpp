@@ -10,7 +10,7 @@
 #include "rover/sim/terrain/random.hpp"
 #include "rover/sim/terrain/rock_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -403,4 +403,4 @@ Result<Terrain> GenerateTerrain(const TerrainParams& p) {
   return t;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

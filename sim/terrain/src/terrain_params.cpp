@@ -7,7 +7,7 @@
 
 #include "rover/sim/terrain/rock_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 std::string Num(double v) {
@@ -318,4 +318,4 @@ Result<TerrainParams> TerrainParamsFromParamSet(const ParamSet& ps, const std::s
   return p;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

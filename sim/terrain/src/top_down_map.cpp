@@ -10,7 +10,7 @@
 
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 // BGR colours.
@@ -436,4 +436,4 @@ Status WriteTopDownMap(const Terrain& terrain, const std::string& path, const Ma
   return Status::Ok();
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

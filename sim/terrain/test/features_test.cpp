@@ -5,7 +5,7 @@
 
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 using ::testing::HasSubstr;
@@ -113,4 +113,4 @@ TEST(TerrainFeatures, FromAScenarioWithFileLineErrors) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 TEST(HeightField, BilinearPlaneIsExact) {
@@ -35,4 +35,4 @@ TEST(HeightField, ClampsOutsideAndReportsContainment) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

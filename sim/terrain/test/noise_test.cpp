@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 TEST(QuinticFade, EndpointsAndFlatEnds) {
@@ -54,9 +54,9 @@ TEST(FractalNoise, OctavesWeightsAndBound) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 TEST(FractalNoise, GridFillMatchesPointEvaluation) {
@@ -74,4 +74,4 @@ TEST(FractalNoise, GridFillMatchesPointEvaluation) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

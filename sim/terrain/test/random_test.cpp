@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 TEST(Rng, EngineIsTheStandardMt19937_64) {
@@ -68,4 +68,4 @@ TEST(MixSeed, StreamsDiffer) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 // Independent brute-force midpoint integration (linear in D).
@@ -75,4 +75,4 @@ TEST(RockModel, PoissonVarianceMatchesClosedForm) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

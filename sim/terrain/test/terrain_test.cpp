@@ -9,7 +9,7 @@
 
 #include "rover/sim/terrain/rock_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 using ::testing::HasSubstr;
@@ -332,4 +332,4 @@ TEST(RockShape, OutlineBoundsAndArea) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -7,7 +7,7 @@
 
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 namespace {
 
 using ::testing::HasSubstr;
@@ -83,4 +83,4 @@ TEST(TopDownMap, LimitsSizeAndWritesPng) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -27,7 +27,7 @@ double MedianMs(int reps, F f) {
 }  // namespace
 
 int main() {
-  using namespace rover::sim;
+  using namespace rover::sim::terrain;
   TerrainParams p;  // 50 m x 50 m at 0.04 m
   cv::Mat src(1251, 1251, CV_32F), dst;
   cv::randu(src, 0.0f, 1.0f);

@@ -33,9 +33,9 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   rover::ParamSet ps("sim_terrain");
-  rover::sim::DeclareTerrainParams(ps);
-  rover::sim::DeclareLanderParams(ps);
-  rover::sim::DeclareScienceTargets(ps);
+  rover::sim::terrain::DeclareTerrainParams(ps);
+  rover::sim::terrain::DeclareLanderParams(ps);
+  rover::sim::terrain::DeclareScienceTargets(ps);
   if (help_params) {
     std::printf("%s", ps.DescribeAll().c_str());
     return 0;
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  auto params = rover::sim::TerrainParamsFromParamSet(ps);
+  auto params = rover::sim::terrain::TerrainParamsFromParamSet(ps);
   if (!params.ok()) {
     std::fprintf(stderr, "error: %s\n", params.status().message().c_str());
     return 2;
@@ -60,22 +60,22 @@ int main(int argc, char** argv) {
   if (print_params) std::printf("%s", ps.DumpYaml().c_str());
 
   const auto t0 = std::chrono::steady_clock::now();
-  auto terrain = rover::sim::GenerateTerrain(*params);
+  auto terrain = rover::sim::terrain::GenerateTerrain(*params);
   if (!terrain.ok()) {
     std::fprintf(stderr, "error: %s\n", terrain.status().message().c_str());
     return 2;
   }
   const auto t1 = std::chrono::steady_clock::now();
-  if (auto s = rover::sim::PlaceScenarioObjects(&*terrain, ps); !s.ok()) {
+  if (auto s = rover::sim::terrain::PlaceScenarioObjects(&*terrain, ps); !s.ok()) {
     std::fprintf(stderr, "error: %s\n", s.message().c_str());
     return 2;
   }
   const auto t2 = std::chrono::steady_clock::now();
-  rover::sim::MapOptions options;
+  rover::sim::terrain::MapOptions options;
   options.title = title;
   options.max_pixels = max_pixels;
   options.pixels_per_metre = pixels_per_metre;
-  if (auto s = rover::sim::WriteTopDownMap(*terrain, out, options); !s.ok()) {
+  if (auto s = rover::sim::terrain::WriteTopDownMap(*terrain, out, options); !s.ok()) {
     std::fprintf(stderr, "error: %s\n", s.message().c_str());
     return 2;
   }
@@ -101,8 +101,9 @@ int main(int argc, char** argv) {
       "rocks %zu (preset %s, k %.3f): cover %.4f, model %.4f; %d higher than 0.2 m; "
       "%d science targets; %zu craters; lander %s\n",
       terrain->rocks.size() - static_cast<std::size_t>(targets),
-      rover::sim::RockPresetName(params->rocks.preset), k, cover / area,
-      rover::sim::RockAreaFraction(k, params->rocks.diameter_min, params->rocks.diameter_max),
+      rover::sim::terrain::RockPresetName(params->rocks.preset), k, cover / area,
+      rover::sim::terrain::RockAreaFraction(k, params->rocks.diameter_min,
+                                            params->rocks.diameter_max),
       obstacles, targets, terrain->craters.size(), terrain->lander ? "yes" : "no");
   std::printf("time: generate %.0f ms, lander+targets %.0f ms, map %.0f ms -> %s\n", ms(t0, t1),
               ms(t1, t2), ms(t2, t3), out.c_str());

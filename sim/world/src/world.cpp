@@ -6,7 +6,16 @@
 #include "rover/sim/terrain/lander.hpp"
 #include "rover/sim/terrain/terrain_params.hpp"
 
-namespace rover::sim {
+namespace rover::sim::world {
+
+using terrain::DeclareLanderParams;
+using terrain::DeclareScienceTargets;
+using terrain::DeclareTerrainFeatures;
+using terrain::DeclareTerrainParams;
+using terrain::GenerateTerrain;
+using terrain::PlaceScenarioFeatures;
+using terrain::PlaceScenarioObjects;
+using terrain::TerrainParamsFromParamSet;
 
 const std::vector<std::string>& WorldSections() {
   static const std::vector<std::string> k = {"terrain", "terrain_features", "lander",
@@ -50,4 +59,4 @@ Result<World> BuildWorld(const ParamSet& params) {
   return w;
 }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::world

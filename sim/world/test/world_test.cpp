@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace rover::sim {
+namespace rover::sim::world {
 namespace {
 
 TEST(World, SameParametersSameWorld) {
@@ -49,4 +49,4 @@ TEST(World, ErrorsNameTheKeyAndLine) {
 }
 
 }  // namespace
-}  // namespace rover::sim
+}  // namespace rover::sim::world

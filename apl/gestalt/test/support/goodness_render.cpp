@@ -53,10 +53,10 @@ cv::Mat RenderGoodnessMap(const nav_core::GoodnessMap& map, const RenderOptions&
   return img;
 }
 
-void DrawRocks(const nav_core::GoodnessMap& map, const std::vector<sim::Rock>& rocks,
+void DrawRocks(const nav_core::GoodnessMap& map, const std::vector<sim::terrain::Rock>& rocks,
                const RenderOptions& o, cv::Mat* image) {
-  for (const sim::Rock& rock : rocks) {
-    const std::vector<Eigen::Vector2d> outline = sim::RockOutline(rock, 16);
+  for (const sim::terrain::Rock& rock : rocks) {
+    const std::vector<Eigen::Vector2d> outline = sim::terrain::RockOutline(rock, 16);
     std::vector<cv::Point> pts;
     for (const auto& p : outline) pts.push_back(Pixel(map, o, p.x(), p.y()));
     const cv::Scalar colour =

@@ -27,7 +27,7 @@ struct RenderOptions {
 /// The map alone (BGR, width * ppc x height * ppc).
 cv::Mat RenderGoodnessMap(const nav_core::GoodnessMap& map, const RenderOptions& options = {});
 /// Overlays, in the map's pixel frame.
-void DrawRocks(const nav_core::GoodnessMap& map, const std::vector<sim::Rock>& rocks,
+void DrawRocks(const nav_core::GoodnessMap& map, const std::vector<sim::terrain::Rock>& rocks,
                const RenderOptions& options, cv::Mat* image);
 void DrawRover(const nav_core::GoodnessMap& map, const Eigen::Isometry3d& site_from_rover,
                const RenderOptions& options, cv::Mat* image);

@@ -26,7 +26,8 @@ Eigen::Isometry3d PinholeCamera::RoverFromCamera() const {
 
 PinholeCamera FrontHazcam() { return PinholeCamera{}; }
 
-nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const PinholeCamera& camera,
+nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
+                                   const PinholeCamera& camera,
                                    const Eigen::Isometry3d& site_from_rover, Time capture) {
   ROVER_DEMAND(camera.width > 0 && camera.height > 0);
   nav_core::RangeScan scan;
@@ -41,7 +42,7 @@ nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const Pinhole
   const Eigen::Isometry3d rover_from_site = site_from_rover.inverse();
   const Eigen::Vector3d o = site_from_camera.translation();
   const double f = camera.focal_px();
-  sim::Rng rng(camera.seed);
+  sim::terrain::Rng rng(camera.seed);
   auto clearance = [&](const Eigen::Vector3d& p) { return p.z() - ground.Height(p.x(), p.y()); };
   for (int v = 0; v < camera.height; ++v) {
     for (int u = 0; u < camera.width; ++u) {
@@ -82,7 +83,8 @@ nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const Pinhole
   return scan;
 }
 
-Eigen::Isometry3d RoverPose(const sim::HeightField& ground, double x, double y, double yaw) {
+Eigen::Isometry3d RoverPose(const sim::terrain::HeightField& ground, double x, double y,
+                            double yaw) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   t.translation() = Eigen::Vector3d(x, y, ground.Height(x, y));
@@ -91,47 +93,47 @@ Eigen::Isometry3d RoverPose(const sim::HeightField& ground, double x, double y, 
 
 namespace {
 
-sim::TerrainParams QuietParams(double size, double resolution) {
-  sim::TerrainParams p;
+sim::terrain::TerrainParams QuietParams(double size, double resolution) {
+  sim::terrain::TerrainParams p;
   p.size_x = p.size_y = size;
   p.resolution = resolution;
   p.hills.amplitude = 0.0;
   p.craters.count = 0;
-  p.rocks.preset = sim::RockPreset::kNone;
+  p.rocks.preset = sim::terrain::RockPreset::kNone;
   p.start.keep_out_radius = 1.5;
   return p;
 }
 
 }  // namespace
 
-sim::Terrain FlatWorld(double size, double resolution) {
-  auto t = sim::GenerateTerrain(QuietParams(size, resolution));
+sim::terrain::Terrain FlatWorld(double size, double resolution) {
+  auto t = sim::terrain::GenerateTerrain(QuietParams(size, resolution));
   ROVER_DEMAND_MSG(t.ok(), t.status().message().c_str());
   return std::move(t).value();
 }
 
-sim::Terrain RockField(const char* preset, std::uint64_t seed, double size) {
-  sim::TerrainParams p = QuietParams(size, 0.02);
-  auto parsed = sim::ParseRockPreset(preset);
+sim::terrain::Terrain RockField(const char* preset, std::uint64_t seed, double size) {
+  sim::terrain::TerrainParams p = QuietParams(size, 0.02);
+  auto parsed = sim::terrain::ParseRockPreset(preset);
   ROVER_DEMAND_MSG(parsed.ok(), parsed.status().message().c_str());
   p.rocks.preset = *parsed;
   p.seed = seed;
   p.hills.amplitude = 0.15;
-  auto t = sim::GenerateTerrain(p);
+  auto t = sim::terrain::GenerateTerrain(p);
   ROVER_DEMAND_MSG(t.ok(), t.status().message().c_str());
   return std::move(t).value();
 }
 
-void AddRock(sim::Terrain* terrain, double x, double y, double diameter, double height,
+void AddRock(sim::terrain::Terrain* terrain, double x, double y, double diameter, double height,
              double bluntness) {
-  sim::Rock r;
+  sim::terrain::Rock r;
   r.id = terrain->next_rock_id++;
   r.position = Eigen::Vector3d(x, y, terrain->bare.Height(x, y));
   r.diameter = diameter;
   r.height = height;
   r.bluntness = bluntness;
   terrain->rocks.push_back(r);
-  sim::RebuildHeights(terrain);
+  sim::terrain::RebuildHeights(terrain);
 }
 
 }  // namespace rover::apl::gestalt::testing

@@ -17,7 +17,7 @@
 /// 1 cm), 4 cm) against HeightField::Height (bilinear), refined by bisection to 1 mm; a hit
 /// between min_range and max_range is a valid pixel whose point is reported in the rover frame.
 /// Optional range noise: N(0, (noise_at_1m r²)²) along the ray (stereo error grows with range²),
-/// drawn from sim::Rng(seed) in pixel order, so scans are reproducible bit for bit.
+/// drawn from sim::terrain::Rng(seed) in pixel order, so scans are reproducible bit for bit.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -51,19 +51,21 @@ struct PinholeCamera {
 PinholeCamera FrontHazcam();
 
 /// Ray-casts `camera` on a rover at `site_from_rover` against `ground`.
-nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const PinholeCamera& camera,
+nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
+                                   const PinholeCamera& camera,
                                    const Eigen::Isometry3d& site_from_rover, Time capture = {});
 
 /// A rover standing at site (x, y) with heading `yaw`, its origin on `ground` (no roll, pitch).
-Eigen::Isometry3d RoverPose(const sim::HeightField& ground, double x, double y, double yaw);
+Eigen::Isometry3d RoverPose(const sim::terrain::HeightField& ground, double x, double y,
+                            double yaw);
 
 /// A flat world of side `size` (centred on the origin, 2 cm grid) with no rocks.
-sim::Terrain FlatWorld(double size = 20.0, double resolution = 0.02);
+sim::terrain::Terrain FlatWorld(double size = 20.0, double resolution = 0.02);
 /// A seeded rock field (preset "vl1" or "vl2"): gentle hills, no craters, start disc at the
 /// origin 1.5 m in radius.
-sim::Terrain RockField(const char* preset, std::uint64_t seed, double size = 24.0);
+sim::terrain::Terrain RockField(const char* preset, std::uint64_t seed, double size = 24.0);
 /// Adds a rock (round, profile exponent `bluntness`) on the bare ground and rebuilds heights.
-void AddRock(sim::Terrain* terrain, double x, double y, double diameter, double height,
+void AddRock(sim::terrain::Terrain* terrain, double x, double y, double diameter, double height,
              double bluntness = 0.5);
 
 }  // namespace rover::apl::gestalt::testing

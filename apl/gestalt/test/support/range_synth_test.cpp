@@ -8,7 +8,7 @@ namespace rover::apl::gestalt::testing {
 namespace {
 
 TEST(RangeSynth, CentrePixelLooksDownAtFortyFiveDegrees) {
-  const sim::Terrain world = FlatWorld(12.0);
+  const sim::terrain::Terrain world = FlatWorld(12.0);
   const PinholeCamera cam = FrontHazcam();
   const auto scan = SynthesizeScan(world.natural, cam, RoverPose(world.natural, 0.0, 0.0, 0.0));
   ASSERT_TRUE(scan.Validate().ok());
@@ -37,7 +37,7 @@ TEST(RangeSynth, CentrePixelLooksDownAtFortyFiveDegrees) {
 }
 
 TEST(RangeSynth, FollowsTheRoverPose) {
-  const sim::Terrain world = FlatWorld(12.0);
+  const sim::terrain::Terrain world = FlatWorld(12.0);
   const PinholeCamera cam = FrontHazcam();
   const Eigen::Isometry3d pose = RoverPose(world.natural, 1.0, -2.0, 0.9);
   const auto scan = SynthesizeScan(world.natural, cam, pose);
@@ -47,7 +47,7 @@ TEST(RangeSynth, FollowsTheRoverPose) {
 }
 
 TEST(RangeSynth, RocksStandUpAndCastShadows) {
-  sim::Terrain world = FlatWorld(12.0);
+  sim::terrain::Terrain world = FlatWorld(12.0);
   AddRock(&world, 2.0, 0.0, 0.5, 0.3);
   const auto scan = SynthesizeScan(world.natural, FrontHazcam(), RoverPose(world.natural, 0, 0, 0));
   double top = 0.0;
@@ -67,7 +67,7 @@ TEST(RangeSynth, RocksStandUpAndCastShadows) {
 }
 
 TEST(RangeSynth, NoiseIsSeededAndGrowsWithRange) {
-  const sim::Terrain world = FlatWorld(12.0);
+  const sim::terrain::Terrain world = FlatWorld(12.0);
   PinholeCamera cam = FrontHazcam();
   cam.noise_at_1m = 0.01;
   const Eigen::Isometry3d pose = RoverPose(world.natural, 0, 0, 0);

@@ -25,7 +25,7 @@ class ReferenceAgreement : public ::testing::TestWithParam<Scene> {};
 
 TEST_P(ReferenceAgreement, AssessmentAndVotesMatch) {
   const Scene sc = GetParam();
-  const sim::Terrain world = RockField(sc.preset, sc.seed, 20.0);
+  const sim::terrain::Terrain world = RockField(sc.preset, sc.seed, 20.0);
   PinholeCamera cam = FrontHazcam();
   cam.noise_at_1m = 0.003;
   cam.seed = sc.seed;

@@ -4,11 +4,12 @@
 
 namespace rover::apl::gestalt::testing {
 
-HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map, const sim::Terrain& terrain,
+HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map,
+                               const sim::terrain::Terrain& terrain,
                                const Eigen::Vector2d& rover_xy, const GestaltOptions& o,
                                const TruthCheckOptions& check) {
   HazardQuality q;
-  for (const sim::Rock& rock : terrain.rocks) {
+  for (const sim::terrain::Rock& rock : terrain.rocks) {
     if (rock.height < check.hazard_height) continue;
     const Eigen::Vector2d c = rock.position.head<2>();
     if ((c - rover_xy).norm() > check.radius) continue;
@@ -26,9 +27,10 @@ HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map, const sim::Terr
       if ((c - rover_xy).norm() > check.radius) continue;
       ++q.obstacle_cells;
       bool excused = false;
-      for (const sim::Rock& rock : terrain.rocks) {
+      for (const sim::terrain::Rock& rock : terrain.rocks) {
         if (rock.height < check.excuse_height) continue;
-        if ((rock.position.head<2>() - c).norm() <= disc_r + sim::RockBoundingRadius(rock)) {
+        if ((rock.position.head<2>() - c).norm() <=
+            disc_r + sim::terrain::RockBoundingRadius(rock)) {
           excused = true;
           break;
         }

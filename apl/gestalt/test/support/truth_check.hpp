@@ -36,10 +36,11 @@ struct TruthCheckOptions {
   double hazard_height = 0.25;  ///< [m] rocks this tall must be marked
   double excuse_height = 0.10;  ///< [m] rocks this tall may cause an obstacle around them
   /// Whether the rover saw a rock (empty: every rock with a known centre cell counts).
-  std::function<bool(const sim::Rock&)> seen;
+  std::function<bool(const sim::terrain::Rock&)> seen;
 };
 
-HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map, const sim::Terrain& terrain,
+HazardQuality CompareWithTruth(const nav_core::GoodnessMap& map,
+                               const sim::terrain::Terrain& terrain,
                                const Eigen::Vector2d& rover_xy, const GestaltOptions& options,
                                const TruthCheckOptions& check = {});
 

@@ -9,7 +9,7 @@ namespace rover::apl::gestalt::testing {
 namespace {
 
 TEST(TruthCheck, CountsMarkedHazardsAndUnexplainedObstacles) {
-  sim::Terrain world = FlatWorld(14.0);
+  sim::terrain::Terrain world = FlatWorld(14.0);
   AddRock(&world, 2.0, 1.0, 0.6, 0.3);    // a hazard
   AddRock(&world, -3.0, 0.0, 0.3, 0.12);  // small: excuses obstacles next to it, is no hazard
   const GestaltOptions o;

@@ -23,7 +23,7 @@ Eigen::Matrix3d RoverFromCamera(const MastCamera& c) {
 }
 
 // Highest and lowest sample of the field (bounds for the ray march).
-void HeightRange(const sim::HeightField& g, double* lo, double* hi) {
+void HeightRange(const sim::terrain::HeightField& g, double* lo, double* hi) {
   const auto [mn, mx] = std::minmax_element(g.heights().begin(), g.heights().end());
   *lo = *mn;
   *hi = *mx;
@@ -46,14 +46,16 @@ std::vector<MastCamera> PanoramaPointings(const MastCamera& camera, double half_
   return out;
 }
 
-Eigen::Isometry3d RoverPose(const sim::HeightField& ground, double x, double y, double yaw) {
+Eigen::Isometry3d RoverPose(const sim::terrain::HeightField& ground, double x, double y,
+                            double yaw) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   t.translation() = Eigen::Vector3d(x, y, ground.Height(x, y));
   return t;
 }
 
-nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const MastCamera& camera,
+nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
+                                   const MastCamera& camera,
                                    const Eigen::Isometry3d& site_from_rover) {
   nav_core::RangeScan scan;
   scan.width = camera.width;
@@ -69,7 +71,7 @@ nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const MastCam
   const Eigen::Vector2d rover_xy = site_from_rover.translation().head<2>();
   const double f = 0.5 * camera.width / std::tan(0.5 * camera.hfov);
   const double step_h = 0.5 * ground.resolution();
-  sim::Rng rng(camera.seed);
+  sim::terrain::Rng rng(camera.seed);
   const Eigen::Isometry3d rover_from_site = site_from_rover.inverse();
   for (int v = 0; v < camera.height; ++v) {
     for (int u = 0; u < camera.width; ++u) {
@@ -124,7 +126,7 @@ nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const MastCam
   return scan;
 }
 
-std::vector<nav_core::RangeScan> SynthesizePanorama(const sim::HeightField& ground,
+std::vector<nav_core::RangeScan> SynthesizePanorama(const sim::terrain::HeightField& ground,
                                                     const std::vector<MastCamera>& pointings,
                                                     const Eigen::Isometry3d& site_from_rover) {
   std::vector<nav_core::RangeScan> out;
@@ -132,8 +134,9 @@ std::vector<nav_core::RangeScan> SynthesizePanorama(const sim::HeightField& grou
   return out;
 }
 
-nav_core::RangeScan OverheadScan(const sim::HeightField& ground, double x0, double y0, double x1,
-                                 double y1, double step, const Eigen::Isometry3d& site_from_rover) {
+nav_core::RangeScan OverheadScan(const sim::terrain::HeightField& ground, double x0, double y0,
+                                 double x1, double y1, double step,
+                                 const Eigen::Isometry3d& site_from_rover) {
   nav_core::RangeScan scan;
   scan.width = std::max(1, static_cast<int>(std::floor((x1 - x0) / step)) + 1);
   scan.height = std::max(1, static_cast<int>(std::floor((y1 - y0) / step)) + 1);

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// Test support: range scans as ROAMAN gets them, from a mast NAVCAM pair about 1.5 m above the
-/// ground, ray-cast against a sim::HeightField, so that tests see what FIDO saw: dense near,
-/// sparse far, nothing past the usable range, shadows behind rocks.
+/// ground, ray-cast against a sim::terrain::HeightField, so that tests see what FIDO saw: dense
+/// near, sparse far, nothing past the usable range, shadows behind rocks.
 ///
 /// Camera: an ideal pinhole of width x height pixels, horizontal field of view hfov, square
 /// pixels, at `head` in the rover frame (x forward, y left, z up; default the sim rover's mast
@@ -13,8 +13,8 @@
 /// Ray casting: from the camera along each ray in steps of half a heightfield sample (measured
 /// horizontally) against HeightField::Height (bilinear), the crossing refined by 10 bisections;
 /// a hit within max_range (horizontal, from the rover) is a valid pixel, reported in the rover
-/// frame. Optional noise N(0, (noise_at_10m (r / 10)^2)^2) along the ray, from sim::Rng(seed) in
-/// pixel order, so every scan is reproducible bit for bit.
+/// frame. Optional noise N(0, (noise_at_10m (r / 10)^2)^2) along the ray, from
+/// sim::terrain::Rng(seed) in pixel order, so every scan is reproducible bit for bit.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -46,20 +46,23 @@ std::vector<MastCamera> PanoramaPointings(const MastCamera& camera, double half_
                                           const std::vector<double>& tilts);
 
 /// A rover standing at site (x, y) with heading yaw, its origin on `ground` (no roll, pitch).
-Eigen::Isometry3d RoverPose(const sim::HeightField& ground, double x, double y, double yaw);
+Eigen::Isometry3d RoverPose(const sim::terrain::HeightField& ground, double x, double y,
+                            double yaw);
 
 /// One scan of `camera` on a rover at `site_from_rover`.
-nav_core::RangeScan SynthesizeScan(const sim::HeightField& ground, const MastCamera& camera,
+nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
+                                   const MastCamera& camera,
                                    const Eigen::Isometry3d& site_from_rover);
 /// One scan per pointing.
-std::vector<nav_core::RangeScan> SynthesizePanorama(const sim::HeightField& ground,
+std::vector<nav_core::RangeScan> SynthesizePanorama(const sim::terrain::HeightField& ground,
                                                     const std::vector<MastCamera>& pointings,
                                                     const Eigen::Isometry3d& site_from_rover);
 
 /// A scan without occlusion: every heightfield sample in the site box [x0, x1] x [y0, y1] taken
 /// every `step` metres, as seen by a rover at `site_from_rover` (for tests of the planners that
 /// want a complete map). Pixel grid: columns along x, rows along y.
-nav_core::RangeScan OverheadScan(const sim::HeightField& ground, double x0, double y0, double x1,
-                                 double y1, double step, const Eigen::Isometry3d& site_from_rover);
+nav_core::RangeScan OverheadScan(const sim::terrain::HeightField& ground, double x0, double y0,
+                                 double x1, double y1, double step,
+                                 const Eigen::Isometry3d& site_from_rover);
 
 }  // namespace rover::apl::roaman::testing

@@ -10,7 +10,7 @@ namespace rover::apl::roaman::testing {
 namespace {
 
 TEST(MastSynth, SeesFlatGroundWhereThePinholeSays) {
-  const sim::HeightField flat = FlatGround(-2, -8, 14, 8, 0.04);
+  const sim::terrain::HeightField flat = FlatGround(-2, -8, 14, 8, 0.04);
   MastCamera cam;
   cam.width = 41;  // an odd size: the centre pixel looks along the boresight
   cam.height = 31;
@@ -38,7 +38,7 @@ TEST(MastSynth, SeesFlatGroundWhereThePinholeSays) {
 }
 
 TEST(MastSynth, RocksCastShadowsAndTheRangeEnds) {
-  sim::HeightField g = FlatGround(-2, -8, 16, 8, 0.04);
+  sim::terrain::HeightField g = FlatGround(-2, -8, 16, 8, 0.04);
   AddRock(&g, 4.0, 0.0, 0.8, 0.6);
   MastCamera cam;
   cam.width = 120;
@@ -63,7 +63,7 @@ TEST(MastSynth, RocksCastShadowsAndTheRangeEnds) {
 }
 
 TEST(MastSynth, IsReproducibleAndNoiseFollowsTheSeed) {
-  const sim::HeightField flat = FlatGround(-2, -8, 14, 8, 0.04);
+  const sim::terrain::HeightField flat = FlatGround(-2, -8, 14, 8, 0.04);
   MastCamera cam;
   cam.width = 20;
   cam.height = 10;
@@ -86,7 +86,7 @@ TEST(MastSynth, PanoramaPointingsAndOverheadScans) {
   EXPECT_NEAR(p[5].tilt, -30.0 * kDeg, 1e-12);
   EXPECT_NE(p[0].seed, p[1].seed);
 
-  sim::HeightField g = FlatGround(-1, -1, 3, 3, 0.02);
+  sim::terrain::HeightField g = FlatGround(-1, -1, 3, 3, 0.02);
   AddRock(&g, 1.0, 1.0, 0.4, 0.2);
   const nav_core::RangeScan o = OverheadScan(g, 0.0, 0.0, 2.0, 1.0, 0.1, RoverPose(g, 0.5, 0.5, 0.0));
   EXPECT_EQ(o.width, 21);

@@ -12,7 +12,7 @@ namespace rover::apl::roaman::testing {
 namespace {
 
 // Raises every sample within half_width of any of `segments` (pairs a, b) by `height`, once.
-void RaiseNear(sim::HeightField* g,
+void RaiseNear(sim::terrain::HeightField* g,
                const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& segments,
                double half_width, double height) {
   for (int j = 0; j < g->ny(); ++j) {
@@ -30,11 +30,12 @@ void RaiseNear(sim::HeightField* g,
 
 }  // namespace
 
-sim::HeightField HeightFieldOf(double x0, double y0, double x1, double y1, double resolution,
-                               const std::function<double(double, double)>& f) {
+sim::terrain::HeightField HeightFieldOf(double x0, double y0, double x1, double y1,
+                                        double resolution,
+                                        const std::function<double(double, double)>& f) {
   const int nx = static_cast<int>(std::lround((x1 - x0) / resolution)) + 1;
   const int ny = static_cast<int>(std::lround((y1 - y0) / resolution)) + 1;
-  sim::HeightField g(nx, ny, resolution, Eigen::Vector2d(x0, y0));
+  sim::terrain::HeightField g(nx, ny, resolution, Eigen::Vector2d(x0, y0));
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       g.at(i, j) = static_cast<float>(f(x0 + i * resolution, y0 + j * resolution));
@@ -43,11 +44,12 @@ sim::HeightField HeightFieldOf(double x0, double y0, double x1, double y1, doubl
   return g;
 }
 
-sim::HeightField FlatGround(double x0, double y0, double x1, double y1, double resolution) {
+sim::terrain::HeightField FlatGround(double x0, double y0, double x1, double y1,
+                                     double resolution) {
   return HeightFieldOf(x0, y0, x1, y1, resolution, [](double, double) { return 0.0; });
 }
 
-void AddRock(sim::HeightField* g, double x, double y, double diameter, double height) {
+void AddRock(sim::terrain::HeightField* g, double x, double y, double diameter, double height) {
   const double r = 0.5 * diameter;
   for (int j = 0; j < g->ny(); ++j) {
     for (int i = 0; i < g->nx(); ++i) {
@@ -58,13 +60,14 @@ void AddRock(sim::HeightField* g, double x, double y, double diameter, double he
   }
 }
 
-void AddWall(sim::HeightField* g, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+void AddWall(sim::terrain::HeightField* g, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
              double half_width, double height) {
   RaiseNear(g, {{a, b}}, half_width, height);
 }
 
-void AddCulDeSac(sim::HeightField* g, const Eigen::Vector2d& base, const Eigen::Vector2d& mouth,
-                 double inner_width, double depth, double thickness, double height) {
+void AddCulDeSac(sim::terrain::HeightField* g, const Eigen::Vector2d& base,
+                 const Eigen::Vector2d& mouth, double inner_width, double depth, double thickness,
+                 double height) {
   const Eigen::Vector2d m = mouth.normalized();
   const Eigen::Vector2d side(-m.y(), m.x());
   const double half = 0.5 * (inner_width + thickness);  // arm centre lines
@@ -77,19 +80,19 @@ void AddCulDeSac(sim::HeightField* g, const Eigen::Vector2d& base, const Eigen::
             t, height);
 }
 
-sim::Terrain RockField(double k, std::uint64_t seed, double size, double resolution) {
-  sim::TerrainParams p;
+sim::terrain::Terrain RockField(double k, std::uint64_t seed, double size, double resolution) {
+  sim::terrain::TerrainParams p;
   p.size_x = size;
   p.size_y = size;
   p.resolution = resolution;
   p.seed = seed;
   p.hills.amplitude = 0.15;
   p.craters.count = 0;
-  p.rocks.preset = sim::RockPreset::kCustom;
+  p.rocks.preset = sim::terrain::RockPreset::kCustom;
   p.rocks.k = k;
   p.start.keep_out_radius = 1.5;
   p.start.blend_width = 0.5;
-  auto t = sim::GenerateTerrain(p);
+  auto t = sim::terrain::GenerateTerrain(p);
   if (!t.ok()) throw std::runtime_error("RockField: " + t.status().ToString());
   return std::move(t).value();
 }
@@ -104,7 +107,8 @@ GridGeometry CellGeometry(int w, int h, double origin_x, double origin_y) {
   return g;
 }
 
-ElevationMap SampledElevation(const sim::HeightField& ground, const GridGeometry& geometry) {
+ElevationMap SampledElevation(const sim::terrain::HeightField& ground,
+                              const GridGeometry& geometry) {
   ElevationMap m;
   m.geometry = geometry;
   const int w = geometry.width, h = geometry.height;

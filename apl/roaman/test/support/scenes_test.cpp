@@ -8,11 +8,12 @@ namespace rover::apl::roaman::testing {
 namespace {
 
 TEST(Scenes, HeightFieldsRocksAndWalls) {
-  sim::HeightField g = HeightFieldOf(0, 0, 2, 1, 0.1, [](double x, double y) { return x + 2 * y; });
+  sim::terrain::HeightField g =
+      HeightFieldOf(0, 0, 2, 1, 0.1, [](double x, double y) { return x + 2 * y; });
   EXPECT_EQ(g.nx(), 21);
   EXPECT_EQ(g.ny(), 11);
   EXPECT_NEAR(g.Height(1.0, 0.5), 2.0, 1e-6);
-  sim::HeightField f = FlatGround(-1, -1, 1, 1, 0.02);
+  sim::terrain::HeightField f = FlatGround(-1, -1, 1, 1, 0.02);
   AddRock(&f, 0.0, 0.0, 0.6, 0.3);
   EXPECT_NEAR(f.Height(0.0, 0.0), 0.3, 1e-6);
   EXPECT_NEAR(f.Height(0.31, 0.0), 0.0, 1e-6);
@@ -22,7 +23,7 @@ TEST(Scenes, HeightFieldsRocksAndWalls) {
 }
 
 TEST(Scenes, CulDeSacIsAUOpeningTowardItsMouth) {
-  sim::HeightField g = FlatGround(-1, -4, 8, 4, 0.05);
+  sim::terrain::HeightField g = FlatGround(-1, -4, 8, 4, 0.05);
   // Base at x = 6, mouth toward -x (the rover), inner width 3 m, arms 3 m deep.
   AddCulDeSac(&g, {6.0, 0.0}, {-1.0, 0.0}, 3.0, 3.0, 0.3, 0.8);
   EXPECT_NEAR(g.Height(6.0, 0.0), 0.8, 1e-6);   // base
@@ -35,19 +36,20 @@ TEST(Scenes, CulDeSacIsAUOpeningTowardItsMouth) {
 }
 
 TEST(Scenes, RockFieldsAreSeeded) {
-  const sim::Terrain a = RockField(0.15, 3, 12.0);
-  const sim::Terrain b = RockField(0.15, 3, 12.0);
-  const sim::Terrain c = RockField(0.15, 4, 12.0);
+  const sim::terrain::Terrain a = RockField(0.15, 3, 12.0);
+  const sim::terrain::Terrain b = RockField(0.15, 3, 12.0);
+  const sim::terrain::Terrain c = RockField(0.15, 4, 12.0);
   EXPECT_EQ(a.natural.heights(), b.natural.heights());
   EXPECT_NE(a.natural.heights(), c.natural.heights());
   EXPECT_GT(a.rocks.size(), 50u);
-  for (const sim::Rock& r : a.rocks) {
+  for (const sim::terrain::Rock& r : a.rocks) {
     EXPECT_GT(r.position.head<2>().norm() - r.diameter / 2, 1.5 - 1e-9);  // keep-out disc
   }
 }
 
 TEST(Scenes, SampledElevationAndClassMaps) {
-  const sim::HeightField g = HeightFieldOf(0, 0, 1, 1, 0.01, [](double x, double) { return x; });
+  const sim::terrain::HeightField g =
+      HeightFieldOf(0, 0, 1, 1, 0.01, [](double x, double) { return x; });
   GridGeometry geo;
   geo.cell = 0.1;
   geo.width = 5;

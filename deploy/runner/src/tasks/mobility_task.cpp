@@ -8,6 +8,8 @@
 #include "rover/base/format.hpp"
 
 #include "rover/msg/drive_idl.hpp"
+#include "rover/msg/mobility_idl.hpp"
+#include "rover/msg/navigation_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
 
 namespace rover::deploy::runner {
@@ -278,38 +280,30 @@ Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTas
 rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec,
                                               std::uint32_t command_id, double now_s,
                                               MobilityCommandStorage* storage) {
-  rover_apl_MobilityCommand c{};
-  c.header.stamp_ns = Time::FromSeconds(now_s).ns;
-  dds::CopyString(c.header.frame_id, "site");
+  msg::MobilityCommand c;
+  c.stamp = Time::FromSeconds(now_s);
   c.command_id = command_id;
-  c.mode = MobilityModeOf(spec.type, spec.visodom);
+  c.mode = static_cast<msg::MobilityMode>(MobilityModeOf(spec.type, spec.visodom));
   if (spec.goal) {
     c.goal = {spec.goal->xy.x(), spec.goal->xy.y(), 0.0};
     c.tolerance = spec.goal->tolerance;
   }
   c.time_budget_s = spec.time_budget_s;
-  c.think = spec.think;
+  c.think = static_cast<msg::ThinkMode>(spec.think);
   c.max_tilt = spec.max_tilt;
-  c.max_steps = static_cast<std::uint16_t>(spec.max_steps);
-  storage->primitives.clear();
+  c.max_steps = spec.max_steps;
   for (const auto& p : spec.primitives) {
-    rover_apl_MobilityPrimitive m{};
-    m.primitive = msg::DrivePrimitiveToIdl(p.primitive);
+    msg::MobilityPrimitive m;
+    m.kind = p.primitive;
     m.curvature = p.primitive == Primitive::kArc ? p.curvature : 0.0;
     m.distance = p.primitive == Primitive::kTurnInPlace ? 0.0 : p.distance;
     m.angle = p.primitive == Primitive::kTurnInPlace ? p.angle : 0.0;
-    storage->primitives.push_back(m);
+    c.primitives.push_back(m);
   }
-  storage->vertices.assign(spec.keep_out.size(), {});
-  storage->zones.assign(spec.keep_out.size(), rover_apl_KeepOutZone{});
-  for (std::size_t i = 0; i < spec.keep_out.size(); ++i) {
-    for (const auto& v : spec.keep_out[i].vertices) storage->vertices[i].push_back({v.x(), v.y()});
-    dds::CopyString(storage->zones[i].name, spec.keep_out[i].name);
-    dds::BorrowSequence(storage->zones[i].vertices, storage->vertices[i]);
-  }
-  dds::BorrowSequence(c.primitives, storage->primitives);
-  dds::BorrowSequence(c.keep_out, storage->zones);
-  return c;
+  for (const auto& z : spec.keep_out) c.keep_out.push_back({z.name, z.vertices});
+  msg::MobilityCommandToIdl(c, storage);
+  dds::CopyString(storage->msg.header.frame_id, "site");
+  return storage->msg;
 }
 
 std::string OutcomeName(const rover_apl_MobilityStatus& s) {
@@ -347,32 +341,30 @@ Status MobilityTask::Open(TaskContext& ctx) {
   Recorder& rec = ctx.recorder;
   ROVER_RETURN_IF_ERROR(rec.Record<rover_apl_GoodnessMap>(
       "apl/goodness_map", [&rec](const dds::Sample<rover_apl_GoodnessMap>& s) {
+        Result<msg::GoodnessMap> map = msg::GoodnessMapFromIdl(s.data());
+        if (!map.ok() || !(map->resolution > 0)) return;
         GoodnessGrid g;
-        g.origin_x = s->origin_x;
-        g.origin_y = s->origin_y;
-        g.resolution = s->resolution;
-        g.width = s->width;
-        g.height = s->height;
-        g.unknown_goodness = s->unknown_goodness;
-        const auto good = dds::View(s->goodness);
-        const auto flags = dds::View(s->flags);
-        const std::size_t cells = static_cast<std::size_t>(g.width) * g.height;
-        if (good.size() != cells || flags.size() != cells || !(g.resolution > 0)) return;
-        g.goodness.assign(good.begin(), good.end());
-        g.flags.assign(flags.begin(), flags.end());
+        g.origin_x = map->origin_x;
+        g.origin_y = map->origin_y;
+        g.resolution = map->resolution;
+        g.width = map->width;
+        g.height = map->height;
+        g.unknown_goodness = map->unknown_goodness;
+        g.goodness = std::move(map->goodness);
+        g.flags = std::move(map->flags);
         rec.Mobility().last_map = std::move(g);
       }));
   ROVER_RETURN_IF_ERROR(rec.Record<rover_apl_ArcVotes>(
       "apl/arc_votes", [&rec](const dds::Sample<rover_apl_ArcVotes>& s) {
-        const auto votes = dds::View(s->votes);
-        if (s->chosen < 0 || static_cast<std::size_t>(s->chosen) >= votes.size()) return;
-        const rover_apl_ArcVote& v = votes[static_cast<std::size_t>(s->chosen)];
-        const Eigen::Isometry3d pose = msg::IsometryFromIdl(s->rover_pose);
+        const Result<msg::ArcVotes> votes = msg::ArcVotesFromIdl(s.data());
+        if (!votes.ok() || votes->chosen < 0) return;
+        const msg::ArcVote& v = votes->votes[static_cast<std::size_t>(votes->chosen)];
+        const Eigen::Isometry3d& pose = votes->rover_pose;
         ChosenArc a;
         a.x = pose.translation().x();
         a.y = pose.translation().y();
         a.yaw = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
-        a.point_turn = v.kind == rover_apl_CANDIDATE_POINT_TURN;
+        a.point_turn = v.kind == msg::CandidateKind::kPointTurn;
         a.curvature = v.curvature;
         a.direction = v.direction < 0 ? -1 : 1;
         a.turn_angle = v.turn_angle;

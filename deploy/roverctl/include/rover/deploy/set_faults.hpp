@@ -27,6 +27,9 @@ struct SetFault {
   std::string yaml;        ///< its map as written, in YAML flow style (for the services' file)
 };
 
+/// `node` in YAML flow style, on one line ("{kind: drop, topic: dl/pose}").
+std::string FlowYaml(const YAML::Node& node);
+
 /// Parses a YAML list of fault maps from the document `file` (lines are the document's).
 /// Nothing is returned unless every fault is valid; errors are one line with file, line, key.
 Result<std::vector<SetFault>> ParseSetFaults(const YAML::Node& list, const std::string& file);

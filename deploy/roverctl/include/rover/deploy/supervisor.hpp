@@ -118,6 +118,9 @@ class Supervisor {
   void Poll();
   /// Stops every service, reverse start order.
   void Stop();
+  /// Sends `sig` to a running service's process group (a fault campaign's kill -9); the next
+  /// Poll() sees it end and applies its restart policy, as for any crash.
+  Status Signal(const std::string& service, int sig);
 
   int domain() const { return lease_.domain(); }
   const ComposeProject& project() const { return project_; }

@@ -17,16 +17,16 @@
 #include "rover/deploy/run_report.hpp"
 #include "rover/sim/terrain/top_down_map.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 struct Terrain;
 }
 
 namespace rover::deploy {
 
 /// The goodness map as a map layer: known cells (flag bit 0) grey by goodness.
-sim::MapCellLayer GoodnessLayer(const GoodnessGrid& grid);
+sim::terrain::MapCellLayer GoodnessLayer(const GoodnessGrid& grid);
 
-Status WriteTrackMap(const sim::Terrain& terrain, const RunResult& run,
+Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
                      const std::vector<Eigen::Vector2d>& planned, const std::string& path);
 
 Status WriteErrorPlot(const RunResult& run, const std::string& path);

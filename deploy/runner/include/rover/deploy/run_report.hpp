@@ -88,13 +88,31 @@ struct InjectedFault {
 /// One line: "fault 1 drop dl/pose (writer of *): 20.0 s to 30.0 s, 55 of 110 samples hit in dl-pose".
 std::string DescribeInjected(const InjectedFault& f);
 
+/// A change of one service's health as its sys/health heartbeats said it (the runner records
+/// the first heartbeat of each service and every change of health or message after it).
+struct HealthChange {
+  double t_s = 0;       ///< [s] run clock when the runner took the heartbeat
+  std::string service;
+  std::string health;   ///< "ok", "degraded", "failed", "stale"
+  std::string message;  ///< the heartbeat's message ("" when healthy)
+};
+
+/// A kill -9 of a service during the run (RunOptions::kills) and whether it came back.
+struct KillRecord {
+  std::string service;
+  double at_s = 0;          ///< [s] run clock, as asked
+  double killed_s = -1;     ///< [s] run clock when it was killed; < 0: never (see error)
+  double restarted_s = -1;  ///< [s] run clock when it ran again; < 0: not in the run
+  std::string error;        ///< why it was not killed ("" when it was)
+};
+
 struct RunResult {
   std::string scenario;
   std::uint32_t seed = 0;
   int domain = -1;
   bool pass = false;
   std::string failure;             ///< one line: why it failed ("" when it passed)
-  std::vector<sim::Criterion> criteria;
+  std::vector<sim::judge::Criterion> criteria;
   std::vector<StepResult> steps;
   double distance_driven = 0;      ///< [m]
   double sim_time_s = 0;           ///< simulated seconds run
@@ -102,10 +120,10 @@ struct RunResult {
   double startup_s = 0;            ///< wall seconds to bring the service set up
   double ready_s = 0;              ///< wall seconds from starting the set to every service ready
   double teardown_s = 0;           ///< wall seconds to stop it
-  std::vector<sim::ErrorSample> estimate_error;
-  std::vector<sim::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
-  /// Measured, not judged (sim::Verdict::figures): estimate and odometry-only errors.
-  std::vector<sim::Criterion> figures;
+  std::vector<sim::judge::ErrorSample> estimate_error;
+  std::vector<sim::judge::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
+  /// Measured, not judged (sim::judge::Verdict::figures): estimate and odometry-only errors.
+  std::vector<sim::judge::Criterion> figures;
   std::vector<std::string> crashes;  ///< "service: how it ended; last log line"
   std::string run_dir;
   /// Distinct sim/truth writers heard: 1 unless another run's simulator leaked into this one.
@@ -120,6 +138,12 @@ struct RunResult {
   std::optional<MobilityOutcome> mobility;
   /// Every fault of the run's set, in id order, with what it did.
   std::vector<InjectedFault> faults;
+  /// The services' health over the run (sys/health), in arrival order; at most
+  /// kMaxHealthChanges are kept (`health_changes_dropped` counts the rest).
+  std::vector<HealthChange> health_changes;
+  std::uint64_t health_changes_dropped = 0;
+  std::vector<KillRecord> kills;
+  static constexpr std::size_t kMaxHealthChanges = 500;
 };
 
 nlohmann::json ToJson(const RunResult& r);
@@ -169,6 +193,10 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
 
 /// Reads every `*/result.json` under a run folder (for `roverctl report`).
 Result<std::vector<RunResult>> LoadRunFolder(const std::string& dir);
+/// The result.json of every run sub-folder of `dir`, by seed, without requiring `dir` to be a
+/// campaign folder (a fault campaign's per-fault folders). Errors: no such folder, a result
+/// that does not parse (naming the file).
+Result<std::vector<RunResult>> LoadRunResults(const std::string& dir);
 
 /// A campaign folder read back (campaign.json names its scenario and seeds): its runs, their
 /// summary (with the campaign's wall time from summary.json, 0 if that is missing) and the

@@ -21,12 +21,19 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "rover/base/status.hpp"
 #include "rover/deploy/run_report.hpp"
 #include "rover/deploy/scenario.hpp"
 
 namespace rover::deploy {
+
+/// kill -9 of a service at a run-clock time (a fault campaign's `kill:`).
+struct ServiceKill {
+  std::string service;
+  double at_s = 0;  ///< [s] run clock
+};
 
 struct RunOptions {
   std::string out_dir;         ///< campaign folder
@@ -35,6 +42,8 @@ struct RunOptions {
   const std::atomic<bool>* abort = nullptr;
   /// Called with short progress notes ("starting", "step 2/5 arc", ...) and the simulated time.
   std::function<void(const std::string& note, double sim_time_s)> progress;
+  /// Services to kill -9 during the run (RunResult::kills says what happened).
+  std::vector<ServiceKill> kills;
 };
 
 /// Validates the simulator's sections of a scenario (terrain, lander, science targets) with the

@@ -80,7 +80,7 @@ struct Scenario {
   /// `faults:`, validated when the file is read; the runner adds them to the set's
   /// x-rover.faults (renumbered after those) and lists what they did in the run's result.
   std::vector<SetFault> faults;
-  sim::JudgeCriteria criteria;
+  sim::judge::JudgeCriteria criteria;
   /// service -> flattened key -> YAML scalar text
   std::map<std::string, std::map<std::string, std::string>> params;
   /// The run's recording: every catalog topic into <run folder>/run.mcap unless the

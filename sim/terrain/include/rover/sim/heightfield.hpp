@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 enum class Soil : std::uint8_t {
   kBedrock = 0,    ///< hard rock outcrop: little sinkage, little slip
@@ -71,4 +71,4 @@ class HeightField {
   std::vector<Soil> soils_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

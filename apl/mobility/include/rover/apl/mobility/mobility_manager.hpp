@@ -68,6 +68,7 @@
 #include "rover/apl/nav_core/arc_selector.hpp"
 #include "rover/apl/nav_core/global_planner.hpp"
 #include "rover/apl/nav_core/terrain_assessor.hpp"
+#include "rover/msg/navigation.hpp"
 
 namespace rover::apl::mobility {
 
@@ -80,11 +81,16 @@ struct ArcVotesSnapshot {
   nav_core::ArcEvaluation evaluation;
 };
 
+/// The apl/arc_votes value of a snapshot: one vote per candidate (votes clamped to 0..255,
+/// directions as their sign), `chosen` as the evaluation's index (the conversion to the wire
+/// carries the first msg::kMaxArcVotes and turns a chosen beyond them into -1).
+msg::ArcVotes ArcVotesOf(const ArcVotesSnapshot& s);
+
 /// What to send and publish after an input, in order.
 struct MobilityOutput {
-  std::vector<DriveRequest> drives;
+  std::vector<DriveCommand> drives;
   std::vector<RangeRequest> range_requests;
-  std::vector<MastRequest> mast_requests;
+  std::vector<MastCommand> mast_requests;
   std::vector<MobilityStatus> statuses;
   std::optional<nav_core::GoodnessMap> goodness_map;  ///< after an assessment
   std::vector<ArcVotesSnapshot> arc_votes;
@@ -120,12 +126,14 @@ class MobilityManager {
   MobilityOutput OnPose(const PoseSample& pose, Time now);
   /// A range image for request `request_id` from `camera`. Images of requests this manager did
   /// not make (or no longer waits for) are ignored.
-  MobilityOutput OnRangeImage(const nav_core::RangeScan& scan, Camera camera,
+  MobilityOutput OnRangeImage(const nav_core::RangeScan& scan, CameraId camera,
                               std::uint32_t request_id, Time now);
   /// Reports of drive commands this manager did not send are ignored (apart from BUSY ones).
-  MobilityOutput OnDriveStatus(const DriveReport& report, Time now);
-  MobilityOutput OnMastStatus(const MastReport& report, Time now);
-  MobilityOutput OnVisOdom(const VisOdomResult& result, Time now);
+  MobilityOutput OnDriveStatus(const DriveStatus& report, Time now);
+  MobilityOutput OnMastStatus(const MastStatus& report, Time now);
+  /// A dl/relative_pose: only visual-odometry results count (other sources are ignored); a
+  /// status other than CONVERGED is a failed VO step.
+  MobilityOutput OnVisOdom(const RelativePose& result, Time now);
   /// Time-outs and the periodic running status.
   MobilityOutput Step(Time now);
 
@@ -149,7 +157,7 @@ class MobilityManager {
   enum class Purpose { kStep, kThink };
   struct PendingImage {
     std::uint32_t request_id = 0;
-    Camera camera = Camera::kFrontHazcam;
+    CameraId camera = CameraId::kFrontHazcam;
     Time sent;
     Purpose purpose = Purpose::kStep;
   };
@@ -173,7 +181,7 @@ class MobilityManager {
     int blind_pieces = 0;                   // guarded arc: leading pieces that run blind
     std::vector<Eigen::Vector2d> goals;     // long traverse legs (last = the goal)
     std::optional<Primitive> guarded_next;  // guarded piece waiting for its image
-    std::deque<Camera> camera_queue;        // further images this step needs
+    std::deque<CameraId> camera_queue;      // further images this step needs
     std::optional<PendingImage> image;
     std::optional<PendingDrive> drive;
     std::optional<Time> vo_since;     // waiting for a VO result since
@@ -205,7 +213,7 @@ class MobilityManager {
   void GuardedStep(Time now, MobilityOutput* out);
   void WaypointStep(Time now, MobilityOutput* out);
   void ChooseAndDrive(Time now, const nav_core::ArcEvaluation& eval, MobilityOutput* out);
-  void RequestImage(Camera camera, Purpose purpose, Time now, MobilityOutput* out);
+  void RequestImage(CameraId camera, Purpose purpose, Time now, MobilityOutput* out);
   bool SendDrive(const Primitive& p, Time now, MobilityOutput* out);
   void StartThinking(const Primitive& p, Time now, MobilityOutput* out);
   void StepDone(Time now, MobilityOutput* out);
@@ -215,7 +223,7 @@ class MobilityManager {
   Eigen::Vector2d CurrentGoal() const;
   double DistanceToGoal() const;
   bool PoseFresh(Time now, std::string* why) const;
-  Camera CameraFor(const nav_core::ArcEvaluation& eval) const;
+  CameraId CameraFor(const nav_core::ArcEvaluation& eval) const;
   std::vector<Primitive> SplitForVisOdom(const Primitive& p) const;
   void Account(Time now);
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "rover/base/time.hpp"
+#include "rover/msg/navigation.hpp"
 
 namespace rover::apl::nav_core {
 
@@ -82,5 +83,22 @@ struct GoodnessMap {
     return At(i, j);
   }
 };
+
+/// The apl/goodness_map value of a map (the cells copied; unknown_certainty and revision are not
+/// carried).
+inline msg::GoodnessMap GoodnessMapToMessage(const GoodnessMap& map) {
+  msg::GoodnessMap m;
+  m.stamp = map.stamp;
+  m.origin_x = map.origin_x;
+  m.origin_y = map.origin_y;
+  m.resolution = map.resolution;
+  m.width = map.width;
+  m.height = map.height;
+  m.unknown_goodness = map.unknown_goodness;
+  m.goodness = map.goodness;
+  m.certainty = map.certainty;
+  m.flags = map.flags;
+  return m;
+}
 
 }  // namespace rover::apl::nav_core

@@ -9,7 +9,7 @@
 ///
 /// The pixel grid is kept (rather than a bag of points) because assessors use it: GESTALT finds
 /// the outline of the image footprint from it (cells at the edge of the field of view are merged
-/// conservatively). The integrator maps dl/range_image (core/msg's RangeImage) onto this struct:
+/// conservatively). RangeScanFromImage builds it from dl/range_image (core/msg's RangeImage):
 /// width, height, xyz, valid and the pose carry over one to one.
 
 #include <Eigen/Geometry>
@@ -22,6 +22,7 @@
 #include "rover/base/format.hpp"
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
+#include "rover/msg/range.hpp"
 
 namespace rover::apl::nav_core {
 
@@ -90,5 +91,20 @@ struct RangeScan {
     return Status::Ok();
   }
 };
+
+/// The scan of a dl/range_image: width, height, xyz and valid copied, capture time = the image's
+/// stamp, site_from_rover = its rover_pose, camera = msg::CameraName of its camera. The disparity
+/// is not carried. Call Validate on the result: it is not checked here.
+inline RangeScan RangeScanFromImage(const msg::RangeImage& image) {
+  RangeScan s;
+  s.width = image.width;
+  s.height = image.height;
+  s.xyz = image.xyz;
+  s.valid = image.valid;
+  s.capture_time = image.stamp;
+  s.site_from_rover = image.rover_pose;
+  s.camera = msg::CameraName(image.camera);
+  return s;
+}
 
 }  // namespace rover::apl::nav_core

@@ -40,7 +40,7 @@
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/camera.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 
 /// The stereo cameras and their names (rover_common.idl CameraId): rover/msg/camera.hpp.
 using msg::kNumCameras;
@@ -84,4 +84,4 @@ Result<CameraCalibration> CameraCalibrationFromParams(const ParamSet& params);
 /// Declare, load `path`, build.
 Result<CameraCalibration> LoadCameraCalibration(const std::string& path);
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

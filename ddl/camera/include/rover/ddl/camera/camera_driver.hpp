@@ -40,7 +40,7 @@
 #include "rover/hwconfig/hw_bus.hpp"
 #include "rover/msg/camera.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 
 struct CameraDriverOptions {
   double request_timeout_s = 5.0;  ///< [s] run clock; unanswered requests are dropped
@@ -129,4 +129,4 @@ class CameraDriver {
   std::deque<MastSample> mast_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

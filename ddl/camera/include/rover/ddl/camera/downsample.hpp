@@ -20,7 +20,7 @@
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::camera {
 
 /// 8-bit monochrome image, row-major.
 struct GrayImage {
@@ -48,4 +48,4 @@ Result<DownsampledStereo> DownsampleStereo(const GrayImage& left, const GrayImag
                                            const geometry::CameraModel& left_model,
                                            const geometry::CameraModel& right_model, int out_width);
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::camera

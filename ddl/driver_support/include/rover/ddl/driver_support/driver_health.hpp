@@ -23,7 +23,7 @@
 #include "rover/base/time.hpp"
 #include "rover/msg/health.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::driver_support {
 
 class InputMonitor {
  public:
@@ -85,4 +85,4 @@ struct HealthSummary {
   void Worsen(msg::SensorHealth h, const std::string& why);
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::driver_support

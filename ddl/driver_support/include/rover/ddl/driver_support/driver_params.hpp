@@ -23,7 +23,7 @@
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::driver_support {
 
 /// Prefix of the hardware keys in a driver's parameters.
 inline constexpr const char* kHardwarePrefix = "hardware";
@@ -40,4 +40,4 @@ Result<HardwareConfig> DriverHardwareConfig(const ParamSet& params);
 /// path tried.
 Result<std::string> ResolveConfigFile(const std::string& path);
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::driver_support

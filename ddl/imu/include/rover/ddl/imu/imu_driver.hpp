@@ -16,7 +16,7 @@
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/msg/sensors.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::imu {
 
 /// ddl/imu (rover/msg/sensors.hpp) and why its health is not OK.
 struct Imu : msg::Imu {
@@ -36,4 +36,4 @@ class ImuDriver {
   Eigen::Matrix3d gyro_map_, accel_map_;  // rover_from_case K^-1
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::imu

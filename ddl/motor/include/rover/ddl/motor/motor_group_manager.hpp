@@ -40,7 +40,7 @@
 #include "rover/ddl/motor/motor_types.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 
 /// What to publish after a call: hw/motor_goals (if any) and ddl/motor_status samples.
 struct ManagerOutput {
@@ -121,4 +121,4 @@ class MotorGroupManager {
   std::uint32_t next_hw_id_ = 1;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

@@ -14,7 +14,7 @@
 #include "rover/hwconfig/hw_bus.hpp"
 #include "rover/msg/motor.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 
 // The message types of ddl/motor_command and ddl/motor_status (rover/msg/motor.hpp).
 using msg::GroupMode;
@@ -89,4 +89,4 @@ void DeclareMotorManagerParams(ParamSet& params, const std::string& prefix = "mo
 Result<MotorManagerOptions> MotorManagerOptionsFromParams(
     const ParamSet& params, const std::string& prefix = "motor_manager");
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

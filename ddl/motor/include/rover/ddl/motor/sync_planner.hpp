@@ -16,7 +16,7 @@
 
 #include <vector>
 
-namespace rover::ddl {
+namespace rover::ddl::motor {
 
 struct AxisMove {
   double distance = 0.0;      ///< [rad] >= 0
@@ -42,4 +42,4 @@ double RampPosition(double rate, double acceleration, double t);
 /// The synchronised plan. Preconditions as ProfileDuration for every axis.
 SyncPlan PlanSynchronisedMove(const std::vector<AxisMove>& axes);
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::motor

@@ -16,7 +16,7 @@
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/msg/sensors.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::sun_sensor {
 
 /// ddl/sun_sensor (rover/msg/sensors.hpp) and why it is not valid or not OK.
 struct SunSensor : msg::SunSensor {
@@ -35,4 +35,4 @@ class SunSensorDriver {
   SunSensorSpec spec_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::sun_sensor

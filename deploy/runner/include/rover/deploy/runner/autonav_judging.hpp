@@ -50,7 +50,8 @@ struct HazardMapQuality {
 };
 
 /// See the file comment. `rocks` may hold rocks of any height (the low ones are skipped).
-HazardMapQuality EvaluateHazardMap(const GoodnessGrid& map, const std::vector<sim::JudgeRock>& rocks,
+HazardMapQuality EvaluateHazardMap(const GoodnessGrid& map,
+                                   const std::vector<sim::judge::JudgeRock>& rocks,
                                    double traversable_height, const Track& truth_track,
                                    const HazardMapOptions& options = {});
 
@@ -75,9 +76,9 @@ int KeepOutEntries(const Track& truth_track,
 /// traverse_rate (m/h), standing_still (%), then hazard_map_recall and
 /// hazard_map_false_obstacle_rate (%) when the last goodness map saw a hazard / marks a cell.
 /// Not judged.
-std::vector<sim::Criterion> AutonavFigures(const MobilityOutcome& mobility,
+std::vector<sim::judge::Criterion> AutonavFigures(const MobilityOutcome& mobility,
                                            const Track& truth_track,
-                                           const std::vector<sim::JudgeRock>& rocks,
+                                           const std::vector<sim::judge::JudgeRock>& rocks,
                                            double traversable_height,
                                            const HazardMapOptions& options = {});
 

@@ -18,14 +18,15 @@
 namespace rover::deploy::runner {
 
 /// The judge of a run: `scenario.criteria` over the world's rocks.
-Result<sim::Judge> MakeJudge(const Scenario& scenario, const sim::World& world);
+Result<sim::judge::Judge> MakeJudge(const Scenario& scenario, const sim::world::World& world);
 
 /// Scores the run into `*result`: every criterion, the distance driven, the estimate and
 /// odometry-only errors over time, the judge's figures followed by `extra_figures` (the
 /// recorder's). When `*failure` is empty and a criterion failed, it becomes the first line of the
 /// judge's failure summary.
-void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_figures,
-              RunResult* result, std::string* failure);
+void ScoreRun(const sim::judge::Judge& judge,
+              const std::vector<sim::judge::Criterion>& extra_figures, RunResult* result,
+              std::string* failure);
 
 /// For a mobility run (result.mobility set): appends autonav_judging.hpp's figures (traverse
 /// rate, standing still, hazard-map recall and false-obstacle rate against the world's rocks
@@ -33,13 +34,14 @@ void ScoreRun(const sim::Judge& judge, const std::vector<sim::Criterion>& extra_
 /// command had keep-out zones, the criterion keep_out_entries (truth track points with the
 /// rover's front, hwconfig's ground footprint, in a zone; limit 0). A failed criterion becomes
 /// `*failure` when that is empty.
-void AddMobilityFigures(const Scenario& scenario, const sim::World& world, RunResult* result,
+void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world, RunResult* result,
                         std::string* failure);
 
 /// Sets result.failure (unless already set) and result.pass, then writes result.json, map.png
 /// (terrain, rocks, `planned`, the tracks) and estimate_error.png into result.run_dir. The plots
 /// are best effort: an error there does not fail the run; result.json must be written.
-Status WriteRunOutputs(RunResult* result, const std::string& failure, const sim::Terrain& terrain,
+Status WriteRunOutputs(RunResult* result, const std::string& failure,
+                       const sim::terrain::Terrain& terrain,
                        const std::vector<Eigen::Vector2d>& planned);
 
 }  // namespace rover::deploy::runner

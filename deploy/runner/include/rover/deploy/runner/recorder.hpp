@@ -32,7 +32,7 @@ class Recorder {
   /// Readers on `participant`; samples go to `judge` (may be null) and tracks to `*result`. All
   /// three must outlive the recorder.
   static Result<std::unique_ptr<Recorder>> Create(const dds::Participant& participant,
-                                                  sim::Judge* judge, RunResult* result);
+                                                  sim::judge::Judge* judge, RunResult* result);
 
   /// Takes every sample that has arrived (RunLoop calls it on every pass).
   void Pump();
@@ -60,17 +60,17 @@ class Recorder {
     return *result_->mobility;
   }
   /// A figure (measured, not judged) for result.json, listed after the judge's own.
-  void AddFigure(sim::Criterion figure) { added_figures_.push_back(std::move(figure)); }
+  void AddFigure(sim::judge::Criterion figure) { added_figures_.push_back(std::move(figure)); }
   /// The recorder's figures: dl/pose's rejected-measurement count (when dl/pose was heard), then
   /// those added with AddFigure.
-  std::vector<sim::Criterion> Figures() const;
+  std::vector<sim::judge::Criterion> Figures() const;
 
  private:
-  Recorder(const dds::Participant& participant, sim::Judge* judge, RunResult* result)
+  Recorder(const dds::Participant& participant, sim::judge::Judge* judge, RunResult* result)
       : participant_(participant), judge_(judge), result_(result) {}
 
   const dds::Participant& participant_;
-  sim::Judge* judge_;
+  sim::judge::Judge* judge_;
   RunResult* result_;
   dds::Reader<rover_sim_Truth> truth_;
   dds::Reader<rover_dl_PoseEstimate> pose_;
@@ -80,7 +80,7 @@ class Recorder {
   double last_truth_track_ = -1, last_estimate_track_ = -1, last_odometry_track_ = -1;
   bool has_estimate_ = false;
   std::optional<double> rejected_measurements_;  // dl/pose's count, last sample
-  std::vector<sim::Criterion> added_figures_;
+  std::vector<sim::judge::Criterion> added_figures_;
 };
 
 /// The run's MCAP recording (the scenario's `record`, on by default): every catalog topic it

@@ -5,6 +5,7 @@
 /// operator's participant on that domain, and the simulator's start switch (simulated time starts
 /// paused and runs once the runner says so).
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ namespace rover::deploy::runner {
 /// Everything a run needs before a process starts.
 struct PreparedRun {
   std::string run_dir;     ///< <out>/<scenario>-seed<N>
-  sim::World world;        ///< exactly as the simulator will build it
+  sim::world::World world;        ///< exactly as the simulator will build it
   ComposeProject project;  ///< the set, each service given its parameter files
   SupervisorOptions supervisor;
 };
@@ -37,7 +38,7 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
                                const RunOptions& options);
 
 /// FNV-1a digest of a terrain's heights and rock list, 16 hex digits (same seed, same digest).
-std::string TerrainDigest(const sim::Terrain& terrain);
+std::string TerrainDigest(const sim::terrain::Terrain& terrain);
 
 /// The running set of one run.
 class ServiceSet {
@@ -69,12 +70,19 @@ class ServiceSet {
   double ready_after_s() const { return supervisor_->ready_after_s(); }
   /// Stops every service; nothing is left running.
   void Stop();
+  /// kill -9 of one service (a fault campaign's `kill:`). From then on its exit is expected:
+  /// CheckServices does not call it a crash while its restart policy brings it back (it still
+  /// does if the service is not restarted, or fails again later).
+  Status Kill(const std::string& service);
+  /// The service was killed by Kill() and runs again (restarted by the supervisor).
+  bool RunsAgain(const std::string& service) const;
 
  private:
   explicit ServiceSet(std::unique_ptr<Supervisor> supervisor)
       : supervisor_(std::move(supervisor)) {}
 
   std::unique_ptr<Supervisor> supervisor_;
+  std::map<std::string, int> killed_;  // service -> its restart count when it was killed
   dds::Participant participant_;
   dds::Writer<rover_sim_Control> control_;
 };

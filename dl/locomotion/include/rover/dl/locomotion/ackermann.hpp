@@ -29,7 +29,7 @@
 #include "rover/dl/locomotion/drive_types.hpp"
 #include "rover/dl/locomotion/rover_geometry.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 /// Steer angle [rad] of steer actuator j (0..3 = LF LR RF RR) on an arc of curvature k.
 double ArcSteerAngle(const RoverGeometry& g, int steer, double curvature);
@@ -72,4 +72,4 @@ Result<DrivePlan> PlanArc(const RoverGeometry& g, double curvature, double dista
 /// Plans a turn in place by `angle`. Errors: non-finite input, speed <= 0.
 Result<DrivePlan> PlanTurnInPlace(const RoverGeometry& g, double angle, double speed);
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

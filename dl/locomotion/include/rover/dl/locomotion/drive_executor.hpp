@@ -56,7 +56,7 @@
 #include "rover/dl/locomotion/drive_types.hpp"
 #include "rover/dl/locomotion/rover_geometry.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 struct DriveOptions {
   double check_rate_hz = 8.0;          ///< [Hz] reactive-check cycle
@@ -180,4 +180,4 @@ void DeclareDriveParams(ParamSet& params, const std::string& prefix = "drive.");
 Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params,
                                             const std::string& prefix = "drive.");
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

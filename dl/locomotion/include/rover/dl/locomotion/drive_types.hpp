@@ -23,7 +23,7 @@
 #include "rover/msg/pose.hpp"
 #include "rover/msg/sensors.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 // Counts, the steered wheels (kSteeredWheel, SteerMotor) and the motor masks are the rover
 // description's (core/hwconfig rover_description.hpp).
@@ -74,4 +74,4 @@ struct DriveStatus : msg::DriveStatus {
   InvalidReason invalid_reason = InvalidReason::kNone;  ///< not on the wire
 };
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

@@ -33,7 +33,7 @@
 #include "rover/dl/locomotion/drive_types.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 /// Rocker and bogie angles [rad]; index 0 left, 1 right.
 struct SuspensionAngles {
@@ -98,4 +98,4 @@ void DeclareRoverGeometryParams(ParamSet& params, const std::string& prefix = "g
 Result<RoverGeometry> RoverGeometryFromParams(const ParamSet& params,
                                               const std::string& prefix = "geometry.");
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

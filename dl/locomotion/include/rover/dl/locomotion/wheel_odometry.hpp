@@ -36,7 +36,7 @@
 #include "rover/dl/locomotion/drive_types.hpp"
 #include "rover/dl/locomotion/rover_geometry.hpp"
 
-namespace rover::dl {
+namespace rover::dl::locomotion {
 
 struct WheelOdometryOptions {
   double along_variance_per_m = 1e-3;  ///< [m^2/m] along the motion (sigma 3.2 cm after 1 m)
@@ -95,4 +95,4 @@ void DeclareWheelOdometryParams(ParamSet& params, const std::string& prefix = "o
 Result<WheelOdometryOptions> WheelOdometryOptionsFromParams(
     const ParamSet& params, const std::string& prefix = "odometry.");
 
-}  // namespace rover::dl
+}  // namespace rover::dl::locomotion

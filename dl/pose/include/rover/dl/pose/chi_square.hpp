@@ -8,7 +8,7 @@
 /// P is evaluated by its power series for x < a + 1 and by the continued fraction of the upper
 /// function otherwise (modified Lentz), to ~1e-14 relative accuracy.
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 /// Preconditions: a > 0, x >= 0 (ROVER_DEMAND).
 double RegularizedGammaP(double a, double x);
@@ -17,4 +17,4 @@ double ChiSquareCdf(double x, int dof);
 /// Preconditions: 0 < p < 1, dof >= 1.
 double ChiSquareQuantile(double p, int dof);
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

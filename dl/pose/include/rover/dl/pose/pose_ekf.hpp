@@ -74,7 +74,7 @@
 #include "rover/dl/locomotion/wheel_odometry.hpp"
 #include "rover/msg/pose.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
@@ -150,7 +150,7 @@ class PoseEkf {
   /// non-finite rate, t < time(). May take a clone and process waiting relative poses.
   Status PropagateGyro(Time t, const Eigen::Vector3d& angular_velocity);
   /// Errors: not initialised, non-finite values, t_to not after the previous increment.
-  Status AddWheelOdometry(const OdometryIncrement& increment);
+  Status AddWheelOdometry(const locomotion::OdometryIncrement& increment);
   /// Specific force [m/s^2] in the rover frame. Used only when stationary (else ignored, Ok).
   Status UpdateAccelerometer(Time t, const Eigen::Vector3d& specific_force);
   /// Sun direction measured in the rover frame and the ephemeris direction in the site frame
@@ -237,4 +237,4 @@ void DeclareEkfParams(ParamSet& params, const std::string& prefix = "ekf.",
                       const EkfOptions& defaults = EkfOptions{});
 Result<EkfOptions> EkfOptionsFromParams(const ParamSet& params, const std::string& prefix = "ekf.");
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

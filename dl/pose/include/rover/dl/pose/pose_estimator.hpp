@@ -40,7 +40,7 @@
 #include "rover/msg/pose.hpp"
 #include "rover/msg/sensors.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 /// A sample this much older than the filter means the run clock went back [s].
 inline constexpr double kClockResetS = 1.0;
@@ -64,8 +64,9 @@ struct PoseFusionOptions {
 class PoseEstimator {
  public:
   /// Errors: invalid EKF options, geometry or odometry options, ephemeris.
-  static Result<PoseEstimator> Create(const EkfOptions& ekf, const RoverGeometry& geometry,
-                                      const WheelOdometryOptions& odometry,
+  static Result<PoseEstimator> Create(const EkfOptions& ekf,
+                                      const locomotion::RoverGeometry& geometry,
+                                      const locomotion::WheelOdometryOptions& odometry,
                                       const PoseFusionOptions& fusion);
 
   /// ddl/imu: levelling until the filter runs, then gyro propagation and (at rest) an
@@ -112,8 +113,9 @@ class PoseEstimator {
   const PoseFusionOptions& options() const { return fusion_; }
 
  private:
-  PoseEstimator(PoseEkf ekf, std::optional<PoseEkf> odometry_only, WheelOdometry odometry,
-                const EkfOptions& ekf_options, const PoseFusionOptions& fusion);
+  PoseEstimator(PoseEkf ekf, std::optional<PoseEkf> odometry_only,
+                locomotion::WheelOdometry odometry, const EkfOptions& ekf_options,
+                const PoseFusionOptions& fusion);
   void Start(const StartDecision& d);
   /// On the first usable sample at `t` after a restart; false when the pose became unknown.
   bool ResumeOrRefuse(Time t);
@@ -122,7 +124,7 @@ class PoseEstimator {
   PoseFusionOptions fusion_;
   PoseEkf ekf_;
   std::optional<PoseEkf> odometry_only_;
-  WheelOdometry odometry_;
+  locomotion::WheelOdometry odometry_;
   Leveller leveller_;
   geometry::SunEphemeris ephemeris_;
   double last_rate_ = 0.0;                // [rad/s] |bias-corrected gyro| of the last IMU sample
@@ -133,4 +135,4 @@ class PoseEstimator {
   std::optional<std::string> unknown_;    // why the pose is unknown after a restart
 };
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

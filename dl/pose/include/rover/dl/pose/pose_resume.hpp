@@ -32,7 +32,7 @@
 #include "rover/base/time.hpp"
 #include "rover/dl/pose/pose_ekf.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 /// Keys resume.* of dl-pose.
 struct PoseResumeOptions {
@@ -76,4 +76,4 @@ Result<PoseCheckpoint> PoseCheckpointFromFields(const std::map<std::string, std:
 EkfInitialState ResumedInitialState(const SavedFilter& saved, Time t,
                                     const PoseResumeOptions& options, double gyro_bias_sigma);
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

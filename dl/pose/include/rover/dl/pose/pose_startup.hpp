@@ -25,7 +25,7 @@
 #include "rover/base/time.hpp"
 #include "rover/dl/pose/pose_ekf.hpp"
 
-namespace rover::dl {
+namespace rover::dl::pose {
 
 /// Keys start.* of dl-pose.
 struct PoseStartOptions {
@@ -88,4 +88,4 @@ class Leveller {
   int count_all_ = 0;
 };
 
-}  // namespace rover::dl
+}  // namespace rover::dl::pose

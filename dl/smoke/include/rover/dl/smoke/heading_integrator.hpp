@@ -10,7 +10,7 @@
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 
-namespace rover::dl {
+namespace rover::dl::smoke {
 
 class HeadingIntegrator {
  public:
@@ -31,4 +31,4 @@ class HeadingIntegrator {
   int samples_ = 0;
 };
 
-}  // namespace rover::dl
+}  // namespace rover::dl::smoke

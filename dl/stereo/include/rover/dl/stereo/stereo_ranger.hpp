@@ -11,16 +11,23 @@
 /// The disparity search range is stereo.num_disparities, or with 0 derived from the nearest
 /// range of interest: ceil(f B / min_range_m) + 2 at the processing level, clamped to
 /// [16, max_disparities]; one pipeline is kept per search range.
+///
+/// With a VehicleMask, points on the rover's own wheels and body or hidden behind them (seen from
+/// the rectified left camera's optical centre) are invalid (status kWheel / kVehicle) before the
+/// range image is built.
 
 #include <Eigen/Geometry>
+#include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/dl/stereo/pipeline.hpp"
 #include "rover/dl/stereo/setup_cache.hpp"
+#include "rover/dl/stereo/vehicle_mask.hpp"
 #include "rover/msg/camera.hpp"
 #include "rover/msg/pose_history.hpp"
 #include "rover/msg/range.hpp"
@@ -60,8 +67,9 @@ struct PoseLookup {
 
 class StereoRanger {
  public:
-  /// Precondition: options.Validate() is Ok.
-  explicit StereoRanger(const StereoRangerOptions& options);
+  /// Precondition: options.Validate() is Ok. Without `mask` no point is masked.
+  explicit StereoRanger(const StereoRangerOptions& options,
+                        std::optional<VehicleMask> mask = std::nullopt);
 
   /// Ranges a frame whose basics the camera client checked. Errors (nothing is produced): bad,
   /// corrupt or singular models, no pose at the capture time (when required), the pipeline's.
@@ -72,6 +80,11 @@ class StereoRanger {
   const StereoTimings& last_timings() const { return output_.timings; }
   const StereoSetupCache& setup_cache() const { return cache_; }
   const StereoRangerOptions& options() const { return options_; }
+  /// Pixels the vehicle masks (fixed pixel mask and 3-D volumes) removed in the last Range().
+  int last_masked() const { return last_masked_; }
+  /// Fixed pixel mask of `camera` (CV_8UC1, non-zero = rover, any size: scaled to the rectified
+  /// image, nearest neighbour). An empty mask removes it. Errors: unknown camera, wrong type.
+  Status SetPixelMask(msg::CameraId camera, cv::Mat mask);
 
  private:
   Result<StereoPipeline*> PipelineFor(const StereoSetup& setup);
@@ -80,6 +93,10 @@ class StereoRanger {
   StereoSetupCache cache_;
   std::map<int, StereoPipeline> pipelines_;  // by number of disparities
   StereoOutput output_;
+  std::optional<VehicleMask> mask_;
+  std::array<cv::Mat, msg::kNumCameras> pixel_masks_;
+  cv::Mat scaled_pixel_mask_;
+  int last_masked_ = 0;
 };
 
 }  // namespace rover::dl::stereo

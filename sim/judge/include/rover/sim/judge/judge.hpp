@@ -38,7 +38,7 @@
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 
-namespace rover::sim {
+namespace rover::sim::judge {
 
 struct JudgeRock {
   int id = 0;
@@ -152,4 +152,4 @@ class Judge {
   std::size_t out_of_order_ = 0;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::judge

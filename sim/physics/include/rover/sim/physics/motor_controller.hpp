@@ -39,7 +39,7 @@
 
 #include "rover/base/status.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
 
 enum class MotorMode : std::uint8_t {
   kOff = 0,       ///< unpowered, brake engaged
@@ -166,4 +166,4 @@ class MotorController {
   double stall_timer_ = 0.0, overcurrent_timer_ = 0.0;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

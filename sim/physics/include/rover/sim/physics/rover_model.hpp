@@ -20,7 +20,7 @@
 #include "rover/sim/physics/motor_controller.hpp"
 #include "rover/sim/physics/terrain_contact.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
 
 // Motor and wheel indices are core/hwconfig's (hw::MotorIndex, hwconfig::WheelIndex).
 using hw::kNumMotors;
@@ -93,4 +93,4 @@ struct StartPose {
   double yaw = 0.0;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

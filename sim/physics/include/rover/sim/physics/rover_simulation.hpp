@@ -40,12 +40,12 @@
 #include "rover/sim/physics/motor_controller.hpp"
 #include "rover/sim/physics/rover_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
 
 /// Ideal state of one wheel's terrain contact.
 struct WheelReading {
   bool in_contact = false;
-  Soil soil = Soil::kFirmSoil;
+  terrain::Soil soil = terrain::Soil::kFirmSoil;
   double normal_force_n = 0.0;
   double slip_ratio = 0.0;  ///< (V_w - v_x)/max(|V_w|, |v_x|): +1 spinning in place
   double sinkage_m = 0.0;
@@ -129,9 +129,9 @@ class RoverSimulation {
   /// Builds the model, places the rover at `start` on `terrain` and lets it settle for
   /// params.integrator.settle_time with all brakes engaged; afterwards time() == 0.
   /// Errors: params.Validate(), an empty terrain, a start outside the terrain.
-  static Result<std::unique_ptr<RoverSimulation>> Create(const RoverModelParams& params,
-                                                         std::shared_ptr<const HeightField> terrain,
-                                                         const StartPose& start);
+  static Result<std::unique_ptr<RoverSimulation>> Create(
+      const RoverModelParams& params, std::shared_ptr<const terrain::HeightField> terrain,
+      const StartPose& start);
   ~RoverSimulation();
   RoverSimulation(const RoverSimulation&) = delete;
   RoverSimulation& operator=(const RoverSimulation&) = delete;
@@ -159,7 +159,7 @@ class RoverSimulation {
   /// Motor-only readings (cheaper than Readings()). Precondition: 0 <= motor < kNumMotors.
   MotorReading Motor(int motor) const;
   const RoverModelParams& params() const;
-  const HeightField& terrain() const;
+  const terrain::HeightField& terrain() const;
   SimulationStats stats() const;
   /// The built model at joint angles `q` (wheel spin 0), independent of the simulated state.
   ModelGeometry PoseModel(const ModelJointAngles& q) const;
@@ -170,4 +170,4 @@ class RoverSimulation {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

@@ -47,7 +47,7 @@
 #include "rover/base/status.hpp"
 #include "rover/sim/heightfield.hpp"
 
-namespace rover::sim {
+namespace rover::sim::physics {
 
 inline constexpr int kNumSoils = 3;
 
@@ -64,12 +64,12 @@ struct SoilParams {
 };
 
 /// MER-like defaults for bedrock, firm soil (packed soil, duricrust) and loose (drift) sand.
-SoilParams DefaultSoilParams(Soil soil);
+SoilParams DefaultSoilParams(terrain::Soil soil);
 
 struct ContactParams {
-  std::array<SoilParams, kNumSoils> soils = {DefaultSoilParams(Soil::kBedrock),
-                                             DefaultSoilParams(Soil::kFirmSoil),
-                                             DefaultSoilParams(Soil::kLooseSand)};
+  std::array<SoilParams, kNumSoils> soils = {DefaultSoilParams(terrain::Soil::kBedrock),
+                                             DefaultSoilParams(terrain::Soil::kFirmSoil),
+                                             DefaultSoilParams(terrain::Soil::kLooseSand)};
   int slices = 3;  ///< S, slices across the wheel width (1..5)
   std::array<double, 3> fan_angles_deg = {25.0, 50.0, 75.0};  ///< +- fan; 0 disables an entry
   double shear_cap = 5.0;                                     ///< cap of |z| (mu = 99.3% of mu_max)
@@ -79,7 +79,7 @@ struct ContactParams {
   double spin_radius = 0.03;            ///< [m] r_spin
   double spin_rate_eps = 0.05;          ///< [rad/s] w_spin
 
-  const SoilParams& soil(Soil s) const { return soils[static_cast<int>(s)]; }
+  const SoilParams& soil(terrain::Soil s) const { return soils[static_cast<int>(s)]; }
   Status Validate() const;
 };
 
@@ -94,20 +94,21 @@ struct ContactSample {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double depth = 0.0;  ///< [m] along normal
-  Soil soil = Soil::kFirmSoil;
+  terrain::Soil soil = terrain::Soil::kFirmSoil;
 };
 
 inline constexpr int kMaxContactSamples = 5 * 7;
 
 /// Penetrating rim samples of a wheel (see the file comment). Returns their number (<= capacity
 /// kMaxContactSamples); 0 for non-finite input. `axis` must be a unit vector.
-int FindWheelSamples(const HeightField& terrain, const ContactParams& params, double radius,
-                     double width, const Eigen::Vector3d& center, const Eigen::Vector3d& axis,
+int FindWheelSamples(const terrain::HeightField& terrain, const ContactParams& params,
+                     double radius, double width, const Eigen::Vector3d& center,
+                     const Eigen::Vector3d& axis,
                      std::array<ContactSample, kMaxContactSamples>* samples);
 
 /// Vertical gap between the lowest point of the middle slice and the terrain (positive when
 /// clear, negative when penetrating); used to place the rover on the terrain.
-double WheelGap(const HeightField& terrain, double radius, const Eigen::Vector3d& center,
+double WheelGap(const terrain::HeightField& terrain, double radius, const Eigen::Vector3d& center,
                 const Eigen::Vector3d& axis);
 
 /// Kinematics of one wheel body (site frame).
@@ -122,7 +123,7 @@ struct WheelKinematics {
 struct WheelContact {
   bool in_contact = false;
   int num_samples = 0;
-  Soil soil = Soil::kFirmSoil;
+  terrain::Soil soil = terrain::Soil::kFirmSoil;
   double normal_force = 0.0;        ///< N [N]
   double sinkage = 0.0;             ///< deepest sample depth [m]
   double slip_ratio = 0.0;          ///< (V_w - v_x) / max(|V_w|, |v_x|); 0 when both ~0
@@ -138,7 +139,7 @@ struct WheelContact {
 };
 
 /// Evaluates the contact model. `shear` is the wheel's shear state z.
-WheelContact EvaluateWheelContact(const HeightField& terrain, const ContactParams& params,
+WheelContact EvaluateWheelContact(const terrain::HeightField& terrain, const ContactParams& params,
                                   double radius, double width, const WheelKinematics& wheel,
                                   const Eigen::Vector2d& shear);
 
@@ -151,7 +152,8 @@ struct PointContactParams {
   double slip_speed_eps = 0.01;  ///< [m/s]
   Status Validate() const;
 };
-Eigen::Vector3d EvaluatePointContact(const HeightField& terrain, const PointContactParams& params,
-                                     const Eigen::Vector3d& point, const Eigen::Vector3d& velocity);
+Eigen::Vector3d EvaluatePointContact(const terrain::HeightField& terrain,
+                                     const PointContactParams& params, const Eigen::Vector3d& point,
+                                     const Eigen::Vector3d& velocity);
 
-}  // namespace rover::sim
+}  // namespace rover::sim::physics

@@ -35,7 +35,7 @@
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/sim/heightfield.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
 
 /// Where a stereo pair is mounted.
 enum class CameraMount {
@@ -93,7 +93,7 @@ Eigen::Isometry3d RoverPoseFromXyYaw(double x, double y, double z, double yaw);
 /// Rover pose resting on `ground` at (x, y) with heading `yaw` (a renderer has no physics; for
 /// tools and tests): the rover plane is fitted to the ground heights under the six wheels of
 /// `rover`, the origin sits on that plane below (x, y).
-Eigen::Isometry3d RoverPoseOnGround(const HeightField& ground, double x, double y, double yaw,
-                                    const hwconfig::RoverDescription& rover = {});
+Eigen::Isometry3d RoverPoseOnGround(const terrain::HeightField& ground, double x, double y,
+                                    double yaw, const hwconfig::RoverDescription& rover = {});
 
-}  // namespace rover::sim
+}  // namespace rover::sim::render

@@ -40,7 +40,7 @@
 #include "rover/sim/render/sensor_model.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
 
 struct SunOptions {
   double azimuth_deg = 135.0;   ///< [deg] from +x (north) towards +y (west): 135 = south-west
@@ -129,7 +129,7 @@ class Renderer {
   /// Builds the GPU scene from `terrain` (tiles with LOD, textures, rock and lander data).
   /// Errors: InvalidArgument for bad options or an empty terrain, Unavailable when EGL/OpenGL
   /// cannot be initialised (message says why), Internal for a GL failure.
-  static Result<std::unique_ptr<Renderer>> Create(std::shared_ptr<const Terrain> terrain,
+  static Result<std::unique_ptr<Renderer>> Create(std::shared_ptr<const terrain::Terrain> terrain,
                                                   const RenderOptions& options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
@@ -164,4 +164,4 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::render

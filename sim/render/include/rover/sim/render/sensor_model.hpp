@@ -28,7 +28,7 @@
 
 #include "rover/base/status.hpp"
 
-namespace rover::sim {
+namespace rover::sim::render {
 
 struct SensorOptions {
   bool auto_exposure = true;          ///< exposure from AutoExposure (per stereo pair, left image)
@@ -59,4 +59,4 @@ double AutoExposure(const cv::Mat& radiance, const SensorOptions& options);
 cv::Mat ApplySensorModel(const cv::Mat& radiance, const SensorOptions& options, double exposure,
                          std::uint64_t seed);
 
-}  // namespace rover::sim
+}  // namespace rover::sim::render

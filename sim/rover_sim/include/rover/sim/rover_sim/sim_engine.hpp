@@ -24,7 +24,7 @@
 #include "rover/sim/sensors/sensor_suite.hpp"
 #include "rover/sim/world/world.hpp"
 
-namespace rover::sim {
+namespace rover::sim::rover_sim {
 
 struct EngineOptions {
   double period_s = 0.01;        ///< one Step(): the sim/clock period [s]
@@ -40,7 +40,7 @@ struct TruthSample {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< rover in site
   Eigen::Vector3d velocity_site = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_body = Eigen::Vector3d::Zero();
-  std::array<WheelReading, kNumWheels> wheels;
+  std::array<physics::WheelReading, hwconfig::kNumWheels> wheels;
   double rocker_angle[2] = {0, 0};
   double bogie_angle[2] = {0, 0};
   double odometer = 0;  ///< [m] horizontal path length of the rover origin
@@ -51,7 +51,7 @@ struct TruthSample {
 /// What one Step() produced.
 struct StepOutput {
   double time_s = 0;
-  SensorSamples sensors;
+  sensors::SensorSamples sensors;
   std::optional<TruthSample> truth;
 };
 
@@ -63,7 +63,7 @@ class SimEngine {
   static void DeclareParams(ParamSet& params);
   static Result<std::unique_ptr<SimEngine>> Create(const ParamSet& params);
   static Result<std::unique_ptr<SimEngine>> Create(
-      World world, const HardwareConfig& hw, const SimSensorOptions& sensors,
+      world::World world, const HardwareConfig& hw, const sensors::SimSensorOptions& sensors,
       const EngineOptions& options, const hwconfig::RoverDescription& rover = {});
 
   /// Applies hw/motor_goals: each non-idle goal clears the motor's latched faults and becomes
@@ -76,8 +76,8 @@ class SimEngine {
   Status Reset();
 
   double time() const { return time_s_; }
-  const World& world() const { return world_; }
-  const RoverSimulation& physics() const { return *physics_; }
+  const world::World& world() const { return world_; }
+  const physics::RoverSimulation& physics() const { return *physics_; }
   const EngineOptions& options() const { return options_; }
   const HardwareConfig& hardware() const { return hw_; }
   /// The rover description the physics model was built from.
@@ -87,15 +87,15 @@ class SimEngine {
 
  private:
   SimEngine() = default;
-  TruthSample MakeTruth(const RoverReadings& r);
+  TruthSample MakeTruth(const physics::RoverReadings& r);
 
-  World world_;
-  std::shared_ptr<const HeightField> ground_;
+  world::World world_;
+  std::shared_ptr<const terrain::HeightField> ground_;
   HardwareConfig hw_;
   EngineOptions options_;
-  std::unique_ptr<RoverSimulation> physics_;
-  std::unique_ptr<SensorSuite> sensors_;
-  SimSensorOptions sensor_options_;
+  std::unique_ptr<physics::RoverSimulation> physics_;
+  std::unique_ptr<sensors::SensorSuite> sensors_;
+  sensors::SimSensorOptions sensor_options_;
   double time_s_ = 0;
   int step_ = 0;
   int truth_every_ = 2;
@@ -109,4 +109,4 @@ class SimEngine {
   double max_contact_height_ = 0;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::rover_sim

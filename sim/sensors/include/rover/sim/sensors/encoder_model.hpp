@@ -13,7 +13,7 @@
 
 #include "rover/hwconfig/hardware_config.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 class EncoderModel {
  public:
@@ -32,4 +32,4 @@ class EncoderModel {
   double counts_per_rad_ = 1.0;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

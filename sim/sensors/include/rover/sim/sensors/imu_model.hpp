@@ -22,7 +22,7 @@
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/sim/sensors/sampling.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 struct ImuErrors {
   Eigen::Vector3d gyro_bias_error = Eigen::Vector3d::Zero();   ///< [rad/s] true - nominal
@@ -66,4 +66,4 @@ class ImuModel {
   NoiseRng rng_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

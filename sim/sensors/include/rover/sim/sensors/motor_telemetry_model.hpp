@@ -17,7 +17,7 @@
 #include "rover/sim/sensors/encoder_model.hpp"
 #include "rover/sim/sensors/sampling.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 /// Ideal physical state of one motor (from the physics engine / motor controller).
 struct MotorPhysical {
@@ -65,4 +65,4 @@ class MotorTelemetryModel {
 /// round + clamp to the 12-bit ADC range; NaN gives 0.
 std::uint16_t ToAdc12(double counts);
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -15,7 +15,7 @@
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/sim/sensors/sampling.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 struct PotErrors {
   std::array<double, hw::kNumPots> offset_error_counts{};  ///< [counts] true - nominal
@@ -41,4 +41,4 @@ class SuspensionPotModel {
   NoiseRng rng_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

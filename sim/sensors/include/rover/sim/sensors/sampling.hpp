@@ -20,7 +20,7 @@
 
 #include "rover/base/time.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 /// SplitMix64 finaliser of seed and stream: an independent sub-seed.
 std::uint64_t SensorSeed(std::uint64_t seed, std::uint64_t stream);
@@ -55,4 +55,4 @@ class SampleClock {
   bool started_ = false;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

@@ -21,7 +21,7 @@
 #include "rover/sim/sensors/sim_sensor_options.hpp"
 #include "rover/sim/sensors/sun_sensor_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 /// Ideal state of the rover at one instant (sign conventions of ddl/JointState).
 struct SensorTruth {
@@ -73,4 +73,4 @@ class SensorSuite {
   SampleClock motor_clock_, pot_clock_, imu_clock_, sun_clock_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

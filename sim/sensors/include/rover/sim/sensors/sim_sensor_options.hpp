@@ -16,7 +16,7 @@
 #include "rover/sim/sensors/pot_model.hpp"
 #include "rover/sim/sensors/sun_sensor_model.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 struct SimSensorOptions {
   std::uint64_t seed = 1;
@@ -41,4 +41,4 @@ void DeclareSimSensorParams(ParamSet& params, const std::string& prefix = "senso
 Result<SimSensorOptions> SimSensorOptionsFromParams(const ParamSet& params,
                                                     const std::string& prefix = "sensors");
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

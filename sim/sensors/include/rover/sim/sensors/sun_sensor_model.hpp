@@ -20,7 +20,7 @@
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/sim/sensors/sampling.hpp"
 
-namespace rover::sim {
+namespace rover::sim::sensors {
 
 struct SunSensorErrors {
   Eigen::Vector3d mounting_error_rpy = Eigen::Vector3d::Zero();     ///< [rad]
@@ -52,4 +52,4 @@ class SunSensorModel {
   NoiseRng rng_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::sensors

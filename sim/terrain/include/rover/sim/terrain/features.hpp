@@ -20,7 +20,7 @@
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 struct Terrain;
 
@@ -56,4 +56,4 @@ Result<TerrainFeatures> TerrainFeaturesFromParamSet(const ParamSet& params,
 Status PlaceScenarioFeatures(Terrain* terrain, const ParamSet& params,
                              const std::string& prefix = "terrain_features");
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -33,7 +33,7 @@
 #include "rover/base/status.hpp"
 #include "rover/sim/heightfield.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 struct Terrain;
 
@@ -150,4 +150,4 @@ Status PlaceScenarioObjects(Terrain* terrain, const ParamSet& params,
                             const std::string& lander_prefix = "lander",
                             const std::string& targets_key = "science_targets");
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -20,7 +20,7 @@
 
 #include "rover/sim/terrain/random.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 class ValueNoise {
  public:
@@ -69,4 +69,4 @@ class FractalNoise {
 /// The quintic fade 6t^5 - 15t^4 + 10t^3 (t in [0, 1]).
 inline double QuinticFade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <random>
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 /// SplitMix64 finaliser of (seed, stream): derives independent sub-seeds, so that e.g. the rock
 /// stream does not change when the hill parameters change.
@@ -42,4 +42,4 @@ class Rng {
   std::mt19937_64 engine_;
 };
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -18,7 +18,7 @@
 
 #include "rover/sim/terrain/random.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 /// q(k) = 1.79 + 0.152 / k   [1/m]. Precondition: k > 0.
 double RockExponent(double k);
@@ -38,4 +38,4 @@ double RockAreaFractionVariance(double k, double d0, double d1, double area);
 /// Preconditions: k > 0, 0 < d_min < d_max.
 double SampleRockDiameter(double k, double d_min, double d_max, Rng* rng);
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

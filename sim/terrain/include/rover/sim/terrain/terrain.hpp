@@ -42,7 +42,7 @@
 #include "rover/sim/terrain/lander.hpp"
 #include "rover/sim/terrain/terrain_params.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 struct Rock {
   int id = 0;
@@ -103,4 +103,4 @@ Result<Terrain> GenerateTerrain(const TerrainParams& params);
 /// terrain->lander (after editing the rock list by hand).
 void RebuildHeights(Terrain* terrain);
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

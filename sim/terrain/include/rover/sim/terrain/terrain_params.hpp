@@ -18,7 +18,7 @@
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 /// Rock abundance presets (Golombek & Rapp 1997 model, rock_model.hpp).
 enum class RockPreset {
@@ -122,4 +122,4 @@ std::string JoinKey(const std::string& prefix, const std::string& name);
 Status WithOrigin(const ParamSet& params, const std::string& full_key, const Status& status);
 }  // namespace internal
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -25,7 +25,7 @@
 
 #include "rover/base/status.hpp"
 
-namespace rover::sim {
+namespace rover::sim::terrain {
 
 struct Terrain;
 
@@ -88,4 +88,4 @@ Result<MapImage> RenderTopDownMap(const Terrain& terrain, const MapOptions& opti
 Status WriteTopDownMap(const Terrain& terrain, const std::string& path,
                        const MapOptions& options = {});
 
-}  // namespace rover::sim
+}  // namespace rover::sim::terrain

@@ -21,10 +21,10 @@
 #include "rover/base/status.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::sim {
+namespace rover::sim::world {
 
 struct World {
-  Terrain terrain;
+  terrain::Terrain terrain;
   double start_x = 0, start_y = 0;  ///< [m] site frame
   double start_yaw = 0;             ///< [rad]
 };
@@ -35,4 +35,4 @@ void DeclareWorldParams(ParamSet& params);
 /// Generates the terrain and places the objects; errors name file:line and key.
 Result<World> BuildWorld(const ParamSet& params);
 
-}  // namespace rover::sim
+}  // namespace rover::sim::world

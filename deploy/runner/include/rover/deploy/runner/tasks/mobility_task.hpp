@@ -42,6 +42,7 @@
 #include "rover/deploy/runner/task.hpp"
 #include "rover/deploy/runner/tasks/directed_task.hpp"
 #include "rover/idl/types.hpp"
+#include "rover/msg/mobility_idl.hpp"
 
 namespace rover::deploy::runner {
 
@@ -82,13 +83,10 @@ rover_apl_MobilityMode MobilityModeOf(MobilityTaskType type, bool visodom);
 /// key and value ("s.yaml:9: task.keep_out[].vertices: 2 vertices, a zone needs 3..16").
 Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTaskType type);
 
-/// The command the task sends (command id `command_id`, stamped `now_s`). The primitives and
-/// zones point into `storage`, which must outlive the Write.
-struct MobilityCommandStorage {
-  std::vector<rover_apl_MobilityPrimitive> primitives;
-  std::vector<std::vector<rover_apl_Point2>> vertices;
-  std::vector<rover_apl_KeepOutZone> zones;
-};
+/// The command the task sends (command id `command_id`, stamped `now_s`), built as a
+/// msg::MobilityCommand and converted by core/msg. The primitives and zones point into
+/// `storage`, which must outlive the Write.
+using MobilityCommandStorage = msg::MobilityCommandMessage;
 rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec, std::uint32_t command_id,
                                               double now_s, MobilityCommandStorage* storage);
 

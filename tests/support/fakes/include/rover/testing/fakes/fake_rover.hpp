@@ -27,7 +27,7 @@ class FakeRover {
   /// get its mode, goal and rate limit (0.5 rad/s when the command gives none).
   void Apply(const rover_ddl_MotorCommand& c) {
     const bool all = c.mode == rover_ddl_GROUP_STOP && c.motor_mask == 0;
-    for (std::size_t m = 0; m < dl::kNumMotors; ++m) {
+    for (std::size_t m = 0; m < hw::kNumMotors; ++m) {
       if (!all && ((c.motor_mask >> m) & 1u) == 0) continue;
       mode_[m] = c.mode;
       goal_[m] = c.goal[m];
@@ -37,8 +37,8 @@ class FakeRover {
 
   /// Moves every motor for `dt` [s]; a velocity-mode LF wheel turns the rover in place.
   void Step(double dt) {
-    const dl::RoverGeometry g;
-    for (std::size_t m = 0; m < dl::kNumMotors; ++m) {
+    const dl::locomotion::RoverGeometry g;
+    for (std::size_t m = 0; m < hw::kNumMotors; ++m) {
       double& q = m < 6 ? wheel_[m] : (m < 10 ? steer_[m - 6] : spare_[m - 10]);
       if (mode_[m] == rover_ddl_GROUP_POSITION) {
         const double step = std::clamp(goal_[m] - q, -rate_[m] * dt, rate_[m] * dt);
@@ -49,7 +49,7 @@ class FakeRover {
     }
     // Heading from a turn in place: every wheel's rate is q_i w / r; use the LF wheel.
     if (mode_[0] == rover_ddl_GROUP_VELOCITY) {
-      yaw_ += goal_[0] * g.wheel_radius / dl::TurnInPlaceRadius(g, 0) * dt;
+      yaw_ += goal_[0] * g.wheel_radius / dl::locomotion::TurnInPlaceRadius(g, 0) * dt;
     }
   }
 
@@ -79,9 +79,9 @@ class FakeRover {
   std::array<double, 6> wheel_{};
   std::array<double, 4> steer_{};
   std::array<double, 2> spare_{};
-  std::array<rover_ddl_GroupMode, dl::kNumMotors> mode_{};
-  std::array<double, dl::kNumMotors> goal_{};
-  std::array<double, dl::kNumMotors> rate_{};
+  std::array<rover_ddl_GroupMode, hw::kNumMotors> mode_{};
+  std::array<double, hw::kNumMotors> goal_{};
+  std::array<double, hw::kNumMotors> rate_{};
   double yaw_ = 0.0;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// ddl-joints: the encoder and potentiometer reader service. Binds the JointReader
-/// (ddl_encoders) to topics:
+/// (ddl_joints) to topics:
 ///   in:  hw/motor_telemetry (stream, 100 Hz), hw/suspension_pots (stream, 50 Hz)
 ///   out: ddl/joint_state (stream) every 1/rate_hz of the run clock (50 Hz), frame "rover",
 ///        stamped with the newest input's stamp (time of validity; the run-clock time before any
@@ -15,10 +15,10 @@
 #include <optional>
 
 #include "rover/ddl/driver_support/driver_health.hpp"
-#include "rover/ddl/encoders/joint_reader.hpp"
+#include "rover/ddl/joints/joint_reader.hpp"
 #include "rover/runtime/service.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 
 class JointsService final : public Service {
  public:
@@ -39,11 +39,11 @@ class JointsService final : public Service {
   HardwareConfig hardware_;
   JointReaderOptions options_;
   std::optional<JointReader> reader_;
-  std::optional<InputMonitor> telemetry_;
-  std::optional<InputMonitor> pots_;
-  ClockJumpDetector clock_jump_;
+  std::optional<driver_support::InputMonitor> telemetry_;
+  std::optional<driver_support::InputMonitor> pots_;
+  driver_support::ClockJumpDetector clock_jump_;
   dds::Writer<rover_ddl_JointState> writer_;
   std::optional<std::int64_t> last_stamp_ns_;  // header.stamp_ns of the last ddl/joint_state
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

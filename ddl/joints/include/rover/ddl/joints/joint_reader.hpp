@@ -26,11 +26,11 @@
 
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
-#include "rover/ddl/encoders/rate_estimator.hpp"
+#include "rover/ddl/joints/rate_estimator.hpp"
 #include "rover/hwconfig/hardware_config.hpp"
 #include "rover/msg/sensors.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 
 /// ddl/joint_state (rover/msg/sensors.hpp; stamp = the newest input sample's) and why its
 /// health is not OK.
@@ -68,4 +68,4 @@ class JointReader {
   std::optional<hw::SuspensionPots> last_pots_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

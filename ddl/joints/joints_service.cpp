@@ -7,7 +7,14 @@
 #include "rover/msg/hw_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
+
+using driver_support::DeclareDriverHardwareParams;
+using driver_support::DriverHardwareConfig;
+using driver_support::HealthSummary;
+using driver_support::InputMonitor;
+using driver_support::IsLogWorthy;
+
 namespace {
 
 void WarnDropped(const InputMonitor& m, const Status& s) {
@@ -145,4 +152,4 @@ void JointsService::OnTimer() {
   ctx_->SetHealth(msg::HealthToIdl(h.health), h.reason);
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

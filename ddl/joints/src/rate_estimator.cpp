@@ -1,10 +1,10 @@
-#include "rover/ddl/encoders/rate_estimator.hpp"
+#include "rover/ddl/joints/rate_estimator.hpp"
 
 #include <cmath>
 
 #include "rover/base/check.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 
 RateEstimator::RateEstimator(double window_s, double counts_per_rad)
     : window_ns_(std::llround(window_s * 1e9)), counts_per_rad_(counts_per_rad) {
@@ -42,4 +42,4 @@ double RateEstimator::Rate() const {
   return stc / stt / counts_per_rad_;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

@@ -1,4 +1,4 @@
-#include "rover/ddl/encoders/joint_reader.hpp"
+#include "rover/ddl/joints/joint_reader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include "rover/sim/sensors/sim_sensor_options.hpp"
 #endif
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 namespace {
 
 // Exact encoding with the nominal calibration (the inverse of the driver's conversion).
@@ -150,10 +150,10 @@ TEST(JointReader, RoundTripThroughTheSimulatedSensors) {
   const HardwareConfig c;
   auto reader = JointReader::Create(c);
   ASSERT_TRUE(reader.ok());
-  const sim::SimSensorOptions ideal = sim::SimSensorOptions::Ideal();
-  sim::MotorTelemetryModel motors(c, ideal.motors, 0.0, 1);
-  sim::SuspensionPotModel pots(c.pots, ideal.pots, 0.0, 2);
-  std::array<sim::MotorPhysical, hw::kNumMotors> m{};
+  const sim::sensors::SimSensorOptions ideal = sim::sensors::SimSensorOptions::Ideal();
+  sim::sensors::MotorTelemetryModel motors(c, ideal.motors, 0.0, 1);
+  sim::sensors::SuspensionPotModel pots(c.pots, ideal.pots, 0.0, 2);
+  std::array<sim::sensors::MotorPhysical, hw::kNumMotors> m{};
   const std::array<double, hw::kNumPots> susp{0.21, -0.21, -0.4, 0.33};
   for (int k = 0; k <= 100; ++k) {
     const double t = k * 0.01;
@@ -179,8 +179,8 @@ TEST(JointReader, RoundTripThroughTheSimulatedSensors) {
 
   // With the simulator's default (true-vs-nominal) pot errors and noise the nominal calibration
   // is off by a few counts: still within 0.02 rad, and still consistent with the differential.
-  const sim::SimSensorOptions real;
-  sim::SuspensionPotModel noisy(c.pots, real.pots, 1.0, 3);
+  const sim::sensors::SimSensorOptions real;
+  sim::sensors::SuspensionPotModel noisy(c.pots, real.pots, 1.0, 3);
   reader->OnSuspensionPots(noisy.Sample(susp, Time{1'010'000'000}));
   const JointState r = reader->State(Time{1'010'000'000});
   EXPECT_EQ(r.health, msg::SensorHealth::kOk) << r.health_reason;
@@ -194,4 +194,4 @@ TEST(JointReader, RoundTripThroughTheSimulatedSensors) {
 #endif
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

@@ -1,10 +1,10 @@
-#include "rover/ddl/encoders/joint_reader.hpp"
+#include "rover/ddl/joints/joint_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 namespace {
 
 std::string Num(double v) {
@@ -145,4 +145,4 @@ JointState JointReader::State(Time now) const {
   return s;
 }
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

@@ -11,7 +11,7 @@
 #include <deque>
 #include <utility>
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 
 class RateEstimator {
  public:
@@ -31,4 +31,4 @@ class RateEstimator {
   std::deque<std::pair<std::int64_t, std::int64_t>> samples_;
 };
 
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

@@ -10,7 +10,7 @@
 
 #include "rover/testing/service_harness.hpp"
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 namespace {
 
 using testing::ServiceHarness;
@@ -177,4 +177,4 @@ TEST_F(JointsServiceTest, EachInputStateIsPublishedOnceWithItsOwnStamp) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints

@@ -3,6 +3,6 @@
 #include "joints_service.hpp"
 
 int main(int argc, char** argv) {
-  rover::ddl::JointsService service;
+  rover::ddl::joints::JointsService service;
   return rover::RunServiceMain(service, argc, argv);
 }

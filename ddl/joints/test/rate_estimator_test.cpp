@@ -1,10 +1,10 @@
-#include "rover/ddl/encoders/rate_estimator.hpp"
+#include "rover/ddl/joints/rate_estimator.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace rover::ddl {
+namespace rover::ddl::joints {
 namespace {
 
 TEST(RateEstimator, RecoversAConstantRateFromQuantisedCounts) {
@@ -46,4 +46,4 @@ TEST(RateEstimator, IgnoresReorderedAndDuplicateSamples) {
 }
 
 }  // namespace
-}  // namespace rover::ddl
+}  // namespace rover::ddl::joints
