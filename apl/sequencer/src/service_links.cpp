@@ -1,0 +1,204 @@
+#include "service_links.hpp"
+
+#include <algorithm>
+#include <functional>
+
+#include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
+
+namespace rover::apl::sequencer {
+namespace {
+
+msg::MobilityMode ModeOf(MobilityMode m) {
+  switch (m) {
+    case MobilityMode::kDirected: return msg::MobilityMode::kDirected;
+    case MobilityMode::kVisodom: return msg::MobilityMode::kVisOdom;
+    case MobilityMode::kGoToWaypoint: return msg::MobilityMode::kGoToWaypoint;
+    case MobilityMode::kVisodomGoToWaypoint: return msg::MobilityMode::kVisOdomGoToWaypoint;
+    case MobilityMode::kGuarded: return msg::MobilityMode::kGuarded;
+    case MobilityMode::kGuardedVisodom: return msg::MobilityMode::kGuardedVisOdom;
+    case MobilityMode::kGuardedArc: return msg::MobilityMode::kGuardedArc;
+    case MobilityMode::kAutonav: return msg::MobilityMode::kAutoNav;
+    case MobilityMode::kAutonavVisodom: return msg::MobilityMode::kAutoNavVisOdom;
+    case MobilityMode::kLongTraverse: return msg::MobilityMode::kLongTraverse;
+    case MobilityMode::kStop: return msg::MobilityMode::kStop;
+    case MobilityMode::kClearFault: return msg::MobilityMode::kClearFault;
+  }
+  ROVER_UNREACHABLE();
+}
+
+msg::DrivePrimitive PrimitiveOf(Primitive p) {
+  switch (p) {
+    case Primitive::kArc: return msg::DrivePrimitive::kArc;
+    case Primitive::kStraight: return msg::DrivePrimitive::kStraight;
+    case Primitive::kTurnInPlace: return msg::DrivePrimitive::kTurnInPlace;
+    case Primitive::kNone: break;
+  }
+  ROVER_UNREACHABLE();
+}
+
+/// The first command of `statements` (in writing order, blocks included) that `pred` holds for.
+const CommandCall* FindCommand(const std::vector<Statement>& statements,
+                               const std::function<bool(const CommandCall&)>& pred) {
+  for (const Statement& s : statements) {
+    if (s.kind == Statement::Kind::kCommand && pred(s.command)) return &s.command;
+    if (const CommandCall* c = FindCommand(s.body, pred)) return c;
+    if (const CommandCall* c = FindCommand(s.else_body, pred)) return c;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+bool ServiceDispatches(Family f) { return f == Family::kMobility || f == Family::kMast; }
+
+Status CheckDispatchable(const Sequence& sequence) {
+  auto other = [](const CommandCall& c) { return !ServiceDispatches(c.spec().family); };
+  const CommandCall* c = FindCommand(sequence.on_abort, other);
+  const CommandCall* first = FindCommand(sequence.statements, other);
+  if (first != nullptr && (c == nullptr || first->pos.line < c->pos.line)) c = first;
+  if (c == nullptr) return Status::Ok();
+  return InvalidArgument("line " + std::to_string(c->pos.line) + ": " +
+                         std::string(c->spec().name) + ": apl-sequencer does not dispatch " +
+                         FamilyName(c->spec().family) + " commands yet");
+}
+
+Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp) {
+  const auto& r = std::get<MobilityRequest>(c.request);
+  if (r.speed != 0.0) {
+    return InvalidArgument("speed = " + FormatNumber(r.speed) +
+                           " m/s: apl/mobility_command carries no speed (the mobility "
+                           "manager's drive speed is its parameter); leave speed at 0");
+  }
+  msg::MobilityCommand m;
+  m.stamp = stamp;
+  m.command_id = c.id;
+  m.mode = ModeOf(r.mode);
+  m.goal = Eigen::Vector3d(r.goal_x, r.goal_y, 0.0);
+  m.tolerance = r.tolerance;
+  m.time_budget_s = r.time_budget_s;
+  if (r.primitive != Primitive::kNone) {
+    m.primitives.push_back({PrimitiveOf(r.primitive), r.curvature, r.distance, r.angle});
+  }
+  return m;
+}
+
+msg::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id, Time stamp) {
+  msg::MobilityCommand m;
+  m.stamp = stamp;
+  m.command_id = cancel_id | kCancelIdBit;
+  m.mode = msg::MobilityMode::kStop;
+  return m;
+}
+
+msg::MastCommand MastCommandOf(const Command& c, Time stamp) {
+  const auto& r = std::get<MastRequest>(c.request);
+  msg::MastCommand m;
+  m.stamp = stamp;
+  m.command_id = c.id;
+  if (r.kind == MastRequest::Kind::kLookAt) {
+    m.pointing = msg::MastPointing::kLookAt;
+    m.look_at = Eigen::Vector3d(r.point.x, r.point.y, r.point.z);
+  } else {
+    m.pointing = msg::MastPointing::kAngles;
+    m.pan = r.pan;
+    m.tilt = r.tilt;
+  }
+  return m;
+}
+
+Fault FaultOfMobilityFault(msg::MobilityFault f) {
+  using F = msg::MobilityFault;
+  switch (f) {
+    case F::kNone: return Fault::kNone;
+    case F::kArb: return Fault::kArb;
+    case F::kAcm: return Fault::kAcm;
+    case F::kPot: return Fault::kPot;
+    case F::kTod: return Fault::kTod;
+    case F::kStopped: return Fault::kStopped;
+    case F::kWaypointTimeout: return Fault::kWaypointTimeout;
+    case F::kNoPath: return Fault::kNoPath;
+    case F::kNoProgress: return Fault::kNoProgress;
+    case F::kBusy: return Fault::kBusy;
+    case F::kVisOdom: return Fault::kVisodom;
+    case F::kKeepOut: return Fault::kOther;
+    case F::kBadCommand: return Fault::kInvalid;
+    case F::kImg: return Fault::kImg;
+    case F::kSapp: return Fault::kSapp;
+    case F::kMot: return Fault::kMot;
+    case F::kDriveTimeout: return Fault::kDriveTimeout;
+    case F::kTilt: return Fault::kTilt;
+    case F::kSuspension: return Fault::kSuspension;
+    case F::kNorth: return Fault::kNorth;
+  }
+  return Fault::kOther;  // a value from the wire no enumerator has
+}
+
+std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s) {
+  Outcome o;
+  o.stamp = s.stamp;
+  o.message = s.message;
+  switch (s.state) {
+    case msg::MobilityState::kSucceeded:
+      o.termination = Termination::kNominal;
+      return o;
+    case msg::MobilityState::kFailed:
+      o.termination = Termination::kFault;
+      break;
+    case msg::MobilityState::kRejected:
+      o.termination = Termination::kRejected;
+      break;
+    default:
+      return std::nullopt;
+  }
+  o.fault = FaultOfMobilityFault(s.fault);
+  if (o.fault == Fault::kNone) o.fault = Fault::kOther;  // an end off nominal names a fault
+  o.fault_class = s.fault_class == msg::FaultClass::kMotionError ? FaultClass::kMotionError
+                  : s.fault_class == msg::FaultClass::kGoalError ? FaultClass::kGoalError
+                                                                  : DefaultFaultClass(o.fault);
+  return o;
+}
+
+std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s) {
+  switch (s.state) {
+    case msg::MastState::kAtGoal: return Outcome::Nominal(s.stamp);
+    case msg::MastState::kFault: return Outcome::Failed(Fault::kOther, s.message, s.stamp);
+    case msg::MastState::kRejected: return Outcome::Rejected(Fault::kInvalid, s.message, s.stamp);
+    default: return std::nullopt;
+  }
+}
+
+PoseSample PoseOfEstimate(const msg::PoseEstimate& p) {
+  PoseSample s;
+  s.stamp = p.stamp;
+  s.position = {p.position.x(), p.position.y(), p.position.z()};
+  s.roll = p.rpy.x();
+  s.pitch = p.rpy.y();
+  s.yaw = p.rpy.z();
+  return s;
+}
+
+bool IsVisOdomFailure(const msg::RelativePose& r) {
+  return r.source == msg::MotionSource::kVisualOdometry &&
+         r.status != msg::RelativePoseStatus::kConverged;
+}
+
+msg::SequenceStatus SequenceStatusOf(const SequenceStatus& s, std::uint32_t command_id,
+                                     Time stamp) {
+  msg::SequenceStatus m;
+  m.stamp = stamp;
+  m.command_id = command_id;
+  switch (s.state) {
+    case SequenceState::kIdle: m.state = msg::SequenceState::kIdle; break;
+    case SequenceState::kRunning:
+    case SequenceState::kAborting: m.state = msg::SequenceState::kRunning; break;
+    case SequenceState::kDone: m.state = msg::SequenceState::kDone; break;
+    case SequenceState::kFailed:
+    case SequenceState::kAborted: m.state = msg::SequenceState::kFailed; break;
+  }
+  m.step = static_cast<std::uint32_t>(std::max(0, s.step));
+  m.message = s.message;
+  return m;
+}
+
+}  // namespace rover::apl::sequencer

@@ -1,0 +1,66 @@
+#pragma once
+// How apl-sequencer links the interpreter to its neighbours' messages (private to the service and
+// its tests; pure functions, no DDS). The typed requests of commands.hpp become
+// msg::MobilityCommand and msg::MastCommand (core/msg's values; the service writes them with
+// core/msg's conversions); the neighbours' statuses become an Outcome when they end the command;
+// dl/pose becomes a PoseSample; the interpreter's status becomes apl/sequence_status.
+//
+// Command ids: the sequencer's command ids are the interpreter's (increasing, never repeated in
+// a run of the service); the STOP it sends to cancel a mobility command has its own id, with
+// bit 31 set (kCancelIdBit), so its status never ends a sequence step.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "rover/apl/sequencer/commands.hpp"
+#include "rover/apl/sequencer/interpreter.hpp"
+#include "rover/msg/mast.hpp"
+#include "rover/msg/mobility.hpp"
+#include "rover/msg/pose.hpp"
+#include "rover/msg/sequence.hpp"
+
+namespace rover::apl::sequencer {
+
+inline constexpr std::uint32_t kCancelIdBit = 0x80000000u;
+
+/// The families apl-sequencer dispatches: mobility (apl/mobility_command) and mast
+/// (dl/mast_command). Rendezvous and arm commands wait for their services.
+bool ServiceDispatches(Family f);
+/// Ok when every command of the sequence (statements and ON_ABORT block) is of a family the
+/// service dispatches; else InvalidArgument naming the first other one's line and command:
+/// "line 5: APPROACH_TARGET: apl-sequencer does not dispatch rendezvous commands yet".
+Status CheckDispatchable(const Sequence& sequence);
+
+/// The apl/mobility_command of a mobility command, stamped `stamp`. Errors: a speed other than 0
+/// (the mobility manager's command carries none; its drive speed is a parameter), naming the
+/// value.
+Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp);
+/// The mobility manager's STOP, as sent to cancel an outstanding mobility command, stamped
+/// `stamp`.
+msg::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id, Time stamp);
+/// The dl/mast_command of a mast command, stamped `stamp`.
+msg::MastCommand MastCommandOf(const Command& c, Time stamp);
+
+/// The outcome a mobility status gives its command: SUCCEEDED -> NOMINAL, FAILED -> FAULT,
+/// REJECTED -> REJECTED (with the fault mapped by name and the status's class), stamped with
+/// the status's stamp; nullopt while IDLE or RUNNING.
+std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s);
+/// The outcome a mast status gives its command: AT_GOAL -> NOMINAL, FAULT -> FAULT OTHER (goal
+/// error), REJECTED -> REJECTED INVALID; nullopt while IDLE or MOVING.
+std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s);
+/// The sequencer's fault of a mobility fault (same names; KEEPOUT -> OTHER, BAD_COMMAND ->
+/// INVALID).
+Fault FaultOfMobilityFault(msg::MobilityFault f);
+
+/// dl/pose as the interpreter's pose input (ZYX roll, pitch, yaw of the estimate).
+PoseSample PoseOfEstimate(const msg::PoseEstimate& p);
+/// True for a visual-odometry dl/relative_pose sample that failed (any status but CONVERGED).
+bool IsVisOdomFailure(const msg::RelativePose& r);
+
+/// apl/sequence_status of the interpreter's status for sequence `command_id`. RUNNING and
+/// ABORTING are RUNNING; FAILED and ABORTED are FAILED (the message says which).
+msg::SequenceStatus SequenceStatusOf(const SequenceStatus& s, std::uint32_t command_id,
+                                     Time stamp);
+
+}  // namespace rover::apl::sequencer

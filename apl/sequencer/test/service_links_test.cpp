@@ -1,0 +1,180 @@
+// apl-sequencer's links to its neighbours' messages: requests to commands, statuses to
+// outcomes, dl/pose to the pose input, the interpreter's status to apl/sequence_status.
+#include "service_links.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "rover/apl/sequencer/parser.hpp"
+#include "sequencer_test_util.hpp"
+
+namespace rover::apl::sequencer {
+namespace {
+
+using testing::MustParse;
+
+Command Built(const std::string& line, std::uint32_t id = 7) {
+  const Sequence s = MustParse(line + "\n");
+  PoseSample pose;
+  Result<Command> c = BuildCommand(s.statements.at(0).command, &pose, id, 1);
+  EXPECT_TRUE(c.ok()) << c.status().ToString();
+  return c.ok() ? *c : Command{};
+}
+
+TEST(ServiceLinks, OnlyMobilityAndMastAreDispatched) {
+  EXPECT_TRUE(CheckDispatchable(MustParse("ON_ABORT\n  STOP\nEND\nMAST LOOK_AT (1, 2, 0)\n"
+                                          "IF tilt > 5\n  AUTONAV goal=(3, 0)\nEND\n"))
+                  .ok());
+  const Status inner = CheckDispatchable(
+      MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  ARM STOW\nEND\n"));
+  EXPECT_EQ(inner.message(),
+            "line 5: ARM STOW: apl-sequencer does not dispatch arm commands yet");
+  const Status in_abort = CheckDispatchable(MustParse(
+      "ON_ABORT\n  RETURN_TO_LANDER\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"));
+  EXPECT_EQ(in_abort.message(),
+            "line 2: RETURN_TO_LANDER: apl-sequencer does not dispatch rendezvous commands "
+            "yet");
+}
+
+TEST(ServiceLinks, MobilityCommandsCarryModeGoalAndOnePrimitive) {
+  const msg::MobilityCommand arc =
+      *MobilityCommandOf(Built("VISODOM ARC curvature=0.5 distance=2 timeout=90 s"), Time{5});
+  EXPECT_EQ(arc.stamp, Time{5});
+  EXPECT_EQ(arc.command_id, 7u);
+  EXPECT_EQ(arc.mode, msg::MobilityMode::kVisOdom);
+  EXPECT_DOUBLE_EQ(arc.time_budget_s, 90.0);
+  ASSERT_EQ(arc.primitives.size(), 1u);
+  EXPECT_EQ(arc.primitives[0].kind, msg::DrivePrimitive::kArc);
+  EXPECT_DOUBLE_EQ(arc.primitives[0].curvature, 0.5);
+  EXPECT_DOUBLE_EQ(arc.primitives[0].distance, 2.0);
+
+  const msg::MobilityCommand turn = *MobilityCommandOf(Built("TURN angle_deg=90"), Time{5});
+  EXPECT_EQ(turn.mode, msg::MobilityMode::kDirected);
+  EXPECT_EQ(turn.primitives.at(0).kind, msg::DrivePrimitive::kTurnInPlace);
+  EXPECT_NEAR(turn.primitives.at(0).angle, std::numbers::pi / 2, 1e-12);
+
+  const msg::MobilityCommand go =
+      *MobilityCommandOf(Built("AUTONAV goal=(5, -2) tolerance=0.4"), Time{5});
+  EXPECT_EQ(go.mode, msg::MobilityMode::kAutoNav);
+  EXPECT_EQ(go.goal, Eigen::Vector3d(5, -2, 0));
+  EXPECT_DOUBLE_EQ(go.tolerance, 0.4);
+  EXPECT_TRUE(go.primitives.empty());
+  EXPECT_EQ(MobilityCommandOf(Built("LONG_TRAVERSE goal=(9, 9)"), Time{5})->mode,
+            msg::MobilityMode::kLongTraverse);
+  EXPECT_EQ(MobilityCommandOf(Built("CLEAR_FAULT"), Time{5})->mode,
+            msg::MobilityMode::kClearFault);
+
+  const Result<msg::MobilityCommand> fast =
+      MobilityCommandOf(Built("DRIVE STRAIGHT distance=1 speed=5 cm/s"), Time{5});
+  ASSERT_FALSE(fast.ok());
+  EXPECT_EQ(fast.status().message(),
+            "speed = 0.05 m/s: apl/mobility_command carries no speed (the mobility manager's "
+            "drive speed is its parameter); leave speed at 0");
+
+  const msg::MobilityCommand stop = MobilityStopCommand(12, Time{5});
+  EXPECT_EQ(stop.mode, msg::MobilityMode::kStop);
+  EXPECT_EQ(stop.command_id, 12u | kCancelIdBit);
+  EXPECT_EQ(stop.stamp, Time{5});
+}
+
+TEST(ServiceLinks, MastCommandsPointByAnglesOrAtAPoint) {
+  const msg::MastCommand a = MastCommandOf(Built("MAST pan_deg=90 tilt_deg=-30"), Time{5});
+  EXPECT_EQ(a.stamp, Time{5});
+  EXPECT_EQ(a.command_id, 7u);
+  EXPECT_EQ(a.pointing, msg::MastPointing::kAngles);
+  EXPECT_NEAR(a.pan, std::numbers::pi / 2, 1e-12);
+  EXPECT_NEAR(a.tilt, -std::numbers::pi / 6, 1e-12);
+  const msg::MastCommand b = MastCommandOf(Built("MAST LOOK_AT (1, 2, 0.5)"), Time{5});
+  EXPECT_EQ(b.pointing, msg::MastPointing::kLookAt);
+  EXPECT_EQ(b.look_at, Eigen::Vector3d(1, 2, 0.5));
+}
+
+TEST(ServiceLinks, StatusesEndTheirCommandOnlyWhenTerminal) {
+  msg::MobilityStatus s;
+  s.stamp = Time::FromSeconds(12);
+  s.command_id = 3;
+  s.state = msg::MobilityState::kRunning;
+  EXPECT_FALSE(OutcomeOfMobilityStatus(s).has_value());
+  s.state = msg::MobilityState::kSucceeded;
+  Outcome o = *OutcomeOfMobilityStatus(s);
+  EXPECT_EQ(o.termination, Termination::kNominal);
+  EXPECT_EQ(o.stamp, s.stamp);
+  EXPECT_TRUE(o.Validate().ok());
+
+  s.state = msg::MobilityState::kFailed;
+  s.fault = msg::MobilityFault::kNoProgress;
+  s.fault_class = msg::FaultClass::kGoalError;
+  s.message = "limit cycle";
+  o = *OutcomeOfMobilityStatus(s);
+  EXPECT_EQ(o.Describe(), "NOPROGRESS (goal error): limit cycle");
+  EXPECT_TRUE(o.Validate().ok());
+  s.fault = msg::MobilityFault::kTilt;
+  s.fault_class = msg::FaultClass::kMotionError;
+  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault_class, FaultClass::kMotionError);
+
+  s.state = msg::MobilityState::kRejected;
+  s.fault = msg::MobilityFault::kBadCommand;
+  s.fault_class = msg::FaultClass::kGoalError;
+  o = *OutcomeOfMobilityStatus(s);
+  EXPECT_EQ(o.termination, Termination::kRejected);
+  EXPECT_EQ(o.fault, Fault::kInvalid);
+  s.fault = msg::MobilityFault::kNone;  // an off-nominal end always names a fault
+  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault, Fault::kOther);
+  EXPECT_TRUE(OutcomeOfMobilityStatus(s)->Validate().ok());
+  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kKeepOut), Fault::kOther);
+  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kVisOdom), Fault::kVisodom);
+  EXPECT_EQ(FaultOfMobilityFault(static_cast<msg::MobilityFault>(99)), Fault::kOther);
+
+  msg::MastStatus m;
+  m.state = msg::MastState::kMoving;
+  EXPECT_FALSE(OutcomeOfMastStatus(m).has_value());
+  m.state = msg::MastState::kAtGoal;
+  EXPECT_EQ(OutcomeOfMastStatus(m)->termination, Termination::kNominal);
+  m.state = msg::MastState::kRejected;
+  m.message = "pan out of range";
+  EXPECT_EQ(OutcomeOfMastStatus(m)->Describe(), "REJECTED INVALID (goal error): pan out of range");
+  m.state = msg::MastState::kFault;
+  EXPECT_EQ(OutcomeOfMastStatus(m)->termination, Termination::kFault);
+}
+
+TEST(ServiceLinks, PoseVisOdomAndSequenceStatus) {
+  msg::PoseEstimate p;
+  p.stamp = Time{9};
+  p.position = {1, 2, 3};
+  p.rpy = {0.1, 0.2, 0.3};
+  const PoseSample s = PoseOfEstimate(p);
+  EXPECT_EQ(s.stamp, Time{9});
+  EXPECT_EQ(s.position, (Vec3{1, 2, 3}));
+  EXPECT_DOUBLE_EQ(s.roll, 0.1);
+  EXPECT_DOUBLE_EQ(s.pitch, 0.2);
+  EXPECT_DOUBLE_EQ(s.yaw, 0.3);
+  EXPECT_TRUE(s.valid);
+
+  msg::RelativePose r;
+  r.source = msg::MotionSource::kVisualOdometry;
+  r.status = msg::RelativePoseStatus::kConverged;
+  EXPECT_FALSE(IsVisOdomFailure(r));
+  r.status = msg::RelativePoseStatus::kTooFewFeatures;
+  EXPECT_TRUE(IsVisOdomFailure(r));
+  r.source = msg::MotionSource::kWheelOdometry;
+  EXPECT_FALSE(IsVisOdomFailure(r));
+
+  SequenceStatus st;
+  st.state = SequenceState::kAborting;
+  st.step = 4;
+  EXPECT_EQ(SequenceStatusOf(st, 2, Time{1}).state, msg::SequenceState::kRunning);
+  st.state = SequenceState::kAborted;
+  st.message = "stopped at step 4 (line 6): operator";
+  const msg::SequenceStatus m = SequenceStatusOf(st, 2, Time{1});
+  EXPECT_EQ(m.state, msg::SequenceState::kFailed);
+  EXPECT_EQ(m.command_id, 2u);
+  EXPECT_EQ(m.step, 4u);
+  EXPECT_EQ(m.message, st.message);
+  st.state = SequenceState::kDone;
+  EXPECT_EQ(SequenceStatusOf(st, 2, Time{1}).state, msg::SequenceState::kDone);
+}
+
+}  // namespace
+}  // namespace rover::apl::sequencer
