@@ -1,7 +1,7 @@
 #include "camera_service.hpp"
 
-#include <cstdio>
 
+#include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"
 #include "rover/msg/camera_idl.hpp"
@@ -14,14 +14,6 @@ namespace rover::ddl::camera {
 using driver_support::HealthSummary;
 using driver_support::IsLogWorthy;
 using driver_support::ResolveConfigFile;
-
-namespace {
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-}  // namespace
 
 void CameraService::DeclareParameters(ParamSet& p) {
   const CameraDriverOptions d;
@@ -195,7 +187,7 @@ void CameraService::OnWatchdog() {
   for (const PendingRequest& p : driver_->ExpireRequests(now)) {
     camera_error_ = "camera head did not answer request " + std::to_string(p.request.request_id) +
                     " (" + msg::CameraName(p.request.camera) + ") within " +
-                    Num(driver_->options().request_timeout_s) + " s";
+                    FormatNumber(driver_->options().request_timeout_s, 3) + " s";
     log::Warn(
         "camera request timed out; no frame will be sent",
         {{"request_id", p.request.request_id}, {"camera", msg::CameraName(p.request.camera)}});

@@ -4,41 +4,13 @@
 #include <cmath>
 #include <limits>
 
-#include "rover/base/format.hpp"
 #include "rover/base/range_check.hpp"
+#include "rover/geometry/polygon.hpp"
 
 namespace rover::apl::mobility {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-// Whether segments ab and cd share a point (collinear overlaps included).
-bool SegmentsTouch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                   const Eigen::Vector2d& d) {
-  const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, d - a);
-  const double d3 = Cross(d - c, a - c), d4 = Cross(d - c, b - c);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
-    return true;
-  }
-  auto on = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r,
-               double cr) {
-    return cr == 0.0 && std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) &&
-           std::min(p.y(), q.y()) <= r.y() && r.y() <= std::max(p.y(), q.y());
-  };
-  return on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4);
-}
-
-double DistanceToSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                         const Eigen::Vector2d& p) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
 
 }  // namespace
 
@@ -99,63 +71,10 @@ Status CheckSimplePolygon(const std::string& field, const KeepOutZone& zone) {
     ROVER_RETURN_IF_ERROR(CheckFinite(name + "[" + std::to_string(i) + "].x", v[i].x()));
     ROVER_RETURN_IF_ERROR(CheckFinite(name + "[" + std::to_string(i) + "].y", v[i].y()));
   }
-  for (int i = 0; i < n; ++i) {
-    if (v[i] == v[(i + 1) % n]) {
-      return InvalidArgument(name + ": vertices " + std::to_string(i) + " and " +
-                             std::to_string((i + 1) % n) +
-                             " are equal (the polygon is not simple)");
-    }
-  }
-  double area2 = 0.0;
-  for (int i = 0; i < n; ++i) area2 += Cross(v[i], v[(i + 1) % n]);
-  if (std::abs(area2) < 1e-9) {
-    return InvalidArgument(name + ": area is " + FormatNumber(0.5 * std::abs(area2)) +
-                           " m^2 (the polygon is degenerate)");
-  }
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
-      if (adjacent) {
-        // Adjacent edges share one vertex; they must not fold back onto each other.
-        const int shared = j == i + 1 ? j : i;
-        const Eigen::Vector2d& a = v[(shared + n - 1) % n];
-        const Eigen::Vector2d& o = v[shared];
-        const Eigen::Vector2d& b = v[(shared + 1) % n];
-        if (Cross(a - o, b - o) == 0.0 && (a - o).dot(b - o) > 0.0) {
-          return InvalidArgument(name + ": edges " + std::to_string(i) + " and " +
-                                 std::to_string(j) + " overlap (the polygon is not simple)");
-        }
-        continue;
-      }
-      if (SegmentsTouch(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
-        return InvalidArgument(name + ": edges " + std::to_string(i) + " and " + std::to_string(j) +
-                               " cross (the polygon is not simple)");
-      }
-    }
+  if (const std::string why = geometry::WhyNotSimple(v); !why.empty()) {
+    return InvalidArgument(name + ": " + why + " (the polygon is not simple)");
   }
   return Status::Ok();
-}
-
-bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool inside = false;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
-double DistanceToPolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  double d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    d = std::min(d, DistanceToSegment(poly[i], poly[(i + 1) % poly.size()], p));
-  }
-  return d;
 }
 
 KeepOutHit FirstKeepOutHit(const std::vector<Eigen::Vector2d>& points,

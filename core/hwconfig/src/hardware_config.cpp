@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
+#include "rover/base/key_checker.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover {
@@ -16,48 +18,16 @@ constexpr double kDeg = kPi / 180.0;
 constexpr MotorKind kKinds[] = {MotorKind::kDrive, MotorKind::kSteer, MotorKind::kMastPan,
                                 MotorKind::kMastTilt};
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 std::string Join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
-// Records the first failed check, with the YAML key (relative to the prefix) it concerns.
-struct Checker {
-  Status status = Status::Ok();
-  std::string key;
 
-  bool Fail(const std::string& k, const std::string& message) {
-    if (status.ok()) {
-      status = InvalidArgument(k + ": " + message);
-      key = k;
-    }
-    return false;
-  }
-  bool Finite(const std::string& k, double v) {
-    return std::isfinite(v) || Fail(k, Num(v) + " is not a finite number");
-  }
-  bool Positive(const std::string& k, double v) {
-    return Finite(k, v) && (v > 0.0 || Fail(k, Num(v) + " must be > 0"));
-  }
-  bool AtLeast(const std::string& k, double v, double lo) {
-    return Finite(k, v) && (v >= lo || Fail(k, Num(v) + " must be >= " + Num(lo)));
-  }
-  bool InRange(const std::string& k, double v, double lo, double hi) {
-    return Finite(k, v) && ((v >= lo && v <= hi) || Fail(k, Num(v) + " is out of range [" +
-                                                                Num(lo) + ", " + Num(hi) + "]"));
-  }
-};
-
-void CheckInertial(Checker& c, const std::string& base, const InertialSensorSpec& s) {
+void CheckInertial(KeyChecker& c, const std::string& base, const InertialSensorSpec& s) {
   c.Positive(base + ".lsb", s.lsb);
   c.Positive(base + ".range", s.range);
-  if (c.status.ok() && s.range / s.lsb >= 2147483647.0) {
-    c.Fail(base + ".range", Num(s.range) + " is not representable in int32 LSB of " + Num(s.lsb));
+  if (c.ok() && s.range / s.lsb >= 2147483647.0) {
+    c.Fail(base + ".range", FormatNumber(s.range) + " is not representable in int32 LSB of " + FormatNumber(s.lsb));
   }
   for (int i = 0; i < 3; ++i) {
     c.Finite(base + ".bias", s.bias[i]);
@@ -65,7 +35,7 @@ void CheckInertial(Checker& c, const std::string& base, const InertialSensorSpec
     c.Finite(base + ".misalignment", s.misalignment(i, i));
     if (s.misalignment(i, i) != 0.0) {
       c.Fail(base + ".misalignment", "diagonal element " + std::to_string(i) + " is " +
-                                         Num(s.misalignment(i, i)) +
+                                         FormatNumber(s.misalignment(i, i)) +
                                          "; must be 0 (scale factors go in 'scale')");
     }
   }
@@ -254,7 +224,7 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
   const auto& pots = config.pots;
   const auto& imu = config.imu;
   const auto& sun_sensor = config.sun_sensor;
-  Checker c;
+  KeyChecker c;
   for (int i = 0; i < hw::kNumMotors; ++i) {
     const MotorSpec& m = motors[static_cast<std::size_t>(i)];
     const std::string base = std::string("motors.") + MotorKindName(MotorKindOf(i));
@@ -262,29 +232,29 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
     c.Positive(base + ".gear_ratio", m.gear_ratio);
     c.Positive(base + ".max_rate", m.max_rate);
     c.Positive(base + ".default_rate", m.default_rate);
-    if (c.status.ok() && m.default_rate > m.max_rate) {
-      c.Fail(base + ".default_rate", Num(m.default_rate) + " exceeds max_rate " + Num(m.max_rate));
+    if (c.ok() && m.default_rate > m.max_rate) {
+      c.Fail(base + ".default_rate", FormatNumber(m.default_rate) + " exceeds max_rate " + FormatNumber(m.max_rate));
     }
     c.Positive(base + ".max_acceleration", m.max_acceleration);
     c.Positive(base + ".current_limit", m.current_limit);
-    if (c.status.ok() && m.current_limit * 1000.0 > 65535.0) {
-      c.Fail(base + ".current_limit", Num(m.current_limit) + " A does not fit the uint16 mA goal");
+    if (c.ok() && m.current_limit * 1000.0 > 65535.0) {
+      c.Fail(base + ".current_limit", FormatNumber(m.current_limit) + " A does not fit the uint16 mA goal");
     }
     c.Finite(base + ".max_temperature", m.max_temperature);
     c.Positive(base + ".position_tolerance", m.position_tolerance);
     if (i >= hw::kSteerLF) {
       c.Finite(base + ".min_angle", m.min_angle);
       c.Finite(base + ".max_angle", m.max_angle);
-      if (c.status.ok() && !(m.min_angle < m.max_angle)) {
+      if (c.ok() && !(m.min_angle < m.max_angle)) {
         c.Fail(base + ".min_angle",
-               Num(m.min_angle) + " must be below max_angle " + Num(m.max_angle));
+               FormatNumber(m.min_angle) + " must be below max_angle " + FormatNumber(m.max_angle));
       }
-      if (c.status.ok() &&
+      if (c.ok() &&
           std::max(std::abs(m.min_angle), std::abs(m.max_angle)) * m.CountsPerRad() > 2.0e9) {
         c.Fail(base + ".max_angle", "joint range does not fit int32 encoder counts");
       }
     }
-    if (c.status.ok() && m.max_rate * m.CountsPerRad() > 2.0e9) {
+    if (c.ok() && m.max_rate * m.CountsPerRad() > 2.0e9) {
       c.Fail(base + ".max_rate", "rate does not fit int32 counts/s");
     }
   }
@@ -296,20 +266,20 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
   c.InRange("motors.telemetry.temperature_offset_counts", t.temperature_offset_counts, 0.0,
             hw::kAdcMax);
   c.AtLeast("motors.telemetry.adc_noise_counts", t.adc_noise_counts, 0.0);
-  for (int i = 0; i < hw::kNumMotors && c.status.ok(); ++i) {
+  for (int i = 0; i < hw::kNumMotors && c.ok(); ++i) {
     const MotorSpec& m = motors[static_cast<std::size_t>(i)];
     const std::string base = std::string("motors.") + MotorKindName(MotorKindOf(i));
     if (t.CountsFromCurrent(m.current_limit) >= hw::kAdcMax) {
-      c.Fail(base + ".current_limit", Num(m.current_limit) +
+      c.Fail(base + ".current_limit", FormatNumber(m.current_limit) +
                                           " A is beyond the current ADC's full scale " +
-                                          Num(t.CurrentFromCounts(hw::kAdcMax)) + " A");
+                                          FormatNumber(t.CurrentFromCounts(hw::kAdcMax)) + " A");
     }
     const double tc = t.CountsFromTemperature(m.max_temperature);
-    if (c.status.ok() && (tc <= 0.0 || tc >= hw::kAdcMax)) {
-      c.Fail(base + ".max_temperature", Num(m.max_temperature) +
+    if (c.ok() && (tc <= 0.0 || tc >= hw::kAdcMax)) {
+      c.Fail(base + ".max_temperature", FormatNumber(m.max_temperature) +
                                             " degC is outside the temperature ADC's range [" +
-                                            Num(t.TemperatureFromCounts(0)) + ", " +
-                                            Num(t.TemperatureFromCounts(hw::kAdcMax)) + "]");
+                                            FormatNumber(t.TemperatureFromCounts(0)) + ", " +
+                                            FormatNumber(t.TemperatureFromCounts(hw::kAdcMax)) + "]");
     }
   }
 
@@ -318,9 +288,9 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
     const auto k = static_cast<std::size_t>(i);
     c.InRange("pots.offset_counts", pots.offset_counts[k], 0.0, hw::kAdcMax);
     c.Finite("pots.gain_counts_per_rad", pots.gain_counts_per_rad[k]);
-    if (c.status.ok() && std::abs(pots.gain_counts_per_rad[k]) < 1.0) {
+    if (c.ok() && std::abs(pots.gain_counts_per_rad[k]) < 1.0) {
       c.Fail("pots.gain_counts_per_rad", std::string(hw::PotName(i)) + " gain " +
-                                             Num(pots.gain_counts_per_rad[k]) +
+                                             FormatNumber(pots.gain_counts_per_rad[k]) +
                                              " is below 1 count/rad in magnitude");
     }
   }
@@ -330,44 +300,44 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
   c.Positive("pots.differential_tolerance", pots.differential_tolerance);
 
   c.Positive("imu.rate_hz", imu.rate_hz);
-  if (c.status.ok() && !IsRotation(imu.rover_from_case)) {
+  if (c.ok() && !IsRotation(imu.rover_from_case)) {
     c.Fail("imu.mounting_rpy_deg", "is not a rotation");
   }
   CheckInertial(c, "imu.gyro", imu.gyro);
   CheckInertial(c, "imu.accel", imu.accel);
-  if (c.status.ok() && std::abs(imu.gyro.ScaleMisalignment().determinant()) < 0.5) {
+  if (c.ok() && std::abs(imu.gyro.ScaleMisalignment().determinant()) < 0.5) {
     c.Fail("imu.gyro.misalignment", "scale/misalignment matrix is (nearly) singular");
   }
-  if (c.status.ok() && std::abs(imu.accel.ScaleMisalignment().determinant()) < 0.5) {
+  if (c.ok() && std::abs(imu.accel.ScaleMisalignment().determinant()) < 0.5) {
     c.Fail("imu.accel.misalignment", "scale/misalignment matrix is (nearly) singular");
   }
   c.AtLeast("imu.temperature_noise", imu.temperature_noise, 0.0);
 
   const SunSensorSpec& s = sun_sensor;
   c.Positive("sun_sensor.rate_hz", s.rate_hz);
-  if (c.status.ok() && !IsRotation(s.rover_from_sensor)) {
+  if (c.ok() && !IsRotation(s.rover_from_sensor)) {
     c.Fail("sun_sensor.mounting_rpy_deg", "is not a rotation");
   }
   c.Positive("sun_sensor.focal_counts", s.focal_counts);
   c.Finite("sun_sensor.principal_point", s.principal_point.x());
   c.Finite("sun_sensor.principal_point", s.principal_point.y());
   c.InRange("sun_sensor.fov_deg", s.fov / kDeg, 1.0, 85.0);
-  if (c.status.ok() &&
+  if (c.ok() &&
       s.focal_counts * std::tan(s.fov) + s.principal_point.cwiseAbs().maxCoeff() > 32000.0) {
     c.Fail("sun_sensor.focal_counts",
            "the field of view does not fit the int16 spot counts (focal * tan(fov) > 32000)");
   }
   c.InRange("sun_sensor.full_scale_intensity", s.full_scale_intensity, 1.0, hw::kAdcMax);
   c.InRange("sun_sensor.min_intensity", s.min_intensity, 0.0, hw::kAdcMax);
-  if (c.status.ok() && s.min_intensity >= s.full_scale_intensity) {
-    c.Fail("sun_sensor.min_intensity", Num(s.min_intensity) +
+  if (c.ok() && s.min_intensity >= s.full_scale_intensity) {
+    c.Fail("sun_sensor.min_intensity", FormatNumber(s.min_intensity) +
                                            " must be below full_scale_intensity " +
-                                           Num(s.full_scale_intensity));
+                                           FormatNumber(s.full_scale_intensity));
   }
   c.AtLeast("sun_sensor.spot_noise_counts", s.spot_noise_counts, 0.0);
   c.AtLeast("sun_sensor.intensity_noise_counts", s.intensity_noise_counts, 0.0);
-  if (bad_key != nullptr) *bad_key = c.key;
-  return c.status;
+  if (bad_key != nullptr) *bad_key = c.key();
+  return c.status();
 }
 
 // ---- parameters -------------------------------------------------------------------------------

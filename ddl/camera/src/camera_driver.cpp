@@ -1,17 +1,12 @@
 #include "rover/ddl/camera/camera_driver.hpp"
 
+#include "rover/base/format.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace rover::ddl::camera {
 namespace {
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 std::string Size(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
@@ -29,7 +24,7 @@ std::string CameraList() {
 Status CameraDriverOptions::Validate() const {
   auto positive = [](const char* k, double v) -> Status {
     if (!std::isfinite(v) || v <= 0.0) {
-      return InvalidArgument(std::string(k) + ": " + Num(v) + " must be finite and > 0");
+      return InvalidArgument(std::string(k) + ": " + FormatNumber(v, 3) + " must be finite and > 0");
     }
     return Status::Ok();
   };
@@ -37,8 +32,8 @@ Status CameraDriverOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(positive("mast_max_age_s", mast_max_age_s));
   ROVER_RETURN_IF_ERROR(positive("mast_history_s", mast_history_s));
   if (mast_history_s < mast_max_age_s) {
-    return InvalidArgument("mast_history_s: " + Num(mast_history_s) +
-                           " must be >= mast_max_age_s (" + Num(mast_max_age_s) + ")");
+    return InvalidArgument("mast_history_s: " + FormatNumber(mast_history_s, 3) +
+                           " must be >= mast_max_age_s (" + FormatNumber(mast_max_age_s, 3) + ")");
   }
   if (max_pending < 1) {
     return InvalidArgument("max_pending: " + std::to_string(max_pending) + " must be >= 1");
@@ -88,7 +83,7 @@ Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& 
 
 Status CameraDriver::HandleMast(const MastSample& s) {
   if (!std::isfinite(s.pan) || !std::isfinite(s.tilt)) {
-    return InvalidArgument("mast angles pan " + Num(s.pan) + ", tilt " + Num(s.tilt) +
+    return InvalidArgument("mast angles pan " + FormatNumber(s.pan, 3) + ", tilt " + FormatNumber(s.tilt, 3) +
                            " are not finite");
   }
   if (!mast_.empty() && s.stamp_ns <= mast_.back().stamp_ns) return Status::Ok();
@@ -168,7 +163,7 @@ Result<StereoFrameData> CameraDriver::HandleFrame(const hw::CameraFrame& f) {
           "mast pose unknown (no ddl/joint_state yet): " + cam.name + " models are not valid";
     } else if (gap > options_.mast_max_age_s) {
       health = msg::SensorHealth::kDegraded;
-      health_reason = "nearest mast sample is " + Num(gap) + " s from the capture time";
+      health_reason = "nearest mast sample is " + FormatNumber(gap, 3) + " s from the capture time";
     }
   }
   auto models = cam.InRover(pan, tilt, calibration_.mast);

@@ -1,18 +1,10 @@
 #include "rover/ddl/driver_support/driver_health.hpp"
 
-#include <cstdio>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 
 namespace rover::ddl::driver_support {
-namespace {
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-}  // namespace
-
 InputMonitor::InputMonitor(std::string name, double stale_after_s, double max_future_s)
     : name_(std::move(name)), stale_after_s_(stale_after_s), max_future_s_(max_future_s) {
   ROVER_DEMAND(stale_after_s > 0.0 && max_future_s > 0.0);
@@ -25,9 +17,9 @@ Status InputMonitor::Accept(std::int64_t stamp_ns, Time now, bool clock_valid) {
   }
   if (clock_valid && ToSeconds(Time{stamp_ns} - now) > max_future_s_) {
     ++rejected_;
-    return OutOfRange(name_ + ": sample stamped " + Num(Time{stamp_ns}.seconds()) +
-                      " s is more than " + Num(max_future_s_) + " s ahead of the run clock (" +
-                      Num(now.seconds()) + " s)");
+    return OutOfRange(name_ + ": sample stamped " + FormatNumber(Time{stamp_ns}.seconds(), 3) +
+                      " s is more than " + FormatNumber(max_future_s_, 3) + " s ahead of the run clock (" +
+                      FormatNumber(now.seconds(), 3) + " s)");
   }
   last_arrival_ = now;
   ++accepted_;
@@ -40,7 +32,7 @@ bool InputMonitor::Stale(Time now) const {
 
 std::string InputMonitor::StaleReason(Time now) const {
   if (!last_arrival_) return name_ + ": no sample yet";
-  if (Stale(now)) return name_ + ": no sample for more than " + Num(stale_after_s_) + " s";
+  if (Stale(now)) return name_ + ": no sample for more than " + FormatNumber(stale_after_s_, 3) + " s";
   return "";
 }
 

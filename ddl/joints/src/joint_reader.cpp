@@ -1,17 +1,12 @@
 #include "rover/ddl/joints/joint_reader.hpp"
 
+#include "rover/base/format.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace rover::ddl::joints {
 namespace {
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 // Keeps the worst health and the reason of the first problem of that severity.
 void Worsen(msg::SensorHealth h, const std::string& why, JointState* s) {
@@ -81,7 +76,7 @@ JointState JointReader::State(Time now) const {
     s.stamp = Time{last_telemetry_->stamp_ns};
     if (static_cast<double>(now.ns - last_telemetry_->stamp_ns) > stale_ns) {
       Worsen(msg::SensorHealth::kStale,
-             "motor telemetry " + Num((now.ns - last_telemetry_->stamp_ns) * 1e-9) + " s old", &s);
+             "motor telemetry " + FormatNumber((now.ns - last_telemetry_->stamp_ns) * 1e-9, 3) + " s old", &s);
     }
     for (std::size_t w = 0; w < 6; ++w) {
       s.wheel_angle[w] = static_cast<double>(counts_[w]) / config_.motors[w].CountsPerRad();
@@ -103,7 +98,7 @@ JointState JointReader::State(Time now) const {
       if (spec.HasLimits() && (a < spec.min_angle - options_.joint_limit_margin ||
                                a > spec.max_angle + options_.joint_limit_margin)) {
         Worsen(msg::SensorHealth::kDegraded,
-               std::string(hw::MotorName(m)) + " angle " + Num(a) + " rad beyond its limits", &s);
+               std::string(hw::MotorName(m)) + " angle " + FormatNumber(a, 3) + " rad beyond its limits", &s);
       }
     }
   }
@@ -114,7 +109,7 @@ JointState JointReader::State(Time now) const {
     s.stamp = std::max(s.stamp, Time{last_pots_->stamp_ns});
     if (static_cast<double>(now.ns - last_pots_->stamp_ns) > stale_ns) {
       Worsen(msg::SensorHealth::kStale,
-             "suspension pots " + Num((now.ns - last_pots_->stamp_ns) * 1e-9) + " s old", &s);
+             "suspension pots " + FormatNumber((now.ns - last_pots_->stamp_ns) * 1e-9, 3) + " s old", &s);
     }
     std::array<double, hw::kNumPots> angle{};
     for (int i = 0; i < hw::kNumPots; ++i) {
@@ -127,7 +122,7 @@ JointState JointReader::State(Time now) const {
                &s);
       } else if (std::abs(angle[k]) > config_.pots.Limit(i) + options_.pot_limit_margin) {
         Worsen(msg::SensorHealth::kDegraded,
-               std::string(hw::PotName(i)) + " angle " + Num(angle[k]) +
+               std::string(hw::PotName(i)) + " angle " + FormatNumber(angle[k], 3) +
                    " rad beyond its mechanical stop",
                &s);
       }
@@ -138,7 +133,7 @@ JointState JointReader::State(Time now) const {
     if (std::abs(diff) > config_.pots.differential_tolerance) {
       Worsen(
           msg::SensorHealth::kDegraded,
-          "rocker angles inconsistent with the differential: left + right = " + Num(diff) + " rad",
+          "rocker angles inconsistent with the differential: left + right = " + FormatNumber(diff, 3) + " rad",
           &s);
     }
   }

@@ -2,21 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/ddl/motor/sync_planner.hpp"
 
 namespace rover::ddl::motor {
 namespace {
 
 constexpr std::size_t kMaxMessage = 127;  // string<127> in the IDL
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
 
 std::string MotorLabel(int m) {
   return "motor " + std::to_string(m) + " (" + hw::MotorName(m) + ")";
@@ -115,7 +109,7 @@ CommandError MotorGroupManager::Check(const MotorCommand& c, std::string* messag
     }
   }
   if (!std::isfinite(c.timeout_s) || c.timeout_s < 0.0) {
-    *message = "timeout_s " + Num(c.timeout_s) + " must be finite and >= 0";
+    *message = "timeout_s " + FormatNumber(c.timeout_s, 4) + " must be finite and >= 0";
     return CommandError::kBadTimeout;
   }
   if (c.mode == GroupMode::kStop) return CommandError::kNone;
@@ -131,31 +125,31 @@ CommandError MotorGroupManager::Check(const MotorCommand& c, std::string* messag
     const double goal = c.goal[k];
     const double rate = c.max_rate[k];
     if (!std::isfinite(goal)) {
-      *message = MotorLabel(m) + ": goal " + Num(goal) + " is not finite";
+      *message = MotorLabel(m) + ": goal " + FormatNumber(goal, 4) + " is not finite";
       return CommandError::kNonFiniteGoal;
     }
     if (!std::isfinite(rate) || rate < 0.0) {
-      *message = MotorLabel(m) + ": max_rate " + Num(rate) + " must be finite and >= 0";
+      *message = MotorLabel(m) + ": max_rate " + FormatNumber(rate, 4) + " must be finite and >= 0";
       return CommandError::kBadRate;
     }
     if (c.mode == GroupMode::kPosition) {
       if (rate > spec.max_rate) {
-        *message = MotorLabel(m) + ": max_rate " + Num(rate) + " rad/s exceeds the limit " +
-                   Num(spec.max_rate);
+        *message = MotorLabel(m) + ": max_rate " + FormatNumber(rate, 4) + " rad/s exceeds the limit " +
+                   FormatNumber(spec.max_rate, 4);
         return CommandError::kRateAboveLimit;
       }
       if (spec.HasLimits() && (goal < spec.min_angle || goal > spec.max_angle)) {
-        *message = MotorLabel(m) + ": goal " + Num(goal) + " rad is outside [" +
-                   Num(spec.min_angle) + ", " + Num(spec.max_angle) + "]";
+        *message = MotorLabel(m) + ": goal " + FormatNumber(goal, 4) + " rad is outside [" +
+                   FormatNumber(spec.min_angle, 4) + ", " + FormatNumber(spec.max_angle, 4) + "]";
         return CommandError::kGoalOutOfRange;
       }
       if (std::abs(goal * spec.CountsPerRad()) >= 2.0e9) {
-        *message = MotorLabel(m) + ": goal " + Num(goal) + " rad is beyond the encoder range";
+        *message = MotorLabel(m) + ": goal " + FormatNumber(goal, 4) + " rad is beyond the encoder range";
         return CommandError::kGoalOutOfRange;
       }
     } else if (std::abs(goal) > spec.max_rate) {
       *message =
-          MotorLabel(m) + ": rate " + Num(goal) + " rad/s exceeds the limit " + Num(spec.max_rate);
+          MotorLabel(m) + ": rate " + FormatNumber(goal, 4) + " rad/s exceeds the limit " + FormatNumber(spec.max_rate, 4);
       return CommandError::kRateAboveLimit;
     }
   }
@@ -240,8 +234,8 @@ ManagerOutput MotorGroupManager::HandleCommand(const MotorCommand& c, Time now) 
       timeout = options_.timeout_factor * g.planned_s + options_.timeout_margin_s;
     } else if (timeout < g.planned_s) {
       reject(CommandError::kTimeoutTooShort, MotorFault::kBadCommand,
-             "timeout_s " + Num(timeout) + " is shorter than the synchronised move (" +
-                 Num(g.planned_s) + " s)",
+             "timeout_s " + FormatNumber(timeout, 4) + " is shorter than the synchronised move (" +
+                 FormatNumber(g.planned_s, 4) + " s)",
              -1);
       return out;
     }
@@ -293,7 +287,7 @@ ManagerOutput MotorGroupManager::HandleCommand(const MotorCommand& c, Time now) 
   groups_.push_back(g);
   out.statuses.push_back(MakeStatus(c.command_id, GroupState::kRunning, MotorFault::kNone, -1,
                                     c.mode == GroupMode::kPosition
-                                        ? "synchronised move of " + Num(g.planned_s) + " s"
+                                        ? "synchronised move of " + FormatNumber(g.planned_s, 4) + " s"
                                         : std::string("velocity move"),
                                     now));
   return out;
@@ -358,13 +352,13 @@ ManagerOutput MotorGroupManager::HandleTelemetry(const hw::MotorTelemetry& t, Ti
         msg = MotorLabel(m) + " stalled (controller trip)";
       } else if (g.overcurrent_s[k] >= options_.overcurrent_time_s) {
         fault = MotorFault::kOverCurrent;
-        msg = MotorLabel(m) + " over-current: " + Num(current) + " A > " +
-              Num(spec.current_limit * (1.0 + options_.overcurrent_margin)) + " A for " +
-              Num(g.overcurrent_s[k]) + " s";
+        msg = MotorLabel(m) + " over-current: " + FormatNumber(current, 4) + " A > " +
+              FormatNumber(spec.current_limit * (1.0 + options_.overcurrent_margin), 4) + " A for " +
+              FormatNumber(g.overcurrent_s[k], 4) + " s";
       } else if (g.overtemp_s[k] >= options_.overtemp_time_s) {
         fault = MotorFault::kOverTemp;
-        msg = MotorLabel(m) + " over-temperature: " + Num(temp) + " degC > " +
-              Num(spec.max_temperature) + " degC";
+        msg = MotorLabel(m) + " over-temperature: " + FormatNumber(temp, 4) + " degC > " +
+              FormatNumber(spec.max_temperature, 4) + " degC";
       }
     }
     if (fault != MotorFault::kNone) {
@@ -381,7 +375,7 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
   const std::string id = "command " + std::to_string(g.command_id);
   if (!latest_rx_ || ToSeconds(now - *latest_rx_) > options_.telemetry_timeout_s) {
     EndGroup(index, GroupState::kFault, MotorFault::kNoTelemetry, -1,
-             "no motor telemetry for more than " + Num(options_.telemetry_timeout_s) + " s", true,
+             "no motor telemetry for more than " + FormatNumber(options_.telemetry_timeout_s, 4) + " s", true,
              now, out);
     return;
   }
@@ -407,8 +401,8 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
     }
     if (done) {
       EndGroup(index, GroupState::kDone, MotorFault::kNone, -1,
-               "reached goals in " + Num(ToSeconds(now - g.applied_at)) + " s (planned " +
-                   Num(g.planned_s) + " s)",
+               "reached goals in " + FormatNumber(ToSeconds(now - g.applied_at), 4) + " s (planned " +
+                   FormatNumber(g.planned_s, 4) + " s)",
                options_.brake_when_done, now, out);
       return;
     }
@@ -435,8 +429,8 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
     }
     EndGroup(index, GroupState::kFault, MotorFault::kTimeout, worst,
              id + " timed out; " + MotorLabel(worst) + " is " +
-                 Num(std::abs(latest_->position[static_cast<std::size_t>(worst)] -
-                              g.goal[static_cast<std::size_t>(worst)])) +
+                 FormatNumber(std::abs(latest_->position[static_cast<std::size_t>(worst)] -
+                              g.goal[static_cast<std::size_t>(worst)]), 4) +
                  " rad from its goal",
              true, now, out);
     return;
@@ -472,8 +466,8 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
       const double moved = (latest_->position[k] - g.history[ref].second[k]) * g.direction[k];
       if (moved < options_.stall_fraction * planned) {
         EndGroup(index, GroupState::kFault, MotorFault::kStall, m,
-                 MotorLabel(m) + " stalled: moved " + Num(moved) + " rad of " + Num(planned) +
-                     " rad planned in " + Num(ToSeconds(now - t0)) + " s",
+                 MotorLabel(m) + " stalled: moved " + FormatNumber(moved, 4) + " rad of " + FormatNumber(planned, 4) +
+                     " rad planned in " + FormatNumber(ToSeconds(now - t0), 4) + " s",
                  true, now, out);
         return;
       }

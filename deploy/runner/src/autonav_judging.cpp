@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "rover/geometry/polygon.hpp"
+
 namespace rover::deploy::runner {
 namespace {
 
@@ -35,27 +37,6 @@ std::string Count(const char* what, int a, int b) {
   return buf;
 }
 
-bool Inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      in = !in;
-    }
-  }
-  return in;
-}
-
-double SegmentDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                       const Eigen::Vector2d& p) {
-  const Eigen::Vector2d d = b - a;
-  const double len2 = d.squaredNorm();
-  const double u = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + u * d - p).norm();
-}
-
 }  // namespace
 
 int KeepOutEntries(const Track& track, const std::vector<std::vector<Eigen::Vector2d>>& zones,
@@ -65,10 +46,7 @@ int KeepOutEntries(const Track& track, const std::vector<std::vector<Eigen::Vect
     const Eigen::Vector2d p(q[1], q[2]);
     for (const auto& z : zones) {
       if (z.size() < 3) continue;
-      bool hit = Inside(z, p);
-      for (std::size_t i = 0; i < z.size() && !hit; ++i) {
-        hit = SegmentDistance(z[i], z[(i + 1) % z.size()], p) < margin;
-      }
+      const bool hit = geometry::InsidePolygon(z, p) || geometry::DistanceToPolygon(z, p) < margin;
       if (hit) {
         ++n;
         break;

@@ -123,8 +123,8 @@ TEST(MobilityTask, BadKeysAndValuesNameFileLineKeyAndValue) {
             "s.yaml:6: task.keep_out[].vertices: zone 'bow' is not a simple polygon: edges 0 and "
             "2 cross");
   EXPECT_EQ(Error(zone + "    - {name: flat, vertices: [[0, 0], [1, 0], [2, 0]]}\n"),
-            "s.yaml:6: task.keep_out[].vertices: zone 'flat' is not a simple polygon: the "
-            "polygon has no area");
+            "s.yaml:6: task.keep_out[].vertices: zone 'flat' is not a simple polygon: edges 0 "
+            "and 2 overlap");
   EXPECT_EQ(Error(zone + "    - {name: z, vertices: [[0, 0], [1, nan], [1, 1]]}\n"),
             "s.yaml:6: task.keep_out[].vertices[].y: expected a finite number, got 'nan'");
   EXPECT_EQ(Error(zone + "    - {vertices: [[0, 0], [1, 0], [1, 1]]}\n"),

@@ -9,8 +9,6 @@
 namespace rover::dl::camera_client {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 const char* HealthText(msg::SensorHealth h) {
   return h == msg::SensorHealth::kFailed ? "FAILED" : "STALE";
 }
@@ -80,14 +78,14 @@ Status CameraRequestClient::Check(const Outstanding& o, const msg::StereoFrame& 
                            std::to_string(o.width));
   }
   if (f.stamp < o.sent - Seconds(kCaptureSkewS)) {
-    return InvalidArgument("capture stamp " + Num(f.stamp.seconds()) +
-                           " s is before the request was sent (" + Num(o.sent.seconds()) +
+    return InvalidArgument("capture stamp " + FormatNumber(f.stamp.seconds()) +
+                           " s is before the request was sent (" + FormatNumber(o.sent.seconds()) +
                            " s): stale or out of time order");
   }
   if (last_capture_.has_value() && f.stamp <= *last_capture_) {
-    return InvalidArgument("capture stamp " + Num(f.stamp.seconds()) +
+    return InvalidArgument("capture stamp " + FormatNumber(f.stamp.seconds()) +
                            " s is not after the previous frame's (" +
-                           Num(last_capture_->seconds()) + " s): out of time order");
+                           FormatNumber(last_capture_->seconds()) + " s): out of time order");
   }
   return Status::Ok();
 }

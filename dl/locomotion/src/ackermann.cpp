@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 
 namespace rover::dl::locomotion {
 namespace {
@@ -12,12 +12,6 @@ namespace {
 Eigen::Vector2d Axis(const RoverGeometry& g, int wheel) {
   ROVER_DEMAND(wheel >= 0 && wheel < kNumWheels);
   return g.wheel_centre[static_cast<std::size_t>(wheel)].head<2>();
-}
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
 }
 
 }  // namespace
@@ -90,15 +84,15 @@ std::array<double, kNumWheels> TurnInPlaceWheelRates(const RoverGeometry& g, dou
 
 Result<DrivePlan> PlanArc(const RoverGeometry& g, double curvature, double distance, double speed) {
   if (!std::isfinite(curvature) || !std::isfinite(distance) || !std::isfinite(speed)) {
-    return InvalidArgument("PlanArc: curvature " + Num(curvature) + ", distance " + Num(distance) +
-                           ", speed " + Num(speed) + " must be finite");
+    return InvalidArgument("PlanArc: curvature " + FormatNumber(curvature) + ", distance " + FormatNumber(distance) +
+                           ", speed " + FormatNumber(speed) + " must be finite");
   }
   if (std::abs(curvature) > g.MaxCurvature() * (1.0 + 1e-12)) {
-    return OutOfRange("PlanArc: |curvature| " + Num(std::abs(curvature)) + " 1/m exceeds " +
-                      Num(g.MaxCurvature()) + " 1/m (min turn radius " + Num(g.min_turn_radius) +
+    return OutOfRange("PlanArc: |curvature| " + FormatNumber(std::abs(curvature)) + " 1/m exceeds " +
+                      FormatNumber(g.MaxCurvature()) + " 1/m (min turn radius " + FormatNumber(g.min_turn_radius) +
                       " m)");
   }
-  if (speed <= 0.0) return OutOfRange("PlanArc: speed " + Num(speed) + " m/s must be > 0");
+  if (speed <= 0.0) return OutOfRange("PlanArc: speed " + FormatNumber(speed) + " m/s must be > 0");
 
   DrivePlan plan;
   plan.curvature = curvature;
@@ -125,11 +119,11 @@ Result<DrivePlan> PlanArc(const RoverGeometry& g, double curvature, double dista
 
 Result<DrivePlan> PlanTurnInPlace(const RoverGeometry& g, double angle, double speed) {
   if (!std::isfinite(angle) || !std::isfinite(speed)) {
-    return InvalidArgument("PlanTurnInPlace: angle " + Num(angle) + ", speed " + Num(speed) +
+    return InvalidArgument("PlanTurnInPlace: angle " + FormatNumber(angle) + ", speed " + FormatNumber(speed) +
                            " must be finite");
   }
   if (speed <= 0.0) {
-    return OutOfRange("PlanTurnInPlace: speed " + Num(speed) + " m/s must be > 0");
+    return OutOfRange("PlanTurnInPlace: speed " + FormatNumber(speed) + " m/s must be > 0");
   }
   DrivePlan plan;
   plan.turn_in_place = true;

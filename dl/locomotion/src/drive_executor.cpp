@@ -3,20 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 
 namespace rover::dl::locomotion {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 double Wrap(double a) {
   if (!std::isfinite(a)) return a;
@@ -36,7 +30,7 @@ bool AttitudeFinite(const msg::AttitudeSample& a) {
 Status DriveOptions::Validate() const {
   auto positive = [](double v, const char* name) -> Status {
     if (!std::isfinite(v) || v <= 0.0) {
-      return InvalidArgument(std::string("DriveOptions.") + name + ": " + Num(v) + " must be > 0");
+      return InvalidArgument(std::string("DriveOptions.") + name + ": " + FormatNumber(v) + " must be > 0");
     }
     return Status::Ok();
   };
@@ -57,24 +51,24 @@ Status DriveOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(positive(attitude_stale_s, "attitude_stale_s"));
   ROVER_RETURN_IF_ERROR(positive(timeout_factor, "timeout_factor"));
   if (!std::isfinite(timeout_margin_s) || timeout_margin_s < 0.0) {
-    return InvalidArgument("DriveOptions.timeout_margin_s: " + Num(timeout_margin_s) +
+    return InvalidArgument("DriveOptions.timeout_margin_s: " + FormatNumber(timeout_margin_s) +
                            " must be >= 0");
   }
   if (default_speed > max_speed) {
-    return InvalidArgument("DriveOptions.default_speed: " + Num(default_speed) +
-                           " exceeds max_speed " + Num(max_speed));
+    return InvalidArgument("DriveOptions.default_speed: " + FormatNumber(default_speed) +
+                           " exceeds max_speed " + FormatNumber(max_speed));
   }
   if (tilt_cycles < 1) return InvalidArgument("DriveOptions.tilt_cycles: must be >= 1");
   if (suspension_cycles < 1) {
     return InvalidArgument("DriveOptions.suspension_cycles: must be >= 1");
   }
   if (!(rocker_min < rocker_max)) {
-    return InvalidArgument("DriveOptions.rocker_min: " + Num(rocker_min) +
-                           " must be below rocker_max " + Num(rocker_max));
+    return InvalidArgument("DriveOptions.rocker_min: " + FormatNumber(rocker_min) +
+                           " must be below rocker_max " + FormatNumber(rocker_max));
   }
   if (!(bogie_min < bogie_max)) {
-    return InvalidArgument("DriveOptions.bogie_min: " + Num(bogie_min) +
-                           " must be below bogie_max " + Num(bogie_max));
+    return InvalidArgument("DriveOptions.bogie_min: " + FormatNumber(bogie_min) +
+                           " must be below bogie_max " + FormatNumber(bogie_max));
   }
   return Status::Ok();
 }
@@ -133,31 +127,31 @@ InvalidReason DriveExecutor::CheckCommand(const DriveCommand& c, std::string* me
                           {true, "timeout_s", c.timeout_s}};
   for (const Field& f : fields) {
     if (f.used && !std::isfinite(f.value)) {
-      m = std::string(f.name) + " is " + Num(f.value) + " (must be finite)";
+      m = std::string(f.name) + " is " + FormatNumber(f.value) + " (must be finite)";
       return InvalidReason::kNonFinite;
     }
   }
   if (uses_curvature && std::abs(c.curvature) > geometry_.MaxCurvature() * (1.0 + 1e-12)) {
-    m = "curvature " + Num(c.curvature) +
-        " 1/m: |curvature| must be <= " + Num(geometry_.MaxCurvature()) + " (min turn radius " +
-        Num(geometry_.min_turn_radius) + " m)";
+    m = "curvature " + FormatNumber(c.curvature) +
+        " 1/m: |curvature| must be <= " + FormatNumber(geometry_.MaxCurvature()) + " (min turn radius " +
+        FormatNumber(geometry_.min_turn_radius) + " m)";
     return InvalidReason::kCurvatureOutOfRange;
   }
   if (uses_distance && std::abs(c.distance) > options_.max_distance) {
-    m = "distance " + Num(c.distance) + " m: |distance| must be <= " + Num(options_.max_distance);
+    m = "distance " + FormatNumber(c.distance) + " m: |distance| must be <= " + FormatNumber(options_.max_distance);
     return InvalidReason::kDistanceOutOfRange;
   }
   if (uses_angle && std::abs(c.angle) > options_.max_turn_angle) {
-    m = "angle " + Num(c.angle) + " rad: |angle| must be <= " + Num(options_.max_turn_angle);
+    m = "angle " + FormatNumber(c.angle) + " rad: |angle| must be <= " + FormatNumber(options_.max_turn_angle);
     return InvalidReason::kAngleOutOfRange;
   }
   if (uses_speed && (c.speed < 0.0 || c.speed > options_.max_speed)) {
-    m = "speed " + Num(c.speed) + " m/s must be in [0, " + Num(options_.max_speed) +
+    m = "speed " + FormatNumber(c.speed) + " m/s must be in [0, " + FormatNumber(options_.max_speed) +
         "] (0 = default)";
     return InvalidReason::kSpeedOutOfRange;
   }
   if (c.timeout_s < 0.0 || c.timeout_s > options_.max_timeout_s) {
-    m = "timeout_s " + Num(c.timeout_s) + " must be in [0, " + Num(options_.max_timeout_s) +
+    m = "timeout_s " + FormatNumber(c.timeout_s) + " must be in [0, " + FormatNumber(options_.max_timeout_s) +
         "] (0 = derived)";
     return InvalidReason::kTimeoutOutOfRange;
   }
@@ -238,7 +232,7 @@ bool DriveExecutor::SensorsFresh(Time now, std::string* why) const {
   const double joint_age = ToSeconds(now - joint_->stamp);
   if (joint_age > options_.joint_stale_s) {
     *why =
-        "joint state is " + Num(joint_age) + " s old (limit " + Num(options_.joint_stale_s) + " s)";
+        "joint state is " + FormatNumber(joint_age) + " s old (limit " + FormatNumber(options_.joint_stale_s) + " s)";
     return false;
   }
   if (!attitude_.has_value()) {
@@ -248,7 +242,7 @@ bool DriveExecutor::SensorsFresh(Time now, std::string* why) const {
   const double att_age = ToSeconds(now - attitude_->stamp);
   if (att_age > options_.attitude_stale_s) {
     *why =
-        "attitude is " + Num(att_age) + " s old (limit " + Num(options_.attitude_stale_s) + " s)";
+        "attitude is " + FormatNumber(att_age) + " s old (limit " + FormatNumber(options_.attitude_stale_s) + " s)";
     return false;
   }
   return true;
@@ -437,7 +431,7 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
   tilt_count_ = tilt > options_.max_tilt ? tilt_count_ + 1 : 0;
   if (tilt_count_ >= options_.tilt_cycles) {
     Terminate(now, DriveTermination::kTilt,
-              "tilt " + Num(tilt / kDeg) + " deg over " + Num(options_.max_tilt / kDeg) +
+              "tilt " + FormatNumber(tilt / kDeg) + " deg over " + FormatNumber(options_.max_tilt / kDeg) +
                   " deg for " + std::to_string(tilt_count_) + " cycles",
               out);
     return;
@@ -449,9 +443,9 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
     const double r = joint_->rocker_angle[s];
     const double b = joint_->bogie_angle[s];
     if (r < options_.rocker_min || r > options_.rocker_max) {
-      bad = std::string(side) + " rocker " + Num(r / kDeg) + " deg";
+      bad = std::string(side) + " rocker " + FormatNumber(r / kDeg) + " deg";
     } else if (b < options_.bogie_min || b > options_.bogie_max) {
-      bad = std::string(side) + " bogie " + Num(b / kDeg) + " deg";
+      bad = std::string(side) + " bogie " + FormatNumber(b / kDeg) + " deg";
     }
   }
   suspension_count_ = bad.empty() ? 0 : suspension_count_ + 1;
@@ -503,7 +497,7 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
     const double e = plan_.angle - heading_change_;
     if (std::abs(e) <= options_.heading_tolerance) {
       Terminate(now, DriveTermination::kNominal,
-                "heading reached (error " + Num(e / kDeg) + " deg)", out);
+                "heading reached (error " + FormatNumber(e / kDeg) + " deg)", out);
       return;
     }
     const double magnitude =
@@ -520,7 +514,7 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
   const double elapsed = ToSeconds(now - start_time_);
   if (elapsed > timeout_s_) {
     Terminate(now, DriveTermination::kTimeout,
-              "time-out after " + Num(elapsed) + " s (limit " + Num(timeout_s_) + " s)", out);
+              "time-out after " + FormatNumber(elapsed) + " s (limit " + FormatNumber(timeout_s_) + " s)", out);
     return;
   }
   status_.stamp = now;
@@ -608,16 +602,16 @@ Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params, const std::s
   o.timeout_factor = params.GetDouble(prefix + "timeout_factor");
   o.timeout_margin_s = params.GetDouble(prefix + "timeout_margin_s");
   if (o.default_speed > o.max_speed) {
-    return InvalidArgument(where("default_speed") + Num(o.default_speed) + " exceeds max_speed " +
-                           Num(o.max_speed));
+    return InvalidArgument(where("default_speed") + FormatNumber(o.default_speed) + " exceeds max_speed " +
+                           FormatNumber(o.max_speed));
   }
   if (!(rr[0] < rr[1])) {
-    return InvalidArgument(where("rocker_range_deg") + "min " + Num(rr[0]) + " must be below max " +
-                           Num(rr[1]));
+    return InvalidArgument(where("rocker_range_deg") + "min " + FormatNumber(rr[0]) + " must be below max " +
+                           FormatNumber(rr[1]));
   }
   if (!(br[0] < br[1])) {
-    return InvalidArgument(where("bogie_range_deg") + "min " + Num(br[0]) + " must be below max " +
-                           Num(br[1]));
+    return InvalidArgument(where("bogie_range_deg") + "min " + FormatNumber(br[0]) + " must be below max " +
+                           FormatNumber(br[1]));
   }
   ROVER_RETURN_IF_ERROR(o.Validate());
   return o;

@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/dl/locomotion/ackermann.hpp"
 
@@ -13,12 +13,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 using hwconfig::WheelName;
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // Point q (x, z) rotated about pivot c (x, z) by the link angle a (front up positive).
 Eigen::Vector2d RotateXz(const Eigen::Vector2d& q, const Eigen::Vector2d& c, double a) {
@@ -50,7 +44,7 @@ RoverGeometry::RoverGeometry(const hwconfig::RoverDescription& rover)
 
 GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
   if (!std::isfinite(g.wheel_radius) || g.wheel_radius <= 0.0) {
-    return Issue("wheel_radius", "wheel_radius", Num(g.wheel_radius) + " must be > 0");
+    return Issue("wheel_radius", "wheel_radius", FormatNumber(g.wheel_radius) + " must be > 0");
   }
   for (int i = 0; i < kNumWheels; ++i) {
     if (!g.wheel_centre[static_cast<std::size_t>(i)].allFinite()) {
@@ -68,7 +62,7 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
       if (sign * c[static_cast<std::size_t>(i)].y() <= 0.0) {
         return Issue("wheel_centre", "half_track",
                      std::string("wheel ") + WheelName(i) +
-                         " y = " + Num(c[static_cast<std::size_t>(i)].y()) + " must be " +
+                         " y = " + FormatNumber(c[static_cast<std::size_t>(i)].y()) + " must be " +
                          (side == 0 ? "> 0 (left side)" : "< 0 (right side)"));
       }
     }
@@ -78,47 +72,47 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     if (!(xf > xm && xm > xr)) {
       return Issue("wheel_centre", "middle_wheel_x",
                    std::string("x must decrease front > middle > rear on the ") +
-                       (side == 0 ? "left" : "right") + " side (got " + Num(xf) + ", " + Num(xm) +
-                       ", " + Num(xr) + ")");
+                       (side == 0 ? "left" : "right") + " side (got " + FormatNumber(xf) + ", " + FormatNumber(xm) +
+                       ", " + FormatNumber(xr) + ")");
     }
     if (!(g.bogie_pivot.x() > xr && g.bogie_pivot.x() < xm)) {
       return Issue("bogie_pivot", "bogie_pivot_x",
-                   "x = " + Num(g.bogie_pivot.x()) + " must lie between the rear (" + Num(xr) +
-                       ") and middle (" + Num(xm) + ") wheels");
+                   "x = " + FormatNumber(g.bogie_pivot.x()) + " must lie between the rear (" + FormatNumber(xr) +
+                       ") and middle (" + FormatNumber(xm) + ") wheels");
     }
     if (!(g.rocker_pivot.x() > g.bogie_pivot.x() && g.rocker_pivot.x() < xf)) {
       return Issue("rocker_pivot", "rocker_pivot_x",
-                   "x = " + Num(g.rocker_pivot.x()) + " must lie between the bogie pivot (" +
-                       Num(g.bogie_pivot.x()) + ") and the front wheel (" + Num(xf) + ")");
+                   "x = " + FormatNumber(g.rocker_pivot.x()) + " must lie between the bogie pivot (" +
+                       FormatNumber(g.bogie_pivot.x()) + ") and the front wheel (" + FormatNumber(xf) + ")");
     }
   }
   if (std::abs(c[1].x() - c[4].x()) > 1e-9) {
     return Issue("wheel_centre", "middle_wheel_x",
-                 "the unsteered middle wheels LM (x = " + Num(c[1].x()) +
-                     ") and RM (x = " + Num(c[4].x()) + ") must share one axle");
+                 "the unsteered middle wheels LM (x = " + FormatNumber(c[1].x()) +
+                     ") and RM (x = " + FormatNumber(c[4].x()) + ") must share one axle");
   }
   if (!std::isfinite(g.max_steer_angle) || g.max_steer_angle <= 0.0 ||
       g.max_steer_angle >= std::numbers::pi / 2) {
     return Issue("max_steer_angle", "max_steer_angle_deg",
-                 Num(g.max_steer_angle / kDeg) + " deg must be in (0, 90)");
+                 FormatNumber(g.max_steer_angle / kDeg) + " deg must be in (0, 90)");
   }
   double max_abs_y = 0.0;
   for (const auto& w : c) max_abs_y = std::max(max_abs_y, std::abs(w.y()));
   if (!std::isfinite(g.min_turn_radius) || g.min_turn_radius <= max_abs_y) {
     return Issue(
         "min_turn_radius", "min_turn_radius",
-        Num(g.min_turn_radius) + " must exceed the largest wheel |y| (" + Num(max_abs_y) + ")");
+        FormatNumber(g.min_turn_radius) + " must exceed the largest wheel |y| (" + FormatNumber(max_abs_y) + ")");
   }
   if (!std::isfinite(g.max_wheel_speed) || g.max_wheel_speed <= 0.0) {
-    return Issue("max_wheel_speed", "max_wheel_speed", Num(g.max_wheel_speed) + " must be > 0");
+    return Issue("max_wheel_speed", "max_wheel_speed", FormatNumber(g.max_wheel_speed) + " must be > 0");
   }
   for (double k : {g.MaxCurvature(), -g.MaxCurvature()}) {
     for (int j = 0; j < kNumSteered; ++j) {
       const double a = ArcSteerAngle(g, j, k);
       if (std::abs(a) > g.max_steer_angle) {
         return Issue("max_steer_angle", "max_steer_angle_deg",
-                     Num(g.max_steer_angle / kDeg) + " deg is below the " +
-                         Num(std::abs(a) / kDeg) + " deg the " +
+                     FormatNumber(g.max_steer_angle / kDeg) + " deg is below the " +
+                         FormatNumber(std::abs(a) / kDeg) + " deg the " +
                          WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                          " wheel needs at the minimum turn radius");
       }
@@ -128,7 +122,7 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     const double a = TurnInPlaceSteerAngle(g, j);
     if (std::abs(a) > g.max_steer_angle) {
       return Issue("max_steer_angle", "max_steer_angle_deg",
-                   Num(g.max_steer_angle / kDeg) + " deg is below the " + Num(std::abs(a) / kDeg) +
+                   FormatNumber(g.max_steer_angle / kDeg) + " deg is below the " + FormatNumber(std::abs(a) / kDeg) +
                        " deg the " + WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                        " wheel needs to turn in place");
     }

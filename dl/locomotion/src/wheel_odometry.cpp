@@ -1,17 +1,13 @@
 #include "rover/dl/locomotion/wheel_odometry.hpp"
 
+#include "rover/base/format.hpp"
+
 #include <Eigen/QR>
 #include <cmath>
 #include <sstream>
 
 namespace rover::dl::locomotion {
 namespace {
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 SuspensionAngles Suspension(const msg::JointState& s, bool use) {
   SuspensionAngles a;
@@ -36,7 +32,7 @@ double WheelHeading(const msg::JointState& s, int wheel) {
 Status WheelOdometryOptions::Validate() const {
   auto positive = [](double v, const char* name) -> Status {
     if (!std::isfinite(v) || v < 0.0) {
-      return InvalidArgument(std::string("WheelOdometryOptions.") + name + ": " + Num(v) +
+      return InvalidArgument(std::string("WheelOdometryOptions.") + name + ": " + FormatNumber(v) +
                              " must be finite and >= 0");
     }
     return Status::Ok();
@@ -45,11 +41,11 @@ Status WheelOdometryOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(positive(cross_variance_per_m, "cross_variance_per_m"));
   ROVER_RETURN_IF_ERROR(positive(yaw_variance_per_m, "yaw_variance_per_m"));
   if (!std::isfinite(max_wheel_step) || max_wheel_step <= 0.0) {
-    return InvalidArgument("WheelOdometryOptions.max_wheel_step: " + Num(max_wheel_step) +
+    return InvalidArgument("WheelOdometryOptions.max_wheel_step: " + FormatNumber(max_wheel_step) +
                            " must be > 0");
   }
   if (!std::isfinite(max_interval_s) || max_interval_s <= 0.0) {
-    return InvalidArgument("WheelOdometryOptions.max_interval_s: " + Num(max_interval_s) +
+    return InvalidArgument("WheelOdometryOptions.max_interval_s: " + FormatNumber(max_interval_s) +
                            " must be > 0");
   }
   return Status::Ok();
@@ -68,14 +64,14 @@ Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
     return InvalidArgument("wheel odometry: joint sample has a non-finite angle or rate");
   }
   if (to.stamp <= from.stamp) {
-    return InvalidArgument("wheel odometry: sample at " + Num(to.stamp.seconds()) +
-                           " s is not after the previous one at " + Num(from.stamp.seconds()) +
+    return InvalidArgument("wheel odometry: sample at " + FormatNumber(to.stamp.seconds()) +
+                           " s is not after the previous one at " + FormatNumber(from.stamp.seconds()) +
                            " s");
   }
   const double dt = ToSeconds(to.stamp - from.stamp);
   if (dt > options_.max_interval_s) {
-    return OutOfRange("wheel odometry: interval " + Num(dt) + " s exceeds max_interval_s " +
-                      Num(options_.max_interval_s) + " s");
+    return OutOfRange("wheel odometry: interval " + FormatNumber(dt) + " s exceeds max_interval_s " +
+                      FormatNumber(options_.max_interval_s) + " s");
   }
   const SuspensionAngles s0 = Suspension(from, options_.use_suspension);
   const SuspensionAngles s1 = Suspension(to, options_.use_suspension);
@@ -88,8 +84,8 @@ Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
     const auto ui = static_cast<std::size_t>(i);
     const double dth = to.wheel_angle[ui] - from.wheel_angle[ui];
     if (std::abs(dth) > options_.max_wheel_step) {
-      return OutOfRange("wheel odometry: wheel " + std::to_string(i) + " turned " + Num(dth) +
-                        " rad in one interval (max_wheel_step " + Num(options_.max_wheel_step) +
+      return OutOfRange("wheel odometry: wheel " + std::to_string(i) + " turned " + FormatNumber(dth) +
+                        " rad in one interval (max_wheel_step " + FormatNumber(options_.max_wheel_step) +
                         ")");
     }
     const Eigen::Vector3d c0 = geometry_.WheelCentre(i, s0);

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <numbers>
-#include <sstream>
 
+#include "rover/base/format.hpp"
 #include "rover/msg/drive_idl.hpp"
 #include "rover/runtime/dds.hpp"
 
@@ -17,12 +17,6 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr const char* kProgram = "rover-drive";
 constexpr const char* kPrimitives = "arc, straight, turn, steer, stop";
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 ParseOutcome Error(const std::string& message) {
   ParseOutcome out;
@@ -148,7 +142,7 @@ Status CheckDriveOptions(const DriveCliOptions& o) {
     return InvalidArgument("--domain " + std::to_string(o.domain) + " is out of range [0, 232]");
   }
   if (!std::isfinite(o.timeout_s) || o.timeout_s <= 0.0) {
-    return InvalidArgument("--timeout " + Num(o.timeout_s) + " must be > 0 (wall seconds)");
+    return InvalidArgument("--timeout " + FormatNumber(o.timeout_s) + " must be > 0 (wall seconds)");
   }
   struct Field {
     const char* flag;
@@ -161,14 +155,14 @@ Status CheckDriveOptions(const DriveCliOptions& o) {
                           {"--drive-timeout", o.drive_timeout_s}};
   for (const Field& f : fields) {
     if (!std::isfinite(f.value)) {
-      return InvalidArgument(std::string(f.flag) + " " + Num(f.value) + " must be a finite number");
+      return InvalidArgument(std::string(f.flag) + " " + FormatNumber(f.value) + " must be a finite number");
     }
   }
   if (o.speed < 0.0) {
-    return InvalidArgument("--speed " + Num(o.speed) + " m/s must be >= 0 (0 = default)");
+    return InvalidArgument("--speed " + FormatNumber(o.speed) + " m/s must be >= 0 (0 = default)");
   }
   if (o.drive_timeout_s < 0.0) {
-    return InvalidArgument("--drive-timeout " + Num(o.drive_timeout_s) +
+    return InvalidArgument("--drive-timeout " + FormatNumber(o.drive_timeout_s) +
                            " s must be >= 0 (0 = derived)");
   }
   return Status::Ok();

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/dl/pose/chi_square.hpp"
 #include "rover/geometry/transforms.hpp"
 
@@ -23,12 +24,6 @@ using geometry::Skew;
 
 constexpr double kSameTimeS = 1e-6;
 constexpr std::size_t kMaxPending = 64;
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 Eigen::Matrix3d RotZ(double a) {
   return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -86,17 +81,17 @@ Status EkfOptions::Validate() const {
   };
   for (const Field& f : fields) {
     if (!std::isfinite(f.value) || f.value < 0.0 || (f.strictly_positive && f.value == 0.0)) {
-      return InvalidArgument(std::string("EkfOptions.") + f.name + ": " + Num(f.value) +
+      return InvalidArgument(std::string("EkfOptions.") + f.name + ": " + FormatNumber(f.value) +
                              (f.strictly_positive ? " must be > 0" : " must be >= 0"));
     }
   }
   if (!(gate_probability > 0.0 && gate_probability < 1.0)) {
-    return InvalidArgument("EkfOptions.gate_probability: " + Num(gate_probability) +
+    return InvalidArgument("EkfOptions.gate_probability: " + FormatNumber(gate_probability) +
                            " must be in (0, 1)");
   }
   if (clone_interval_s > 0.0 && clone_window_s < clone_interval_s) {
-    return InvalidArgument("EkfOptions.clone_window_s: " + Num(clone_window_s) +
-                           " must be >= clone_interval_s " + Num(clone_interval_s));
+    return InvalidArgument("EkfOptions.clone_window_s: " + FormatNumber(clone_window_s) +
+                           " must be >= clone_interval_s " + FormatNumber(clone_interval_s));
   }
   return Status::Ok();
 }
@@ -118,7 +113,7 @@ Status PoseEkf::Initialize(const EkfInitialState& init) {
   }
   if (init.attitude.norm() < 0.5) {
     return InvalidArgument("EKF initial attitude is not a unit quaternion (norm " +
-                           Num(init.attitude.norm()) + ")");
+                           FormatNumber(init.attitude.norm()) + ")");
   }
   if ((init.position_sigma.array() < 0).any() || (init.rpy_sigma.array() < 0).any() ||
       init.gyro_bias_sigma < 0) {
@@ -174,8 +169,8 @@ Status PoseEkf::PropagateGyro(Time t, const Eigen::Vector3d& angular_velocity) {
   if (!initialized_) return FailedPrecondition("EKF: gyro sample before Initialize()");
   if (!angular_velocity.allFinite()) return InvalidArgument("EKF: non-finite gyro rate");
   if (t < time_) {
-    return OutOfRange("EKF: gyro sample at " + Num(t.seconds()) + " s is older than the filter (" +
-                      Num(time_.seconds()) + " s)");
+    return OutOfRange("EKF: gyro sample at " + FormatNumber(t.seconds()) + " s is older than the filter (" +
+                      FormatNumber(time_.seconds()) + " s)");
   }
   const double dt = ToSeconds(t - time_);
   last_rate_ = angular_velocity - bg_;
@@ -211,8 +206,8 @@ Status PoseEkf::AddWheelOdometry(const OdometryIncrement& inc) {
         "variance");
   }
   if (last_odometry_.has_value() && inc.t_to <= *last_odometry_) {
-    return OutOfRange("EKF: wheel odometry increment ending at " + Num(inc.t_to.seconds()) +
-                      " s is not after the previous one (" + Num(last_odometry_->seconds()) +
+    return OutOfRange("EKF: wheel odometry increment ending at " + FormatNumber(inc.t_to.seconds()) +
+                      " s is not after the previous one (" + FormatNumber(last_odometry_->seconds()) +
                       " s)");
   }
   const Eigen::Matrix3d r_from = R_ * RotZ(inc.dyaw).transpose();
@@ -432,8 +427,8 @@ Status PoseEkf::AddRelativePose(const msg::RelativePose& m) {
     return InvalidArgument("EKF: relative pose has a non-finite value");
   }
   if (m.t_to <= m.t_from) {
-    return InvalidArgument("EKF: relative pose t_to (" + Num(m.t_to.seconds()) +
-                           " s) must be after t_from (" + Num(m.t_from.seconds()) + " s)");
+    return InvalidArgument("EKF: relative pose t_to (" + FormatNumber(m.t_to.seconds()) +
+                           " s) must be after t_from (" + FormatNumber(m.t_from.seconds()) + " s)");
   }
   const Eigen::Matrix3d r = m.delta.linear();
   if ((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
@@ -445,8 +440,8 @@ Status PoseEkf::AddRelativePose(const msg::RelativePose& m) {
   }
   const double ahead = ToSeconds(m.t_to - time_);
   if (ahead > options_.max_pending_s) {
-    return OutOfRange("EKF: relative pose t_to is " + Num(ahead) +
-                      " s ahead of the filter (max_pending_s " + Num(options_.max_pending_s) + ")");
+    return OutOfRange("EKF: relative pose t_to is " + FormatNumber(ahead) +
+                      " s ahead of the filter (max_pending_s " + FormatNumber(options_.max_pending_s) + ")");
   }
   if (ahead > kSameTimeS) {
     if (pending_.size() >= kMaxPending) {
@@ -482,10 +477,10 @@ void PoseEkf::ProcessRelativePose(const msg::RelativePose& m) {
   const std::optional<PoseNode> to = Interpolate(m.t_to);
   if (!from.has_value() || !to.has_value()) {
     Reject(m.source, m.t_to,
-           what + " rejected: t_from " + Num(m.t_from.seconds()) +
+           what + " rejected: t_from " + FormatNumber(m.t_from.seconds()) +
                " s is outside the clone window (oldest " +
-               (clones_.empty() ? std::string("none") : Num(clones_.front().t.seconds())) +
-               " s, filter at " + Num(time_.seconds()) + " s)");
+               (clones_.empty() ? std::string("none") : FormatNumber(clones_.front().t.seconds())) +
+               " s, filter at " + FormatNumber(time_.seconds()) + " s)");
     return;
   }
   const Eigen::Matrix3d ri_t = from->R.transpose();
@@ -614,8 +609,8 @@ Result<EkfOptions> EkfOptionsFromParams(const ParamSet& params, const std::strin
   if (o.clone_interval_s > 0.0 && o.clone_window_s < o.clone_interval_s) {
     const std::string key = prefix + "clone_window_s";
     return InvalidArgument(params.Origin(key).ToString() + ": key '" + key +
-                           "': " + Num(o.clone_window_s) + " must be >= clone_interval_s " +
-                           Num(o.clone_interval_s));
+                           "': " + FormatNumber(o.clone_window_s) + " must be >= clone_interval_s " +
+                           FormatNumber(o.clone_interval_s));
   }
   ROVER_RETURN_IF_ERROR(o.Validate());
   return o;

@@ -19,8 +19,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-std::string Num(double v) { return FormatNumber(v); }
-
 }  // namespace
 
 Status PoseFusionOptions::Validate() const { return ephemeris.Validate(); }
@@ -105,8 +103,8 @@ void PoseEstimator::OnImu(const msg::Imu& imu) {
     return;
   }
   if (ekf_.initialized() && ToSeconds(ekf_.time() - t) > kClockResetS) {
-    Restart("ddl/imu stamp " + Num(t.seconds()) + " s is before the filter time " +
-            Num(ekf_.time().seconds()) + " s (run clock reset)");
+    Restart("ddl/imu stamp " + FormatNumber(t.seconds()) + " s is before the filter time " +
+            FormatNumber(ekf_.time().seconds()) + " s (run clock reset)");
   }
   if (unknown_) return;  // nothing to propagate
   if (!ekf_.initialized() && resume_ && !ResumeOrRefuse(t)) return;
@@ -187,8 +185,8 @@ bool PoseEstimator::ResumeOrRefuse(Time t) {
   }
   if (gap > resume_options_.max_age_s) {
     DeclareUnknown("pose unknown after restart: the last checkpoint (t = " +
-                   Num(saved.main.stamp.seconds()) + " s) is " + Num(gap) +
-                   " s old, more than resume.max_age_s " + Num(resume_options_.max_age_s) + " s");
+                   FormatNumber(saved.main.stamp.seconds()) + " s) is " + FormatNumber(gap) +
+                   " s old, more than resume.max_age_s " + FormatNumber(resume_options_.max_age_s) + " s");
     return false;
   }
   const double bias_sigma = fusion_.start.gyro_bias_sigma;

@@ -11,25 +11,6 @@
 
 namespace rover::dl::vo {
 
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d s;
-  s << 0.0, -v.z(), v.y(),  //
-      v.z(), 0.0, -v.x(),   //
-      -v.y(), v.x(), 0.0;
-  return s;
-}
-
-Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w) {
-  const double theta = w.norm();
-  if (theta < 1e-12) return Eigen::Matrix3d::Identity() + Skew(w);
-  return Eigen::AngleAxisd(theta, w / theta).toRotationMatrix();
-}
-
-Eigen::Vector3d LogSO3(const Eigen::Matrix3d& r) {
-  const Eigen::AngleAxisd aa(r);
-  return aa.angle() * aa.axis();
-}
-
 double RotationAngle(const Eigen::Matrix3d& r) {
   const double c = std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0);
   return std::acos(c);
@@ -278,7 +259,7 @@ RefineResult RefineMaximumLikelihood(const std::vector<Correspondence>& points,
     const Vector6d step = -ldlt.solve(g);
     if (!step.allFinite()) return out;
     t += step.head<3>();
-    r = ExpSO3(step.tail<3>()) * r;
+    r = ExpSo3(step.tail<3>()) * r;
     if (step.head<3>().norm() < options.translation_tolerance &&
         step.tail<3>().norm() < options.rotation_tolerance) {
       out.converged = true;
@@ -307,7 +288,7 @@ RefineResult RefineMaximumLikelihood(const std::vector<Correspondence>& points,
 Vector6d MotionError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
   Vector6d d;
   d.head<3>() = truth.translation() - estimate.translation();
-  d.tail<3>() = LogSO3(truth.linear() * estimate.linear().transpose());
+  d.tail<3>() = LogSo3(truth.linear() * estimate.linear().transpose());
   return d;
 }
 

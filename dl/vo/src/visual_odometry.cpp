@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/dl/vo/triangulation.hpp"
 
 namespace rover::dl::vo {
@@ -33,12 +33,6 @@ const char* MotionStatusName(MotionStatus status) {
 namespace {
 
 bool FinitePositive(double v) { return std::isfinite(v) && v > 0.0; }
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 }  // namespace
 
@@ -68,7 +62,7 @@ Status Options::Validate() const {
   ROVER_RETURN_IF_ERROR(refine.Validate());
   if (!FinitePositive(pixel_sigma)) return InvalidArgument("pixel_sigma must be finite and > 0");
   if (!FinitePositive(min_range) || !FinitePositive(max_range) || max_range <= min_range) {
-    return InvalidArgument("range limits [" + Num(min_range) + ", " + Num(max_range) +
+    return InvalidArgument("range limits [" + FormatNumber(min_range) + ", " + FormatNumber(max_range) +
                            "] m must satisfy 0 < min_range < max_range");
   }
   if (!FinitePositive(window_sigmas)) return InvalidArgument("window_sigmas must be > 0");
@@ -172,9 +166,9 @@ Status VisualOdometry::CheckFrame(const StereoFrame& frame) const {
     }
   }
   if (has_reference_ && frame.stamp <= reference_.stamp) {
-    return FailedPrecondition("stereo pair stamped " + Num(frame.stamp.seconds()) +
+    return FailedPrecondition("stereo pair stamped " + FormatNumber(frame.stamp.seconds()) +
                               " s is not after the reference pair (" +
-                              Num(reference_.stamp.seconds()) + " s): pairs out of time order");
+                              FormatNumber(reference_.stamp.seconds()) + " s): pairs out of time order");
   }
   return Status::Ok();
 }
@@ -518,12 +512,12 @@ MotionEstimate VisualOdometry::EstimateMotion(const Reference& from, const Image
   if (dist > o.max_translation) {
     return fail(
         MotionStatus::kLimitsFailed,
-        "translation " + Num(dist) + " m exceeds max_translation " + Num(o.max_translation) + " m");
+        "translation " + FormatNumber(dist) + " m exceeds max_translation " + FormatNumber(o.max_translation) + " m");
   }
   if (angle > o.max_rotation) {
     return fail(
         MotionStatus::kLimitsFailed,
-        "rotation " + Num(angle) + " rad exceeds max_rotation " + Num(o.max_rotation) + " rad");
+        "rotation " + FormatNumber(angle) + " rad exceeds max_rotation " + FormatNumber(o.max_rotation) + " rad");
   }
   if (o.max_prior_mahalanobis_sq > 0.0) {
     const Vector6d e = MotionError(prior.delta, s.motion);
@@ -531,9 +525,9 @@ MotionEstimate VisualOdometry::EstimateMotion(const Reference& from, const Image
     const Eigen::LDLT<Matrix6d> ldlt(c);
     const double d2 = e.dot(ldlt.solve(e));
     if (!(d2 <= o.max_prior_mahalanobis_sq)) {
-      return fail(MotionStatus::kLimitsFailed, "estimate is " + Num(d2) +
+      return fail(MotionStatus::kLimitsFailed, "estimate is " + FormatNumber(d2) +
                                                    " (Mahalanobis^2) from the prior; limit " +
-                                                   Num(o.max_prior_mahalanobis_sq));
+                                                   FormatNumber(o.max_prior_mahalanobis_sq));
     }
   }
   est.status = MotionStatus::kConverged;

@@ -17,7 +17,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::Isometry3d Motion(const Eigen::Vector3d& t, const Eigen::Vector3d& w) {
   Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
-  m.linear() = ExpSO3(w);
+  m.linear() = ExpSo3(w);
   m.translation() = t;
   return m;
 }
@@ -64,8 +64,8 @@ std::vector<int> All(std::size_t n) {
 TEST(So3, ExpLogRoundTripAndSkew) {
   for (const Eigen::Vector3d& w : {Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(0, 0, 3.0),
                                    Eigen::Vector3d(1e-14, 0, 0)}) {
-    EXPECT_NEAR((LogSO3(ExpSO3(w)) - w).norm(), 0.0, 1e-12);
-    EXPECT_NEAR(RotationAngle(ExpSO3(w)), w.norm(), 1e-7);
+    EXPECT_NEAR((LogSo3(ExpSo3(w)) - w).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(RotationAngle(ExpSo3(w)), w.norm(), 1e-7);
   }
   const Eigen::Vector3d a(1, 2, 3), b(-0.5, 0.3, 2);
   EXPECT_NEAR((Skew(a) * b - a.cross(b)).norm(), 0.0, 1e-15);
@@ -201,7 +201,7 @@ TEST(ChangeMotionFrame, MatchesNumericalPropagation) {
     Vector6d d = Vector6d::Zero();
     d(k) = 1e-7;
     Eigen::Isometry3d pert = dc;
-    pert.linear() = ExpSO3(d.tail<3>()) * dc.linear();
+    pert.linear() = ExpSo3(d.tail<3>()) * dc.linear();
     pert.translation() += d.head<3>();
     j.col(k) = MotionError(db, t_b_c * pert * t_b_c.inverse()) / 1e-7;
   }

@@ -62,7 +62,7 @@ MotionPrior OdometryPrior(const Eigen::Isometry3d& truth = TestCameraMotion()) {
   MotionPrior p = MotionPrior::Stationary(0.05, 1.5 * kDeg);
   p.delta = truth;
   p.delta.translation() += Eigen::Vector3d(0.02, -0.01, -0.03);
-  p.delta.linear() = ExpSO3(Eigen::Vector3d(0.0, 1.0 * kDeg, 0.0)) * truth.linear();
+  p.delta.linear() = ExpSo3(Eigen::Vector3d(0.0, 1.0 * kDeg, 0.0)) * truth.linear();
   return p;
 }
 
@@ -281,7 +281,7 @@ TEST(VoFrames, BodyAndCameraFrameConversionsAreInverse) {
   // The rover drives 0.5 m forward and turns 3 degrees left: its camera sees the conjugate.
   MotionPrior body = MotionPrior::Stationary(0.02, 0.5 * kDeg);
   body.delta.translation() = Eigen::Vector3d(0.5, 0.0, 0.0);
-  body.delta.linear() = ExpSO3(Eigen::Vector3d(0, 0, 3 * kDeg));
+  body.delta.linear() = ExpSo3(Eigen::Vector3d(0, 0, 3 * kDeg));
   const MotionPrior cam = ToCameraFrame(body, t_b_c);
   EXPECT_TRUE(cam.delta.isApprox(t_b_c.inverse() * body.delta * t_b_c, 1e-12));
   MotionEstimate e;

@@ -3,24 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 
 namespace rover::sim::physics {
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 // Checks lo <= v <= hi (and finite); returns an error naming `name.field`.
 Status CheckRange(const std::string& name, const char* field, double v, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi) {
-    return InvalidArgument(name + "." + field + " = " + Num(v) + " is outside [" + Num(lo) + ", " +
-                           Num(hi) + "]");
+    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" + FormatNumber(lo) + ", " +
+                           FormatNumber(hi) + "]");
   }
   return Status::Ok();
 }
@@ -78,8 +72,8 @@ Status MotorParams::Validate(const std::string& name) const {
   ROVER_RETURN_IF_ERROR(CheckRange(name, "brake_kp", brake_kp, 0.0, kBig));
   ROVER_RETURN_IF_ERROR(CheckRange(name, "brake_kd", brake_kd, 0.0, kBig));
   if (std::isnan(min_angle) || std::isnan(max_angle) || !(min_angle < max_angle)) {
-    return InvalidArgument(name + ".min_angle/max_angle = [" + Num(min_angle) + ", " +
-                           Num(max_angle) + "] is not an interval");
+    return InvalidArgument(name + ".min_angle/max_angle = [" + FormatNumber(min_angle) + ", " +
+                           FormatNumber(max_angle) + "] is not an interval");
   }
   return Status::Ok();
 }
@@ -110,7 +104,7 @@ void MotorController::Reset(double ambient_c, double angle_rad) {
 Status MotorController::SetGoal(MotorMode mode, double position_counts,
                                 double velocity_counts_per_s, double current_limit_a) {
   if (faults_ != kMotorFaultNone) {
-    return FailedPrecondition("motor has latched faults (0x" + Num(faults_) +
+    return FailedPrecondition("motor has latched faults (0x" + FormatNumber(faults_) +
                               "); clear them before a new goal");
   }
   if (mode == MotorMode::kOff) {
@@ -123,31 +117,31 @@ Status MotorController::SetGoal(MotorMode mode, double position_counts,
     return Status::Ok();
   }
   if (mode != MotorMode::kPosition && mode != MotorMode::kVelocity) {
-    return InvalidArgument("unknown motor mode " + Num(static_cast<int>(mode)));
+    return InvalidArgument("unknown motor mode " + FormatNumber(static_cast<int>(mode)));
   }
   if (!std::isfinite(position_counts) || !std::isfinite(velocity_counts_per_s) ||
       !std::isfinite(current_limit_a)) {
     return InvalidArgument("motor goal has a non-finite value");
   }
   if (!(current_limit_a > 0.0) || current_limit_a > params_.max_current) {
-    return OutOfRange("current_limit " + Num(current_limit_a) + " A is outside (0, " +
-                      Num(params_.max_current) + "]");
+    return OutOfRange("current_limit " + FormatNumber(current_limit_a) + " A is outside (0, " +
+                      FormatNumber(params_.max_current) + "]");
   }
   const double rate = velocity_counts_per_s / counts_per_rad_;
   if (std::abs(rate) > params_.max_speed * (1.0 + 1e-9)) {
-    return OutOfRange("velocity " + Num(velocity_counts_per_s) + " counts/s exceeds the maximum " +
-                      Num(params_.max_speed * counts_per_rad_) + " counts/s");
+    return OutOfRange("velocity " + FormatNumber(velocity_counts_per_s) + " counts/s exceeds the maximum " +
+                      FormatNumber(params_.max_speed * counts_per_rad_) + " counts/s");
   }
   const double goal = position_counts / counts_per_rad_;
   if (mode == MotorMode::kPosition) {
     if (!(rate > 0.0)) {
       return InvalidArgument("position goal needs a positive profile velocity, got " +
-                             Num(velocity_counts_per_s) + " counts/s");
+                             FormatNumber(velocity_counts_per_s) + " counts/s");
     }
     if (goal < params_.min_angle || goal > params_.max_angle) {
-      return OutOfRange("position " + Num(position_counts) + " counts (" + Num(goal) +
-                        " rad) is outside the joint range [" + Num(params_.min_angle) + ", " +
-                        Num(params_.max_angle) + "] rad");
+      return OutOfRange("position " + FormatNumber(position_counts) + " counts (" + FormatNumber(goal) +
+                        " rad) is outside the joint range [" + FormatNumber(params_.min_angle) + ", " +
+                        FormatNumber(params_.max_angle) + "] rad");
     }
   }
   if (!ref_valid_) {

@@ -10,12 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 
 namespace rover::sim::physics {
 
@@ -44,12 +44,6 @@ Eigen::Isometry3d ToIsometry(const Transform& x) {
   }
   t.translation() = ToEigen(x.p());
   return t;
-}
-
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
 }
 
 // Mass properties of a solid box (half extents `half`) centred at `com` in the body frame;
@@ -398,10 +392,10 @@ Status RoverSimulation::Impl::Place(const StartPose& start) {
     return InvalidArgument("start pose has a non-finite value");
   }
   if (!terrain->Contains(start.x, start.y)) {
-    return OutOfRange("start (" + Num(start.x) + ", " + Num(start.y) +
-                      ") is outside the terrain [" + Num(terrain->min_x()) + ", " +
-                      Num(terrain->max_x()) + "] x [" + Num(terrain->min_y()) + ", " +
-                      Num(terrain->max_y()) + "]");
+    return OutOfRange("start (" + FormatNumber(start.x) + ", " + FormatNumber(start.y) +
+                      ") is outside the terrain [" + FormatNumber(terrain->min_x()) + ", " +
+                      FormatNumber(terrain->max_x()) + "] x [" + FormatNumber(terrain->min_y()) + ", " +
+                      FormatNumber(terrain->max_y()) + "]");
   }
   const hwconfig::RoverDescription& g = params.geometry;
   SimTK::State s = system.getDefaultState();
@@ -566,7 +560,7 @@ Status RoverSimulation::ClearMotorFaults(int motor) {
 
 Status RoverSimulation::SetAmbientTemperature(double celsius) {
   if (!std::isfinite(celsius) || celsius < -200.0 || celsius > 200.0) {
-    return InvalidArgument("ambient temperature " + Num(celsius) + " C is outside [-200, 200]");
+    return InvalidArgument("ambient temperature " + FormatNumber(celsius) + " C is outside [-200, 200]");
   }
   for (MotorController& m : impl_->motors) m.set_ambient_c(celsius);
   return Status::Ok();
@@ -577,8 +571,8 @@ Status RoverSimulation::Advance(double dt) {
     return FailedPrecondition("the simulation failed earlier; call Reset()");
   }
   if (!std::isfinite(dt) || dt <= 0.0 || dt > impl_->params.integrator.max_advance) {
-    return InvalidArgument("Advance dt = " + Num(dt) + " s is outside (0, " +
-                           Num(impl_->params.integrator.max_advance) + "]");
+    return InvalidArgument("Advance dt = " + FormatNumber(dt) + " s is outside (0, " +
+                           FormatNumber(impl_->params.integrator.max_advance) + "]");
   }
   try {
     impl_->AdvanceTo(impl_->integ->getTime() + dt);
@@ -590,7 +584,7 @@ Status RoverSimulation::Advance(double dt) {
   for (int i = 0; i < y.size(); ++i) {
     if (!std::isfinite(y[i])) {
       impl_->broken = true;
-      return Internal("the simulation state became non-finite at t = " + Num(time()) + " s");
+      return Internal("the simulation state became non-finite at t = " + FormatNumber(time()) + " s");
     }
   }
   return Status::Ok();

@@ -1,11 +1,12 @@
 #include "rover/sim/physics/terrain_contact.hpp"
 
+#include "rover/base/format.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 namespace rover::sim::physics {
 
@@ -15,16 +16,10 @@ using terrain::SoilName;
 
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 Status CheckRange(const std::string& name, const char* field, double v, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi) {
-    return InvalidArgument(name + "." + field + " = " + Num(v) + " is outside [" + Num(lo) + ", " +
-                           Num(hi) + "]");
+    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" + FormatNumber(lo) + ", " +
+                           FormatNumber(hi) + "]");
   }
   return Status::Ok();
 }
@@ -109,7 +104,7 @@ Status ContactParams::Validate() const {
         soils[s].Validate(std::string("contact.soils.") + SoilName(static_cast<Soil>(s))));
   }
   if (slices < 1 || slices > 5) {
-    return InvalidArgument("contact.slices = " + Num(slices) + " is outside [1, 5]");
+    return InvalidArgument("contact.slices = " + FormatNumber(slices) + " is outside [1, 5]");
   }
   for (double a : fan_angles_deg) {
     ROVER_RETURN_IF_ERROR(CheckRange("contact", "fan_angles_deg[]", a, 0.0, 89.0));

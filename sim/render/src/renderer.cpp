@@ -14,6 +14,7 @@
 
 #include "gl_context.hpp"
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/sim/terrain/noise.hpp"
 #include "rover/sim/terrain/random.hpp"
 #include "shaders.hpp"
@@ -51,14 +52,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr int kUnitSurface = 0, kUnitMaterial = 1, kUnitRockId = 2, kUnitRocks = 3,
               kUnitDetail = 4, kUnitRockTex = 5, kUnitShadow = 6, kUnitShadowGlobal = 7, kUnitScratch = 15;
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 Status BadOption(const std::string& field, double value, const std::string& what) {
-  return InvalidArgument("render." + field + ": " + Num(value) + " " + what);
+  return InvalidArgument("render." + field + ": " + FormatNumber(value) + " " + what);
 }
 
 double Ms(std::chrono::steady_clock::time_point a) {
@@ -169,7 +164,7 @@ Status RenderOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(sensor.Validate());
   auto range = [](const char* field, double v, double lo, double hi) -> Status {
     if (!(v >= lo && v <= hi)) {
-      return BadOption(field, v, "is out of range [" + Num(lo) + ", " + Num(hi) + "]");
+      return BadOption(field, v, "is out of range [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
     }
     return Status::Ok();
   };

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/sim/terrain/random.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
@@ -18,20 +18,14 @@ constexpr std::uint64_t kFeatureStream = 11;
 constexpr double kWallSpacing = 0.6;
 constexpr double kJitter = 0.1;  // relative spread of a wall rock's diameter and height
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 Status CheckSize(const std::string& what, double diameter, double height, double d_max,
                  double resolution) {
   if (!(diameter >= 2.0 * resolution && diameter <= d_max)) {
-    return InvalidArgument(what + ".diameter: " + Num(diameter) + " is out of range [" +
-                           Num(2.0 * resolution) + ", " + Num(d_max) + "]");
+    return InvalidArgument(what + ".diameter: " + FormatNumber(diameter) + " is out of range [" +
+                           FormatNumber(2.0 * resolution) + ", " + FormatNumber(d_max) + "]");
   }
   if (!(height >= 0.0 && height <= 5.0)) {
-    return InvalidArgument(what + ".height: " + Num(height) + " is out of range [0, 5]");
+    return InvalidArgument(what + ".height: " + FormatNumber(height) + " is out of range [0, 5]");
   }
   return Status::Ok();
 }
@@ -44,16 +38,16 @@ Status AddRock(Terrain* t, const std::string& what, Rock rock) {
   const double x = rock.position.x(), y = rock.position.y();
   if (!std::isfinite(x) || x - br < bare.min_x() || x + br > bare.max_x() || !std::isfinite(y) ||
       y - br < bare.min_y() || y + br > bare.max_y()) {
-    return InvalidArgument(what + ": the rock at (" + Num(x) + ", " + Num(y) + ") (radius " +
-                           Num(br) + ") is off the map (x in [" + Num(bare.min_x()) + ", " +
-                           Num(bare.max_x()) + "], y in [" + Num(bare.min_y()) + ", " +
-                           Num(bare.max_y()) + "])");
+    return InvalidArgument(what + ": the rock at (" + FormatNumber(x) + ", " + FormatNumber(y) + ") (radius " +
+                           FormatNumber(br) + ") is off the map (x in [" + FormatNumber(bare.min_x()) + ", " +
+                           FormatNumber(bare.max_x()) + "], y in [" + FormatNumber(bare.min_y()) + ", " +
+                           FormatNumber(bare.max_y()) + "])");
   }
   const StartParams& st = t->params.start;
   if (std::hypot(x - st.x, y - st.y) < st.keep_out_radius + br) {
-    return InvalidArgument(what + ": the rock at (" + Num(x) + ", " + Num(y) +
+    return InvalidArgument(what + ": the rock at (" + FormatNumber(x) + ", " + FormatNumber(y) +
                            ") is on the rover's rock-free start disc (radius " +
-                           Num(st.keep_out_radius) + " m about the start)");
+                           FormatNumber(st.keep_out_radius) + " m about the start)");
   }
   std::erase_if(t->rocks, [&](const Rock& o) {
     return !o.science_target && !o.placed &&
@@ -93,8 +87,8 @@ Status PlaceFeatures(Terrain* terrain, const TerrainFeatures& f) {
     const Eigen::Vector2d d = w.to - w.from;
     const double len = d.norm();
     if (len < w.diameter) {
-      return InvalidArgument(what + ": the wall is " + Num(len) +
-                             " m long, shorter than its rock diameter " + Num(w.diameter) + " m");
+      return InvalidArgument(what + ": the wall is " + FormatNumber(len) +
+                             " m long, shorter than its rock diameter " + FormatNumber(w.diameter) + " m");
     }
     const int n = static_cast<int>(std::ceil(len / (kWallSpacing * w.diameter))) + 1;
     const double along = std::atan2(d.y(), d.x());

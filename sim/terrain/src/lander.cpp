@@ -3,10 +3,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::sim::terrain {
@@ -25,12 +25,6 @@ const Eigen::Vector3d kDeckAlbedo(0.62, 0.62, 0.64);
 const Eigen::Vector3d kLegAlbedo(0.45, 0.45, 0.47);
 const Eigen::Vector3d kRampAlbedo(0.85, 0.85, 0.82);
 const Eigen::Vector3d kStripeAlbedo(0.05, 0.05, 0.05);
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 double Apothem(const LanderParams& p) { return p.deck_radius * std::cos(30.0 * kDeg); }
 
@@ -130,35 +124,35 @@ Status LanderParams::Validate() const {
     return InvalidArgument("lander." + field + ": " + what);
   };
   for (auto [name, v] : {std::pair<const char*, double>{"x", x}, {"y", y}, {"yaw_deg", yaw_deg}}) {
-    if (!std::isfinite(v)) return bad(name, Num(v) + " is not a finite number");
+    if (!std::isfinite(v)) return bad(name, FormatNumber(v) + " is not a finite number");
   }
   if (!(deck_height >= 0.2 && deck_height <= 5.0)) {
-    return bad("deck_height", Num(deck_height) + " is out of range [0.2, 5]");
+    return bad("deck_height", FormatNumber(deck_height) + " is out of range [0.2, 5]");
   }
   if (!(deck_thickness > 0.0 && deck_thickness < deck_height)) {
-    return bad("deck_thickness", Num(deck_thickness) + " must be in (0, deck_height)");
+    return bad("deck_thickness", FormatNumber(deck_thickness) + " must be in (0, deck_height)");
   }
   if (!(deck_radius >= 0.3 && deck_radius <= 10.0)) {
-    return bad("deck_radius", Num(deck_radius) + " is out of range [0.3, 10]");
+    return bad("deck_radius", FormatNumber(deck_radius) + " is out of range [0.3, 10]");
   }
   if (!(ramp_length > 0.0 && ramp_length <= 20.0)) {
-    return bad("ramp_length", Num(ramp_length) + " is out of range (0, 20]");
+    return bad("ramp_length", FormatNumber(ramp_length) + " is out of range (0, 20]");
   }
   if (!(ramp_width > 0.0 && ramp_width <= deck_radius)) {
-    return bad("ramp_width", Num(ramp_width) + " must be in (0, deck_radius = " + Num(deck_radius) +
+    return bad("ramp_width", FormatNumber(ramp_width) + " must be in (0, deck_radius = " + FormatNumber(deck_radius) +
                                  "], the deck edge it hangs from");
   }
-  if (!(stripe_unit > 0.0)) return bad("stripe_unit", Num(stripe_unit) + " must be > 0");
-  if (!(stripe_gap >= 0.0)) return bad("stripe_gap", Num(stripe_gap) + " must be >= 0");
+  if (!(stripe_unit > 0.0)) return bad("stripe_unit", FormatNumber(stripe_unit) + " must be > 0");
+  if (!(stripe_gap >= 0.0)) return bad("stripe_gap", FormatNumber(stripe_gap) + " must be >= 0");
   const double stripes = StripeUnitsTotal() * stripe_unit + 5.0 * stripe_gap;
   if (stripes > ramp_length) {
-    return bad("stripe_unit", "the six stripes need " + Num(stripes) +
-                                  " m along the ramp, more than ramp_length " + Num(ramp_length));
+    return bad("stripe_unit", "the six stripes need " + FormatNumber(stripes) +
+                                  " m along the ramp, more than ramp_length " + FormatNumber(ramp_length));
   }
   if (!(ramp_width > 2.0 * kStripeMargin)) {
-    return bad("ramp_width", Num(ramp_width) + " leaves no room for stripes");
+    return bad("ramp_width", FormatNumber(ramp_width) + " leaves no room for stripes");
   }
-  if (!(rock_clearance >= 0.0)) return bad("rock_clearance", Num(rock_clearance) + " must be >= 0");
+  if (!(rock_clearance >= 0.0)) return bad("rock_clearance", FormatNumber(rock_clearance) + " must be >= 0");
   return Status::Ok();
 }
 
@@ -240,8 +234,8 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
   ROVER_RETURN_IF_ERROR(p.Validate());
   if (terrain->lander) {
     return FailedPrecondition("lander: the terrain already has a lander at (" +
-                              Num(terrain->lander->params.x) + ", " +
-                              Num(terrain->lander->params.y) + ")");
+                              FormatNumber(terrain->lander->params.x) + ", " +
+                              FormatNumber(terrain->lander->params.y) + ")");
   }
   const HeightField& bare = terrain->bare;
   Lander l;
@@ -268,16 +262,16 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
     hi = hi.cwiseMax(q);
   }
   if (lo.x() < bare.min_x() || hi.x() > bare.max_x()) {
-    return InvalidArgument("lander.x: " + Num(p.x) +
-                           " puts the lander footprint (deck and ramps, x in [" + Num(lo.x()) +
-                           ", " + Num(hi.x()) + "]) off the map (x in [" + Num(bare.min_x()) +
-                           ", " + Num(bare.max_x()) + "])");
+    return InvalidArgument("lander.x: " + FormatNumber(p.x) +
+                           " puts the lander footprint (deck and ramps, x in [" + FormatNumber(lo.x()) +
+                           ", " + FormatNumber(hi.x()) + "]) off the map (x in [" + FormatNumber(bare.min_x()) +
+                           ", " + FormatNumber(bare.max_x()) + "])");
   }
   if (lo.y() < bare.min_y() || hi.y() > bare.max_y()) {
-    return InvalidArgument("lander.y: " + Num(p.y) +
-                           " puts the lander footprint (deck and ramps, y in [" + Num(lo.y()) +
-                           ", " + Num(hi.y()) + "]) off the map (y in [" + Num(bare.min_y()) +
-                           ", " + Num(bare.max_y()) + "])");
+    return InvalidArgument("lander.y: " + FormatNumber(p.y) +
+                           " puts the lander footprint (deck and ramps, y in [" + FormatNumber(lo.y()) +
+                           ", " + FormatNumber(hi.y()) + "]) off the map (y in [" + FormatNumber(bare.min_y()) +
+                           ", " + FormatNumber(bare.max_y()) + "])");
   }
 
   l.deck_z = bare.Height(p.x, p.y) + p.deck_height;
@@ -290,19 +284,19 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
     ramp.top_center = Eigen::Vector3d(top.x(), top.y(), l.deck_z);
     ramp.bottom_center = Eigen::Vector3d(foot.x(), foot.y(), bare.Height(foot.x(), foot.y()));
     if (ramp.bottom_center.z() > l.deck_z - 0.1) {
-      return InvalidArgument("lander.deck_height: " + Num(p.deck_height) +
+      return InvalidArgument("lander.deck_height: " + FormatNumber(p.deck_height) +
                              " m is too low here: the ground at the foot of ramp " +
-                             std::to_string(r) + " (z " + Num(ramp.bottom_center.z()) +
-                             ") is not below the deck (z " + Num(l.deck_z) +
+                             std::to_string(r) + " (z " + FormatNumber(ramp.bottom_center.z()) +
+                             ") is not below the deck (z " + FormatNumber(l.deck_z) +
                              "); raise it or turn the lander (yaw_deg)");
     }
   }
   for (const Rock& rock : terrain->rocks) {
     if (rock.science_target &&
         l.DistanceToFootprint(rock.position.x(), rock.position.y()) < RockBoundingRadius(rock)) {
-      return InvalidArgument("lander.x: the lander footprint at (" + Num(p.x) + ", " + Num(p.y) +
+      return InvalidArgument("lander.x: the lander footprint at (" + FormatNumber(p.x) + ", " + FormatNumber(p.y) +
                              ") covers science target " + std::to_string(rock.id) + " at (" +
-                             Num(rock.position.x()) + ", " + Num(rock.position.y()) + ")");
+                             FormatNumber(rock.position.x()) + ", " + FormatNumber(rock.position.y()) + ")");
     }
   }
 
@@ -387,19 +381,19 @@ Result<int> AddScienceTarget(Terrain* terrain, const ScienceTargetParams& t) {
   auto bad = [](const std::string& field, const std::string& what) {
     return InvalidArgument("science_target." + field + ": " + what);
   };
-  if (!std::isfinite(t.x)) return bad("x", Num(t.x) + " is not a finite number");
-  if (!std::isfinite(t.y)) return bad("y", Num(t.y) + " is not a finite number");
+  if (!std::isfinite(t.x)) return bad("x", FormatNumber(t.x) + " is not a finite number");
+  if (!std::isfinite(t.y)) return bad("y", FormatNumber(t.y) + " is not a finite number");
   if (!(t.diameter >= 2.0 * bare.resolution() && t.diameter <= 20.0)) {
-    return bad("diameter", Num(t.diameter) + " is out of range [" + Num(2.0 * bare.resolution()) +
+    return bad("diameter", FormatNumber(t.diameter) + " is out of range [" + FormatNumber(2.0 * bare.resolution()) +
                                ", 20] (at least two grid cells)");
   }
   if (t.texture_id < 0) return bad("texture_id", std::to_string(t.texture_id) + " must be >= 0");
   if (!(t.height >= 0.0 && t.height <= 10.0))
-    return bad("height", Num(t.height) + " is out of range [0, 10]");
+    return bad("height", FormatNumber(t.height) + " is out of range [0, 10]");
   if (!(t.elongation >= 1.0 && t.elongation <= 5.0)) {
-    return bad("elongation", Num(t.elongation) + " is out of range [1, 5]");
+    return bad("elongation", FormatNumber(t.elongation) + " is out of range [1, 5]");
   }
-  if (!std::isfinite(t.yaw_deg)) return bad("yaw_deg", Num(t.yaw_deg) + " is not a finite number");
+  if (!std::isfinite(t.yaw_deg)) return bad("yaw_deg", FormatNumber(t.yaw_deg) + " is not a finite number");
 
   Rock rock;
   rock.position = Eigen::Vector3d(t.x, t.y, 0.0);
@@ -412,20 +406,20 @@ Result<int> AddScienceTarget(Terrain* terrain, const ScienceTargetParams& t) {
   rock.bluntness = 0.5;
   const double br = RockBoundingRadius(rock);
   if (t.x - br < bare.min_x() || t.x + br > bare.max_x()) {
-    return bad("x", Num(t.x) + ": the target (radius " + Num(br) + ") is off the map (x in [" +
-                        Num(bare.min_x()) + ", " + Num(bare.max_x()) + "])");
+    return bad("x", FormatNumber(t.x) + ": the target (radius " + FormatNumber(br) + ") is off the map (x in [" +
+                        FormatNumber(bare.min_x()) + ", " + FormatNumber(bare.max_x()) + "])");
   }
   if (t.y - br < bare.min_y() || t.y + br > bare.max_y()) {
-    return bad("y", Num(t.y) + ": the target (radius " + Num(br) + ") is off the map (y in [" +
-                        Num(bare.min_y()) + ", " + Num(bare.max_y()) + "])");
+    return bad("y", FormatNumber(t.y) + ": the target (radius " + FormatNumber(br) + ") is off the map (y in [" +
+                        FormatNumber(bare.min_y()) + ", " + FormatNumber(bare.max_y()) + "])");
   }
   if (terrain->lander && terrain->lander->DistanceToFootprint(t.x, t.y) < br) {
-    return bad("x", "the target at (" + Num(t.x) + ", " + Num(t.y) + ") overlaps the lander");
+    return bad("x", "the target at (" + FormatNumber(t.x) + ", " + FormatNumber(t.y) + ") overlaps the lander");
   }
   for (const Rock& o : terrain->rocks) {
     if (o.science_target &&
         (o.position.head<2>() - rock.position.head<2>()).norm() < br + RockBoundingRadius(o)) {
-      return bad("x", "the target at (" + Num(t.x) + ", " + Num(t.y) +
+      return bad("x", "the target at (" + FormatNumber(t.x) + ", " + FormatNumber(t.y) +
                           ") overlaps science target " + std::to_string(o.id));
     }
   }
@@ -508,7 +502,7 @@ Result<std::vector<ScienceTargetParams>> ScienceTargetsFromParamSet(const ParamS
     t.diameter = v[i + 2];
     if (v[i + 3] < 0 || v[i + 3] != std::floor(v[i + 3]) || v[i + 3] > 1e6) {
       return InvalidArgument(ps.Origin(key).ToString() + ": key '" + key + "': target " +
-                             std::to_string(i / 4) + ": texture_id " + Num(v[i + 3]) +
+                             std::to_string(i / 4) + ": texture_id " + FormatNumber(v[i + 3]) +
                              " is not a non-negative integer");
     }
     t.texture_id = static_cast<int>(v[i + 3]);

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
 #include "rover/sim/terrain/noise.hpp"
 #include "rover/sim/terrain/random.hpp"
 #include "rover/sim/terrain/rock_model.hpp"
@@ -28,12 +28,6 @@ enum Stream : std::uint64_t {
   kRockPositionStream = 6,
   kRockShapeStream = 7,
 };
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 double Smoothstep(double t) {
   t = std::clamp(t, 0.0, 1.0);
@@ -376,11 +370,11 @@ Result<Terrain> GenerateTerrain(const TerrainParams& p) {
           for (const Rock& r : t.rocks) placed += 0.25 * std::numbers::pi * r.diameter * r.diameter;
           const std::string key =
               p.rocks.preset == RockPreset::kCustom ? "rocks.k" : "rocks.preset";
-          return InvalidArgument(key + ": k = " + Num(k) + " is too dense to place: only " +
+          return InvalidArgument(key + ": k = " + FormatNumber(k) + " is too dense to place: only " +
                                  std::to_string(t.rocks.size()) + " of " + std::to_string(count) +
                                  " rocks fit without overlap (rocks cover " +
-                                 Num(100.0 * placed / area) + " % of the requested " +
-                                 Num(100.0 * RockAreaFraction(k, d_min, d_max)) +
+                                 FormatNumber(100.0 * placed / area) + " % of the requested " +
+                                 FormatNumber(100.0 * RockAreaFraction(k, d_min, d_max)) +
                                  " %); lower k or raise rocks.diameter_min");
         }
         x = pos_rng.Uniform(lo.x(), hi.x());

@@ -5,42 +5,18 @@
 #include <cstdio>
 #include <limits>
 
+#include "rover/base/format.hpp"
+#include "rover/base/key_checker.hpp"
 #include "rover/sim/terrain/rock_model.hpp"
 
 namespace rover::sim::terrain {
 namespace {
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+// The checker's verdict, with the failing key (relative to the terrain prefix) when asked.
+Status Failed(const KeyChecker& c, std::string* key) {
+  if (key != nullptr) *key = c.key();
+  return c.status();
 }
-
-struct Checker {
-  std::string* key;
-  Status status = Status::Ok();
-  // Records the first failure only.
-  bool Fail(const std::string& k, const std::string& message) {
-    if (status.ok()) {
-      status = InvalidArgument(k + ": " + message);
-      if (key != nullptr) *key = k;
-    }
-    return false;
-  }
-  bool Finite(const std::string& k, double v) {
-    return std::isfinite(v) || Fail(k, Num(v) + " is not a finite number");
-  }
-  bool Positive(const std::string& k, double v) {
-    return Finite(k, v) && (v > 0.0 || Fail(k, Num(v) + " must be > 0"));
-  }
-  bool AtLeast(const std::string& k, double v, double lo) {
-    return Finite(k, v) && (v >= lo || Fail(k, Num(v) + " must be >= " + Num(lo)));
-  }
-  bool InRange(const std::string& k, double v, double lo, double hi) {
-    return Finite(k, v) && ((v >= lo && v <= hi) || Fail(k, Num(v) + " is out of range [" +
-                                                                Num(lo) + ", " + Num(hi) + "]"));
-  }
-};
 
 }  // namespace
 
@@ -96,25 +72,25 @@ std::string JoinKey(const std::string& prefix, const std::string& name) {
 }
 
 Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
-  Checker c{key};
+  KeyChecker c;
   c.Positive("resolution", p.resolution) && c.InRange("resolution", p.resolution, 1e-3, 10.0);
   c.Positive("size_x", p.size_x) &&
       (p.size_x >= 2.0 * p.resolution ||
-       c.Fail("size_x", Num(p.size_x) + " m is smaller than two grid cells of resolution " +
-                            Num(p.resolution) + " m"));
+       c.Fail("size_x", FormatNumber(p.size_x) + " m is smaller than two grid cells of resolution " +
+                            FormatNumber(p.resolution) + " m"));
   c.Positive("size_y", p.size_y) &&
       (p.size_y >= 2.0 * p.resolution ||
-       c.Fail("size_y", Num(p.size_y) + " m is smaller than two grid cells of resolution " +
-                            Num(p.resolution) + " m"));
+       c.Fail("size_y", FormatNumber(p.size_y) + " m is smaller than two grid cells of resolution " +
+                            FormatNumber(p.resolution) + " m"));
   c.Finite("center_x", p.center_x);
   c.Finite("center_y", p.center_y);
-  if (!c.status.ok()) return c.status;
+  if (!c.ok()) return Failed(c, key);
   const double cells =
       (std::floor(p.size_x / p.resolution) + 1.0) * (std::floor(p.size_y / p.resolution) + 1.0);
   if (cells > kMaxTerrainCells) {
-    c.Fail("resolution", Num(p.resolution) + " m gives " + Num(cells) + " cells for a " +
-                             Num(p.size_x) + " x " + Num(p.size_y) + " m map (limit " +
-                             Num(kMaxTerrainCells) + "): use a coarser resolution");
+    c.Fail("resolution", FormatNumber(p.resolution) + " m gives " + FormatNumber(cells) + " cells for a " +
+                             FormatNumber(p.size_x) + " x " + FormatNumber(p.size_y) + " m map (limit " +
+                             FormatNumber(kMaxTerrainCells) + "): use a coarser resolution");
   }
 
   c.InRange("slope.angle_deg", p.slope.angle_deg, 0.0, 59.0);
@@ -130,9 +106,9 @@ Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
   c.Positive("craters.diameter_min", p.craters.diameter_min);
   c.Positive("craters.diameter_max", p.craters.diameter_max) &&
       (p.craters.diameter_max >= p.craters.diameter_min ||
-       c.Fail("craters.diameter_max", Num(p.craters.diameter_max) +
+       c.Fail("craters.diameter_max", FormatNumber(p.craters.diameter_max) +
                                           " is smaller than craters.diameter_min " +
-                                          Num(p.craters.diameter_min)));
+                                          FormatNumber(p.craters.diameter_min)));
   c.InRange("craters.depth_ratio", p.craters.depth_ratio, 0.0, 1.0);
   c.InRange("craters.rim_ratio", p.craters.rim_ratio, 0.0, 0.5);
 
@@ -140,58 +116,58 @@ Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
   const std::string k_key = r.preset == RockPreset::kCustom ? "rocks.k" : "rocks.preset";
   if (r.preset == RockPreset::kCustom) {
     c.Finite("rocks.k", r.k) &&
-        (r.k >= 0.0 || c.Fail("rocks.k", Num(r.k) + " must be >= 0 (fraction of area covered)")) &&
-        (r.k <= 1.0 || c.Fail("rocks.k", Num(r.k) + " > 1: the cumulative rock area fraction "
+        (r.k >= 0.0 || c.Fail("rocks.k", FormatNumber(r.k) + " must be >= 0 (fraction of area covered)")) &&
+        (r.k <= 1.0 || c.Fail("rocks.k", FormatNumber(r.k) + " > 1: the cumulative rock area fraction "
                                                     "cannot exceed the whole surface"));
   }
   c.Positive("rocks.diameter_min", r.diameter_min) &&
       (r.diameter_min >= 2.0 * p.resolution ||
        c.Fail("rocks.diameter_min",
-              Num(r.diameter_min) +
-                  " m is below two grid cells (2 x resolution = " + Num(2.0 * p.resolution) +
+              FormatNumber(r.diameter_min) +
+                  " m is below two grid cells (2 x resolution = " + FormatNumber(2.0 * p.resolution) +
                   " m): such rocks are not resolved; raise it or "
                   "refine the resolution"));
   c.Positive("rocks.diameter_max", r.diameter_max) &&
       (r.diameter_max > r.diameter_min ||
        c.Fail("rocks.diameter_max",
-              Num(r.diameter_max) + " must exceed rocks.diameter_min " + Num(r.diameter_min)));
+              FormatNumber(r.diameter_max) + " must exceed rocks.diameter_min " + FormatNumber(r.diameter_min)));
   c.InRange("rocks.height_ratio", r.height_ratio, 0.05, 2.0);
   c.AtLeast("rocks.height_ratio_spread", r.height_ratio_spread, 0.0) &&
       (r.height_ratio_spread < r.height_ratio ||
-       c.Fail("rocks.height_ratio_spread", Num(r.height_ratio_spread) +
+       c.Fail("rocks.height_ratio_spread", FormatNumber(r.height_ratio_spread) +
                                                " must be below rocks.height_ratio " +
-                                               Num(r.height_ratio)));
+                                               FormatNumber(r.height_ratio)));
   c.InRange("rocks.texture_count", r.texture_count, 1, 1 << 20);
-  if (c.status.ok()) {
+  if (c.ok()) {
     const double k = r.EffectiveK();
     const double cover = RockAreaFraction(k, r.diameter_min, r.diameter_max);
     if (cover > kMaxRockCover) {
-      c.Fail(k_key, "k = " + Num(k) + " asks rocks of " + Num(r.diameter_min) + "-" +
-                        Num(r.diameter_max) + " m to cover " + Num(100.0 * cover) +
+      c.Fail(k_key, "k = " + FormatNumber(k) + " asks rocks of " + FormatNumber(r.diameter_min) + "-" +
+                        FormatNumber(r.diameter_max) + " m to cover " + FormatNumber(100.0 * cover) +
                         " % of the surface; non-overlapping rocks cannot be placed above " +
-                        Num(100.0 * kMaxRockCover) + " %: lower k or raise rocks.diameter_min");
+                        FormatNumber(100.0 * kMaxRockCover) + " %: lower k or raise rocks.diameter_min");
     }
   }
 
   c.InRange("soil.sand_fraction", p.soil.sand_fraction, 0.0, 1.0);
   c.InRange("soil.bedrock_fraction", p.soil.bedrock_fraction, 0.0, 1.0) &&
       (p.soil.sand_fraction + p.soil.bedrock_fraction <= 1.0 + 1e-12 ||
-       c.Fail("soil.bedrock_fraction", Num(p.soil.bedrock_fraction) + " + soil.sand_fraction " +
-                                           Num(p.soil.sand_fraction) +
+       c.Fail("soil.bedrock_fraction", FormatNumber(p.soil.bedrock_fraction) + " + soil.sand_fraction " +
+                                           FormatNumber(p.soil.sand_fraction) +
                                            " exceed 1 (the whole surface)"));
   c.Positive("soil.patch_scale", p.soil.patch_scale);
 
   const double min_x = p.center_x - 0.5 * p.size_x, max_x = p.center_x + 0.5 * p.size_x;
   const double min_y = p.center_y - 0.5 * p.size_y, max_y = p.center_y + 0.5 * p.size_y;
   c.Finite("start.x", p.start.x) && ((p.start.x >= min_x && p.start.x <= max_x) ||
-                                     c.Fail("start.x", Num(p.start.x) + " is off the map (x in [" +
-                                                           Num(min_x) + ", " + Num(max_x) + "])"));
+                                     c.Fail("start.x", FormatNumber(p.start.x) + " is off the map (x in [" +
+                                                           FormatNumber(min_x) + ", " + FormatNumber(max_x) + "])"));
   c.Finite("start.y", p.start.y) && ((p.start.y >= min_y && p.start.y <= max_y) ||
-                                     c.Fail("start.y", Num(p.start.y) + " is off the map (y in [" +
-                                                           Num(min_y) + ", " + Num(max_y) + "])"));
+                                     c.Fail("start.y", FormatNumber(p.start.y) + " is off the map (y in [" +
+                                                           FormatNumber(min_y) + ", " + FormatNumber(max_y) + "])"));
   c.AtLeast("start.keep_out_radius", p.start.keep_out_radius, 0.0);
   c.AtLeast("start.blend_width", p.start.blend_width, 0.0);
-  return c.status;
+  return Failed(c, key);
 }
 
 Status WithOrigin(const ParamSet& params, const std::string& full_key, const Status& status) {

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "rover/base/format.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::sim::terrain {
@@ -25,12 +25,6 @@ const cv::Scalar kWhite(255, 255, 255);
 const cv::Scalar kBlack(0, 0, 0);
 
 cv::Scalar Bgr(const MapColor& c) { return cv::Scalar(c.b, c.g, c.r); }
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 class Painter {
  public:
@@ -65,7 +59,7 @@ void Text(cv::Mat& img, const std::string& text, cv::Point org, double scale, co
 
 Status MapOptions::Validate() const {
   if (!(std::isfinite(pixels_per_metre) && pixels_per_metre >= 0.0 && pixels_per_metre <= 1000.0)) {
-    return InvalidArgument("map.pixels_per_metre: " + Num(pixels_per_metre) +
+    return InvalidArgument("map.pixels_per_metre: " + FormatNumber(pixels_per_metre) +
                            " is out of range [0, 1000]");
   }
   if (max_pixels < 16 || max_pixels > 20000) {
@@ -73,7 +67,7 @@ Status MapOptions::Validate() const {
                            " is out of range [16, 20000]");
   }
   if (!(obstacle_height > 0.0)) {
-    return InvalidArgument("map.obstacle_height: " + Num(obstacle_height) + " must be > 0");
+    return InvalidArgument("map.obstacle_height: " + FormatNumber(obstacle_height) + " must be > 0");
   }
   for (std::size_t i = 0; i < cell_layers.size(); ++i) {
     const MapCellLayer& l = cell_layers[i];
@@ -315,7 +309,7 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
     const cv::Point a(std::max(10, width / 40), height - std::max(12, height / 30));
     cv::rectangle(img, a - cv::Point(1, 1), a + cv::Point(len + 1, bar_h + 1), kBlack, cv::FILLED);
     cv::rectangle(img, a, a + cv::Point(len / 2, bar_h), kWhite, cv::FILLED);
-    Text(img, Num(best) + " m", a + cv::Point(0, -bar_h), font, kWhite);
+    Text(img, FormatNumber(best) + " m", a + cv::Point(0, -bar_h), font, kWhite);
   }
   // North arrow (top right).
   {
@@ -341,8 +335,8 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
         {"firm soil", kFirmSoil, true},
         {"loose sand", kLooseSand, true},
         {"bedrock", kBedrock, true},
-        {"rock > " + Num(o.obstacle_height) + " m high", kRed, false},
-        {"rock > " + Num(0.5 * o.obstacle_height) + " m high", kYellow, false},
+        {"rock > " + FormatNumber(o.obstacle_height) + " m high", kRed, false},
+        {"rock > " + FormatNumber(0.5 * o.obstacle_height) + " m high", kYellow, false},
         {"smaller rock", kDark, false},
     };
     bool any_target = false;

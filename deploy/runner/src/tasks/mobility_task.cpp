@@ -7,6 +7,7 @@
 
 #include "rover/base/format.hpp"
 
+#include "rover/geometry/polygon.hpp"
 #include "rover/msg/drive_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/navigation_idl.hpp"
@@ -23,44 +24,6 @@ constexpr std::size_t kMaxZoneName = 31;    // KeepOutZone.name's bound
 
 bool NeedsGoal(MobilityTaskType t) {
   return t == MobilityTaskType::kAutonav || t == MobilityTaskType::kGoToWaypoint;
-}
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-// Whether closed segments ab and cd share a point.
-bool SegmentsTouch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                   const Eigen::Vector2d& d) {
-  const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, d - a);
-  const double d3 = Cross(d - c, a - c), d4 = Cross(d - c, b - c);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
-    return true;
-  }
-  auto on = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r,
-               double cr) {
-    return cr == 0 && r.x() >= std::min(p.x(), q.x()) && r.x() <= std::max(p.x(), q.x()) &&
-           r.y() >= std::min(p.y(), q.y()) && r.y() <= std::max(p.y(), q.y());
-  };
-  return on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4);
-}
-
-// "" if the polygon is simple (no two non-adjacent edges touch, non-zero area); else why not.
-std::string NotSimple(const std::vector<Eigen::Vector2d>& v) {
-  const std::size_t n = v.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) {
-      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
-      if (adjacent) continue;
-      if (SegmentsTouch(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
-        return "edges " + std::to_string(i) + " and " + std::to_string(j) + " cross";
-      }
-    }
-  }
-  double area2 = 0;
-  for (std::size_t i = 0; i < n; ++i) area2 += Cross(v[i], v[(i + 1) % n]);
-  if (std::abs(area2) < 1e-9) return "the polygon has no area";
-  return "";
 }
 
 Result<KeepOut> ParseZone(const YAML::Node& z, const yaml::FileErrors& err) {
@@ -92,7 +55,7 @@ Result<KeepOut> ParseZone(const YAML::Node& z, const yaml::FileErrors& err) {
                           std::to_string(zone.vertices.size()) + " vertices, a zone needs 3.." +
                           std::to_string(kMaxVertices));
   }
-  if (const std::string why = NotSimple(zone.vertices); !why.empty()) {
+  if (const std::string why = geometry::WhyNotSimple(zone.vertices); !why.empty()) {
     return err.At(vs, "task.keep_out[].vertices: zone '" + zone.name + "' is not a simple polygon: " +
                           why);
   }

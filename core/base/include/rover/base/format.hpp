@@ -13,7 +13,10 @@ namespace rover {
 /// <= 17.
 std::string FormatNumber(double v, int significant = 6);
 
+// The simulator's Simbody translation unit is C++17 (no std::span); it uses FormatNumber only.
+#if __cplusplus >= 202002L
 /// "[a, b, c]" with FormatNumber for each element.
 std::string FormatList(std::span<const double> values, int significant = 6);
+#endif
 
 }  // namespace rover

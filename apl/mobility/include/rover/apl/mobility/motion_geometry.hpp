@@ -14,6 +14,7 @@
 
 #include "rover/apl/mobility/mobility_types.hpp"
 #include "rover/base/status.hpp"
+#include "rover/geometry/polygon.hpp"
 
 namespace rover::apl::mobility {
 
@@ -38,14 +39,13 @@ std::vector<Eigen::Vector2d> SweptCentre(const Pose2& start, const Primitive& p,
 /// Path length of a primitive (|distance| for arcs and straights, 0 otherwise).
 double PathLength(const Primitive& p);
 
-/// Checks a keep-out polygon: 3..16 finite vertices, no two consecutive ones equal, non-zero
-/// area and no two non-adjacent edges touching. Messages name `field` and the vertex or edges,
-/// e.g. "keep_out[1] ('crater').vertices: edges 0 and 2 cross (the polygon is not simple)".
+/// Checks a keep-out polygon: 3..16 finite vertices that make a simple polygon
+/// (geometry::WhyNotSimple). Messages name `field` and the vertex or edges, e.g.
+/// "keep_out[1] ('crater').vertices: edges 0 and 2 cross (the polygon is not simple)".
 Status CheckSimplePolygon(const std::string& field, const KeepOutZone& zone);
-/// Whether `p` lies inside the polygon (even-odd rule).
-bool InsidePolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
-/// Distance from `p` to the polygon's boundary (0 on it).
-double DistanceToPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
+// Point-in-polygon and boundary distance: core/geometry (rover/geometry/polygon.hpp).
+using geometry::DistanceToPolygon;
+using geometry::InsidePolygon;
 
 /// The first swept-centre point (index into `points`) that is inside a zone or closer than
 /// `margin` to one, and the zone's index; -1 when none.

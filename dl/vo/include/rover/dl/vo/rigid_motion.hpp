@@ -25,18 +25,17 @@
 #include <vector>
 
 #include "rover/base/status.hpp"
+#include "rover/geometry/transforms.hpp"
 
 namespace rover::dl::vo {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-/// [v]_x, the cross-product matrix: [v]_x w = v x w.
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v);
-/// Rotation matrix of rotation vector w (Rodrigues).
-Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w);
-/// Rotation vector of a rotation matrix, |w| in [0, pi].
-Eigen::Vector3d LogSO3(const Eigen::Matrix3d& r);
+// SO(3) helpers of core/geometry (rover/geometry/transforms.hpp).
+using geometry::ExpSo3;
+using geometry::LogSo3;
+using geometry::Skew;
 /// Rotation angle of a rotation matrix [rad].
 double RotationAngle(const Eigen::Matrix3d& r);
 

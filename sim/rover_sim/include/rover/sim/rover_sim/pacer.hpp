@@ -1,0 +1,107 @@
+#pragma once
+/// @file
+/// Pacing of the simulator against the wall clock, without DDS or clock reads: the rover-sim
+/// service asks UntilNextStep(wall_now, sim_time) before each engine step and sleeps for what it
+/// returns.
+///
+/// Real time: with real-time factor r > 0 the step that starts at simulated time s is due at
+/// wall time  w0 + (s - s0) / r,  where (w0, s0) is the anchor taken at start, on resume and on
+/// every speed change (so a change never makes the simulator race to catch up). r = 0 runs as
+/// fast as the machine allows.
+///
+/// Lock-step (lockstep_lead_s = L > 0): every service that acknowledges sim/clock
+/// (sim/clock_ack) is waited on until it has acknowledged a time >= s - L, so a slow service
+/// (rendering, stereo) stops the simulated world instead of falling behind it. A service whose
+/// acknowledgement has not moved for lockstep_stall_s of wall time is no longer waited on (it
+/// died or hung; the supervisor restarts it) until it acknowledges a new time.
+///
+/// Times: wall times are rover::Time on the monotonic clock, simulated times are seconds.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+#include "rover/base/time.hpp"
+
+namespace rover {
+template <class Options>
+class ParamBinder;
+}  // namespace rover
+
+namespace rover::sim::rover_sim {
+
+struct PacerOptions {
+  double real_time_factor = 1.0;  ///< simulated seconds per wall second; 0 = unpaced
+  bool start_paused = false;      ///< wait for SIM_RESUME before the first step
+  double lockstep_lead_s = 0.0;   ///< [s] simulated lead over the slowest service; 0 = free running
+  /// [s] wall time a service may go without a new acknowledgement before it is not waited on.
+  /// Generous by default: at a load of 10+ on two cores ddl-camera and dl-pose went silent for
+  /// over 2 s, and a simulator that ran on left dl-locomotion with a stale attitude (SAPP).
+  double lockstep_stall_s = 30.0;
+
+  /// real_time_factor in [0, 1000]; lockstep_lead_s 0 or in [kMinLockstepLeadS, 10];
+  /// lockstep_stall_s in [0.1, 3600]. Messages start with the field.
+  Status Validate() const;
+  static void BindParams(ParamBinder<PacerOptions>& b);
+};
+
+/// Smallest lock-step lead: the services acknowledge every 25 ms of simulated time.
+inline constexpr double kMinLockstepLeadS = 0.05;
+
+class Pacer {
+ public:
+  /// How long to wait while paused before asking again (the service republishes sim/clock).
+  static constexpr Duration kPausedPoll = std::chrono::milliseconds(50);
+  /// How long to wait before asking again while lock-step waits on a service.
+  static constexpr Duration kLockstepPoll = std::chrono::microseconds(200);
+
+  /// Preconditions: options.Validate() is Ok.
+  explicit Pacer(const PacerOptions& options);
+
+  /// Takes the real-time anchor (wall_now, sim_s).
+  void Anchor(Time wall_now, double sim_s);
+  void Pause() { paused_ = true; }
+  /// Unpauses and re-anchors.
+  void Resume(Time wall_now, double sim_s);
+  /// InvalidArgument (the field and value) when rtf is outside [0, 1000]; then nothing changes.
+  Status SetRealTimeFactor(double rtf, Time wall_now, double sim_s);
+
+  /// sim/clock_ack from `service` at wall time `wall_now`: it has processed sim time `acked_ns`.
+  /// Acknowledgements from `self` (the simulator's own name) are ignored. Returns the name of a
+  /// service that was not waited on and now is again, or an empty string.
+  std::string OnAck(const std::string& service, std::int64_t acked_ns, Time wall_now);
+
+  /// Zero when the step at simulated time sim_s may run now; otherwise how long to wait before
+  /// asking again. Services that stall past lockstep_stall_s are dropped here; their names are
+  /// added to `dropped` when given.
+  Duration UntilNextStep(Time wall_now, double sim_s, std::vector<std::string>* dropped = nullptr);
+
+  /// Simulated seconds per wall second since the anchor (0 before any wall time has passed).
+  double MeasuredRealTimeFactor(Time wall_now, double sim_s) const;
+
+  bool paused() const { return paused_; }
+  double real_time_factor() const { return rtf_; }
+  bool lockstep() const { return options_.lockstep_lead_s > 0.0; }
+  /// Names of the services lock-step currently waits on.
+  std::vector<std::string> services_waited_on() const;
+  void set_self(std::string name) { self_ = std::move(name); }
+
+ private:
+  struct AckState {
+    std::int64_t sim_time_ns = 0;
+    Time changed;             ///< wall time the acknowledgement last moved
+    bool waited_on = true;    ///< false while the service is considered gone
+    bool seen = false;
+  };
+
+  PacerOptions options_;
+  double rtf_;
+  bool paused_;
+  Time wall_anchor_{0};
+  double sim_anchor_ = 0.0;
+  std::string self_;
+  std::map<std::string, AckState> acks_;
+};
+
+}  // namespace rover::sim::rover_sim

@@ -1,0 +1,129 @@
+#include "rover/sim/rover_sim/pacer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rover/base/param_binder.hpp"
+
+namespace rover::sim::rover_sim {
+namespace {
+
+Time Wall(double s) { return Time::FromSeconds(100.0 + s); }
+
+TEST(PacerOptionsTest, DefaultsAreValid) { EXPECT_TRUE(PacerOptions{}.Validate().ok()); }
+
+TEST(PacerOptionsTest, RejectsALeadBelowTheAcknowledgementGranularity) {
+  PacerOptions o;
+  o.lockstep_lead_s = 0.01;
+  const Status s = o.Validate();
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("lockstep_lead_s = 0.01 s is below"), std::string::npos)
+      << s.message();
+  o.lockstep_lead_s = kMinLockstepLeadS;
+  EXPECT_TRUE(o.Validate().ok());
+}
+
+TEST(PacerOptionsTest, RejectsANegativeOrNanRealTimeFactor) {
+  PacerOptions o;
+  o.real_time_factor = -1.0;
+  EXPECT_FALSE(o.Validate().ok());
+  o.real_time_factor = std::nan("");
+  EXPECT_NE(o.Validate().message().find("real_time_factor is nan"), std::string::npos);
+}
+
+TEST(PacerOptionsTest, ReadsItsKeysUnderSim) {
+  ParamSet p;
+  DeclareParams<PacerOptions>(p, "sim.");
+  ASSERT_TRUE(p.SetFromString("sim.real_time_factor=0").ok());
+  ASSERT_TRUE(p.SetFromString("sim.lockstep_lead_s=0.5").ok());
+  auto o = ReadParams<PacerOptions>(p, "sim.");
+  ASSERT_TRUE(o.ok()) << o.status().message();
+  EXPECT_EQ(o->real_time_factor, 0.0);
+  EXPECT_EQ(o->lockstep_lead_s, 0.5);
+  EXPECT_EQ(o->lockstep_stall_s, 30.0);
+}
+
+TEST(PacerTest, RealTimeStepsAreDueAtTheAnchoredWallTime) {
+  PacerOptions o;
+  o.real_time_factor = 2.0;
+  Pacer p(o);
+  p.Anchor(Wall(0), 10.0);
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 10.0), Duration::zero());
+  // Simulated 11 s is due 0.5 s of wall time after the anchor.
+  EXPECT_NEAR(ToSeconds(p.UntilNextStep(Wall(0.2), 11.0)), 0.3, 1e-9);
+  EXPECT_EQ(p.UntilNextStep(Wall(0.5), 11.0), Duration::zero());
+  EXPECT_NEAR(p.MeasuredRealTimeFactor(Wall(0.5), 11.0), 2.0, 1e-9);
+}
+
+TEST(PacerTest, ZeroRealTimeFactorNeverWaits) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  Pacer p(o);
+  p.Anchor(Wall(0), 0.0);
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 1e6), Duration::zero());
+}
+
+TEST(PacerTest, ASpeedChangeReanchorsInsteadOfRacing) {
+  PacerOptions o;
+  o.real_time_factor = 0.5;
+  Pacer p(o);
+  p.Anchor(Wall(0), 0.0);
+  ASSERT_TRUE(p.SetRealTimeFactor(1.0, Wall(10), 1.0).ok());
+  EXPECT_EQ(p.UntilNextStep(Wall(10), 1.0), Duration::zero());
+  EXPECT_NEAR(ToSeconds(p.UntilNextStep(Wall(10), 2.0)), 1.0, 1e-9);
+  const Status bad = p.SetRealTimeFactor(-3.0, Wall(11), 2.0);
+  EXPECT_FALSE(bad.ok());
+  EXPECT_EQ(p.real_time_factor(), 1.0);
+}
+
+TEST(PacerTest, PausedPollsAndResumeReanchors) {
+  PacerOptions o;
+  o.start_paused = true;
+  Pacer p(o);
+  EXPECT_TRUE(p.paused());
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 0.0), Pacer::kPausedPoll);
+  p.Resume(Wall(50), 0.0);
+  EXPECT_EQ(p.UntilNextStep(Wall(50), 0.0), Duration::zero());
+  p.Pause();
+  EXPECT_EQ(p.UntilNextStep(Wall(60), 0.0), Pacer::kPausedPoll);
+}
+
+TEST(PacerTest, LockstepWaitsForTheSlowestService) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  o.lockstep_lead_s = 0.1;
+  Pacer p(o);
+  p.set_self("rover-sim");
+  p.Anchor(Wall(0), 0.0);
+  p.OnAck("dl-pose", Time::FromSeconds(1.0).ns, Wall(0));
+  p.OnAck("ddl-camera", Time::FromSeconds(0.5).ns, Wall(0));
+  p.OnAck("rover-sim", 0, Wall(0));  // its own acknowledgement is not waited on
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 0.6), Duration::zero());
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 0.7), Pacer::kLockstepPoll);
+  p.OnAck("ddl-camera", Time::FromSeconds(0.6).ns, Wall(0.1));
+  EXPECT_EQ(p.UntilNextStep(Wall(0.1), 0.7), Duration::zero());
+  EXPECT_EQ(p.services_waited_on(), (std::vector<std::string>{"ddl-camera", "dl-pose"}));
+}
+
+TEST(PacerTest, LockstepDropsASilentServiceAndTakesItBackWhenItAcknowledges) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  o.lockstep_lead_s = 0.1;
+  o.lockstep_stall_s = 2.0;
+  Pacer p(o);
+  p.OnAck("dl-vo", Time::FromSeconds(1.0).ns, Wall(0));
+  std::vector<std::string> dropped;
+  EXPECT_EQ(p.UntilNextStep(Wall(1.9), 2.0, &dropped), Pacer::kLockstepPoll);
+  EXPECT_TRUE(dropped.empty());
+  // A repeated acknowledgement of the same time is not progress.
+  p.OnAck("dl-vo", Time::FromSeconds(1.0).ns, Wall(1.95));
+  EXPECT_EQ(p.UntilNextStep(Wall(2.1), 2.0, &dropped), Duration::zero());
+  EXPECT_EQ(dropped, (std::vector<std::string>{"dl-vo"}));
+  EXPECT_TRUE(p.services_waited_on().empty());
+  EXPECT_EQ(p.OnAck("dl-vo", Time::FromSeconds(1.5).ns, Wall(3.0)), "dl-vo");
+  EXPECT_EQ(p.UntilNextStep(Wall(3.0), 2.0), Pacer::kLockstepPoll);
+}
+
+}  // namespace
+}  // namespace rover::sim::rover_sim
