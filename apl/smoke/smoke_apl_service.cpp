@@ -1,4 +1,4 @@
-// smoke-apl: the application end of the smoke service set. Listens to dl/pose and reports what
+// apl-smoke: the application end of the smoke service set. Listens to dl/pose and reports what
 // it saw on apl/mobility_status (latched), closing the ddl -> dl -> apl chain.
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@ namespace {
 
 class SmokeApl final : public rover::Service {
  public:
-  SmokeApl() : Service("smoke-apl") {}
+  SmokeApl() : Service("apl-smoke") {}
 
   void DeclareParameters(rover::ParamSet& p) override {
     p.Declare("report_every", 10, "publish a status after this many poses").Range(1, 10000);

@@ -1,4 +1,4 @@
-// smoke-ddl: the device-driver end of the smoke service set. Publishes ddl/imu at a fixed rate
+// ddl-smoke: the device-driver end of the smoke service set. Publishes ddl/imu at a fixed rate
 // as if the rover turned at a constant yaw rate, so that data can be followed through all three
 // layers. See ddl/smoke/README.md.
 #include "rover/runtime/service.hpp"
@@ -7,7 +7,7 @@ namespace {
 
 class SmokeDdl final : public rover::Service {
  public:
-  SmokeDdl() : Service("smoke-ddl") {}
+  SmokeDdl() : Service("ddl-smoke") {}
 
   void DeclareParameters(rover::ParamSet& p) override {
     p.Declare("rate_hz", 20.0, "ddl/imu publication rate [Hz] (run clock)").Range(0.1, 1000.0);

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// ddl-sun: the sun-sensor driver service. Binds the SunSensorDriver (ddl_sun_sensor):
+/// ddl-sun-sensor: the sun-sensor driver service. Binds the SunSensorDriver (ddl_sun_sensor):
 ///   in:  hw/sun_sensor (stream, 2 Hz; spot centroid and intensity in counts)
 ///   out: ddl/sun_sensor (state), one sample per accepted input, frame "rover", stamped with the
 ///        raw sample's stamp: unit sun vector in the rover frame (zero when not valid), valid,
@@ -9,7 +9,7 @@
 /// Health (heartbeat), judged every 1/watchdog_rate_hz of the run clock: the worst sample health
 /// since the last check with its reason, STALE when hw/sun_sensor has not arrived for
 /// stale_after_s. Samples stamped more than max_future_s ahead of the run clock are dropped.
-/// See docs/services/ddl-sun.md.
+/// See docs/services/ddl-sun-sensor.md.
 
 #include <optional>
 #include <string>
@@ -22,7 +22,7 @@ namespace rover::ddl::sun_sensor {
 
 class SunService final : public Service {
  public:
-  SunService() : Service("ddl-sun") {}
+  SunService() : Service("ddl-sun-sensor") {}
 
   void DeclareParameters(ParamSet& p) override;
   /// Cross-parameter checks that `--validate` (and so `roverctl up`) reports before start-up.

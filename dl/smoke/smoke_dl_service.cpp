@@ -1,4 +1,4 @@
-// smoke-dl: the device-layer link of the smoke service set. Integrates ddl/imu's yaw rate into
+// dl-smoke: the device-layer link of the smoke service set. Integrates ddl/imu's yaw rate into
 // a heading (dl_smoke library) and publishes it on dl/pose. See dl/smoke/README.md.
 #include <cmath>
 #include <string>
@@ -11,7 +11,7 @@ namespace {
 
 class SmokeDl final : public rover::Service {
  public:
-  SmokeDl() : Service("smoke-dl") {}
+  SmokeDl() : Service("dl-smoke") {}
 
   void DeclareParameters(rover::ParamSet& p) override {
     p.Declare("warmup_samples", 0,

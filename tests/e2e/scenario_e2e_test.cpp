@@ -101,14 +101,14 @@ TEST_F(ScenarioE2e, ScenarioFaultsAreInjectedAndListedInTheRunReport) {
   EXPECT_EQ(f["topic"], "ddl/sun_sensor");
   EXPECT_EQ(f["side"], "writer");
   EXPECT_DOUBLE_EQ(f["start_s"].get<double>(), 1.0) << f.dump(2);
-  EXPECT_EQ(f["services"], nlohmann::json::array({"ddl-sun"})) << f.dump(2);
+  EXPECT_EQ(f["services"], nlohmann::json::array({"ddl-sun-sensor"})) << f.dump(2);
   EXPECT_GT(f["samples_seen"].get<std::uint64_t>(), 0u) << f.dump(2);
   EXPECT_GT(f["samples_hit"].get<std::uint64_t>(), 0u) << f.dump(2);
   EXPECT_LT(f["samples_hit"].get<std::uint64_t>(), f["samples_seen"].get<std::uint64_t>());
   // The services said so too, in their logs (msg="fault" event=started ...).
-  EXPECT_NE(testing::ReadFile(run + "/logs/ddl-sun.log").find("event=started"), std::string::npos);
+  EXPECT_NE(testing::ReadFile(run + "/logs/ddl-sun-sensor.log").find("event=started"), std::string::npos);
   const std::string summary = testing::ReadFile(dir_ + "/faults/summary.txt");
-  EXPECT_NE(summary.find("fault 1 'sun dropouts' drop ddl/sun_sensor (writer of ddl-sun): 1.0 s"),
+  EXPECT_NE(summary.find("fault 1 'sun dropouts' drop ddl/sun_sensor (writer of ddl-sun-sensor): 1.0 s"),
             std::string::npos)
       << summary;
 }

@@ -62,10 +62,10 @@ class RecordingCli : public ::testing::Test {
     const std::string path = dir_ + "/" + tag + ".compose.yaml";
     std::ofstream(path) << "x-rover: {project: " << project_ << rover_extra << "}\n"
                         << "services:\n"
-                           "  smoke-ddl: {command: smoke-ddl --set rate_hz=50}\n"
-                           "  smoke-dl:\n"
-                           "    command: smoke-dl\n"
-                           "    depends_on: {smoke-ddl: {condition: service_healthy}}\n";
+                           "  ddl-smoke: {command: ddl-smoke --set rate_hz=50}\n"
+                           "  dl-smoke:\n"
+                           "    command: dl-smoke\n"
+                           "    depends_on: {ddl-smoke: {condition: service_healthy}}\n";
     return path;
   }
   /// Starts the set in the background; returns its domain.
@@ -132,7 +132,7 @@ TEST_F(RecordingCli, RecordReplayAndTheirBadInputs) {
   ASSERT_EQ(counts.size(), 1u) << out;
   EXPECT_GT(counts.at("ddl/imu"), 20u);
 
-  // Onto the running set: smoke-ddl publishes ddl/imu there already.
+  // Onto the running set: ddl-smoke publishes ddl/imu there already.
   auto [busy, busy_out] = Roverctl({"replay", file, "-p", project_});
   EXPECT_EQ(busy, 1) << busy_out;
   EXPECT_NE(busy_out.find("is in use"), std::string::npos) << busy_out;

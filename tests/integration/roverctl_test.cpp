@@ -47,15 +47,15 @@ class RoverctlTest : public ::testing::Test {
     std::ofstream(path) << "version: \"3.9\"\n"
                            "x-rover: {project: " << project << "}\n"
                            "services:\n"
-                           "  smoke-ddl: {command: smoke-ddl --set rate_hz=50, restart: on-failure}\n"
-                           "  smoke-dl:\n"
-                           "    command: smoke-dl\n"
+                           "  ddl-smoke: {command: ddl-smoke --set rate_hz=50, restart: on-failure}\n"
+                           "  dl-smoke:\n"
+                           "    command: dl-smoke\n"
                            "    restart: on-failure\n"
-                           "    depends_on: {smoke-ddl: {condition: service_healthy}}\n"
-                           "  smoke-apl:\n"
-                           "    command: smoke-apl --set report_every=5\n"
+                           "    depends_on: {ddl-smoke: {condition: service_healthy}}\n"
+                           "  apl-smoke:\n"
+                           "    command: apl-smoke --set report_every=5\n"
                            "    restart: on-failure\n"
-                           "    depends_on: {smoke-dl: {condition: service_healthy}}\n"
+                           "    depends_on: {dl-smoke: {condition: service_healthy}}\n"
                         << extra_service;
     return path;
   }
@@ -143,7 +143,7 @@ TEST_F(RoverctlTest, SmokeSetPassesDataThroughAllThreeLayersAndCtrlCLeavesNothin
   ASSERT_TRUE(WaitUp(project)) << testing::ReadFile(dir_ + "/flow.log");
   const int domain = State(project)["domain"];
 
-  // ddl/imu (smoke-ddl) -> dl/pose (smoke-dl) -> apl/mobility_status (smoke-apl): the apl
+  // ddl/imu (ddl-smoke) -> dl/pose (dl-smoke) -> apl/mobility_status (apl-smoke): the apl
   // service counts poses, which exist only if imu samples crossed the dl service.
   std::string message;
   const long first = CountStatuses(domain, 3, &message);
@@ -154,7 +154,7 @@ TEST_F(RoverctlTest, SmokeSetPassesDataThroughAllThreeLayersAndCtrlCLeavesNothin
   // `ps` shows every service running with a heartbeat.
   auto [ps_exit, ps_out] = RunRoverctl({"ps", project});
   EXPECT_TRUE(ps_exit.success());
-  for (const char* svc : {"smoke-ddl", "smoke-dl", "smoke-apl"}) {
+  for (const char* svc : {"ddl-smoke", "dl-smoke", "apl-smoke"}) {
     EXPECT_NE(ps_out.find(svc), std::string::npos) << ps_out;
   }
   EXPECT_NE(ps_out.find("active"), std::string::npos) << ps_out;
@@ -175,7 +175,7 @@ TEST_F(RoverctlTest, KillNineIsRestartedByPolicyAndDataFlowsAgain) {
   running_.push_back(StartRoverctl({"up", file}, dir_ + "/kill.log"));
   ASSERT_TRUE(WaitUp(project));
   const int domain = State(project)["domain"];
-  const int victim = PidOf(project, "smoke-dl");
+  const int victim = PidOf(project, "dl-smoke");
   ASSERT_GT(victim, 0);
   ASSERT_EQ(kill(victim, SIGKILL), 0);
   int replacement = 0;
@@ -183,7 +183,7 @@ TEST_F(RoverctlTest, KillNineIsRestartedByPolicyAndDataFlowsAgain) {
     const nlohmann::json s = State(project);
     if (s.is_null()) return false;
     for (const auto& svc : s["services"]) {
-      if (svc["name"] == "smoke-dl" && svc["restarts"] == 1 && svc["state"] == "running" &&
+      if (svc["name"] == "dl-smoke" && svc["restarts"] == 1 && svc["state"] == "running" &&
           svc["pid"] != victim && svc["pid"] != 0) {
         replacement = svc["pid"];
         return true;
@@ -245,7 +245,7 @@ TEST_F(RoverctlTest, TwoSetsOnDifferentDomainsDoNotSeeEachOther) {
 TEST_F(RoverctlTest, ServiceExitingAtOnceFailsTheSetAndNothingIsHalfStarted) {
   const std::string file = WriteSmoke(
       "quit", "  quitter:\n    command: sh -c \"echo 'cannot open /dev/motor0' >&2; exit 3\"\n"
-              "    depends_on: [smoke-apl]\n");
+              "    depends_on: [apl-smoke]\n");
   const std::string project = ProjectOf("quit");
   auto [e, out] = RunRoverctl({"up", file});
   EXPECT_FALSE(e.success());
@@ -264,17 +264,17 @@ TEST_F(RoverctlTest, OutOfRangeParameterIsCaughtBeforeAnythingStarts) {
   std::ofstream(file) << text;
   auto [e, out] = RunRoverctl({"up", file});
   EXPECT_EQ(e.code, 2);
-  EXPECT_NE(out.find(file + ":4: services.smoke-ddl: --set rate_hz=5000: key 'rate_hz': 5000 is "
+  EXPECT_NE(out.find(file + ":4: services.ddl-smoke: --set rate_hz=5000: key 'rate_hz': 5000 is "
                             "out of range [0.1, 1000]"),
             std::string::npos)
       << out;
   // Nothing was started, so there is not even a log of a start.
-  EXPECT_FALSE(fs::exists(state_root_ + "/" + ProjectOf("param") + "/logs/smoke-ddl.log"));
+  EXPECT_FALSE(fs::exists(state_root_ + "/" + ProjectOf("param") + "/logs/ddl-smoke.log"));
 }
 
 TEST_F(RoverctlTest, BadComposeFilesAreRejectedWithFileLineAndKey) {
   const std::string path = dir_ + "/bad.yaml";
-  std::ofstream(path) << "services:\n  a:\n    comand: smoke-ddl\n";
+  std::ofstream(path) << "services:\n  a:\n    comand: ddl-smoke\n";
   auto [e, out] = RunRoverctl({"up", path});
   EXPECT_EQ(e.code, 2);
   EXPECT_NE(out.find(path + ":3: services.a: unknown key 'comand' (did you mean 'command'?)"),
@@ -296,7 +296,7 @@ TEST_F(RoverctlTest, DetachedUpThenPsAndDown) {
   auto [e2, out2] = RunRoverctl({"up", file});         // a second `up` is refused
   EXPECT_EQ(e2.code, 2);
   EXPECT_NE(out2.find("is already up"), std::string::npos) << out2;
-  auto [e3, logs] = RunRoverctl({"logs", "smoke-apl", "-p", project});
+  auto [e3, logs] = RunRoverctl({"logs", "apl-smoke", "-p", project});
   EXPECT_TRUE(e3.success());
   EXPECT_NE(logs.find("msg=\"active\""), std::string::npos) << logs;
   auto [e4, out4] = RunRoverctl({"down", project});
@@ -323,17 +323,17 @@ TEST_F(RoverctlTest, UsageErrorsExitWithTwo) {
   EXPECT_NE(text.find("up"), std::string::npos);
 }
 
-// A smoke set whose dl service stays DEGRADED for `warmup` imu samples (smoke-ddl at 20 Hz), as
+// A smoke set whose dl service stays DEGRADED for `warmup` imu samples (ddl-smoke at 20 Hz), as
 // dl-pose does while it levels.
 std::string WarmupService(int warmup) {
-  return "    command: smoke-dl --set warmup_samples=" + std::to_string(warmup) + "\n";
+  return "    command: dl-smoke --set warmup_samples=" + std::to_string(warmup) + "\n";
 }
 
 // `ps` shows each heartbeat's health and message, and says the set is not ready yet.
 TEST_F(RoverctlTest, PsShowsHealthAndMessageOfEveryHeartbeat) {
   const std::string file = WriteSmoke("health");
   std::string text = testing::ReadFile(file);
-  text.replace(text.find("    command: smoke-dl\n"), 22, WarmupService(1000000));
+  text.replace(text.find("    command: dl-smoke\n"), 22, WarmupService(1000000));
   std::ofstream(file) << text;
   const std::string project = ProjectOf("health");
   auto [up, up_out] = RunRoverctl({"up", "-d", file});
@@ -341,23 +341,23 @@ TEST_F(RoverctlTest, PsShowsHealthAndMessageOfEveryHeartbeat) {
   std::string ps;
   EXPECT_TRUE(WaitFor([&] {
     ps = RunRoverctl({"ps", project}).second;
-    // Every service has sent its first heartbeat (under load smoke-apl's may come later).
+    // Every service has sent its first heartbeat (under load apl-smoke's may come later).
     return ps.find("warming up:") != std::string::npos &&
            ps.find("no heartbeat yet") == std::string::npos;
   }, std::chrono::seconds(30))) << ps;
   EXPECT_NE(ps.find("HEALTH"), std::string::npos) << ps;
   EXPECT_NE(ps.find("MESSAGE"), std::string::npos) << ps;
   EXPECT_NE(ps.find("not ready"), std::string::npos) << ps;
-  // One line per service: smoke-dl degraded with its message, the others ok.
+  // One line per service: dl-smoke degraded with its message, the others ok.
   std::istringstream lines(ps);
   std::string line;
   int checked = 0;
   while (std::getline(lines, line)) {
-    if (line.find("  smoke-dl ") == 0) {
+    if (line.find("  dl-smoke ") == 0) {
       EXPECT_NE(line.find("degraded"), std::string::npos) << line;
       EXPECT_NE(line.find("of 1000000 ddl/imu samples"), std::string::npos) << line;
       ++checked;
-    } else if (line.find("  smoke-ddl ") == 0 || line.find("  smoke-apl ") == 0) {
+    } else if (line.find("  ddl-smoke ") == 0 || line.find("  apl-smoke ") == 0) {
       EXPECT_NE(line.find(" ok "), std::string::npos) << line;
       ++checked;
     }
@@ -366,7 +366,7 @@ TEST_F(RoverctlTest, PsShowsHealthAndMessageOfEveryHeartbeat) {
   const nlohmann::json state = State(project);
   EXPECT_FALSE(state["ready"].get<bool>()) << state.dump(2);
   for (const auto& svc : state["services"]) {
-    if (svc["name"] == "smoke-dl") {
+    if (svc["name"] == "dl-smoke") {
       EXPECT_EQ(svc["health"], "degraded");
       EXPECT_NE(svc["message"].get<std::string>().find("warming up"), std::string::npos);
       EXPECT_FALSE(svc["ready"].get<bool>());
@@ -404,9 +404,9 @@ TEST_F(RoverctlTest, FaultAddListClearAgainstARunningSet) {
   const std::string xr = "x-rover: {project: " + project + "}\n";
   text.replace(text.find(xr), xr.size(),
                "x-rover:\n  project: " + project + "\n  faults:\n"
-               // Noise, not a duplicate: repeated seqs would make smoke-apl's inputs DEGRADED
+               // Noise, not a duplicate: repeated seqs would make apl-smoke's inputs DEGRADED
                // (detection, docs/faults.md) and the set would never be ready for --wait.
-               "    - {kind: noise, topic: dl/pose, service: smoke-dl, field: pose.position.x, "
+               "    - {kind: noise, topic: dl/pose, service: dl-smoke, field: pose.position.x, "
                "sigma: 0.001, seed: 4}\n");
   std::ofstream(file) << text;
   auto [up, up_out] = RunRoverctl({"up", "-d", "--wait=60", file});
@@ -425,47 +425,47 @@ TEST_F(RoverctlTest, FaultAddListClearAgainstARunningSet) {
   EXPECT_EQ(prob.code, 2) << prob_out;
   EXPECT_NE(prob_out.find("probability = 1.5 is outside [0, 1]"), std::string::npos) << prob_out;
 
-  // Only the compose file's fault is there (id 1), acting in smoke-dl.
+  // Only the compose file's fault is there (id 1), acting in dl-smoke.
   auto [l0, l0_out] = RunRoverctl({"fault", "list", "-p", project});
   ASSERT_TRUE(l0.success()) << l0_out;
-  EXPECT_GE(FaultRow(l0_out, 1, "smoke-dl").first, 0) << l0_out;
-  EXPECT_EQ(FaultRow(l0_out, 2, "smoke-ddl").first, -1) << l0_out;
+  EXPECT_GE(FaultRow(l0_out, 1, "dl-smoke").first, 0) << l0_out;
+  EXPECT_EQ(FaultRow(l0_out, 2, "ddl-smoke").first, -1) << l0_out;
 
   auto [add, add_out] = RunRoverctl({"fault", "add", "--kind", "drop", "--topic", "ddl/imu",
-                                     "--service", "smoke-ddl", "--probability", "0.5", "--seed",
+                                     "--service", "ddl-smoke", "--probability", "0.5", "--seed",
                                      "9", "-p", project});
   ASSERT_TRUE(add.success()) << add_out;
-  EXPECT_NE(add_out.find("fault 2: drop 50% of ddl/imu at the writers of smoke-ddl"),
+  EXPECT_NE(add_out.find("fault 2: drop 50% of ddl/imu at the writers of ddl-smoke"),
             std::string::npos) << add_out;
-  EXPECT_NE(add_out.find("applies in: smoke-ddl (held by 3 of 3 services)"), std::string::npos)
+  EXPECT_NE(add_out.find("applies in: ddl-smoke (held by 3 of 3 services)"), std::string::npos)
       << add_out;
 
-  // Its counts rise while it acts (smoke-ddl writes ddl/imu at 50 Hz).
+  // Its counts rise while it acts (ddl-smoke writes ddl/imu at 50 Hz).
   long long first_hit = -1;
   ASSERT_TRUE(WaitFor([&] {
     auto [l, out] = RunRoverctl({"fault", "list", "-p", project});
-    first_hit = FaultRow(out, 2, "smoke-ddl").second;
+    first_hit = FaultRow(out, 2, "ddl-smoke").second;
     return l.success() && first_hit > 0;
   }, std::chrono::seconds(30)));
   std::string state;
   ASSERT_TRUE(WaitFor([&] {
     auto [l, out] = RunRoverctl({"fault", "list", "-p", project});
-    const auto [seen, hit] = FaultRow(out, 2, "smoke-ddl", &state);
+    const auto [seen, hit] = FaultRow(out, 2, "ddl-smoke", &state);
     return hit > first_hit && hit < seen;
   }, std::chrono::seconds(30)));
   EXPECT_EQ(state, "active");
   auto [l1, l1_out] = RunRoverctl({"fault", "list", "-p", project});
-  EXPECT_EQ(FaultRow(l1_out, 2, "smoke-dl").first, -1) << l1_out;  // not where it does not act
-  EXPECT_GT(FaultRow(l1_out, 1, "smoke-dl").second, 0) << l1_out;  // the compose file's acts
+  EXPECT_EQ(FaultRow(l1_out, 2, "dl-smoke").first, -1) << l1_out;  // not where it does not act
+  EXPECT_GT(FaultRow(l1_out, 1, "dl-smoke").second, 0) << l1_out;  // the compose file's acts
 
   auto [clear, clear_out] = RunRoverctl({"fault", "clear", "2", "-p", project});
   ASSERT_TRUE(clear.success()) << clear_out;
   EXPECT_NE(clear_out.find("fault 2 removed in"), std::string::npos) << clear_out;
   auto [l2, l2_out] = RunRoverctl({"fault", "list", "-p", project});
-  const auto [seen_after, hit_after] = FaultRow(l2_out, 2, "smoke-ddl", &state);
+  const auto [seen_after, hit_after] = FaultRow(l2_out, 2, "ddl-smoke", &state);
   EXPECT_EQ(state, "ended") << l2_out;
   auto [l3, l3_out] = RunRoverctl({"fault", "list", "-p", project});
-  EXPECT_EQ(FaultRow(l3_out, 2, "smoke-ddl").second, hit_after) << l3_out;  // no longer counts
+  EXPECT_EQ(FaultRow(l3_out, 2, "ddl-smoke").second, hit_after) << l3_out;  // no longer counts
   (void)seen_after;
   auto [all, all_out] = RunRoverctl({"fault", "clear", "-p", project});
   ASSERT_TRUE(all.success()) << all_out;
@@ -481,7 +481,7 @@ TEST_F(RoverctlTest, FaultAddListClearAgainstARunningSet) {
 TEST_F(RoverctlTest, UpWaitReturnsOnceEveryServiceIsReady) {
   const std::string file = WriteSmoke("ready");
   std::string text = testing::ReadFile(file);
-  text.replace(text.find("    command: smoke-dl\n"), 22, WarmupService(60));  // about 3 s
+  text.replace(text.find("    command: dl-smoke\n"), 22, WarmupService(60));  // about 3 s
   std::ofstream(file) << text;
   const std::string project = ProjectOf("ready");
   auto [up, out] = RunRoverctl({"up", "-d", "--wait=120", file});
@@ -502,13 +502,13 @@ TEST_F(RoverctlTest, UpWaitReturnsOnceEveryServiceIsReady) {
 TEST_F(RoverctlTest, UpWaitTimesOutNamingTheServicesThatAreNotReady) {
   const std::string file = WriteSmoke("slow");
   std::string text = testing::ReadFile(file);
-  text.replace(text.find("    command: smoke-dl\n"), 22, WarmupService(1000000));
+  text.replace(text.find("    command: dl-smoke\n"), 22, WarmupService(1000000));
   std::ofstream(file) << text;
   const std::string project = ProjectOf("slow");
   auto [up, out] = RunRoverctl({"up", "-d", "--wait=10", file});
   EXPECT_EQ(up.code, 1) << out;
   EXPECT_NE(out.find("not ready within 10 s"), std::string::npos) << out;
-  EXPECT_NE(out.find("smoke-dl: health degraded: warming up"), std::string::npos) << out;
+  EXPECT_NE(out.find("dl-smoke: health degraded: warming up"), std::string::npos) << out;
   EXPECT_TRUE(WaitFor([&] { return ProcessesOfProject(project).empty(); }, std::chrono::seconds(30)));
 }
 

@@ -1,4 +1,4 @@
-// ddl-sun in-process on an isolated DDS domain under a simulated clock: spot centroids made with
+// ddl-sun-sensor in-process on an isolated DDS domain under a simulated clock: spot centroids made with
 // the nominal pinhole model of rover_hardware.yaml come out of ddl/sun_sensor as the rover-frame
 // sun direction they were made from; dim spots are not valid, impossible spots FAILED, and
 // silence STALE.
@@ -21,7 +21,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 class SunServiceTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    harness_ = std::make_unique<ServiceHarness>(service_, "ddl-sun-test");
+    harness_ = std::make_unique<ServiceHarness>(service_, "ddl-sun-sensor-test");
     ASSERT_TRUE(harness_->ok()) << harness_->status().message();
     raw_ = harness_->Writer<rover_hw_SunSensorRaw>("hw/sun_sensor");
     sun_ = harness_->Reader<rover_ddl_SunSensor>("ddl/sun_sensor");

@@ -20,17 +20,17 @@ x-rover:
 services:
   apl:
     image: rover-stack:latest
-    command: smoke-apl --set "report_every=5"
+    command: apl-smoke --set "report_every=5"
     depends_on:
       dl: {condition: service_healthy}
     restart: on-failure:3
   dl:
-    command: [smoke-dl]
+    command: [dl-smoke]
     depends_on: [ddl]
     environment: [ROVER_LOG_LEVEL=debug]
     stop_grace_period: 1m30s
   ddl:
-    command: smoke-ddl
+    command: ddl-smoke
     environment:
       A: "1"
     restart: always
@@ -57,7 +57,7 @@ TEST(Compose, ParsesTheSupportedSubset) {
   EXPECT_EQ(p->services[2].name, "apl");
   const ServiceSpec* apl = p->Find("apl");
   ASSERT_NE(apl, nullptr);
-  EXPECT_EQ(apl->command, (std::vector<std::string>{"smoke-apl", "--set", "report_every=5"}));
+  EXPECT_EQ(apl->command, (std::vector<std::string>{"apl-smoke", "--set", "report_every=5"}));
   EXPECT_EQ(apl->restart, RestartPolicy::kOnFailure);
   EXPECT_EQ(apl->max_restarts, 3);
   EXPECT_EQ(apl->depends_on[0].condition, DependencyCondition::kHealthy);
@@ -78,10 +78,10 @@ x-service: &service
 services:
   first:
     <<: *service
-    command: smoke-ddl
+    command: ddl-smoke
   second:
     <<: *service
-    command: smoke-dl
+    command: dl-smoke
     restart: "no"
 )";
   auto p = ParseCompose(kMerged, "merged.yaml");

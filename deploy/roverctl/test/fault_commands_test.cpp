@@ -123,16 +123,16 @@ FaultRecord Listed(std::uint32_t id, const std::string& service, std::uint64_t s
 
 TEST(FaultList, OneRowPerFaultAndServiceItActsIn) {
   const std::string table = FormatFaultList(
-      {Listed(2, "smoke-dl", 0, 0, "pending: fault 2: freeze ddl/imu ... (not for this service)",
+      {Listed(2, "dl-smoke", 0, 0, "pending: fault 2: freeze ddl/imu ... (not for this service)",
               faults::FaultKind::kFreeze),
-       Listed(1, "smoke-dl", 0, 0,
+       Listed(1, "dl-smoke", 0, 0,
               "active: fault 1: drop 50% of ddl/imu ... (not for this service)"),
-       Listed(1, "smoke-ddl", 240, 118, "active: fault 1: drop 50% of ddl/imu at the writers")});
-  EXPECT_NE(table.find("1    drop       active   smoke-ddl                     240        118  "
+       Listed(1, "ddl-smoke", 240, 118, "active: fault 1: drop 50% of ddl/imu at the writers")});
+  EXPECT_NE(table.find("1    drop       active   ddl-smoke                     240        118  "
                        "fault 1: drop 50% of ddl/imu at the writers\n"),
             std::string::npos)
       << table;
-  EXPECT_EQ(table.find("smoke-dl "), std::string::npos) << table;  // fault 1 does not act there
+  EXPECT_EQ(table.find(" dl-smoke "), std::string::npos) << table;  // fault 1 does not act there
   EXPECT_NE(table.find("2    freeze     pending  -"), std::string::npos) << table;
   EXPECT_NE(table.find("(no service of the set matches)"), std::string::npos) << table;
   EXPECT_LT(table.find("1    drop"), table.find("2    freeze"));

@@ -151,7 +151,7 @@ TEST(AutonavScenarios, TheirServiceSetRunsTheMobilityManager) {
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();
-  for (const char* service : {"rover-sim", "ddl-motor", "ddl-joints", "ddl-imu", "ddl-sun",
+  for (const char* service : {"rover-sim", "ddl-motor", "ddl-joints", "ddl-imu", "ddl-sun-sensor",
                               "ddl-camera", "dl-locomotion", "dl-pose", "dl-stereo", "dl-vo",
                               "apl-mobility"}) {
     EXPECT_NE(text.find(std::string("\n  ") + service + ":"), std::string::npos) << service;

@@ -230,7 +230,7 @@ class ServiceContext {
 /// Base class of every service. Override OnConfigure at least.
 class Service {
  public:
-  /// `kind` names the service type (e.g. "smoke-dl"); it is the default instance name.
+  /// `kind` names the service type (e.g. "dl-smoke"); it is the default instance name.
   explicit Service(std::string kind) : kind_(std::move(kind)) {}
   virtual ~Service() = default;
   Service(const Service&) = delete;

@@ -7,12 +7,8 @@
 /// joint, + looks left; tilt about the head's -y, + looks up. Parameter keys ending in _deg are
 /// degrees (deg/s for speed); the members are radians (rad/s).
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
-
-namespace rover {
-template <class Options>
-class ParamBinder;
-}  // namespace rover
 
 namespace rover::dl::mast {
 

@@ -20,15 +20,11 @@
 #include <string>
 #include <vector>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/sim/render/cameras.hpp"
 #include "rover/sim/render/renderer.hpp"
-
-namespace rover {
-template <class Options>
-class ParamBinder;
-}  // namespace rover
 
 namespace rover::sim::rover_sim {
 

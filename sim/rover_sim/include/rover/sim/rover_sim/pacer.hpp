@@ -21,13 +21,9 @@
 #include <string>
 #include <vector>
 
+#include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
-
-namespace rover {
-template <class Options>
-class ParamBinder;
-}  // namespace rover
 
 namespace rover::sim::rover_sim {
 
