@@ -1,6 +1,5 @@
 #include "camera_service.hpp"
 
-
 #include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
 #include "rover/ddl/driver_support/driver_params.hpp"

@@ -1,4 +1,5 @@
-// ddl-sun-sensor: the sun-sensor driver service. See sun_service.hpp and docs/services/ddl-sun-sensor.md.
+// ddl-sun-sensor: the sun-sensor driver service. See sun_service.hpp and
+// docs/services/ddl-sun-sensor.md.
 #include "sun_service.hpp"
 
 int main(int argc, char** argv) {

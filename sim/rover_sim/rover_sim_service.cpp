@@ -42,12 +42,14 @@ class RoverSim final : public rover::Service {
 
   Status OnConfigure(rover::ServiceContext& ctx, const rover::ParamSet& p) override {
     ROVER_ASSIGN_OR_RETURN(engine_, rs::SimEngine::Create(p));
-    ROVER_ASSIGN_OR_RETURN(const rs::PacerOptions pacing, rover::ReadParams<rs::PacerOptions>(p, "sim."));
+    ROVER_ASSIGN_OR_RETURN(const rs::PacerOptions pacing,
+                           rover::ReadParams<rs::PacerOptions>(p, "sim."));
     ROVER_ASSIGN_OR_RETURN(const rs::CameraHeadOptions camera,
                            rover::ReadParams<rs::CameraHeadOptions>(p, "camera."));
     pacer_.emplace(pacing);
     pacer_->set_self(ctx.name());
-    camera_.emplace(camera, std::make_shared<const rover::sim::terrain::Terrain>(engine_->world().terrain),
+    camera_.emplace(camera,
+                    std::make_shared<const rover::sim::terrain::Terrain>(engine_->world().terrain),
                     engine_->rover());
     ctx_ = &ctx;
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
@@ -69,10 +71,11 @@ class RoverSim final : public rover::Service {
           "sim/clock_ack", [this](const dds::Sample<rover_sim_ClockAck>& s) { OnAck(s.data()); }));
     }
     ctx.executor().SetWork([this] { return Work(); });
-    rover::log::Info("world ready",
-                     {{"rocks", engine_->world().terrain.rocks.size()},
-                      {"start_x", engine_->world().start_x}, {"start_y", engine_->world().start_y},
-                      {"real_time_factor", pacer_->real_time_factor()}, {"paused", pacer_->paused()}});
+    rover::log::Info("world ready", {{"rocks", engine_->world().terrain.rocks.size()},
+                                     {"start_x", engine_->world().start_x},
+                                     {"start_y", engine_->world().start_y},
+                                     {"real_time_factor", pacer_->real_time_factor()},
+                                     {"paused", pacer_->paused()}});
     return Status::Ok();
   }
 
@@ -131,7 +134,8 @@ class RoverSim final : public rover::Service {
 
   void OnAck(const rover_sim_ClockAck& a) {
     const std::string back = pacer_->OnAck(a.service, a.sim_time_ns, rover::MonotonicNow());
-    if (!back.empty()) rover::log::Info("lock-step: service is keeping up again", {{"service", back}});
+    if (!back.empty())
+      rover::log::Info("lock-step: service is keeping up again", {{"service", back}});
   }
 
   template <class T, class In>
@@ -145,7 +149,8 @@ class RoverSim final : public rover::Service {
   void Publish(const rs::StepOutput& o) {
     PublishClock();
     const auto& s = o.sensors;
-    if (s.motor_telemetry) Send(telemetry_w_, *s.motor_telemetry, &msg::MotorTelemetryToIdl, "rover");
+    if (s.motor_telemetry)
+      Send(telemetry_w_, *s.motor_telemetry, &msg::MotorTelemetryToIdl, "rover");
     if (s.suspension_pots) Send(pots_w_, *s.suspension_pots, &msg::SuspensionPotsToIdl, "rover");
     if (s.imu) Send(imu_w_, *s.imu, &msg::ImuRawToIdl, "imu");
     if (s.sun_sensor) Send(sun_w_, *s.sun_sensor, &msg::SunSensorRawToIdl, "sun_sensor");
@@ -236,7 +241,8 @@ class RoverSim final : public rover::Service {
     frame.right = {r.ptr<std::uint8_t>(), r.total()};
     Send(frame_w_, frame, &msg::CameraFrameToIdl, msg::CameraName(id));
     rover::log::Info("stereo pair",
-                     {{"camera", msg::CameraName(id)}, {"request_id", req.request_id},
+                     {{"camera", msg::CameraName(id)},
+                      {"request_id", req.request_id},
                       {"render_ms", rover::ToSeconds(rover::MonotonicNow() - t0) * 1e3},
                       {"sim_time", engine_->time()}});
   }

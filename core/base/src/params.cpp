@@ -465,4 +465,15 @@ std::string ParamSet::DescribeAll() const {
   return out;
 }
 
+Status AtParamKey(const ParamSet& params, const std::string& key, const Status& status) {
+  if (status.ok()) return status;
+  std::string why = status.message();
+  if (const std::size_t colon = why.find(": "); colon != std::string::npos) {
+    why = why.substr(colon + 2);
+  }
+  const std::string where =
+      params.Has(key) ? params.Origin(key).ToString() : std::string("parameters");
+  return Status(status.code(), where + ": key '" + key + "': " + why);
+}
+
 }  // namespace rover

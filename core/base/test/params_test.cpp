@@ -40,6 +40,17 @@ TEST(Params, LoadsYamlWithNestingAndServiceWrapper) {
   EXPECT_EQ(p.Origin("rate_hz").ToString(), "f.yaml:2");
 }
 
+TEST(Params, AtParamKeyRestatesAFieldFailureAtTheKeysLine) {
+  ParamSet p = MakeParams();
+  ASSERT_TRUE(p.LoadYamlString("drive:\n  cycles: 2\n  rate_hz: 10\n", "f.yaml").ok());
+  const Status s = AtParamKey(p, "rate_hz", InvalidArgument("rate: 10 exceeds the motor's 5"));
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(s.message(), "f.yaml:3: key 'rate_hz': 10 exceeds the motor's 5");
+  EXPECT_EQ(AtParamKey(p, "no.such", InvalidArgument("x: bad")).message(),
+            "parameters: key 'no.such': bad");
+  EXPECT_TRUE(AtParamKey(p, "rate_hz", Status::Ok()).ok());
+}
+
 TEST(Params, OutOfRangeNamesFileLineAndKey) {
   ParamSet p = MakeParams();
   ASSERT_TRUE(p.LoadYamlString("mode: turn\nrate_hz: 500\n", "params/drive.yaml").ok());

@@ -22,12 +22,12 @@ std::string Join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
-
 void CheckInertial(KeyChecker& c, const std::string& base, const InertialSensorSpec& s) {
   c.Positive(base + ".lsb", s.lsb);
   c.Positive(base + ".range", s.range);
   if (c.ok() && s.range / s.lsb >= 2147483647.0) {
-    c.Fail(base + ".range", FormatNumber(s.range) + " is not representable in int32 LSB of " + FormatNumber(s.lsb));
+    c.Fail(base + ".range",
+           FormatNumber(s.range) + " is not representable in int32 LSB of " + FormatNumber(s.lsb));
   }
   for (int i = 0; i < 3; ++i) {
     c.Finite(base + ".bias", s.bias[i]);
@@ -48,16 +48,6 @@ void CheckInertial(KeyChecker& c, const std::string& base, const InertialSensorS
 bool IsRotation(const Eigen::Matrix3d& r) {
   return r.allFinite() && (r * r.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
          r.determinant() > 0.0;
-}
-
-Status WithOrigin(const ParamSet& params, const std::string& full_key, const Status& status) {
-  if (status.ok()) return status;
-  std::string rest = status.message();
-  const std::size_t colon = rest.find(": ");
-  if (colon != std::string::npos) rest = rest.substr(colon + 2);
-  const std::string where =
-      params.Has(full_key) ? params.Origin(full_key).ToString() : std::string("parameters");
-  return Status(status.code(), where + ": key '" + full_key + "': " + rest);
 }
 
 Eigen::Vector3d Vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
@@ -233,12 +223,14 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
     c.Positive(base + ".max_rate", m.max_rate);
     c.Positive(base + ".default_rate", m.default_rate);
     if (c.ok() && m.default_rate > m.max_rate) {
-      c.Fail(base + ".default_rate", FormatNumber(m.default_rate) + " exceeds max_rate " + FormatNumber(m.max_rate));
+      c.Fail(base + ".default_rate",
+             FormatNumber(m.default_rate) + " exceeds max_rate " + FormatNumber(m.max_rate));
     }
     c.Positive(base + ".max_acceleration", m.max_acceleration);
     c.Positive(base + ".current_limit", m.current_limit);
     if (c.ok() && m.current_limit * 1000.0 > 65535.0) {
-      c.Fail(base + ".current_limit", FormatNumber(m.current_limit) + " A does not fit the uint16 mA goal");
+      c.Fail(base + ".current_limit",
+             FormatNumber(m.current_limit) + " A does not fit the uint16 mA goal");
     }
     c.Finite(base + ".max_temperature", m.max_temperature);
     c.Positive(base + ".position_tolerance", m.position_tolerance);
@@ -276,10 +268,10 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
     }
     const double tc = t.CountsFromTemperature(m.max_temperature);
     if (c.ok() && (tc <= 0.0 || tc >= hw::kAdcMax)) {
-      c.Fail(base + ".max_temperature", FormatNumber(m.max_temperature) +
-                                            " degC is outside the temperature ADC's range [" +
-                                            FormatNumber(t.TemperatureFromCounts(0)) + ", " +
-                                            FormatNumber(t.TemperatureFromCounts(hw::kAdcMax)) + "]");
+      c.Fail(base + ".max_temperature",
+             FormatNumber(m.max_temperature) + " degC is outside the temperature ADC's range [" +
+                 FormatNumber(t.TemperatureFromCounts(0)) + ", " +
+                 FormatNumber(t.TemperatureFromCounts(hw::kAdcMax)) + "]");
     }
   }
 
@@ -551,7 +543,7 @@ Result<HardwareConfig> HardwareConfigFromParams(const ParamSet& ps, const std::s
 
   std::string bad_key;
   const Status st = internal::ValidateHardwareConfig(c, &bad_key);
-  if (!st.ok()) return WithOrigin(ps, key(bad_key), st);
+  if (!st.ok()) return AtParamKey(ps, key(bad_key), st);
   return c;
 }
 

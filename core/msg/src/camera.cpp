@@ -23,7 +23,8 @@ std::array<double, 3> Arr(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z(
 bool IsZero(const std::array<double, 3>& a) { return a[0] == 0.0 && a[1] == 0.0 && a[2] == 0.0; }
 
 std::string Text(const std::array<double, 3>& a) {
-  return "(" + FormatNumber(a[0], 9) + ", " + FormatNumber(a[1], 9) + ", " + FormatNumber(a[2], 9) + ")";
+  return "(" + FormatNumber(a[0], 9) + ", " + FormatNumber(a[1], 9) + ", " + FormatNumber(a[2], 9) +
+         ")";
 }
 
 std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
@@ -176,8 +177,9 @@ Result<geometry::CameraModel> CameraModelFromFields(const CameraModelFields& f) 
       const double angle = std::acos(std::clamp(z.dot(Vec(f.a).normalized()), -1.0, 1.0));
       if (dc > kCentreTolerance || angle > kAxisTolerance) {
         return InvalidArgument("camera model CAHVOR and pinhole parts disagree: C " + Text(f.c) +
-                               " vs pose.position " + Text(f.position) + " (" + FormatNumber(dc, 9) +
-                               " m), A vs pose z axis " + FormatNumber(angle, 9) + " rad");
+                               " vs pose.position " + Text(f.position) + " (" +
+                               FormatNumber(dc, 9) + " m), A vs pose z axis " +
+                               FormatNumber(angle, 9) + " rad");
       }
     }
     return model;

@@ -1,9 +1,9 @@
 #include "rover/ddl/camera/camera_driver.hpp"
 
-#include "rover/base/format.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "rover/base/format.hpp"
 
 namespace rover::ddl::camera {
 namespace {
@@ -24,7 +24,8 @@ std::string CameraList() {
 Status CameraDriverOptions::Validate() const {
   auto positive = [](const char* k, double v) -> Status {
     if (!std::isfinite(v) || v <= 0.0) {
-      return InvalidArgument(std::string(k) + ": " + FormatNumber(v, 3) + " must be finite and > 0");
+      return InvalidArgument(std::string(k) + ": " + FormatNumber(v, 3) +
+                             " must be finite and > 0");
     }
     return Status::Ok();
   };
@@ -83,8 +84,8 @@ Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& 
 
 Status CameraDriver::HandleMast(const MastSample& s) {
   if (!std::isfinite(s.pan) || !std::isfinite(s.tilt)) {
-    return InvalidArgument("mast angles pan " + FormatNumber(s.pan, 3) + ", tilt " + FormatNumber(s.tilt, 3) +
-                           " are not finite");
+    return InvalidArgument("mast angles pan " + FormatNumber(s.pan, 3) + ", tilt " +
+                           FormatNumber(s.tilt, 3) + " are not finite");
   }
   if (!mast_.empty() && s.stamp_ns <= mast_.back().stamp_ns) return Status::Ok();
   mast_.push_back(s);

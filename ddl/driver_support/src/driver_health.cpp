@@ -1,6 +1,5 @@
 #include "rover/ddl/driver_support/driver_health.hpp"
 
-
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 
@@ -18,8 +17,8 @@ Status InputMonitor::Accept(std::int64_t stamp_ns, Time now, bool clock_valid) {
   if (clock_valid && ToSeconds(Time{stamp_ns} - now) > max_future_s_) {
     ++rejected_;
     return OutOfRange(name_ + ": sample stamped " + FormatNumber(Time{stamp_ns}.seconds(), 3) +
-                      " s is more than " + FormatNumber(max_future_s_, 3) + " s ahead of the run clock (" +
-                      FormatNumber(now.seconds(), 3) + " s)");
+                      " s is more than " + FormatNumber(max_future_s_, 3) +
+                      " s ahead of the run clock (" + FormatNumber(now.seconds(), 3) + " s)");
   }
   last_arrival_ = now;
   ++accepted_;
@@ -32,7 +31,8 @@ bool InputMonitor::Stale(Time now) const {
 
 std::string InputMonitor::StaleReason(Time now) const {
   if (!last_arrival_) return name_ + ": no sample yet";
-  if (Stale(now)) return name_ + ": no sample for more than " + FormatNumber(stale_after_s_, 3) + " s";
+  if (Stale(now))
+    return name_ + ": no sample for more than " + FormatNumber(stale_after_s_, 3) + " s";
   return "";
 }
 

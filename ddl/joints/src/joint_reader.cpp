@@ -1,9 +1,9 @@
 #include "rover/ddl/joints/joint_reader.hpp"
 
-#include "rover/base/format.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "rover/base/format.hpp"
 
 namespace rover::ddl::joints {
 namespace {
@@ -76,7 +76,9 @@ JointState JointReader::State(Time now) const {
     s.stamp = Time{last_telemetry_->stamp_ns};
     if (static_cast<double>(now.ns - last_telemetry_->stamp_ns) > stale_ns) {
       Worsen(msg::SensorHealth::kStale,
-             "motor telemetry " + FormatNumber((now.ns - last_telemetry_->stamp_ns) * 1e-9, 3) + " s old", &s);
+             "motor telemetry " + FormatNumber((now.ns - last_telemetry_->stamp_ns) * 1e-9, 3) +
+                 " s old",
+             &s);
     }
     for (std::size_t w = 0; w < 6; ++w) {
       s.wheel_angle[w] = static_cast<double>(counts_[w]) / config_.motors[w].CountsPerRad();
@@ -98,7 +100,9 @@ JointState JointReader::State(Time now) const {
       if (spec.HasLimits() && (a < spec.min_angle - options_.joint_limit_margin ||
                                a > spec.max_angle + options_.joint_limit_margin)) {
         Worsen(msg::SensorHealth::kDegraded,
-               std::string(hw::MotorName(m)) + " angle " + FormatNumber(a, 3) + " rad beyond its limits", &s);
+               std::string(hw::MotorName(m)) + " angle " + FormatNumber(a, 3) +
+                   " rad beyond its limits",
+               &s);
       }
     }
   }
@@ -108,8 +112,10 @@ JointState JointReader::State(Time now) const {
   } else {
     s.stamp = std::max(s.stamp, Time{last_pots_->stamp_ns});
     if (static_cast<double>(now.ns - last_pots_->stamp_ns) > stale_ns) {
-      Worsen(msg::SensorHealth::kStale,
-             "suspension pots " + FormatNumber((now.ns - last_pots_->stamp_ns) * 1e-9, 3) + " s old", &s);
+      Worsen(
+          msg::SensorHealth::kStale,
+          "suspension pots " + FormatNumber((now.ns - last_pots_->stamp_ns) * 1e-9, 3) + " s old",
+          &s);
     }
     std::array<double, hw::kNumPots> angle{};
     for (int i = 0; i < hw::kNumPots; ++i) {
@@ -131,10 +137,10 @@ JointState JointReader::State(Time now) const {
     s.bogie_angle = {angle[hw::kLeftBogie], angle[hw::kRightBogie]};
     const double diff = angle[hw::kLeftRocker] + angle[hw::kRightRocker];
     if (std::abs(diff) > config_.pots.differential_tolerance) {
-      Worsen(
-          msg::SensorHealth::kDegraded,
-          "rocker angles inconsistent with the differential: left + right = " + FormatNumber(diff, 3) + " rad",
-          &s);
+      Worsen(msg::SensorHealth::kDegraded,
+             "rocker angles inconsistent with the differential: left + right = " +
+                 FormatNumber(diff, 3) + " rad",
+             &s);
     }
   }
   return s;

@@ -134,8 +134,8 @@ CommandError MotorGroupManager::Check(const MotorCommand& c, std::string* messag
     }
     if (c.mode == GroupMode::kPosition) {
       if (rate > spec.max_rate) {
-        *message = MotorLabel(m) + ": max_rate " + FormatNumber(rate, 4) + " rad/s exceeds the limit " +
-                   FormatNumber(spec.max_rate, 4);
+        *message = MotorLabel(m) + ": max_rate " + FormatNumber(rate, 4) +
+                   " rad/s exceeds the limit " + FormatNumber(spec.max_rate, 4);
         return CommandError::kRateAboveLimit;
       }
       if (spec.HasLimits() && (goal < spec.min_angle || goal > spec.max_angle)) {
@@ -144,12 +144,13 @@ CommandError MotorGroupManager::Check(const MotorCommand& c, std::string* messag
         return CommandError::kGoalOutOfRange;
       }
       if (std::abs(goal * spec.CountsPerRad()) >= 2.0e9) {
-        *message = MotorLabel(m) + ": goal " + FormatNumber(goal, 4) + " rad is beyond the encoder range";
+        *message =
+            MotorLabel(m) + ": goal " + FormatNumber(goal, 4) + " rad is beyond the encoder range";
         return CommandError::kGoalOutOfRange;
       }
     } else if (std::abs(goal) > spec.max_rate) {
-      *message =
-          MotorLabel(m) + ": rate " + FormatNumber(goal, 4) + " rad/s exceeds the limit " + FormatNumber(spec.max_rate, 4);
+      *message = MotorLabel(m) + ": rate " + FormatNumber(goal, 4) + " rad/s exceeds the limit " +
+                 FormatNumber(spec.max_rate, 4);
       return CommandError::kRateAboveLimit;
     }
   }
@@ -285,11 +286,11 @@ ManagerOutput MotorGroupManager::HandleCommand(const MotorCommand& c, Time now) 
   }
   g.hw_id = goals.command_id;
   groups_.push_back(g);
-  out.statuses.push_back(MakeStatus(c.command_id, GroupState::kRunning, MotorFault::kNone, -1,
-                                    c.mode == GroupMode::kPosition
-                                        ? "synchronised move of " + FormatNumber(g.planned_s, 4) + " s"
-                                        : std::string("velocity move"),
-                                    now));
+  out.statuses.push_back(MakeStatus(
+      c.command_id, GroupState::kRunning, MotorFault::kNone, -1,
+      c.mode == GroupMode::kPosition ? "synchronised move of " + FormatNumber(g.planned_s, 4) + " s"
+                                     : std::string("velocity move"),
+      now));
   return out;
 }
 
@@ -353,8 +354,8 @@ ManagerOutput MotorGroupManager::HandleTelemetry(const hw::MotorTelemetry& t, Ti
       } else if (g.overcurrent_s[k] >= options_.overcurrent_time_s) {
         fault = MotorFault::kOverCurrent;
         msg = MotorLabel(m) + " over-current: " + FormatNumber(current, 4) + " A > " +
-              FormatNumber(spec.current_limit * (1.0 + options_.overcurrent_margin), 4) + " A for " +
-              FormatNumber(g.overcurrent_s[k], 4) + " s";
+              FormatNumber(spec.current_limit * (1.0 + options_.overcurrent_margin), 4) +
+              " A for " + FormatNumber(g.overcurrent_s[k], 4) + " s";
       } else if (g.overtemp_s[k] >= options_.overtemp_time_s) {
         fault = MotorFault::kOverTemp;
         msg = MotorLabel(m) + " over-temperature: " + FormatNumber(temp, 4) + " degC > " +
@@ -374,9 +375,10 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
   Group& g = groups_[index];
   const std::string id = "command " + std::to_string(g.command_id);
   if (!latest_rx_ || ToSeconds(now - *latest_rx_) > options_.telemetry_timeout_s) {
-    EndGroup(index, GroupState::kFault, MotorFault::kNoTelemetry, -1,
-             "no motor telemetry for more than " + FormatNumber(options_.telemetry_timeout_s, 4) + " s", true,
-             now, out);
+    EndGroup(
+        index, GroupState::kFault, MotorFault::kNoTelemetry, -1,
+        "no motor telemetry for more than " + FormatNumber(options_.telemetry_timeout_s, 4) + " s",
+        true, now, out);
     return;
   }
   if (!g.applied) {
@@ -401,8 +403,8 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
     }
     if (done) {
       EndGroup(index, GroupState::kDone, MotorFault::kNone, -1,
-               "reached goals in " + FormatNumber(ToSeconds(now - g.applied_at), 4) + " s (planned " +
-                   FormatNumber(g.planned_s, 4) + " s)",
+               "reached goals in " + FormatNumber(ToSeconds(now - g.applied_at), 4) +
+                   " s (planned " + FormatNumber(g.planned_s, 4) + " s)",
                options_.brake_when_done, now, out);
       return;
     }
@@ -430,7 +432,8 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
     EndGroup(index, GroupState::kFault, MotorFault::kTimeout, worst,
              id + " timed out; " + MotorLabel(worst) + " is " +
                  FormatNumber(std::abs(latest_->position[static_cast<std::size_t>(worst)] -
-                              g.goal[static_cast<std::size_t>(worst)]), 4) +
+                                       g.goal[static_cast<std::size_t>(worst)]),
+                              4) +
                  " rad from its goal",
              true, now, out);
     return;
@@ -466,8 +469,9 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
       const double moved = (latest_->position[k] - g.history[ref].second[k]) * g.direction[k];
       if (moved < options_.stall_fraction * planned) {
         EndGroup(index, GroupState::kFault, MotorFault::kStall, m,
-                 MotorLabel(m) + " stalled: moved " + FormatNumber(moved, 4) + " rad of " + FormatNumber(planned, 4) +
-                     " rad planned in " + FormatNumber(ToSeconds(now - t0), 4) + " s",
+                 MotorLabel(m) + " stalled: moved " + FormatNumber(moved, 4) + " rad of " +
+                     FormatNumber(planned, 4) + " rad planned in " +
+                     FormatNumber(ToSeconds(now - t0), 4) + " s",
                  true, now, out);
         return;
       }

@@ -84,13 +84,14 @@ std::array<double, kNumWheels> TurnInPlaceWheelRates(const RoverGeometry& g, dou
 
 Result<DrivePlan> PlanArc(const RoverGeometry& g, double curvature, double distance, double speed) {
   if (!std::isfinite(curvature) || !std::isfinite(distance) || !std::isfinite(speed)) {
-    return InvalidArgument("PlanArc: curvature " + FormatNumber(curvature) + ", distance " + FormatNumber(distance) +
-                           ", speed " + FormatNumber(speed) + " must be finite");
+    return InvalidArgument("PlanArc: curvature " + FormatNumber(curvature) + ", distance " +
+                           FormatNumber(distance) + ", speed " + FormatNumber(speed) +
+                           " must be finite");
   }
   if (std::abs(curvature) > g.MaxCurvature() * (1.0 + 1e-12)) {
-    return OutOfRange("PlanArc: |curvature| " + FormatNumber(std::abs(curvature)) + " 1/m exceeds " +
-                      FormatNumber(g.MaxCurvature()) + " 1/m (min turn radius " + FormatNumber(g.min_turn_radius) +
-                      " m)");
+    return OutOfRange("PlanArc: |curvature| " + FormatNumber(std::abs(curvature)) +
+                      " 1/m exceeds " + FormatNumber(g.MaxCurvature()) + " 1/m (min turn radius " +
+                      FormatNumber(g.min_turn_radius) + " m)");
   }
   if (speed <= 0.0) return OutOfRange("PlanArc: speed " + FormatNumber(speed) + " m/s must be > 0");
 
@@ -119,8 +120,8 @@ Result<DrivePlan> PlanArc(const RoverGeometry& g, double curvature, double dista
 
 Result<DrivePlan> PlanTurnInPlace(const RoverGeometry& g, double angle, double speed) {
   if (!std::isfinite(angle) || !std::isfinite(speed)) {
-    return InvalidArgument("PlanTurnInPlace: angle " + FormatNumber(angle) + ", speed " + FormatNumber(speed) +
-                           " must be finite");
+    return InvalidArgument("PlanTurnInPlace: angle " + FormatNumber(angle) + ", speed " +
+                           FormatNumber(speed) + " must be finite");
   }
   if (speed <= 0.0) {
     return OutOfRange("PlanTurnInPlace: speed " + FormatNumber(speed) + " m/s must be > 0");

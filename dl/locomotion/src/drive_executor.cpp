@@ -30,7 +30,8 @@ bool AttitudeFinite(const msg::AttitudeSample& a) {
 Status DriveOptions::Validate() const {
   auto positive = [](double v, const char* name) -> Status {
     if (!std::isfinite(v) || v <= 0.0) {
-      return InvalidArgument(std::string("DriveOptions.") + name + ": " + FormatNumber(v) + " must be > 0");
+      return InvalidArgument(std::string("DriveOptions.") + name + ": " + FormatNumber(v) +
+                             " must be > 0");
     }
     return Status::Ok();
   };
@@ -133,26 +134,28 @@ InvalidReason DriveExecutor::CheckCommand(const DriveCommand& c, std::string* me
   }
   if (uses_curvature && std::abs(c.curvature) > geometry_.MaxCurvature() * (1.0 + 1e-12)) {
     m = "curvature " + FormatNumber(c.curvature) +
-        " 1/m: |curvature| must be <= " + FormatNumber(geometry_.MaxCurvature()) + " (min turn radius " +
-        FormatNumber(geometry_.min_turn_radius) + " m)";
+        " 1/m: |curvature| must be <= " + FormatNumber(geometry_.MaxCurvature()) +
+        " (min turn radius " + FormatNumber(geometry_.min_turn_radius) + " m)";
     return InvalidReason::kCurvatureOutOfRange;
   }
   if (uses_distance && std::abs(c.distance) > options_.max_distance) {
-    m = "distance " + FormatNumber(c.distance) + " m: |distance| must be <= " + FormatNumber(options_.max_distance);
+    m = "distance " + FormatNumber(c.distance) +
+        " m: |distance| must be <= " + FormatNumber(options_.max_distance);
     return InvalidReason::kDistanceOutOfRange;
   }
   if (uses_angle && std::abs(c.angle) > options_.max_turn_angle) {
-    m = "angle " + FormatNumber(c.angle) + " rad: |angle| must be <= " + FormatNumber(options_.max_turn_angle);
+    m = "angle " + FormatNumber(c.angle) +
+        " rad: |angle| must be <= " + FormatNumber(options_.max_turn_angle);
     return InvalidReason::kAngleOutOfRange;
   }
   if (uses_speed && (c.speed < 0.0 || c.speed > options_.max_speed)) {
-    m = "speed " + FormatNumber(c.speed) + " m/s must be in [0, " + FormatNumber(options_.max_speed) +
-        "] (0 = default)";
+    m = "speed " + FormatNumber(c.speed) + " m/s must be in [0, " +
+        FormatNumber(options_.max_speed) + "] (0 = default)";
     return InvalidReason::kSpeedOutOfRange;
   }
   if (c.timeout_s < 0.0 || c.timeout_s > options_.max_timeout_s) {
-    m = "timeout_s " + FormatNumber(c.timeout_s) + " must be in [0, " + FormatNumber(options_.max_timeout_s) +
-        "] (0 = derived)";
+    m = "timeout_s " + FormatNumber(c.timeout_s) + " must be in [0, " +
+        FormatNumber(options_.max_timeout_s) + "] (0 = derived)";
     return InvalidReason::kTimeoutOutOfRange;
   }
   return InvalidReason::kNone;
@@ -231,8 +234,8 @@ bool DriveExecutor::SensorsFresh(Time now, std::string* why) const {
   }
   const double joint_age = ToSeconds(now - joint_->stamp);
   if (joint_age > options_.joint_stale_s) {
-    *why =
-        "joint state is " + FormatNumber(joint_age) + " s old (limit " + FormatNumber(options_.joint_stale_s) + " s)";
+    *why = "joint state is " + FormatNumber(joint_age) + " s old (limit " +
+           FormatNumber(options_.joint_stale_s) + " s)";
     return false;
   }
   if (!attitude_.has_value()) {
@@ -241,8 +244,8 @@ bool DriveExecutor::SensorsFresh(Time now, std::string* why) const {
   }
   const double att_age = ToSeconds(now - attitude_->stamp);
   if (att_age > options_.attitude_stale_s) {
-    *why =
-        "attitude is " + FormatNumber(att_age) + " s old (limit " + FormatNumber(options_.attitude_stale_s) + " s)";
+    *why = "attitude is " + FormatNumber(att_age) + " s old (limit " +
+           FormatNumber(options_.attitude_stale_s) + " s)";
     return false;
   }
   return true;
@@ -431,8 +434,9 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
   tilt_count_ = tilt > options_.max_tilt ? tilt_count_ + 1 : 0;
   if (tilt_count_ >= options_.tilt_cycles) {
     Terminate(now, DriveTermination::kTilt,
-              "tilt " + FormatNumber(tilt / kDeg) + " deg over " + FormatNumber(options_.max_tilt / kDeg) +
-                  " deg for " + std::to_string(tilt_count_) + " cycles",
+              "tilt " + FormatNumber(tilt / kDeg) + " deg over " +
+                  FormatNumber(options_.max_tilt / kDeg) + " deg for " +
+                  std::to_string(tilt_count_) + " cycles",
               out);
     return;
   }
@@ -513,8 +517,10 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
   // 5. Time-out.
   const double elapsed = ToSeconds(now - start_time_);
   if (elapsed > timeout_s_) {
-    Terminate(now, DriveTermination::kTimeout,
-              "time-out after " + FormatNumber(elapsed) + " s (limit " + FormatNumber(timeout_s_) + " s)", out);
+    Terminate(
+        now, DriveTermination::kTimeout,
+        "time-out after " + FormatNumber(elapsed) + " s (limit " + FormatNumber(timeout_s_) + " s)",
+        out);
     return;
   }
   status_.stamp = now;
@@ -602,16 +608,16 @@ Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params, const std::s
   o.timeout_factor = params.GetDouble(prefix + "timeout_factor");
   o.timeout_margin_s = params.GetDouble(prefix + "timeout_margin_s");
   if (o.default_speed > o.max_speed) {
-    return InvalidArgument(where("default_speed") + FormatNumber(o.default_speed) + " exceeds max_speed " +
-                           FormatNumber(o.max_speed));
+    return InvalidArgument(where("default_speed") + FormatNumber(o.default_speed) +
+                           " exceeds max_speed " + FormatNumber(o.max_speed));
   }
   if (!(rr[0] < rr[1])) {
-    return InvalidArgument(where("rocker_range_deg") + "min " + FormatNumber(rr[0]) + " must be below max " +
-                           FormatNumber(rr[1]));
+    return InvalidArgument(where("rocker_range_deg") + "min " + FormatNumber(rr[0]) +
+                           " must be below max " + FormatNumber(rr[1]));
   }
   if (!(br[0] < br[1])) {
-    return InvalidArgument(where("bogie_range_deg") + "min " + FormatNumber(br[0]) + " must be below max " +
-                           FormatNumber(br[1]));
+    return InvalidArgument(where("bogie_range_deg") + "min " + FormatNumber(br[0]) +
+                           " must be below max " + FormatNumber(br[1]));
   }
   ROVER_RETURN_IF_ERROR(o.Validate());
   return o;

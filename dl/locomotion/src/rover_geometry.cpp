@@ -72,18 +72,19 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     if (!(xf > xm && xm > xr)) {
       return Issue("wheel_centre", "middle_wheel_x",
                    std::string("x must decrease front > middle > rear on the ") +
-                       (side == 0 ? "left" : "right") + " side (got " + FormatNumber(xf) + ", " + FormatNumber(xm) +
-                       ", " + FormatNumber(xr) + ")");
+                       (side == 0 ? "left" : "right") + " side (got " + FormatNumber(xf) + ", " +
+                       FormatNumber(xm) + ", " + FormatNumber(xr) + ")");
     }
     if (!(g.bogie_pivot.x() > xr && g.bogie_pivot.x() < xm)) {
       return Issue("bogie_pivot", "bogie_pivot_x",
-                   "x = " + FormatNumber(g.bogie_pivot.x()) + " must lie between the rear (" + FormatNumber(xr) +
-                       ") and middle (" + FormatNumber(xm) + ") wheels");
+                   "x = " + FormatNumber(g.bogie_pivot.x()) + " must lie between the rear (" +
+                       FormatNumber(xr) + ") and middle (" + FormatNumber(xm) + ") wheels");
     }
     if (!(g.rocker_pivot.x() > g.bogie_pivot.x() && g.rocker_pivot.x() < xf)) {
       return Issue("rocker_pivot", "rocker_pivot_x",
-                   "x = " + FormatNumber(g.rocker_pivot.x()) + " must lie between the bogie pivot (" +
-                       FormatNumber(g.bogie_pivot.x()) + ") and the front wheel (" + FormatNumber(xf) + ")");
+                   "x = " + FormatNumber(g.rocker_pivot.x()) +
+                       " must lie between the bogie pivot (" + FormatNumber(g.bogie_pivot.x()) +
+                       ") and the front wheel (" + FormatNumber(xf) + ")");
     }
   }
   if (std::abs(c[1].x() - c[4].x()) > 1e-9) {
@@ -99,12 +100,13 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
   double max_abs_y = 0.0;
   for (const auto& w : c) max_abs_y = std::max(max_abs_y, std::abs(w.y()));
   if (!std::isfinite(g.min_turn_radius) || g.min_turn_radius <= max_abs_y) {
-    return Issue(
-        "min_turn_radius", "min_turn_radius",
-        FormatNumber(g.min_turn_radius) + " must exceed the largest wheel |y| (" + FormatNumber(max_abs_y) + ")");
+    return Issue("min_turn_radius", "min_turn_radius",
+                 FormatNumber(g.min_turn_radius) + " must exceed the largest wheel |y| (" +
+                     FormatNumber(max_abs_y) + ")");
   }
   if (!std::isfinite(g.max_wheel_speed) || g.max_wheel_speed <= 0.0) {
-    return Issue("max_wheel_speed", "max_wheel_speed", FormatNumber(g.max_wheel_speed) + " must be > 0");
+    return Issue("max_wheel_speed", "max_wheel_speed",
+                 FormatNumber(g.max_wheel_speed) + " must be > 0");
   }
   for (double k : {g.MaxCurvature(), -g.MaxCurvature()}) {
     for (int j = 0; j < kNumSteered; ++j) {
@@ -122,8 +124,9 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     const double a = TurnInPlaceSteerAngle(g, j);
     if (std::abs(a) > g.max_steer_angle) {
       return Issue("max_steer_angle", "max_steer_angle_deg",
-                   FormatNumber(g.max_steer_angle / kDeg) + " deg is below the " + FormatNumber(std::abs(a) / kDeg) +
-                       " deg the " + WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
+                   FormatNumber(g.max_steer_angle / kDeg) + " deg is below the " +
+                       FormatNumber(std::abs(a) / kDeg) + " deg the " +
+                       WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                        " wheel needs to turn in place");
     }
   }

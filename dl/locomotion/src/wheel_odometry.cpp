@@ -1,10 +1,10 @@
 #include "rover/dl/locomotion/wheel_odometry.hpp"
 
-#include "rover/base/format.hpp"
-
 #include <Eigen/QR>
 #include <cmath>
 #include <sstream>
+
+#include "rover/base/format.hpp"
 
 namespace rover::dl::locomotion {
 namespace {
@@ -65,13 +65,13 @@ Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
   }
   if (to.stamp <= from.stamp) {
     return InvalidArgument("wheel odometry: sample at " + FormatNumber(to.stamp.seconds()) +
-                           " s is not after the previous one at " + FormatNumber(from.stamp.seconds()) +
-                           " s");
+                           " s is not after the previous one at " +
+                           FormatNumber(from.stamp.seconds()) + " s");
   }
   const double dt = ToSeconds(to.stamp - from.stamp);
   if (dt > options_.max_interval_s) {
-    return OutOfRange("wheel odometry: interval " + FormatNumber(dt) + " s exceeds max_interval_s " +
-                      FormatNumber(options_.max_interval_s) + " s");
+    return OutOfRange("wheel odometry: interval " + FormatNumber(dt) +
+                      " s exceeds max_interval_s " + FormatNumber(options_.max_interval_s) + " s");
   }
   const SuspensionAngles s0 = Suspension(from, options_.use_suspension);
   const SuspensionAngles s1 = Suspension(to, options_.use_suspension);
@@ -84,9 +84,9 @@ Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
     const auto ui = static_cast<std::size_t>(i);
     const double dth = to.wheel_angle[ui] - from.wheel_angle[ui];
     if (std::abs(dth) > options_.max_wheel_step) {
-      return OutOfRange("wheel odometry: wheel " + std::to_string(i) + " turned " + FormatNumber(dth) +
-                        " rad in one interval (max_wheel_step " + FormatNumber(options_.max_wheel_step) +
-                        ")");
+      return OutOfRange("wheel odometry: wheel " + std::to_string(i) + " turned " +
+                        FormatNumber(dth) + " rad in one interval (max_wheel_step " +
+                        FormatNumber(options_.max_wheel_step) + ")");
     }
     const Eigen::Vector3d c0 = geometry_.WheelCentre(i, s0);
     const Eigen::Vector3d c1 = geometry_.WheelCentre(i, s1);

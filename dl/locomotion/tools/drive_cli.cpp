@@ -142,7 +142,8 @@ Status CheckDriveOptions(const DriveCliOptions& o) {
     return InvalidArgument("--domain " + std::to_string(o.domain) + " is out of range [0, 232]");
   }
   if (!std::isfinite(o.timeout_s) || o.timeout_s <= 0.0) {
-    return InvalidArgument("--timeout " + FormatNumber(o.timeout_s) + " must be > 0 (wall seconds)");
+    return InvalidArgument("--timeout " + FormatNumber(o.timeout_s) +
+                           " must be > 0 (wall seconds)");
   }
   struct Field {
     const char* flag;
@@ -155,7 +156,8 @@ Status CheckDriveOptions(const DriveCliOptions& o) {
                           {"--drive-timeout", o.drive_timeout_s}};
   for (const Field& f : fields) {
     if (!std::isfinite(f.value)) {
-      return InvalidArgument(std::string(f.flag) + " " + FormatNumber(f.value) + " must be a finite number");
+      return InvalidArgument(std::string(f.flag) + " " + FormatNumber(f.value) +
+                             " must be a finite number");
     }
   }
   if (o.speed < 0.0) {

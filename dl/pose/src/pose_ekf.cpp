@@ -169,8 +169,8 @@ Status PoseEkf::PropagateGyro(Time t, const Eigen::Vector3d& angular_velocity) {
   if (!initialized_) return FailedPrecondition("EKF: gyro sample before Initialize()");
   if (!angular_velocity.allFinite()) return InvalidArgument("EKF: non-finite gyro rate");
   if (t < time_) {
-    return OutOfRange("EKF: gyro sample at " + FormatNumber(t.seconds()) + " s is older than the filter (" +
-                      FormatNumber(time_.seconds()) + " s)");
+    return OutOfRange("EKF: gyro sample at " + FormatNumber(t.seconds()) +
+                      " s is older than the filter (" + FormatNumber(time_.seconds()) + " s)");
   }
   const double dt = ToSeconds(t - time_);
   last_rate_ = angular_velocity - bg_;
@@ -206,9 +206,9 @@ Status PoseEkf::AddWheelOdometry(const OdometryIncrement& inc) {
         "variance");
   }
   if (last_odometry_.has_value() && inc.t_to <= *last_odometry_) {
-    return OutOfRange("EKF: wheel odometry increment ending at " + FormatNumber(inc.t_to.seconds()) +
-                      " s is not after the previous one (" + FormatNumber(last_odometry_->seconds()) +
-                      " s)");
+    return OutOfRange("EKF: wheel odometry increment ending at " +
+                      FormatNumber(inc.t_to.seconds()) + " s is not after the previous one (" +
+                      FormatNumber(last_odometry_->seconds()) + " s)");
   }
   const Eigen::Matrix3d r_from = R_ * RotZ(inc.dyaw).transpose();
   const Eigen::Vector3d d(inc.dx, inc.dy, 0.0);
@@ -441,7 +441,8 @@ Status PoseEkf::AddRelativePose(const msg::RelativePose& m) {
   const double ahead = ToSeconds(m.t_to - time_);
   if (ahead > options_.max_pending_s) {
     return OutOfRange("EKF: relative pose t_to is " + FormatNumber(ahead) +
-                      " s ahead of the filter (max_pending_s " + FormatNumber(options_.max_pending_s) + ")");
+                      " s ahead of the filter (max_pending_s " +
+                      FormatNumber(options_.max_pending_s) + ")");
   }
   if (ahead > kSameTimeS) {
     if (pending_.size() >= kMaxPending) {
@@ -609,8 +610,8 @@ Result<EkfOptions> EkfOptionsFromParams(const ParamSet& params, const std::strin
   if (o.clone_interval_s > 0.0 && o.clone_window_s < o.clone_interval_s) {
     const std::string key = prefix + "clone_window_s";
     return InvalidArgument(params.Origin(key).ToString() + ": key '" + key +
-                           "': " + FormatNumber(o.clone_window_s) + " must be >= clone_interval_s " +
-                           FormatNumber(o.clone_interval_s));
+                           "': " + FormatNumber(o.clone_window_s) +
+                           " must be >= clone_interval_s " + FormatNumber(o.clone_interval_s));
   }
   ROVER_RETURN_IF_ERROR(o.Validate());
   return o;

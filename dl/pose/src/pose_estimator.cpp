@@ -186,7 +186,8 @@ bool PoseEstimator::ResumeOrRefuse(Time t) {
   if (gap > resume_options_.max_age_s) {
     DeclareUnknown("pose unknown after restart: the last checkpoint (t = " +
                    FormatNumber(saved.main.stamp.seconds()) + " s) is " + FormatNumber(gap) +
-                   " s old, more than resume.max_age_s " + FormatNumber(resume_options_.max_age_s) + " s");
+                   " s old, more than resume.max_age_s " + FormatNumber(resume_options_.max_age_s) +
+                   " s");
     return false;
   }
   const double bias_sigma = fusion_.start.gyro_bias_sigma;

@@ -62,8 +62,8 @@ Status Options::Validate() const {
   ROVER_RETURN_IF_ERROR(refine.Validate());
   if (!FinitePositive(pixel_sigma)) return InvalidArgument("pixel_sigma must be finite and > 0");
   if (!FinitePositive(min_range) || !FinitePositive(max_range) || max_range <= min_range) {
-    return InvalidArgument("range limits [" + FormatNumber(min_range) + ", " + FormatNumber(max_range) +
-                           "] m must satisfy 0 < min_range < max_range");
+    return InvalidArgument("range limits [" + FormatNumber(min_range) + ", " +
+                           FormatNumber(max_range) + "] m must satisfy 0 < min_range < max_range");
   }
   if (!FinitePositive(window_sigmas)) return InvalidArgument("window_sigmas must be > 0");
   if (!FinitePositive(min_window) || !FinitePositive(max_window) || max_window < min_window) {
@@ -168,7 +168,8 @@ Status VisualOdometry::CheckFrame(const StereoFrame& frame) const {
   if (has_reference_ && frame.stamp <= reference_.stamp) {
     return FailedPrecondition("stereo pair stamped " + FormatNumber(frame.stamp.seconds()) +
                               " s is not after the reference pair (" +
-                              FormatNumber(reference_.stamp.seconds()) + " s): pairs out of time order");
+                              FormatNumber(reference_.stamp.seconds()) +
+                              " s): pairs out of time order");
   }
   return Status::Ok();
 }
@@ -510,14 +511,14 @@ MotionEstimate VisualOdometry::EstimateMotion(const Reference& from, const Image
   const double dist = s.motion.translation().norm();
   const double angle = RotationAngle(s.motion.linear());
   if (dist > o.max_translation) {
-    return fail(
-        MotionStatus::kLimitsFailed,
-        "translation " + FormatNumber(dist) + " m exceeds max_translation " + FormatNumber(o.max_translation) + " m");
+    return fail(MotionStatus::kLimitsFailed, "translation " + FormatNumber(dist) +
+                                                 " m exceeds max_translation " +
+                                                 FormatNumber(o.max_translation) + " m");
   }
   if (angle > o.max_rotation) {
-    return fail(
-        MotionStatus::kLimitsFailed,
-        "rotation " + FormatNumber(angle) + " rad exceeds max_rotation " + FormatNumber(o.max_rotation) + " rad");
+    return fail(MotionStatus::kLimitsFailed, "rotation " + FormatNumber(angle) +
+                                                 " rad exceeds max_rotation " +
+                                                 FormatNumber(o.max_rotation) + " rad");
   }
   if (o.max_prior_mahalanobis_sq > 0.0) {
     const Vector6d e = MotionError(prior.delta, s.motion);

@@ -13,8 +13,8 @@ namespace {
 // Checks lo <= v <= hi (and finite); returns an error naming `name.field`.
 Status CheckRange(const std::string& name, const char* field, double v, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi) {
-    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" + FormatNumber(lo) + ", " +
-                           FormatNumber(hi) + "]");
+    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" +
+                           FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
   }
   return Status::Ok();
 }
@@ -129,7 +129,8 @@ Status MotorController::SetGoal(MotorMode mode, double position_counts,
   }
   const double rate = velocity_counts_per_s / counts_per_rad_;
   if (std::abs(rate) > params_.max_speed * (1.0 + 1e-9)) {
-    return OutOfRange("velocity " + FormatNumber(velocity_counts_per_s) + " counts/s exceeds the maximum " +
+    return OutOfRange("velocity " + FormatNumber(velocity_counts_per_s) +
+                      " counts/s exceeds the maximum " +
                       FormatNumber(params_.max_speed * counts_per_rad_) + " counts/s");
   }
   const double goal = position_counts / counts_per_rad_;
@@ -139,9 +140,10 @@ Status MotorController::SetGoal(MotorMode mode, double position_counts,
                              FormatNumber(velocity_counts_per_s) + " counts/s");
     }
     if (goal < params_.min_angle || goal > params_.max_angle) {
-      return OutOfRange("position " + FormatNumber(position_counts) + " counts (" + FormatNumber(goal) +
-                        " rad) is outside the joint range [" + FormatNumber(params_.min_angle) + ", " +
-                        FormatNumber(params_.max_angle) + "] rad");
+      return OutOfRange("position " + FormatNumber(position_counts) + " counts (" +
+                        FormatNumber(goal) + " rad) is outside the joint range [" +
+                        FormatNumber(params_.min_angle) + ", " + FormatNumber(params_.max_angle) +
+                        "] rad");
     }
   }
   if (!ref_valid_) {

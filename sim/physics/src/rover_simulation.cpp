@@ -394,8 +394,8 @@ Status RoverSimulation::Impl::Place(const StartPose& start) {
   if (!terrain->Contains(start.x, start.y)) {
     return OutOfRange("start (" + FormatNumber(start.x) + ", " + FormatNumber(start.y) +
                       ") is outside the terrain [" + FormatNumber(terrain->min_x()) + ", " +
-                      FormatNumber(terrain->max_x()) + "] x [" + FormatNumber(terrain->min_y()) + ", " +
-                      FormatNumber(terrain->max_y()) + "]");
+                      FormatNumber(terrain->max_x()) + "] x [" + FormatNumber(terrain->min_y()) +
+                      ", " + FormatNumber(terrain->max_y()) + "]");
   }
   const hwconfig::RoverDescription& g = params.geometry;
   SimTK::State s = system.getDefaultState();
@@ -560,7 +560,8 @@ Status RoverSimulation::ClearMotorFaults(int motor) {
 
 Status RoverSimulation::SetAmbientTemperature(double celsius) {
   if (!std::isfinite(celsius) || celsius < -200.0 || celsius > 200.0) {
-    return InvalidArgument("ambient temperature " + FormatNumber(celsius) + " C is outside [-200, 200]");
+    return InvalidArgument("ambient temperature " + FormatNumber(celsius) +
+                           " C is outside [-200, 200]");
   }
   for (MotorController& m : impl_->motors) m.set_ambient_c(celsius);
   return Status::Ok();
@@ -584,7 +585,8 @@ Status RoverSimulation::Advance(double dt) {
   for (int i = 0; i < y.size(); ++i) {
     if (!std::isfinite(y[i])) {
       impl_->broken = true;
-      return Internal("the simulation state became non-finite at t = " + FormatNumber(time()) + " s");
+      return Internal("the simulation state became non-finite at t = " + FormatNumber(time()) +
+                      " s");
     }
   }
   return Status::Ok();

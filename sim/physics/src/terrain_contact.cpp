@@ -1,12 +1,12 @@
 #include "rover/sim/physics/terrain_contact.hpp"
 
-#include "rover/base/format.hpp"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+
+#include "rover/base/format.hpp"
 
 namespace rover::sim::physics {
 
@@ -18,8 +18,8 @@ namespace {
 
 Status CheckRange(const std::string& name, const char* field, double v, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi) {
-    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" + FormatNumber(lo) + ", " +
-                           FormatNumber(hi) + "]");
+    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" +
+                           FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
   }
   return Status::Ok();
 }

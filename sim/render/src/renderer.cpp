@@ -164,7 +164,8 @@ Status RenderOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(sensor.Validate());
   auto range = [](const char* field, double v, double lo, double hi) -> Status {
     if (!(v >= lo && v <= hi)) {
-      return BadOption(field, v, "is out of range [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
+      return BadOption(field, v,
+                       "is out of range [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
     }
     return Status::Ok();
   };

@@ -56,8 +56,8 @@ void CameraHead::UpdateSun(const Eigen::Vector3d& sun_site) {
   }
   render::SunOptions so;
   so.azimuth_deg = std::atan2(sun_site.y(), sun_site.x()) * kRadToDeg;
-  so.elevation_deg = std::max(kMinSunElevationDeg,
-                              std::asin(std::clamp(sun_site.z(), -1.0, 1.0)) * kRadToDeg);
+  so.elevation_deg =
+      std::max(kMinSunElevationDeg, std::asin(std::clamp(sun_site.z(), -1.0, 1.0)) * kRadToDeg);
   if (renderer_->SetSun(so).ok()) {
     last_sun_ = sun_site;
     sun_set_ = true;
@@ -84,7 +84,8 @@ Result<CameraShot> CameraHead::Take(const std::string& camera, std::uint32_t exp
     sensor.auto_exposure = true;
     ROVER_RETURN_IF_ERROR(renderer_->SetSensor(sensor));
   }
-  ROVER_ASSIGN_OR_RETURN(shot.images, renderer_->RenderStereoPair(site_from_rover, spec, ++frames_));
+  ROVER_ASSIGN_OR_RETURN(shot.images,
+                         renderer_->RenderStereoPair(site_from_rover, spec, ++frames_));
   shot.exposure_us = static_cast<std::uint32_t>(
       std::clamp(std::lround(shot.images.left.exposure * kExposureUnitUs), 1L, 4000000000L));
   return shot;

@@ -38,9 +38,10 @@ Status AddRock(Terrain* t, const std::string& what, Rock rock) {
   const double x = rock.position.x(), y = rock.position.y();
   if (!std::isfinite(x) || x - br < bare.min_x() || x + br > bare.max_x() || !std::isfinite(y) ||
       y - br < bare.min_y() || y + br > bare.max_y()) {
-    return InvalidArgument(what + ": the rock at (" + FormatNumber(x) + ", " + FormatNumber(y) + ") (radius " +
-                           FormatNumber(br) + ") is off the map (x in [" + FormatNumber(bare.min_x()) + ", " +
-                           FormatNumber(bare.max_x()) + "], y in [" + FormatNumber(bare.min_y()) + ", " +
+    return InvalidArgument(what + ": the rock at (" + FormatNumber(x) + ", " + FormatNumber(y) +
+                           ") (radius " + FormatNumber(br) + ") is off the map (x in [" +
+                           FormatNumber(bare.min_x()) + ", " + FormatNumber(bare.max_x()) +
+                           "], y in [" + FormatNumber(bare.min_y()) + ", " +
                            FormatNumber(bare.max_y()) + "])");
   }
   const StartParams& st = t->params.start;
@@ -88,7 +89,8 @@ Status PlaceFeatures(Terrain* terrain, const TerrainFeatures& f) {
     const double len = d.norm();
     if (len < w.diameter) {
       return InvalidArgument(what + ": the wall is " + FormatNumber(len) +
-                             " m long, shorter than its rock diameter " + FormatNumber(w.diameter) + " m");
+                             " m long, shorter than its rock diameter " + FormatNumber(w.diameter) +
+                             " m");
     }
     const int n = static_cast<int>(std::ceil(len / (kWallSpacing * w.diameter))) + 1;
     const double along = std::atan2(d.y(), d.x());

@@ -139,20 +139,22 @@ Status LanderParams::Validate() const {
     return bad("ramp_length", FormatNumber(ramp_length) + " is out of range (0, 20]");
   }
   if (!(ramp_width > 0.0 && ramp_width <= deck_radius)) {
-    return bad("ramp_width", FormatNumber(ramp_width) + " must be in (0, deck_radius = " + FormatNumber(deck_radius) +
-                                 "], the deck edge it hangs from");
+    return bad("ramp_width", FormatNumber(ramp_width) + " must be in (0, deck_radius = " +
+                                 FormatNumber(deck_radius) + "], the deck edge it hangs from");
   }
   if (!(stripe_unit > 0.0)) return bad("stripe_unit", FormatNumber(stripe_unit) + " must be > 0");
   if (!(stripe_gap >= 0.0)) return bad("stripe_gap", FormatNumber(stripe_gap) + " must be >= 0");
   const double stripes = StripeUnitsTotal() * stripe_unit + 5.0 * stripe_gap;
   if (stripes > ramp_length) {
     return bad("stripe_unit", "the six stripes need " + FormatNumber(stripes) +
-                                  " m along the ramp, more than ramp_length " + FormatNumber(ramp_length));
+                                  " m along the ramp, more than ramp_length " +
+                                  FormatNumber(ramp_length));
   }
   if (!(ramp_width > 2.0 * kStripeMargin)) {
     return bad("ramp_width", FormatNumber(ramp_width) + " leaves no room for stripes");
   }
-  if (!(rock_clearance >= 0.0)) return bad("rock_clearance", FormatNumber(rock_clearance) + " must be >= 0");
+  if (!(rock_clearance >= 0.0))
+    return bad("rock_clearance", FormatNumber(rock_clearance) + " must be >= 0");
   return Status::Ok();
 }
 
@@ -262,16 +264,16 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
     hi = hi.cwiseMax(q);
   }
   if (lo.x() < bare.min_x() || hi.x() > bare.max_x()) {
-    return InvalidArgument("lander.x: " + FormatNumber(p.x) +
-                           " puts the lander footprint (deck and ramps, x in [" + FormatNumber(lo.x()) +
-                           ", " + FormatNumber(hi.x()) + "]) off the map (x in [" + FormatNumber(bare.min_x()) +
-                           ", " + FormatNumber(bare.max_x()) + "])");
+    return InvalidArgument(
+        "lander.x: " + FormatNumber(p.x) + " puts the lander footprint (deck and ramps, x in [" +
+        FormatNumber(lo.x()) + ", " + FormatNumber(hi.x()) + "]) off the map (x in [" +
+        FormatNumber(bare.min_x()) + ", " + FormatNumber(bare.max_x()) + "])");
   }
   if (lo.y() < bare.min_y() || hi.y() > bare.max_y()) {
-    return InvalidArgument("lander.y: " + FormatNumber(p.y) +
-                           " puts the lander footprint (deck and ramps, y in [" + FormatNumber(lo.y()) +
-                           ", " + FormatNumber(hi.y()) + "]) off the map (y in [" + FormatNumber(bare.min_y()) +
-                           ", " + FormatNumber(bare.max_y()) + "])");
+    return InvalidArgument(
+        "lander.y: " + FormatNumber(p.y) + " puts the lander footprint (deck and ramps, y in [" +
+        FormatNumber(lo.y()) + ", " + FormatNumber(hi.y()) + "]) off the map (y in [" +
+        FormatNumber(bare.min_y()) + ", " + FormatNumber(bare.max_y()) + "])");
   }
 
   l.deck_z = bare.Height(p.x, p.y) + p.deck_height;
@@ -294,9 +296,10 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
   for (const Rock& rock : terrain->rocks) {
     if (rock.science_target &&
         l.DistanceToFootprint(rock.position.x(), rock.position.y()) < RockBoundingRadius(rock)) {
-      return InvalidArgument("lander.x: the lander footprint at (" + FormatNumber(p.x) + ", " + FormatNumber(p.y) +
-                             ") covers science target " + std::to_string(rock.id) + " at (" +
-                             FormatNumber(rock.position.x()) + ", " + FormatNumber(rock.position.y()) + ")");
+      return InvalidArgument("lander.x: the lander footprint at (" + FormatNumber(p.x) + ", " +
+                             FormatNumber(p.y) + ") covers science target " +
+                             std::to_string(rock.id) + " at (" + FormatNumber(rock.position.x()) +
+                             ", " + FormatNumber(rock.position.y()) + ")");
     }
   }
 
@@ -384,7 +387,8 @@ Result<int> AddScienceTarget(Terrain* terrain, const ScienceTargetParams& t) {
   if (!std::isfinite(t.x)) return bad("x", FormatNumber(t.x) + " is not a finite number");
   if (!std::isfinite(t.y)) return bad("y", FormatNumber(t.y) + " is not a finite number");
   if (!(t.diameter >= 2.0 * bare.resolution() && t.diameter <= 20.0)) {
-    return bad("diameter", FormatNumber(t.diameter) + " is out of range [" + FormatNumber(2.0 * bare.resolution()) +
+    return bad("diameter", FormatNumber(t.diameter) + " is out of range [" +
+                               FormatNumber(2.0 * bare.resolution()) +
                                ", 20] (at least two grid cells)");
   }
   if (t.texture_id < 0) return bad("texture_id", std::to_string(t.texture_id) + " must be >= 0");
@@ -393,7 +397,8 @@ Result<int> AddScienceTarget(Terrain* terrain, const ScienceTargetParams& t) {
   if (!(t.elongation >= 1.0 && t.elongation <= 5.0)) {
     return bad("elongation", FormatNumber(t.elongation) + " is out of range [1, 5]");
   }
-  if (!std::isfinite(t.yaw_deg)) return bad("yaw_deg", FormatNumber(t.yaw_deg) + " is not a finite number");
+  if (!std::isfinite(t.yaw_deg))
+    return bad("yaw_deg", FormatNumber(t.yaw_deg) + " is not a finite number");
 
   Rock rock;
   rock.position = Eigen::Vector3d(t.x, t.y, 0.0);
@@ -406,15 +411,18 @@ Result<int> AddScienceTarget(Terrain* terrain, const ScienceTargetParams& t) {
   rock.bluntness = 0.5;
   const double br = RockBoundingRadius(rock);
   if (t.x - br < bare.min_x() || t.x + br > bare.max_x()) {
-    return bad("x", FormatNumber(t.x) + ": the target (radius " + FormatNumber(br) + ") is off the map (x in [" +
-                        FormatNumber(bare.min_x()) + ", " + FormatNumber(bare.max_x()) + "])");
+    return bad("x", FormatNumber(t.x) + ": the target (radius " + FormatNumber(br) +
+                        ") is off the map (x in [" + FormatNumber(bare.min_x()) + ", " +
+                        FormatNumber(bare.max_x()) + "])");
   }
   if (t.y - br < bare.min_y() || t.y + br > bare.max_y()) {
-    return bad("y", FormatNumber(t.y) + ": the target (radius " + FormatNumber(br) + ") is off the map (y in [" +
-                        FormatNumber(bare.min_y()) + ", " + FormatNumber(bare.max_y()) + "])");
+    return bad("y", FormatNumber(t.y) + ": the target (radius " + FormatNumber(br) +
+                        ") is off the map (y in [" + FormatNumber(bare.min_y()) + ", " +
+                        FormatNumber(bare.max_y()) + "])");
   }
   if (terrain->lander && terrain->lander->DistanceToFootprint(t.x, t.y) < br) {
-    return bad("x", "the target at (" + FormatNumber(t.x) + ", " + FormatNumber(t.y) + ") overlaps the lander");
+    return bad("x", "the target at (" + FormatNumber(t.x) + ", " + FormatNumber(t.y) +
+                        ") overlaps the lander");
   }
   for (const Rock& o : terrain->rocks) {
     if (o.science_target &&
@@ -476,7 +484,7 @@ Result<std::optional<LanderParams>> LanderParamsFromParamSet(const ParamSet& ps,
     // "lander.<field>: ..." -> the field's key in this ParamSet.
     const std::string& m = s.message();
     const std::string field = m.substr(7, m.find(':') - 7);
-    return internal::WithOrigin(ps, key(field), s);
+    return AtParamKey(ps, key(field), s);
   }
   return std::optional<LanderParams>(p);
 }
@@ -523,7 +531,7 @@ Status PlaceScenarioObjects(Terrain* terrain, const ParamSet& ps, const std::str
       std::string field = m.substr(0, colon);
       if (field.rfind("lander.", 0) == 0) field = field.substr(7);
       const std::string full = lander_prefix.empty() ? field : lander_prefix + "." + field;
-      return internal::WithOrigin(ps, ps.Has(full) ? full : lander_prefix + ".x", s);
+      return AtParamKey(ps, ps.Has(full) ? full : lander_prefix + ".x", s);
     }
   }
   auto targets = ScienceTargetsFromParamSet(ps, targets_key);

@@ -370,12 +370,12 @@ Result<Terrain> GenerateTerrain(const TerrainParams& p) {
           for (const Rock& r : t.rocks) placed += 0.25 * std::numbers::pi * r.diameter * r.diameter;
           const std::string key =
               p.rocks.preset == RockPreset::kCustom ? "rocks.k" : "rocks.preset";
-          return InvalidArgument(key + ": k = " + FormatNumber(k) + " is too dense to place: only " +
-                                 std::to_string(t.rocks.size()) + " of " + std::to_string(count) +
-                                 " rocks fit without overlap (rocks cover " +
-                                 FormatNumber(100.0 * placed / area) + " % of the requested " +
-                                 FormatNumber(100.0 * RockAreaFraction(k, d_min, d_max)) +
-                                 " %); lower k or raise rocks.diameter_min");
+          return InvalidArgument(
+              key + ": k = " + FormatNumber(k) + " is too dense to place: only " +
+              std::to_string(t.rocks.size()) + " of " + std::to_string(count) +
+              " rocks fit without overlap (rocks cover " + FormatNumber(100.0 * placed / area) +
+              " % of the requested " + FormatNumber(100.0 * RockAreaFraction(k, d_min, d_max)) +
+              " %); lower k or raise rocks.diameter_min");
         }
         x = pos_rng.Uniform(lo.x(), hi.x());
         y = pos_rng.Uniform(lo.y(), hi.y());

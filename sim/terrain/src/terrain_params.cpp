@@ -76,11 +76,13 @@ Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
   c.Positive("resolution", p.resolution) && c.InRange("resolution", p.resolution, 1e-3, 10.0);
   c.Positive("size_x", p.size_x) &&
       (p.size_x >= 2.0 * p.resolution ||
-       c.Fail("size_x", FormatNumber(p.size_x) + " m is smaller than two grid cells of resolution " +
+       c.Fail("size_x", FormatNumber(p.size_x) +
+                            " m is smaller than two grid cells of resolution " +
                             FormatNumber(p.resolution) + " m"));
   c.Positive("size_y", p.size_y) &&
       (p.size_y >= 2.0 * p.resolution ||
-       c.Fail("size_y", FormatNumber(p.size_y) + " m is smaller than two grid cells of resolution " +
+       c.Fail("size_y", FormatNumber(p.size_y) +
+                            " m is smaller than two grid cells of resolution " +
                             FormatNumber(p.resolution) + " m"));
   c.Finite("center_x", p.center_x);
   c.Finite("center_y", p.center_y);
@@ -88,8 +90,9 @@ Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
   const double cells =
       (std::floor(p.size_x / p.resolution) + 1.0) * (std::floor(p.size_y / p.resolution) + 1.0);
   if (cells > kMaxTerrainCells) {
-    c.Fail("resolution", FormatNumber(p.resolution) + " m gives " + FormatNumber(cells) + " cells for a " +
-                             FormatNumber(p.size_x) + " x " + FormatNumber(p.size_y) + " m map (limit " +
+    c.Fail("resolution", FormatNumber(p.resolution) + " m gives " + FormatNumber(cells) +
+                             " cells for a " + FormatNumber(p.size_x) + " x " +
+                             FormatNumber(p.size_y) + " m map (limit " +
                              FormatNumber(kMaxTerrainCells) + "): use a coarser resolution");
   }
 
@@ -116,21 +119,24 @@ Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
   const std::string k_key = r.preset == RockPreset::kCustom ? "rocks.k" : "rocks.preset";
   if (r.preset == RockPreset::kCustom) {
     c.Finite("rocks.k", r.k) &&
-        (r.k >= 0.0 || c.Fail("rocks.k", FormatNumber(r.k) + " must be >= 0 (fraction of area covered)")) &&
-        (r.k <= 1.0 || c.Fail("rocks.k", FormatNumber(r.k) + " > 1: the cumulative rock area fraction "
-                                                    "cannot exceed the whole surface"));
+        (r.k >= 0.0 ||
+         c.Fail("rocks.k", FormatNumber(r.k) + " must be >= 0 (fraction of area covered)")) &&
+        (r.k <= 1.0 ||
+         c.Fail("rocks.k", FormatNumber(r.k) + " > 1: the cumulative rock area fraction "
+                                               "cannot exceed the whole surface"));
   }
   c.Positive("rocks.diameter_min", r.diameter_min) &&
       (r.diameter_min >= 2.0 * p.resolution ||
-       c.Fail("rocks.diameter_min",
-              FormatNumber(r.diameter_min) +
-                  " m is below two grid cells (2 x resolution = " + FormatNumber(2.0 * p.resolution) +
-                  " m): such rocks are not resolved; raise it or "
-                  "refine the resolution"));
+       c.Fail("rocks.diameter_min", FormatNumber(r.diameter_min) +
+                                        " m is below two grid cells (2 x resolution = " +
+                                        FormatNumber(2.0 * p.resolution) +
+                                        " m): such rocks are not resolved; raise it or "
+                                        "refine the resolution"));
   c.Positive("rocks.diameter_max", r.diameter_max) &&
       (r.diameter_max > r.diameter_min ||
-       c.Fail("rocks.diameter_max",
-              FormatNumber(r.diameter_max) + " must exceed rocks.diameter_min " + FormatNumber(r.diameter_min)));
+       c.Fail("rocks.diameter_max", FormatNumber(r.diameter_max) +
+                                        " must exceed rocks.diameter_min " +
+                                        FormatNumber(r.diameter_min)));
   c.InRange("rocks.height_ratio", r.height_ratio, 0.05, 2.0);
   c.AtLeast("rocks.height_ratio_spread", r.height_ratio_spread, 0.0) &&
       (r.height_ratio_spread < r.height_ratio ||
@@ -142,42 +148,35 @@ Status ValidateTerrainParams(const TerrainParams& p, std::string* key) {
     const double k = r.EffectiveK();
     const double cover = RockAreaFraction(k, r.diameter_min, r.diameter_max);
     if (cover > kMaxRockCover) {
-      c.Fail(k_key, "k = " + FormatNumber(k) + " asks rocks of " + FormatNumber(r.diameter_min) + "-" +
-                        FormatNumber(r.diameter_max) + " m to cover " + FormatNumber(100.0 * cover) +
-                        " % of the surface; non-overlapping rocks cannot be placed above " +
-                        FormatNumber(100.0 * kMaxRockCover) + " %: lower k or raise rocks.diameter_min");
+      c.Fail(k_key,
+             "k = " + FormatNumber(k) + " asks rocks of " + FormatNumber(r.diameter_min) + "-" +
+                 FormatNumber(r.diameter_max) + " m to cover " + FormatNumber(100.0 * cover) +
+                 " % of the surface; non-overlapping rocks cannot be placed above " +
+                 FormatNumber(100.0 * kMaxRockCover) + " %: lower k or raise rocks.diameter_min");
     }
   }
 
   c.InRange("soil.sand_fraction", p.soil.sand_fraction, 0.0, 1.0);
   c.InRange("soil.bedrock_fraction", p.soil.bedrock_fraction, 0.0, 1.0) &&
       (p.soil.sand_fraction + p.soil.bedrock_fraction <= 1.0 + 1e-12 ||
-       c.Fail("soil.bedrock_fraction", FormatNumber(p.soil.bedrock_fraction) + " + soil.sand_fraction " +
-                                           FormatNumber(p.soil.sand_fraction) +
-                                           " exceed 1 (the whole surface)"));
+       c.Fail("soil.bedrock_fraction",
+              FormatNumber(p.soil.bedrock_fraction) + " + soil.sand_fraction " +
+                  FormatNumber(p.soil.sand_fraction) + " exceed 1 (the whole surface)"));
   c.Positive("soil.patch_scale", p.soil.patch_scale);
 
   const double min_x = p.center_x - 0.5 * p.size_x, max_x = p.center_x + 0.5 * p.size_x;
   const double min_y = p.center_y - 0.5 * p.size_y, max_y = p.center_y + 0.5 * p.size_y;
-  c.Finite("start.x", p.start.x) && ((p.start.x >= min_x && p.start.x <= max_x) ||
-                                     c.Fail("start.x", FormatNumber(p.start.x) + " is off the map (x in [" +
-                                                           FormatNumber(min_x) + ", " + FormatNumber(max_x) + "])"));
-  c.Finite("start.y", p.start.y) && ((p.start.y >= min_y && p.start.y <= max_y) ||
-                                     c.Fail("start.y", FormatNumber(p.start.y) + " is off the map (y in [" +
-                                                           FormatNumber(min_y) + ", " + FormatNumber(max_y) + "])"));
+  c.Finite("start.x", p.start.x) &&
+      ((p.start.x >= min_x && p.start.x <= max_x) ||
+       c.Fail("start.x", FormatNumber(p.start.x) + " is off the map (x in [" + FormatNumber(min_x) +
+                             ", " + FormatNumber(max_x) + "])"));
+  c.Finite("start.y", p.start.y) &&
+      ((p.start.y >= min_y && p.start.y <= max_y) ||
+       c.Fail("start.y", FormatNumber(p.start.y) + " is off the map (y in [" + FormatNumber(min_y) +
+                             ", " + FormatNumber(max_y) + "])"));
   c.AtLeast("start.keep_out_radius", p.start.keep_out_radius, 0.0);
   c.AtLeast("start.blend_width", p.start.blend_width, 0.0);
   return Failed(c, key);
-}
-
-Status WithOrigin(const ParamSet& params, const std::string& full_key, const Status& status) {
-  if (status.ok()) return status;
-  std::string rest = status.message();
-  const std::size_t colon = rest.find(": ");
-  if (colon != std::string::npos) rest = rest.substr(colon + 2);
-  const std::string where =
-      params.Has(full_key) ? params.Origin(full_key).ToString() : std::string("parameters");
-  return Status(status.code(), where + ": key '" + full_key + "': " + rest);
 }
 
 }  // namespace internal
@@ -261,7 +260,7 @@ Result<TerrainParams> TerrainParamsFromParamSet(const ParamSet& ps, const std::s
 
   const std::string preset_key = key("rocks.preset"), k_key = key("rocks.k");
   auto preset = ParseRockPreset(ps.GetString(preset_key));
-  if (!preset.ok()) return internal::WithOrigin(ps, preset_key, preset.status());
+  if (!preset.ok()) return AtParamKey(ps, preset_key, preset.status());
   p.rocks.preset = *preset;
   const bool k_set = ps.Origin(k_key).source != "default";
   const bool preset_set = ps.Origin(preset_key).source != "default";
@@ -269,7 +268,7 @@ Result<TerrainParams> TerrainParamsFromParamSet(const ParamSet& ps, const std::s
   if (k_set && !preset_set) {
     p.rocks.preset = RockPreset::kCustom;
   } else if (k_set && p.rocks.preset != RockPreset::kCustom) {
-    return internal::WithOrigin(
+    return AtParamKey(
         ps, k_key,
         InvalidArgument(k_key + ": is set but " + preset_key + " is '" +
                         RockPresetName(p.rocks.preset) + "' (" + ps.Origin(preset_key).ToString() +
@@ -290,7 +289,7 @@ Result<TerrainParams> TerrainParamsFromParamSet(const ParamSet& ps, const std::s
 
   std::string bad;
   const Status s = internal::ValidateTerrainParams(p, &bad);
-  if (!s.ok()) return internal::WithOrigin(ps, key(bad.c_str()), s);
+  if (!s.ok()) return AtParamKey(ps, key(bad.c_str()), s);
   return p;
 }
 

@@ -67,7 +67,8 @@ Status MapOptions::Validate() const {
                            " is out of range [16, 20000]");
   }
   if (!(obstacle_height > 0.0)) {
-    return InvalidArgument("map.obstacle_height: " + FormatNumber(obstacle_height) + " must be > 0");
+    return InvalidArgument("map.obstacle_height: " + FormatNumber(obstacle_height) +
+                           " must be > 0");
   }
   for (std::size_t i = 0; i < cell_layers.size(); ++i) {
     const MapCellLayer& l = cell_layers[i];

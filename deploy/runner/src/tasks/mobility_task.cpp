@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "rover/base/format.hpp"
-
 #include "rover/geometry/polygon.hpp"
 #include "rover/msg/drive_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"

@@ -144,4 +144,9 @@ std::string DidYouMean(const std::string& key, const std::vector<std::string>& k
 /// about unknown keys, names and choices.
 std::string DidYouMean(const std::string& key, const std::vector<std::string>& known);
 
+/// A validation failure ("field: why", as Validate() functions write them) restated against the
+/// parameter it concerns, in ParamSet's form: "<file>:<line>: key '<key>': why" (the origin is
+/// "parameters" when `key` is not declared). Ok stays Ok.
+Status AtParamKey(const ParamSet& params, const std::string& key, const Status& status);
+
 }  // namespace rover

@@ -33,8 +33,8 @@ inline constexpr double kSunUpdateRad = 0.5 * 3.14159265358979323846 / 180.0;
 inline constexpr double kMinSunElevationDeg = 2.0;
 
 struct CameraHeadOptions {
-  int image_size = 1024;           ///< [px] side of the square images (MER: 1024)
-  std::int64_t render_seed = 1;    ///< seed of the rendered textures and image noise
+  int image_size = 1024;         ///< [px] side of the square images (MER: 1024)
+  std::int64_t render_seed = 1;  ///< seed of the rendered textures and image noise
 
   /// image_size in [64, 2048], render_seed >= 0. Messages start with the field.
   Status Validate() const;

@@ -86,8 +86,8 @@ class Pacer {
  private:
   struct AckState {
     std::int64_t sim_time_ns = 0;
-    Time changed;             ///< wall time the acknowledgement last moved
-    bool waited_on = true;    ///< false while the service is considered gone
+    Time changed;           ///< wall time the acknowledgement last moved
+    bool waited_on = true;  ///< false while the service is considered gone
     bool seen = false;
   };
 

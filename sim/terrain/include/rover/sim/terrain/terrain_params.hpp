@@ -118,8 +118,6 @@ namespace internal {
 Status ValidateTerrainParams(const TerrainParams& p, std::string* key);
 /// "prefix.name" or "name".
 std::string JoinKey(const std::string& prefix, const std::string& name);
-/// Prefixes `status` (whose message starts with "<key>: ") with the key's origin in `params`.
-Status WithOrigin(const ParamSet& params, const std::string& full_key, const Status& status);
 }  // namespace internal
 
 }  // namespace rover::sim::terrain
