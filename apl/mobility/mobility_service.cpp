@@ -25,25 +25,6 @@ void Check(const Status& s, const char* topic) {
   if (!s.ok()) log::Error(std::string(topic) + " write failed", {{"error", s.message()}});
 }
 
-// GESTALT's options for this rover. The rover disc is the rover description's turn-in-place
-// disc (core/hwconfig: 1.90 m for the default rover), not the library default, MER's 2.6 m,
-// unless gestalt.rover_disc_diameter_m is set: a disc larger than the rover grows every rock's
-// obstacle and spreads each tall rock's step over more of the map.
-Result<gestalt::GestaltOptions> GestaltForRover(const ParamSet& params) {
-  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
-                         ReadParams<hwconfig::RoverDescription>(params, "geometry."));
-  ROVER_ASSIGN_OR_RETURN(gestalt::GestaltOptions g,
-                         ReadParams<gestalt::GestaltOptions>(params, "gestalt."));
-  if (params.Origin("gestalt.rover_disc_diameter_m").source == "default") {
-    g.rover_disc_diameter = rover.TurnInPlaceCircle().Diameter();
-    if (Status s = g.Validate(); !s.ok()) {
-      return InvalidArgument("the rover description's turn-in-place disc (" +
-                             FormatNumber(g.rover_disc_diameter, 3) +
-                             " m) does not suit GESTALT: " + s.message());
-    }
-  }
-  return g;
-}
 
 }  // namespace
 
@@ -55,14 +36,14 @@ void MobilityService::DeclareParameters(ParamSet& params) {
 
 Status MobilityService::ValidateParameters(const ParamSet& params) const {
   ROVER_RETURN_IF_ERROR(ReadParams<MobilityOptions>(params, "mobility.").status());
-  return GestaltForRover(params).status();
+  return gestalt::ReadGestaltOptionsForRover(params).status();
 }
 
 Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
   ctx_ = &ctx;
   ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
                          ReadParams<MobilityOptions>(params, "mobility."));
-  ROVER_ASSIGN_OR_RETURN(const gestalt::GestaltOptions g, GestaltForRover(params));
+  ROVER_ASSIGN_OR_RETURN(const gestalt::GestaltOptions g, gestalt::ReadGestaltOptionsForRover(params));
   log::Info("gestalt configured", {{"rover_disc_diameter_m", g.rover_disc_diameter},
                                    {"stereo_noise_coeff", g.stereo_noise_coeff}});
   ROVER_ASSIGN_OR_RETURN(gestalt::TerrainMap map, gestalt::TerrainMap::Create(g));

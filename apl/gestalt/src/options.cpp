@@ -5,6 +5,7 @@
 
 #include "rover/base/format.hpp"
 #include "rover/base/range_check.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::apl::gestalt {
 namespace {
@@ -220,6 +221,22 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
        "best forward vote below this advises imaging the rear (MER 180)");
   byte("skip_imaging_goodness", &G::skip_imaging_goodness,
        "every path's hazard vote at or above this (on known cells): imaging may be skipped");
+}
+
+Result<GestaltOptions> ReadGestaltOptionsForRover(const ParamSet& params, const std::string& prefix,
+                                                  const std::string& geometry_prefix) {
+  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
+                         ReadParams<hwconfig::RoverDescription>(params, geometry_prefix));
+  ROVER_ASSIGN_OR_RETURN(GestaltOptions g, ReadParams<GestaltOptions>(params, prefix));
+  if (params.Origin(prefix + "rover_disc_diameter_m").source == "default") {
+    g.rover_disc_diameter = rover.TurnInPlaceCircle().Diameter();
+    if (Status s = g.Validate(); !s.ok()) {
+      return InvalidArgument("the rover description's turn-in-place disc (" +
+                             FormatNumber(g.rover_disc_diameter, 3) +
+                             " m) does not suit GESTALT: " + s.message());
+    }
+  }
+  return g;
 }
 
 }  // namespace rover::apl::gestalt

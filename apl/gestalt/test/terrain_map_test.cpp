@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "truth_check.hpp"
 
@@ -13,12 +13,12 @@ namespace rover::apl::gestalt {
 namespace {
 
 using nav_core::RangeScan;
-using testing::AddRock;
-using testing::FlatWorld;
-using testing::FrontHazcam;
-using testing::PinholeCamera;
-using testing::RoverPose;
-using testing::SynthesizeScan;
+using rover::testing::AddRock;
+using rover::testing::FlatWorld;
+using rover::testing::FrontHazcam;
+using rover::testing::PinholeCamera;
+using rover::testing::RoverPose;
+using rover::testing::SynthesizeScan;
 
 TerrainMap Make(const GestaltOptions& o = {}) {
   auto m = TerrainMap::Create(o);
@@ -219,7 +219,7 @@ TEST(TerrainMap, NewDataOverridesOld) {
 TEST(TerrainMap, UpdatesAreIncremental) {
   // After two overlapping scans, every cell's stored assessment equals a fresh assessment of the
   // final moment grid: the cells the second scan did not reach kept valid results.
-  const sim::terrain::Terrain world = testing::RockField("vl1", 8, 20.0);
+  const sim::terrain::Terrain world = rover::testing::SeededRockField("vl1", 8, 20.0);
   GestaltOptions o;
   o.num_layers = 1;
   TerrainMap m = Make(o);
@@ -386,7 +386,7 @@ TEST(TerrainMap, MarksTheHazardsItSawAndFewCellsWithoutCause) {
   };
   for (const char* preset : {"vl1", "vl2"}) {
     for (std::uint64_t seed : {1u, 2u, 3u}) {
-      const sim::terrain::Terrain world = testing::RockField(preset, seed, 24.0);
+      const sim::terrain::Terrain world = rover::testing::SeededRockField(preset, seed, 24.0);
       TerrainMap m = Make(o);
       // A hazard counts as seen when its own cell holds a few points (a rock glimpsed past the
       // edge of a view is not assessed yet; later views will). An obstacle cell is explained

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 #include "reference_gestalt.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
@@ -85,14 +85,14 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const g::GestaltOptions options;
-  const rover::sim::terrain::Terrain world = g::testing::RockField(preset.c_str(), seed, 24.0);
-  g::testing::PinholeCamera cam = g::testing::FrontHazcam();
+  const rover::sim::terrain::Terrain world = rover::testing::SeededRockField(preset.c_str(), seed, 24.0);
+  rover::testing::PinholeCamera cam = rover::testing::FrontHazcam();
   cam.noise_at_1m = noise;
-  const Eigen::Isometry3d pose0 = g::testing::RoverPose(world.natural, 0.0, 0.0, 0.0);
-  const Eigen::Isometry3d pose1 = g::testing::RoverPose(world.natural, 0.5, 0.05, 0.1);
-  const nc::RangeScan scan0 = g::testing::SynthesizeScan(world.natural, cam, pose0);
+  const Eigen::Isometry3d pose0 = rover::testing::RoverPose(world.natural, 0.0, 0.0, 0.0);
+  const Eigen::Isometry3d pose1 = rover::testing::RoverPose(world.natural, 0.5, 0.05, 0.1);
+  const nc::RangeScan scan0 = rover::testing::SynthesizeScan(world.natural, cam, pose0);
   cam.seed = 2;
-  const nc::RangeScan scan1 = g::testing::SynthesizeScan(world.natural, cam, pose1);
+  const nc::RangeScan scan1 = rover::testing::SynthesizeScan(world.natural, cam, pose1);
 
   auto make = [&] {
     auto m = g::TerrainMap::Create(options);

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "goodness_render.hpp"
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
 #include "truth_check.hpp"
@@ -53,20 +53,20 @@ int main(int argc, char** argv) {
   g::TerrainMap& map = *map_or;
   const g::ArcEvaluator& evaluator = *eval_or;
   const rover::sim::terrain::Terrain world =
-      flat ? g::testing::FlatWorld(2.0 * goal_x + 12.0)
-           : g::testing::RockField(preset.c_str(), seed, 2.0 * goal_x + 12.0);
-  g::testing::PinholeCamera cam = g::testing::FrontHazcam();
+      flat ? rover::testing::FlatWorld(2.0 * goal_x + 12.0)
+           : rover::testing::SeededRockField(preset.c_str(), seed, 2.0 * goal_x + 12.0);
+  rover::testing::PinholeCamera cam = rover::testing::FrontHazcam();
   cam.noise_at_1m = noise;
 
   double x = 0.0, y = 0.0, yaw = 0.0;
   nc::ArcEvaluation last;
-  Eigen::Isometry3d pose = g::testing::RoverPose(world.natural, x, y, yaw);
+  Eigen::Isometry3d pose = rover::testing::RoverPose(world.natural, x, y, yaw);
   double driven = 0.0;
   std::vector<Eigen::Vector2d> path{{x, y}};
   for (int n = 0; n < max_steps; ++n) {
-    pose = g::testing::RoverPose(world.natural, x, y, yaw);
+    pose = rover::testing::RoverPose(world.natural, x, y, yaw);
     cam.seed = seed * 1000 + n;
-    const nc::RangeScan scan = g::testing::SynthesizeScan(world.natural, cam, pose);
+    const nc::RangeScan scan = rover::testing::SynthesizeScan(world.natural, cam, pose);
     const auto t0 = std::chrono::steady_clock::now();
     auto stats = map.Update(scan);
     const auto t1 = std::chrono::steady_clock::now();

@@ -32,8 +32,8 @@ MobilityManager MakeGestaltManager(const MobilityOptions& options) {
   return std::move(manager).value();
 }
 
-FakeWorld::FakeWorld(MobilityManager* manager, WorldOptions options)
-    : manager_(manager), options_(options) {}
+FakeWorld::FakeWorld(MobilityManager* manager, WorldOptions options, const Scene* scene)
+    : manager_(manager), options_(options), scene_(scene) {}
 
 void FakeWorld::AddWall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double spacing,
                         double radius, double height) {
@@ -59,13 +59,17 @@ void FakeWorld::Scatter(std::uint32_t seed, int n, double x0, double x1, double 
 double FakeWorld::HeightAt(double x, double y) const { return field_.HeightAt(x, y); }
 
 nav_core::RangeScan FakeWorld::Capture(CameraId camera) const {
-  rover::testing::SyntheticScan img = field_.Capture(
-      pose_.x, pose_.y, pose_.heading, camera == CameraId::kRearHazcam, options_.camera);
   nav_core::RangeScan scan;
-  scan.width = img.width;
-  scan.height = img.height;
-  scan.xyz = std::move(img.xyz);
-  scan.valid = std::move(img.valid);
+  if (scene_ != nullptr) {
+    scan = scene_->Capture(pose_, camera);
+  } else {
+    rover::testing::SyntheticScan img = field_.Capture(
+        pose_.x, pose_.y, pose_.heading, camera == CameraId::kRearHazcam, options_.camera);
+    scan.width = img.width;
+    scan.height = img.height;
+    scan.xyz = std::move(img.xyz);
+    scan.valid = std::move(img.valid);
+  }
   scan.capture_time = now_;
   scan.camera = std::string(CameraName(camera));
   scan.site_from_rover = PoseNow().site_from_rover;
@@ -75,6 +79,10 @@ nav_core::RangeScan FakeWorld::Capture(CameraId camera) const {
 PoseSample FakeWorld::PoseNow() const {
   PoseSample ps;
   ps.stamp = now_;
+  if (scene_ != nullptr) {
+    ps.site_from_rover = scene_->SiteFromRover(pose_);
+    return ps;
+  }
   ps.site_from_rover.linear() =
       Eigen::AngleAxisd(pose_.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   ps.site_from_rover.translation() = Eigen::Vector3d(pose_.x, pose_.y, 0.0);
@@ -138,7 +146,9 @@ void FakeWorld::Tick() {
       Absorb(manager_->OnDriveStatus(rep, now_));
     }
   }
-  min_clearance_ = std::min(min_clearance_, field_.Clearance(pose_.x, pose_.y));
+  min_clearance_ = std::min(min_clearance_, scene_ != nullptr
+                                                ? scene_->Clearance(pose_.x, pose_.y)
+                                                : field_.Clearance(pose_.x, pose_.y));
   if (options_.deliver_poses) {
     PoseSample ps = PoseNow();
     if (tamper_pose) tamper_pose(&ps);

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// A small kinematic world for driving the MobilityManager in-process (test code only):
-///  - terrain: tests/support's RockField (flat ground with half-ellipsoid rocks);
+///  - terrain: tests/support's RockField (flat ground with half-ellipsoid rocks), or any Scene
+///    (the autonav-kinematic tool's is a sim/terrain field seen by ray-cast HAZCAMs);
 ///  - locomotion: drive requests are integrated into the rover's planar pose at `speed` [m/s]
 ///    (arcs, straights) or `turn_rate` [rad/s] (turns in place), reported DRIVING / TURNING every
 ///    tick while they run (as locomotion does at 8 Hz) and DONE when finished;
@@ -40,9 +41,24 @@ struct WorldOptions {
   bool report_progress = true;        ///< false: a running drive reports nothing until it ends
 };
 
+/// What the rover drives through, as the fake stereo sees it. The default scene is the world's
+/// own RockField; a caller's scene replaces it for capture, pose height and clearance.
+class Scene {
+ public:
+  virtual ~Scene() = default;
+  /// The rover's site pose when its planar pose is `pose` (its z and attitude on the ground).
+  virtual Eigen::Isometry3d SiteFromRover(const Pose2& pose) const = 0;
+  /// The range scan of `camera` from `pose`, points in the rover frame (capture_time, camera
+  /// name and site_from_rover are filled in by the world).
+  virtual nav_core::RangeScan Capture(const Pose2& pose, CameraId camera) const = 0;
+  /// [m] distance from (x, y) to the nearest hazard's edge (negative inside one).
+  virtual double Clearance(double x, double y) const = 0;
+};
+
 class FakeWorld {
  public:
-  FakeWorld(MobilityManager* manager, WorldOptions options = {});
+  /// `scene` (optional, not owned, outlives the world) replaces the world's rock field.
+  FakeWorld(MobilityManager* manager, WorldOptions options = {}, const Scene* scene = nullptr);
 
   std::vector<Rock>& rocks() { return field_.rocks(); }
   /// Adds rocks of the given size along the segment a..b, `spacing` apart.
@@ -91,6 +107,7 @@ class FakeWorld {
 
   MobilityManager* manager_;
   WorldOptions options_;
+  const Scene* scene_;
   rover::testing::RockField field_;
   Pose2 pose_;
   Time now_;

@@ -35,6 +35,40 @@ TEST(FakeWorld, RearCameraLooksBackward) {
   EXPECT_LT(scan.point(scan.width / 2, 0).x(), -4.0);
 }
 
+// A caller's scene replaces the rock field for capture, the pose and the clearance.
+class SlopeScene : public Scene {
+ public:
+  Eigen::Isometry3d SiteFromRover(const Pose2& p) const override {
+    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+    t.translation() = Eigen::Vector3d(p.x, p.y, 0.1 * p.x);
+    return t;
+  }
+  nav_core::RangeScan Capture(const Pose2& /*pose*/, CameraId camera) const override {
+    nav_core::RangeScan s;
+    s.width = s.height = 1;
+    s.xyz = {1.0F, 0.0F, camera == CameraId::kRearHazcam ? -1.0F : 1.0F};
+    s.valid = {1};
+    return s;
+  }
+  double Clearance(double x, double /*y*/) const override { return 5.0 - x; }
+};
+
+TEST(FakeWorld, ASceneReplacesTheRockField) {
+  MobilityManager m = MakeGestaltManager();
+  const SlopeScene scene;
+  FakeWorld w(&m, {}, &scene);
+  w.rocks().push_back({0.0, 0.0, 3.0, 1.0});  // ignored: the scene decides
+  w.pose() = {2.0, 1.0, 0.0};
+  EXPECT_DOUBLE_EQ(w.PoseNow().site_from_rover.translation().z(), 0.2);
+  const nav_core::RangeScan scan = w.Capture(CameraId::kRearHazcam);
+  ASSERT_EQ(scan.width, 1);
+  EXPECT_EQ(scan.xyz[2], -1.0F);
+  EXPECT_EQ(scan.camera, std::string(CameraName(CameraId::kRearHazcam)));
+  EXPECT_DOUBLE_EQ(scan.site_from_rover.translation().z(), 0.2);
+  w.Tick();
+  EXPECT_DOUBLE_EQ(w.min_rock_clearance(), 3.0);
+}
+
 TEST(FakeWorld, DirectedDriveIntegratesThePrimitive) {
   MobilityManager m = MakeGestaltManager();
   FakeWorld w(&m);

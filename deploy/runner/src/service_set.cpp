@@ -19,29 +19,6 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
 
-// The simulator's parameter file for this run: the scenario's world sections, with the start
-// pose and seeds of the run.
-std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
-  YAML::Node root = YAML::Load(s.text);
-  YAML::Node out(YAML::NodeType::Map);
-  for (const auto& sec : sim::world::WorldSections()) {
-    if (root[sec]) out[sec] = root[sec];
-  }
-  if (!out["terrain"]) out["terrain"] = YAML::Node(YAML::NodeType::Map);
-  // A scenario that fixes terrain.seed keeps its terrain; otherwise each run seed is a new one.
-  if (!out["terrain"]["seed"]) out["terrain"]["seed"] = seed;
-  out["rover"]["start"]["x"] = s.start_x;
-  out["rover"]["start"]["y"] = s.start_y;
-  out["rover"]["start"]["yaw_deg"] = s.start_yaw * kRadToDeg;
-  out["sim"]["seed"] = seed;
-  out["sim"]["real_time_factor"] = s.real_time_factor;
-  out["sim"]["lockstep_lead_s"] = s.lockstep_lead_s;
-  // Simulated time starts when the runner says so, once every service is up.
-  out["sim"]["start_paused"] = true;
-  YAML::Emitter e;
-  e << out;
-  return std::string(e.c_str()) + "\n";
-}
 
 std::string ParamsYaml(const std::map<std::string, std::string>& flat) {
   std::string out;
@@ -102,6 +79,38 @@ std::string TerrainDigest(const sim::terrain::Terrain& t) {
   return buf;
 }
 
+std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
+  YAML::Node root = YAML::Load(s.text);
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& sec : sim::world::WorldSections()) {
+    if (root[sec]) out[sec] = root[sec];
+  }
+  if (!out["terrain"]) out["terrain"] = YAML::Node(YAML::NodeType::Map);
+  // A scenario that fixes terrain.seed keeps its terrain; otherwise each run seed is a new one.
+  if (!out["terrain"]["seed"]) out["terrain"]["seed"] = seed;
+  out["rover"]["start"]["x"] = s.start_x;
+  out["rover"]["start"]["y"] = s.start_y;
+  out["rover"]["start"]["yaw_deg"] = s.start_yaw * kRadToDeg;
+  out["sim"]["seed"] = seed;
+  out["sim"]["real_time_factor"] = s.real_time_factor;
+  out["sim"]["lockstep_lead_s"] = s.lockstep_lead_s;
+  // Simulated time starts when the runner says so, once every service is up.
+  out["sim"]["start_paused"] = true;
+  YAML::Emitter e;
+  e << out;
+  return std::string(e.c_str()) + "\n";
+}
+
+Result<sim::world::World> BuildRunWorld(const Scenario& scenario, std::uint32_t seed,
+                                        const std::string& source) {
+  ParamSet world_params("world");
+  sim::world::DeclareWorldParams(world_params);
+  ROVER_RETURN_IF_ERROR(world_params.LoadYamlSections(SimParamsYaml(scenario, seed), source,
+                                                      sim::world::WorldSections()));
+  ROVER_RETURN_IF_ERROR(world_params.Validate());
+  return sim::world::BuildWorld(world_params);
+}
+
 Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
                                const RunOptions& options) {
   const std::string run_dir =
@@ -115,12 +124,7 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
   const std::string sim_yaml = SimParamsYaml(scenario, seed);
   const std::string sim_params_path = run_dir + "/params/" + scenario.simulator + ".yaml";
   std::ofstream(sim_params_path) << sim_yaml;
-  ParamSet world_params("world");
-  sim::world::DeclareWorldParams(world_params);
-  ROVER_RETURN_IF_ERROR(
-      world_params.LoadYamlSections(sim_yaml, sim_params_path, sim::world::WorldSections()));
-  ROVER_RETURN_IF_ERROR(world_params.Validate());
-  ROVER_ASSIGN_OR_RETURN(sim::world::World world, sim::world::BuildWorld(world_params));
+  ROVER_ASSIGN_OR_RETURN(sim::world::World world, BuildRunWorld(scenario, seed, sim_params_path));
 
   // The service set.
   ROVER_ASSIGN_OR_RETURN(ComposeProject project, LoadComposeFile(scenario.compose_path));

@@ -8,12 +8,18 @@
 
 #include <cmath>
 
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
 
 namespace rover::apl::gestalt::testing {
 namespace {
+
+using rover::testing::FrontHazcam;
+using rover::testing::PinholeCamera;
+using rover::testing::RoverPose;
+using rover::testing::SeededRockField;
+using rover::testing::SynthesizeScan;
 
 struct Scene {
   const char* preset;
@@ -25,7 +31,7 @@ class ReferenceAgreement : public ::testing::TestWithParam<Scene> {};
 
 TEST_P(ReferenceAgreement, AssessmentAndVotesMatch) {
   const Scene sc = GetParam();
-  const sim::terrain::Terrain world = RockField(sc.preset, sc.seed, 20.0);
+  const sim::terrain::Terrain world = SeededRockField(sc.preset, sc.seed, 20.0);
   PinholeCamera cam = FrontHazcam();
   cam.noise_at_1m = 0.003;
   cam.seed = sc.seed;

@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 #include "test_maps.hpp"
 
 namespace rover::apl::gestalt::testing {
 namespace {
+
+using rover::testing::AddRock;
+using rover::testing::FlatWorld;
 
 TEST(TruthCheck, CountsMarkedHazardsAndUnexplainedObstacles) {
   sim::terrain::Terrain world = FlatWorld(14.0);

@@ -97,4 +97,13 @@ struct GestaltOptions {
   static void BindParams(ParamBinder<GestaltOptions>& b);
 };
 
+/// GESTALT's options for the rover described under `geometry_prefix` (core/hwconfig's
+/// RoverDescription, declared in `params` with DeclareParams): the options under `prefix`, with
+/// the rover disc set to the rover's turn-in-place circle (1.90 m for the default rover) unless
+/// `<prefix>rover_disc_diameter_m` was given. A disc larger than the rover grows every rock's
+/// obstacle and spreads each tall rock's step over more of the map. Errors name the key.
+Result<GestaltOptions> ReadGestaltOptionsForRover(const ParamSet& params,
+                                                  const std::string& prefix = "gestalt.",
+                                                  const std::string& geometry_prefix = "geometry.");
+
 }  // namespace rover::apl::gestalt

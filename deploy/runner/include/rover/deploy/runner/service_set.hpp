@@ -37,6 +37,14 @@ struct PreparedRun {
 Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
                                const RunOptions& options);
 
+/// The simulator's parameter file of a run: the scenario's world sections with this seed
+/// (terrain.seed = the seed unless the scenario fixes it), the start pose and sim.start_paused.
+std::string SimParamsYaml(const Scenario& scenario, std::uint32_t seed);
+/// The world of a run, exactly as the simulator builds it from SimParamsYaml (errors name
+/// `source`, the file that text is or would be in).
+Result<sim::world::World> BuildRunWorld(const Scenario& scenario, std::uint32_t seed,
+                                        const std::string& source);
+
 /// FNV-1a digest of a terrain's heights and rock list, 16 hex digits (same seed, same digest).
 std::string TerrainDigest(const sim::terrain::Terrain& terrain);
 

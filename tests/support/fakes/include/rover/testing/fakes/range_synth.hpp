@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Test support: a ray-casting range-image synthesiser and small scene builders, so GESTALT's
+/// Test support: a ray-casting range-image synthesiser and small scene builders, so the autonomy
 /// tests and tools run on range data shaped like a HAZCAM's (dense near, sparse far, occlusion
 /// shadows behind rocks, the footprint's outline cut by the image edges and the range limit)
 /// rather than on hand-placed points.
@@ -28,7 +28,7 @@
 #include "rover/sim/heightfield.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
-namespace rover::apl::gestalt::testing {
+namespace rover::testing {
 
 struct PinholeCamera {
   int width = 256;
@@ -51,9 +51,9 @@ struct PinholeCamera {
 PinholeCamera FrontHazcam();
 
 /// Ray-casts `camera` on a rover at `site_from_rover` against `ground`.
-nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
-                                   const PinholeCamera& camera,
-                                   const Eigen::Isometry3d& site_from_rover, Time capture = {});
+apl::nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
+                                        const PinholeCamera& camera,
+                                        const Eigen::Isometry3d& site_from_rover, Time capture = {});
 
 /// A rover standing at site (x, y) with heading `yaw`, its origin on `ground` (no roll, pitch).
 Eigen::Isometry3d RoverPose(const sim::terrain::HeightField& ground, double x, double y,
@@ -63,9 +63,9 @@ Eigen::Isometry3d RoverPose(const sim::terrain::HeightField& ground, double x, d
 sim::terrain::Terrain FlatWorld(double size = 20.0, double resolution = 0.02);
 /// A seeded rock field (preset "vl1" or "vl2"): gentle hills, no craters, start disc at the
 /// origin 1.5 m in radius.
-sim::terrain::Terrain RockField(const char* preset, std::uint64_t seed, double size = 24.0);
+sim::terrain::Terrain SeededRockField(const char* preset, std::uint64_t seed, double size = 24.0);
 /// Adds a rock (round, profile exponent `bluntness`) on the bare ground and rebuilds heights.
 void AddRock(sim::terrain::Terrain* terrain, double x, double y, double diameter, double height,
              double bluntness = 0.5);
 
-}  // namespace rover::apl::gestalt::testing
+}  // namespace rover::testing

@@ -1,4 +1,4 @@
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "rover/base/check.hpp"
 #include "rover/sim/terrain/random.hpp"
 
-namespace rover::apl::gestalt::testing {
+namespace rover::testing {
 
 double PinholeCamera::focal_px() const { return 0.5 * width / std::tan(0.5 * hfov); }
 
@@ -26,11 +26,11 @@ Eigen::Isometry3d PinholeCamera::RoverFromCamera() const {
 
 PinholeCamera FrontHazcam() { return PinholeCamera{}; }
 
-nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
-                                   const PinholeCamera& camera,
-                                   const Eigen::Isometry3d& site_from_rover, Time capture) {
+apl::nav_core::RangeScan SynthesizeScan(const sim::terrain::HeightField& ground,
+                                        const PinholeCamera& camera,
+                                        const Eigen::Isometry3d& site_from_rover, Time capture) {
   ROVER_DEMAND(camera.width > 0 && camera.height > 0);
-  nav_core::RangeScan scan;
+  apl::nav_core::RangeScan scan;
   scan.width = camera.width;
   scan.height = camera.height;
   scan.xyz.assign(3 * scan.pixel_count(), 0.0f);
@@ -112,7 +112,7 @@ sim::terrain::Terrain FlatWorld(double size, double resolution) {
   return std::move(t).value();
 }
 
-sim::terrain::Terrain RockField(const char* preset, std::uint64_t seed, double size) {
+sim::terrain::Terrain SeededRockField(const char* preset, std::uint64_t seed, double size) {
   sim::terrain::TerrainParams p = QuietParams(size, 0.02);
   auto parsed = sim::terrain::ParseRockPreset(preset);
   ROVER_DEMAND_MSG(parsed.ok(), parsed.status().message().c_str());
@@ -136,4 +136,4 @@ void AddRock(sim::terrain::Terrain* terrain, double x, double y, double diameter
   sim::terrain::RebuildHeights(terrain);
 }
 
-}  // namespace rover::apl::gestalt::testing
+}  // namespace rover::testing

@@ -1,10 +1,10 @@
-#include "range_synth.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace rover::apl::gestalt::testing {
+namespace rover::testing {
 namespace {
 
 TEST(RangeSynth, CentrePixelLooksDownAtFortyFiveDegrees) {
@@ -97,4 +97,4 @@ TEST(RangeSynth, NoiseIsSeededAndGrowsWithRange) {
 }
 
 }  // namespace
-}  // namespace rover::apl::gestalt::testing
+}  // namespace rover::testing

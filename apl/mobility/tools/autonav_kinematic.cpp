@@ -1,0 +1,307 @@
+// autonav-kinematic: a scenario's mobility task over many seeds in seconds, for tuning autonomy
+// before a campaign in the simulator (which takes minutes per seed).
+//
+// What runs is the real decision-making: the MobilityManager with GESTALT, configured exactly
+// as the scenario's apl-mobility service would be (the rover description, the compose file's
+// --set arguments, then the scenario's params.apl-mobility, then this tool's --set). What is
+// simplified is everything below it:
+//  - the world is the scenario's own (sim/world's BuildWorld for each seed: the same rocks,
+//    hills and start disc the simulator would build);
+//  - locomotion is kinematic (tests' FakeWorld: each primitive driven exactly at --speed /
+//    --turn-rate, no slip, no steering time);
+//  - stereo is tests/support's ray-cast pinhole HAZCAM (core/hwconfig's mounts, 256 x 256,
+//    120 deg) with range noise sigma = --noise * r^2, captured at the request's pose and
+//    delivered --latency s later;
+//  - the pose is exact (origin on the bare ground, roll and pitch from it under the wheels).
+// The outcome, the distance, the steps and the judge's hazard contacts (sim/judge, the scenario's
+// criteria) are printed per seed; --verbose adds every drive and status. It says nothing about
+// stereo artefacts, slip or the services' timing: the campaign in the simulator does.
+//
+//   autonav-kinematic deploy/scenarios/autonav_vl2.yaml --seeds 1..20
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fake_world.hpp"
+#include "rover/apl/gestalt/arc_evaluator.hpp"
+#include "rover/apl/gestalt/options.hpp"
+#include "rover/apl/gestalt/terrain_map.hpp"
+#include "rover/apl/mobility/mobility_manager.hpp"
+#include "rover/apl/mobility/mobility_options.hpp"
+#include "rover/base/param_binder.hpp"
+#include "rover/deploy/compose.hpp"
+#include "rover/deploy/runner.hpp"
+#include "rover/deploy/runner/judging.hpp"
+#include "rover/deploy/runner/service_set.hpp"
+#include "rover/deploy/runner/task.hpp"
+#include "rover/deploy/runner/tasks/mobility_task.hpp"
+#include "rover/hwconfig/rover_description.hpp"
+#include "rover/msg/mobility_idl.hpp"
+#include "rover/testing/fakes/range_synth.hpp"
+
+namespace {
+
+using namespace rover;               // NOLINT(google-build-using-namespace): a tool's main file
+using namespace rover::apl::mobility;  // NOLINT(google-build-using-namespace)
+namespace mt = rover::apl::mobility::testing;
+namespace rt = rover::testing;
+
+constexpr char kService[] = "apl-mobility";
+
+// A sim/terrain world seen by ray-cast HAZCAMs; the rover's origin on the bare ground.
+class TerrainScene : public mt::Scene {
+ public:
+  TerrainScene(const sim::terrain::Terrain& terrain, const hwconfig::RoverDescription& rover,
+               double noise_at_1m, std::uint64_t seed, double traversable_height)
+      : terrain_(terrain), rover_(rover), noise_(noise_at_1m), seed_(seed) {
+    for (const auto& r : terrain.rocks) {
+      if (r.height > traversable_height) hazards_.push_back(&r);
+    }
+  }
+
+  Eigen::Isometry3d SiteFromRover(const Pose2& p) const override {
+    const sim::terrain::HeightField& g = terrain_.bare;
+    const double c = std::cos(p.heading), s = std::sin(p.heading);
+    const double half_base = 0.5 * (rover_.front_wheel_x - rover_.rear_wheel_x);
+    const double half_track = rover_.half_track;
+    auto h = [&](double fx, double fy) { return g.Height(p.x + c * fx - s * fy, p.y + s * fx + c * fy); };
+    const double pitch = std::atan2(h(-half_base, 0) - h(half_base, 0), 2.0 * half_base);
+    const double roll = std::atan2(h(0, -half_track) - h(0, half_track), 2.0 * half_track);
+    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+    t.linear() = (Eigen::AngleAxisd(p.heading, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    t.translation() = Eigen::Vector3d(p.x, p.y, g.Height(p.x, p.y));
+    return t;
+  }
+
+  apl::nav_core::RangeScan Capture(const Pose2& pose, CameraId camera) const override {
+    const bool rear = camera == CameraId::kRearHazcam;
+    if (!rear && camera != CameraId::kFrontHazcam) {
+      ++unsupported_;
+      return {};  // no NAVCAM here: an empty scan (the manager reads it as all invalid)
+    }
+    const hwconfig::StereoMount& m = rear ? rover_.rear_hazcam : rover_.front_hazcam;
+    rt::PinholeCamera cam = rt::FrontHazcam();
+    cam.position = m.position;
+    cam.yaw = m.yaw;
+    cam.depression = m.depression;
+    cam.noise_at_1m = noise_;
+    cam.seed = seed_ * 100003u + static_cast<std::uint64_t>(images_++);
+    return rt::SynthesizeScan(terrain_.ground, cam, SiteFromRover(pose));
+  }
+
+  double Clearance(double x, double y) const override {
+    double c = 1e9;
+    for (const auto* r : hazards_) {
+      c = std::min(c, std::hypot(x - r->position.x(), y - r->position.y()) -
+                          sim::terrain::RockBoundingRadius(*r));
+    }
+    return c;
+  }
+  int unsupported() const { return unsupported_; }
+
+ private:
+  const sim::terrain::Terrain& terrain_;
+  const hwconfig::RoverDescription& rover_;
+  double noise_;
+  std::uint64_t seed_;
+  std::vector<const sim::terrain::Rock*> hazards_;
+  mutable int images_ = 0;
+  mutable int unsupported_ = 0;
+};
+
+// apl-mobility's parameters as the scenario's set would give them.
+Result<ParamSet> ServiceParams(const deploy::Scenario& scenario,
+                               const std::vector<std::string>& extra) {
+  ParamSet params(kService);
+  DeclareParams<MobilityOptions>(params, "mobility.");
+  DeclareParams<apl::gestalt::GestaltOptions>(params, "gestalt.");
+  DeclareParams<hwconfig::RoverDescription>(params, "geometry.");
+  ROVER_ASSIGN_OR_RETURN(const deploy::ComposeProject project,
+                         deploy::LoadComposeFile(scenario.compose_path));
+  const deploy::ServiceSpec* svc = project.Find(kService);
+  if (svc == nullptr) {
+    return InvalidArgument(scenario.compose_path + ": no service '" + kService + "'");
+  }
+  for (std::size_t i = 0; i + 1 < svc->command.size(); ++i) {
+    if (svc->command[i] == "--set") {
+      ROVER_RETURN_IF_ERROR(params.SetFromString(svc->command[i + 1], scenario.compose_path));
+    }
+  }
+  if (auto it = scenario.params.find(kService); it != scenario.params.end()) {
+    for (const auto& [key, value] : it->second) {
+      ROVER_RETURN_IF_ERROR(params.SetFromString(key + "=" + value, scenario.file));
+    }
+  }
+  for (const std::string& a : extra) ROVER_RETURN_IF_ERROR(params.SetFromString(a, "--set"));
+  ROVER_RETURN_IF_ERROR(params.Validate());
+  return params;
+}
+
+Result<MobilityManager> MakeManager(const ParamSet& params) {
+  ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
+                         ReadParams<MobilityOptions>(params, "mobility."));
+  ROVER_ASSIGN_OR_RETURN(const apl::gestalt::GestaltOptions g,
+                         apl::gestalt::ReadGestaltOptionsForRover(params));
+  ROVER_ASSIGN_OR_RETURN(apl::gestalt::TerrainMap map, apl::gestalt::TerrainMap::Create(g));
+  ROVER_ASSIGN_OR_RETURN(apl::gestalt::ArcEvaluator arcs, apl::gestalt::ArcEvaluator::Create(g));
+  return MobilityManager::Create(options, std::make_unique<apl::gestalt::TerrainMap>(std::move(map)),
+                                 std::make_unique<apl::gestalt::ArcEvaluator>(std::move(arcs)));
+}
+
+struct SeedResult {
+  std::string outcome;
+  bool pass = false;
+  int hazard_contacts = 0;
+  double distance = 0, sim_s = 0, to_goal = -1, clearance = 0;
+  std::uint32_t steps = 0, images = 0;
+  std::string message;
+};
+
+const char* PrimitiveName(PrimitiveKind k) {
+  switch (k) {
+    case PrimitiveKind::kArc: return "arc";
+    case PrimitiveKind::kStraight: return "straight";
+    case PrimitiveKind::kTurnInPlace: return "turn";
+    case PrimitiveKind::kStop: return "stop";
+    default: return "?";
+  }
+}
+
+Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runner::MobilityTaskSpec& spec,
+                           const ParamSet& params, std::uint32_t seed, const mt::WorldOptions& wo,
+                           double noise, bool verbose) {
+  ROVER_ASSIGN_OR_RETURN(const sim::world::World world,
+                         deploy::runner::BuildRunWorld(scenario, seed, scenario.file));
+  ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
+                         ReadParams<hwconfig::RoverDescription>(params, "geometry."));
+  ROVER_ASSIGN_OR_RETURN(MobilityManager manager, MakeManager(params));
+  ROVER_ASSIGN_OR_RETURN(sim::judge::Judge judge, deploy::runner::MakeJudge(scenario, world));
+  const TerrainScene scene(world.terrain, rover, noise, seed, scenario.criteria.traversable_height);
+  mt::FakeWorld w(&manager, wo, &scene);
+  w.pose() = {world.start_x, world.start_y, world.start_yaw};
+
+  deploy::runner::MobilityCommandStorage storage;
+  const rover_apl_MobilityCommand idl = deploy::runner::MakeMobilityCommand(spec, 1, 0.0, &storage);
+  const MobilityCommand command = msg::MobilityCommandFromIdl(idl);
+  const double budget = spec.time_budget_s > 0 ? spec.time_budget_s + 60.0 : 3600.0;
+
+  w.Absorb(manager.OnPose(w.PoseNow(), w.now()));
+  w.Absorb(manager.OnCommand(command, w.now()));
+  judge.AddTruth(w.now(), scene.SiteFromRover(w.pose()));
+  std::size_t seen_status = 0, seen_drive = 0;
+  std::string last_message;
+  MobilityStatus last;
+  last.state = State::kRunning;
+  bool done = false;
+  while (!done && w.now().seconds() < budget) {
+    w.Tick();
+    judge.AddTruth(w.now(), scene.SiteFromRover(w.pose()));
+    for (; seen_drive < w.drives().size(); ++seen_drive) {
+      const DriveCommand& d = w.drives()[seen_drive];
+      if (verbose) {
+        std::printf("  %7.1f s (%6.2f, %6.2f, %6.1f deg) %s k=%.3f s=%.2f a=%.1f\n",
+                    w.now().seconds(), w.pose().x, w.pose().y, w.pose().heading * 180 / M_PI,
+                    PrimitiveName(d.primitive), d.curvature, d.distance, d.angle * 180 / M_PI);
+      }
+    }
+    for (; seen_status < w.statuses().size(); ++seen_status) {
+      const MobilityStatus& s = w.statuses()[seen_status];
+      if (s.command_id != command.command_id) continue;
+      last = s;
+      if (verbose && s.message != last_message) {
+        std::printf("  %7.1f s status %s: %s\n", w.now().seconds(),
+                    msg::MobilityStateName(s.state), s.message.c_str());
+      }
+      last_message = s.message;
+      if (s.state != State::kRunning) done = true;
+    }
+  }
+  const sim::judge::Verdict v = judge.Evaluate();
+  SeedResult r;
+  r.outcome = !done                              ? std::string("UNFINISHED")
+              : last.state == State::kSucceeded ? std::string("reached")
+                                                : std::string(msg::MobilityFaultName(last.fault));
+  r.hazard_contacts = static_cast<int>(v.hazards_hit.size());
+  r.pass = r.outcome == spec.expect && r.hazard_contacts == 0;
+  r.distance = last.distance_driven;
+  r.steps = last.steps;
+  r.images = last.images;
+  r.sim_s = w.now().seconds();
+  r.to_goal = last.distance_to_goal;
+  r.clearance = w.min_rock_clearance();
+  r.message = last.message;
+  if (scene.unsupported() > 0) {
+    r.message += " [" + std::to_string(scene.unsupported()) + " NAVCAM requests unanswered]";
+  }
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"A scenario's mobility task over seeds with a kinematic rover and ray-cast HAZCAMs"};
+  std::string path, seeds_text = "1";
+  std::vector<std::string> sets;
+  mt::WorldOptions wo;
+  wo.speed = 0.05;
+  wo.turn_rate = 0.1;
+  wo.image_latency_s = 2.0;
+  double noise = 0.005;
+  bool verbose = false;
+  app.add_option("scenario", path, "scenario file with a mobility task")->required();
+  app.add_option("--seeds", seeds_text, "run seeds, A..B or A");
+  app.add_option("--set", sets, "apl-mobility parameter, key=value (after the scenario's)");
+  app.add_option("--speed", wo.speed, "[m/s] drive speed")->check(CLI::PositiveNumber);
+  app.add_option("--turn-rate", wo.turn_rate, "[rad/s] turn-in-place rate")->check(CLI::PositiveNumber);
+  app.add_option("--latency", wo.image_latency_s, "[s] range request to range image")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--noise", noise, "[m] range noise sigma at 1 m (grows with r^2)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--verbose", verbose, "print every drive and status message");
+  CLI11_PARSE(app, argc, argv);
+
+  auto fail = [](const Status& s) {
+    std::fprintf(stderr, "autonav-kinematic: %s\n", s.message().c_str());
+    return 2;
+  };
+  auto scenario = deploy::LoadScenario(path);
+  if (!scenario.ok()) return fail(scenario.status());
+  auto seeds = deploy::ParseSeedRange(seeds_text);
+  if (!seeds.ok()) return fail(seeds.status());
+  auto task = deploy::runner::TaskRegistry::Builtin().Make(*scenario);
+  if (!task.ok()) return fail(task.status());
+  const auto* mobility = dynamic_cast<const deploy::runner::MobilityTask*>(task->get());
+  if (mobility == nullptr) {
+    return fail(InvalidArgument(path + ": task.type '" + scenario->task.type +
+                                "' is not a mobility task (autonav, goto_waypoint, guarded, "
+                                "guarded_arc)"));
+  }
+  auto params = ServiceParams(*scenario, sets);
+  if (!params.ok()) return fail(params.status());
+
+  std::printf("%s: expect %s; speed %.3g m/s, latency %.3g s, noise %.3g m at 1 m\n",
+              scenario->name.c_str(), mobility->spec().expect.c_str(), wo.speed,
+              wo.image_latency_s, noise);
+  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s  %s\n", "seed", "outcome", "pass", "driven",
+              "steps", "images", "sim_s", "to_goal", "contacts", "message");
+  int passed = 0;
+  for (const std::uint32_t seed : *seeds) {
+    auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose);
+    if (!r.ok()) return fail(r.status());
+    passed += r->pass ? 1 : 0;
+    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d  %s\n", seed, r->outcome.c_str(),
+                r->pass ? "yes" : "no", r->distance, r->steps, r->images, r->sim_s, r->to_goal,
+                r->hazard_contacts, r->message.c_str());
+    std::fflush(stdout);
+  }
+  std::printf("passed %d of %zu (outcome %s, no hazard contact)\n", passed, seeds->size(),
+              mobility->spec().expect.c_str());
+  return passed == static_cast<int>(seeds->size()) ? 0 : 1;
+}
