@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "rover/apl/gestalt/arc_geometry.hpp"
+#include "rover/apl/gestalt/cost_to_go.hpp"
 #include "rover/apl/nav_core/range_scan.hpp"
 #include "rover/base/range_check.hpp"
 
@@ -20,6 +22,8 @@ using nav_core::MotionKind;
 using nav_core::Vote;
 
 constexpr int kForward = 0, kBackward = 1, kTurns = 2;
+// [m/rad] cost_to_go: what turning in place costs beside driving (a half turn ~ 1.6 m).
+constexpr double kTurnCostPerRad = 0.5;
 
 double WrapPi(double a) {
   a = std::remainder(a, 2.0 * std::numbers::pi);  // [-pi, pi]
@@ -135,6 +139,68 @@ PathVote ArcEvaluator::HazardVote(const GoodnessMap& map,
   return pv;
 }
 
+std::vector<Eigen::Vector2d> ArcEvaluator::FootprintHazards(const GoodnessMap& map,
+                                                            const Pose2& pose) const {
+  const GestaltOptions& o = options_;
+  const Eigen::Vector2d lo(o.footprint_min_x - o.footprint_margin,
+                           o.footprint_min_y - o.footprint_margin);
+  const Eigen::Vector2d hi(o.footprint_max_x + o.footprint_margin,
+                           o.footprint_max_y + o.footprint_margin);
+  const double reach = o.plan_max_dist + std::max(lo.norm(), hi.norm()) + o.cell_size;
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  std::vector<Eigen::Vector2d> points;
+  int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+  map.CellOf(pose.x - reach, pose.y - reach, &i0, &j0);
+  map.CellOf(pose.x + reach, pose.y + reach, &i1, &j1);
+  for (int j = std::max(0, j0); j <= std::min(map.height - 1, j1); ++j) {
+    for (int i = std::max(0, i0); i <= std::min(map.width - 1, i1); ++i) {
+      if ((map.flags[map.Index(i, j)] & nav_core::kCellHazard) == 0) continue;
+      const Eigen::Vector2d d = map.CellCenter(i, j) - Eigen::Vector2d(pose.x, pose.y);
+      if (d.squaredNorm() > reach * reach) continue;
+      const Eigen::Vector2d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+      if ((q.array() >= lo.array()).all() && (q.array() <= hi.array()).all()) continue;
+      points.push_back(q);
+    }
+  }
+  return points;
+}
+
+double ArcEvaluator::FirstFootprintHit(const Candidate& candidate, double length,
+                                       const std::vector<Eigen::Vector2d>& hazards) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (hazards.empty()) return kInf;
+  const GestaltOptions& o = options_;
+  const Eigen::Array2d lo(o.footprint_min_x - o.footprint_margin,
+                          o.footprint_min_y - o.footprint_margin);
+  const Eigen::Array2d hi(o.footprint_max_x + o.footprint_margin,
+                          o.footprint_max_y + o.footprint_margin);
+  auto hit_at = [&](const Eigen::Vector2d& p, double heading) {
+    const double c = std::cos(heading), s = std::sin(heading);
+    for (const Eigen::Vector2d& q : hazards) {
+      const Eigen::Vector2d d = q - p;
+      const Eigen::Array2d local(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+      if ((local >= lo).all() && (local <= hi).all()) return true;
+    }
+    return false;
+  };
+  if (candidate.kind == MotionKind::kPointTurn) {
+    constexpr double kStep = 2.5 * std::numbers::pi / 180.0;
+    const int n = static_cast<int>(std::ceil(std::abs(candidate.turn_angle) / kStep));
+    for (int t = 1; t <= n; ++t) {
+      if (hit_at(Eigen::Vector2d::Zero(), candidate.turn_angle * t / n)) return 0.0;
+    }
+    return kInf;
+  }
+  const double ds = 0.5 * o.cell_size;
+  const int n = static_cast<int>(std::ceil(length / ds));
+  for (int t = 1; t <= n; ++t) {
+    const double s = std::min(length, t * ds);
+    const Eigen::Vector2d p = ArcPoint(candidate.curvature, candidate.direction, s);
+    if (hit_at(p, candidate.direction * candidate.curvature * s)) return s;
+  }
+  return kInf;
+}
+
 Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
                                              const ArcRequest& request) const {
   ROVER_RETURN_IF_ERROR(CheckRequest(request));
@@ -171,6 +237,8 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
 
   std::vector<PathCell> cells;
   std::vector<PathVote> path_votes(n);
+  const std::vector<Eigen::Vector2d> hazards =
+      o.footprint_check ? FootprintHazards(map, pose) : std::vector<Eigen::Vector2d>{};
   for (std::size_t k = 0; k < n; ++k) {
     Candidate& cand = e.candidates[k];
     double peak = 0.0, exponent = 0.0;
@@ -195,9 +263,87 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
       exponent = da * da / (2.0 * o.turn_vote_variance);
     }
     path_votes[k] = HazardVote(map, cells);
+    if (o.footprint_check && cand.kind == MotionKind::kPointTurn &&
+        path_votes[k].vote.goodness > 0) {
+      // A turn is worth what it leads to: the straight path of `length` from the new heading
+      // (without this, a turn's vote is its centre cell's, near perfect, and a rover facing
+      // rocks turns back and forth toward headings it cannot drive).
+      const Pose2 turned{pose.x, pose.y, pose.yaw + cand.turn_angle};
+      SweptCells(map, turned, ArcPath{0.0, 1, o.plan_min_dist, length}, o.path_half_width,
+                 &cells);
+      const PathVote straight = HazardVote(map, cells);
+      Vote& v = path_votes[k].vote;
+      if (straight.vote.goodness == 0) {
+        v = straight.vote;
+      } else {
+        const double hit = FirstFootprintHit(Candidate{MotionKind::kArc, 0.0, 1, length, 0.0},
+                                             length, FootprintHazards(map, turned));
+        if (hit <= o.footprint_forbid_dist) {
+          v = {0, 255};
+        } else {
+          const int g = hit < length ? std::max(1, Round255(straight.vote.goodness * hit / length))
+                                     : straight.vote.goodness;
+          v.goodness = std::min(v.goodness, g);
+          v.certainty = std::min(v.certainty, straight.vote.certainty);
+        }
+      }
+    }
+    if (!hazards.empty() && path_votes[k].vote.goodness > 0) {
+      const double hit = FirstFootprintHit(cand, length, hazards);
+      Vote& v = path_votes[k].vote;
+      if (cand.kind == MotionKind::kPointTurn ? hit < length : hit <= o.footprint_forbid_dist) {
+        v = {0, 255};
+      } else if (hit < length) {
+        v.goodness = std::max(1, Round255(v.goodness * hit / length));
+      }
+    }
     e.hazard[k] = path_votes[k].vote;
     e.waypoint[k] = {Round255(peak * std::exp(-exponent)), o.waypoint_certainty};
     e.merged[k] = MergeVotes(e.hazard[k], e.waypoint[k], o.min_vote_goodness);
+  }
+  if (o.cost_to_go) {
+    // Waypoint votes from drive cost + cost-to-go (file comment).
+    CostToGoOptions co;
+    co.clearance = std::min(-o.footprint_min_y, o.footprint_max_y) + o.footprint_margin;
+    co.min_allowed_goodness = o.min_allowed_goodness;
+    co.goodness_weight = o.cost_goodness_weight;
+    co.unknown_cost_factor = o.cost_unknown_factor;
+    const CostToGo ctg(map, request.goal, co);
+    std::vector<double> cost(n, std::numeric_limits<double>::infinity());
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Candidate& cand = e.candidates[k];
+      Eigen::Vector2d end_r;  // rover frame
+      double drive = length;
+      if (cand.kind == MotionKind::kArc) {
+        end_r = ArcPoint(cand.curvature, cand.direction, length);
+      } else {
+        end_r = length * Eigen::Vector2d(std::cos(cand.turn_angle), std::sin(cand.turn_angle));
+        drive += kTurnCostPerRad * std::abs(cand.turn_angle);
+      }
+      const double ex = pose.x + c * end_r.x() - s * end_r.y();
+      const double ey = pose.y + s * end_r.x() + c * end_r.y();
+      cost[k] = drive + ctg.Cost(ex, ey);
+      // The best is taken over the candidates the hazard vote allows: a forbidden candidate's
+      // low cost must not push every allowed one's vote down.
+      if (e.hazard[k].goodness > 0) best = std::min(best, cost[k]);
+    }
+    if (std::isfinite(best)) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const Candidate& cand = e.candidates[k];
+        const double peak = cand.kind == MotionKind::kArc && cand.direction > 0
+                                ? o.waypoint_peak_toward
+                                : o.waypoint_peak_away;
+        const double excess = cost[k] - best;  // inf -> vote 0
+        e.waypoint[k] = {
+            std::isfinite(excess)
+                ? Round255(peak * std::exp(-excess * excess /
+                                           (2.0 * o.cost_vote_sigma * o.cost_vote_sigma)))
+                : 0,
+            o.waypoint_certainty};
+        e.merged[k] = MergeVotes(e.hazard[k], e.waypoint[k], o.min_vote_goodness);
+      }
+    }
   }
   e.chosen = ChooseCandidate(e.merged, groups_);
 

@@ -62,7 +62,8 @@ DiscAssessor::DiscAssessor(const GestaltOptions& options)
   bottom_rows_.assign(static_cast<std::size_t>(max_w + 1), std::vector<double>(n, kInf));
 }
 
-double DiscAssessor::Step(int i, int j, const PlaneFit& plane, const Grid<CellStats>& cells) const {
+double DiscAssessor::Step(int i, int j, const PlaneFit& plane, const Grid<CellStats>& cells,
+                          double* cell_height) const {
   const int R = rover_disc_.radius();
   const int side = 2 * R + 1;
   auto at = [side](int x, int y) { return static_cast<std::size_t>(y) * side + x; };
@@ -129,6 +130,12 @@ double DiscAssessor::Step(int i, int j, const PlaneFit& plane, const Grid<CellSt
         lo = std::min(lo, bottom_rows_[level][k]);
       }
       if (hi > -kInf && lo < kInf) step = std::max(step, hi - lo);
+      if (sx == 0 && sy == 0 && cell_height != nullptr) {
+        const double top = top_[at(R, R)];
+        // Above the belly disc's lowest ground, or above the plane where the belly disc lies
+        // wholly on a large rock.
+        *cell_height = top > -kInf && lo < kInf ? std::max({0.0, top - lo, top}) : 0.0;
+      }
     }
   }
   return step;
@@ -155,13 +162,18 @@ CellAssessment DiscAssessor::Assess(int i, int j, const Moments& disc_sum, int c
   const int g_tilt = RampGoodness(fit.tilt, options_.tilt_safe, options_.max_tilt);
   const int g_rough = RampGoodness(residual, options_.roughness_safe, options_.max_roughness);
   // A plane too steep to express as a height field is an obstacle by tilt already.
-  const double step = fit.normal.z() > 1e-3 ? Step(i, j, fit, cells) : kInf;
+  double cell_height = 0.0;
+  const double step = fit.normal.z() > 1e-3 ? Step(i, j, fit, cells, &cell_height) : kInf;
   a.step = static_cast<float>(std::min(step, 1e3));
+  a.cell_height = static_cast<float>(std::min(cell_height, 1e3));
   const int g_step = RampGoodness(step, options_.step_safe, options_.max_step);
   a.tilt_goodness = Byte(g_tilt);
   a.roughness_goodness = Byte(g_rough);
   a.step_goodness = Byte(g_step);
-  a.goodness = Byte(std::min({g_tilt, g_rough, g_step}));
+  a.goodness = options_.footprint_check
+                   ? Byte(std::min(g_tilt, std::max(options_.min_allowed_goodness,
+                                                    std::min(g_rough, g_step))))
+                   : Byte(std::min({g_tilt, g_rough, g_step}));
   return a;
 }
 

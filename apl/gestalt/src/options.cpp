@@ -111,6 +111,23 @@ Status GestaltOptions::Validate() const {
                                    Bounds::Closed(0.0, 90.0 * kDeg), "rad"));
   ROVER_RETURN_IF_ERROR(CheckByte("min_fwd_threshold", min_fwd_threshold));
   ROVER_RETURN_IF_ERROR(CheckByte("skip_imaging_goodness", skip_imaging_goodness));
+  // Footprint check.
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_min_x", footprint_min_x, Bounds{-10.0, 0.0, false, true}, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_max_x", footprint_max_x, Bounds::OpenLow(0.0, 10.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_min_y", footprint_min_y, Bounds{-10.0, 0.0, false, true}, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_max_y", footprint_max_y, Bounds::OpenLow(0.0, 10.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_margin", footprint_margin, 0.0, 2.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_forbid_dist", footprint_forbid_dist,
+                                   Bounds::OpenLow(0.0, 50.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("footprint_hazard_height", footprint_hazard_height,
+                                   Bounds::OpenLow(0.0, 5.0), "m"));
+  if (cost_to_go && !footprint_check) {
+    return InvalidArgument("cost_to_go = true needs footprint_check = true (it plans around the "
+                           "footprint check's hazard cells)");
+  }
+  ROVER_RETURN_IF_ERROR(CheckRange("cost_vote_sigma", cost_vote_sigma, Bounds::OpenLow(0.0, 100.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("cost_goodness_weight", cost_goodness_weight, 0.0, 100.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("cost_unknown_factor", cost_unknown_factor, 1.0, 100.0));
   return Status::Ok();
 }
 
@@ -221,6 +238,35 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
        "best forward vote below this advises imaging the rear (MER 180)");
   byte("skip_imaging_goodness", &G::skip_imaging_goodness,
        "every path's hazard vote at or above this (on known cells): imaging may be skipped");
+  b.Bind("footprint_check", &G::footprint_check,
+         "check the rover's footprint rectangle against hazard cells along each path instead of "
+         "forbidding by the rover disc's step (ours, after ENav; false = MER)");
+  b.Bind("footprint_min_x_m", &G::footprint_min_x, "m", "footprint rear edge, rover frame")
+      .Range(-10.0, 0.0);
+  b.Bind("footprint_max_x_m", &G::footprint_max_x, "m", "footprint front edge").Range(0.0, 10.0);
+  b.Bind("footprint_min_y_m", &G::footprint_min_y, "m", "footprint right edge").Range(-10.0, 0.0);
+  b.Bind("footprint_max_y_m", &G::footprint_max_y, "m", "footprint left edge").Range(0.0, 10.0);
+  b.Bind("footprint_margin_m", &G::footprint_margin, "m",
+         "footprint grown by this for the check (cell half diagonal + tracking error)")
+      .Range(0.0, 2.0);
+  b.Bind("footprint_forbid_dist_m", &G::footprint_forbid_dist, "m",
+         "a footprint hit within this arc length forbids a path; farther, it scales its vote")
+      .Range(0.001, 50.0);
+  b.Bind("footprint_hazard_height_m", &G::footprint_hazard_height, "m",
+         "a cell this high above the belly disc's lowest ground is a hazard cell")
+      .Range(0.001, 5.0);
+  b.Bind("cost_to_go", &G::cost_to_go,
+         "waypoint vote by drive cost + cost-to-go over the map (ours, after MER's 2006 Field "
+         "D*; needs footprint_check) instead of by the arc through the goal (MER)");
+  b.Bind("cost_vote_sigma_m", &G::cost_vote_sigma, "m",
+         "width of the waypoint Gaussian over a candidate's cost above the best")
+      .Range(0.001, 100.0);
+  b.Bind("cost_goodness_weight", &G::cost_goodness_weight, "",
+         "extra cost-to-go per metre over a goodness-0 cell (linear in 255 - goodness)")
+      .Range(0.0, 100.0);
+  b.Bind("cost_unknown_factor", &G::cost_unknown_factor, "",
+         "cost-to-go factor of unknown cells")
+      .Range(1.0, 100.0);
 }
 
 Result<GestaltOptions> ReadGestaltOptionsForRover(const ParamSet& params, const std::string& prefix,
@@ -234,6 +280,21 @@ Result<GestaltOptions> ReadGestaltOptionsForRover(const ParamSet& params, const 
       return InvalidArgument("the rover description's turn-in-place disc (" +
                              FormatNumber(g.rover_disc_diameter, 3) +
                              " m) does not suit GESTALT: " + s.message());
+    }
+  }
+  const bool footprint_given = params.Origin(prefix + "footprint_min_x_m").source != "default" ||
+                               params.Origin(prefix + "footprint_max_x_m").source != "default" ||
+                               params.Origin(prefix + "footprint_min_y_m").source != "default" ||
+                               params.Origin(prefix + "footprint_max_y_m").source != "default";
+  if (!footprint_given) {
+    const hwconfig::Footprint f = rover.GroundFootprint();
+    g.footprint_min_x = f.min_x;
+    g.footprint_max_x = f.max_x;
+    g.footprint_min_y = f.min_y;
+    g.footprint_max_y = f.max_y;
+    if (Status s = g.Validate(); !s.ok()) {
+      return InvalidArgument("the rover description's ground footprint does not suit GESTALT: " +
+                             s.message());
     }
   }
   return g;

@@ -266,6 +266,10 @@ void TerrainMap::Publish() {
         flags |= nav_core::kCellBorder;
       }
       if (edge_merged_[k] != 0) flags |= nav_core::kCellFovEdge;
+      if (options_.footprint_check && assessments_[k].known() &&
+          assessments_[k].cell_height >= options_.footprint_hazard_height) {
+        flags |= nav_core::kCellHazard;
+      }
       map_.goodness[k] = static_cast<std::uint8_t>(value);
       map_.certainty[k] = static_cast<std::uint8_t>(certainty);
       map_.flags[k] = flags;

@@ -320,5 +320,106 @@ TEST(ChooseCandidate, MiddleOfTheLongestPlateau) {
   EXPECT_EQ(ChooseCandidate({}, {}), -1);
 }
 
+namespace footprint {
+
+GestaltOptions FootprintOptions(bool cost_to_go = false) {
+  GestaltOptions o;
+  o.footprint_check = true;
+  o.cost_to_go = cost_to_go;
+  return o;
+}
+
+// A hazard cell (a rock's top) at site point (x, y); its goodness stays high, as the footprint
+// check forbids by the flag and the floor keeps step goodness above min_allowed_goodness.
+void AddHazard(GoodnessMap* m, double x, double y) {
+  SetRect(m, x - 0.1, x + 0.1, y - 0.1, y + 0.1, 200, 255,
+          nav_core::kCellKnown | nav_core::kCellHazard);
+}
+
+int StraightIndex(const ArcEvaluator& ev) {
+  for (std::size_t k = 0; k < ev.candidates().size(); ++k) {
+    const auto& c = ev.candidates()[k];
+    if (c.kind == MotionKind::kArc && c.direction == 1 && c.curvature == 0.0) {
+      return static_cast<int>(k);
+    }
+  }
+  return -1;
+}
+
+TEST(ArcEvaluatorFootprint, RockBesideTheFootprintIsPassedRockInItForbids) {
+  const ArcEvaluator ev = Make(FootprintOptions());
+  const int straight = StraightIndex(ev);
+  ASSERT_GE(straight, 0);
+  // Half width 0.58 + margin 0.15 = 0.73 m: a rock 0.9 m to the side is clear, one 0.5 m to
+  // the side (1.5 m ahead) is hit within footprint_forbid_dist of driving.
+  GoodnessMap beside = KnownMap(), in_path = KnownMap();
+  AddHazard(&beside, 1.5, 0.9);
+  AddHazard(&in_path, 1.5, 0.5);
+  auto e_beside = ev.Evaluate(beside, Toward(4.0, 0.0));
+  auto e_in = ev.Evaluate(in_path, Toward(4.0, 0.0));
+  ASSERT_TRUE(e_beside.ok() && e_in.ok());
+  EXPECT_GT(e_beside->hazard[straight].goodness, 0);
+  EXPECT_EQ(e_in->hazard[straight].goodness, 0);
+  // The disc-based MER check with the same map (no hazard flags used) would not forbid it.
+  auto e_mer = Make().Evaluate(in_path, Toward(4.0, 0.0));
+  ASSERT_TRUE(e_mer.ok());
+  EXPECT_GT(e_mer->hazard[straight].goodness, 0);
+}
+
+TEST(ArcEvaluatorFootprint, FartherHitScalesTheVote) {
+  const ArcEvaluator ev = Make(FootprintOptions());
+  const int straight = StraightIndex(ev);
+  GoodnessMap clear = KnownMap(), far_rock = KnownMap();
+  // Front edge 0.75 + 0.15: a rock at x = 2.9 is reached after ~2 m of the 3 m path.
+  AddHazard(&far_rock, 2.9, 0.0);
+  auto e_clear = ev.Evaluate(clear, Toward(4.0, 0.0));
+  auto e_far = ev.Evaluate(far_rock, Toward(4.0, 0.0));
+  ASSERT_TRUE(e_clear.ok() && e_far.ok());
+  EXPECT_GT(e_far->hazard[straight].goodness, 0);
+  EXPECT_LT(e_far->hazard[straight].goodness, e_clear->hazard[straight].goodness);
+}
+
+TEST(ArcEvaluatorFootprint, TurnSweepingTheCornerOverARockIsForbidden) {
+  const ArcEvaluator ev = Make(FootprintOptions());
+  // Just outside the grown front-left corner (0.9, 0.73): clear while the rover stands, hit as
+  // the corner swings left.
+  GoodnessMap m = KnownMap();
+  AddHazard(&m, 0.65, 0.95);
+  auto e = ev.Evaluate(m, Toward(0.0, 4.0));
+  ASSERT_TRUE(e.ok());
+  for (std::size_t k = 0; k < ev.candidates().size(); ++k) {
+    const auto& c = ev.candidates()[k];
+    if (c.kind == MotionKind::kPointTurn && c.turn_angle > 0.6 && c.turn_angle < 2.0) {
+      EXPECT_EQ(e->hazard[k].goodness, 0) << "turn " << c.turn_angle;
+    }
+  }
+}
+
+TEST(ArcEvaluatorFootprint, HazardUnderTheStartFootprintDoesNotTrapTheRover) {
+  const ArcEvaluator ev = Make(FootprintOptions());
+  GoodnessMap m = KnownMap();
+  AddHazard(&m, 0.3, 0.3);  // under the rover now: moving off must stay possible
+  auto e = ev.Evaluate(m, Toward(4.0, 0.0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_TRUE(e->has_choice());
+}
+
+TEST(ArcEvaluatorFootprint, CostToGoAimsAtTheGapNotTheWall) {
+  // A wall of hazard cells across x = 2.5 from y = -3 to 0.6, gap to the left of it: the goal
+  // straight ahead lies behind the wall. MER's vote centres on the straight arc; the cost-to-go
+  // vote prefers the arcs bending left toward the gap.
+  GoodnessMap m = KnownMap();
+  for (double y = -3.0; y <= 0.6; y += 0.2) AddHazard(&m, 2.5, y);
+  const ArcEvaluator ev = Make(FootprintOptions(true));
+  auto e = ev.Evaluate(m, Toward(4.5, 0.0));
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  ASSERT_TRUE(e->has_choice());
+  const auto& c = e->choice();
+  EXPECT_TRUE(c.kind == MotionKind::kPointTurn ? c.turn_angle > 0.0 : c.curvature > 0.0)
+      << "chose curvature " << c.curvature << " turn " << c.turn_angle;
+}
+
+}  // namespace footprint
+
 }  // namespace
 }  // namespace rover::apl::gestalt

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <set>
 
 #include "rover/base/param_binder.hpp"
@@ -53,6 +55,15 @@ TEST(GestaltOptions, ValidateNamesTheField) {
   o = GestaltOptions{};
   o.max_tilt = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(o.Validate().message(), "max_tilt is nan (must be finite)");
+  o = GestaltOptions{};
+  o.cost_to_go = true;  // without footprint_check
+  EXPECT_NE(o.Validate().message().find("cost_to_go = true needs footprint_check"),
+            std::string::npos)
+      << o.Validate().message();
+  o.footprint_check = true;
+  EXPECT_TRUE(o.Validate().ok()) << o.Validate().message();
+  o.footprint_max_y = -0.2;
+  EXPECT_EQ(o.Validate().message().rfind("footprint_max_y", 0), 0u) << o.Validate().message();
 }
 
 TEST(GestaltOptions, EveryParameterIsBoundOnceWithADoc) {
@@ -62,7 +73,7 @@ TEST(GestaltOptions, EveryParameterIsBoundOnceWithADoc) {
     EXPECT_TRUE(keys.insert(p.key).second) << p.key;
     EXPECT_FALSE(p.doc.empty()) << p.key;
   }
-  EXPECT_EQ(bound.size(), 45u);
+  EXPECT_EQ(bound.size(), 57u);
   EXPECT_TRUE(keys.count("max_tilt_deg"));
   EXPECT_TRUE(keys.count("turn_vote_variance_deg2"));
 }

@@ -92,6 +92,9 @@ PoseSample FakeWorld::PoseNow() const {
 void FakeWorld::Absorb(const MobilityOutput& out) {
   for (const MobilityStatus& s : out.statuses) statuses_.push_back(s);
   arc_votes_ += static_cast<int>(out.arc_votes.size());
+  if (on_arc_votes) {
+    for (const ArcVotesSnapshot& v : out.arc_votes) on_arc_votes(v);
+  }
   for (const DriveCommand& d : out.drives) {
     drives_.push_back(d);
     if (d.primitive == PrimitiveKind::kStop) {

@@ -93,6 +93,8 @@ class FakeWorld {
   int arc_vote_snapshots() const { return arc_votes_; }
   /// Called on every range scan before delivery (tests corrupt it here).
   std::function<void(nav_core::RangeScan*, CameraId*)> tamper_image;
+  /// Called on every arc-vote snapshot the manager publishes (tools print them).
+  std::function<void(const ArcVotesSnapshot&)> on_arc_votes;
   /// Called on every pose before delivery.
   std::function<void(PoseSample*)> tamper_pose;
 

@@ -21,7 +21,10 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
+#include <optional>
+#include <queue>
 #include <memory>
 #include <string>
 #include <vector>
@@ -116,6 +119,111 @@ class TerrainScene : public mt::Scene {
   mutable int unsupported_ = 0;
 };
 
+// Is the field passable at all for the judge's footprint? A Dijkstra search over (x, y,
+// heading) on a 0.1 m x 11.25 deg lattice, moving straight along the heading by one cell or
+// turning in place by one heading step. A state is free when no rock taller than the
+// traversable height (as the judge sees it: a disc of the nominal diameter) reaches into the
+// footprint rectangle grown by `margin`. Returns the shortest such path length from the start to
+// within `tolerance` of the goal, or a negative number when there is none. It ignores slopes and
+// the arcs' curvature limits: a field that fails here cannot be crossed without a contact.
+double FeasiblePathLength(const sim::world::World& world, const sim::judge::RoverFootprint& fp,
+                          double traversable_height, Eigen::Vector2d goal, double tolerance,
+                          double margin) {
+  constexpr double kCell = 0.1;
+  constexpr int kHeadings = 32;
+  const sim::terrain::HeightField& g = world.terrain.bare;
+  const int nx = static_cast<int>((g.max_x() - g.min_x()) / kCell);
+  const int ny = static_cast<int>((g.max_y() - g.min_y()) / kCell);
+  struct Disc {
+    Eigen::Vector2d c;
+    double r;
+  };
+  // Rocks binned by 1 m cell for the collision test.
+  const int bx = static_cast<int>(nx * kCell) + 1, by = static_cast<int>(ny * kCell) + 1;
+  std::vector<std::vector<Disc>> bins(static_cast<std::size_t>(bx * by));
+  double max_r = 0;
+  for (const auto& r : world.terrain.rocks) {
+    if (r.height <= traversable_height) continue;
+    const int ix = static_cast<int>((r.position.x() - g.min_x()) / 1.0);
+    const int iy = static_cast<int>((r.position.y() - g.min_y()) / 1.0);
+    if (ix < 0 || iy < 0 || ix >= bx || iy >= by) continue;
+    bins[static_cast<std::size_t>(iy * bx + ix)].push_back({r.position.head<2>(), 0.5 * r.diameter});
+    max_r = std::max(max_r, 0.5 * r.diameter);
+  }
+  const Eigen::Vector2d lo = fp.body_min - Eigen::Vector2d::Constant(margin);
+  const Eigen::Vector2d hi = fp.body_max + Eigen::Vector2d::Constant(margin);
+  const double reach = std::max(lo.norm(), hi.norm()) + max_r;
+  auto index = [&](int ix, int iy, int k) {
+    return (static_cast<std::size_t>(iy) * nx + ix) * kHeadings + k;
+  };
+  std::vector<signed char> free_state(static_cast<std::size_t>(nx) * ny * kHeadings, -1);
+  auto is_free = [&](int ix, int iy, int k) {
+    signed char& f = free_state[index(ix, iy, k)];
+    if (f >= 0) return f == 1;
+    const Eigen::Vector2d p(g.min_x() + (ix + 0.5) * kCell, g.min_y() + (iy + 0.5) * kCell);
+    const double a = 2.0 * M_PI * k / kHeadings;
+    const Eigen::Matrix2d rot = Eigen::Rotation2Dd(a).toRotationMatrix();
+    bool ok = true;
+    const int x0 = std::max(0, static_cast<int>(p.x() - reach - g.min_x()));
+    const int x1 = std::min(bx - 1, static_cast<int>(p.x() + reach - g.min_x()));
+    const int y0 = std::max(0, static_cast<int>(p.y() - reach - g.min_y()));
+    const int y1 = std::min(by - 1, static_cast<int>(p.y() + reach - g.min_y()));
+    for (int y = y0; ok && y <= y1; ++y) {
+      for (int x = x0; ok && x <= x1; ++x) {
+        for (const Disc& d : bins[static_cast<std::size_t>(y * bx + x)]) {
+          const Eigen::Vector2d local = rot.transpose() * (d.c - p);
+          if ((local - local.cwiseMax(lo).cwiseMin(hi)).norm() < d.r) {
+            ok = false;
+            break;
+          }
+        }
+      }
+    }
+    f = ok ? 1 : 0;
+    return ok;
+  };
+  auto cell_of = [&](double v, double o) { return static_cast<int>((v - o) / kCell); };
+  const int sx = cell_of(world.start_x, g.min_x()), sy = cell_of(world.start_y, g.min_y());
+  int sk = static_cast<int>(std::lround(world.start_yaw / (2.0 * M_PI) * kHeadings)) % kHeadings;
+  if (sk < 0) sk += kHeadings;
+  if (sx < 0 || sy < 0 || sx >= nx || sy >= ny || !is_free(sx, sy, sk)) return -1.0;
+  std::vector<float> dist(free_state.size(), std::numeric_limits<float>::infinity());
+  using Item = std::pair<float, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  dist[index(sx, sy, sk)] = 0;
+  open.push({0.0F, index(sx, sy, sk)});
+  const float turn_cost = 0.05F;  // [m] a heading step costs about half a cell
+  while (!open.empty()) {
+    const auto [d, i] = open.top();
+    open.pop();
+    if (d > dist[i]) continue;
+    const int k = static_cast<int>(i % kHeadings);
+    const int ix = static_cast<int>((i / kHeadings) % nx);
+    const int iy = static_cast<int>(i / kHeadings / nx);
+    const Eigen::Vector2d p(g.min_x() + (ix + 0.5) * kCell, g.min_y() + (iy + 0.5) * kCell);
+    if ((p - goal).norm() <= tolerance) return d;
+    auto relax = [&](int jx, int jy, int jk, float cost) {
+      if (jx < 0 || jy < 0 || jx >= nx || jy >= ny || !is_free(jx, jy, jk)) return;
+      const std::size_t j = index(jx, jy, jk);
+      if (d + cost < dist[j]) {
+        dist[j] = d + cost;
+        open.push({d + cost, j});
+      }
+    };
+    relax(ix, iy, (k + 1) % kHeadings, turn_cost);
+    relax(ix, iy, (k + kHeadings - 1) % kHeadings, turn_cost);
+    const double a = 2.0 * M_PI * k / kHeadings;
+    const Eigen::Vector2d q = p + kCell * Eigen::Vector2d(std::cos(a), std::sin(a));
+    const int jx = cell_of(q.x(), g.min_x()), jy = cell_of(q.y(), g.min_y());
+    if (jx != ix || jy != iy) {
+      relax(jx, jy, k, static_cast<float>((q - p).norm()));
+      const Eigen::Vector2d b = p - (q - p);
+      relax(cell_of(b.x(), g.min_x()), cell_of(b.y(), g.min_y()), k, static_cast<float>(kCell));
+    }
+  }
+  return -1.0;
+}
+
 // apl-mobility's parameters as the scenario's set would give them.
 Result<ParamSet> ServiceParams(const deploy::Scenario& scenario,
                                const std::vector<std::string>& extra) {
@@ -161,6 +269,7 @@ struct SeedResult {
   int hazard_contacts = 0;
   double distance = 0, sim_s = 0, to_goal = -1, clearance = 0;
   std::uint32_t steps = 0, images = 0;
+  double free_path = std::numeric_limits<double>::quiet_NaN();  // [m] FeasiblePathLength
   std::string message;
 };
 
@@ -176,7 +285,8 @@ const char* PrimitiveName(PrimitiveKind k) {
 
 Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runner::MobilityTaskSpec& spec,
                            const ParamSet& params, std::uint32_t seed, const mt::WorldOptions& wo,
-                           double noise, bool verbose) {
+                           double noise, bool verbose, bool votes,
+                           std::optional<double> passability_margin) {
   ROVER_ASSIGN_OR_RETURN(const sim::world::World world,
                          deploy::runner::BuildRunWorld(scenario, seed, scenario.file));
   ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
@@ -186,6 +296,29 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runne
   const TerrainScene scene(world.terrain, rover, noise, seed, scenario.criteria.traversable_height);
   mt::FakeWorld w(&manager, wo, &scene);
   w.pose() = {world.start_x, world.start_y, world.start_yaw};
+  if (votes) {
+    // One line per decision: the chosen candidate, then each candidate as
+    // kind(k or angle):hazard/waypoint/merged, forbidden ones as kind:X.
+    w.on_arc_votes = [](const ArcVotesSnapshot& snap) {
+      const apl::nav_core::ArcEvaluation& e = snap.evaluation;
+      std::printf("    votes step %u chosen %d:", snap.step, e.chosen);
+      for (std::size_t k = 0; k < e.candidates.size(); ++k) {
+        const apl::nav_core::Candidate& c = e.candidates[k];
+        if (c.kind == apl::nav_core::MotionKind::kPointTurn) {
+          std::printf(" t%.0f", c.turn_angle * 180 / M_PI);
+        } else {
+          std::printf(" %c%.2f", c.direction > 0 ? 'f' : 'b', c.curvature);
+        }
+        if (e.hazard[k].goodness == 0) {
+          std::printf(":X");
+        } else {
+          std::printf(":%d/%d/%d", e.hazard[k].goodness, e.waypoint[k].goodness,
+                      e.merged[k].goodness);
+        }
+      }
+      std::printf("\n");
+    };
+  }
 
   deploy::runner::MobilityCommandStorage storage;
   const rover_apl_MobilityCommand idl = deploy::runner::MakeMobilityCommand(spec, 1, 0.0, &storage);
@@ -225,10 +358,25 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runne
   }
   const sim::judge::Verdict v = judge.Evaluate();
   SeedResult r;
+  if (passability_margin && spec.goal) {
+    r.free_path = FeasiblePathLength(world, sim::judge::RoverFootprint::MerDefault(),
+                                     scenario.criteria.traversable_height,
+                                     spec.goal->xy, spec.goal->tolerance,
+                                     *passability_margin);
+  }
   r.outcome = !done                              ? std::string("UNFINISHED")
               : last.state == State::kSucceeded ? std::string("reached")
                                                 : std::string(msg::MobilityFaultName(last.fault));
   r.hazard_contacts = static_cast<int>(v.hazards_hit.size());
+  if (verbose) {
+    for (const int id : v.hazards_hit) {
+      for (const auto& rock : world.terrain.rocks) {
+        if (rock.id != id) continue;
+        std::printf("  hazard contact: rock %d at (%.2f, %.2f), diameter %.2f m, height %.2f m\n",
+                    id, rock.position.x(), rock.position.y(), rock.diameter, rock.height);
+      }
+    }
+  }
   r.pass = r.outcome == spec.expect && r.hazard_contacts == 0;
   r.distance = last.distance_driven;
   r.steps = last.steps;
@@ -255,6 +403,7 @@ int main(int argc, char** argv) {
   wo.image_latency_s = 2.0;
   double noise = 0.005;
   bool verbose = false;
+  std::optional<double> passability_margin;
   app.add_option("scenario", path, "scenario file with a mobility task")->required();
   app.add_option("--seeds", seeds_text, "run seeds, A..B or A");
   app.add_option("--set", sets, "apl-mobility parameter, key=value (after the scenario's)");
@@ -264,7 +413,13 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--noise", noise, "[m] range noise sigma at 1 m (grows with r^2)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--passability", passability_margin,
+                 "[m] also search each field for a contact-free path of the judge's footprint "
+                 "grown by this margin (column free_path; - when there is none)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--verbose", verbose, "print every drive and status message");
+  bool votes = false;
+  app.add_flag("--votes", votes, "print every decision's votes (hazard/waypoint/merged)");
   CLI11_PARSE(app, argc, argv);
 
   auto fail = [](const Status& s) {
@@ -289,16 +444,21 @@ int main(int argc, char** argv) {
   std::printf("%s: expect %s; speed %.3g m/s, latency %.3g s, noise %.3g m at 1 m\n",
               scenario->name.c_str(), mobility->spec().expect.c_str(), wo.speed,
               wo.image_latency_s, noise);
-  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s  %s\n", "seed", "outcome", "pass", "driven",
-              "steps", "images", "sim_s", "to_goal", "contacts", "message");
+  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s  %s\n", "seed", "outcome", "pass", "driven",
+              "steps", "images", "sim_s", "to_goal", "contacts", "free_path", "message");
   int passed = 0;
   for (const std::uint32_t seed : *seeds) {
-    auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose);
+    auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose, votes,
+                     passability_margin);
     if (!r.ok()) return fail(r.status());
     passed += r->pass ? 1 : 0;
-    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d  %s\n", seed, r->outcome.c_str(),
+    char free_path[16] = "n/a";
+    if (!std::isnan(r->free_path)) {
+      std::snprintf(free_path, sizeof free_path, r->free_path < 0 ? "-" : "%.1fm", r->free_path);
+    }
+    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d %9s  %s\n", seed, r->outcome.c_str(),
                 r->pass ? "yes" : "no", r->distance, r->steps, r->images, r->sim_s, r->to_goal,
-                r->hazard_contacts, r->message.c_str());
+                r->hazard_contacts, free_path, r->message.c_str());
     std::fflush(stdout);
   }
   std::printf("passed %d of %zu (outcome %s, no hazard contact)\n", passed, seeds->size(),

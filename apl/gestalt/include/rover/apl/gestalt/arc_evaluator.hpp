@@ -15,6 +15,22 @@
 ///   forbidden (0, 255) if any g_c < min_allowed_goodness.
 /// Cells off the map count as unknown. A turn in place sweeps the cells at the rover centre.
 ///
+/// Footprint check (footprint_check, options.hpp): the hazard cells (kCellHazard) within
+/// plan_max_dist plus the footprint's reach of the rover, as rover-frame points, less those
+/// already inside the grown footprint F = [min_x - m, max_x + m] x [min_y - m, max_y + m];
+/// an arc's poses from s = 0 to L every cell_size / 2 (heading d k s), a turn's every 2.5° from
+/// 0 to θ; the first s at which a point lies in F. A turn hit, or an arc hit at s <=
+/// footprint_forbid_dist, forbids the candidate (0, 255); a later arc hit scales its goodness by
+/// s / L (at least 1).
+///
+/// Cost-to-go waypoint vote (cost_to_go): with the map's CostToGo toward the goal (clearance
+/// = the footprint's half width + margin), each candidate's cost is
+///   arc:  L + D(end of the arc at L),   turn by θ: L + 0.5 m |θ| + D(L straight ahead after it),
+/// and its vote peak exp(-(cost - best)² / (2 cost_vote_sigma²)), peak waypoint_peak_toward
+/// for forward arcs and waypoint_peak_away for backward arcs and turns (no camera looks back),
+/// certainty waypoint_certainty; an unreachable end votes 0. When no candidate's end reaches
+/// the goal, the MER vote below stands.
+///
 /// Waypoint vote (goal g in the rover frame, bearing β = atan2(g_y, g_x), k* = 2 g_y / |g|²):
 ///   the goal's direction is forward when |β| <= 90°, backward otherwise, except that after an
 ///   arc in direction d (request.last_direction) it stays d while the goal is within
@@ -82,6 +98,14 @@ class ArcEvaluator final : public nav_core::ArcSelector {
   const std::vector<int>& groups() const { return groups_; }
   /// The hazard vote of a path over `cells` of `map`.
   PathVote HazardVote(const nav_core::GoodnessMap& map, const std::vector<PathCell>& cells) const;
+  /// The footprint check's hazard points of `map` about `pose` (rover frame, see the file
+  /// comment).
+  std::vector<Eigen::Vector2d> FootprintHazards(const nav_core::GoodnessMap& map,
+                                                const Pose2& pose) const;
+  /// [m] arc length (0 for a turn) of the first pose of `candidate` (arcs evaluated to
+  /// `length`) whose grown footprint holds one of `hazards`; infinity when none does.
+  double FirstFootprintHit(const nav_core::Candidate& candidate, double length,
+                           const std::vector<Eigen::Vector2d>& hazards) const;
 
  private:
   explicit ArcEvaluator(const GestaltOptions& options);

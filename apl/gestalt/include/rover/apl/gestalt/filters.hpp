@@ -17,6 +17,8 @@
 ///              bottom_c = z̄_c - z_plane(x̄_c, ȳ_c),  top_c = bottom_c + k σ_c
 ///                                                  g_step  = ramp(s; step_safe, max_step)
 ///   goodness   g = min(g_tilt, g_rough, g_step), certainty 255
+///              (footprint_check: g = min(g_tilt, max(min_allowed_goodness, min(g_rough,
+///              g_step))): rocks are the footprint check's, tilt still forbids)
 ///
 /// where (x̄_c, ȳ_c, z̄_c) is the mean of cell c's points, z_plane(x, y) = m_z - (n_x (x - m_x) +
 /// n_y (y - m_y)) / n_z = m_z + b (x - m_x) + c (y - m_y) the plane's height, σ_c the standard
@@ -82,6 +84,11 @@ struct CellAssessment {
   float tilt = 0.0f;       ///< [rad]
   float roughness = 0.0f;  ///< [m]
   float step = 0.0f;       ///< [m]
+  /// [m] the centre cell's own top above the lowest bottom of the belly disc about it, or
+  /// above the disc's plane if that is more (a belly disc wholly on a large rock); both
+  /// relative to the plane, noise taken off as for the step: the height of what stands on
+  /// this cell. A hazard cell of the footprint check when >= max_step.
+  float cell_height = 0.0f;
   float coverage = 0.0f;   ///< share of the disc's cells covered
   bool known() const { return status != AssessStatus::kUnknown; }
 };
@@ -99,9 +106,11 @@ class DiscAssessor {
   /// cell moments and `covered` the number of its covered cells.
   CellAssessment Assess(int i, int j, const Moments& disc_sum, int covered,
                         const Grid<CellStats>& cells) const;
-  /// [m] the step of the file comment for the disc about (i, j) relative to `plane`.
+  /// [m] the step of the file comment for the disc about (i, j) relative to `plane`; with
+  /// `cell_height`, also CellAssessment::cell_height of cell (i, j) (0 when it is not covered).
   /// Preconditions: plane.ok and plane.normal.z() > 0.
-  double Step(int i, int j, const PlaneFit& plane, const Grid<CellStats>& cells) const;
+  double Step(int i, int j, const PlaneFit& plane, const Grid<CellStats>& cells,
+              double* cell_height = nullptr) const;
 
  private:
   GestaltOptions options_;

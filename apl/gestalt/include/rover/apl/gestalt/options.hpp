@@ -87,6 +87,37 @@ struct GestaltOptions {
   int min_fwd_threshold = 180;      ///< best forward vote below this: image the rear as well
   int skip_imaging_goodness = 200;  ///< all paths' hazard votes at or above: imaging may skip
 
+  // ---- footprint check (ours, after Mars 2020's ENav; off = MER) ----------------------------
+  /// MER's disc grows every rock by the turn-in-place radius in every heading, which closes the
+  /// gaps of a dense field (VL-2) that the rover's rectangle fits through. With the check on:
+  /// cells whose own top stands footprint_hazard_height or more above the lowest ground of the
+  /// belly disc about them are hazard cells (GoodnessMap kCellHazard); the step and roughness filters no
+  /// longer forbid on their own (their goodness is floored at min_allowed_goodness, so they
+  /// still steer the vote away from rocks) while tilt still does; and a path is forbidden when
+  /// the footprint rectangle, grown by footprint_margin and swept along it from the rover's
+  /// pose, covers a hazard cell's centre within footprint_forbid_dist of arc length (any part
+  /// of a turn in place). A hit farther along scales the path's hazard vote by s_hit / L.
+  /// Hazard cells already under the grown footprint at the start are ignored (the rover is on
+  /// them: moving off must stay possible).
+  bool footprint_check = false;
+  double footprint_min_x = -0.75;  ///< [m] rover frame; set from the rover description
+  double footprint_max_x = 0.75;   ///< [m]
+  double footprint_min_y = -0.58;  ///< [m]
+  double footprint_max_y = 0.58;   ///< [m]
+  double footprint_margin = 0.15;  ///< [m] about a cell's half diagonal plus tracking error
+  double footprint_forbid_dist = 1.0;  ///< [m] hits within this arc length forbid the path
+  /// [m] a cell whose top stands this high above the lowest ground of the belly disc about it
+  /// is a hazard cell. Below max_step: a cell's top is its points' mean + k sigma over 20 cm,
+  /// which reads a rock's peak low (a 21 cm dome's centre cell reads ~18 cm).
+  double footprint_hazard_height = 0.15;
+  /// With footprint_check: the waypoint vote ranks candidates by the cost of driving them plus
+  /// the cost-to-go from their end over the map (cost_to_go.hpp) instead of by closeness to the
+  /// arc through the goal (MER). See arc_evaluator.hpp.
+  bool cost_to_go = false;
+  double cost_vote_sigma = 1.0;      ///< [m] width of the vote's Gaussian over cost excess
+  double cost_goodness_weight = 1.0;  ///< extra step cost over a goodness-0 cell
+  double cost_unknown_factor = 1.5;   ///< step cost factor of unknown cells
+
   /// Cells from a cell's centre to the edge of its rover disc (6.5 at MER's values).
   double rover_disc_radius_cells() const { return 0.5 * rover_disc_diameter / cell_size; }
   double step_disc_radius_cells() const { return 0.5 * step_disc_diameter / cell_size; }
@@ -100,7 +131,8 @@ struct GestaltOptions {
 /// GESTALT's options for the rover described under `geometry_prefix` (core/hwconfig's
 /// RoverDescription, declared in `params` with DeclareParams): the options under `prefix`, with
 /// the rover disc set to the rover's turn-in-place circle (1.90 m for the default rover) unless
-/// `<prefix>rover_disc_diameter_m` was given. A disc larger than the rover grows every rock's
+/// `<prefix>rover_disc_diameter_m` was given, and the footprint rectangle set to the rover's
+/// ground footprint unless any `<prefix>footprint_m{in,ax}_{x,y}_m` was given. A disc larger than the rover grows every rock's
 /// obstacle and spreads each tall rock's step over more of the map. Errors name the key.
 Result<GestaltOptions> ReadGestaltOptionsForRover(const ParamSet& params,
                                                   const std::string& prefix = "gestalt.",

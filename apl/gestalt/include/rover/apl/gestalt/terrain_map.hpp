@@ -22,7 +22,8 @@
 ///   6. Publish: the combined layers become the goodness map; known cells next to an unknown
 ///      cell are border cells (goodness capped at border_goodness, certainty border_certainty),
 ///      unknown cells read (unknown_goodness, unknown_certainty); assessed cells have certainty
-///      255.
+///      255. With footprint_check, known cells whose latest assessment's cell_height is at or
+///      above footprint_hazard_height carry kCellHazard.
 ///
 /// Internally moments are kept relative to a fixed origin (the rover's position at the first
 /// update) so their sums stay well conditioned; Clear() drops it.

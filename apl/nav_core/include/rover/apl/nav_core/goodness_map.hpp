@@ -31,6 +31,9 @@ enum CellFlag : std::uint8_t {
   kCellKnown = 1,    ///< assessed from range data (else the map's unknown value)
   kCellBorder = 2,   ///< known, next to an unknown cell (goodness capped by the border value)
   kCellFovEdge = 4,  ///< last updated at the edge of a field of view (merged conservatively)
+  /// The cell itself holds a step (a rock) that the rover's footprint must not cover; set only
+  /// by assessors that support footprint checks (GESTALT's footprint_check).
+  kCellHazard = 8,
 };
 
 /// The value of one cell.
