@@ -377,7 +377,7 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runne
       }
     }
   }
-  r.pass = r.outcome == spec.expect && r.hazard_contacts == 0;
+  r.pass = deploy::runner::OutcomeNameMatches(spec.expect, r.outcome) && r.hazard_contacts == 0;
   r.distance = last.distance_driven;
   r.steps = last.steps;
   r.images = last.images;

@@ -193,6 +193,11 @@ TEST(MobilityTask, OutcomesMatchTheirExpectation) {
   s.fault = rover_apl_MOBFAULT_WAYPT_TIMEOUT;
   EXPECT_EQ(OutcomeName(s), "WAYPT-TIMEOUT");
   EXPECT_FALSE(OutcomeMatches("vetoed", s));
+  // The name-only form the kinematic tool uses agrees.
+  EXPECT_TRUE(OutcomeNameMatches("vetoed", "NOPATH"));
+  EXPECT_TRUE(OutcomeNameMatches("KEEPOUT", "KEEPOUT"));
+  EXPECT_FALSE(OutcomeNameMatches("vetoed", "WAYPT-TIMEOUT"));
+  EXPECT_FALSE(OutcomeNameMatches("reached", "NOPATH"));
   s.state = rover_apl_MOBILITY_REJECTED;
   s.fault = rover_apl_MOBFAULT_NONE;
   EXPECT_EQ(OutcomeName(s), "BAD-COMMAND");

@@ -276,12 +276,15 @@ std::string OutcomeName(const rover_apl_MobilityStatus& s) {
   return MobilityFaultName(s.fault);
 }
 
+bool OutcomeNameMatches(const std::string& expect, const std::string& outcome) {
+  return expect == "vetoed" ? outcome == MobilityFaultName(rover_apl_MOBFAULT_NOPATH)
+                            : outcome == expect;
+}
+
 bool OutcomeMatches(const std::string& expect, const rover_apl_MobilityStatus& s) {
   if (!Terminal(s.state)) return false;
-  if (expect == "vetoed") {
-    return s.state == rover_apl_MOBILITY_FAILED && s.fault == rover_apl_MOBFAULT_NOPATH;
-  }
-  return OutcomeName(s) == expect;
+  if (expect == "vetoed" && s.state != rover_apl_MOBILITY_FAILED) return false;
+  return OutcomeNameMatches(expect, OutcomeName(s));
 }
 
 Status MobilityTask::Open(TaskContext& ctx) {

@@ -93,6 +93,9 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec, std:
 /// A terminal status as the outcome name `expect` compares with: "reached" for SUCCEEDED, else
 /// the fault code name (REJECTED without a fault is "BAD-COMMAND").
 std::string OutcomeName(const rover_apl_MobilityStatus& status);
+/// True if `outcome` (an OutcomeName) is what `expect` names: "vetoed" is a NOPATH fault (a
+/// guarded primitive refused by terrain assessment), anything else must equal the name.
+bool OutcomeNameMatches(const std::string& expect, const std::string& outcome);
 /// True if the terminal status is the outcome `expect` names.
 bool OutcomeMatches(const std::string& expect, const rover_apl_MobilityStatus& status);
 
