@@ -7,6 +7,8 @@
 #include <queue>
 #include <utility>
 
+#include "rover/base/check.hpp"
+
 namespace rover::apl::gestalt {
 namespace {
 
@@ -17,6 +19,10 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 CostToGo::CostToGo(const nav_core::GoodnessMap& map, const Eigen::Vector2d& goal,
                    const CostToGoOptions& options)
     : cost_(map.cell_count(), kInf), blocked_(map.cell_count(), 0) {
+  // Preconditions (the options come from a validated GestaltOptions).
+  ROVER_DEMAND(map.resolution > 0.0);
+  ROVER_DEMAND(options.clearance >= 0.0 && options.goodness_weight >= 0.0);
+  ROVER_DEMAND(options.unknown_cost_factor >= 1.0);
   grid_.resolution = map.resolution;
   grid_.origin_x = map.origin_x;
   grid_.origin_y = map.origin_y;

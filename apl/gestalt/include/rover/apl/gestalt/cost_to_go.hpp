@@ -33,7 +33,8 @@ struct CostToGoOptions {
 class CostToGo {
  public:
   /// Runs the search over `map` toward site point `goal` (the map is not kept: only its grid
-  /// geometry is).
+  /// geometry is). Preconditions: map.resolution > 0, clearance >= 0, goodness_weight >= 0,
+  /// unknown_cost_factor >= 1.
   CostToGo(const nav_core::GoodnessMap& map, const Eigen::Vector2d& goal,
            const CostToGoOptions& options);
 
