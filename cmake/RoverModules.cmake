@@ -10,14 +10,16 @@
 #   rover_add_benchmark(...)  same arguments: prints figures beside a baseline measured in the
 #       same run; `ninja benchmarks` builds them all. rover_write_executable_lists() writes
 #       build/rover_executables.txt (kind and name per line) for the consistency tests.
-#   rover_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s] [SIMBODY]
+#   rover_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s] [COST s] [SIMBODY]
 #                  [GROUP_SUITES <suite>... | ONE_ENTRY])
 #       A GoogleTest executable. Every test case is its own CTest entry <test>.<Suite>.<Case>
 #       (listed after the build by gtest_discover_tests), with the executable's labels,
 #       environment and TIMEOUT (per case). Cases that share an expensive fixture stay together:
 #       GROUP_SUITES makes each named suite one entry <test>.<Suite> (a SetUpTestSuite that
 #       renders or loads once); ONE_ENTRY makes the whole executable one entry <test> (cases that
-#       must not run beside each other, or that all start the same service sets).
+#       must not run beside each other, or that all start the same service sets). COST (about
+#       the seconds an entry takes) makes CTest start long entries first, so that a fresh checkout
+#       (no timing history yet) does not end on one long test running alone.
 #   rover_check_layers()
 #       Called once at the end of the top-level CMakeLists.txt: fails the configure step if any
 #       module links a module of a layer it may not use, naming both targets.
@@ -63,6 +65,12 @@ endfunction()
 function(_rover_common_target_setup target simbody)
   target_compile_features(${target} PUBLIC cxx_std_20)
   target_compile_options(${target} PRIVATE ${ROVER_WARNING_FLAGS})
+  if(ROVER_UNITY_BUILD)
+    # Sources of one target share a batch, so file-local names (anonymous namespaces, statics)
+    # must be unique within the target.
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON
+                                               UNITY_BUILD_BATCH_SIZE ${ROVER_UNITY_BATCH})
+  endif()
   if(simbody)
     # Debian's Simbody 3.7 is built without NDEBUG; its headers change class layouts with it.
     # A translation unit that includes them with -DNDEBUG crashes in realizeTopology.
@@ -132,7 +140,7 @@ function(rover_add_benchmark)
 endfunction()
 
 function(rover_add_test)
-  cmake_parse_arguments(T "SIMBODY;NO_GTEST_MAIN;ONE_ENTRY" "NAME;TIMEOUT;LAYER"
+  cmake_parse_arguments(T "SIMBODY;NO_GTEST_MAIN;ONE_ENTRY" "NAME;TIMEOUT;LAYER;COST"
                         "SOURCES;DEPS;LABELS;ARGS;GROUP_SUITES" ${ARGN})
   if(NOT T_NAME OR NOT T_SOURCES)
     message(FATAL_ERROR "rover_add_test: NAME and SOURCES are required")
@@ -162,17 +170,20 @@ function(rover_add_test)
   if(NOT T_LABELS)
     set(T_LABELS unit)
   endif()
+  if(NOT T_COST)
+    set(T_COST 0)
+  endif()
   set(env "ROVER_BIN_DIR=${CMAKE_BINARY_DIR}/bin" "ROVER_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
   if(T_ONE_ENTRY)
     add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
     set_tests_properties(${T_NAME} PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}"
-                         ENVIRONMENT "${env}")
+                         ENVIRONMENT "${env}" COST ${T_COST})
   else()
     set(grouped "")
     foreach(suite IN LISTS T_GROUP_SUITES)
       add_test(NAME ${T_NAME}.${suite} COMMAND ${T_NAME} --gtest_filter=${suite}.* ${T_ARGS})
       # A suite name that matches no case would pass silently.
-      set_tests_properties(${T_NAME}.${suite} PROPERTIES TIMEOUT ${T_TIMEOUT}
+      set_tests_properties(${T_NAME}.${suite} PROPERTIES TIMEOUT ${T_TIMEOUT} COST ${T_COST}
                            LABELS "${T_LABELS}" ENVIRONMENT "${env}"
                            FAIL_REGULAR_EXPRESSION "Running 0 tests")
       list(APPEND grouped "${suite}.*")
@@ -189,7 +200,7 @@ function(rover_add_test)
     set(props "${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_case_properties.cmake")
     file(WRITE "${props}"
       "if(${T_NAME}_CASES)\n"
-      "  set_tests_properties(\${${T_NAME}_CASES} PROPERTIES TIMEOUT ${T_TIMEOUT}\n"
+      "  set_tests_properties(\${${T_NAME}_CASES} PROPERTIES TIMEOUT ${T_TIMEOUT} COST ${T_COST}\n"
       "    LABELS [==[${T_LABELS}]==] ENVIRONMENT [==[${env}]==])\n"
       "endif()\n")
     set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${props}")

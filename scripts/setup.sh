@@ -16,7 +16,7 @@ MCAP_NODE_DIR=tests/tools/mcap-node
 
 PACKAGES=(
   # toolchain
-  build-essential cmake ninja-build ccache pkg-config git
+  build-essential cmake ninja-build ccache lld pkg-config git
   # DDS
   cyclonedds-dev cyclonedds-tools
   # maths, vision, physics, optimisation

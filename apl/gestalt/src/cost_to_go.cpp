@@ -12,13 +12,13 @@
 namespace rover::apl::gestalt {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kUnreached = std::numeric_limits<float>::infinity();
 
 }  // namespace
 
 CostToGo::CostToGo(const nav_core::GoodnessMap& map, const Eigen::Vector2d& goal,
                    const CostToGoOptions& options)
-    : cost_(map.cell_count(), kInf), blocked_(map.cell_count(), 0) {
+    : cost_(map.cell_count(), kUnreached), blocked_(map.cell_count(), 0) {
   // Preconditions (the options come from a validated GestaltOptions).
   ROVER_DEMAND(map.resolution > 0.0);
   ROVER_DEMAND(options.clearance >= 0.0 && options.goodness_weight >= 0.0);

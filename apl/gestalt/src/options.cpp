@@ -58,7 +58,8 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckPositive("max_step", max_step, "m"));
   ROVER_RETURN_IF_ERROR(CheckNonNegative("step_safe", step_safe, "m"));
   ROVER_RETURN_IF_ERROR(CheckBelow("step_safe", step_safe, "max_step", max_step, "m"));
-  ROVER_RETURN_IF_ERROR(CheckRange("max_tilt", max_tilt, Bounds::OpenLow(0.0, 80.0 * kDeg), "rad"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("max_tilt", max_tilt, Bounds::OpenLow(0.0, 80.0 * kDegree), "rad"));
   ROVER_RETURN_IF_ERROR(CheckNonNegative("tilt_safe", tilt_safe, "rad"));
   ROVER_RETURN_IF_ERROR(CheckBelow("tilt_safe", tilt_safe, "max_tilt", max_tilt, "rad"));
   ROVER_RETURN_IF_ERROR(CheckPositive("max_roughness", max_roughness, "m"));
@@ -108,7 +109,7 @@ Status GestaltOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(
       CheckRange("backup_vote_scale", backup_vote_scale, Bounds::OpenLow(0.0, 1.0)));
   ROVER_RETURN_IF_ERROR(CheckRange("direction_hysteresis", direction_hysteresis,
-                                   Bounds::Closed(0.0, 90.0 * kDeg), "rad"));
+                                   Bounds::Closed(0.0, 90.0 * kDegree), "rad"));
   ROVER_RETURN_IF_ERROR(CheckByte("min_fwd_threshold", min_fwd_threshold));
   ROVER_RETURN_IF_ERROR(CheckByte("skip_imaging_goodness", skip_imaging_goodness));
   // Footprint check.
@@ -223,7 +224,7 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
   b.Bind("arc_vote_variance", &G::arc_vote_variance, "1/m^2",
          "variance of the waypoint Gaussian over curvature (MER 3.2)")
       .Range(1e-6, 1e6);
-  b.BindScaled("turn_vote_variance_deg2", &G::turn_vote_variance, kDeg * kDeg, "deg^2",
+  b.BindScaled("turn_vote_variance_deg2", &G::turn_vote_variance, kDegree * kDegree, "deg^2",
                "variance of the waypoint Gaussian over turn angle (MER 97)")
       .Range(1e-6, 1e8)
       .Field("turn_vote_variance");

@@ -40,14 +40,14 @@ ArcRequest Toward(double gx, double gy, double yaw = 0.0, double tolerance = 0.3
   return r;
 }
 
-ArcEvaluator Make(const GestaltOptions& o = {}) {
+ArcEvaluator MakeEvaluator(const GestaltOptions& o = {}) {
   auto e = ArcEvaluator::Create(o);
   EXPECT_TRUE(e.ok()) << e.status().message();
   return std::move(e).value();
 }
 
 TEST(ArcEvaluator, CandidatesAreMersArcsAndTurns) {
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   const auto& c = ev.candidates();
   ASSERT_EQ(c.size(), 23u + 23u + 23u);
   EXPECT_EQ(c[0].curvature, -1.0);
@@ -60,7 +60,7 @@ TEST(ArcEvaluator, CandidatesAreMersArcsAndTurns) {
 }
 
 TEST(ArcEvaluator, OpenGroundPicksTheArcToTheGoal) {
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   auto e = ev.Evaluate(KnownMap(), Toward(4.0, 0.0));
   ASSERT_TRUE(e.ok()) << e.status().message();
   EXPECT_EQ(e->mode, GoalMode::kNormal);
@@ -77,7 +77,7 @@ TEST(ArcEvaluator, OpenGroundPicksTheArcToTheGoal) {
 
 TEST(ArcEvaluator, WaypointVotesAreGaussiansAroundTheGoalArc) {
   GestaltOptions o;
-  const ArcEvaluator ev = Make(o);
+  const ArcEvaluator ev = MakeEvaluator(o);
   const double gx = 3.0, gy = 1.0;
   auto e = ev.Evaluate(KnownMap(), Toward(gx, gy));
   ASSERT_TRUE(e.ok());
@@ -102,7 +102,7 @@ TEST(ArcEvaluator, WaypointVotesAreGaussiansAroundTheGoalArc) {
 }
 
 TEST(ArcEvaluator, GoalBehindPrefersBackingUp) {
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   auto e = ev.Evaluate(KnownMap(), Toward(-3.0, 0.0));
   ASSERT_TRUE(e.ok());
   ASSERT_TRUE(e->has_choice());
@@ -116,7 +116,7 @@ TEST(ArcEvaluator, GoalBehindPrefersBackingUp) {
 TEST(ArcEvaluator, ObstacleForbidsArcsAndTheRoverGoesAround) {
   GoodnessMap m = KnownMap();
   SetRect(&m, 1.4, 2.2, -0.6, 1.6, 0);  // a rock blob ahead and to the left
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   auto e = ev.Evaluate(m, Toward(4.0, 0.0));
   ASSERT_TRUE(e.ok());
   EXPECT_EQ(e->hazard[11].goodness, 0);  // straight ahead is forbidden
@@ -135,7 +135,7 @@ TEST(ArcEvaluator, NearerCellsWeighMore) {
   GoodnessMap near_bad = KnownMap(), far_bad = KnownMap();
   SetRect(&near_bad, 0.3, 1.2, -0.4, 0.4, 100);
   SetRect(&far_bad, 2.1, 3.0, -0.4, 0.4, 100);
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   auto a = ev.Evaluate(near_bad, Toward(5.0, 0.0));
   auto b = ev.Evaluate(far_bad, Toward(5.0, 0.0));
   ASSERT_TRUE(a.ok() && b.ok());
@@ -145,7 +145,7 @@ TEST(ArcEvaluator, NearerCellsWeighMore) {
 TEST(ArcEvaluator, UnknownCellsAreAllowedButPoor) {
   GoodnessMap m = KnownMap();
   SetRect(&m, -5.0, 5.0, -5.0, 5.0, 11, 0, 0);  // all unknown
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   auto e = ev.Evaluate(m, Toward(4.0, 0.0));
   ASSERT_TRUE(e.ok());
   EXPECT_EQ(e->hazard[11].goodness, 11);
@@ -160,7 +160,7 @@ TEST(ArcEvaluator, KTurnForAGoalInsideTheTurningCircle) {
   // The goal 0.5 m to the left, 0.2 m ahead: k* = 2 y / |g|^2 = 3.45 > 1.
   GestaltOptions no_turns;
   no_turns.num_point_turns = 0;
-  auto e = Make(no_turns).Evaluate(KnownMap(), Toward(0.2, 0.5, 0.0, 0.1));
+  auto e = MakeEvaluator(no_turns).Evaluate(KnownMap(), Toward(0.2, 0.5, 0.0, 0.1));
   ASSERT_TRUE(e.ok());
   EXPECT_EQ(e->mode, GoalMode::kBackUp);
   ASSERT_TRUE(e->has_choice());
@@ -174,7 +174,7 @@ TEST(ArcEvaluator, KTurnForAGoalInsideTheTurningCircle) {
   const Eigen::Vector2d end = ArcPoint(-1.0, -1, 0.5);
   EXPECT_LT(end.y(), 0.0);  // moved away from the goal's side
   // With turns in place available, the halved back-up vote loses to the turn toward the goal.
-  auto t = Make().Evaluate(KnownMap(), Toward(0.2, 0.5, 0.0, 0.1));
+  auto t = MakeEvaluator().Evaluate(KnownMap(), Toward(0.2, 0.5, 0.0, 0.1));
   ASSERT_TRUE(t.ok());
   ASSERT_TRUE(t->has_choice());
   EXPECT_EQ(t->choice().kind, MotionKind::kPointTurn);
@@ -187,14 +187,14 @@ TEST(ArcEvaluator, DirectionHysteresisKeepsDrivingForwardPastAbeam) {
   const double b = 100.0 * std::numbers::pi / 180.0;
   ArcRequest r = Toward(8.0 * std::cos(b), 8.0 * std::sin(b));
   r.last_direction = 1;
-  auto mer = Make().Evaluate(KnownMap(), r);
+  auto mer = MakeEvaluator().Evaluate(KnownMap(), r);
   ASSERT_TRUE(mer.ok());
   ASSERT_TRUE(mer->has_choice());
   EXPECT_EQ(mer->choice().direction, -1);
   // With 20 deg of hysteresis the rover that drove forward keeps forward (peak 255)...
   GestaltOptions o;
   o.direction_hysteresis = 20.0 * std::numbers::pi / 180.0;
-  const ArcEvaluator ev = Make(o);
+  const ArcEvaluator ev = MakeEvaluator(o);
   auto fwd = ev.Evaluate(KnownMap(), r);
   ASSERT_TRUE(fwd.ok());
   ASSERT_TRUE(fwd->has_choice());
@@ -225,7 +225,7 @@ TEST(ArcEvaluator, DirectionHysteresisKeepsDrivingForwardPastAbeam) {
 TEST(ArcEvaluator, RequestWithABadLastDirectionIsRefused) {
   ArcRequest r = Toward(4.0, 0.0);
   r.last_direction = 2;
-  auto e = Make().Evaluate(KnownMap(), r);
+  auto e = MakeEvaluator().Evaluate(KnownMap(), r);
   ASSERT_FALSE(e.ok());
   EXPECT_NE(e.status().message().find("ArcRequest.last_direction"), std::string::npos)
       << e.status().message();
@@ -233,7 +233,7 @@ TEST(ArcEvaluator, RequestWithABadLastDirectionIsRefused) {
 
 TEST(ArcEvaluator, FramesFollowTheRoverHeading) {
   // Rover facing site +y (yaw 90 deg); a goal at site (0, 4) is straight ahead.
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   auto e = ev.Evaluate(KnownMap(), Toward(0.0, 4.0, std::numbers::pi / 2));
   ASSERT_TRUE(e.ok());
   ASSERT_TRUE(e->has_choice());
@@ -248,14 +248,14 @@ TEST(ArcEvaluator, FramesFollowTheRoverHeading) {
 }
 
 TEST(ArcEvaluator, ReachedGoalChoosesNothing) {
-  auto e = Make().Evaluate(KnownMap(), Toward(0.2, 0.1, 0.0, 0.3));
+  auto e = MakeEvaluator().Evaluate(KnownMap(), Toward(0.2, 0.1, 0.0, 0.3));
   ASSERT_TRUE(e.ok());
   EXPECT_EQ(e->mode, GoalMode::kReached);
   EXPECT_FALSE(e->has_choice());
 }
 
 TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   GoodnessMap unknown_patch = KnownMap();
   SetRect(&unknown_patch, 2.0, 3.0, 1.0, 2.0, 11, 0,
           0);  // off to the left: the k = 1 arcs cross it
@@ -276,7 +276,7 @@ TEST(ArcEvaluator, SkipImagingNeedsEveryPathKnownAndGood) {
 }
 
 TEST(ArcEvaluator, RejectsBadRequests) {
-  const ArcEvaluator ev = Make();
+  const ArcEvaluator ev = MakeEvaluator();
   ArcRequest r = Toward(std::numeric_limits<double>::quiet_NaN(), 0.0);
   EXPECT_EQ(ev.Evaluate(KnownMap(), r).status().message(),
             "ArcRequest.goal.x is nan (must be finite)");
@@ -347,7 +347,7 @@ int StraightIndex(const ArcEvaluator& ev) {
 }
 
 TEST(ArcEvaluatorFootprint, RockBesideTheFootprintIsPassedRockInItForbids) {
-  const ArcEvaluator ev = Make(FootprintOptions());
+  const ArcEvaluator ev = MakeEvaluator(FootprintOptions());
   const int straight = StraightIndex(ev);
   ASSERT_GE(straight, 0);
   // Half width 0.58 + margin 0.15 = 0.73 m: a rock 0.9 m to the side is clear, one 0.5 m to
@@ -361,13 +361,13 @@ TEST(ArcEvaluatorFootprint, RockBesideTheFootprintIsPassedRockInItForbids) {
   EXPECT_GT(e_beside->hazard[straight].goodness, 0);
   EXPECT_EQ(e_in->hazard[straight].goodness, 0);
   // The disc-based MER check with the same map (no hazard flags used) would not forbid it.
-  auto e_mer = Make().Evaluate(in_path, Toward(4.0, 0.0));
+  auto e_mer = MakeEvaluator().Evaluate(in_path, Toward(4.0, 0.0));
   ASSERT_TRUE(e_mer.ok());
   EXPECT_GT(e_mer->hazard[straight].goodness, 0);
 }
 
 TEST(ArcEvaluatorFootprint, FartherHitScalesTheVote) {
-  const ArcEvaluator ev = Make(FootprintOptions());
+  const ArcEvaluator ev = MakeEvaluator(FootprintOptions());
   const int straight = StraightIndex(ev);
   GoodnessMap clear = KnownMap(), far_rock = KnownMap();
   // Front edge 0.75 + 0.15: a rock at x = 2.9 is reached after ~2 m of the 3 m path.
@@ -380,7 +380,7 @@ TEST(ArcEvaluatorFootprint, FartherHitScalesTheVote) {
 }
 
 TEST(ArcEvaluatorFootprint, TurnSweepingTheCornerOverARockIsForbidden) {
-  const ArcEvaluator ev = Make(FootprintOptions());
+  const ArcEvaluator ev = MakeEvaluator(FootprintOptions());
   // Just outside the grown front-left corner (0.9, 0.73): clear while the rover stands, hit as
   // the corner swings left.
   GoodnessMap m = KnownMap();
@@ -396,7 +396,7 @@ TEST(ArcEvaluatorFootprint, TurnSweepingTheCornerOverARockIsForbidden) {
 }
 
 TEST(ArcEvaluatorFootprint, HazardUnderTheStartFootprintDoesNotTrapTheRover) {
-  const ArcEvaluator ev = Make(FootprintOptions());
+  const ArcEvaluator ev = MakeEvaluator(FootprintOptions());
   GoodnessMap m = KnownMap();
   AddHazard(&m, 0.3, 0.3);  // under the rover now: moving off must stay possible
   auto e = ev.Evaluate(m, Toward(4.0, 0.0));
@@ -410,7 +410,7 @@ TEST(ArcEvaluatorFootprint, CostToGoAimsAtTheGapNotTheWall) {
   // vote prefers the arcs bending left toward the gap.
   GoodnessMap m = KnownMap();
   for (double y = -3.0; y <= 0.6; y += 0.2) AddHazard(&m, 2.5, y);
-  const ArcEvaluator ev = Make(FootprintOptions(true));
+  const ArcEvaluator ev = MakeEvaluator(FootprintOptions(true));
   auto e = ev.Evaluate(m, Toward(4.5, 0.0));
   ASSERT_TRUE(e.ok()) << e.status().message();
   ASSERT_TRUE(e->has_choice());

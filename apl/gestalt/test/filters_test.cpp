@@ -75,11 +75,11 @@ TEST(RampGoodness, LinearFromSafeToLimit) {
 TEST(TiltFilter, FollowsItsRampOverSlopes) {
   const GestaltOptions o;
   for (double deg : {0.0, 3.0, 5.0, 8.0, 12.5, 17.0, 20.0, 26.0}) {
-    const double slope = std::tan(deg * kDeg);
+    const double slope = std::tan(deg * kDegree);
     const CellAssessment a = AssessCentre(Sample([&](double x, double) { return slope * x; }), o);
     ASSERT_EQ(a.status, AssessStatus::kAssessed) << deg;
-    EXPECT_NEAR(a.tilt, deg * kDeg, 1e-6) << deg;
-    EXPECT_NEAR(a.tilt_goodness, RampGoodness(deg * kDeg, o.tilt_safe, o.max_tilt), 1) << deg;
+    EXPECT_NEAR(a.tilt, deg * kDegree, 1e-6) << deg;
+    EXPECT_NEAR(a.tilt_goodness, RampGoodness(deg * kDegree, o.tilt_safe, o.max_tilt), 1) << deg;
     // A uniform slope is neither rough nor a step.
     EXPECT_NEAR(a.roughness, 0.0, 1e-6);
     EXPECT_NEAR(a.step, 0.0, 1e-6);
@@ -145,7 +145,7 @@ TEST(StepFilter, PitchersMoundIsClimbableWithTheBellyDisc) {
   // A flat-to-hill transition through the centre: z = s max(0, x) with a 19 deg slope. Across
   // the 2.6 m rover disc the ground bends by more than a rock would stand, but never under a
   // belly-sized disc.
-  const double s = std::tan(19.0 * kDeg);
+  const double s = std::tan(19.0 * kDegree);
   auto mound = [s](double x, double) { return s * std::max(0.0, x); };
   GestaltOptions whole_disc;  // MER's first flight software: steps anywhere in the rover disc
   whole_disc.step_disc_diameter = whole_disc.rover_disc_diameter;
@@ -159,7 +159,7 @@ TEST(StepFilter, PitchersMoundIsClimbableWithTheBellyDisc) {
   // 0.8 m of residual slope, 0.14 m: rough going, but no step.
   EXPECT_LT(belly.step, 0.17);
   EXPECT_GT(belly.step_goodness, 60);
-  EXPECT_NEAR(belly.tilt, std::atan(0.5 * s), 0.5 * kDeg);  // the plane takes half the slope
+  EXPECT_NEAR(belly.tilt, std::atan(0.5 * s), 0.5 * kDegree);  // the plane takes half the slope
 }
 
 TEST(DiscAssessor, TooLittleCoverageIsUnknown) {

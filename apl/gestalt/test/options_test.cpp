@@ -30,7 +30,7 @@ TEST(GestaltOptions, DefaultsAreMersAndValid) {
   EXPECT_EQ(o.num_layers, 7);
   EXPECT_DOUBLE_EQ(o.step_sigma_k, 1.0);
   EXPECT_DOUBLE_EQ(o.arc_vote_variance, 3.2);
-  EXPECT_NEAR(o.turn_vote_variance / (kDeg * kDeg), 97.0, 1e-9);
+  EXPECT_NEAR(o.turn_vote_variance / (kDegree * kDegree), 97.0, 1e-9);
 }
 
 TEST(GestaltOptions, ValidateNamesTheField) {
@@ -87,8 +87,8 @@ TEST(GestaltOptions, ReadsFromParametersInTheirUnits) {
                   .ok());
   auto o = ReadParams<GestaltOptions>(p, "gestalt.");
   ASSERT_TRUE(o.ok()) << o.status().message();
-  EXPECT_NEAR(o->max_tilt, 25.0 * kDeg, 1e-12);
-  EXPECT_NEAR(o->turn_vote_variance, 100.0 * kDeg * kDeg, 1e-12);
+  EXPECT_NEAR(o->max_tilt, 25.0 * kDegree, 1e-12);
+  EXPECT_NEAR(o->turn_vote_variance, 100.0 * kDegree * kDegree, 1e-12);
   EXPECT_EQ(o->num_point_turns, 0);
 }
 

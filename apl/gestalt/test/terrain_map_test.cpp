@@ -20,7 +20,7 @@ using rover::testing::PinholeCamera;
 using rover::testing::RoverPose;
 using rover::testing::SynthesizeScan;
 
-TerrainMap Make(const GestaltOptions& o = {}) {
+TerrainMap MakeMap(const GestaltOptions& o = {}) {
   auto m = TerrainMap::Create(o);
   EXPECT_TRUE(m.ok()) << m.status().message();
   return std::move(m).value();
@@ -50,7 +50,7 @@ TEST(TerrainMap, CreateValidatesOptions) {
 
 TEST(TerrainMap, MalformedScansAreRejectedAndChangeNothing) {
   const sim::terrain::Terrain world = FlatWorld(14.0);
-  TerrainMap m = Make();
+  TerrainMap m = MakeMap();
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
   const std::uint64_t rev = m.goodness_map().revision;
   const std::vector<std::uint8_t> before = m.goodness_map().goodness;
@@ -73,7 +73,7 @@ TEST(TerrainMap, MalformedScansAreRejectedAndChangeNothing) {
 
 TEST(TerrainMap, FlatGroundIsPerfectAndTheRestUnknown) {
   const sim::terrain::Terrain world = FlatWorld(14.0);
-  TerrainMap m = Make();
+  TerrainMap m = MakeMap();
   auto s = m.Update(Look(world, 0, 0, 0));
   ASSERT_TRUE(s.ok());
   EXPECT_GT(s->points_used, 30000);
@@ -109,7 +109,7 @@ TEST(TerrainMap, FlatGroundIsPerfectAndTheRestUnknown) {
 // Flat ground with a 0.3 m rock 2.5 m ahead, seen once.
 struct OneRock {
   sim::terrain::Terrain world = FlatWorld(14.0);
-  TerrainMap map = Make();
+  TerrainMap map = MakeMap();
   OneRock() {
     AddRock(&world, 2.5, 0.0, 0.5, 0.3);
     EXPECT_TRUE(map.Update(Look(world, 0, 0, 0)).ok());
@@ -136,7 +136,7 @@ TEST(TerrainMap, TallThinRocksAreFoundThroughTheCellSpread) {
   AddRock(&world, 2.2, 0.3, 0.09, 0.32, 0.05);  // a 9 cm wide, 32 cm tall flat-topped post
   GestaltOptions mean_only;
   mean_only.step_sigma_k = 0.0;
-  TerrainMap blind = Make(mean_only), seen = Make();
+  TerrainMap blind = MakeMap(mean_only), seen = MakeMap();
   const RangeScan scan = Look(world, 0, 0, 0);
   ASSERT_TRUE(blind.Update(scan).ok());
   ASSERT_TRUE(seen.Update(scan).ok());
@@ -153,7 +153,7 @@ TEST(TerrainMap, StepEstimateTracksRockHeight) {
     AddRock(&world, 2.5, 0.0, 2.0 * h, h);
     GestaltOptions mean_only;
     mean_only.step_sigma_k = 0.0;
-    TerrainMap a = Make(), b = Make(mean_only);
+    TerrainMap a = MakeMap(), b = MakeMap(mean_only);
     const RangeScan scan = Look(world, 0, 0, 0);
     ASSERT_TRUE(a.Update(scan).ok());
     ASSERT_TRUE(b.Update(scan).ok());
@@ -167,7 +167,7 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
   // anywhere in the 2.6 m rover disc (MER's first flight software) finds the flat-to-hill bend
   // an obstacle in front of the hill; the belly-sized disc does not, so the rover can climb.
   sim::terrain::Terrain world = FlatWorld(14.0);
-  const double s = std::tan(13.0 * kDeg);
+  const double s = std::tan(13.0 * kDegree);
   for (int j = 0; j < world.bare.ny(); ++j) {
     for (int i = 0; i < world.bare.nx(); ++i) {
       const double x = world.bare.min_x() + i * world.bare.resolution();
@@ -177,7 +177,7 @@ TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
   sim::terrain::RebuildHeights(&world);
   GestaltOptions whole;
   whole.step_disc_diameter = whole.rover_disc_diameter;
-  TerrainMap old_way = Make(whole), belly = Make();
+  TerrainMap old_way = MakeMap(whole), belly = MakeMap();
   const RangeScan scan = Look(world, 0, 0, 0);
   ASSERT_TRUE(old_way.Update(scan).ok());
   ASSERT_TRUE(belly.Update(scan).ok());
@@ -222,7 +222,7 @@ TEST(TerrainMap, UpdatesAreIncremental) {
   const sim::terrain::Terrain world = rover::testing::SeededRockField("vl1", 8, 20.0);
   GestaltOptions o;
   o.num_layers = 1;
-  TerrainMap m = Make(o);
+  TerrainMap m = MakeMap(o);
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0, 1)).ok());
   auto s2 = m.Update(Look(world, 0.6, 0.2, 0.5, 2));
   ASSERT_TRUE(s2.ok());
@@ -256,7 +256,7 @@ TEST(TerrainMap, UpdatesAreIncremental) {
 
 TEST(TerrainMap, FollowRecentresAndForgetsFarData) {
   const sim::terrain::Terrain world = FlatWorld(30.0);
-  TerrainMap m = Make();
+  TerrainMap m = MakeMap();
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
   ASSERT_TRUE(At(m, 2.5, 0.0).known());
   m.Follow(RoverPose(world.natural, 4.0, 0.0, 0.0));
@@ -273,14 +273,14 @@ TEST(TerrainMap, PartialViewsAtTheFovEdgeAreMergedConservatively) {
   // edge of the image cuts through that cell and only a sliver of the rock is in view.
   sim::terrain::Terrain world = FlatWorld(14.0);
   AddRock(&world, 2.1, 0.1, 0.18, 0.3, 0.3);
-  const double yaw = -48.0 * kDeg;
+  const double yaw = -48.0 * kDegree;
   GestaltOptions overwrite;  // no FOV-edge handling: new data always replaces old
   overwrite.fov_edge_band_px = 0;
   overwrite.fov_edge_margin_cells = 0;
   overwrite.num_layers = 1;
   GestaltOptions careful;  // the FOV-edge handling alone (no layers)
   careful.num_layers = 1;
-  TerrainMap a = Make(overwrite), b = Make(careful);
+  TerrainMap a = MakeMap(overwrite), b = MakeMap(careful);
   for (TerrainMap* m : {&a, &b}) {
     ASSERT_TRUE(m->Update(Look(world, 0, 0, 0, 1)).ok());
     ASSERT_EQ(At(*m, 2.1, 0.1).goodness, 0);
@@ -309,9 +309,9 @@ TEST(TerrainMap, LayersRememberAnObstacleThatLeftTheView) {
   single.num_layers = 1;
   GestaltOptions layered = single;
   layered.num_layers = 7;
-  TerrainMap a = Make(single), b = Make(layered);
+  TerrainMap a = MakeMap(single), b = MakeMap(layered);
   const RangeScan ahead = Look(world, 0, 0, 0, 1);
-  const RangeScan right = Look(world, 0, 0, -40.0 * kDeg, 2);  // rock just out of view
+  const RangeScan right = Look(world, 0, 0, -40.0 * kDegree, 2);  // rock just out of view
   ASSERT_TRUE(a.Update(ahead).ok());
   ASSERT_TRUE(b.Update(ahead).ok());
   const nav_core::GoodnessMap before = a.goodness_map();
@@ -330,7 +330,7 @@ TEST(TerrainMap, LayersRememberAnObstacleThatLeftTheView) {
   // The rock itself is still an obstacle in both.
   EXPECT_EQ(At(b, 2.0, 0.8).goodness, 0);
   // With the default (discs fitted to the merged map) the old data fill the partial discs.
-  TerrainMap c = Make();
+  TerrainMap c = MakeMap();
   ASSERT_TRUE(c.Update(ahead).ok());
   ASSERT_TRUE(c.Update(right).ok());
   for (std::size_t k = 0; k < before.cell_count(); ++k) {
@@ -351,22 +351,23 @@ TEST(TerrainMap, SkipImagingOnceTheMapCoversEveryPath) {
     r.goal_tolerance = 0.5;
     return r;
   };
-  TerrainMap m = Make();
+  TerrainMap m = MakeMap();
   ASSERT_TRUE(m.Update(Look(world, 0, 0, 0)).ok());
   auto e0 = evaluator->Evaluate(m.goodness_map(), request_at(0.0));
   ASSERT_TRUE(e0.ok());
   EXPECT_FALSE(e0->all_paths_safe);  // the tight arcs reach ground not seen yet
   // A panorama (left, ahead, right), then one metre forward without imaging.
-  ASSERT_TRUE(m.Update(Look(world, 0, 0, 55.0 * kDeg, 2)).ok());
-  ASSERT_TRUE(m.Update(Look(world, 0, 0, -55.0 * kDeg, 3)).ok());
+  ASSERT_TRUE(m.Update(Look(world, 0, 0, 55.0 * kDegree, 2)).ok());
+  ASSERT_TRUE(m.Update(Look(world, 0, 0, -55.0 * kDegree, 3)).ok());
   m.Follow(RoverPose(world.natural, 1.0, 0.0, 0.0));
   auto e1 = evaluator->Evaluate(m.goodness_map(), request_at(1.0));
   ASSERT_TRUE(e1.ok());
   EXPECT_TRUE(e1->all_paths_safe);
   // The same with a rock on one of the paths: image again.
   AddRock(&world, 3.0, 1.2, 0.5, 0.3);
-  TerrainMap r = Make();
-  for (double deg : {0.0, 55.0, -55.0}) ASSERT_TRUE(r.Update(Look(world, 0, 0, deg * kDeg)).ok());
+  TerrainMap r = MakeMap();
+  for (double deg : {0.0, 55.0, -55.0})
+    ASSERT_TRUE(r.Update(Look(world, 0, 0, deg * kDegree)).ok());
   r.Follow(RoverPose(world.natural, 1.0, 0.0, 0.0));
   auto e2 = evaluator->Evaluate(r.goodness_map(), request_at(1.0));
   ASSERT_TRUE(e2.ok());
@@ -387,7 +388,7 @@ TEST(TerrainMap, MarksTheHazardsItSawAndFewCellsWithoutCause) {
   for (const char* preset : {"vl1", "vl2"}) {
     for (std::uint64_t seed : {1u, 2u, 3u}) {
       const sim::terrain::Terrain world = rover::testing::SeededRockField(preset, seed, 24.0);
-      TerrainMap m = Make(o);
+      TerrainMap m = MakeMap(o);
       // A hazard counts as seen when its own cell holds a few points (a rock glimpsed past the
       // edge of a view is not assessed yet; later views will). An obstacle cell is explained
       // by a rock within reach of at least 0.15 m (three quarters of max_step: a rock just under

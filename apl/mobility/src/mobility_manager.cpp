@@ -6,11 +6,11 @@
 
 #include "rover/base/format.hpp"
 #include "rover/base/range_check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::mobility {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxCurvature = 1.0;  // [1/m] dl/drive_command's limit (1 m turning radius)
 constexpr double kMaxDistance = 50.0;  // [m] dl/drive_command's limit (locomotion max_distance)
 constexpr double kSteerAllowance_s = 10.0;  // [s] steering before a primitive, for the watchdog

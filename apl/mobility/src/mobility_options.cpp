@@ -3,12 +3,9 @@
 #include <string>
 
 #include "rover/base/range_check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::mobility {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
-
 Status MobilityOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckPositive("max_goal_distance", max_goal_distance, "m"));
   ROVER_RETURN_IF_ERROR(

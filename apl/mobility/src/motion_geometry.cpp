@@ -5,14 +5,10 @@
 #include <limits>
 
 #include "rover/base/range_check.hpp"
+#include "rover/base/units.hpp"
 #include "rover/geometry/polygon.hpp"
 
 namespace rover::apl::mobility {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 Pose2 PlanarPose(const Eigen::Isometry3d& site_from_rover) {
   const Eigen::Matrix3d r = site_from_rover.linear();

@@ -10,6 +10,7 @@
 #include "fake_world.hpp"
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::mobility {
 namespace {
@@ -18,9 +19,6 @@ using testing::DriveReport;
 using testing::FakeWorld;
 using testing::MakeGestaltManager;
 using testing::WorldOptions;
-
-constexpr double kPi = 3.14159265358979323846;
-
 MobilityCommand Autonav(std::uint32_t id, double x, double y, double tol = 0.3) {
   MobilityCommand c;
   c.command_id = id;

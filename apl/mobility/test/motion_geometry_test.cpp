@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "rover/base/units.hpp"
+
 namespace rover::apl::mobility {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(MotionGeometry, PropagateArcsStraightsAndTurns) {
   const Pose2 start{1.0, 2.0, kPi / 2};

@@ -62,9 +62,9 @@ Status RoamanOptions::Validate() const {
   const int window = 2 * normal_half_cells() + 1;
   ROVER_RETURN_IF_ERROR(CheckIntRange("min_fit_cells", min_fit_cells, 3, window * window));
   ROVER_RETURN_IF_ERROR(
-      CheckRange("region_tolerance", region_tolerance, B::OpenLow(0.0, 90.0 * kDeg), "rad"));
+      CheckRange("region_tolerance", region_tolerance, B::OpenLow(0.0, 90.0 * kDegree), "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("region_max_jump", region_max_jump, B::OpenLow(0.0, 2.0), "m"));
-  ROVER_RETURN_IF_ERROR(CheckRange("max_slope", max_slope, B::OpenLow(0.0, 89.0 * kDeg), "rad"));
+  ROVER_RETURN_IF_ERROR(CheckRange("max_slope", max_slope, B::OpenLow(0.0, 89.0 * kDegree), "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("min_steep_area", min_steep_area, 0.0, 100.0, "m^2"));
   ROVER_RETURN_IF_ERROR(CheckRange("step_baseline", step_baseline, cell_size, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("min_missing_area", min_missing_area, 0.0, 100.0, "m^2"));

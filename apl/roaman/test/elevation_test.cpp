@@ -9,13 +9,11 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h); }
-
 // A measured map of a tilted plane z = 0.1 x + 0.05 y with `holes` (cells set to kNone).
 ElevationMap PlaneWithHoles(int w, int h, const std::vector<Eigen::Vector2i>& holes) {
   const sim::terrain::HeightField plane = testing::HeightFieldOf(
       -1, -1, 5, 5, 0.01, [](double x, double y) { return 0.1 * x + 0.05 * y; });
-  ElevationMap m = testing::SampledElevation(plane, Geometry(w, h));
+  ElevationMap m = testing::SampledElevation(plane, testing::CellGeometry(w, h));
   for (const Eigen::Vector2i& c : holes) {
     m.source.at(c.x(), c.y()) = HeightSource::kNone;
     m.mean.at(c.x(), c.y()) = std::nanf("");
@@ -35,7 +33,7 @@ TEST(Elevation, BinsMeanSigmaAndClipsTopAndBottom) {
     c.max = std::max(c.max, static_cast<float>(z));
   }
   RoamanOptions o;
-  const ElevationMap m = BinElevation(cells, Geometry(3, 2), 0, 0, 3, 2, o);
+  const ElevationMap m = BinElevation(cells, testing::CellGeometry(3, 2), 0, 0, 3, 2, o);
   EXPECT_EQ(m.measured, 1);
   EXPECT_EQ(m.source.at(1, 1), HeightSource::kMeasured);
   EXPECT_EQ(m.source.at(0, 0), HeightSource::kNone);
@@ -44,15 +42,15 @@ TEST(Elevation, BinsMeanSigmaAndClipsTopAndBottom) {
   EXPECT_NEAR(m.top.at(1, 1), 1.0, 1e-6);     // mean + 2 sigma = 1.0 = max
   EXPECT_NEAR(m.bottom.at(1, 1), 0.0, 1e-6);  // mean - 2 sigma = -0.6, clipped to min 0
   o.height_sigma_k = 1.0;
-  const ElevationMap k1 = BinElevation(cells, Geometry(3, 2), 0, 0, 3, 2, o);
+  const ElevationMap k1 = BinElevation(cells, testing::CellGeometry(3, 2), 0, 0, 3, 2, o);
   EXPECT_NEAR(k1.top.at(1, 1), 0.6, 1e-6);  // the outlier is clipped to mean + sigma
   // A window that reaches past the cells: those have no height.
-  const ElevationMap shifted = BinElevation(cells, Geometry(3, 2), 1, 1, 3, 2, o);
+  const ElevationMap shifted = BinElevation(cells, testing::CellGeometry(3, 2), 1, 1, 3, 2, o);
   EXPECT_EQ(shifted.source.at(0, 0), HeightSource::kMeasured);
   EXPECT_EQ(shifted.source.at(2, 1), HeightSource::kNone);
   EXPECT_NEAR(shifted.geometry.origin_x, 0.05, 1e-12);
   o.min_cell_points = 6;
-  EXPECT_EQ(BinElevation(cells, Geometry(3, 2), 0, 0, 3, 2, o).measured, 0);
+  EXPECT_EQ(BinElevation(cells, testing::CellGeometry(3, 2), 0, 0, 3, 2, o).measured, 0);
 }
 
 TEST(Elevation, FillsSmallHolesByLinearInterpolation) {

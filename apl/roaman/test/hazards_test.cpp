@@ -10,8 +10,6 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h); }
-
 struct Classified {
   ElevationMap elevation;
   Layer<CellClass> cls;
@@ -21,7 +19,7 @@ struct Classified {
 Classified Classify(const sim::terrain::HeightField& f, int w, int h, const RoamanOptions& o,
                     const Layer<std::uint8_t>& blocked = {}) {
   Classified c;
-  c.elevation = testing::SampledElevation(f, Geometry(w, h));
+  c.elevation = testing::SampledElevation(f, testing::CellGeometry(w, h));
   const NormalMap n = FitNormals(c.elevation, o);
   const RegionMap r = GrowRegions(c.elevation, n, o);
   MarkHazards(c.elevation, n, r, blocked, o, &c.cls, &c.step);
@@ -36,7 +34,7 @@ int Count(const Layer<CellClass>& cls, CellClass k) {
 
 // A ramp of `deg` degrees for 1 m <= x < 2 m, flat elsewhere.
 sim::terrain::HeightField Ramp(double deg) {
-  const double t = std::tan(deg * kDeg);
+  const double t = std::tan(deg * kDegree);
   return testing::HeightFieldOf(-0.5, -0.5, 3.5, 2.5, 0.01, [t](double x, double) {
     return t * std::clamp(x - 1.0, 0.0, 1.0);
   });
@@ -52,7 +50,7 @@ TEST(Hazards, SteepRegionsAreHazardsGentleOnesAreNot) {
   EXPECT_EQ(Count(gentle.cls, CellClass::kSteep), 0);
   EXPECT_EQ(Count(gentle.cls, CellClass::kStep), 0);
   RoamanOptions strict = o;
-  strict.max_slope = 25.0 * kDeg;
+  strict.max_slope = 25.0 * kDegree;
   EXPECT_EQ(Classify(Ramp(30.0), 60, 40, strict).cls.at(30, 20), CellClass::kSteep);
 }
 
@@ -60,7 +58,7 @@ TEST(Hazards, SmallSteepPatchesAreLeftToTheStepTest) {
   // A wedge: a 50° face 0.25 m long and 0.4 m wide, at most 0.3 m high (below the 0.35 m body
   // clearance). With 15 cm plane fits its face is a region of 3 x 6 cells (0.045 m^2), smaller
   // than min_steep_area.
-  const double t = std::tan(50.0 * kDeg);
+  const double t = std::tan(50.0 * kDegree);
   const sim::terrain::HeightField f =
       testing::HeightFieldOf(-0.5, -0.5, 3.5, 2.5, 0.01, [t](double x, double y) {
         return (x >= 1.0 && x <= 1.25 && std::abs(y - 1.0) < 0.2) ? t * (x - 1.0) : 0.0;
@@ -121,7 +119,7 @@ TEST(Hazards, DiscontinuitiesAboveTheBodyClearance) {
 
 TEST(Hazards, MissingDataAndBlockedCells) {
   const sim::terrain::HeightField f = testing::FlatGround(-0.5, -0.5, 2.0, 2.0, 0.01);
-  ElevationMap m = testing::SampledElevation(f, Geometry(20, 20));
+  ElevationMap m = testing::SampledElevation(f, testing::CellGeometry(20, 20));
   for (int j = 0; j < 20; ++j) {
     for (int i = 8; i < 12; ++i) m.source.at(i, j) = HeightSource::kNone;
   }

@@ -10,22 +10,22 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h, 1.0, -2.0); }
+GridGeometry OffsetGeometry(int w, int h) { return testing::CellGeometry(w, h, 1.0, -2.0); }
 
 ElevationMap Plane(double a, double b, int w = 20, int h = 20) {
   const sim::terrain::HeightField f = testing::HeightFieldOf(
       0.0, -3.0, 3.0, 0.0, 0.01, [a, b](double x, double y) { return a * x + b * y + 1.0; });
-  return testing::SampledElevation(f, Geometry(w, h));
+  return testing::SampledElevation(f, OffsetGeometry(w, h));
 }
 
 TEST(Normals, RecoverThePlaneOfATiltedSurface) {
-  const double a = std::tan(20.0 * kDeg) * std::cos(30.0 * kDeg);
-  const double b = std::tan(20.0 * kDeg) * std::sin(30.0 * kDeg);
+  const double a = std::tan(20.0 * kDegree) * std::cos(30.0 * kDegree);
+  const double b = std::tan(20.0 * kDegree) * std::sin(30.0 * kDegree);
   const ElevationMap m = Plane(a, b);
   const NormalMap n = FitNormals(m, RoamanOptions{});
   for (const auto& [i, j] : {std::pair{10, 10}, std::pair{0, 0}, std::pair{19, 7}}) {
     ASSERT_TRUE(n.has(i, j)) << i << ", " << j;
-    EXPECT_NEAR(n.slope.at(i, j), 20.0 * kDeg, 1e-4);
+    EXPECT_NEAR(n.slope.at(i, j), 20.0 * kDegree, 1e-4);
     const Eigen::Vector3f expect = Eigen::Vector3f(-a, -b, 1.0).normalized();
     EXPECT_NEAR(n.normal.at(i, j).dot(expect), 1.0f, 1e-5);
     EXPECT_NEAR(n.residual.at(i, j), 0.0, 2e-4);  // float heights
@@ -44,7 +44,7 @@ TEST(Normals, ResidualMeasuresRoughness) {
     for (int i = 2; i < 18; ++i) {
       sum += n.residual.at(i, j);
       ++count;
-      EXPECT_LT(n.slope.at(i, j), 20.0 * kDeg);
+      EXPECT_LT(n.slope.at(i, j), 20.0 * kDegree);
     }
   }
   // RMS of 25 residuals of a 3-parameter fit: sigma sqrt(22 / 25) ~ 0.019 on average.
@@ -80,7 +80,7 @@ TEST(Normals, WindowSizeIsTheParameter) {
   RoamanOptions o;
   EXPECT_NEAR(FitNormals(m, o).slope.at(7, 10), 0.0, 1e-4);
   o.normal_window = 0.35;
-  EXPECT_GT(FitNormals(m, o).slope.at(7, 10), 5.0 * kDeg);
+  EXPECT_GT(FitNormals(m, o).slope.at(7, 10), 5.0 * kDegree);
 }
 
 }  // namespace

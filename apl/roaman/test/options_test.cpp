@@ -18,7 +18,7 @@ TEST(RoamanOptions, DefaultsAreFidosAndTheSimulatedRovers) {
   EXPECT_DOUBLE_EQ(o.plan_width, 6.0);  // FIDO's Figure 3: 6 m x 12 m
   EXPECT_DOUBLE_EQ(o.plan_length, 12.0);
   EXPECT_DOUBLE_EQ(o.max_range, 12.0);
-  EXPECT_NEAR(o.max_slope, 45.0 * kDeg, 1e-12);
+  EXPECT_NEAR(o.max_slope, 45.0 * kDegree, 1e-12);
   // Footprint 1.5 x 1.16 m (wheelbase 1.25 + 2 x 0.125; track 1.0 + 0.16), belly 0.35 m.
   EXPECT_NEAR(o.turn_radius(), 0.5 * std::hypot(1.5, 1.16), 1e-12);
   EXPECT_DOUBLE_EQ(o.leg_clearance(), 0.58);
@@ -73,7 +73,7 @@ TEST(RoamanOptions, ReadsFromParametersInTheirUnits) {
                   .ok());
   auto o = ReadParams<RoamanOptions>(p, "roaman.");
   ASSERT_TRUE(o.ok()) << o.status().message();
-  EXPECT_NEAR(o->max_slope, 30.0 * kDeg, 1e-12);
+  EXPECT_NEAR(o->max_slope, 30.0 * kDegree, 1e-12);
   EXPECT_EQ(o->algorithm, Algorithm::kAStar);
   EXPECT_DOUBLE_EQ(o->cell_size, 0.1);
 }

@@ -178,8 +178,7 @@ TEST(Planner, PlansTowardAGoalInTheShadowOfTheCulDeSac) {
   testing::MastCamera cam;
   for (const auto& scan : testing::SynthesizePanorama(
            CulDeSac(),
-           testing::PanoramaPointings(cam, 45.0 * testing::kDeg, 3,
-                                      {-8.0 * testing::kDeg, -28.0 * testing::kDeg}),
+           testing::PanoramaPointings(cam, 45.0 * kDegree, 3, {-8.0 * kDegree, -28.0 * kDegree}),
            testing::RoverPose(CulDeSac(), 0, 0, 0))) {
     ASSERT_TRUE((*planner)->AddScan(scan).ok());
   }

@@ -55,7 +55,7 @@ TEST(PlanningGrid, ResamplingNeverLosesAHazardCell) {
   RoamanOptions o;
   o.plan_width = 8.0;
   const PlanningGrid g = BuildPlanningGrid(
-      t, {0.0, 0.0}, {8.0 * std::cos(37.0 * kDeg), 8.0 * std::sin(37.0 * kDeg)}, 12.0, o);
+      t, {0.0, 0.0}, {8.0 * std::cos(37.0 * kDegree), 8.0 * std::sin(37.0 * kDegree)}, 12.0, o);
   for (const Eigen::Vector2d& h : hazards) {
     // The planning cell containing the hazard cell's centre is a hazard.
     EXPECT_EQ(g.ClassAt(h), CellClass::kStep) << h.transpose();

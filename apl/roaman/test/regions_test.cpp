@@ -9,11 +9,9 @@
 namespace rover::apl::roaman {
 namespace {
 
-GridGeometry Geometry(int w, int h) { return testing::CellGeometry(w, h); }
-
 // Flat for x < 1 m, then a 50° ramp up to x = 1.5 m, then flat again (a mesa).
 double Mesa(double x, double) {
-  const double t = std::tan(50.0 * kDeg);
+  const double t = std::tan(50.0 * kDegree);
   if (x < 1.0) return 0.0;
   if (x < 1.5) return t * (x - 1.0);
   return t * 0.5;
@@ -21,7 +19,7 @@ double Mesa(double x, double) {
 
 TEST(Regions, SplitTerrainAtSlopeChanges) {
   const sim::terrain::HeightField f = testing::HeightFieldOf(-0.5, -0.5, 3.0, 2.0, 0.01, Mesa);
-  const ElevationMap m = testing::SampledElevation(f, Geometry(50, 30));  // x 0..2.5 m
+  const ElevationMap m = testing::SampledElevation(f, testing::CellGeometry(50, 30));  // x 0..2.5 m
   const RoamanOptions o;
   const NormalMap n = FitNormals(m, o);
   const RegionMap r = GrowRegions(m, n, o);
@@ -33,9 +31,9 @@ TEST(Regions, SplitTerrainAtSlopeChanges) {
   EXPECT_NE(ramp, top);
   EXPECT_NE(flat, top);  // not connected through the ramp
   // (The flat regions take in the first fits that see the ramp, within region_tolerance.)
-  EXPECT_NEAR(r.regions[static_cast<std::size_t>(flat)].slope, 0.0, 1.0 * kDeg);
-  EXPECT_NEAR(r.regions[static_cast<std::size_t>(top)].slope, 0.0, 1.0 * kDeg);
-  EXPECT_NEAR(r.regions[static_cast<std::size_t>(ramp)].slope, 50.0 * kDeg, 2.0 * kDeg);
+  EXPECT_NEAR(r.regions[static_cast<std::size_t>(flat)].slope, 0.0, 1.0 * kDegree);
+  EXPECT_NEAR(r.regions[static_cast<std::size_t>(top)].slope, 0.0, 1.0 * kDegree);
+  EXPECT_NEAR(r.regions[static_cast<std::size_t>(ramp)].slope, 50.0 * kDegree, 2.0 * kDegree);
   // The ramp's interior (fits that see only the ramp) is one region along its whole width.
   for (int j = 0; j < 30; ++j) EXPECT_EQ(r.id.at(25, j), ramp) << j;
   // Region sizes add up to the cells with a normal.
@@ -49,9 +47,9 @@ TEST(Regions, AHeightJumpEndsARegionEvenWhenTheSlopeIsTheSame) {
   // terraces' far parts have the same normal and must still be two regions.
   const sim::terrain::HeightField f = testing::HeightFieldOf(
       -0.5, -0.5, 3.0, 2.0, 0.01, [](double x, double) { return x < 1.0 ? 0.0 : 0.3; });
-  const ElevationMap m = testing::SampledElevation(f, Geometry(40, 20));
+  const ElevationMap m = testing::SampledElevation(f, testing::CellGeometry(40, 20));
   RoamanOptions o;
-  o.region_tolerance = 89.0 * kDeg;  // accept any normal: only the jump can split
+  o.region_tolerance = 89.0 * kDegree;  // accept any normal: only the jump can split
   const RegionMap r = GrowRegions(m, FitNormals(m, o), o);
   EXPECT_NE(r.id.at(2, 10), r.id.at(37, 10));
   o.region_max_jump = 0.5;
@@ -61,7 +59,7 @@ TEST(Regions, AHeightJumpEndsARegionEvenWhenTheSlopeIsTheSame) {
 
 TEST(Regions, CellsWithoutANormalBelongToNone) {
   const sim::terrain::HeightField f = testing::FlatGround(-0.5, -0.5, 2.0, 2.0);
-  ElevationMap m = testing::SampledElevation(f, Geometry(10, 10));
+  ElevationMap m = testing::SampledElevation(f, testing::CellGeometry(10, 10));
   for (int j = 0; j < 10; ++j) m.source.at(4, j) = m.source.at(5, j) = HeightSource::kNone;
   const RoamanOptions o;
   const RegionMap r = GrowRegions(m, FitNormals(m, o), o);

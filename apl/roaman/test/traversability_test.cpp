@@ -18,8 +18,7 @@ std::vector<MastCamera> Pointings() {
   MastCamera cam;
   cam.width = 160;
   cam.height = 120;
-  return testing::PanoramaPointings(cam, 40.0 * testing::kDeg, 3,
-                                    {-8.0 * testing::kDeg, -28.0 * testing::kDeg});
+  return testing::PanoramaPointings(cam, 40.0 * kDegree, 3, {-8.0 * kDegree, -28.0 * kDegree});
 }
 
 SiteMap MapOf(const sim::terrain::HeightField& ground, const RoamanOptions& o) {
@@ -74,17 +73,16 @@ TEST(Traversability, RocksTheirShadowsAndTheEndOfTheRange) {
 
 TEST(Traversability, SteepTerrainFromTheMast) {
   // A 50° bank 3 m wide rising across the view 5 m ahead: a steep region.
-  static const sim::terrain::HeightField bank =
-      testing::HeightFieldOf(-3, -9, 15, 9, 0.04, [](double x, double) {
-        return std::tan(50.0 * testing::kDeg) * std::clamp(x - 5.0, 0.0, 0.6);
-      });
+  static const sim::terrain::HeightField bank = testing::HeightFieldOf(
+      -3, -9, 15, 9, 0.04,
+      [](double x, double) { return std::tan(50.0 * kDegree) * std::clamp(x - 5.0, 0.0, 0.6); });
   const RoamanOptions o;
   const TraversabilityMap t = ComputeTraversability(MapOf(bank, o), o);
   EXPECT_EQ(t.ClassAt(5.3, 0.0), CellClass::kSteep);
   EXPECT_EQ(t.ClassAt(5.3, 1.0), CellClass::kSteep);
   EXPECT_EQ(t.ClassAt(3.0, 0.0), CellClass::kSafe);
   RoamanOptions lenient = o;
-  lenient.max_slope = 55.0 * kDeg;
+  lenient.max_slope = 55.0 * kDegree;
   EXPECT_NE(ComputeTraversability(MapOf(bank, lenient), lenient).ClassAt(5.3, 0.0),
             CellClass::kSteep);
 }
@@ -112,8 +110,7 @@ TEST(Traversability, TallRocksOfASeededFieldAreHazards) {
   SiteMap map(o);
   for (const auto& scan : testing::SynthesizePanorama(
            field.natural,
-           testing::PanoramaPointings(cam, 157.5 * testing::kDeg, 8,
-                                      {-6.0 * testing::kDeg, -26.0 * testing::kDeg}),
+           testing::PanoramaPointings(cam, 157.5 * kDegree, 8, {-6.0 * kDegree, -26.0 * kDegree}),
            testing::RoverPose(field.natural, 0, 0, 0))) {
     ASSERT_TRUE(map.AddScan(scan).ok());
   }

@@ -41,9 +41,9 @@ TEST(WaypointFit, LegsTurnInPlaceThenDriveStraight) {
 TEST(WaypointFit, TurnsNeedTheFootprintsReach) {
   // W/2 straight on, W/2 + L/2 sin(turn) for gentle turns, the turn radius for sharp ones.
   EXPECT_DOUBLE_EQ(kRover.TurnClearance(0.0), 0.58);
-  EXPECT_NEAR(kRover.TurnClearance(10.0 * kDeg), 0.58 + 0.75 * std::sin(10.0 * kDeg), 1e-12);
-  EXPECT_NEAR(kRover.TurnClearance(-10.0 * kDeg), kRover.TurnClearance(10.0 * kDeg), 1e-12);
-  EXPECT_DOUBLE_EQ(kRover.TurnClearance(45.0 * kDeg), kRover.turn_radius());
+  EXPECT_NEAR(kRover.TurnClearance(10.0 * kDegree), 0.58 + 0.75 * std::sin(10.0 * kDegree), 1e-12);
+  EXPECT_NEAR(kRover.TurnClearance(-10.0 * kDegree), kRover.TurnClearance(10.0 * kDegree), 1e-12);
+  EXPECT_DOUBLE_EQ(kRover.TurnClearance(45.0 * kDegree), kRover.turn_radius());
   EXPECT_DOUBLE_EQ(kRover.TurnClearance(3.0), kRover.turn_radius());
   EXPECT_NEAR(TurnAngle({0, 0}, {1, 0}, {1, 1}), 0.5 * std::numbers::pi, 1e-12);
   EXPECT_NEAR(TurnAngle({0, 0}, {1, 0}, {2, -1}), -0.25 * std::numbers::pi, 1e-12);
@@ -92,13 +92,13 @@ TEST(WaypointFit, AWaypointWhoseTurnIsNotSafeGetsItsPathBack) {
   double heading = 0.0;
   for (int k = 0; k < 6; ++k) {
     bend.push_back(bend.back() + 0.5 * Eigen::Vector2d(std::cos(heading), std::sin(heading)));
-    heading += 8.0 * kDeg;
+    heading += 8.0 * kDegree;
   }
   for (int k = 0; k < 4; ++k) {
     bend.push_back(bend.back() + 0.5 * Eigen::Vector2d(std::cos(heading), std::sin(heading)));
   }
   const Eigen::Vector2d corner = bend[5];
-  const Eigen::Vector2d out = Eigen::Vector2d(-std::sin(20 * kDeg), std::cos(20 * kDeg));
+  const Eigen::Vector2d out = Eigen::Vector2d(-std::sin(20 * kDegree), std::cos(20 * kDegree));
   const Eigen::Vector2d rock = corner - 0.8 * out;
   Paint(&t, rock, rock, 0.05, CellClass::kStep);
   const PlanningGrid g = Grid(t);

@@ -56,8 +56,9 @@ std::vector<rt::MastCamera> Pointings() {
   cam.width = 512;  // 1.5 mrad pixels (MER's NAVCAMs: 0.8 mrad)
   cam.height = 384;
   cam.noise_at_10m = 0.02;
-  return rt::PanoramaPointings(cam, 40.0 * rt::kDeg, 5,
-                               {-4.0 * rt::kDeg, -18.0 * rt::kDeg, -34.0 * rt::kDeg});
+  return rt::PanoramaPointings(
+      cam, 40.0 * rover::kDegree, 5,
+      {-4.0 * rover::kDegree, -18.0 * rover::kDegree, -34.0 * rover::kDegree});
 }
 
 struct SeedResult {
@@ -125,7 +126,8 @@ SeedResult RunSeed(int seed, double cover, int repeats, const std::string& pictu
     for (const double d : {9.0, 8.5, 8.0, 7.5, 7.0}) {
       for (const double deg : {0.0, 4.0, -4.0, 8.0, -8.0, 12.0, -12.0}) {
         rover::apl::nav_core::PlanRequest req;
-        req.goal = d * Eigen::Vector2d(std::cos(deg * rt::kDeg), std::sin(deg * rt::kDeg));
+        req.goal =
+            d * Eigen::Vector2d(std::cos(deg * rover::kDegree), std::sin(deg * rover::kDegree));
         req.goal_tolerance = 1.0;
         o.goal_margin = o.plan_length - d;
         p = ro::PreparePlan(t, req, o, &failure);
@@ -225,11 +227,11 @@ void ScenarioPictures(const std::string& dir) {
     rover::sim::terrain::HeightField g = rt::FlatGround(-3, -7, 14, 7, 0.04);
     rt::AddCulDeSac(&g, {6.0, 0.0}, {-1.0, 0.0}, 3.0, 3.0, 0.3, 0.8);
     ro::RoamanPlanner p(o);
-    for (const auto& s :
-         rt::SynthesizePanorama(g,
-                                rt::PanoramaPointings(rt::MastCamera{}, 60.0 * rt::kDeg, 5,
-                                                      {-6.0 * rt::kDeg, -26.0 * rt::kDeg}),
-                                rt::RoverPose(g, 0, 0, 0))) {
+    for (const auto& s : rt::SynthesizePanorama(
+             g,
+             rt::PanoramaPointings(rt::MastCamera{}, 60.0 * rover::kDegree, 5,
+                                   {-6.0 * rover::kDegree, -26.0 * rover::kDegree}),
+             rt::RoverPose(g, 0, 0, 0))) {
       (void)p.AddScan(s);
     }
     rover::apl::nav_core::PlanRequest req;

@@ -5,11 +5,10 @@
 #include <numbers>
 
 #include "rover/base/check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::sequencer {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 double WrapAngle(double a) {
   a = std::remainder(a, 2.0 * std::numbers::pi);  // [-pi, pi]
@@ -24,7 +23,7 @@ MobilityRequest Mobility(const CommandCall& call, MobilityMode mode, Primitive p
   r.primitive = primitive;
   if (call.Has("curvature")) r.curvature = Num(call, "curvature");
   if (call.Has("distance")) r.distance = Num(call, "distance");
-  if (call.Has("angle_deg")) r.angle = Num(call, "angle_deg") * kDeg;
+  if (call.Has("angle_deg")) r.angle = Num(call, "angle_deg") * kDegree;
   if (call.Has("goal")) {
     r.goal_x = call.Get("goal").numbers[0];
     r.goal_y = call.Get("goal").numbers[1];
@@ -46,7 +45,7 @@ Result<MobilityRequest> TurnTo(const CommandCall& call, MobilityMode mode,
     const auto& p = call.Get("target").numbers;
     heading = std::atan2(p[1] - pose->position.y, p[0] - pose->position.x);
   } else {
-    heading = Num(call, "heading_deg") * kDeg;
+    heading = Num(call, "heading_deg") * kDegree;
   }
   r.angle = WrapAngle(heading - pose->yaw);
   return r;
@@ -86,8 +85,8 @@ Result<Request> BuildRequest(const CommandCall& call, const PoseSample* pose) {
     case K::kMast: {
       MastRequest r;
       r.kind = MastRequest::Kind::kAngles;
-      r.pan = Num(call, "pan_deg") * kDeg;
-      r.tilt = Num(call, "tilt_deg") * kDeg;
+      r.pan = Num(call, "pan_deg") * kDegree;
+      r.tilt = Num(call, "tilt_deg") * kDegree;
       return Request{r};
     }
     case K::kMastLookAt: {
@@ -116,7 +115,7 @@ Result<Request> BuildRequest(const CommandCall& call, const PoseSample* pose) {
       ArmRequest r;
       r.kind = ArmRequest::Kind::kMove;
       const auto& j = call.Get("joints_deg").numbers;
-      for (std::size_t i = 0; i < r.joints.size(); ++i) r.joints[i] = j[i] * kDeg;
+      for (std::size_t i = 0; i < r.joints.size(); ++i) r.joints[i] = j[i] * kDegree;
       return Request{r};
     }
     case K::kArmPlace: {

@@ -4,11 +4,10 @@
 #include <numbers>
 
 #include "rover/base/check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::sequencer {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 constexpr std::array<Unit, 16> kUnits{{
     {"", Dimension::kNone, 1.0},
@@ -16,7 +15,7 @@ constexpr std::array<Unit, 16> kUnits{{
     {"cm", Dimension::kLength, 0.01},
     {"mm", Dimension::kLength, 0.001},
     {"km", Dimension::kLength, 1000.0},
-    {"deg", Dimension::kAngle, kDeg},
+    {"deg", Dimension::kAngle, kDegree},
     {"rad", Dimension::kAngle, 1.0},
     {"s", Dimension::kTime, 1.0},
     {"ms", Dimension::kTime, 0.001},

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
 #include "sequencer_test_util.hpp"
 
 namespace rover::apl::sequencer {
@@ -12,9 +13,6 @@ namespace {
 
 using testing::CallOf;
 using testing::MustParse;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 Command Build(const std::string& line, const PoseSample* pose = nullptr) {
   Result<Command> c = BuildCommand(CallOf(line), pose, 7, 3);
   EXPECT_TRUE(c.ok()) << c.status().ToString();
@@ -64,7 +62,7 @@ TEST(BuildCommand, ModesFollowTheCommandNames) {
     EXPECT_EQ(m.primitive, k.primitive);
   }
   const auto turn = std::get<MobilityRequest>(Build("TURN angle_deg=-45").request);
-  EXPECT_DOUBLE_EQ(turn.angle, -45 * kDeg);
+  EXPECT_DOUBLE_EQ(turn.angle, -45 * kDegree);
   const auto nav =
       std::get<MobilityRequest>(Build("AUTONAV goal=(5, 2) tolerance=0.4 timeout=10 min").request);
   EXPECT_DOUBLE_EQ(nav.goal_x, 5.0);
@@ -79,21 +77,21 @@ TEST(BuildCommand, TurnToFacesAPointOrHeadingFromThePose) {
                          "TURN TO heading_deg=180\n");
   PoseSample pose;
   pose.position = {0.0, 0.0, 0.0};
-  pose.yaw = 10 * kDeg;
+  pose.yaw = 10 * kDegree;
   Result<Command> a = BuildCommand(s.statements[0].command, &pose, 1, 1);
   ASSERT_TRUE(a.ok());
-  EXPECT_NEAR(std::get<MobilityRequest>(a->request).angle, std::atan2(4.0, 3.0) - 10 * kDeg,
+  EXPECT_NEAR(std::get<MobilityRequest>(a->request).angle, std::atan2(4.0, 3.0) - 10 * kDegree,
               1e-12);
   Result<Command> b = BuildCommand(s.statements[1].command, &pose, 2, 2);
   ASSERT_TRUE(b.ok());
   EXPECT_EQ(std::get<MobilityRequest>(b->request).mode, MobilityMode::kVisodom);
-  EXPECT_NEAR(std::get<MobilityRequest>(b->request).angle, -100 * kDeg, 1e-12);
+  EXPECT_NEAR(std::get<MobilityRequest>(b->request).angle, -100 * kDegree, 1e-12);
   // 180 - 10 deg stays in (-pi, pi]; from yaw -10 deg it would be 190 -> -170.
   Result<Command> c = BuildCommand(s.statements[2].command, &pose, 3, 3);
-  EXPECT_NEAR(std::get<MobilityRequest>(c->request).angle, 170 * kDeg, 1e-12);
-  pose.yaw = -10 * kDeg;
+  EXPECT_NEAR(std::get<MobilityRequest>(c->request).angle, 170 * kDegree, 1e-12);
+  pose.yaw = -10 * kDegree;
   c = BuildCommand(s.statements[2].command, &pose, 3, 3);
-  EXPECT_NEAR(std::get<MobilityRequest>(c->request).angle, -170 * kDeg, 1e-12);
+  EXPECT_NEAR(std::get<MobilityRequest>(c->request).angle, -170 * kDegree, 1e-12);
 
   EXPECT_TRUE(NeedsPose(s.statements[0].command));
   Result<Command> none = BuildCommand(s.statements[0].command, nullptr, 1, 1);
@@ -105,8 +103,8 @@ TEST(BuildCommand, TurnToFacesAPointOrHeadingFromThePose) {
 TEST(BuildCommand, MastRendezvousAndArmRequests) {
   const auto mast = std::get<MastRequest>(Build("MAST pan_deg=30 tilt_deg=-20").request);
   EXPECT_EQ(mast.kind, MastRequest::Kind::kAngles);
-  EXPECT_NEAR(mast.pan, 30 * kDeg, 1e-12);
-  EXPECT_NEAR(mast.tilt, -20 * kDeg, 1e-12);
+  EXPECT_NEAR(mast.pan, 30 * kDegree, 1e-12);
+  EXPECT_NEAR(mast.tilt, -20 * kDegree, 1e-12);
   const auto look = std::get<MastRequest>(Build("MAST LOOK_AT (1, 2, 0.5)").request);
   EXPECT_EQ(look.kind, MastRequest::Kind::kLookAt);
   EXPECT_EQ(look.point, (Vec3{1, 2, 0.5}));
@@ -133,7 +131,7 @@ TEST(BuildCommand, MastRendezvousAndArmRequests) {
 
   const auto move = std::get<ArmRequest>(Build("ARM MOVE (0, 45, -90, 10)").request);
   EXPECT_EQ(move.kind, ArmRequest::Kind::kMove);
-  EXPECT_NEAR(move.joints[2], -90 * kDeg, 1e-12);
+  EXPECT_NEAR(move.joints[2], -90 * kDegree, 1e-12);
   const auto place = std::get<ArmRequest>(Build("ARM PLACE (1, 0, -0.3) hover=5 mm").request);
   EXPECT_EQ(place.kind, ArmRequest::Kind::kPlace);
   EXPECT_DOUBLE_EQ(place.hover, 0.005);
@@ -188,11 +186,11 @@ TEST(Pose, TiltAndHorizontalDistance) {
   p.position = {1.0, 1.0, 5.0};
   EXPECT_DOUBLE_EQ(DistanceTo(p, {4.0, 5.0, -3.0}), 5.0);  // z does not count
   p.roll = 0.0;
-  p.pitch = 15 * kDeg;
-  EXPECT_NEAR(TiltOf(p), 15 * kDeg, 1e-12);
-  p.roll = 10 * kDeg;
-  p.pitch = 10 * kDeg;
-  EXPECT_NEAR(TiltOf(p), std::acos(std::cos(10 * kDeg) * std::cos(10 * kDeg)), 1e-12);
+  p.pitch = 15 * kDegree;
+  EXPECT_NEAR(TiltOf(p), 15 * kDegree, 1e-12);
+  p.roll = 10 * kDegree;
+  p.pitch = 10 * kDegree;
+  EXPECT_NEAR(TiltOf(p), std::acos(std::cos(10 * kDegree) * std::cos(10 * kDegree)), 1e-12);
 }
 
 }  // namespace

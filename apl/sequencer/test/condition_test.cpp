@@ -4,12 +4,11 @@
 
 #include <numbers>
 
+#include "rover/base/units.hpp"
 #include "sequencer_test_util.hpp"
 
 namespace rover::apl::sequencer {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// The condition of "IF <text>".
 Condition Cond(const std::string& text) {
@@ -57,7 +56,7 @@ TEST(Condition, PoseQuantitiesNeedThePose) {
   pose.position = {3.0, 2.8, 0.0};
   EXPECT_FALSE(*Evaluate(near, in));  // 1.2 m
   EXPECT_TRUE(*Evaluate(Cond("distance_to((3, 2)) <= 80 cm"), in));
-  pose.pitch = 16 * kDeg;
+  pose.pitch = 16 * kDegree;
   EXPECT_TRUE(*Evaluate(Cond("tilt > 15"), in));
   EXPECT_FALSE(*Evaluate(Cond("tilt > 0.3 rad"), in));
   EXPECT_FALSE(NeedsPose(Cond("elapsed > 5")));

@@ -6,19 +6,17 @@
 
 #include <functional>
 #include <map>
-#include <optional>
 #include <numbers>
+#include <optional>
 
 #include "rover/base/param_binder.hpp"
+#include "rover/base/units.hpp"
 #include "sequencer_test_util.hpp"
 
 namespace rover::apl::sequencer {
 namespace {
 
 using testing::MustParse;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 Time T(double s) { return Time::FromSeconds(s); }
 
 Interpreter Make(const InterpreterOptions& o = {}) {
@@ -77,7 +75,7 @@ TEST(Interpreter, DispatchesOneCommandAtATimeInOrder) {
   ASSERT_TRUE(b.command.has_value());
   EXPECT_EQ(b.command->kind, CommandKind::kTurn);
   EXPECT_GT(b.command->id, a.command->id);
-  EXPECT_NEAR(std::get<MobilityRequest>(b.command->request).angle, 90 * kDeg, 1e-12);
+  EXPECT_NEAR(std::get<MobilityRequest>(b.command->request).angle, 90 * kDegree, 1e-12);
   ASSERT_TRUE(it.OnCommandResult(b.command->id, Outcome::Nominal()).ok());
   StepOutput c = it.Step(T(102));
   ASSERT_TRUE(c.command.has_value());
@@ -344,10 +342,10 @@ PoseSample PoseAt(double t, double x, double y, double yaw = 0.0) {
 
 TEST(Interpreter, TurnToUsesTheLatestPose) {
   Interpreter it = Started("TARGET rock = (2, 2, 0)\nTURN TO rock\n");
-  it.OnPose(PoseAt(0, 0, 0, 90 * kDeg));
+  it.OnPose(PoseAt(0, 0, 0, 90 * kDegree));
   StepOutput a = it.Step(T(0.5));
   ASSERT_TRUE(a.command.has_value());
-  EXPECT_NEAR(std::get<MobilityRequest>(a.command->request).angle, -45 * kDeg, 1e-12);
+  EXPECT_NEAR(std::get<MobilityRequest>(a.command->request).angle, -45 * kDegree, 1e-12);
 }
 
 TEST(Interpreter, ConditionsOnThePoseWaitForOneNewerThanTheLastCommand) {
@@ -414,7 +412,7 @@ TEST(Interpreter, TiltAndDistanceConditions) {
       "TARGET rock = (3, 0, 0)\n"
       "IF tilt > 15 deg\n  STOP\nELSE IF distance_to(rock) < 1.1\n  TURN angle_deg=1\nEND\n");
   PoseSample p = PoseAt(0, 2.0, 0.0);
-  p.pitch = 10 * kDeg;
+  p.pitch = 10 * kDegree;
   it.OnPose(p);
   StepOutput a = it.Step(T(0.1));
   ASSERT_TRUE(a.command.has_value());
@@ -616,7 +614,7 @@ TEST(Interpreter, AStatusStreamDrivesEveryConstruct) {
   }
   {  // tilted 25 deg: the IF branch
     Interpreter it = Started(text);
-    FakeStatusStream stream(25 * kDeg, answer, vo_fails);
+    FakeStatusStream stream(25 * kDegree, answer, vo_fails);
     const auto sent = stream.Run(it);
     ASSERT_EQ(sent.size(), 10u);
     EXPECT_EQ(sent[6].text, "STOP");

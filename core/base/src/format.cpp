@@ -13,6 +13,10 @@ std::string FormatNumber(double v, int significant) {
   return buf;
 }
 
+std::string FormatSize(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
 std::string FormatList(std::span<const double> values, int significant) {
   std::string out = "[";
   for (std::size_t i = 0; i < values.size(); ++i) {

@@ -29,5 +29,10 @@ TEST(FormatList, Brackets) {
   EXPECT_EQ(FormatList(std::vector<double>{}), "[]");
 }
 
+TEST(FormatSize, WidthByHeight) {
+  EXPECT_EQ(FormatSize(640, 480), "640x480");
+  EXPECT_EQ(FormatSize(0, -1), "0x-1");
+}
+
 }  // namespace
 }  // namespace rover

@@ -7,11 +7,10 @@
 #include <numbers>
 
 #include "rover/base/range_check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 enum class Mode { kArc, kTurn };
 
@@ -24,7 +23,7 @@ struct PriorOptions {
 
 struct TestOptions {
   double rate_hz = 8.0;
-  double max_tilt = 30.0 * kDeg;  // [rad]
+  double max_tilt = 30.0 * kDegree;  // [rad]
   double lead = 0.5;              // [m], key in mm
   int cycles = 3;
   std::uint32_t id_prefix = 2;
@@ -37,7 +36,7 @@ struct TestOptions {
   double unbound = 42.0;
 
   Status Validate() const {
-    ROVER_RETURN_IF_ERROR(CheckRange("max_tilt", max_tilt, 0.0, 40.0 * kDeg, "rad"));
+    ROVER_RETURN_IF_ERROR(CheckRange("max_tilt", max_tilt, 0.0, 40.0 * kDegree, "rad"));
     if (cycles > 5 && !enabled) return InvalidArgument("cycles must be <= 5 when disabled");
     return Status::Ok();
   }
@@ -97,7 +96,7 @@ TEST(ParamBinder, ReadsBackEveryMemberInItsUnit) {
   auto o = ReadParams<TestOptions>(p, "t.");
   ASSERT_TRUE(o.ok()) << o.status().message();
   EXPECT_EQ(o->rate_hz, 10.0);
-  EXPECT_NEAR(o->max_tilt, 20.0 * kDeg, 1e-12);
+  EXPECT_NEAR(o->max_tilt, 20.0 * kDegree, 1e-12);
   EXPECT_NEAR(o->lead, 0.25, 1e-12);
   EXPECT_EQ(o->cycles, 4);
   EXPECT_EQ(o->id_prefix, 7u);

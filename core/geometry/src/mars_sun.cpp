@@ -5,12 +5,10 @@
 #include <string>
 
 #include "rover/base/check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::geometry {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 
 double Wrap(double x, double period) {
   double r = std::fmod(x, period);
@@ -31,24 +29,24 @@ constexpr Perturbation kPerturbations[] = {{0.0071, 2.2353, 49.409},  {0.0057, 2
 }  // namespace
 
 double SolarDeclination(double ls_deg) {
-  const double s = std::sin(ls_deg * kDeg);
-  return std::asin(0.42565 * s) + 0.25 * kDeg * s;
+  const double s = std::sin(ls_deg * kDegree);
+  return std::asin(0.42565 * s) + 0.25 * kDegree * s;
 }
 
 MarsSolarState ComputeMarsSolarState(double dt) {
   MarsSolarState st;
   st.j2000_tt_days = dt;
-  const double m = (19.3871 + 0.52402073 * dt) * kDeg;
+  const double m = (19.3871 + 0.52402073 * dt) * kDegree;
   const double alpha_fms = 270.3871 + 0.524038496 * dt;
   double pbs = 0.0;
   for (const Perturbation& p : kPerturbations) {
-    pbs += p.amplitude * std::cos((0.985626 * dt / p.period + p.phase) * kDeg);
+    pbs += p.amplitude * std::cos((0.985626 * dt / p.period + p.phase) * kDegree);
   }
   const double v_minus_m = (10.691 + 3.0e-7 * dt) * std::sin(m) + 0.623 * std::sin(2.0 * m) +
                            0.050 * std::sin(3.0 * m) + 0.005 * std::sin(4.0 * m) +
                            0.0005 * std::sin(5.0 * m) + pbs;
   st.ls_deg = Wrap(alpha_fms + v_minus_m, 360.0);
-  const double ls = st.ls_deg * kDeg;
+  const double ls = st.ls_deg * kDegree;
   st.eot_deg = 2.861 * std::sin(2.0 * ls) - 0.071 * std::sin(4.0 * ls) +
                0.002 * std::sin(6.0 * ls) - v_minus_m;
   st.mars_sol_date = (dt - 4.5) / 1.0274912517 + 44796.0 - 0.0009626;
@@ -62,7 +60,7 @@ double LocalTrueSolarTimeHours(const MarsSolarState& state, double east_longitud
 }
 
 Eigen::Vector3d SunDirectionSite(double latitude_rad, double declination_rad, double ltst_hours) {
-  const double h = (ltst_hours - 12.0) * 15.0 * kDeg;
+  const double h = (ltst_hours - 12.0) * 15.0 * kDegree;
   const double sp = std::sin(latitude_rad), cp = std::cos(latitude_rad);
   const double sd = std::sin(declination_rad), cd = std::cos(declination_rad);
   const Eigen::Vector3d d(cp * sd - sp * cd * std::cos(h), cd * std::sin(h),
@@ -130,9 +128,9 @@ SunState SunEphemeris::At(double t) const {
     s.ltst_hours = LocalTrueSolarTimeHours(st, options_.east_longitude_deg);
     s.declination_rad = st.declination_rad;
   }
-  s.hour_angle_rad = (s.ltst_hours - 12.0) * 15.0 * kDeg;
+  s.hour_angle_rad = (s.ltst_hours - 12.0) * 15.0 * kDegree;
   s.direction_site =
-      SunDirectionSite(options_.latitude_deg * kDeg, s.declination_rad, s.ltst_hours);
+      SunDirectionSite(options_.latitude_deg * kDegree, s.declination_rad, s.ltst_hours);
   s.elevation_rad = SunElevation(s.direction_site);
   s.azimuth_rad = SunAzimuth(s.direction_site);
   return s;

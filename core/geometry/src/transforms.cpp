@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
+
 namespace rover::geometry {
 
 Eigen::Matrix3d RotationFromRpy(double roll, double pitch, double yaw) {
@@ -43,7 +45,6 @@ Rpy RpyFromQuaternion(const Eigen::Quaterniond& q) {
 
 double WrapAngle(double angle) {
   if (!std::isfinite(angle)) return angle;
-  constexpr double kPi = std::numbers::pi;
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   if (angle > -kPi && angle <= kPi) return angle;
   double a = std::fmod(angle + kPi, kTwoPi);  // (-2pi, 2pi)

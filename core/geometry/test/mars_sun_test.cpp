@@ -5,10 +5,10 @@
 #include <cmath>
 #include <string>
 
+#include "rover/base/units.hpp"
+
 namespace rover::geometry {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 TEST(MarsSun, Mars24WorkedExample) {
   // Mars24 / Allison & McEwen worked example: 2000-01-06 00:00:00 UTC, JD(TT) 2451549.50074:
@@ -23,8 +23,8 @@ TEST(MarsSun, Mars24WorkedExample) {
 TEST(MarsSun, DeclinationFollowsTheSeasons) {
   EXPECT_NEAR(SolarDeclination(0.0), 0.0, 1e-12);
   EXPECT_NEAR(SolarDeclination(180.0), 0.0, 1e-12);
-  EXPECT_NEAR(SolarDeclination(90.0) / kDeg, 25.44, 0.01);  // northern summer solstice
-  EXPECT_NEAR(SolarDeclination(270.0) / kDeg, -25.44, 0.01);
+  EXPECT_NEAR(SolarDeclination(90.0) / kDegree, 25.44, 0.01);  // northern summer solstice
+  EXPECT_NEAR(SolarDeclination(270.0) / kDegree, -25.44, 0.01);
   // Spirit's landing (2004-01-04) was in southern summer, Ls ~ 328.
   EXPECT_NEAR(ComputeMarsSolarState(1463.69).ls_deg, 327.7, 0.5);
 }
@@ -33,26 +33,26 @@ TEST(MarsSun, NoonSunIsOnTheMeridianAtTheRightElevation) {
   for (double lat : {-14.57, 0.0, 22.5, 60.0}) {
     for (double ls : {0.0, 90.0, 200.0, 270.0}) {
       const double dec = SolarDeclination(ls);
-      const Eigen::Vector3d d = SunDirectionSite(lat * kDeg, dec, 12.0);
+      const Eigen::Vector3d d = SunDirectionSite(lat * kDegree, dec, 12.0);
       EXPECT_NEAR(d.norm(), 1.0, 1e-12);
       EXPECT_NEAR(d.y(), 0.0, 1e-12) << "noon sun has no east-west component";
       // Elevation at noon: 90 deg - |latitude - declination|; north of the site if dec > lat.
-      EXPECT_NEAR(SunElevation(d), M_PI / 2 - std::abs(lat * kDeg - dec), 1e-9);
-      if (dec > lat * kDeg + 1e-9) {
+      EXPECT_NEAR(SunElevation(d), M_PI / 2 - std::abs(lat * kDegree - dec), 1e-9);
+      if (dec > lat * kDegree + 1e-9) {
         EXPECT_GT(d.x(), 0.0);
       }
-      if (dec < lat * kDeg - 1e-9) {
+      if (dec < lat * kDegree - 1e-9) {
         EXPECT_LT(d.x(), 0.0);
       }
       // Local noon is the highest sun of the day.
-      EXPECT_GT(SunElevation(d), SunElevation(SunDirectionSite(lat * kDeg, dec, 11.0)));
-      EXPECT_GT(SunElevation(d), SunElevation(SunDirectionSite(lat * kDeg, dec, 13.0)));
+      EXPECT_GT(SunElevation(d), SunElevation(SunDirectionSite(lat * kDegree, dec, 11.0)));
+      EXPECT_GT(SunElevation(d), SunElevation(SunDirectionSite(lat * kDegree, dec, 13.0)));
     }
   }
 }
 
 TEST(MarsSun, MorningEastAfternoonWestMidnightBelowHorizon) {
-  const double lat = -14.57 * kDeg, dec = SolarDeclination(330.0);
+  const double lat = -14.57 * kDegree, dec = SolarDeclination(330.0);
   const Eigen::Vector3d morning = SunDirectionSite(lat, dec, 9.0);
   const Eigen::Vector3d afternoon = SunDirectionSite(lat, dec, 15.0);
   EXPECT_LT(morning.y(), 0.0);  // east = -y (site y is west)

@@ -1,9 +1,10 @@
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include <gtest/gtest.h>
-
+#include "rover/base/units.hpp"
 #include "rover/geometry/camera_model.hpp"
 #include "test/test_models.hpp"
 
@@ -13,9 +14,6 @@ namespace {
 using testing::CameraPose;
 using testing::MakeCahv;
 using testing::Must;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 // A deliberately non-parallel NAVCAM-like pair, 1024 x 768: 30 cm baseline with a 2 cm vertical
 // and 1 cm fore-aft offset, toed in by 2 deg each, pitch differing by 0.7 deg, roll by 1 deg,
 // focal lengths differing by 1 %, different principal points and distortion.
@@ -27,13 +25,13 @@ struct Pair {
 Pair NonParallelPair() {
   const Eigen::Vector3d cl(0.8, 0.15, 1.9);
   const Eigen::Vector3d cr(0.81, -0.15, 1.92);
-  const Cahv l =
-      MakeCahv(CameraPose(cl, -2.0 * kDeg, 25.0 * kDeg, 0.3 * kDeg), 1236.0, 1234.0, 515.0, 380.0);
-  const Cahv r =
-      MakeCahv(CameraPose(cr, 2.0 * kDeg, 25.7 * kDeg, -0.7 * kDeg), 1248.0, 1247.0, 505.0, 390.0);
+  const Cahv l = MakeCahv(CameraPose(cl, -2.0 * kDegree, 25.0 * kDegree, 0.3 * kDegree), 1236.0,
+                          1234.0, 515.0, 380.0);
+  const Cahv r = MakeCahv(CameraPose(cr, 2.0 * kDegree, 25.7 * kDegree, -0.7 * kDegree), 1248.0,
+                          1247.0, 505.0, 390.0);
   Cahvor lo{l.c, l.a, l.h, l.v, l.a, Eigen::Vector3d(0.0, -0.02, 0.01)};
   Cahvor ro{r.c, r.a, r.h, r.v, r.a, Eigen::Vector3d(0.0, -0.025, 0.012)};
-  ro.o = Eigen::AngleAxisd(0.2 * kDeg, Eigen::Vector3d::UnitX()) * r.a;
+  ro.o = Eigen::AngleAxisd(0.2 * kDegree, Eigen::Vector3d::UnitX()) * r.a;
   return {Must(CameraModel::Create(lo, 1024, 768)), Must(CameraModel::Create(ro, 1024, 768))};
 }
 

@@ -1,16 +1,16 @@
 #include "rover/geometry/transforms.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
 
-#include <gtest/gtest.h>
+#include "rover/base/units.hpp"
 
 namespace rover::geometry {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Eigen::Matrix3d RandomRotation(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);

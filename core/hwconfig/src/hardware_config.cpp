@@ -8,13 +8,12 @@
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/key_checker.hpp"
+#include "rover/base/units.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 constexpr MotorKind kKinds[] = {MotorKind::kDrive, MotorKind::kSteer, MotorKind::kMastPan,
                                 MotorKind::kMastTilt};
 
@@ -67,11 +66,11 @@ Eigen::Matrix3d Mat3(const std::vector<double>& v) {
 
 // Roll, pitch, yaw [deg] of a rotation (for declaring defaults).
 std::vector<double> RpyDeg(const Eigen::Matrix3d& r) {
-  const Eigen::Vector3d rpy = geometry::RpyFromRotation(r) / kDeg;
+  const Eigen::Vector3d rpy = geometry::RpyFromRotation(r) / kDegree;
   return {rpy[0], rpy[1], rpy[2]};
 }
 Eigen::Matrix3d FromRpyDeg(const std::vector<double>& v) {
-  return geometry::RotationFromRpy(v[0] * kDeg, v[1] * kDeg, v[2] * kDeg);
+  return geometry::RotationFromRpy(v[0] * kDegree, v[1] * kDegree, v[2] * kDegree);
 }
 
 }  // namespace
@@ -142,7 +141,7 @@ double InertialSensorSpec::SampleSigma(double rate_hz) const {
 
 ImuSpec::ImuSpec() {
   // LN-200-like: gyro 1000 deg/s, ARW 0.07 deg/sqrt(h); accel 40 g, 50 ug/sqrt(Hz).
-  rover_from_case = geometry::RotationFromRpy(0.0, 0.0, 90.0 * kDeg);
+  rover_from_case = geometry::RotationFromRpy(0.0, 0.0, 90.0 * kDegree);
   gyro.lsb = 1.0e-6;
   gyro.range = 17.45;
   gyro.bias = Eigen::Vector3d(3.0e-6, -2.0e-6, 1.5e-6);
@@ -161,7 +160,7 @@ ImuSpec::ImuSpec() {
 
 SunSensorSpec::SunSensorSpec() {
   // Boresight up; detector columns to the rover's right, rows forward.
-  rover_from_sensor = geometry::RotationFromRpy(0.0, 0.0, -90.0 * kDeg);
+  rover_from_sensor = geometry::RotationFromRpy(0.0, 0.0, -90.0 * kDegree);
 }
 
 bool SunSensorSpec::SpotInFieldOfView(double col, double row) const {
@@ -313,7 +312,7 @@ Status internal::ValidateHardwareConfig(const HardwareConfig& config, std::strin
   c.Positive("sun_sensor.focal_counts", s.focal_counts);
   c.Finite("sun_sensor.principal_point", s.principal_point.x());
   c.Finite("sun_sensor.principal_point", s.principal_point.y());
-  c.InRange("sun_sensor.fov_deg", s.fov / kDeg, 1.0, 85.0);
+  c.InRange("sun_sensor.fov_deg", s.fov / kDegree, 1.0, 85.0);
   if (c.ok() &&
       s.focal_counts * std::tan(s.fov) + s.principal_point.cwiseAbs().maxCoeff() > 32000.0) {
     c.Fail("sun_sensor.focal_counts",
@@ -455,7 +454,7 @@ void DeclareHardwareParams(ParamSet& ps, const std::string& prefix) {
              "[counts] spot of a sun on the boresight (column, row)")
       .Size(2)
       .Range(-30000.0, 30000.0);
-  ps.Declare(key("sun_sensor.fov_deg"), s.fov / kDeg, "[deg] half angle of the field of view")
+  ps.Declare(key("sun_sensor.fov_deg"), s.fov / kDegree, "[deg] half angle of the field of view")
       .Range(1.0, 85.0);
   ps.Declare(key("sun_sensor.full_scale_intensity"), s.full_scale_intensity,
              "[counts] intensity of the zenith sun on the boresight")
@@ -535,7 +534,7 @@ Result<HardwareConfig> HardwareConfigFromParams(const ParamSet& ps, const std::s
   s.focal_counts = d("sun_sensor.focal_counts");
   const auto& pp = list("sun_sensor.principal_point");
   s.principal_point = Eigen::Vector2d(pp[0], pp[1]);
-  s.fov = d("sun_sensor.fov_deg") * kDeg;
+  s.fov = d("sun_sensor.fov_deg") * kDegree;
   s.full_scale_intensity = d("sun_sensor.full_scale_intensity");
   s.min_intensity = d("sun_sensor.min_intensity");
   s.spot_noise_counts = d("sun_sensor.spot_noise_counts");

@@ -6,12 +6,8 @@
 #include "rover/msg/health_idl.hpp"
 
 namespace rover::msg {
-namespace {
 
-std::uint16_t ClampSize(int v) { return static_cast<std::uint16_t>(std::clamp(v, 0, 65535)); }
-
-}  // namespace
-
+using internal::ClampSize;
 static_assert(rover_CAMERA_NAVCAM == static_cast<int>(CameraId::kNavcam));
 static_assert(rover_CAMERA_FRONT_HAZCAM == static_cast<int>(CameraId::kFrontHazcam));
 static_assert(rover_CAMERA_REAR_HAZCAM == static_cast<int>(CameraId::kRearHazcam));

@@ -6,12 +6,8 @@
 #include "idl_enum.hpp"
 
 namespace rover::msg {
-namespace {
 
-std::uint16_t ClampSize(int v) { return static_cast<std::uint16_t>(std::clamp(v, 0, 65535)); }
-
-}  // namespace
-
+using internal::ClampSize;
 static_assert(rover_hw_kNumMotors == hw::kNumMotors);
 static_assert(rover_hw_MOTOR_IDLE == static_cast<int>(hw::MotorMode::kIdle));
 static_assert(rover_hw_MOTOR_POSITION == static_cast<int>(hw::MotorMode::kPosition));

@@ -1,12 +1,16 @@
 #pragma once
-// Private to rover_msg_idl: reading a C enum field into a library enum with a check.
+// Private to rover_msg_idl: reading a C enum field into a library enum with a check, and the
+// small conversions several message families share.
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
 #include "rover/base/status.hpp"
 #include "rover/idl/access.hpp"
+#include "rover/idl/types.hpp"
 
 namespace rover::msg::internal {
 
@@ -35,5 +39,13 @@ template <class C, class E>
 C EnumToIdl(E value) {
   return static_cast<C>(static_cast<std::int32_t>(value));
 }
+
+/// A size or count clamped into an IDL uint16 field.
+inline std::uint16_t ClampSize(int v) {
+  return static_cast<std::uint16_t>(std::clamp(v, 0, 65535));
+}
+
+inline rover_Vector3 Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+inline Eigen::Vector3d Vec(const rover_Vector3& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace rover::msg::internal

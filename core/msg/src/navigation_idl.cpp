@@ -11,12 +11,12 @@
 
 namespace rover::msg {
 
+using internal::ClampSize;
+
 static_assert(rover_apl_CANDIDATE_ARC == static_cast<int>(CandidateKind::kArc));
 static_assert(rover_apl_CANDIDATE_POINT_TURN == static_cast<int>(CandidateKind::kPointTurn));
 
 namespace {
-
-std::uint16_t ClampSize(int v) { return static_cast<std::uint16_t>(std::clamp(v, 0, 65535)); }
 
 std::vector<std::uint8_t> Copy(const auto& seq) {
   const auto view = idl::View(seq);

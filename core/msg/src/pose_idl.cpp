@@ -8,10 +8,10 @@
 #include "rover/geometry/transforms.hpp"
 
 namespace rover::msg {
+
+using internal::Vec;
 namespace {
 
-Eigen::Vector3d Vec(const rover_Vector3& v) { return {v.x, v.y, v.z}; }
-rover_Vector3 Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 // Every component finite; the message names it ("pose.position.x is nan (must be finite)").
 Status CheckVecFinite(const std::string& name, const rover_Vector3& v) {
   ROVER_RETURN_IF_ERROR(CheckFinite(name + ".x", v.x));

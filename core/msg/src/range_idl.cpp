@@ -10,9 +10,9 @@
 #include "rover/msg/pose_idl.hpp"
 
 namespace rover::msg {
-namespace {
 
-std::uint16_t ClampSize(int v) { return static_cast<std::uint16_t>(std::clamp(v, 0, 65535)); }
+using internal::ClampSize;
+namespace {
 
 template <class E, class Seq>
 std::vector<E> Copy(const Seq& seq) {

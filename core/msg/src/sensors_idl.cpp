@@ -1,12 +1,12 @@
 #include "rover/msg/sensors_idl.hpp"
 
+#include "idl_enum.hpp"
 #include "rover/msg/health_idl.hpp"
 
 namespace rover::msg {
-namespace {
 
-rover_Vector3 Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Vector3d Vec(const rover_Vector3& v) { return {v.x, v.y, v.z}; }
+using internal::Vec;
+namespace {
 
 template <class A, std::size_t N>
 void Copy(const double (&src)[N], A& dst) {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "rover/base/units.hpp"
+
 namespace rover::msg {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Camera (x right, y down, z forward) at `position` in the rover frame, pitched down by `pitch`.
 Eigen::Isometry3d MountPose(double pitch, const Eigen::Vector3d& position) {
@@ -33,7 +33,7 @@ geometry::PinholeRadial HazcamPinhole(double k1 = 0.0) {
   p.cx = 127.5 + 1.3;
   p.cy = 95.5 - 0.7;
   p.k1 = k1;
-  p.pose = MountPose(45.0 * kDeg, {0.52, 0.05, 0.5});
+  p.pose = MountPose(45.0 * kDegree, {0.52, 0.05, 0.5});
   p.width = 256;
   p.height = 192;
   return p;
@@ -49,7 +49,7 @@ geometry::CameraModel CahvCamera() {
 
 geometry::CameraModel CahvorCamera() {
   geometry::Cahvor m;
-  const Eigen::Isometry3d pose = MountPose(30.0 * kDeg, {0.2, -0.1, 1.5});
+  const Eigen::Isometry3d pose = MountPose(30.0 * kDegree, {0.2, -0.1, 1.5});
   const Eigen::Vector3d x = pose.linear().col(0), y = pose.linear().col(1);
   m.c = pose.translation();
   m.a = pose.linear().col(2);
@@ -200,7 +200,7 @@ TEST(CameraModelFields, DisagreeingPartsAreRejectedAsCorrupt) {
   const Eigen::Quaterniond q(turned.orientation[0], turned.orientation[1], turned.orientation[2],
                              turned.orientation[3]);
   const Eigen::Quaterniond q2 =
-      q * Eigen::Quaterniond(Eigen::AngleAxisd(kDeg, Eigen::Vector3d::UnitX()));
+      q * Eigen::Quaterniond(Eigen::AngleAxisd(kDegree, Eigen::Vector3d::UnitX()));
   turned.orientation = {q2.w(), q2.x(), q2.y(), q2.z()};
   r = CameraModelFromFields(turned);
   ASSERT_FALSE(r.ok());

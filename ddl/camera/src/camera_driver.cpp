@@ -8,8 +8,6 @@
 namespace rover::ddl::camera {
 namespace {
 
-std::string Size(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
-
 std::string CameraList() {
   std::string s;
   for (int i = 0; i < kNumCameras; ++i) {
@@ -137,20 +135,20 @@ Result<StereoFrameData> CameraDriver::HandleFrame(const hw::CameraFrame& f) {
                            msg::CameraName(req.request.camera) + " was requested");
   }
   if (f.width < 1 || f.height < 1) {
-    return InvalidArgument(id + ": empty image size " + Size(f.width, f.height));
+    return InvalidArgument(id + ": empty image size " + FormatSize(f.width, f.height));
   }
   const std::size_t bytes = static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height);
   if (f.left.size() != bytes || f.right.size() != bytes) {
     return InvalidArgument(id + ": " + std::to_string(f.left.size()) + " left and " +
                            std::to_string(f.right.size()) + " right bytes for a " +
-                           Size(f.width, f.height) + " image");
+                           FormatSize(f.width, f.height) + " image");
   }
   const StereoCameraCalibration& cam = calibration_.cameras[static_cast<std::size_t>(f.camera)];
   const int cw = cam.left.width(), ch = cam.left.height();
   if (static_cast<std::int64_t>(f.width) * ch != static_cast<std::int64_t>(f.height) * cw ||
       f.width > cw) {
-    return InvalidArgument(id + ": image size " + Size(f.width, f.height) + " is not " +
-                           Size(cw, ch) + " or a binning of it (the " + cam.name +
+    return InvalidArgument(id + ": image size " + FormatSize(f.width, f.height) + " is not " +
+                           FormatSize(cw, ch) + " or a binning of it (the " + cam.name +
                            " calibration's size)");
   }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "rover/base/format.hpp"
+
 namespace rover::ddl::camera {
 namespace {
 
@@ -28,17 +30,15 @@ std::vector<std::vector<Tap>> AreaTaps(int in, int out) {
   return taps;
 }
 
-std::string Size(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
-
 Status CheckImage(const GrayImage& im, const char* name) {
   if (im.width < 1 || im.height < 1) {
-    return InvalidArgument(std::string(name) + ": image size " + Size(im.width, im.height) +
+    return InvalidArgument(std::string(name) + ": image size " + FormatSize(im.width, im.height) +
                            " is empty");
   }
   if (im.pixels.size() !=
       static_cast<std::size_t>(im.width) * static_cast<std::size_t>(im.height)) {
     return InvalidArgument(std::string(name) + ": " + std::to_string(im.pixels.size()) +
-                           " bytes for a " + Size(im.width, im.height) + " image");
+                           " bytes for a " + FormatSize(im.width, im.height) + " image");
   }
   return Status::Ok();
 }
@@ -48,8 +48,8 @@ Status CheckImage(const GrayImage& im, const char* name) {
 Result<GrayImage> AreaDownsample(const GrayImage& in, int out_w, int out_h) {
   ROVER_RETURN_IF_ERROR(CheckImage(in, "input"));
   if (out_w < 1 || out_h < 1 || out_w > in.width || out_h > in.height) {
-    return InvalidArgument("output size " + Size(out_w, out_h) + " must be within 1x1.." +
-                           Size(in.width, in.height) + " (no upsampling)");
+    return InvalidArgument("output size " + FormatSize(out_w, out_h) + " must be within 1x1.." +
+                           FormatSize(in.width, in.height) + " (no upsampling)");
   }
   GrayImage out;
   out.width = out_w;
@@ -93,16 +93,18 @@ Result<DownsampledStereo> DownsampleStereo(const GrayImage& left, const GrayImag
   ROVER_RETURN_IF_ERROR(CheckImage(left, "left"));
   ROVER_RETURN_IF_ERROR(CheckImage(right, "right"));
   if (left.width != right.width || left.height != right.height) {
-    return InvalidArgument("left image is " + Size(left.width, left.height) + " but right is " +
-                           Size(right.width, right.height));
+    return InvalidArgument("left image is " + FormatSize(left.width, left.height) +
+                           " but right is " + FormatSize(right.width, right.height));
   }
   if (left_model.width() != left.width || left_model.height() != left.height) {
-    return InvalidArgument("left model is for " + Size(left_model.width(), left_model.height()) +
-                           " but the image is " + Size(left.width, left.height));
+    return InvalidArgument("left model is for " +
+                           FormatSize(left_model.width(), left_model.height()) +
+                           " but the image is " + FormatSize(left.width, left.height));
   }
   if (right_model.width() != right.width || right_model.height() != right.height) {
-    return InvalidArgument("right model is for " + Size(right_model.width(), right_model.height()) +
-                           " but the image is " + Size(right.width, right.height));
+    return InvalidArgument("right model is for " +
+                           FormatSize(right_model.width(), right_model.height()) +
+                           " but the image is " + FormatSize(right.width, right.height));
   }
   if (out_width < 0 || out_width > left.width) {
     return InvalidArgument("width " + std::to_string(out_width) + " must be within 0.." +

@@ -10,14 +10,13 @@
 #include <numbers>
 #include <sstream>
 
+#include "rover/base/units.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover::ddl::camera {
 namespace {
 
 const std::string kDeployFile = std::string(ROVER_SOURCE_DIR) + "/deploy/config/cameras.yaml";
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 // The design of deploy/config/cameras.yaml rebuilt with core/geometry (see the file's header).
 geometry::Cahvor Design(const Eigen::Vector3d& c, const Eigen::Matrix3d& r, double f) {
   geometry::Cahvor m;
@@ -62,25 +61,25 @@ TEST(CameraCalibration, DeployFileIsTheMerLikeDesign) {
   const auto& nav = cal->cameras[0];
   EXPECT_EQ(nav.name, "navcam");
   EXPECT_EQ(nav.mount, CameraMount::kMastHead);
-  const double fn = 512.0 / std::tan(22.5 * kDeg);
+  const double fn = 512.0 / std::tan(22.5 * kDegree);
   const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
   ExpectSame(nav.left, Design({0.05, 0.10, 0.0}, id, fn), "navcam left");
   ExpectSame(nav.right, Design({0.05, -0.10, 0.0}, id, fn), "navcam right");
-  EXPECT_NEAR(HorizontalFov(nav.left) / kDeg, 45.0, 0.1);  // 45.07 with the barrel term
+  EXPECT_NEAR(HorizontalFov(nav.left) / kDegree, 45.0, 0.1);  // 45.07 with the barrel term
 
-  const double t = std::tan(60.0 * kDeg);
+  const double t = std::tan(60.0 * kDegree);
   const double fh = 512.0 / (t * (1.0 - 0.01 * t * t));
   for (int i = 1; i <= 2; ++i) {
     const auto& hz = cal->cameras[static_cast<std::size_t>(i)];
     EXPECT_EQ(hz.mount, CameraMount::kBody);
     const double yaw = i == 1 ? 0.0 : std::numbers::pi;
-    const Eigen::Matrix3d r = geometry::RotationFromRpy(0.0, 45.0 * kDeg, yaw);
+    const Eigen::Matrix3d r = geometry::RotationFromRpy(0.0, 45.0 * kDegree, yaw);
     const Eigen::Vector3d centre(i == 1 ? 0.52 : -0.52, 0.0, 0.50);
     ExpectSame(hz.left, Design(centre + r * Eigen::Vector3d(0, 0.05, 0), r, fh), hz.name.c_str());
     ExpectSame(hz.right, Design(centre + r * Eigen::Vector3d(0, -0.05, 0), r, fh), hz.name.c_str());
-    EXPECT_NEAR(HorizontalFov(hz.left) / kDeg, 120.0, 1e-6);
+    EXPECT_NEAR(HorizontalFov(hz.left) / kDegree, 120.0, 1e-6);
     const auto* m = hz.left.As<geometry::Cahvor>();
-    EXPECT_NEAR(std::asin(-m->a.z()) / kDeg, 45.0, 1e-9);  // looks 45 deg down
+    EXPECT_NEAR(std::asin(-m->a.z()) / kDegree, 45.0, 1e-9);  // looks 45 deg down
     EXPECT_NEAR((hz.left.Center() - hz.right.Center()).norm(), 0.10, 1e-12);
     EXPECT_EQ(m->a.x() > 0, i == 1);  // front / rear
   }

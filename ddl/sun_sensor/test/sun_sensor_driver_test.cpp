@@ -6,16 +6,15 @@
 #include <cmath>
 
 #ifdef ROVER_HAVE_SIM_SENSORS
-#include "rover/geometry/transforms.hpp"
+#include "rover/base/units.hpp"
 #include "rover/geometry/mars_sun.hpp"
+#include "rover/geometry/transforms.hpp"
 #include "rover/sim/sensors/sim_sensor_options.hpp"
 #include "rover/sim/sensors/sun_sensor_model.hpp"
 #endif
 
 namespace rover::ddl::sun_sensor {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 double Angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
@@ -39,15 +38,16 @@ TEST(SunSensorDriver, SpotToRoverFrameVector) {
   EXPECT_LT(Angle(s.sun_vector, Eigen::Vector3d::UnitZ()), 1e-12);  // boresight = rover up
   EXPECT_NEAR(s.intensity, 1.0, 1e-12);
   // Rows run forward: a spot at +f tan(30 deg) rows is 30 deg forward of the zenith.
-  s = driver->Convert(Raw(0, spec.focal_counts * std::tan(30 * kDeg), 2000));
+  s = driver->Convert(Raw(0, spec.focal_counts * std::tan(30 * kDegree), 2000));
   ASSERT_TRUE(s.valid);
-  EXPECT_LT(Angle(s.sun_vector, Eigen::Vector3d(std::sin(30 * kDeg), 0, std::cos(30 * kDeg))),
+  EXPECT_LT(Angle(s.sun_vector, Eigen::Vector3d(std::sin(30 * kDegree), 0, std::cos(30 * kDegree))),
             0.5 / spec.focal_counts);
   EXPECT_NEAR(s.sun_vector.norm(), 1.0, 1e-12);
   // Columns run to the rover's right (-y).
-  s = driver->Convert(Raw(spec.focal_counts * std::tan(20 * kDeg), 0, 2000));
-  EXPECT_LT(Angle(s.sun_vector, Eigen::Vector3d(0, -std::sin(20 * kDeg), std::cos(20 * kDeg))),
-            0.5 / spec.focal_counts);
+  s = driver->Convert(Raw(spec.focal_counts * std::tan(20 * kDegree), 0, 2000));
+  EXPECT_LT(
+      Angle(s.sun_vector, Eigen::Vector3d(0, -std::sin(20 * kDegree), std::cos(20 * kDegree))),
+      0.5 / spec.focal_counts);
 }
 
 TEST(SunSensorDriver, ValidityAndHealth) {
@@ -62,11 +62,11 @@ TEST(SunSensorDriver, ValidityAndHealth) {
   EXPECT_FALSE(s.valid);
   EXPECT_NE(s.reason.find("dim"), std::string::npos);
   // A bright spot 70 deg off the boresight cannot come through 60 deg optics.
-  s = driver->Convert(Raw(spec.focal_counts * std::tan(70 * kDeg), 0, 2000));
+  s = driver->Convert(Raw(spec.focal_counts * std::tan(70 * kDegree), 0, 2000));
   EXPECT_FALSE(s.valid);
   EXPECT_EQ(s.health, msg::SensorHealth::kFailed);
   // Right at the edge (59.9 deg) is fine.
-  EXPECT_TRUE(driver->Convert(Raw(0, -spec.focal_counts * std::tan(59.9 * kDeg), 500)).valid);
+  EXPECT_TRUE(driver->Convert(Raw(0, -spec.focal_counts * std::tan(59.9 * kDegree), 500)).valid);
   SunSensorSpec bad = spec;
   bad.focal_counts = -1.0;
   EXPECT_FALSE(SunSensorDriver::Create(bad).ok());
@@ -108,8 +108,8 @@ TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {
   const SunSensor s = driver->Convert(real.Sample(noon.direction_site, attitude, Time{}));
   ASSERT_TRUE(s.valid);
   const double err = Angle(s.sun_vector, attitude.transpose() * noon.direction_site);
-  EXPECT_GT(err, 0.05 * kDeg);
-  EXPECT_LT(err, 0.6 * kDeg);
+  EXPECT_GT(err, 0.05 * kDegree);
+  EXPECT_LT(err, 0.6 * kDegree);
 }
 #else
 TEST(SunSensorDriver, RoundTripThroughTheSimulatedSensorAndEphemeris) {

@@ -10,14 +10,13 @@
 #include <numbers>
 #include <vector>
 
+#include "rover/base/units.hpp"
 #include "rover/testing/service_harness.hpp"
 
 namespace rover::ddl::sun_sensor {
 namespace {
 
 using testing::ServiceHarness;
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 class SunServiceTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -42,7 +41,7 @@ class SunServiceTest : public ::testing::Test {
     return m;
   }
   static Eigen::Vector3d Direction(double azimuth_deg, double elevation_deg) {
-    const double az = azimuth_deg * kDeg, el = elevation_deg * kDeg;
+    const double az = azimuth_deg * kDegree, el = elevation_deg * kDegree;
     return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
   }
   // 0.5 s steps (2 Hz); each sample sent waits for its output.

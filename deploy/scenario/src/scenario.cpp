@@ -9,12 +9,11 @@
 #include <numbers>
 #include <sstream>
 
+#include "rover/base/units.hpp"
 #include "rover/base/yaml_check.hpp"
 
 namespace rover::deploy {
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-
 using yaml::CheckKeys;
 using yaml::Line;
 using yaml::OptionalNumber;
@@ -57,12 +56,12 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::judge::JudgeCriteri
     if (!has) return c.At(h, "criteria.heading: needs 'deg'");
     ROVER_RETURN_IF_ERROR(
         OptionalNumber(h, "tolerance_deg", "criteria.heading", 0.01, 180, c, &tol));
-    cr->target_heading = deg * kDegToRad;
-    cr->heading_tolerance = tol * kDegToRad;
+    cr->target_heading = deg * kDegree;
+    cr->heading_tolerance = tol * kDegree;
   }
-  double tilt = cr->max_tilt / kDegToRad;
+  double tilt = cr->max_tilt / kDegree;
   ROVER_RETURN_IF_ERROR(OptionalNumber(n, "max_tilt_deg", "criteria", 0.1, 89.9, c, &tilt));
-  cr->max_tilt = tilt * kDegToRad;
+  cr->max_tilt = tilt * kDegree;
   ROVER_RETURN_IF_ERROR(
       OptionalNumber(n, "traversable_height", "criteria", 0.01, 2.0, c, &cr->traversable_height));
   double v = 0;
@@ -75,7 +74,7 @@ Status ParseCriteria(const YAML::Node& n, const Ctx& c, sim::judge::JudgeCriteri
   if (has) cr->max_estimate_error_fraction = v / 100.0;
   ROVER_RETURN_IF_ERROR(
       OptionalNumber(n, "max_estimate_heading_error_deg", "criteria", 0.001, 180, c, &v, &has));
-  if (has) cr->max_estimate_heading_error = v * kDegToRad;
+  if (has) cr->max_estimate_heading_error = v * kDegree;
   ROVER_RETURN_IF_ERROR(OptionalNumber(n, "min_distance", "criteria", 0, 1e5, c, &v, &has));
   if (has) cr->min_distance = v;
   ROVER_RETURN_IF_ERROR(OptionalNumber(n, "max_hazard_contacts", "criteria", 0, 1e6, c, &v, &has));
@@ -165,7 +164,7 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
       ROVER_RETURN_IF_ERROR(OptionalNumber(st, "x", "rover.start", -1e4, 1e4, c, &s.start_x));
       ROVER_RETURN_IF_ERROR(OptionalNumber(st, "y", "rover.start", -1e4, 1e4, c, &s.start_y));
       ROVER_RETURN_IF_ERROR(OptionalNumber(st, "yaw_deg", "rover.start", -360, 360, c, &yaw));
-      s.start_yaw = yaw * kDegToRad;
+      s.start_yaw = yaw * kDegree;
     }
   }
   if (!root["task"]) return c.At(1, "missing 'task' (what the rover is to do)");

@@ -6,11 +6,10 @@
 
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::dl::locomotion {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 double Wrap(double a) {
   if (!std::isfinite(a)) return a;
@@ -434,8 +433,8 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
   tilt_count_ = tilt > options_.max_tilt ? tilt_count_ + 1 : 0;
   if (tilt_count_ >= options_.tilt_cycles) {
     Terminate(now, DriveTermination::kTilt,
-              "tilt " + FormatNumber(tilt / kDeg) + " deg over " +
-                  FormatNumber(options_.max_tilt / kDeg) + " deg for " +
+              "tilt " + FormatNumber(tilt / kDegree) + " deg over " +
+                  FormatNumber(options_.max_tilt / kDegree) + " deg for " +
                   std::to_string(tilt_count_) + " cycles",
               out);
     return;
@@ -447,9 +446,9 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
     const double r = joint_->rocker_angle[s];
     const double b = joint_->bogie_angle[s];
     if (r < options_.rocker_min || r > options_.rocker_max) {
-      bad = std::string(side) + " rocker " + FormatNumber(r / kDeg) + " deg";
+      bad = std::string(side) + " rocker " + FormatNumber(r / kDegree) + " deg";
     } else if (b < options_.bogie_min || b > options_.bogie_max) {
-      bad = std::string(side) + " bogie " + FormatNumber(b / kDeg) + " deg";
+      bad = std::string(side) + " bogie " + FormatNumber(b / kDegree) + " deg";
     }
   }
   suspension_count_ = bad.empty() ? 0 : suspension_count_ + 1;
@@ -501,7 +500,7 @@ void DriveExecutor::RunCycle(Time now, DriveOutput* out) {
     const double e = plan_.angle - heading_change_;
     if (std::abs(e) <= options_.heading_tolerance) {
       Terminate(now, DriveTermination::kNominal,
-                "heading reached (error " + FormatNumber(e / kDeg) + " deg)", out);
+                "heading reached (error " + FormatNumber(e / kDegree) + " deg)", out);
       return;
     }
     const double magnitude =
@@ -540,31 +539,32 @@ void DeclareDriveParams(ParamSet& params, const std::string& prefix) {
   decl("default_speed", d.default_speed, "[m/s] speed when a command gives 0").Range(1e-4, 5.0);
   decl("max_speed", d.max_speed, "[m/s] largest accepted command speed").Range(1e-4, 5.0);
   decl("max_distance", d.max_distance, "[m] largest accepted |distance|").Range(0.01, 1000.0);
-  decl("max_turn_angle_deg", d.max_turn_angle / kDeg, "[deg] largest accepted |angle|")
+  decl("max_turn_angle_deg", d.max_turn_angle / kDegree, "[deg] largest accepted |angle|")
       .Range(1.0, 3600.0);
   decl("max_timeout_s", d.max_timeout_s, "[s] largest accepted timeout_s").Range(1.0, 86400.0);
-  decl("steer_tolerance_deg", d.steer_tolerance / kDeg, "[deg] steering reached").Range(0.01, 20.0);
-  decl("steer_rate_deg", d.steer_rate / kDeg, "[deg/s] steer motor rate").Range(0.1, 360.0);
+  decl("steer_tolerance_deg", d.steer_tolerance / kDegree, "[deg] steering reached")
+      .Range(0.01, 20.0);
+  decl("steer_rate_deg", d.steer_rate / kDegree, "[deg/s] steer motor rate").Range(0.1, 360.0);
   decl("wheel_goal_tolerance", d.wheel_goal_tolerance, "[rad] a wheel turned its planned rotation")
       .Range(1e-4, 1.0);
-  decl("heading_tolerance_deg", d.heading_tolerance / kDeg, "[deg] turn-in-place goal")
+  decl("heading_tolerance_deg", d.heading_tolerance / kDegree, "[deg] turn-in-place goal")
       .Range(0.01, 20.0);
   decl("turn_gain", d.turn_gain, "[1/s] yaw-rate command per rad of heading error")
       .Range(0.01, 100.0);
-  decl("min_turn_rate_deg", d.min_turn_rate / kDeg, "[deg/s] smallest commanded yaw rate")
+  decl("min_turn_rate_deg", d.min_turn_rate / kDegree, "[deg/s] smallest commanded yaw rate")
       .Range(0.001, 90.0);
-  decl("max_tilt_deg", d.max_tilt / kDeg, "[deg] tilt limit").Range(1.0, 89.0);
+  decl("max_tilt_deg", d.max_tilt / kDegree, "[deg] tilt limit").Range(1.0, 89.0);
   params.Declare(prefix + "tilt_cycles", 3, "consecutive 8 Hz cycles over the tilt limit")
       .Range(1, 1000);
   params
       .Declare(prefix + "rocker_range_deg",
-               std::vector<double>{d.rocker_min / kDeg, d.rocker_max / kDeg},
+               std::vector<double>{d.rocker_min / kDegree, d.rocker_max / kDegree},
                "[deg] allowed rocker angles [min, max]")
       .Size(2)
       .Range(-90.0, 90.0);
   params
       .Declare(prefix + "bogie_range_deg",
-               std::vector<double>{d.bogie_min / kDeg, d.bogie_max / kDeg},
+               std::vector<double>{d.bogie_min / kDegree, d.bogie_max / kDegree},
                "[deg] allowed bogie angles [min, max]")
       .Size(2)
       .Range(-90.0, 90.0);
@@ -586,22 +586,22 @@ Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params, const std::s
   o.default_speed = params.GetDouble(prefix + "default_speed");
   o.max_speed = params.GetDouble(prefix + "max_speed");
   o.max_distance = params.GetDouble(prefix + "max_distance");
-  o.max_turn_angle = params.GetDouble(prefix + "max_turn_angle_deg") * kDeg;
+  o.max_turn_angle = params.GetDouble(prefix + "max_turn_angle_deg") * kDegree;
   o.max_timeout_s = params.GetDouble(prefix + "max_timeout_s");
-  o.steer_tolerance = params.GetDouble(prefix + "steer_tolerance_deg") * kDeg;
-  o.steer_rate = params.GetDouble(prefix + "steer_rate_deg") * kDeg;
+  o.steer_tolerance = params.GetDouble(prefix + "steer_tolerance_deg") * kDegree;
+  o.steer_rate = params.GetDouble(prefix + "steer_rate_deg") * kDegree;
   o.wheel_goal_tolerance = params.GetDouble(prefix + "wheel_goal_tolerance");
-  o.heading_tolerance = params.GetDouble(prefix + "heading_tolerance_deg") * kDeg;
+  o.heading_tolerance = params.GetDouble(prefix + "heading_tolerance_deg") * kDegree;
   o.turn_gain = params.GetDouble(prefix + "turn_gain");
-  o.min_turn_rate = params.GetDouble(prefix + "min_turn_rate_deg") * kDeg;
-  o.max_tilt = params.GetDouble(prefix + "max_tilt_deg") * kDeg;
+  o.min_turn_rate = params.GetDouble(prefix + "min_turn_rate_deg") * kDegree;
+  o.max_tilt = params.GetDouble(prefix + "max_tilt_deg") * kDegree;
   o.tilt_cycles = static_cast<int>(params.GetInt(prefix + "tilt_cycles"));
   const auto& rr = params.GetDoubleList(prefix + "rocker_range_deg");
   const auto& br = params.GetDoubleList(prefix + "bogie_range_deg");
-  o.rocker_min = rr[0] * kDeg;
-  o.rocker_max = rr[1] * kDeg;
-  o.bogie_min = br[0] * kDeg;
-  o.bogie_max = br[1] * kDeg;
+  o.rocker_min = rr[0] * kDegree;
+  o.rocker_max = rr[1] * kDegree;
+  o.bogie_min = br[0] * kDegree;
+  o.bogie_max = br[1] * kDegree;
   o.suspension_cycles = static_cast<int>(params.GetInt(prefix + "suspension_cycles"));
   o.joint_stale_s = params.GetDouble(prefix + "joint_stale_s");
   o.attitude_stale_s = params.GetDouble(prefix + "attitude_stale_s");

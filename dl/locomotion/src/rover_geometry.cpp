@@ -6,12 +6,12 @@
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/param_binder.hpp"
+#include "rover/base/units.hpp"
 #include "rover/dl/locomotion/ackermann.hpp"
 
 namespace rover::dl::locomotion {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 using hwconfig::WheelName;
 
 // Point q (x, z) rotated about pivot c (x, z) by the link angle a (front up positive).
@@ -95,7 +95,7 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
   if (!std::isfinite(g.max_steer_angle) || g.max_steer_angle <= 0.0 ||
       g.max_steer_angle >= std::numbers::pi / 2) {
     return Issue("max_steer_angle", "max_steer_angle_deg",
-                 FormatNumber(g.max_steer_angle / kDeg) + " deg must be in (0, 90)");
+                 FormatNumber(g.max_steer_angle / kDegree) + " deg must be in (0, 90)");
   }
   double max_abs_y = 0.0;
   for (const auto& w : c) max_abs_y = std::max(max_abs_y, std::abs(w.y()));
@@ -113,8 +113,8 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
       const double a = ArcSteerAngle(g, j, k);
       if (std::abs(a) > g.max_steer_angle) {
         return Issue("max_steer_angle", "max_steer_angle_deg",
-                     FormatNumber(g.max_steer_angle / kDeg) + " deg is below the " +
-                         FormatNumber(std::abs(a) / kDeg) + " deg the " +
+                     FormatNumber(g.max_steer_angle / kDegree) + " deg is below the " +
+                         FormatNumber(std::abs(a) / kDegree) + " deg the " +
                          WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                          " wheel needs at the minimum turn radius");
       }
@@ -124,8 +124,8 @@ GeometryIssue CheckRoverGeometry(const RoverGeometry& g) {
     const double a = TurnInPlaceSteerAngle(g, j);
     if (std::abs(a) > g.max_steer_angle) {
       return Issue("max_steer_angle", "max_steer_angle_deg",
-                   FormatNumber(g.max_steer_angle / kDeg) + " deg is below the " +
-                       FormatNumber(std::abs(a) / kDeg) + " deg the " +
+                   FormatNumber(g.max_steer_angle / kDegree) + " deg is below the " +
+                       FormatNumber(std::abs(a) / kDegree) + " deg the " +
                        WheelName(kSteeredWheel[static_cast<std::size_t>(j)]) +
                        " wheel needs to turn in place");
     }

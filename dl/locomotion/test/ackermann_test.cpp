@@ -5,10 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
+
 namespace rover::dl::locomotion {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::Vector2d Pos(const RoverGeometry& g, int wheel) {
   return g.wheel_centre[static_cast<std::size_t>(wheel)].head<2>();
@@ -32,7 +32,7 @@ RoverGeometry OddGeometry() {
                     Eigen::Vector3d(0.05, -0.51, 0.125), Eigen::Vector3d(-0.60, -0.50, 0.125)};
   g.bogie_pivot = Eigen::Vector2d(-0.27, 0.3);
   g.min_turn_radius = 1.1;
-  g.max_steer_angle = 75 * kDeg;
+  g.max_steer_angle = 75 * kDegree;
   return g;
 }
 

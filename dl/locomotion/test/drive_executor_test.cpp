@@ -8,10 +8,11 @@
 #include <numbers>
 #include <vector>
 
+#include "rover/base/units.hpp"
+
 namespace rover::dl::locomotion {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr auto kTick = std::chrono::milliseconds(25);  // 40 Hz plant and sensors
 constexpr double kTickS = 0.025;
 
@@ -266,12 +267,12 @@ TEST_P(TurnInPlaceTest, EndsAtTheCommandedHeadingWithinOneDegree) {
   const auto [angle_deg, slip] = GetParam();
   plant_.yaw_slip = slip;
   const double yaw0 = plant_.yaw;
-  Submit(Turn(angle_deg * kDeg));
+  Submit(Turn(angle_deg * kDegree));
   const DriveStatus end = RunUntilIdle();
   EXPECT_EQ(end.state, DriveState::kDone);
   EXPECT_EQ(end.termination, DriveTermination::kNominal) << end.message;
-  EXPECT_NEAR(plant_.yaw - yaw0, angle_deg * kDeg, 1.0 * kDeg);
-  EXPECT_NEAR(end.heading_change, angle_deg * kDeg, 1.0 * kDeg);
+  EXPECT_NEAR(plant_.yaw - yaw0, angle_deg * kDegree, 1.0 * kDegree);
+  EXPECT_NEAR(end.heading_change, angle_deg * kDegree, 1.0 * kDegree);
   EXPECT_NEAR(plant_.x, 0.0, 1e-9);
   // Velocity goals on the drive motors, left side backwards for a left turn.
   bool saw_velocity = false;
@@ -296,12 +297,12 @@ TEST_F(DriveExecutorTest, TiltOverTheLimitForNCyclesTerminates) {
   RunFor(3.0);
   ASSERT_TRUE(ex_->busy());
   // A transient spike of two cycles is tolerated (tilt_cycles = 3).
-  plant_.roll = 35 * kDeg;
+  plant_.roll = 35 * kDegree;
   RunFor(2 * 0.125);
   plant_.roll = 0.0;
   RunFor(0.5);
   ASSERT_TRUE(ex_->busy());
-  plant_.pitch = -32 * kDeg;
+  plant_.pitch = -32 * kDegree;
   const Time set = now_;
   const DriveStatus end = RunUntilIdle();
   EXPECT_EQ(end.state, DriveState::kFailed);
@@ -316,7 +317,7 @@ TEST_F(DriveExecutorTest, TiltOverTheLimitForNCyclesTerminates) {
 TEST_F(DriveExecutorTest, SuspensionOutOfRangeTerminates) {
   Submit(Arc(-0.3, 1.0));
   RunFor(4.0);
-  plant_.bogie[1] = -40 * kDeg;
+  plant_.bogie[1] = -40 * kDegree;
   const DriveStatus end = RunUntilIdle();
   EXPECT_EQ(end.termination, DriveTermination::kSuspension);
   EXPECT_NE(end.message.find("right bogie"), std::string::npos) << end.message;

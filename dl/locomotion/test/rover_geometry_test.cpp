@@ -5,10 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
+
 namespace rover::dl::locomotion {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(RoverGeometry, DefaultsAreValidAndMatchTheDesign) {
   const RoverGeometry g;
@@ -57,7 +57,7 @@ TEST(RoverGeometry, ZeroSuspensionAnglesGiveTheNominalCentres) {
 TEST(RoverGeometry, RockerAndBogieRaiseTheFrontOfTheirLinks) {
   const RoverGeometry g;
   SuspensionAngles s;
-  s.rocker[0] = 10 * kDeg;  // left rocker front up
+  s.rocker[0] = 10 * kDegree;  // left rocker front up
   const Eigen::Vector3d lf = g.WheelCentre(0, s);
   const Eigen::Vector3d lr = g.WheelCentre(2, s);
   EXPECT_GT(lf.z(), g.wheel_centre[0].z());
@@ -70,14 +70,14 @@ TEST(RoverGeometry, RockerAndBogieRaiseTheFrontOfTheirLinks) {
   EXPECT_TRUE(g.WheelCentre(3, s).isApprox(g.wheel_centre[3]));
 
   SuspensionAngles b;
-  b.bogie[1] = 5 * kDeg;  // right bogie front up: RM up, RR down
+  b.bogie[1] = 5 * kDegree;  // right bogie front up: RM up, RR down
   EXPECT_GT(g.WheelCentre(4, b).z(), g.wheel_centre[4].z());
   EXPECT_LT(g.WheelCentre(5, b).z(), g.wheel_centre[5].z());
   EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(3, b), 0.0);
-  EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(4, b), 5 * kDeg);
-  s.bogie[0] = 3 * kDeg;
-  EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(1, s), 13 * kDeg);
-  EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(0, s), 10 * kDeg);
+  EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(4, b), 5 * kDegree);
+  s.bogie[0] = 3 * kDegree;
+  EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(1, s), 13 * kDegree);
+  EXPECT_DOUBLE_EQ(RoverGeometry::LinkPitch(0, s), 10 * kDegree);
 }
 
 TEST(RoverGeometry, ValidateNamesTheBadField) {
@@ -89,7 +89,7 @@ TEST(RoverGeometry, ValidateNamesTheBadField) {
   EXPECT_NE(g.Validate().message().find("min_turn_radius"), std::string::npos);
   g = RoverGeometry();
   g.min_turn_radius = 2.0;        // Ackermann needs 22.6 deg at most
-  g.max_steer_angle = 45 * kDeg;  // but turn in place needs 51.3 deg
+  g.max_steer_angle = 45 * kDegree;  // but turn in place needs 51.3 deg
   const Status s = g.Validate();
   EXPECT_NE(s.message().find("max_steer_angle"), std::string::npos) << s.message();
   EXPECT_NE(s.message().find("turn in place"), std::string::npos) << s.message();

@@ -6,12 +6,11 @@
 #include <numbers>
 #include <vector>
 
+#include "rover/base/units.hpp"
 #include "rover/dl/locomotion/ackermann.hpp"
 
 namespace rover::dl::locomotion {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct Pose2 {
   double x = 0, y = 0, yaw = 0;
@@ -119,14 +118,14 @@ TEST(WheelOdometry, RecoversATurnInPlace) {
   WheelOdometry odo = MakeOdometry(g);
   SampleWriter w(g);
   w.Emit();
-  w.TurnInPlace(-75 * kDeg, 50);
+  w.TurnInPlace(-75 * kDegree, 50);
   double path = 0.0;
   const Pose2 p = Integrate(odo, w.samples(), &path);
   EXPECT_NEAR(p.x, 0.0, 1e-12);
   EXPECT_NEAR(p.y, 0.0, 1e-12);
-  EXPECT_NEAR(p.yaw, -75 * kDeg, 1e-12);
+  EXPECT_NEAR(p.yaw, -75 * kDegree, 1e-12);
   // Mean wheel path of the turn: (4 corners * 0.8004 m + 2 middles * 0.5 m) / 6 per radian.
-  EXPECT_NEAR(path, (4 * std::hypot(0.625, 0.5) + 2 * 0.5) / 6 * 75 * kDeg, 1e-9);
+  EXPECT_NEAR(path, (4 * std::hypot(0.625, 0.5) + 2 * 0.5) / 6 * 75 * kDegree, 1e-9);
 }
 
 TEST(WheelOdometry, RecoversAKnownPlanarPath) {
@@ -167,8 +166,8 @@ TEST(WheelOdometry, SuspensionArticulationIsNotMistakenForMotion) {
     msg::JointState next = js;
     next.stamp = js.stamp + Seconds(0.05);
     const double a = std::sin(std::numbers::pi * n / steps);
-    next.rocker_angle = {12 * kDeg * a, -4 * kDeg * a};
-    next.bogie_angle = {-3 * kDeg * a, -9 * kDeg * a};
+    next.rocker_angle = {12 * kDegree * a, -4 * kDegree * a};
+    next.bogie_angle = {-3 * kDegree * a, -9 * kDegree * a};
     SuspensionAngles s0{js.rocker_angle, js.bogie_angle};
     SuspensionAngles s1{next.rocker_angle, next.bogie_angle};
     for (int i = 0; i < 6; ++i) {

@@ -8,13 +8,13 @@
 #include <numbers>
 
 #include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
 #include "rover/msg/drive_idl.hpp"
 #include "rover/runtime/dds.hpp"
 
 namespace rover::dl::locomotion::tools {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr const char* kProgram = "rover-drive";
 constexpr const char* kPrimitives = "arc, straight, turn, steer, stop";
 
@@ -107,7 +107,7 @@ ParseOutcome ParseDriveCli(int argc, const char* const* argv, const char* env_do
     if (a_deg->count() == 0 && a_rad->count() == 0) {
       return Error("turn needs --angle-deg A [deg] or --angle A [rad]");
     }
-    o.angle = a_deg->count() > 0 ? angle_deg * kDeg : angle_rad;
+    o.angle = a_deg->count() > 0 ? angle_deg * kDegree : angle_rad;
   }
 
   if (domain_opt->count() == 0 && env_domain != nullptr && *env_domain != '\0') {
@@ -204,7 +204,7 @@ std::string FormatDriveStatus(const rover_dl_DriveStatus& s) {
   }
   char tail[96];
   std::snprintf(tail, sizeof(tail), "  distance %.3f m  heading %.1f deg", s.distance_done,
-                s.heading_change / kDeg);
+                s.heading_change / kDegree);
   line += tail;
   const std::string message(s.message, strnlen(s.message, sizeof(s.message)));
   if (!message.empty()) line += "  " + message;

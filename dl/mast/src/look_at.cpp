@@ -5,11 +5,10 @@
 
 #include "rover/base/format.hpp"
 #include "rover/base/range_check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::dl::mast {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Bearing errors (azimuth, elevation) [rad] of rover-frame point q seen from the NAVCAM pair.
 Eigen::Vector2d BearingError(const hwconfig::RoverDescription& rover, const PanTilt& a,
@@ -21,7 +20,7 @@ Eigen::Vector2d BearingError(const hwconfig::RoverDescription& rover, const PanT
 
 double WrapPi(double a) { return std::remainder(a, 2.0 * kPi); }
 
-std::string Deg(double rad) { return FormatNumber(rad / kDegree, 4); }
+std::string DegText(double rad) { return FormatNumber(rad / kDegree, 4); }
 
 std::string FormatPoint(const Eigen::Vector3d& p) {
   return FormatList(std::span<const double>(p.data(), 3), 4);
@@ -32,12 +31,12 @@ std::string FormatPoint(const Eigen::Vector3d& p) {
 Status CheckMastLimits(const PanTilt& angles, const MastOptions& limits,
                        const std::string& what_pan, const std::string& what_tilt) {
   if (!(angles.pan >= limits.pan_min && angles.pan <= limits.pan_max)) {
-    return InvalidArgument(what_pan + " = " + Deg(angles.pan) + " deg, outside [" +
-                           Deg(limits.pan_min) + ", " + Deg(limits.pan_max) + "] deg");
+    return InvalidArgument(what_pan + " = " + DegText(angles.pan) + " deg, outside [" +
+                           DegText(limits.pan_min) + ", " + DegText(limits.pan_max) + "] deg");
   }
   if (!(angles.tilt >= limits.tilt_min && angles.tilt <= limits.tilt_max)) {
-    return InvalidArgument(what_tilt + " = " + Deg(angles.tilt) + " deg, outside [" +
-                           Deg(limits.tilt_min) + ", " + Deg(limits.tilt_max) + "] deg");
+    return InvalidArgument(what_tilt + " = " + DegText(angles.tilt) + " deg, outside [" +
+                           DegText(limits.tilt_min) + ", " + DegText(limits.tilt_max) + "] deg");
   }
   return Status::Ok();
 }

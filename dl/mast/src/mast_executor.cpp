@@ -13,7 +13,7 @@ namespace {
 // (ddl/joint_state and ddl/motor_status come from different services).
 constexpr double kSettleS = 1.0;
 
-std::string Deg(double rad) { return FormatNumber(rad / kDegree, 4) + " deg"; }
+std::string DegWithUnit(double rad) { return FormatNumber(rad / kDegree, 4) + " deg"; }
 
 }  // namespace
 
@@ -152,7 +152,7 @@ MastOutput MastExecutor::Submit(const MastCommand& c, Time now) {
   status_.command_id = c.command_id;
   status_.pan_goal = goal->pan;
   status_.tilt_goal = goal->tilt;
-  std::string msg = "moving to pan " + Deg(goal->pan) + ", tilt " + Deg(goal->tilt);
+  std::string msg = "moving to pan " + DegWithUnit(goal->pan) + ", tilt " + DegWithUnit(goal->tilt);
   if (superseded != 0) msg += " (supersedes command " + std::to_string(superseded) + ")";
   SetStatus(MastState::kMoving, std::move(msg), now, &out);
   return out;
@@ -195,16 +195,17 @@ MastOutput MastExecutor::Step(Time now) {
   }
   const double elapsed = ToSeconds(now - move_start_);
   if (elapsed > move_timeout_s_) {
-    Fault("timeout after " + FormatNumber(elapsed, 4) + " s (timeout_s = " +
-              FormatNumber(move_timeout_s_) + "): pan " + Deg(joints_->pan) + " of " +
-              Deg(status_.pan_goal) + ", tilt " + Deg(joints_->tilt) + " of " +
-              Deg(status_.tilt_goal),
+    Fault("timeout after " + FormatNumber(elapsed, 4) +
+              " s (timeout_s = " + FormatNumber(move_timeout_s_) + "): pan " +
+              DegWithUnit(joints_->pan) + " of " + DegWithUnit(status_.pan_goal) + ", tilt " +
+              DegWithUnit(joints_->tilt) + " of " + DegWithUnit(status_.tilt_goal),
           now, &out);
     return out;
   }
   if (motors_done_ && ToSeconds(now - done_at_) > kSettleS) {
-    Fault("motors done but pan " + Deg(joints_->pan) + ", tilt " + Deg(joints_->tilt) +
-              " are not within tolerance " + Deg(options_.tolerance) + " of the goal",
+    Fault("motors done but pan " + DegWithUnit(joints_->pan) + ", tilt " +
+              DegWithUnit(joints_->tilt) + " are not within tolerance " +
+              DegWithUnit(options_.tolerance) + " of the goal",
           now, &out);
     return out;
   }

@@ -8,18 +8,13 @@
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::dl::pose {
 
 using locomotion::RoverGeometry;
 using locomotion::WheelOdometry;
 using locomotion::WheelOdometryOptions;
-
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
 
 Status PoseFusionOptions::Validate() const { return ephemeris.Validate(); }
 
@@ -36,7 +31,7 @@ void PoseFusionOptions::BindParams(ParamBinder<PoseFusionOptions>& b) {
   b.BindDegrees("sun.min_elevation_deg", &PoseFusionOptions::sun_min_elevation,
                 "ignore sun samples when the ephemeris sun is lower than this")
       .Range(-90.0, 90.0);
-  b.BindScaled("sun.max_rate_deg_s", &PoseFusionOptions::sun_max_rate, kDeg, "deg/s",
+  b.BindScaled("sun.max_rate_deg_s", &PoseFusionOptions::sun_max_rate, kDegree, "deg/s",
                "ignore sun samples while the rover turns faster than this (a sample's latency "
                "times the turn rate would be a heading error; MER took sun images at rest)")
       .Range(0.0, 100.0);
@@ -143,9 +138,9 @@ void PoseEstimator::Start(const StartDecision& d) {
   log::Info("pose estimator started",
             {{"how", d.at_rest ? "levelled at rest" : "not levelled at rest"},
              {"t_s", d.init.stamp.seconds()},
-             {"roll_deg", d.roll_pitch.x() / kDeg},
-             {"pitch_deg", d.roll_pitch.y() / kDeg},
-             {"yaw_deg", fusion_.start.yaw / kDeg},
+             {"roll_deg", d.roll_pitch.x() / kDegree},
+             {"pitch_deg", d.roll_pitch.y() / kDegree},
+             {"yaw_deg", fusion_.start.yaw / kDegree},
              {"gyro_bias_z", d.init.gyro_bias.z()},
              {"gyro_bias_sigma", d.init.gyro_bias_sigma}});
 }

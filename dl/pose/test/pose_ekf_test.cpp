@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "rover/base/units.hpp"
 #include "rover/dl/pose/chi_square.hpp"
 #include "rover/geometry/transforms.hpp"
 
@@ -20,9 +21,6 @@ using geometry::ExpSo3;
 using geometry::LogSo3;
 using geometry::RotationFromRpy;
 using geometry::RpyFromRotation;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 Eigen::Matrix3d RotZ(double a) {
   return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
@@ -41,11 +39,11 @@ struct SimConfig {
   int sun_every = 50;      // 1 Hz sun sensor (0: none)
   int accel_every = 25;    // 2 Hz accelerometer when at rest
   double sun_start_s = 0;  // no sun before this time
-  Eigen::Matrix3d plane = RotationFromRpy(4 * kDeg, -3 * kDeg, 0.0);  // terrain tilt
-  double initial_yaw = 30 * kDeg;
+  Eigen::Matrix3d plane = RotationFromRpy(4 * kDegree, -3 * kDegree, 0.0);  // terrain tilt
+  double initial_yaw = 30 * kDegree;
   Eigen::Vector3d sun_site =
-      Eigen::Vector3d(std::cos(35 * kDeg) * std::cos(120 * kDeg),
-                      std::cos(35 * kDeg) * std::sin(120 * kDeg), std::sin(35 * kDeg));
+      Eigen::Vector3d(std::cos(35 * kDegree) * std::cos(120 * kDegree),
+                      std::cos(35 * kDegree) * std::sin(120 * kDegree), std::sin(35 * kDegree));
   // Odometry noise model (WheelOdometry's), per metre of mean wheel path.
   double along = 1e-3, cross = 1e-3, yaw = 3e-4;
   double turn_radius = 0.7;     // mean wheel radius of a turn in place [m]
@@ -53,7 +51,7 @@ struct SimConfig {
   // Visual odometry.
   double vo_every_s = 0.0;  // 0: none
   double vo_delay_s = 0.5;  // delivered this long after t_to
-  double vo_sigma_p = 0.01, vo_sigma_th = 0.5 * kDeg;
+  double vo_sigma_p = 0.01, vo_sigma_th = 0.5 * kDegree;
   // Truth initialisation.
   bool draw_initial_errors = true;
   Eigen::Vector3d true_bias = Eigen::Vector3d::Constant(std::nan(""));  // NaN: drawn from prior
@@ -254,7 +252,7 @@ EkfOptions TestOptions() {
 EkfInitialState TestInit() {
   EkfInitialState init;
   init.position_sigma = Eigen::Vector3d::Constant(0.02);
-  init.rpy_sigma = Eigen::Vector3d(1.5 * kDeg, 1.5 * kDeg, 5 * kDeg);
+  init.rpy_sigma = Eigen::Vector3d(1.5 * kDegree, 1.5 * kDegree, 5 * kDegree);
   init.gyro_bias_sigma = 5e-4;
   return init;
 }
@@ -346,14 +344,14 @@ TEST(PoseEkf, SunSensorRemovesAnInjectedHeadingDrift) {
   }
   sim.Run(drive);  // 400 s without sun
   const double drift = sim.HeadingError();
-  EXPECT_GT(std::abs(drift), 10 * kDeg) << "drift " << drift / kDeg << " deg";
+  EXPECT_GT(std::abs(drift), 10 * kDegree) << "drift " << drift / kDegree << " deg";
   const HeadingEstimate before = sim.ekf().Heading();
   EXPECT_GT(std::sqrt(before.variance), std::abs(drift) / 3) << "filter should know it drifted";
   sim.Run({{60, 0.05, 0.0}});  // sun at 1 Hz
-  EXPECT_LT(std::abs(sim.HeadingError()), 0.5 * kDeg);
+  EXPECT_LT(std::abs(sim.HeadingError()), 0.5 * kDegree);
   EXPECT_NEAR(sim.ekf().gyro_bias().z(), sim.truth().b.z(), 1e-4);
   const HeadingEstimate after = sim.ekf().Heading();
-  EXPECT_LT(std::sqrt(after.variance), 0.5 * kDeg);
+  EXPECT_LT(std::sqrt(after.variance), 0.5 * kDegree);
   int sun_events = 0, sun_accepted = 0;
   for (const auto& e : sim.events) {
     if (e.source != MotionSource::kSunSensor) continue;
@@ -370,7 +368,7 @@ TEST(PoseEkf, CorruptedSunVectorIsGatedOut) {
   Simulation sim(3, TestOptions(), cfg, TestInit());
   sim.Run({{20, 0, 0}});
   const Eigen::Matrix3d r = sim.ekf().rotation();
-  const Eigen::Vector3d wrong = RotZ(30 * kDeg) * (sim.truth().R.transpose() * cfg.sun_site);
+  const Eigen::Vector3d wrong = RotZ(30 * kDegree) * (sim.truth().R.transpose() * cfg.sun_site);
   ASSERT_TRUE(sim.ekf().UpdateSunSensor(Time::FromSeconds(20), wrong, cfg.sun_site).ok());
   const auto events = sim.ekf().TakeEvents();
   ASSERT_EQ(events.size(), 1u);
@@ -386,10 +384,10 @@ TEST(PoseEkf, CorruptedSunVectorIsGatedOut) {
 TEST(PoseEkf, AccelerometerLevelsRollAndPitchAtRestButNotHeading) {
   EkfOptions o = TestOptions();
   PoseEkf ekf = PoseEkf::Create(o).value();
-  const Eigen::Matrix3d truth = RotationFromRpy(5 * kDeg, -7 * kDeg, 40 * kDeg);
+  const Eigen::Matrix3d truth = RotationFromRpy(5 * kDegree, -7 * kDegree, 40 * kDegree);
   EkfInitialState init;
-  init.attitude = Eigen::Quaterniond(RotationFromRpy(2 * kDeg, -4 * kDeg, 40 * kDeg));
-  init.rpy_sigma = Eigen::Vector3d(4 * kDeg, 4 * kDeg, 10 * kDeg);
+  init.attitude = Eigen::Quaterniond(RotationFromRpy(2 * kDegree, -4 * kDegree, 40 * kDegree));
+  init.rpy_sigma = Eigen::Vector3d(4 * kDegree, 4 * kDegree, 10 * kDegree);
   ASSERT_TRUE(ekf.Initialize(init).ok());
   const double yaw_var0 = ekf.Heading().variance;
   std::mt19937_64 rng(5);
@@ -403,9 +401,9 @@ TEST(PoseEkf, AccelerometerLevelsRollAndPitchAtRestButNotHeading) {
   }
   EXPECT_TRUE(ekf.stationary());
   const Eigen::Vector3d rpy = ekf.Estimate().rpy;
-  EXPECT_NEAR(rpy.x(), 5 * kDeg, 0.2 * kDeg);
-  EXPECT_NEAR(rpy.y(), -7 * kDeg, 0.2 * kDeg);
-  EXPECT_NEAR(rpy.z(), 40 * kDeg, 0.5 * kDeg);  // heading not observed: stays where it was
+  EXPECT_NEAR(rpy.x(), 5 * kDegree, 0.2 * kDegree);
+  EXPECT_NEAR(rpy.y(), -7 * kDegree, 0.2 * kDegree);
+  EXPECT_NEAR(rpy.z(), 40 * kDegree, 0.5 * kDegree);  // heading not observed: stays where it was
   EXPECT_GT(ekf.Heading().variance, 0.9 * yaw_var0);
   const auto events = ekf.TakeEvents();
   // One update per accel_update_interval_s (0.5 s) after the 0.5 s stationary delay.
@@ -542,7 +540,7 @@ TEST(PoseEkf, RelativePosesReduceOdometryDrift) {
   cfg.odometry_scale = 1.15;
   cfg.draw_initial_errors = false;
   cfg.vo_sigma_p = 0.005;
-  cfg.vo_sigma_th = 0.2 * kDeg;
+  cfg.vo_sigma_th = 0.2 * kDegree;
   const std::vector<Segment> drive = {
       {60, 0.05, 0.0}, {20, 0.0, 0.05}, {60, 0.05, 0.01}, {20, 0.0, -0.05}, {60, 0.05, 0.0}};
   Simulation dead(21, TestOptions(), cfg, TestInit());
@@ -626,23 +624,23 @@ TEST(PoseEkf, RelativePoseWaitsForTheFilterAndChecksTheWindow) {
 TEST(PoseEkf, OutputCovarianceIsOverRollPitchYaw) {
   PoseEkf ekf = PoseEkf::Create(EkfOptions()).value();
   EkfInitialState init;
-  init.attitude = Eigen::Quaterniond(RotationFromRpy(10 * kDeg, -20 * kDeg, 135 * kDeg));
+  init.attitude = Eigen::Quaterniond(RotationFromRpy(10 * kDegree, -20 * kDegree, 135 * kDegree));
   init.position = Eigen::Vector3d(1, 2, 3);
   init.position_sigma = Eigen::Vector3d(0.1, 0.2, 0.3);
   init.rpy_sigma = Eigen::Vector3d(0.01, 0.02, 0.3);
   ASSERT_TRUE(ekf.Initialize(init).ok());
   const PoseEstimate e = ekf.Estimate();
   EXPECT_TRUE(e.position.isApprox(init.position));
-  EXPECT_NEAR(e.rpy.x(), 10 * kDeg, 1e-12);
-  EXPECT_NEAR(e.rpy.y(), -20 * kDeg, 1e-12);
-  EXPECT_NEAR(e.rpy.z(), 135 * kDeg, 1e-12);
+  EXPECT_NEAR(e.rpy.x(), 10 * kDegree, 1e-12);
+  EXPECT_NEAR(e.rpy.y(), -20 * kDegree, 1e-12);
+  EXPECT_NEAR(e.rpy.z(), 135 * kDegree, 1e-12);
   EXPECT_GE(e.orientation.w(), 0.0);
   Eigen::Matrix<double, 6, 1> var;
   var << 0.01, 0.04, 0.09, 1e-4, 4e-4, 0.09;
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(e.covariance(i, i), var(i), 1e-12) << i;
   EXPECT_NEAR(e.covariance(3, 5), 0.0, 1e-12);
   const HeadingEstimate h = ekf.Heading();
-  EXPECT_NEAR(h.yaw, 135 * kDeg, 1e-12);
+  EXPECT_NEAR(h.yaw, 135 * kDegree, 1e-12);
   EXPECT_NEAR(h.variance, 0.09, 1e-12);
 
   // Numerical check of the angle Jacobian: a small site-frame rotation of the state and the

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "pose_test_support.hpp"
+#include "rover/base/units.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover::dl::pose {
@@ -16,17 +18,14 @@ using locomotion::WheelOdometryOptions;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kG = 3.711;
-
-Time T(double s) { return Time::FromSeconds(s); }
+using testing::T;
 
 msg::Imu Imu(Time t, const Eigen::Vector3d& w = Eigen::Vector3d::Zero(),
              msg::SensorHealth health = msg::SensorHealth::kOk) {
   msg::Imu m;
   m.stamp = t;
   m.angular_velocity = w;
-  m.linear_acceleration = Eigen::Vector3d(0, 0, kG);  // level, at rest
+  m.linear_acceleration = Eigen::Vector3d(0, 0, kMarsGravity);  // level, at rest
   m.health = health;
   return m;
 }
@@ -36,7 +35,7 @@ class PoseEstimatorTest : public ::testing::Test {
   void SetUp() override { Make(PoseFusionOptions()); }
   void Make(PoseFusionOptions fusion) {
     fusion.start.level_samples = 50;
-    ekf_.gravity = kG;
+    ekf_.gravity = kMarsGravity;
     auto e = PoseEstimator::Create(ekf_, RoverGeometry(), WheelOdometryOptions(), fusion);
     ASSERT_TRUE(e.ok()) << e.status().ToString();
     est_.emplace(std::move(*e));
@@ -111,7 +110,7 @@ TEST_F(PoseEstimatorTest, SunUpdatesOnlyWhenSteadyAndTheSunIsHighEnough) {
   EXPECT_EQ(events[0].source, MotionSource::kSunSensor);
   EXPECT_TRUE(events[0].accepted) << events[0].message;
   // Turning faster than sun.max_rate (0.2 deg/s): no update.
-  Feed(1.0, 0.5, 1.0 * kDeg);
+  Feed(1.0, 0.5, 1.0 * kDegree);
   est_->OnSunSensor(Sun(1.49));
   EXPECT_TRUE(SunEvents().empty());
   // Not valid, or FAILED: no update.
@@ -129,7 +128,7 @@ TEST_F(PoseEstimatorTest, SunUpdatesOnlyWhenSteadyAndTheSunIsHighEnough) {
 
   // A sun below sun.min_elevation is ignored.
   PoseFusionOptions high;
-  high.sun_min_elevation = 89.0 * kDeg;
+  high.sun_min_elevation = 89.0 * kDegree;
   Make(high);
   Feed(0.0, 1.0);
   est_->OnSunSensor(Sun(0.99));
@@ -183,9 +182,9 @@ TEST(PoseFusionOptions, ParametersKeepTheirKeysAndDefaults) {
           .ok());
   auto o = ReadParams<PoseFusionOptions>(ps, "");
   ASSERT_TRUE(o.ok()) << o.status().ToString();
-  EXPECT_NEAR(o->sun_min_elevation, 10.0 * kDeg, 1e-15);
+  EXPECT_NEAR(o->sun_min_elevation, 10.0 * kDegree, 1e-15);
   EXPECT_EQ(o->run_start_s, 5.0);
-  EXPECT_NEAR(o->sun_max_rate, 0.2 * kDeg, 1e-15);
+  EXPECT_NEAR(o->sun_max_rate, 0.2 * kDegree, 1e-15);
 }
 
 }  // namespace

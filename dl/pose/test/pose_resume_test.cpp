@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "pose_test_support.hpp"
+#include "rover/base/units.hpp"
 #include "rover/dl/pose/pose_estimator.hpp"
 
 namespace rover::dl::pose {
@@ -16,9 +18,7 @@ using locomotion::WheelOdometryOptions;
 
 namespace {
 
-constexpr double kG = 3.711;
-
-Time T(double s) { return Time::FromSeconds(s); }
+using testing::T;
 
 SavedFilter Saved(double t_s) {
   SavedFilter s;
@@ -138,7 +138,7 @@ class PoseEstimatorResumeTest : public ::testing::Test {
     PoseFusionOptions fusion;
     fusion.start.level_samples = 50;
     EkfOptions ekf;
-    ekf.gravity = kG;
+    ekf.gravity = kMarsGravity;
     auto e = PoseEstimator::Create(ekf, RoverGeometry(), WheelOdometryOptions(), fusion);
     ASSERT_TRUE(e.ok()) << e.status().ToString();
     est_.emplace(std::move(*e));
@@ -146,7 +146,7 @@ class PoseEstimatorResumeTest : public ::testing::Test {
   void Imu(double t_s) {
     msg::Imu m;
     m.stamp = T(t_s);
-    m.linear_acceleration = Eigen::Vector3d(0, 0, kG);
+    m.linear_acceleration = Eigen::Vector3d(0, 0, kMarsGravity);
     est_->OnImu(m);
   }
   std::optional<PoseEstimator> est_;

@@ -5,7 +5,6 @@
 #include "pose_service.hpp"
 
 #include <gtest/gtest.h>
-
 #include <stdlib.h>
 
 #include <cmath>
@@ -16,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "rover/base/units.hpp"
 #include "rover/dl/pose/chi_square.hpp"
 #include "rover/geometry/transforms.hpp"
 #include "rover/testing/fakes/fake_imu.hpp"
@@ -24,7 +24,6 @@
 namespace rover::dl::pose {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kStep = 0.01;  // 100 Hz IMU and sim/clock
 constexpr std::int64_t kStepNs = 10'000'000;
 
@@ -164,7 +163,7 @@ TEST_F(PoseServiceTest, PublishesAtTheConfiguredRateOnTheSimClock) {
 
 TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate) {
   Start({"start.yaw_deg=10", "start.x=2", "start.y=-3"});
-  const double roll = 4.0 * kDeg, pitch = -3.0 * kDeg, g = 3.711;
+  const double roll = 4.0 * kDegree, pitch = -3.0 * kDegree, g = 3.711;
   imu_.specific_force = g * Eigen::Vector3d(-std::sin(pitch), std::sin(roll) * std::cos(pitch),
                                             std::cos(roll) * std::cos(pitch));
   Advance(1.0);  // at rest: levels after 50 samples (0.5 s)
@@ -173,7 +172,7 @@ TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate)
   Eigen::Vector3d rpy = RpyOf(start);
   EXPECT_NEAR(rpy.x(), roll, 1e-6);
   EXPECT_NEAR(rpy.y(), pitch, 1e-6);
-  EXPECT_NEAR(rpy.z(), 10.0 * kDeg, 1e-6);
+  EXPECT_NEAR(rpy.z(), 10.0 * kDegree, 1e-6);
   EXPECT_NEAR(start.pose.position.x, 2.0, 1e-9);
   EXPECT_NEAR(start.pose.position.y, -3.0, 1e-9);
   EXPECT_NEAR(start.gyro_bias.z, 0.0, 1e-12);
@@ -194,7 +193,7 @@ TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate)
   const Eigen::Quaterniond expected = q(start) * Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ());
   EXPECT_LT(expected.angularDistance(q(end)), 1e-5);
   rpy = RpyOf(end);
-  EXPECT_NEAR(rpy.z(), 10.0 * kDeg + 1.0, 0.02);
+  EXPECT_NEAR(rpy.z(), 10.0 * kDegree + 1.0, 0.02);
   EXPECT_GT(end.covariance[35], yaw_var0);  // heading uncertainty grows with gyro propagation
   EXPECT_TRUE(end.stationary);
   EXPECT_EQ(end.rejected_measurements, 0u);
@@ -224,7 +223,7 @@ TEST_F(PoseServiceTest, SunSensorCorrectsAWrongStartHeadingWithTheSharedEphemeri
   Start({"start.yaw_deg=6"});  // the rover really faces north (yaw 0)
   const geometry::SunEphemeris sun{geometry::SunEphemerisOptions{}};  // the simulator's defaults
   Advance(1.0);
-  ASSERT_NEAR(RpyOf(poses_.back().pose).z(), 6.0 * kDeg, 1e-6);
+  ASSERT_NEAR(RpyOf(poses_.back().pose).z(), 6.0 * kDegree, 1e-6);
   Advance(5.0, [&] {
     if (step_ % 50 != 0) return;  // 2 Hz
     rover_ddl_SunSensor s{};
@@ -236,12 +235,12 @@ TEST_F(PoseServiceTest, SunSensorCorrectsAWrongStartHeadingWithTheSharedEphemeri
     s.health = rover_HEALTH_OK;
     EXPECT_TRUE(sun_w_.Write(s).ok());
   });
-  EXPECT_NEAR(RpyOf(poses_.back().pose).z(), 0.0, 0.5 * kDeg);
+  EXPECT_NEAR(RpyOf(poses_.back().pose).z(), 0.0, 0.5 * kDegree);
   // The dl/pose_odometry baseline takes no sun updates: it keeps the wrong start heading.
   ASSERT_NE(service_.odometry_only(), nullptr);
   ASSERT_TRUE(service_.odometry_only()->initialized());
   EXPECT_NEAR(geometry::RpyFromQuaternion(service_.odometry_only()->Estimate().orientation).z(),
-              6.0 * kDeg, 1e-3 * kDeg);
+              6.0 * kDegree, 1e-3 * kDegree);
   int sun_events = 0;
   for (const auto& e : events_) {
     if (e.source != rover_dl_SOURCE_SUN_SENSOR) continue;

@@ -7,25 +7,25 @@
 #include <optional>
 #include <random>
 
+#include "pose_test_support.hpp"
+#include "rover/base/units.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover::dl::pose {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kG = 3.711;
-
 EkfOptions Ekf() {
   EkfOptions o;
-  o.gravity = kG;
+  o.gravity = kMarsGravity;
   return o;
 }
 
-Time T(double s) { return Time::FromSeconds(s); }
+using testing::T;
 
 // The specific force at rest for a rover at roll, pitch (any yaw).
 Eigen::Vector3d AtRest(double roll, double pitch) {
-  return geometry::RotationFromRpy(roll, pitch, 1.0).transpose() * Eigen::Vector3d(0, 0, kG);
+  return geometry::RotationFromRpy(roll, pitch, 1.0).transpose() *
+         Eigen::Vector3d(0, 0, kMarsGravity);
 }
 
 TEST(PoseStartup, LevelFromSpecificForceInvertsTheModel) {
@@ -38,12 +38,12 @@ TEST(PoseStartup, LevelsOnAStationaryStretchWithTheMeanGyroAsTheBias) {
   PoseStartOptions start;
   start.level_samples = 200;
   start.x = 1.0;
-  start.yaw = 30.0 * kDeg;
+  start.yaw = 30.0 * kDegree;
   Leveller l(start, Ekf());
   std::mt19937_64 rng(7);
   std::normal_distribution<double> noise(0.0, 1e-4);
   const Eigen::Vector3d bias(2e-4, -1e-4, 3e-4);
-  const Eigen::Vector3d f = AtRest(3.0 * kDeg, -2.0 * kDeg);
+  const Eigen::Vector3d f = AtRest(3.0 * kDegree, -2.0 * kDegree);
   // A few moving samples first (|w| above the threshold): they break the stretch.
   for (int k = 0; k < 10; ++k) {
     EXPECT_FALSE(l.Add(T(0.01 * k), Eigen::Vector3d(0, 0, 0.1), f).has_value());
@@ -58,12 +58,12 @@ TEST(PoseStartup, LevelsOnAStationaryStretchWithTheMeanGyroAsTheBias) {
   EXPECT_EQ(k, 210);  // exactly level_samples still samples
   EXPECT_TRUE(d->at_rest);
   EXPECT_EQ(d->samples, 200);
-  EXPECT_NEAR(d->roll_pitch.x(), 3.0 * kDeg, 1e-9);
-  EXPECT_NEAR(d->roll_pitch.y(), -2.0 * kDeg, 1e-9);
+  EXPECT_NEAR(d->roll_pitch.x(), 3.0 * kDegree, 1e-9);
+  EXPECT_NEAR(d->roll_pitch.y(), -2.0 * kDegree, 1e-9);
   EXPECT_LT((d->init.gyro_bias - bias).norm(), 3e-5);
   EXPECT_EQ(d->init.stamp, T(0.01 * 209));
   EXPECT_EQ(d->init.position, Eigen::Vector3d(1, 0, 0));
-  EXPECT_NEAR(geometry::RpyFromRotation(d->init.attitude.toRotationMatrix()).z(), 30.0 * kDeg,
+  EXPECT_NEAR(geometry::RpyFromRotation(d->init.attitude.toRotationMatrix()).z(), 30.0 * kDegree,
               1e-12);
   // The bias sigma is the standard error of the mean over the 1.99 s stretch.
   const double span = ToSeconds(T(0.01 * 209) - T(0.01 * 10));
@@ -79,7 +79,7 @@ TEST(PoseStartup, WithoutAStillStretchItStartsFromThePlausibleSamplesAtTheTimeou
   start.level_samples = 1000;
   start.level_timeout_s = 1.0;
   Leveller l(start, Ekf());
-  const Eigen::Vector3d f = AtRest(0.0, 5.0 * kDeg);
+  const Eigen::Vector3d f = AtRest(0.0, 5.0 * kDegree);
   std::optional<StartDecision> d;
   for (int k = 0; k <= 100 && !d.has_value(); ++k) {
     // Always turning; every third sample has an implausible |f| (a bump) and is not averaged.
@@ -90,7 +90,7 @@ TEST(PoseStartup, WithoutAStillStretchItStartsFromThePlausibleSamplesAtTheTimeou
   EXPECT_FALSE(d->at_rest);
   EXPECT_NEAR(d->waited_s, 1.0, 1e-9);
   EXPECT_EQ(d->samples, 67);  // k = 1, 2, 4, 5, ... 100
-  EXPECT_NEAR(d->roll_pitch.y(), 5.0 * kDeg, 1e-9);
+  EXPECT_NEAR(d->roll_pitch.y(), 5.0 * kDegree, 1e-9);
   EXPECT_EQ(d->init.gyro_bias, Eigen::Vector3d::Zero());
   EXPECT_EQ(d->init.gyro_bias_sigma, start.gyro_bias_sigma);
 
@@ -127,7 +127,7 @@ TEST(PoseStartup, ParametersKeepTheirKeysAndDefaults) {
       ps.LoadYamlString("start:\n  yaw_deg: 90\n  y: 2\n  level_samples: 10\n", "s.yaml").ok());
   auto o = ReadParams<PoseStartOptions>(ps, "start.");
   ASSERT_TRUE(o.ok()) << o.status().ToString();
-  EXPECT_NEAR(o->yaw, 90.0 * kDeg, 1e-15);
+  EXPECT_NEAR(o->yaw, 90.0 * kDegree, 1e-15);
   EXPECT_EQ(o->y, 2.0);
   EXPECT_EQ(o->level_samples, 10);
   EXPECT_DOUBLE_EQ(o->tilt_sigma, PoseStartOptions().tilt_sigma);

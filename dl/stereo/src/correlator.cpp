@@ -16,6 +16,8 @@
 #endif
 
 namespace rover::dl::stereo {
+
+using internal::Describe;
 namespace {
 
 constexpr int kInfCost = 0x7FFF;  // larger than any window cost (checked before correlating)
@@ -125,6 +127,7 @@ struct Ops {
   }
 };
 #include "correlator_kernel.inc"
+#include "describe.hpp"
 }  // namespace avx2
 #pragma GCC pop_options
 #endif  // ROVER_STEREO_X86
@@ -153,10 +156,6 @@ bool Supported(SimdLevel level) {
       return DetectSimdLevel() == SimdLevel::kAvx2;
   }
   return false;
-}
-
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
 }
 
 std::size_t RoundUp(std::size_t x, std::size_t m) { return (x + m - 1) / m * m; }

@@ -11,12 +11,12 @@
 #include <sstream>
 #include <vector>
 
-namespace rover::dl::stereo {
-namespace {
+#include "describe.hpp"
 
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
-}
+namespace rover::dl::stereo {
+
+using internal::Describe;
+namespace {
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

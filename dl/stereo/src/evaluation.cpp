@@ -4,15 +4,11 @@
 #include <limits>
 #include <string>
 
+#include "describe.hpp"
+
 namespace rover::dl::stereo {
-namespace {
 
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
-}
-
-}  // namespace
-
+using internal::Describe;
 Result<DisparityScore> ScoreDisparity(const cv::Mat& estimate, const cv::Mat& truth,
                                       const cv::Mat& nonoccluded, double scale) {
   if (estimate.empty() || truth.empty()) return InvalidArgument("estimate or truth is empty");

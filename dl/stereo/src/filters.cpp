@@ -12,16 +12,15 @@
 #include <emmintrin.h>
 #endif
 
+#include "describe.hpp"
 #include "filters_internal.hpp"
 
 namespace rover::dl::stereo {
+
+using internal::Describe;
 namespace {
 
 constexpr auto kValid = static_cast<std::uint8_t>(PixelStatus::kValid);
-
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
-}
 
 Status CheckImage(const DisparityImage* d) {
   if (d == nullptr || d->empty()) return InvalidArgument("disparity image is empty");

@@ -6,11 +6,15 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "describe.hpp"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 namespace rover::dl::stereo {
+
+using internal::Describe;
 
 const char* PrefilterKindName(PrefilterKind k) {
   switch (k) {
@@ -51,10 +55,6 @@ Status PrefilterOptions::Validate() const {
 }
 
 namespace {
-
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
-}
 
 // Kernel size covering +-3 sigma, odd.
 int KernelSize(double sigma) { return 2 * static_cast<int>(std::ceil(3.0 * sigma)) + 1; }

@@ -3,24 +3,20 @@
 #include <chrono>
 #include <string>
 
+#include "describe.hpp"
 #include "filters_internal.hpp"
 #include "worker_pool.hpp"
 
 namespace rover::dl::stereo {
+
+using internal::Describe;
+using internal::SizeText;
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
 double Ms(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
-}
-
-std::string SizeText(cv::Size s) {
-  return std::to_string(s.width) + "x" + std::to_string(s.height);
 }
 
 }  // namespace

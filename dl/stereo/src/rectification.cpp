@@ -5,20 +5,17 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "describe.hpp"
+
 namespace rover::dl::stereo {
+
+using internal::Describe;
+using internal::SizeText;
 namespace {
 
 std::string Num(double x) {
   std::string s = std::to_string(x);
   return s;
-}
-
-std::string Describe(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows) + " " + cv::typeToString(m.type());
-}
-
-std::string SizeText(cv::Size s) {
-  return std::to_string(s.width) + "x" + std::to_string(s.height);
 }
 
 Status CheckMapPair(const char* name, const cv::Mat& x, const cv::Mat& y, cv::Size size) {

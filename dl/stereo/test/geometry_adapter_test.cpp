@@ -1,19 +1,18 @@
 #include "rover/dl/stereo/geometry_adapter.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
-#include <gtest/gtest.h>
-
+#include "rover/base/units.hpp"
 #include "rover/dl/stereo/pipeline.hpp"
 #include "test_images.hpp"
 
 namespace rover::dl::stereo {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Camera (x right, y down, z forward) at `position` in the rover frame, pitched down by `pitch`
 // and turned left by `yaw`.
@@ -69,8 +68,8 @@ cv::Mat RenderGround(const geometry::CameraModel& cam) {
 }
 
 TEST(GeometryAdapterTest, ParallelPairGivesItsOwnModelAndPose) {
-  const Eigen::Isometry3d left_pose = CameraPose(30 * kDeg, 0.0, {0.0, 0.1, 1.0});
-  const Eigen::Isometry3d right_pose = CameraPose(30 * kDeg, 0.0, {0.0, -0.1, 1.0});
+  const Eigen::Isometry3d left_pose = CameraPose(30 * kDegree, 0.0, {0.0, 0.1, 1.0});
+  const Eigen::Isometry3d right_pose = CameraPose(30 * kDegree, 0.0, {0.0, -0.1, 1.0});
   auto setup = MakeStereoSetup(Pinhole(left_pose, 0.0), Pinhole(right_pose, 0.0));
   ASSERT_TRUE(setup.ok()) << setup.status().ToString();
   const RectifiedStereoModel& m = setup->camera.model;
@@ -89,8 +88,8 @@ TEST(GeometryAdapterTest, ParallelPairGivesItsOwnModelAndPose) {
 // Toed-in cameras with barrel distortion: rectify through core/geometry's maps, correlate, and
 // the points land on the ground (z = 0 in the rover frame).
 TEST(GeometryAdapterTest, DistortedToedInPairRangesTheGround) {
-  const auto left = Pinhole(CameraPose(30 * kDeg, -1.5 * kDeg, {0.0, 0.1, 1.0}), -0.08);
-  const auto right = Pinhole(CameraPose(30 * kDeg, 1.5 * kDeg, {0.0, -0.1, 1.0}), -0.08);
+  const auto left = Pinhole(CameraPose(30 * kDegree, -1.5 * kDegree, {0.0, 0.1, 1.0}), -0.08);
+  const auto right = Pinhole(CameraPose(30 * kDegree, 1.5 * kDegree, {0.0, -0.1, 1.0}), -0.08);
   auto setup = MakeStereoSetup(left, right);
   ASSERT_TRUE(setup.ok()) << setup.status().ToString();
   StereoOptions o;
@@ -116,8 +115,8 @@ TEST(GeometryAdapterTest, DistortedToedInPairRangesTheGround) {
 }
 
 TEST(GeometryAdapterTest, Errors) {
-  const auto left = Pinhole(CameraPose(30 * kDeg, 0.0, {0.0, 0.1, 1.0}), 0.0);
-  const auto right = Pinhole(CameraPose(30 * kDeg, 0.0, {0.0, -0.1, 1.0}), 0.0);
+  const auto left = Pinhole(CameraPose(30 * kDegree, 0.0, {0.0, 0.1, 1.0}), 0.0);
+  const auto right = Pinhole(CameraPose(30 * kDegree, 0.0, {0.0, -0.1, 1.0}), 0.0);
   geometry::RectifyOptions no_maps;
   no_maps.compute_maps = false;
   auto pair = geometry::RectifyStereoPair(left, right, no_maps);

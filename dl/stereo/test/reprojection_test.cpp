@@ -7,7 +7,7 @@
 namespace rover::dl::stereo {
 namespace {
 
-RectifiedStereoModel Model() {
+RectifiedStereoModel SmallModel() {
   RectifiedStereoModel m;
   m.focal_px = 100;
   m.cx = 10;
@@ -32,7 +32,8 @@ TEST(ReprojectTest, PointsAndRangeInTheRoverFrame) {
   d.Reset({21, 11}, PixelStatus::kValid);
   d.disparity.setTo(10.0f);  // Z = 100 * 0.5 / 10 = 5 m
   cv::Mat range, xyz;
-  ASSERT_TRUE(Reproject(Model(), ForwardCamera(), ReprojectionOptions(), &d, &range, &xyz).ok());
+  ASSERT_TRUE(
+      Reproject(SmallModel(), ForwardCamera(), ReprojectionOptions(), &d, &range, &xyz).ok());
   ASSERT_EQ(range.type(), CV_32FC1);
   ASSERT_EQ(xyz.type(), CV_32FC3);
   // Principal point: straight ahead, 5 m in front of the camera.
@@ -60,7 +61,7 @@ TEST(ReprojectTest, InvalidPixelsAndRangeLimits) {
   ReprojectionOptions o;
   o.min_range_m = 2.0;
   cv::Mat range, xyz;
-  ASSERT_TRUE(Reproject(Model(), Eigen::Isometry3d::Identity(), o, &d, &range, &xyz).ok());
+  ASSERT_TRUE(Reproject(SmallModel(), Eigen::Isometry3d::Identity(), o, &d, &range, &xyz).ok());
   EXPECT_EQ(d.status.at<std::uint8_t>(0, 0), static_cast<int>(PixelStatus::kRangeLimit));
   EXPECT_EQ(d.status.at<std::uint8_t>(0, 1), static_cast<int>(PixelStatus::kRangeLimit));
   EXPECT_EQ(d.status.at<std::uint8_t>(0, 2), static_cast<int>(PixelStatus::kBlob));
@@ -69,7 +70,7 @@ TEST(ReprojectTest, InvalidPixelsAndRangeLimits) {
     EXPECT_TRUE(std::isnan(xyz.at<cv::Vec3f>(0, u)[0]));
   }
   // doffs shifts the disparity of infinity.
-  RectifiedStereoModel m = Model();
+  RectifiedStereoModel m = SmallModel();
   m.doffs_px = 5.0;
   DisparityImage e;
   e.Reset({1, 1}, PixelStatus::kValid);
@@ -85,19 +86,20 @@ TEST(ReprojectTest, BadInputs) {
   cv::Mat range;
   Eigen::Isometry3d bad = Eigen::Isometry3d::Identity();
   bad.linear() *= 2.0;
-  Status s = Reproject(Model(), bad, ReprojectionOptions(), &d, &range, nullptr);
+  Status s = Reproject(SmallModel(), bad, ReprojectionOptions(), &d, &range, nullptr);
   EXPECT_NE(s.message().find("rotation"), std::string::npos) << s.message();
-  RectifiedStereoModel m = Model();
+  RectifiedStereoModel m = SmallModel();
   m.baseline_m = 0;
   EXPECT_FALSE(Reproject(m, Eigen::Isometry3d::Identity(), {}, &d, &range, nullptr).ok());
   ReprojectionOptions o;
   o.max_range_m = -1;
   EXPECT_FALSE(o.Validate().ok());
-  EXPECT_FALSE(Reproject(Model(), Eigen::Isometry3d::Identity(), o, &d, &range, nullptr).ok());
+  EXPECT_FALSE(Reproject(SmallModel(), Eigen::Isometry3d::Identity(), o, &d, &range, nullptr).ok());
   DisparityImage empty;
-  EXPECT_FALSE(Reproject(Model(), Eigen::Isometry3d::Identity(), {}, &empty, &range, nullptr).ok());
+  EXPECT_FALSE(
+      Reproject(SmallModel(), Eigen::Isometry3d::Identity(), {}, &empty, &range, nullptr).ok());
   StereoCamera cam;
-  cam.model = Model();
+  cam.model = SmallModel();
   EXPECT_TRUE(cam.Validate().ok());
   cam.rover_from_camera = bad;
   EXPECT_FALSE(cam.Validate().ok());

@@ -13,23 +13,23 @@
 namespace rover::dl::stereo {
 namespace {
 
-constexpr double kFocal = 100.0;    // [px]
-constexpr double kBaseline = 0.2;   // [m]
-constexpr double kDisparity = 8.0;  // [px] of the synthetic pair: range f B / d = 2.5 m
+constexpr double kRangerFocal = 100.0;    // [px]
+constexpr double kRangerBaseline = 0.2;   // [m]
+constexpr double kRangerDisparity = 8.0;  // [px] of the synthetic pair: range f B / d = 2.5 m
 
-msg::CameraModelFields Camera(double y) { return testing::ForwardCamera(y, kFocal); }
+msg::CameraModelFields RangerCamera(double y) { return testing::ForwardCamera(y, kRangerFocal); }
 
 // A rectified pair of constant disparity with the rig's models; keeps the pixels.
 struct Frame {
   Frame() {
-    testing::ConstantDisparityPair(testing::Texture(3), cv::Size(128, 96), kDisparity, &left,
+    testing::ConstantDisparityPair(testing::Texture(3), cv::Size(128, 96), kRangerDisparity, &left,
                                    &right);
     msg.stamp = Time::FromSeconds(4.0);
     msg.camera = msg::CameraId::kFrontHazcam;
     msg.width = 128;
     msg.height = 96;
-    msg.left_model = Camera(kBaseline / 2);
-    msg.right_model = Camera(-kBaseline / 2);
+    msg.left_model = RangerCamera(kRangerBaseline / 2);
+    msg.right_model = RangerCamera(-kRangerBaseline / 2);
     msg.left = std::span<const std::uint8_t>(left.data, left.total());
     msg.right = std::span<const std::uint8_t>(right.data, right.total());
   }
@@ -78,13 +78,13 @@ TEST(StereoRanger, RangesAPairIntoTheRoverFrameWithThePoseAtCapture) {
       continue;
     }
     ++valid;
-    EXPECT_NEAR(image->disparity[i], kDisparity, 0.5);
+    EXPECT_NEAR(image->disparity[i], kRangerDisparity, 0.5);
     x.push_back(image->xyz[3 * i]);
   }
   EXPECT_GT(valid, static_cast<int>(image->valid.size() / 2));
   std::nth_element(x.begin(), x.begin() + static_cast<long>(x.size() / 2), x.end());
   // Range f B / d = 2.5 m ahead of the camera at rover x = 0.5.
-  EXPECT_NEAR(x[x.size() / 2], 0.5 + kFocal * kBaseline / kDisparity, 0.05);
+  EXPECT_NEAR(x[x.size() / 2], 0.5 + kRangerFocal * kRangerBaseline / kRangerDisparity, 0.05);
   EXPECT_GT(ranger.last_timings().total_ms, 0.0);
   // The rectification is computed once per model pair.
   ASSERT_TRUE(ranger.Range(f.msg, 8, {&poses, Seconds(0.5), true}).ok());
@@ -154,7 +154,7 @@ TEST(StereoRanger, VehicleMaskRemovesPointsBehindTheRover) {
   EXPECT_GT(masked.last_masked(), 500);
   EXPECT_EQ(n_kept + masked.last_masked(), n_all);
   EXPECT_EQ(plain.last_masked(), 0);
-  const Eigen::Vector3d eye(0.5, kBaseline / 2, 1.0);
+  const Eigen::Vector3d eye(0.5, kRangerBaseline / 2, 1.0);
   const Eigen::AlignedBox3d body = VehicleMask(rover, VehicleMaskOptions()).volumes().back().box;
   for (std::size_t i = 0; i < kept->valid.size(); ++i) {
     if (kept->valid[i] == 0) continue;

@@ -1,7 +1,6 @@
 #include "rover/dl/stereo/vehicle_mask.hpp"
 
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -11,16 +10,14 @@
 #include <vector>
 
 #include "rover/base/param_binder.hpp"
+#include "rover/base/units.hpp"
 #include "rover/dl/stereo/disparity_image.hpp"
 
 namespace rover::dl::stereo {
 namespace {
 
-using hwconfig::RoverDescription;
 using Eigen::Vector3d;
-
-constexpr double kPi = 3.14159265358979323846;
-
+using hwconfig::RoverDescription;
 Vector3d FrontEye(const RoverDescription& rover) {
   return rover.front_hazcam.CameraCentre(hwconfig::kLeft);
 }

@@ -7,13 +7,12 @@
 #include <numbers>
 #include <random>
 
+#include "rover/base/units.hpp"
 #include "rover/dl/vo/triangulation.hpp"
 #include "synthetic_scene.hpp"
 
 namespace rover::dl::vo {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::Isometry3d Motion(const Eigen::Vector3d& t, const Eigen::Vector3d& w) {
   Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
@@ -109,7 +108,7 @@ TEST(Ransac, SurvivesFortyPercentOutliers) {
     ASSERT_TRUE(ml.converged);
     const Vector6d e = MotionError(ml.motion, truth);
     EXPECT_LT(e.head<3>().norm(), 0.005) << "seed " << seed;
-    EXPECT_LT(e.tail<3>().norm(), 0.05 * kDeg) << "seed " << seed;
+    EXPECT_LT(e.tail<3>().norm(), 0.05 * kDegree) << "seed " << seed;
     int false_inliers = 0;
     for (int i : rr.inliers) false_inliers += outlier[static_cast<std::size_t>(i)];
     EXPECT_LE(false_inliers, 3) << "seed " << seed;

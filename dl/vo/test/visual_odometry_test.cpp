@@ -8,13 +8,12 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
+#include "rover/base/units.hpp"
 #include "rover/dl/vo/kitti.hpp"
 #include "synthetic_scene.hpp"
 
 namespace rover::dl::vo {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 using testing::CameraPose;
 using testing::RenderPair;
@@ -58,11 +57,11 @@ class VoSynthetic : public ::testing::Test {
 std::vector<StereoFrame>* VoSynthetic::pairs_ = nullptr;
 
 // A wheel-odometry-like prior: the true motion, 4 cm and 1 degree off, with matching sigmas.
-MotionPrior OdometryPrior(const Eigen::Isometry3d& truth = TestCameraMotion()) {
-  MotionPrior p = MotionPrior::Stationary(0.05, 1.5 * kDeg);
+MotionPrior PriorFromTruth(const Eigen::Isometry3d& truth = TestCameraMotion()) {
+  MotionPrior p = MotionPrior::Stationary(0.05, 1.5 * kDegree);
   p.delta = truth;
   p.delta.translation() += Eigen::Vector3d(0.02, -0.01, -0.03);
-  p.delta.linear() = ExpSo3(Eigen::Vector3d(0.0, 1.0 * kDeg, 0.0)) * truth.linear();
+  p.delta.linear() = ExpSo3(Eigen::Vector3d(0.0, 1.0 * kDegree, 0.0)) * truth.linear();
   return p;
 }
 
@@ -148,7 +147,7 @@ TEST_F(VoSynthetic, RejectsBadInputWithoutChangingState) {
   same.stamp = Time::FromSeconds(-1.0);
   EXPECT_FALSE(vo.Process(same, prior).ok());
   // The reference is still pair 0: the next valid pair gives the motion from pair 0.
-  auto est = vo.Process(Pair(1), OdometryPrior());
+  auto est = vo.Process(Pair(1), PriorFromTruth());
   ASSERT_TRUE(est.ok());
   ASSERT_TRUE(est->converged()) << est->message;
   EXPECT_EQ(est->t_from, Pair(0).stamp);
@@ -167,14 +166,15 @@ TEST(VoSyntheticAccuracy, RecoversKnownMotionWithinOneMillimetreAndTwentiethDegr
                    << "texture " << texture << (vague ? ", vague prior" : ", odometry prior"));
       auto vo = VisualOdometry::Create(Options{}, TestCamera());
       ASSERT_TRUE(vo.ok());
-      const MotionPrior prior = vague ? MotionPrior::Stationary(0.3, 3.0 * kDeg) : OdometryPrior();
+      const MotionPrior prior =
+          vague ? MotionPrior::Stationary(0.3, 3.0 * kDegree) : PriorFromTruth();
       ASSERT_TRUE(vo->Process(pairs[0], prior).ok());
       const auto est = vo->Process(pairs[1], prior);
       ASSERT_TRUE(est.ok());
       ASSERT_TRUE(est->converged()) << est->message;
       const Vector6d e = MotionError(est->delta, TestCameraMotion());
       EXPECT_LT(e.head<3>().norm(), 0.001) << e.transpose();
-      EXPECT_LT(e.tail<3>().norm(), 0.05 * kDeg) << e.transpose();
+      EXPECT_LT(e.tail<3>().norm(), 0.05 * kDegree) << e.transpose();
       EXPECT_GT(est->inliers, 100);
       if (vague) {
         EXPECT_TRUE(est->first_pass);  // the coarse first pass narrowed the windows
@@ -202,7 +202,7 @@ TEST_F(VoSynthetic, ChainsStepsAndIsDeterministic) {
   VisualOdometry a = MakeVo(), b = MakeVo();
   Eigen::Isometry3d pose_a = Eigen::Isometry3d::Identity();
   for (int i = 0; i < 3; ++i) {
-    const MotionPrior prior = OdometryPrior();
+    const MotionPrior prior = PriorFromTruth();
     const auto ea = a.Process(Pair(i), prior);
     const auto eb = b.Process(Pair(i), prior);
     ASSERT_TRUE(ea.ok() && eb.ok());
@@ -224,7 +224,7 @@ TEST_F(VoSynthetic, SanityLimitsReportFailureAndEchoThePrior) {
   Options o;
   o.max_translation = 0.2;  // the step is 0.45 m
   VisualOdometry vo = MakeVo(o);
-  const MotionPrior prior = OdometryPrior();
+  const MotionPrior prior = PriorFromTruth();
   ASSERT_TRUE(vo.Process(Pair(0), prior).ok());
   auto est = vo.Process(Pair(1), prior);
   ASSERT_TRUE(est.ok());
@@ -234,7 +234,7 @@ TEST_F(VoSynthetic, SanityLimitsReportFailureAndEchoThePrior) {
   EXPECT_TRUE(est->covariance.isApprox(prior.covariance));
 
   o = Options{};
-  o.max_rotation = 1.0 * kDeg;  // the step turns ~3 degrees
+  o.max_rotation = 1.0 * kDegree;  // the step turns ~3 degrees
   VisualOdometry vo2 = MakeVo(o);
   ASSERT_TRUE(vo2.Process(Pair(0), prior).ok());
   est = vo2.Process(Pair(1), prior);
@@ -246,7 +246,7 @@ TEST_F(VoSynthetic, SanityLimitsReportFailureAndEchoThePrior) {
   o = Options{};
   o.max_prior_mahalanobis_sq = 30.0;
   o.min_window = 40.0;
-  MotionPrior wrong = MotionPrior::Stationary(0.01, 0.2 * kDeg);
+  MotionPrior wrong = MotionPrior::Stationary(0.01, 0.2 * kDegree);
   wrong.delta = TestCameraMotion();
   wrong.delta.translation().z() -= 0.2;
   VisualOdometry vo3 = MakeVo(o);
@@ -279,9 +279,9 @@ TEST(VoFrames, BodyAndCameraFrameConversionsAreInverse) {
   t_b_c.linear() = level * Eigen::AngleAxisd(-0.44, Eigen::Vector3d::UnitX()).toRotationMatrix();
   t_b_c.translation() = Eigen::Vector3d(0.5, 0.0, 1.2);
   // The rover drives 0.5 m forward and turns 3 degrees left: its camera sees the conjugate.
-  MotionPrior body = MotionPrior::Stationary(0.02, 0.5 * kDeg);
+  MotionPrior body = MotionPrior::Stationary(0.02, 0.5 * kDegree);
   body.delta.translation() = Eigen::Vector3d(0.5, 0.0, 0.0);
-  body.delta.linear() = ExpSo3(Eigen::Vector3d(0, 0, 3 * kDeg));
+  body.delta.linear() = ExpSo3(Eigen::Vector3d(0, 0, 3 * kDegree));
   const MotionPrior cam = ToCameraFrame(body, t_b_c);
   EXPECT_TRUE(cam.delta.isApprox(t_b_c.inverse() * body.delta * t_b_c, 1e-12));
   MotionEstimate e;
@@ -293,7 +293,7 @@ TEST(VoFrames, BodyAndCameraFrameConversionsAreInverse) {
   EXPECT_NEAR((back.covariance - body.covariance).norm(), 0.0, 1e-15);
   EXPECT_EQ(back.status, MotionStatus::kConverged);
   // Yaw of the body is about the camera's -y axis tilted by the mount.
-  EXPECT_NEAR(RotationAngle(cam.delta.linear()), 3 * kDeg, 1e-12);
+  EXPECT_NEAR(RotationAngle(cam.delta.linear()), 3 * kDegree, 1e-12);
 }
 
 TEST(VoFeatureless, ConstantAndSmoothImagesReportFailure) {
@@ -309,7 +309,7 @@ TEST(VoFeatureless, ConstantAndSmoothImagesReportFailure) {
     for (const bool vague : {false, true}) {
       Result<VisualOdometry> vo = VisualOdometry::Create(Options{}, cam);
       ASSERT_TRUE(vo.ok());
-      const MotionPrior prior = vague ? MotionPrior::Stationary(0.3, 0.1) : OdometryPrior();
+      const MotionPrior prior = vague ? MotionPrior::Stationary(0.3, 0.1) : PriorFromTruth();
       ASSERT_TRUE(vo->Process(a, prior).ok());
       const auto est = vo->Process(b, prior);
       ASSERT_TRUE(est.ok());

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "rover/base/units.hpp"
 #include "rover/testing/fakes/fake_camera_driver.hpp"
 #include "rover/testing/fakes/fake_pose.hpp"
 #include "rover/testing/service_harness.hpp"
@@ -27,8 +28,6 @@ namespace rover::dl::vo {
 namespace {
 
 constexpr double kStep = 0.1;  // [s] sim/clock and dl/pose period
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 Eigen::Isometry3d Delta(const rover_Pose3& p) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.linear() =
@@ -180,14 +179,14 @@ class VoServiceTest : public ::testing::Test {
       std::printf(
           "step %zu: true %.3f m / %.2f deg; VO error %.1f mm, %.3f deg; %u inliers; "
           "odometry error ~%.0f mm\n",
-          i, truth.translation().norm(), RotationAngle(truth.linear()) / kDeg, 1e3 * t_err,
-          r_err / kDeg, r.features, 1e3 * prior_err);
+          i, truth.translation().norm(), RotationAngle(truth.linear()) / kDegree, 1e3 * t_err,
+          r_err / kDegree, r.features, 1e3 * prior_err);
       EXPECT_GT(truth.translation().norm(), 0.2);
       // Measured (0.46 m and 0.24 m steps): HAZCAM 512 x 384: 1.0 mm / 0.006 deg, 0.5 mm /
       // 0.010 deg; NAVCAM 256 x 192: 1.5 mm / 0.004 deg, 0.3 mm / 0.016 deg. (HAZCAM at 256 px:
       // 6.5 mm / 0.15 deg with only 14 inliers, hence the default width 512.)
       EXPECT_LT(t_err, 0.01);
-      EXPECT_LT(r_err, 0.1 * kDeg);
+      EXPECT_LT(r_err, 0.1 * kDegree);
       EXPECT_LT(t_err, prior_err / 3.0) << "VO must be much closer to the truth than odometry";
       // Covariance: symmetric, positive, consistent in scale with the error.
       Eigen::Matrix<double, 6, 6> cov;

@@ -6,19 +6,12 @@
 
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/range_check.hpp"
 
 namespace rover::sim::physics {
 namespace {
 
 // Checks lo <= v <= hi (and finite); returns an error naming `name.field`.
-Status CheckRange(const std::string& name, const char* field, double v, double lo, double hi) {
-  if (!std::isfinite(v) || v < lo || v > hi) {
-    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" +
-                           FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
-  }
-  return Status::Ok();
-}
-
 double Sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
 }  // namespace
@@ -41,36 +34,36 @@ double MotorParams::CountsPerRad() const {
 
 Status MotorParams::Validate(const std::string& name) const {
   constexpr double kBig = 1e9;
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "gear_ratio", gear_ratio, 1e-3, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".gear_ratio", gear_ratio, 1e-3, kBig));
   ROVER_RETURN_IF_ERROR(
-      CheckRange(name, "encoder_counts_per_motor_rev", encoder_counts_per_motor_rev, 1.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "gear_efficiency", gear_efficiency, 1e-3, 1.0));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "torque_constant", torque_constant, 1e-6, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "rotor_inertia", rotor_inertia, 0.0, 1.0));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "winding_resistance", winding_resistance, 1e-6, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "bus_voltage", bus_voltage, 1e-3, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "no_load_current", no_load_current, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "max_current", max_current, 1e-6, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "overcurrent_trip", overcurrent_trip, 1e-6, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "overcurrent_time", overcurrent_time, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "stall_speed", stall_speed, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "stall_error", stall_error, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "stall_time", stall_time, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "thermal_resistance", thermal_resistance, 0.0, kBig));
+      CheckRange(name + ".encoder_counts_per_motor_rev", encoder_counts_per_motor_rev, 1.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".gear_efficiency", gear_efficiency, 1e-3, 1.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".torque_constant", torque_constant, 1e-6, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".rotor_inertia", rotor_inertia, 0.0, 1.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".winding_resistance", winding_resistance, 1e-6, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".bus_voltage", bus_voltage, 1e-3, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".no_load_current", no_load_current, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".max_current", max_current, 1e-6, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".overcurrent_trip", overcurrent_trip, 1e-6, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".overcurrent_time", overcurrent_time, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".stall_speed", stall_speed, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".stall_error", stall_error, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".stall_time", stall_time, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".thermal_resistance", thermal_resistance, 0.0, kBig));
   ROVER_RETURN_IF_ERROR(
-      CheckRange(name, "thermal_time_constant", thermal_time_constant, 1e-6, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "max_temperature", max_temperature, -273.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "kp", kp, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "ki", ki, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "kd", kd, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "integral_limit", integral_limit, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "max_speed", max_speed, 1e-9, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "max_acceleration", max_acceleration, 1e-9, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "max_following_error", max_following_error, 1e-9, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "position_tolerance", position_tolerance, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "brake_torque", brake_torque, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "brake_kp", brake_kp, 0.0, kBig));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "brake_kd", brake_kd, 0.0, kBig));
+      CheckRange(name + ".thermal_time_constant", thermal_time_constant, 1e-6, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".max_temperature", max_temperature, -273.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".kp", kp, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".ki", ki, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".kd", kd, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".integral_limit", integral_limit, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".max_speed", max_speed, 1e-9, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".max_acceleration", max_acceleration, 1e-9, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".max_following_error", max_following_error, 1e-9, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".position_tolerance", position_tolerance, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".brake_torque", brake_torque, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".brake_kp", brake_kp, 0.0, kBig));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".brake_kd", brake_kd, 0.0, kBig));
   if (std::isnan(min_angle) || std::isnan(max_angle) || !(min_angle < max_angle)) {
     return InvalidArgument(name + ".min_angle/max_angle = [" + FormatNumber(min_angle) + ", " +
                            FormatNumber(max_angle) + "] is not an interval");

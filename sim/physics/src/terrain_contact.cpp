@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "rover/base/format.hpp"
+#include "rover/base/range_check.hpp"
 
 namespace rover::sim::physics {
 
@@ -15,14 +16,6 @@ using terrain::Soil;
 using terrain::SoilName;
 
 namespace {
-
-Status CheckRange(const std::string& name, const char* field, double v, double lo, double hi) {
-  if (!std::isfinite(v) || v < lo || v > hi) {
-    return InvalidArgument(name + "." + field + " = " + FormatNumber(v) + " is outside [" +
-                           FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
-  }
-  return Status::Ok();
-}
 
 // Unit direction in the wheel plane (perpendicular to `axis`) closest to `n`; false when `n`
 // is (nearly) parallel to the axle, i.e. the wheel lies on its side.
@@ -58,12 +51,12 @@ bool DeepestDirection(const HeightField& terrain, double radius, const Eigen::Ve
 }  // namespace
 
 Status SoilParams::Validate(const std::string& name) const {
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "stiffness", stiffness, 1.0, 1e9));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "damping", damping, 0.0, 1e4));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "mu_max", mu_max, 1e-3, 5.0));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "shear_k", shear_k, 1e-4, 10.0));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "patch_length", patch_length, 1e-4, 10.0));
-  ROVER_RETURN_IF_ERROR(CheckRange(name, "rolling_resistance", rolling_resistance, 0.0, 2.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".stiffness", stiffness, 1.0, 1e9));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".damping", damping, 0.0, 1e4));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".mu_max", mu_max, 1e-3, 5.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".shear_k", shear_k, 1e-4, 10.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".patch_length", patch_length, 1e-4, 10.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(name + ".rolling_resistance", rolling_resistance, 0.0, 2.0));
   return Status::Ok();
 }
 
@@ -107,23 +100,23 @@ Status ContactParams::Validate() const {
     return InvalidArgument("contact.slices = " + FormatNumber(slices) + " is outside [1, 5]");
   }
   for (double a : fan_angles_deg) {
-    ROVER_RETURN_IF_ERROR(CheckRange("contact", "fan_angles_deg[]", a, 0.0, 89.0));
+    ROVER_RETURN_IF_ERROR(CheckRange("contact.fan_angles_deg[]", a, 0.0, 89.0));
   }
-  ROVER_RETURN_IF_ERROR(CheckRange("contact", "shear_cap", shear_cap, 0.1, 50.0));
-  ROVER_RETURN_IF_ERROR(CheckRange("contact", "shear_damping_time", shear_damping_time, 0, 10));
+  ROVER_RETURN_IF_ERROR(CheckRange("contact.shear_cap", shear_cap, 0.1, 50.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("contact.shear_damping_time", shear_damping_time, 0, 10));
   ROVER_RETURN_IF_ERROR(
-      CheckRange("contact", "shear_free_relax_time", shear_free_relax_time, 1e-4, 100.0));
-  ROVER_RETURN_IF_ERROR(CheckRange("contact", "rolling_speed_eps", rolling_speed_eps, 1e-6, 1));
-  ROVER_RETURN_IF_ERROR(CheckRange("contact", "spin_radius", spin_radius, 0.0, 1.0));
-  ROVER_RETURN_IF_ERROR(CheckRange("contact", "spin_rate_eps", spin_rate_eps, 1e-6, 10.0));
+      CheckRange("contact.shear_free_relax_time", shear_free_relax_time, 1e-4, 100.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("contact.rolling_speed_eps", rolling_speed_eps, 1e-6, 1));
+  ROVER_RETURN_IF_ERROR(CheckRange("contact.spin_radius", spin_radius, 0.0, 1.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("contact.spin_rate_eps", spin_rate_eps, 1e-6, 10.0));
   return Status::Ok();
 }
 
 Status PointContactParams::Validate() const {
-  ROVER_RETURN_IF_ERROR(CheckRange("belly", "stiffness", stiffness, 1.0, 1e9));
-  ROVER_RETURN_IF_ERROR(CheckRange("belly", "damping", damping, 0.0, 1e4));
-  ROVER_RETURN_IF_ERROR(CheckRange("belly", "friction", friction, 0.0, 5.0));
-  ROVER_RETURN_IF_ERROR(CheckRange("belly", "slip_speed_eps", slip_speed_eps, 1e-6, 10.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("belly.stiffness", stiffness, 1.0, 1e9));
+  ROVER_RETURN_IF_ERROR(CheckRange("belly.damping", damping, 0.0, 1e4));
+  ROVER_RETURN_IF_ERROR(CheckRange("belly.friction", friction, 0.0, 5.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("belly.slip_speed_eps", slip_speed_eps, 1e-6, 10.0));
   return Status::Ok();
 }
 

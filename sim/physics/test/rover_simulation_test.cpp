@@ -8,6 +8,8 @@
 #include <memory>
 #include <numbers>
 
+#include "rover/base/units.hpp"
+
 namespace rover::sim::physics {
 
 using terrain::HeightField;
@@ -16,8 +18,6 @@ using terrain::Soil;
 namespace {
 
 constexpr double kSpeed = 0.05;  // [m/s] MER-like drive speed
-
-double Deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // Terrain on [x0, x0 + length] x [-width/2, width/2] with height z(x, y) and one soil.
 std::shared_ptr<HeightField> MakeTerrain(double x0, double length, double width, double res,
@@ -36,7 +36,7 @@ std::shared_ptr<HeightField> MakeTerrain(double x0, double length, double width,
 }
 
 std::shared_ptr<HeightField> Slope(double slope_deg, Soil soil) {
-  const double t = std::tan(Deg(slope_deg));
+  const double t = std::tan(DegToRad(slope_deg));
   return MakeTerrain(-4.0, 12.0, 6.0, 0.1, soil, [t](double x, double) { return x * t; });
 }
 
@@ -107,7 +107,7 @@ TEST(RoverSimulation, RestsOnFlatGroundWithoutDrift) {
   EXPECT_NEAR(r1.cameras.mast_head_site.translation().z(), 1.5, 0.05);
   EXPECT_NEAR(r1.cameras.hazcam_front_site.translation().z(), 0.5, 0.05);
   const Eigen::Vector3d bore = r1.cameras.hazcam_front_site.linear().col(0);
-  EXPECT_NEAR(bore.z(), -std::sin(Deg(45)), 0.02);
+  EXPECT_NEAR(bore.z(), -std::sin(DegToRad(45)), 0.02);
   EXPECT_GT(bore.x(), 0.6);
   EXPECT_LT(r1.cameras.hazcam_rear_site.linear().col(0).x(), -0.6);
   // Part poses: wheel frames at the wheel centres, axles along y.
@@ -175,7 +175,7 @@ double UphillSlip(double slope_deg, Soil soil) {
   const Eigen::Vector3d p0 = Position(*sim);
   const double w0 = WheelTravel(*sim);
   if (!sim->Advance(9.0).ok()) return std::nan("");
-  const Eigen::Vector3d heading(std::cos(Deg(slope_deg)), 0.0, std::sin(Deg(slope_deg)));
+  const Eigen::Vector3d heading(std::cos(DegToRad(slope_deg)), 0.0, std::sin(DegToRad(slope_deg)));
   const double travelled = (Position(*sim) - p0).dot(heading);
   const double wheel = WheelTravel(*sim) - w0;
   return 1.0 - travelled / wheel;
@@ -186,7 +186,7 @@ TEST(RoverSimulation, UphillSlipOnFirm15DegreeSlopeIsModerate) {
   EXPECT_GT(slip, 0.03);
   EXPECT_LT(slip, 0.15);
   // Close to the steady-state prediction of the slip-traction curve.
-  EXPECT_NEAR(slip, SteadyStateSlip(DefaultSoilParams(Soil::kFirmSoil), Deg(15.0)), 0.02);
+  EXPECT_NEAR(slip, SteadyStateSlip(DefaultSoilParams(Soil::kFirmSoil), DegToRad(15.0)), 0.02);
 }
 
 TEST(RoverSimulation, UphillSlipOnLooseSand20DegreeSlopeIsHigh) {
@@ -240,28 +240,28 @@ TEST(RoverSimulation, SteersCornerWheelsToCommandedAngles) {
   }
   // The mast pans and tilts too.
   const double pan_cpr = CountsPerRad(*sim, hw::kMastPan), tilt_cpr = CountsPerRad(*sim, hw::kMastTilt);
-  ASSERT_TRUE(
-      sim->SetMotorGoal(hw::kMastPan, MotorMode::kPosition, Deg(90) * pan_cpr, 0.5 * pan_cpr, 0.8)
-          .ok());
-  ASSERT_TRUE(
-      sim->SetMotorGoal(hw::kMastTilt, MotorMode::kPosition, Deg(-30) * tilt_cpr, 0.5 * tilt_cpr, 0.8)
-          .ok());
+  ASSERT_TRUE(sim->SetMotorGoal(hw::kMastPan, MotorMode::kPosition, DegToRad(90) * pan_cpr,
+                                0.5 * pan_cpr, 0.8)
+                  .ok());
+  ASSERT_TRUE(sim->SetMotorGoal(hw::kMastTilt, MotorMode::kPosition, DegToRad(-30) * tilt_cpr,
+                                0.5 * tilt_cpr, 0.8)
+                  .ok());
   ASSERT_TRUE(sim->Advance(5.0).ok());
   const RoverReadings r = sim->Readings();
   for (int i = 0; i < 4; ++i) {
     const int m = hw::kSteerLF + i;
-    EXPECT_NEAR(r.joint_angle_rad[m], goals[i], Deg(0.5)) << hw::MotorName(m);
+    EXPECT_NEAR(r.joint_angle_rad[m], goals[i], DegToRad(0.5)) << hw::MotorName(m);
     EXPECT_NEAR(r.motors[m].position_counts, goals[i] * CountsPerRad(*sim, m),
-                Deg(0.5) * CountsPerRad(*sim, m));
+                DegToRad(0.5) * CountsPerRad(*sim, m));
     EXPECT_TRUE(r.motors[m].goal_reached) << hw::MotorName(m);
     EXPECT_EQ(r.motors[m].faults, kMotorFaultNone);
   }
-  EXPECT_NEAR(r.joint_angle_rad[hw::kMastPan], Deg(90), Deg(0.5));
-  EXPECT_NEAR(r.joint_angle_rad[hw::kMastTilt], Deg(-30), Deg(0.5));
+  EXPECT_NEAR(r.joint_angle_rad[hw::kMastPan], DegToRad(90), DegToRad(0.5));
+  EXPECT_NEAR(r.joint_angle_rad[hw::kMastTilt], DegToRad(-30), DegToRad(0.5));
   // The mast head now looks left (+y) and down.
   const Eigen::Vector3d look = r.cameras.mast_head_site.linear().col(0);
-  EXPECT_NEAR(look.y(), std::cos(Deg(30)), 0.02);
-  EXPECT_NEAR(look.z(), -std::sin(Deg(30)), 0.02);
+  EXPECT_NEAR(look.y(), std::cos(DegToRad(30)), 0.02);
+  EXPECT_NEAR(look.z(), -std::sin(DegToRad(30)), 0.02);
   // Then turn in place with the wheels steered: the rover yaws.
   const double yaw0 =
       std::atan2(r.chassis.pose_site.linear()(1, 0), r.chassis.pose_site.linear()(0, 0));
@@ -280,7 +280,7 @@ TEST(RoverSimulation, SteersCornerWheelsToCommandedAngles) {
   const RoverReadings r2 = sim->Readings();
   const double yaw1 =
       std::atan2(r2.chassis.pose_site.linear()(1, 0), r2.chassis.pose_site.linear()(0, 0));
-  EXPECT_GT(yaw1 - yaw0, Deg(10));
+  EXPECT_GT(yaw1 - yaw0, DegToRad(10));
   EXPECT_LT(
       (r2.chassis.pose_site.translation() - r.chassis.pose_site.translation()).head<2>().norm(),
       0.05);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
+
 namespace rover::sim::physics {
 
 using terrain::HeightField;
@@ -17,13 +19,11 @@ namespace {
 constexpr double kR = 0.125;
 constexpr double kWidth = 0.16;
 
-double Deg(double d) { return d * std::numbers::pi / 180.0; }
-
 // A plane z = x tan(slope) on [-2, 2]^2 with one soil.
 HeightField Plane(double slope_deg, Soil soil, double res = 0.05) {
   const int n = static_cast<int>(std::lround(4.0 / res)) + 1;
   HeightField h(n, n, res, Eigen::Vector2d(-2.0, -2.0));
-  const double t = std::tan(Deg(slope_deg));
+  const double t = std::tan(DegToRad(slope_deg));
   for (int j = 0; j < h.ny(); ++j) {
     for (int i = 0; i < h.nx(); ++i) {
       h.at(i, j) = static_cast<float>((h.min_x() + i * res) * t);
@@ -66,7 +66,7 @@ TEST(TerrainContact, FlatGroundNormalForceFromPenetration) {
 }
 
 TEST(TerrainContact, SlopeContactFollowsTheSurfaceNormal) {
-  const double slope = Deg(15.0);
+  const double slope = DegToRad(15.0);
   const HeightField h = Plane(15.0, Soil::kBedrock);
   const ContactParams params;
   const Eigen::Vector3d n(-std::sin(slope), 0.0, std::cos(slope));
@@ -139,18 +139,19 @@ TEST(TerrainContact, SlipTractionCurveAndSteadySlip) {
   EXPECT_NEAR(TractionCoefficient(firm, firm.shear_k), firm.mu_max * (1 - std::exp(-1.0)), 1e-12);
   EXPECT_NEAR(TractionCoefficient(firm, -firm.shear_k), -firm.mu_max * (1 - std::exp(-1.0)), 1e-12);
   // The inverse: mu(s) = tan(theta) + c_rr.
-  const double s15 = SteadyStateSlip(firm, Deg(15.0));
-  EXPECT_NEAR(TractionCoefficient(firm, s15), std::tan(Deg(15.0)) + firm.rolling_resistance, 1e-12);
+  const double s15 = SteadyStateSlip(firm, DegToRad(15.0));
+  EXPECT_NEAR(TractionCoefficient(firm, s15), std::tan(DegToRad(15.0)) + firm.rolling_resistance,
+              1e-12);
   // The design targets: 3-15% on a 15 deg firm slope, > 50% on 20 deg loose sand, little on
   // flat firm ground, and slip growing with slope and with softer soil.
   EXPECT_GT(s15, 0.03);
   EXPECT_LT(s15, 0.15);
-  EXPECT_GT(SteadyStateSlip(DefaultSoilParams(Soil::kLooseSand), Deg(20.0)), 0.5);
+  EXPECT_GT(SteadyStateSlip(DefaultSoilParams(Soil::kLooseSand), DegToRad(20.0)), 0.5);
   EXPECT_LT(SteadyStateSlip(firm, 0.0), 0.01);
-  EXPECT_LT(SteadyStateSlip(firm, Deg(10.0)), s15);
-  EXPECT_LT(SteadyStateSlip(DefaultSoilParams(Soil::kBedrock), Deg(15.0)), s15);
-  EXPECT_GT(SteadyStateSlip(DefaultSoilParams(Soil::kLooseSand), Deg(15.0)), s15);
-  EXPECT_TRUE(std::isinf(SteadyStateSlip(DefaultSoilParams(Soil::kLooseSand), Deg(30.0))));
+  EXPECT_LT(SteadyStateSlip(firm, DegToRad(10.0)), s15);
+  EXPECT_LT(SteadyStateSlip(DefaultSoilParams(Soil::kBedrock), DegToRad(15.0)), s15);
+  EXPECT_GT(SteadyStateSlip(DefaultSoilParams(Soil::kLooseSand), DegToRad(15.0)), s15);
+  EXPECT_TRUE(std::isinf(SteadyStateSlip(DefaultSoilParams(Soil::kLooseSand), DegToRad(30.0))));
 }
 
 // Integrates the shear state of a wheel rolling at rim speed V with slip s on flat ground and

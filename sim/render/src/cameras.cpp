@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "rover/base/check.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::sim::render {
 
@@ -24,8 +25,6 @@ constexpr double kNavcamR1 = -0.01;  // mild barrel distortion
 // (what ddl-camera attaches to its frames).
 constexpr double kHazcamFovDeg = 120.0;
 constexpr double kHazcamR1 = -0.01;
-
-double Deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // Camera axes from a head rotation: A = boresight (head x), H' = right (-y), V' = down (-z).
 struct Axes {
@@ -77,9 +76,9 @@ geometry::CameraModel CameraPairSpec::RightInRover() const {
 std::vector<StereoCameraDefinition> DefaultStereoCameras(int image_size,
                                                          const hwconfig::RoverDescription& rover) {
   ROVER_DEMAND(image_size >= 16 && image_size <= 4096);
-  const double navcam_f = 0.5 * kDefinitionSize / std::tan(Deg(0.5 * kNavcamFovDeg));
+  const double navcam_f = 0.5 * kDefinitionSize / std::tan(DegToRad(0.5 * kNavcamFovDeg));
   // CAHVOR radial term: a point at angle theta off O images at f tan(theta) (1 + r1 tan^2).
-  const double t_edge = std::tan(Deg(0.5 * kHazcamFovDeg));
+  const double t_edge = std::tan(DegToRad(0.5 * kHazcamFovDeg));
   const double hazcam_f = 0.5 * kDefinitionSize / (t_edge * (1.0 + kHazcamR1 * t_edge * t_edge));
   std::vector<StereoCameraDefinition> cams;
   cams.push_back(Pair("navcam", CameraMount::kMastHead, rover.navcam, navcam_f, kNavcamR1));

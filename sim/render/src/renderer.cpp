@@ -15,6 +15,7 @@
 #include "gl_context.hpp"
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
 #include "rover/sim/terrain/noise.hpp"
 #include "rover/sim/terrain/random.hpp"
 #include "shaders.hpp"
@@ -46,8 +47,6 @@ constexpr double kNear = 0.05;    // [m] camera near plane
 constexpr double kFar = 4000.0;   // [m] camera far plane
 constexpr int kDetailSize = 1024;
 constexpr int kRockTexSize = 512;
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 // Texture units.
 constexpr int kUnitSurface = 0, kUnitMaterial = 1, kUnitRockId = 2, kUnitRocks = 3,
               kUnitDetail = 4, kUnitRockTex = 5, kUnitShadow = 6, kUnitShadowGlobal = 7, kUnitScratch = 15;
@@ -155,7 +154,7 @@ Status SunOptions::Validate() const {
 }
 
 Eigen::Vector3d SunOptions::Direction() const {
-  const double az = azimuth_deg * kDeg, el = elevation_deg * kDeg;
+  const double az = azimuth_deg * kDegree, el = elevation_deg * kDegree;
   return Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
 }
 
@@ -781,6 +780,7 @@ Eigen::Matrix4d Renderer::Impl::LightClip(const Eigen::Matrix3d& light_from_rend
 }
 
 namespace {
+
 Eigen::Matrix4d BiasToUnit() {
   Eigen::Matrix4d bias = Eigen::Matrix4d::Identity() * 0.5;
   bias(3, 3) = 1.0;

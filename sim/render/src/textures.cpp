@@ -1,12 +1,12 @@
 #include "textures.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include <Eigen/Core>
-
 #include "rover/base/check.hpp"
+#include "rover/base/units.hpp"
 #include "rover/sim/terrain/random.hpp"
 
 namespace rover::sim::render::internal {
@@ -15,8 +15,6 @@ using terrain::MixSeed;
 using terrain::Rng;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 bool IsPow2(int n) { return n > 0 && (n & (n - 1)) == 0; }
 

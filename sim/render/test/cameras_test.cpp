@@ -5,16 +5,16 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
+
 namespace rover::sim::render {
 
 using terrain::HeightField;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) / kDeg;
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) / kDegree;
 }
 
 TEST(CamerasTest, DefaultsAreMerLike) {
@@ -45,8 +45,8 @@ TEST(CamerasTest, DefaultsAreMerLike) {
   // Boresight 45 deg below horizontal, forward; the left camera is on the +y side.
   auto axis = haz->left.Unproject(Eigen::Vector2d(511.5, 511.5));
   ASSERT_TRUE(axis);
-  EXPECT_NEAR(axis->direction.x(), std::cos(45 * kDeg), 1e-6);
-  EXPECT_NEAR(axis->direction.z(), -std::sin(45 * kDeg), 1e-6);
+  EXPECT_NEAR(axis->direction.x(), std::cos(45 * kDegree), 1e-6);
+  EXPECT_NEAR(axis->direction.z(), -std::sin(45 * kDegree), 1e-6);
   EXPECT_GT(haz->left.Center().y(), haz->right.Center().y());
   auto rear = FindStereoCamera(cams, "rear_hazcam");
   ASSERT_TRUE(rear.ok());
@@ -78,13 +78,13 @@ TEST(CamerasTest, MastPanTiltMovesNavcam) {
   EXPECT_NEAR(spec0->LeftInRover().Center().z(), 1.50, 1e-12);
   EXPECT_NEAR(spec0->rover_from_head.translation().x(), 0.35, 1e-12);
   // Pan +90 deg looks left (+y); tilt -30 deg looks down.
-  auto spec = MakeCameraPairSpec(nav, {90 * kDeg, -30 * kDeg});
+  auto spec = MakeCameraPairSpec(nav, {90 * kDegree, -30 * kDegree});
   ASSERT_TRUE(spec.ok());
   const auto left = spec->LeftInRover();
   const auto axis = left.Unproject(Eigen::Vector2d(511.5, 511.5));
   ASSERT_TRUE(axis);
-  EXPECT_NEAR(axis->direction.y(), std::cos(30 * kDeg), 1e-3);
-  EXPECT_NEAR(axis->direction.z(), -std::sin(30 * kDeg), 1e-3);
+  EXPECT_NEAR(axis->direction.y(), std::cos(30 * kDegree), 1e-3);
+  EXPECT_NEAR(axis->direction.z(), -std::sin(30 * kDegree), 1e-3);
   // The baseline turns with the pan: the left camera is now behind (-x) the right one.
   EXPECT_LT(left.Center().x(), spec->RightInRover().Center().x());
   EXPECT_FALSE(MakeCameraPairSpec(nav, {std::nan(""), 0.0}).ok());
@@ -100,13 +100,13 @@ TEST(CamerasTest, UnknownCameraNamesKnownOnes) {
 
 TEST(CamerasTest, RoverPoseOnGroundFollowsSlope) {
   HeightField hf(101, 101, 0.1, Eigen::Vector2d(-5, -5));
-  const double slope = std::tan(10 * kDeg);
+  const double slope = std::tan(10 * kDegree);
   for (int j = 0; j < 101; ++j)
     for (int i = 0; i < 101; ++i) hf.at(i, j) = static_cast<float>(slope * (-5 + 0.1 * i));
   const Eigen::Isometry3d pose = RoverPoseOnGround(hf, 1.0, 0.5, 0.0);
   EXPECT_NEAR(pose.translation().z(), slope * 1.0, 1e-5);
   // Facing uphill (+x): the nose is up by 10 deg.
-  EXPECT_NEAR(std::asin(pose.linear().col(0).z()) / kDeg, 10.0, 1e-3);
+  EXPECT_NEAR(std::asin(pose.linear().col(0).z()) / kDegree, 10.0, 1e-3);
   EXPECT_NEAR(pose.linear().col(1).z(), 0.0, 1e-6);
 }
 

@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <optional>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <vector>
 
+#include "rover/base/units.hpp"
 #include "rover/geometry/camera_model.hpp"
 #include "rover/sim/render/cameras.hpp"
 
@@ -30,8 +31,6 @@ using terrain::TerrainParams;
 namespace {
 
 using geometry::CameraModel;
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 std::shared_ptr<Terrain> MakeTerrain(double size, double hills, RockPreset rocks,
                                      std::uint64_t seed = 3) {
   TerrainParams p;
@@ -92,7 +91,7 @@ CameraModel CahvorAt(const Eigen::Vector3d& c, const Eigen::Vector3d& forward, d
   m.a = r.col(2);
   m.h = f * r.col(0) + (centre + 4.0) * m.a;
   m.v = f * r.col(1) + (centre - 3.0) * m.a;
-  m.o = (Eigen::AngleAxisd(1.0 * kDeg, r.col(0)) * m.a).normalized();
+  m.o = (Eigen::AngleAxisd(1.0 * kDegree, r.col(0)) * m.a).normalized();
   m.r = Eigen::Vector3d(0.0, -0.2, 0.05);
   return *CameraModel::Create(m, size, size);
 }
@@ -231,7 +230,7 @@ TEST(RendererTest, RangeLiesOnTerrain) {
   const Eigen::Isometry3d pose = RoverPoseOnGround(terrain->ground, 0.5, 0.3, 0.4);
   const auto cams = DefaultStereoCameras(512);
   for (const auto& def : cams) {
-    auto spec = MakeCameraPairSpec(def, {0.2, -30 * kDeg});
+    auto spec = MakeCameraPairSpec(def, {0.2, -30 * kDegree});
     ASSERT_TRUE(spec.ok());
     auto pair = renderer.RenderStereoPair(pose, *spec);
     ASSERT_TRUE(pair.ok()) << pair.status().message();
@@ -317,7 +316,7 @@ TEST(RendererTest, SameSeedSameImages) {
   RenderOptions o;
   CREATE_OR_SKIP(a, terrain, o);
   const auto nav = *FindStereoCamera(DefaultStereoCameras(256), "navcam");
-  const auto spec = *MakeCameraPairSpec(nav, {0.0, -25 * kDeg});
+  const auto spec = *MakeCameraPairSpec(nav, {0.0, -25 * kDegree});
   const Eigen::Isometry3d pose = RoverPoseOnGround(terrain->ground, 0, 0, 0.2);
   auto p1 = a.RenderStereoPair(pose, spec, 7);
   auto p2 = a.RenderStereoPair(pose, spec, 7);
@@ -346,7 +345,7 @@ TEST(RendererTest, SoilHasTexture) {
   const Eigen::Isometry3d pose = RoverPoseOnGround(terrain->ground, 0, 0, 0.0);
   for (int size : {256, 512, 1024}) {
     const auto nav = *FindStereoCamera(DefaultStereoCameras(size), "navcam");
-    auto pair = renderer.RenderStereoPair(pose, *MakeCameraPairSpec(nav, {0.0, -40 * kDeg}));
+    auto pair = renderer.RenderStereoPair(pose, *MakeCameraPairSpec(nav, {0.0, -40 * kDegree}));
     ASSERT_TRUE(pair.ok());
     const cv::Mat& img = pair->left.image;
     std::vector<cv::Point2f> corners;
@@ -398,7 +397,7 @@ TEST(RendererTest, RockShadowSideIsDarker) {
     const double x = 3.0 + 0.3 * std::cos(phi), y = 0.3 * std::sin(phi);
     return Eigen::Vector3d(x, y, RockRelief(rock, x, y));
   };
-  const double lit = sample(on_rock(-40 * kDeg)), dark = sample(on_rock(-140 * kDeg));
+  const double lit = sample(on_rock(-40 * kDegree)), dark = sample(on_rock(-140 * kDegree));
   EXPECT_GT(lit, 1.8 * dark) << "lit flank " << lit << ", shadow flank " << dark;
   const double ground_shadow = sample({2.35, 0.0, 0.0});
   const double ground_lit = sample({2.35, -1.0, 0.0});

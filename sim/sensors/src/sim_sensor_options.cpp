@@ -3,10 +3,10 @@
 #include <cmath>
 #include <vector>
 
+#include "rover/base/units.hpp"
+
 namespace rover::sim::sensors {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 std::string Join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
@@ -23,13 +23,13 @@ SimSensorOptions::SimSensorOptions() {
   imu.accel_bias_error = Eigen::Vector3d(3.0e-3, -2.0e-3, 4.0e-3);
   imu.gyro_scale_error = Eigen::Vector3d(1.0e-4, -5.0e-5, 8.0e-5);
   imu.accel_scale_error = Eigen::Vector3d(2.0e-4, -1.0e-4, 1.0e-4);
-  imu.mounting_error_rpy = Eigen::Vector3d(0.05, -0.03, 0.08) * kDeg;
+  imu.mounting_error_rpy = Eigen::Vector3d(0.05, -0.03, 0.08) * kDegree;
   pots.offset_error_counts = {4.0, -3.0, 5.0, -2.0};
   pots.gain_error = {0.005, -0.004, 0.006, -0.003};
   motors.current_gain_error = 0.01;
   motors.current_offset_error_counts = 3.0;
   motors.temperature_offset_error_c = 1.5;
-  sun_sensor.mounting_error_rpy = Eigen::Vector3d(0.2, -0.15, 0.3) * kDeg;
+  sun_sensor.mounting_error_rpy = Eigen::Vector3d(0.2, -0.15, 0.3) * kDegree;
   sun_sensor.principal_point_error = Eigen::Vector2d(3.0, -2.0);
   sun_sensor.focal_error = 0.002;
   sun_sensor.optical_depth = 0.5;
@@ -108,7 +108,7 @@ void DeclareSimSensorParams(ParamSet& ps, const std::string& prefix) {
              "relative true - nominal accelerometer scale per case axis")
       .Size(3)
       .Range(-0.1, 0.1);
-  ps.Declare(key("imu.mounting_error_rpy_deg"), List(d.imu.mounting_error_rpy / kDeg),
+  ps.Declare(key("imu.mounting_error_rpy_deg"), List(d.imu.mounting_error_rpy / kDegree),
              "[deg] rotation of the true IMU case relative to the nominal mounting")
       .Size(3)
       .Range(-10.0, 10.0);
@@ -132,7 +132,8 @@ void DeclareSimSensorParams(ParamSet& ps, const std::string& prefix) {
   ps.Declare(key("motors.temperature_offset_error_c"), d.motors.temperature_offset_error_c,
              "[degC] error of the temperature sensors")
       .Range(-100.0, 100.0);
-  ps.Declare(key("sun_sensor.mounting_error_rpy_deg"), List(d.sun_sensor.mounting_error_rpy / kDeg),
+  ps.Declare(key("sun_sensor.mounting_error_rpy_deg"),
+             List(d.sun_sensor.mounting_error_rpy / kDegree),
              "[deg] rotation of the true sun sensor relative to the nominal mounting")
       .Size(3)
       .Range(-10.0, 10.0);
@@ -180,7 +181,7 @@ Result<SimSensorOptions> SimSensorOptionsFromParams(const ParamSet& ps, const st
   o.imu.accel_bias_sigma = d("imu.accel_bias_sigma");
   o.imu.gyro_scale_error = v3("imu.gyro_scale_error");
   o.imu.accel_scale_error = v3("imu.accel_scale_error");
-  o.imu.mounting_error_rpy = v3("imu.mounting_error_rpy_deg") * kDeg;
+  o.imu.mounting_error_rpy = v3("imu.mounting_error_rpy_deg") * kDegree;
   const auto& off = ps.GetDoubleList(key("pots.offset_error_counts"));
   const auto& gain = ps.GetDoubleList(key("pots.gain_error"));
   for (std::size_t i = 0; i < 4; ++i) {
@@ -190,7 +191,7 @@ Result<SimSensorOptions> SimSensorOptionsFromParams(const ParamSet& ps, const st
   o.motors.current_gain_error = d("motors.current_gain_error");
   o.motors.current_offset_error_counts = d("motors.current_offset_error_counts");
   o.motors.temperature_offset_error_c = d("motors.temperature_offset_error_c");
-  o.sun_sensor.mounting_error_rpy = v3("sun_sensor.mounting_error_rpy_deg") * kDeg;
+  o.sun_sensor.mounting_error_rpy = v3("sun_sensor.mounting_error_rpy_deg") * kDegree;
   const auto& pp = ps.GetDoubleList(key("sun_sensor.principal_point_error"));
   o.sun_sensor.principal_point_error = Eigen::Vector2d(pp[0], pp[1]);
   o.sun_sensor.focal_error = d("sun_sensor.focal_error");

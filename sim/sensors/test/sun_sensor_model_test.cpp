@@ -4,12 +4,11 @@
 
 #include <cmath>
 
+#include "rover/base/units.hpp"
 #include "rover/geometry/transforms.hpp"
 
 namespace rover::sim::sensors {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 // Sun at elevation `el` and azimuth `az` (from north towards east), site frame.
 Eigen::Vector3d Sun(double el, double az) {
@@ -29,13 +28,13 @@ TEST(SunSensorModel, IdealSpotFollowsThePinholeGeometry) {
   EXPECT_EQ(raw.spot[1], 0);
   EXPECT_EQ(raw.intensity, std::lround(spec.full_scale_intensity));
   // Sun 30 deg off zenith towards the rover's front (+x): rows are forward in the sensor.
-  raw = model.Sample(Sun(60.0 * kDeg, 0.0), level, Time{});
+  raw = model.Sample(Sun(60.0 * kDegree, 0.0), level, Time{});
   EXPECT_EQ(raw.spot[0], 0);
-  EXPECT_EQ(raw.spot[1], std::lround(spec.focal_counts * std::tan(30.0 * kDeg)));
-  EXPECT_NEAR(raw.intensity, spec.full_scale_intensity * std::cos(30.0 * kDeg), 0.5);
+  EXPECT_EQ(raw.spot[1], std::lround(spec.focal_counts * std::tan(30.0 * kDegree)));
+  EXPECT_NEAR(raw.intensity, spec.full_scale_intensity * std::cos(30.0 * kDegree), 0.5);
   // Towards the rover's right (-y = east when facing north): columns.
-  raw = model.Sample(Sun(60.0 * kDeg, 90.0 * kDeg), level, Time{});
-  EXPECT_EQ(raw.spot[0], std::lround(spec.focal_counts * std::tan(30.0 * kDeg)));
+  raw = model.Sample(Sun(60.0 * kDegree, 90.0 * kDegree), level, Time{});
+  EXPECT_EQ(raw.spot[0], std::lround(spec.focal_counts * std::tan(30.0 * kDegree)));
   EXPECT_EQ(raw.spot[1], 0);
 }
 
@@ -46,8 +45,8 @@ TEST(SunSensorModel, AttitudeRotatesTheSpot) {
   SunSensorModel model(spec, none, 0.0, 1);
   // Rover yawed 90 deg left (facing west): a sun in the north is now on the rover's right.
   const Eigen::Matrix3d yawed = geometry::RotationFromRpy(0.0, 0.0, M_PI / 2);
-  const hw::SunSensorRaw raw = model.Sample(Sun(60.0 * kDeg, 0.0), yawed, Time{});
-  EXPECT_EQ(raw.spot[0], std::lround(spec.focal_counts * std::tan(30.0 * kDeg)));
+  const hw::SunSensorRaw raw = model.Sample(Sun(60.0 * kDegree, 0.0), yawed, Time{});
+  EXPECT_EQ(raw.spot[0], std::lround(spec.focal_counts * std::tan(30.0 * kDegree)));
   EXPECT_EQ(raw.spot[1], 0);
 }
 
@@ -56,21 +55,21 @@ TEST(SunSensorModel, InvalidOutsideTheFieldOfViewAndBelowTheHorizon) {
   SunSensorModel model(spec, {}, 1.0, 3);
   const Eigen::Matrix3d level = Eigen::Matrix3d::Identity();
   // Elevation 25 deg: 65 deg off the boresight of a level rover.
-  hw::SunSensorRaw raw = model.Sample(Sun(25.0 * kDeg, 0.0), level, Time{});
+  hw::SunSensorRaw raw = model.Sample(Sun(25.0 * kDegree, 0.0), level, Time{});
   EXPECT_EQ(raw.intensity, 0);
   EXPECT_EQ(raw.spot[0], 0);
   EXPECT_EQ(raw.spot[1], 0);
-  EXPECT_FALSE(model.SunVisible(Sun(25.0 * kDeg, 0.0), level));
+  EXPECT_FALSE(model.SunVisible(Sun(25.0 * kDegree, 0.0), level));
   // The same sun (north = ahead) is seen when the rover pitches nose down by 20 deg (pitch + =
   // nose down), which tilts the boresight forward, towards the sun: 45 deg off the boresight.
-  const Eigen::Matrix3d nose_down = geometry::RotationFromRpy(0.0, 20.0 * kDeg, 0.0);
-  EXPECT_TRUE(model.SunVisible(Sun(25.0 * kDeg, 0.0), nose_down));
-  EXPECT_GT(model.Sample(Sun(25.0 * kDeg, 0.0), nose_down, Time{}).intensity, 0);
-  EXPECT_FALSE(
-      model.SunVisible(Sun(25.0 * kDeg, 0.0), geometry::RotationFromRpy(0.0, -20.0 * kDeg, 0.0)));
+  const Eigen::Matrix3d nose_down = geometry::RotationFromRpy(0.0, 20.0 * kDegree, 0.0);
+  EXPECT_TRUE(model.SunVisible(Sun(25.0 * kDegree, 0.0), nose_down));
+  EXPECT_GT(model.Sample(Sun(25.0 * kDegree, 0.0), nose_down, Time{}).intensity, 0);
+  EXPECT_FALSE(model.SunVisible(Sun(25.0 * kDegree, 0.0),
+                                geometry::RotationFromRpy(0.0, -20.0 * kDegree, 0.0)));
   // Below the horizon: never seen, even by a sensor tilted towards it (12 deg off boresight).
-  const Eigen::Matrix3d tilted = geometry::RotationFromRpy(0.0, 80.0 * kDeg, 0.0);
-  raw = model.Sample(Sun(-2.0 * kDeg, 0.0), tilted, Time{});
+  const Eigen::Matrix3d tilted = geometry::RotationFromRpy(0.0, 80.0 * kDegree, 0.0);
+  raw = model.Sample(Sun(-2.0 * kDegree, 0.0), tilted, Time{});
   EXPECT_EQ(raw.intensity, 0);
 }
 
@@ -81,9 +80,9 @@ TEST(SunSensorModel, DustAndLowSunDimTheSpot) {
   dusty.optical_depth = 3.0;
   SunSensorModel a(spec, clear, 0.0, 1), b(spec, dusty, 0.0, 1);
   const Eigen::Matrix3d level = Eigen::Matrix3d::Identity();
-  const auto high_clear = a.Sample(Sun(80.0 * kDeg, 0.0), level, Time{}).intensity;
-  const auto low_clear = a.Sample(Sun(35.0 * kDeg, 0.0), level, Time{}).intensity;
-  const auto low_dusty = b.Sample(Sun(35.0 * kDeg, 0.0), level, Time{}).intensity;
+  const auto high_clear = a.Sample(Sun(80.0 * kDegree, 0.0), level, Time{}).intensity;
+  const auto low_clear = a.Sample(Sun(35.0 * kDegree, 0.0), level, Time{}).intensity;
+  const auto low_dusty = b.Sample(Sun(35.0 * kDegree, 0.0), level, Time{}).intensity;
   EXPECT_GT(high_clear, low_clear);
   EXPECT_GT(low_clear, low_dusty);
   EXPECT_LT(low_dusty, spec.min_intensity);  // a driver would call this too dim
@@ -93,7 +92,7 @@ TEST(SunSensorModel, SpotNoiseMatchesSigmaAndValuesStayInRange) {
   SunSensorSpec spec;
   spec.spot_noise_counts = 3.0;
   SunSensorModel model(spec, SunSensorErrors{}, 1.0, 77);
-  const Eigen::Vector3d sun = Sun(70.0 * kDeg, 30.0 * kDeg);
+  const Eigen::Vector3d sun = Sun(70.0 * kDegree, 30.0 * kDegree);
   const Eigen::Matrix3d level = Eigen::Matrix3d::Identity();
   SunSensorModel ideal(spec, SunSensorErrors{}, 0.0, 77);
   const auto truth = ideal.Sample(sun, level, Time{});
@@ -118,13 +117,13 @@ TEST(SunSensorModel, MountingErrorShiftsTheSpot) {
   e.optical_depth = 0.0;
   e.mounting_error_rpy = Eigen::Vector3d(0.0, 0.0, 0.0);
   SunSensorModel nominal(spec, e, 0.0, 1);
-  e.mounting_error_rpy = Eigen::Vector3d(0.5 * kDeg, 0.0, 0.0);
+  e.mounting_error_rpy = Eigen::Vector3d(0.5 * kDegree, 0.0, 0.0);
   SunSensorModel tilted(spec, e, 0.0, 1);
   const Eigen::Matrix3d level = Eigen::Matrix3d::Identity();
   const auto a = nominal.Sample(Eigen::Vector3d::UnitZ(), level, Time{});
   const auto b = tilted.Sample(Eigen::Vector3d::UnitZ(), level, Time{});
   // 0.5 deg about the sensor x axis moves the spot ~f * 0.0087 = 17 counts along rows.
-  EXPECT_NEAR(std::abs(b.spot[1] - a.spot[1]), spec.focal_counts * std::tan(0.5 * kDeg), 1.0);
+  EXPECT_NEAR(std::abs(b.spot[1] - a.spot[1]), spec.focal_counts * std::tan(0.5 * kDegree), 1.0);
 }
 
 }  // namespace

@@ -7,12 +7,12 @@
 
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::sim::terrain {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kRampThickness = 0.04;    // [m]
 constexpr double kLegWidth = 0.06;         // [m]
 constexpr double kBraceWidth = 0.025;      // [m]
@@ -26,7 +26,7 @@ const Eigen::Vector3d kLegAlbedo(0.45, 0.45, 0.47);
 const Eigen::Vector3d kRampAlbedo(0.85, 0.85, 0.82);
 const Eigen::Vector3d kStripeAlbedo(0.05, 0.05, 0.05);
 
-double Apothem(const LanderParams& p) { return p.deck_radius * std::cos(30.0 * kDeg); }
+double Apothem(const LanderParams& p) { return p.deck_radius * std::cos(30.0 * kDegree); }
 
 int StripeUnitsTotal() {
   int s = 0;
@@ -116,7 +116,7 @@ Eigen::Vector3d LanderQuad::Normal() const {
 
 double LanderRamp::SlopeDeg() const {
   const double run = (bottom_center.head<2>() - top_center.head<2>()).norm();
-  return std::atan2(top_center.z() - bottom_center.z(), run) / kDeg;
+  return std::atan2(top_center.z() - bottom_center.z(), run) / kDegree;
 }
 
 Status LanderParams::Validate() const {
@@ -242,10 +242,10 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
   const HeightField& bare = terrain->bare;
   Lander l;
   l.params = p;
-  const double yaw = p.yaw_deg * kDeg, a = Apothem(p);
+  const double yaw = p.yaw_deg * kDegree, a = Apothem(p);
   const Eigen::Vector2d c(p.x, p.y);
   for (int m = 0; m < 6; ++m) {
-    const double ang = yaw + (30.0 + 60.0 * m) * kDeg;
+    const double ang = yaw + (30.0 + 60.0 * m) * kDegree;
     l.deck_vertices[static_cast<std::size_t>(m)] =
         c + p.deck_radius * Eigen::Vector2d(std::cos(ang), std::sin(ang));
   }
@@ -406,7 +406,7 @@ Result<int> AddScienceTarget(Terrain* terrain, const ScienceTargetParams& t) {
   rock.height = t.height > 0.0 ? t.height : terrain->params.rocks.height_ratio * t.diameter;
   rock.science_target = true;
   rock.texture_id = t.texture_id;
-  rock.yaw = t.yaw_deg * kDeg;
+  rock.yaw = t.yaw_deg * kDegree;
   rock.elongation = t.elongation;
   rock.bluntness = 0.5;
   const double br = RockBoundingRadius(rock);

@@ -6,6 +6,7 @@
 
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
 #include "rover/sim/terrain/noise.hpp"
 #include "rover/sim/terrain/random.hpp"
 #include "rover/sim/terrain/rock_model.hpp"
@@ -13,7 +14,6 @@
 namespace rover::sim::terrain {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr int kMaxPlacementAttempts = 2000;
 // How strongly soil patches follow the relief (in units of the noise's own spread).
 constexpr double kSoilReliefBias = 0.35;
@@ -177,9 +177,9 @@ Result<Terrain> GenerateTerrain(const TerrainParams& p) {
   };
 
   // 1. Base plane.
-  const double tan_slope = std::tan(p.slope.angle_deg * kDeg);
-  const Eigen::Vector2d uphill(std::cos(p.slope.uphill_direction_deg * kDeg),
-                               std::sin(p.slope.uphill_direction_deg * kDeg));
+  const double tan_slope = std::tan(p.slope.angle_deg * kDegree);
+  const Eigen::Vector2d uphill(std::cos(p.slope.uphill_direction_deg * kDegree),
+                               std::sin(p.slope.uphill_direction_deg * kDegree));
   auto plane = [&](double x, double y) {
     return tan_slope * ((x - p.center_x) * uphill.x() + (y - p.center_y) * uphill.y());
   };

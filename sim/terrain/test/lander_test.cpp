@@ -14,7 +14,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-Terrain MakeTerrain(RockPreset preset = RockPreset::kVl2) {
+Terrain MakeLanderTerrain(RockPreset preset = RockPreset::kVl2) {
   TerrainParams p;
   p.size_x = 30;
   p.size_y = 30;
@@ -47,7 +47,7 @@ TEST(Lander, StripeCodesIdentifyEveryStripeAndRamp) {
 }
 
 TEST(Lander, GeometryAndHeightfield) {
-  Terrain t = MakeTerrain();
+  Terrain t = MakeLanderTerrain();
   ASSERT_TRUE(PlaceLander(&t, At(6.0, -5.0, 30.0)).ok());
   ASSERT_TRUE(t.lander.has_value());
   const Lander& l = *t.lander;
@@ -102,7 +102,7 @@ TEST(Lander, GeometryAndHeightfield) {
 }
 
 TEST(Lander, OnlyTheRampsLeadOntoTheDeck) {
-  Terrain t = MakeTerrain(RockPreset::kNone);
+  Terrain t = MakeLanderTerrain(RockPreset::kNone);
   ASSERT_TRUE(PlaceLander(&t, At(-4.0, 3.0, -75.0)).ok());
   const Lander& l = *t.lander;
   // Around the deck, off the ramps, the edge is a wall of about the deck height.
@@ -141,7 +141,7 @@ TEST(Lander, OnlyTheRampsLeadOntoTheDeck) {
 }
 
 TEST(Lander, ErrorsNameTheField) {
-  Terrain t = MakeTerrain(RockPreset::kVl1);
+  Terrain t = MakeLanderTerrain(RockPreset::kVl1);
   Status s = PlaceLander(&t, At(14.0, 0.0, 0.0));  // ramps reach 5.8 m out; map is +-15 m
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(s.message(), HasSubstr("lander.x"));
@@ -156,7 +156,7 @@ TEST(Lander, ErrorsNameTheField) {
 }
 
 TEST(ScienceTarget, IsARockInTheHeightfield) {
-  Terrain t = MakeTerrain();
+  Terrain t = MakeLanderTerrain();
   auto id = AddScienceTarget(&t, {.x = -7.0, .y = 8.0, .diameter = 0.5, .texture_id = 3});
   ASSERT_TRUE(id.ok()) << id.status().ToString();
   const Rock* r = t.FindRock(*id);
@@ -194,7 +194,7 @@ TEST(ScenarioObjects, FromYamlWithFileLineErrors) {
                                 "science_targets: [-6, 6, 0.4, 1, -9, -9, 0.3, 2]\n",
                                 "scn.yaml")
                   .ok());
-  Terrain t = MakeTerrain(RockPreset::kVl1);
+  Terrain t = MakeLanderTerrain(RockPreset::kVl1);
   ASSERT_TRUE(PlaceScenarioObjects(&t, ps).ok());
   EXPECT_TRUE(t.lander.has_value());
   int targets = 0;
@@ -205,7 +205,7 @@ TEST(ScenarioObjects, FromYamlWithFileLineErrors) {
   DeclareLanderParams(bad);
   DeclareScienceTargets(bad);
   ASSERT_TRUE(bad.LoadYamlString("lander:\n  enabled: true\n  x: 40\n", "bad.yaml").ok());
-  Terrain t2 = MakeTerrain(RockPreset::kNone);
+  Terrain t2 = MakeLanderTerrain(RockPreset::kNone);
   const Status s = PlaceScenarioObjects(&t2, bad);
   EXPECT_THAT(s.message(), HasSubstr("bad.yaml:3: key 'lander.x'"));
 

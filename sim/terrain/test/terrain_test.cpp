@@ -7,14 +7,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "rover/base/units.hpp"
 #include "rover/sim/terrain/rock_model.hpp"
 
 namespace rover::sim::terrain {
 namespace {
 
 using ::testing::HasSubstr;
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 TerrainParams Small(std::uint64_t seed) {
   TerrainParams p;
   p.size_x = 20;
@@ -101,8 +100,8 @@ TEST(GenerateTerrain, BaseSlopeHasTheRequestedAngleAndDirection) {
   ASSERT_TRUE(t.ok());
   Eigen::Vector2d g = FitPlaneGradient(t->ground);
   // A pure plane: exact up to float rounding of the heights.
-  EXPECT_NEAR(std::atan(g.norm()) / kDeg, 12.0, 1e-3);
-  EXPECT_NEAR(std::atan2(g.y(), g.x()) / kDeg, 120.0, 1e-3);
+  EXPECT_NEAR(std::atan(g.norm()) / kDegree, 12.0, 1e-3);
+  EXPECT_NEAR(std::atan2(g.y(), g.x()) / kDegree, 120.0, 1e-3);
 
   // With the default hills and craters the fitted slope stays close. Tolerance: the hills'
   // largest octave (amplitude 0.35 m, wavelength 16 m) over a 20 m x 16 m map can tilt a
@@ -114,8 +113,8 @@ TEST(GenerateTerrain, BaseSlopeHasTheRequestedAngleAndDirection) {
   t = GenerateTerrain(p);
   ASSERT_TRUE(t.ok());
   g = FitPlaneGradient(t->bare);
-  EXPECT_NEAR(std::atan(g.norm()) / kDeg, 8.0, 2.0);
-  EXPECT_NEAR(std::atan2(g.y(), g.x()) / kDeg, -45.0, 15.0);
+  EXPECT_NEAR(std::atan(g.norm()) / kDegree, 8.0, 2.0);
+  EXPECT_NEAR(std::atan2(g.y(), g.x()) / kDegree, -45.0, 15.0);
 }
 
 TEST(GenerateTerrain, BadParamsAreErrors) {
@@ -148,8 +147,8 @@ TEST(GenerateTerrain, KeepOutDiscIsRockFreeAndFlat) {
         << "rock " << r.id;
   }
   // Inside the disc the ground is the base plane through the start point.
-  const double g = std::tan(5 * kDeg);
-  const Eigen::Vector2d up(std::cos(60 * kDeg), std::sin(60 * kDeg));
+  const double g = std::tan(5 * kDegree);
+  const Eigen::Vector2d up(std::cos(60 * kDegree), std::sin(60 * kDegree));
   const double z0 = t->ground.Height(s.x(), s.y());
   double worst = 0;
   int samples = 0;

@@ -22,19 +22,18 @@
 #include <vector>
 
 #include "rover/apl/nav_core/range_scan.hpp"
+#include "rover/base/units.hpp"
 #include "rover/sim/heightfield.hpp"
 
 namespace rover::apl::roaman::testing {
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
-
 struct MastCamera {
   int width = 160;
   int height = 120;
-  double hfov = 45.0 * kDeg;  ///< [rad] (MER NAVCAM 45°)
+  double hfov = 45.0 * kDegree;                            ///< [rad] (MER NAVCAM 45°)
   Eigen::Vector3d head = Eigen::Vector3d(0.35, 0.0, 1.5);  ///< [m] rover frame
   double pan = 0.0;    ///< [rad]
-  double tilt = -20.0 * kDeg;  ///< [rad]
+  double tilt = -20.0 * kDegree;  ///< [rad]
   double max_range = 12.0;     ///< [m] horizontal, from the rover
   double noise_at_10m = 0.0;   ///< [m] 1-sigma range error at 10 m
   std::uint64_t seed = 1;

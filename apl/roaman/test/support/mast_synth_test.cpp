@@ -14,12 +14,12 @@ TEST(MastSynth, SeesFlatGroundWhereThePinholeSays) {
   MastCamera cam;
   cam.width = 41;  // an odd size: the centre pixel looks along the boresight
   cam.height = 31;
-  cam.tilt = -30.0 * kDeg;
+  cam.tilt = -30.0 * kDegree;
   const nav_core::RangeScan s = SynthesizeScan(flat, cam, RoverPose(flat, 0, 0, 0));
   ASSERT_TRUE(s.Validate().ok());
   ASSERT_TRUE(s.is_valid(20, 15));
   const Eigen::Vector3d c = s.point(20, 15);
-  EXPECT_NEAR(c.x(), 0.35 + 1.5 / std::tan(30.0 * kDeg), 0.01);
+  EXPECT_NEAR(c.x(), 0.35 + 1.5 / std::tan(30.0 * kDegree), 0.01);
   EXPECT_NEAR(c.y(), 0.0, 0.01);
   EXPECT_NEAR(c.z(), 0.0, 0.005);
   // Left pixels (small u) look left (+y), upper pixels (small v) farther.
@@ -43,7 +43,7 @@ TEST(MastSynth, RocksCastShadowsAndTheRangeEnds) {
   MastCamera cam;
   cam.width = 120;
   cam.height = 90;
-  cam.tilt = -10.0 * kDeg;
+  cam.tilt = -10.0 * kDegree;
   const nav_core::RangeScan s = SynthesizeScan(g, cam, RoverPose(g, 0, 0, 0));
   // No ground point just behind the rock (its shadow from a 1.5 m mast: about 2.5 m long for a
   // 0.6 m rock 3.65 m from the camera), points on the rock itself, none past 12 m.
@@ -79,11 +79,11 @@ TEST(MastSynth, IsReproducibleAndNoiseFollowsTheSeed) {
 
 TEST(MastSynth, PanoramaPointingsAndOverheadScans) {
   MastCamera cam;
-  const auto p = PanoramaPointings(cam, 60.0 * kDeg, 5, {-10.0 * kDeg, -30.0 * kDeg});
+  const auto p = PanoramaPointings(cam, 60.0 * kDegree, 5, {-10.0 * kDegree, -30.0 * kDegree});
   ASSERT_EQ(p.size(), 10u);
-  EXPECT_NEAR(p[0].pan, -60.0 * kDeg, 1e-12);
-  EXPECT_NEAR(p[4].pan, 60.0 * kDeg, 1e-12);
-  EXPECT_NEAR(p[5].tilt, -30.0 * kDeg, 1e-12);
+  EXPECT_NEAR(p[0].pan, -60.0 * kDegree, 1e-12);
+  EXPECT_NEAR(p[4].pan, 60.0 * kDegree, 1e-12);
+  EXPECT_NEAR(p[5].tilt, -30.0 * kDegree, 1e-12);
   EXPECT_NE(p[0].seed, p[1].seed);
 
   sim::terrain::HeightField g = FlatGround(-1, -1, 3, 3, 0.02);

@@ -6,12 +6,12 @@
 #include <numbers>
 #include <utility>
 
+#include "rover/base/units.hpp"
 #include "rover/msg/drive_idl.hpp"
 
 namespace rover::deploy::runner {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr const char* kStep = "task.steps[]";
 
 const std::vector<std::string>& Terminations() {
@@ -54,7 +54,7 @@ Result<DriveStep> ParseStepAt(const YAML::Node& n, const std::string& where,
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(n, "angle_deg", where, -360, 360, err, &angle_deg, &has_a));
   ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "speed", where, 0, 0.5, err, &s.speed));
-  s.angle = angle_deg * kDegToRad;
+  s.angle = angle_deg * kDegree;
   auto need = [&](bool has, const char* what) -> Status {
     return has ? Status::Ok()
                : err.At(n, where + ": '" + name + "' needs '" + what + "'");

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
 #include "rover/geometry/polygon.hpp"
 #include "rover/msg/drive_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
@@ -15,7 +16,6 @@
 namespace rover::deploy::runner {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr std::size_t kMaxPrimitives = 32;  // MobilityCommand.primitives' bound
 constexpr std::size_t kMaxZones = 8;        // MobilityCommand.keep_out's bound
 constexpr std::size_t kMaxVertices = 16;    // KeepOutZone.vertices' bound
@@ -222,7 +222,7 @@ Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTas
   spec.max_steps = static_cast<int>(steps);
   double tilt_deg = 0;
   ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "max_tilt_deg", "task", 0, 89, err, &tilt_deg));
-  spec.max_tilt = tilt_deg * kDegToRad;
+  spec.max_tilt = tilt_deg * kDegree;
   if (const YAML::Node k = n["keep_out"]) {
     if (!k.IsSequence() || k.size() > kMaxZones) {
       return err.At(k, "task.keep_out: expected a list of at most " + std::to_string(kMaxZones) +

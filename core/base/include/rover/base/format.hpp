@@ -13,6 +13,9 @@ namespace rover {
 /// <= 17.
 std::string FormatNumber(double v, int significant = 6);
 
+/// An image or grid size as "<width>x<height>" ("640x480").
+std::string FormatSize(int width, int height);
+
 // The simulator's Simbody translation unit is C++17 (no std::span); it uses FormatNumber only.
 #if __cplusplus >= 202002L
 /// "[a, b, c]" with FormatNumber for each element.

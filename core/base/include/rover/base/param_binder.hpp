@@ -8,7 +8,7 @@
 ///
 ///   struct DriveOptions {
 ///     double check_rate_hz = 8.0;
-///     double max_tilt = 30.0 * kDeg;   // [rad]
+///     double max_tilt = 30.0 * kDegree;   // [rad]
 ///     int tilt_cycles = 3;
 ///     Status Validate() const;         // cross-field rules; messages start with the field
 ///     static void BindParams(ParamBinder<DriveOptions>& b) {

@@ -62,6 +62,7 @@
 #include <string>
 
 #include "rover/base/status.hpp"
+#include "rover/base/units.hpp"
 #include "rover/hwconfig/hw_bus.hpp"
 
 namespace rover {
@@ -72,8 +73,6 @@ class ParamBinder;
 namespace rover::hwconfig {
 
 /// One degree [rad] (the scale of the *_deg parameter keys).
-inline constexpr double kDegree = 3.14159265358979323846 / 180.0;
-
 inline constexpr int kNumWheels = 6;
 /// Steered (corner) wheels; the middle wheels LM and RM are fixed.
 inline constexpr int kNumSteered = 4;

@@ -14,10 +14,9 @@
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::gestalt {
-
-inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct GestaltOptions {
   // ---- grid ------------------------------------------------------------------------------
@@ -34,8 +33,8 @@ struct GestaltOptions {
   double step_sigma_k = 1.0;           ///< cell top = mean + k sigma (tall thin obstacles)
   double step_safe = 0.2 / 3.0;        ///< [m] steps up to this are perfect (255)
   double max_step = 0.20;              ///< [m] steps from this on are obstacles (0)
-  double tilt_safe = 5.0 * kDeg;       ///< [rad] tilts up to this are perfect
-  double max_tilt = 20.0 * kDeg;       ///< [rad] tilts from this on are obstacles
+  double tilt_safe = 5.0 * kDegree;    ///< [rad] tilts up to this are perfect
+  double max_tilt = 20.0 * kDegree;    ///< [rad] tilts from this on are obstacles
   double roughness_safe = 0.07 / 3.0;  ///< [m] fit residuals up to this are perfect
   double max_roughness = 0.07;         ///< [m] fit residuals from this on are obstacles
   double eigen_ratio = 2.0;            ///< middle / smallest eigenvalue a planar fit needs
@@ -76,7 +75,7 @@ struct GestaltOptions {
   int waypoint_peak_toward = 255;  ///< waypoint vote of the best arc in the goal's direction
   int waypoint_peak_away = 128;    ///< ... in the other direction (and of turns normally)
   double arc_vote_variance = 3.2;  ///< [1/m^2] variance of the waypoint Gaussian over curvature
-  double turn_vote_variance = 97.0 * kDeg * kDeg;  ///< [rad^2] ... over turn angle
+  double turn_vote_variance = 97.0 * kDegree * kDegree;  ///< [rad^2] ... over turn angle
   double backup_vote_scale = 0.5;                  ///< back-up (K-turn) votes are scaled by this
   /// [rad] Drive-direction hysteresis: after a forward arc, forward stays the goal's direction
   /// until the goal is this far behind abeam (|bearing| > 90 deg + h), and after a backward arc

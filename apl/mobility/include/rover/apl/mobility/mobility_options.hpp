@@ -12,10 +12,9 @@
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::mobility {
-
-inline constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 struct MobilityOptions {
   // ---- command limits ----------------------------------------------------------------------

@@ -19,10 +19,9 @@
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::apl::roaman {
-
-inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// Which planner MakePlan runs on the traversability map.
 enum class Algorithm {
@@ -73,9 +72,9 @@ struct RoamanOptions {
   double height_sigma_k = 2.0;  ///< 2: cell top/bottom = mean +- k sigma (within min..max)
   double normal_window = 0.25;  ///< [m] 3: side of the plane-fit window (odd cells)
   int min_fit_cells = 6;        ///< 3: cells with heights a plane fit needs
-  double region_tolerance = 10.0 * kDeg;  ///< [rad] 4: normal angle to the region's mean normal
+  double region_tolerance = 10.0 * kDegree;  ///< [rad] 4: normal angle to the region's mean normal
   double region_max_jump = 0.1;    ///< [m] 4: height jump between neighbours that ends a region
-  double max_slope = 45.0 * kDeg;  ///< [rad] 5: steeper regions are hazards (FIDO: 45°)
+  double max_slope = 45.0 * kDegree;  ///< [rad] 5: steeper regions are hazards (FIDO: 45°)
   double min_steep_area = 0.25;    ///< [m^2] 5: smaller steep regions are left to the step test
   double step_baseline = 0.15;     ///< [m] 5: a rise over this distance is a discontinuity
   double min_missing_area = 0.04;  ///< [m^2] 5: smaller regions of missing data are no hazard

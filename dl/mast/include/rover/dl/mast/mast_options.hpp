@@ -9,10 +9,9 @@
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
+#include "rover/base/units.hpp"
 
 namespace rover::dl::mast {
-
-inline constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 struct MastOptions {
   double pan_min = -175.0 * kDegree;  ///< [rad] lowest pan goal accepted
