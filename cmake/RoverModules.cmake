@@ -126,6 +126,10 @@ function(_rover_add_executable kind)
   _rover_common_target_setup(${S_NAME} "${S_SIMBODY}")
   _rover_register(${S_NAME} ${layer} ${kind})
   set_property(GLOBAL APPEND PROPERTY ROVER_EXECUTABLES_${kind} ${S_NAME})
+  if(kind STREQUAL "benchmark" AND NOT ROVER_BUILD_BENCHMARKS)
+    set_target_properties(${S_NAME} PROPERTIES EXCLUDE_FROM_ALL ON)
+    return()
+  endif()
   install(TARGETS ${S_NAME} RUNTIME DESTINATION bin)
 endfunction()
 
@@ -161,6 +165,9 @@ function(rover_add_test)
   endif()
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   _rover_common_target_setup(${T_NAME} "${T_SIMBODY}")
+  if(ROVER_TEST_OPT_FLAG AND NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
+    target_compile_options(${T_NAME} PRIVATE ${ROVER_TEST_OPT_FLAG})  # after the -O2 of the build type
+  endif()
   target_compile_definitions(${T_NAME} PRIVATE
     ROVER_SOURCE_DIR="${PROJECT_SOURCE_DIR}" ROVER_BINARY_DIR="${CMAKE_BINARY_DIR}"
     ROVER_SHARED_DATA_DIR="${ROVER_SHARED_DATA_DIR}")

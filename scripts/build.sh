@@ -12,7 +12,7 @@ JOBS=${ROVER_JOBS:-2}
 OPT_FLAGS="-O2 -g1 -DNDEBUG"
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DROVER_WERROR=ON \
       -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$OPT_FLAGS" -DCMAKE_C_FLAGS_RELWITHDEBINFO="$OPT_FLAGS" \
-      -DROVER_MODULE_FILTER="" "$@" > "$BUILD_DIR.configure.log" 2>&1 || {
+      -DROVER_MODULE_FILTER="" -DROVER_BUILD_BENCHMARKS=ON "$@" > "$BUILD_DIR.configure.log" 2>&1 || {
   cat "$BUILD_DIR.configure.log" >&2
   exit 1
 }

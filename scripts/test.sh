@@ -4,7 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 start=$(date +%s)
-bash scripts/build.sh
+bash scripts/build.sh -DROVER_BUILD_BENCHMARKS=OFF  # benchmarks are run by hand
 echo "build: $(( $(date +%s) - start )) s"
 BUILD_DIR=${ROVER_BUILD_DIR:-build}
 export CYCLONEDDS_URI="file://$PWD/deploy/cyclonedds/loopback.xml"
