@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "rover/base/check.hpp"
+#include "describe.hpp"
 #include "worker_pool.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -127,7 +128,6 @@ struct Ops {
   }
 };
 #include "correlator_kernel.inc"
-#include "describe.hpp"
 }  // namespace avx2
 #pragma GCC pop_options
 #endif  // ROVER_STEREO_X86
