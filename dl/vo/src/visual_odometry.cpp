@@ -160,9 +160,8 @@ Status VisualOdometry::CheckFrame(const StereoFrame& frame) const {
                              std::to_string(img.type()) + "; expected CV_8UC1 (8-bit grey)");
     }
     if (img.cols != camera_.width || img.rows != camera_.height) {
-      return InvalidArgument(std::string(side) + " image is " + std::to_string(img.cols) + "x" +
-                             std::to_string(img.rows) + "; the camera is " +
-                             std::to_string(camera_.width) + "x" + std::to_string(camera_.height));
+      return InvalidArgument(std::string(side) + " image is " + FormatSize(img.cols, img.rows) +
+                             "; the camera is " + FormatSize(camera_.width, camera_.height));
     }
   }
   if (has_reference_ && frame.stamp <= reference_.stamp) {
