@@ -139,7 +139,25 @@ PathVote ArcEvaluator::HazardVote(const GoodnessMap& map,
   return pv;
 }
 
-std::vector<Eigen::Vector2d> ArcEvaluator::FootprintHazards(const GoodnessMap& map,
+namespace {
+// Does hazard point `local` (rover frame at the pose tested) hit the grown footprint?
+bool HitsFootprint(const GestaltOptions& o, const FootprintHazard& h,
+                   const Eigen::Vector2d& local) {
+  const double m = o.footprint_margin;
+  if (local.x() < o.footprint_min_x - m || local.x() > o.footprint_max_x + m ||
+      local.y() < o.footprint_min_y - m || local.y() > o.footprint_max_y + m) {
+    return false;
+  }
+  if (!o.footprint_straddle) return true;
+  for (const hwconfig::ContactPart& part : o.contact_parts) {
+    if (part.clearance > 0.0 && !h.tall) continue;
+    if (part.DistanceTo(local) < m) return true;
+  }
+  return false;
+}
+}  // namespace
+
+std::vector<FootprintHazard> ArcEvaluator::FootprintHazards(const GoodnessMap& map,
                                                             const Pose2& pose) const {
   const GestaltOptions& o = options_;
   const Eigen::Vector2d lo(o.footprint_min_x - o.footprint_margin,
@@ -148,38 +166,37 @@ std::vector<Eigen::Vector2d> ArcEvaluator::FootprintHazards(const GoodnessMap& m
                            o.footprint_max_y + o.footprint_margin);
   const double reach = o.plan_max_dist + std::max(lo.norm(), hi.norm()) + o.cell_size;
   const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
-  std::vector<Eigen::Vector2d> points;
+  std::vector<FootprintHazard> points;
   int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
   map.CellOf(pose.x - reach, pose.y - reach, &i0, &j0);
   map.CellOf(pose.x + reach, pose.y + reach, &i1, &j1);
   for (int j = std::max(0, j0); j <= std::min(map.height - 1, j1); ++j) {
     for (int i = std::max(0, i0); i <= std::min(map.width - 1, i1); ++i) {
-      if ((map.flags[map.Index(i, j)] & nav_core::kCellHazard) == 0) continue;
+      const std::uint8_t flags = map.flags[map.Index(i, j)];
+      if ((flags & nav_core::kCellHazard) == 0) continue;
       const Eigen::Vector2d d = map.CellCenter(i, j) - Eigen::Vector2d(pose.x, pose.y);
       if (d.squaredNorm() > reach * reach) continue;
-      const Eigen::Vector2d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-      if ((q.array() >= lo.array()).all() && (q.array() <= hi.array()).all()) continue;
-      points.push_back(q);
+      const FootprintHazard h{Eigen::Vector2d(c * d.x() + s * d.y(), -s * d.x() + c * d.y()),
+                              (flags & nav_core::kCellTall) != 0};
+      if (HitsFootprint(o, h, h.q)) continue;  // under the rover already
+      points.push_back(h);
     }
   }
   return points;
 }
 
 double ArcEvaluator::FirstFootprintHit(const Candidate& candidate, double length,
-                                       const std::vector<Eigen::Vector2d>& hazards) const {
+                                       const std::vector<FootprintHazard>& hazards) const {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   if (hazards.empty()) return kInf;
   const GestaltOptions& o = options_;
-  const Eigen::Array2d lo(o.footprint_min_x - o.footprint_margin,
-                          o.footprint_min_y - o.footprint_margin);
-  const Eigen::Array2d hi(o.footprint_max_x + o.footprint_margin,
-                          o.footprint_max_y + o.footprint_margin);
   auto hit_at = [&](const Eigen::Vector2d& p, double heading) {
     const double c = std::cos(heading), s = std::sin(heading);
-    for (const Eigen::Vector2d& q : hazards) {
-      const Eigen::Vector2d d = q - p;
-      const Eigen::Array2d local(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-      if ((local >= lo).all() && (local <= hi).all()) return true;
+    for (const FootprintHazard& h : hazards) {
+      const Eigen::Vector2d d = h.q - p;
+      if (HitsFootprint(o, h, Eigen::Vector2d(c * d.x() + s * d.y(), -s * d.x() + c * d.y()))) {
+        return true;
+      }
     }
     return false;
   };
@@ -237,8 +254,8 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
 
   std::vector<PathCell> cells;
   std::vector<PathVote> path_votes(n);
-  const std::vector<Eigen::Vector2d> hazards =
-      o.footprint_check ? FootprintHazards(map, pose) : std::vector<Eigen::Vector2d>{};
+  const std::vector<FootprintHazard> hazards =
+      o.footprint_check ? FootprintHazards(map, pose) : std::vector<FootprintHazard>{};
   for (std::size_t k = 0; k < n; ++k) {
     Candidate& cand = e.candidates[k];
     double peak = 0.0, exponent = 0.0;
@@ -305,6 +322,7 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
     // Waypoint votes from drive cost + cost-to-go (file comment).
     CostToGoOptions co;
     co.clearance = std::min(-o.footprint_min_y, o.footprint_max_y) + o.footprint_margin;
+    co.straddle = o.footprint_straddle;
     co.min_allowed_goodness = o.min_allowed_goodness;
     co.goodness_weight = o.cost_goodness_weight;
     co.unknown_cost_factor = o.cost_unknown_factor;

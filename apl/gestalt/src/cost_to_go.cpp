@@ -22,7 +22,8 @@ CostToGo::CostToGo(const nav_core::GoodnessMap& map, const Eigen::Vector2d& goal
   // Preconditions (the options come from a validated GestaltOptions).
   ROVER_DEMAND(map.resolution > 0.0);
   ROVER_DEMAND(options.clearance >= 0.0 && options.goodness_weight >= 0.0);
-  ROVER_DEMAND(options.unknown_cost_factor >= 1.0);
+  ROVER_DEMAND(options.unknown_cost_factor >= 1.0 && options.straddle_cost_factor >= 1.0);
+  std::vector<std::uint8_t> near_low(options.straddle ? map.cell_count() : 0, 0);
   grid_.resolution = map.resolution;
   grid_.origin_x = map.origin_x;
   grid_.origin_y = map.origin_y;
@@ -41,11 +42,13 @@ CostToGo::CostToGo(const nav_core::GoodnessMap& map, const Eigen::Vector2d& goal
         blocked_[k] = 1;
       }
       if ((map.flags[k] & nav_core::kCellHazard) == 0) continue;
+      std::uint8_t* mark = blocked_.data();
+      if (options.straddle && (map.flags[k] & nav_core::kCellTall) == 0) mark = near_low.data();
       for (int dj = -reach; dj <= reach; ++dj) {
         for (int di = -reach; di <= reach; ++di) {
           if (!map.Contains(i + di, j + dj)) continue;
           const double d2 = (di * di + dj * dj) * map.resolution * map.resolution;
-          if (d2 <= r2) blocked_[map.Index(i + di, j + dj)] = 1;
+          if (d2 <= r2) mark[map.Index(i + di, j + dj)] = 1;
         }
       }
     }
@@ -73,6 +76,7 @@ CostToGo::CostToGo(const nav_core::GoodnessMap& map, const Eigen::Vector2d& goal
   auto step_factor = [&](std::size_t k) {
     double f = 1.0 + options.goodness_weight * (255.0 - map.goodness[k]) / 255.0;
     if ((map.flags[k] & nav_core::kCellKnown) == 0) f *= options.unknown_cost_factor;
+    if (!near_low.empty() && near_low[k] != 0) f *= options.straddle_cost_factor;
     return f;
   };
   while (!open.empty()) {

@@ -122,6 +122,14 @@ Status GestaltOptions::Validate() const {
                                    Bounds::OpenLow(0.0, 50.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("footprint_hazard_height", footprint_hazard_height,
                                    Bounds::OpenLow(0.0, 5.0), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("footprint_tall_height", footprint_tall_height, Bounds::OpenLow(0.0, 5.0), "m"));
+  if (footprint_straddle && !footprint_check) {
+    return InvalidArgument("footprint_straddle = true needs footprint_check = true");
+  }
+  if (footprint_straddle && contact_parts.empty()) {
+    return InvalidArgument("footprint_straddle = true needs the rover's contact parts (none set)");
+  }
   if (cost_to_go && !footprint_check) {
     return InvalidArgument("cost_to_go = true needs footprint_check = true (it plans around the "
                            "footprint check's hazard cells)");
@@ -256,6 +264,12 @@ void GestaltOptions::BindParams(ParamBinder<GestaltOptions>& b) {
   b.Bind("footprint_hazard_height_m", &G::footprint_hazard_height, "m",
          "a cell this high above the belly disc's lowest ground is a hazard cell")
       .Range(0.001, 5.0);
+  b.Bind("footprint_straddle", &G::footprint_straddle,
+         "sweep the rover's contact parts (wheels, suspension, body) instead of its footprint "
+         "rectangle, so hazards lower than the belly may pass between the wheels (ours)");
+  b.Bind("footprint_tall_height_m", &G::footprint_tall_height, "m",
+         "a hazard cell this high reaches the body and rocker links (footprint_straddle)")
+      .Range(0.001, 5.0);
   b.Bind("cost_to_go", &G::cost_to_go,
          "waypoint vote by drive cost + cost-to-go over the map (ours, after MER's 2006 Field "
          "D*; needs footprint_check) instead of by the arc through the goal (MER)");
@@ -275,6 +289,7 @@ Result<GestaltOptions> ReadGestaltOptionsForRover(const ParamSet& params, const 
   ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
                          ReadParams<hwconfig::RoverDescription>(params, geometry_prefix));
   ROVER_ASSIGN_OR_RETURN(GestaltOptions g, ReadParams<GestaltOptions>(params, prefix));
+  g.contact_parts = rover.ContactParts();
   if (params.Origin(prefix + "rover_disc_diameter_m").source == "default") {
     g.rover_disc_diameter = rover.TurnInPlaceCircle().Diameter();
     if (Status s = g.Validate(); !s.ok()) {

@@ -269,6 +269,9 @@ void TerrainMap::Publish() {
       if (options_.footprint_check && assessments_[k].known() &&
           assessments_[k].cell_height >= options_.footprint_hazard_height) {
         flags |= nav_core::kCellHazard;
+        if (assessments_[k].cell_height >= options_.footprint_tall_height) {
+          flags |= nav_core::kCellTall;
+        }
       }
       map_.goodness[k] = static_cast<std::uint8_t>(value);
       map_.certainty[k] = static_cast<std::uint8_t>(certainty);

@@ -322,10 +322,11 @@ TEST(ChooseCandidate, MiddleOfTheLongestPlateau) {
 
 namespace footprint {
 
-GestaltOptions FootprintOptions(bool cost_to_go = false) {
+GestaltOptions FootprintOptions(bool cost_to_go = false, bool straddle = false) {
   GestaltOptions o;
   o.footprint_check = true;
   o.cost_to_go = cost_to_go;
+  o.footprint_straddle = straddle;
   return o;
 }
 
@@ -417,6 +418,54 @@ TEST(ArcEvaluatorFootprint, CostToGoAimsAtTheGapNotTheWall) {
   const auto& c = e->choice();
   EXPECT_TRUE(c.kind == MotionKind::kPointTurn ? c.turn_angle > 0.0 : c.curvature > 0.0)
       << "chose curvature " << c.curvature << " turn " << c.turn_angle;
+}
+
+TEST(ArcEvaluatorFootprint, StraddleLetsALowRockPassBetweenTheWheelsNotUnderOne) {
+  const ArcEvaluator rectangle = MakeEvaluator(FootprintOptions());
+  const ArcEvaluator straddle = MakeEvaluator(FootprintOptions(false, true));
+  const int straight = StraightIndex(straddle);
+  ASSERT_GE(straight, 0);
+  ASSERT_EQ(StraightIndex(rectangle), straight);
+  // 1.5 m ahead on the centre line: inside the rectangle's sweep, between the wheel discs
+  // (inner edges 0.5 - 0.148 m out, less the 0.15 m margin: 0.2 m).
+  GoodnessMap low = KnownMap(), tall = KnownMap(), on_track = KnownMap();
+  AddHazard(&low, 1.5, 0.0);
+  SetRect(&tall, 1.4, 1.6, -0.1, 0.1, 200, 255,
+          nav_core::kCellKnown | nav_core::kCellHazard | nav_core::kCellTall);
+  AddHazard(&on_track, 1.5, 0.5);  // on the left wheel line
+  auto rect_low = rectangle.Evaluate(low, Toward(4.0, 0.0));
+  auto str_low = straddle.Evaluate(low, Toward(4.0, 0.0));
+  auto str_tall = straddle.Evaluate(tall, Toward(4.0, 0.0));
+  auto str_track = straddle.Evaluate(on_track, Toward(4.0, 0.0));
+  ASSERT_TRUE(rect_low.ok() && str_low.ok() && str_tall.ok() && str_track.ok());
+  EXPECT_EQ(rect_low->hazard[straight].goodness, 0);
+  EXPECT_GT(str_low->hazard[straight].goodness, 0);
+  EXPECT_EQ(str_tall->hazard[straight].goodness, 0);   // reaches the body
+  EXPECT_EQ(str_track->hazard[straight].goodness, 0);  // under a wheel
+}
+
+TEST(ArcEvaluatorFootprint, StraddleSweepsTheRoverDescriptionsParts) {
+  // Widen the track: the same centre-line rock now passes farther from the wheels, and a rock
+  // on the old wheel line falls between them.
+  GestaltOptions o = FootprintOptions(false, true);
+  hwconfig::RoverDescription wide;
+  wide.half_track = 0.8;
+  o.contact_parts = wide.ContactParts();
+  o.footprint_max_y = 0.9;
+  o.footprint_min_y = -0.9;
+  const ArcEvaluator ev = MakeEvaluator(o);
+  const int straight = StraightIndex(ev);
+  GoodnessMap m = KnownMap();
+  AddHazard(&m, 1.5, 0.3);
+  auto e = ev.Evaluate(m, Toward(4.0, 0.0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_GT(e->hazard[straight].goodness, 0);
+  GestaltOptions none = FootprintOptions(false, true);
+  none.contact_parts.clear();
+  EXPECT_FALSE(none.Validate().ok());
+  GestaltOptions no_check;
+  no_check.footprint_straddle = true;
+  EXPECT_FALSE(no_check.Validate().ok());
 }
 
 }  // namespace footprint

@@ -46,6 +46,34 @@ TEST(CostToGo, HazardBlocksItsClearanceAndTheWayGoesAround) {
   EXPECT_LT(ctg.Cost(0.0, 0.0), 2.0 * std::hypot(1.0, 1.8) * 1.25);
 }
 
+TEST(CostToGo, StraddleBlocksOnlyTallHazardsAndChargesNearLowOnes) {
+  GoodnessMap m = KnownMap();
+  // A low wall across the whole map: with straddle it no longer blocks, it costs
+  // straddle_cost_factor.
+  for (double y = -4.9; y <= 4.9; y += 0.2) MarkHazard(&m, 1.0, y);
+  CostToGoOptions o;
+  o.clearance = 0.7;
+  o.straddle = true;
+  o.straddle_cost_factor = 3.0;
+  const CostToGo low(m, {2.0, 0.0}, o);
+  EXPECT_FALSE(low.Blocked(1.0, 0.0));
+  // Straight through: 0.6 m at factor 1 outside the 1.4 m band, the band at 3 (to within a
+  // cell at its edges).
+  EXPECT_NEAR(low.Cost(0.0, 0.0), 0.6 + 1.4 * 3.0, 0.45);
+  o.straddle = false;
+  EXPECT_FALSE(CostToGo(m, {2.0, 0.0}, o).any_reachable() &&
+               std::isfinite(CostToGo(m, {2.0, 0.0}, o).Cost(0.0, 0.0)));
+  o.straddle = true;
+  // A tall cell blocks as before.
+  int i = 0, j = 0;
+  m.CellOf(1.0, 0.0, &i, &j);
+  m.flags[m.Index(i, j)] |= nav_core::kCellTall;
+  const CostToGo tall(m, {2.0, 0.0}, o);
+  EXPECT_TRUE(tall.Blocked(1.0, 0.0));
+  EXPECT_TRUE(tall.Blocked(1.6, 0.0));
+  EXPECT_FALSE(tall.Blocked(1.0, 1.4));  // near the low cells only
+}
+
 TEST(CostToGo, PoorAndUnknownCellsCostMore) {
   GoodnessMap poor = KnownMap(55);  // goodness 55 of 255
   const CostToGo open(KnownMap(), {3.0, 0.0}, CostToGoOptions{});

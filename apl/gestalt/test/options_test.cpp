@@ -73,7 +73,7 @@ TEST(GestaltOptions, EveryParameterIsBoundOnceWithADoc) {
     EXPECT_TRUE(keys.insert(p.key).second) << p.key;
     EXPECT_FALSE(p.doc.empty()) << p.key;
   }
-  EXPECT_EQ(bound.size(), 57u);
+  EXPECT_EQ(bound.size(), 59u);
   EXPECT_TRUE(keys.count("max_tilt_deg"));
   EXPECT_TRUE(keys.count("turn_vote_variance_deg2"));
 }

@@ -162,6 +162,27 @@ TEST(TerrainMap, StepEstimateTracksRockHeight) {
   }
 }
 
+TEST(TerrainMap, FootprintCheckFlagsHazardAndTallCells) {
+  // A 0.18 m and a 0.32 m rock, 2.5 m ahead: both hazards (>= 0.15 m), only the second tall
+  // (>= 0.22 m, reaching the body and rocker links); no flags without the footprint check.
+  sim::terrain::Terrain world = FlatWorld(14.0);
+  AddRock(&world, 2.5, -0.8, 0.36, 0.18);
+  AddRock(&world, 2.5, 0.8, 0.5, 0.32);
+  GestaltOptions o;
+  o.footprint_check = true;
+  TerrainMap with = MakeMap(o), without = MakeMap();
+  const RangeScan scan = Look(world, 0, 0, 0);
+  ASSERT_TRUE(with.Update(scan).ok());
+  ASSERT_TRUE(without.Update(scan).ok());
+  const nav_core::CellValue low = At(with, 2.5, -0.8), tall = At(with, 2.5, 0.8);
+  EXPECT_NE(low.flags & nav_core::kCellHazard, 0);
+  EXPECT_EQ(low.flags & nav_core::kCellTall, 0);
+  EXPECT_NE(tall.flags & nav_core::kCellHazard, 0);
+  EXPECT_NE(tall.flags & nav_core::kCellTall, 0);
+  EXPECT_EQ(At(with, 2.5, 0.0).flags & nav_core::kCellHazard, 0);  // the ground between
+  EXPECT_EQ(At(without, 2.5, 0.8).flags & nav_core::kCellHazard, 0);
+}
+
 TEST(TerrainMap, PitchersMoundsCanBeClimbed) {
   // A hill rising at 13 deg from 2 m ahead of the rover, seen by the HAZCAM. Searching for steps
   // anywhere in the 2.6 m rover disc (MER's first flight software) finds the flat-to-hill bend

@@ -119,40 +119,41 @@ class TerrainScene : public mt::Scene {
   mutable int unsupported_ = 0;
 };
 
-// Is the field passable at all for the judge's footprint? A Dijkstra search over (x, y,
-// heading) on a 0.1 m x 11.25 deg lattice, moving straight along the heading by one cell or
-// turning in place by one heading step. A state is free when no rock taller than the
-// traversable height (as the judge sees it: a disc of the nominal diameter) reaches into the
-// footprint rectangle grown by `margin`. Returns the shortest such path length from the start to
-// within `tolerance` of the goal, or a negative number when there is none. It ignores slopes and
+// Is the field passable at all for the judge? A Dijkstra search over (x, y, heading) on a
+// 0.1 m x 11.25 deg lattice, moving straight along the heading by one cell or turning in place
+// by one heading step. A state is free when no rock taller than the traversable height (as the
+// judge sees it: its outline polygon) comes within `margin` of a contact part that
+// it is taller than (the judge's hazard_contacts; `rectangle`: of the whole ground-footprint
+// rectangle, the judge's footprint_overlaps). Returns the shortest such path length from the start
+// to within `tolerance` of the goal, or a negative number when there is none. It ignores slopes and
 // the arcs' curvature limits: a field that fails here cannot be crossed without a contact.
 double FeasiblePathLength(const sim::world::World& world, const sim::judge::RoverFootprint& fp,
                           double traversable_height, Eigen::Vector2d goal, double tolerance,
-                          double margin) {
+                          double margin, bool rectangle) {
   constexpr double kCell = 0.1;
   constexpr int kHeadings = 32;
   const sim::terrain::HeightField& g = world.terrain.bare;
   const int nx = static_cast<int>((g.max_x() - g.min_x()) / kCell);
   const int ny = static_cast<int>((g.max_y() - g.min_y()) / kCell);
-  struct Disc {
-    Eigen::Vector2d c;
-    double r;
-  };
+
   // Rocks binned by 1 m cell for the collision test.
   const int bx = static_cast<int>(nx * kCell) + 1, by = static_cast<int>(ny * kCell) + 1;
-  std::vector<std::vector<Disc>> bins(static_cast<std::size_t>(bx * by));
+  std::vector<std::vector<sim::judge::JudgeRock>> bins(static_cast<std::size_t>(bx * by));
   double max_r = 0;
   for (const auto& r : world.terrain.rocks) {
     if (r.height <= traversable_height) continue;
     const int ix = static_cast<int>((r.position.x() - g.min_x()) / 1.0);
     const int iy = static_cast<int>((r.position.y() - g.min_y()) / 1.0);
     if (ix < 0 || iy < 0 || ix >= bx || iy >= by) continue;
-    bins[static_cast<std::size_t>(iy * bx + ix)].push_back({r.position.head<2>(), 0.5 * r.diameter});
-    max_r = std::max(max_r, 0.5 * r.diameter);
+    sim::judge::JudgeRock jr{r.id, r.position.head<2>(), r.diameter, r.height,
+                             sim::terrain::RockOutline(r, 32)};
+    max_r = std::max(max_r, jr.Reach());
+    bins[static_cast<std::size_t>(iy * bx + ix)].push_back(std::move(jr));
   }
-  const Eigen::Vector2d lo = fp.body_min - Eigen::Vector2d::Constant(margin);
-  const Eigen::Vector2d hi = fp.body_max + Eigen::Vector2d::Constant(margin);
-  const double reach = std::max(lo.norm(), hi.norm()) + max_r;
+  hwconfig::ContactPart ground;  // the whole ground-footprint rectangle
+  ground.min = fp.body_min;
+  ground.max = fp.body_max;
+  const double reach = std::max(fp.body_min.norm(), fp.body_max.norm()) + margin + max_r;
   auto index = [&](int ix, int iy, int k) {
     return (static_cast<std::size_t>(iy) * nx + ix) * kHeadings + k;
   };
@@ -170,12 +171,20 @@ double FeasiblePathLength(const sim::world::World& world, const sim::judge::Rove
     const int y1 = std::min(by - 1, static_cast<int>(p.y() + reach - g.min_y()));
     for (int y = y0; ok && y <= y1; ++y) {
       for (int x = x0; ok && x <= x1; ++x) {
-        for (const Disc& d : bins[static_cast<std::size_t>(y * bx + x)]) {
-          const Eigen::Vector2d local = rot.transpose() * (d.c - p);
-          if ((local - local.cwiseMax(lo).cwiseMin(hi)).norm() < d.r) {
-            ok = false;
-            break;
+        for (const sim::judge::JudgeRock& rock : bins[static_cast<std::size_t>(y * bx + x)]) {
+          if (rectangle) {
+            ok = !sim::judge::RockTouches(rock, rot, p, ground, margin);
+          } else {
+            for (const hwconfig::ContactPart& part : fp.parts) {
+              const double clearance =
+                  part.clearance > 0.0 ? std::max(0.0, part.clearance - fp.clearance_margin) : 0.0;
+              if (rock.height > clearance && sim::judge::RockTouches(rock, rot, p, part, margin)) {
+                ok = false;
+                break;
+              }
+            }
           }
+          if (!ok) break;
         }
       }
     }
@@ -267,6 +276,7 @@ struct SeedResult {
   std::string outcome;
   bool pass = false;
   int hazard_contacts = 0;
+  int footprint_overlaps = 0;
   double distance = 0, sim_s = 0, to_goal = -1, clearance = 0;
   std::uint32_t steps = 0, images = 0;
   double free_path = std::numeric_limits<double>::quiet_NaN();  // [m] FeasiblePathLength
@@ -283,10 +293,11 @@ const char* PrimitiveName(PrimitiveKind k) {
   }
 }
 
-Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runner::MobilityTaskSpec& spec,
-                           const ParamSet& params, std::uint32_t seed, const mt::WorldOptions& wo,
-                           double noise, bool verbose, bool votes,
-                           std::optional<double> passability_margin) {
+Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
+                           const deploy::runner::MobilityTaskSpec& spec, const ParamSet& params,
+                           std::uint32_t seed, const mt::WorldOptions& wo, double noise,
+                           bool verbose, bool votes, std::optional<double> passability_margin,
+                           bool passability_rectangle) {
   ROVER_ASSIGN_OR_RETURN(const sim::world::World world,
                          deploy::runner::BuildRunWorld(scenario, seed, scenario.file));
   ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
@@ -359,17 +370,17 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario, const deploy::runne
   const sim::judge::Verdict v = judge.Evaluate();
   SeedResult r;
   if (passability_margin && spec.goal) {
-    r.free_path = FeasiblePathLength(world, sim::judge::RoverFootprint::MerDefault(),
-                                     scenario.criteria.traversable_height,
-                                     spec.goal->xy, spec.goal->tolerance,
-                                     *passability_margin);
+    r.free_path = FeasiblePathLength(
+        world, sim::judge::RoverFootprint::MerDefault(), scenario.criteria.traversable_height,
+        spec.goal->xy, spec.goal->tolerance, *passability_margin, passability_rectangle);
   }
   r.outcome = !done                              ? std::string("UNFINISHED")
               : last.state == State::kSucceeded ? std::string("reached")
                                                 : std::string(msg::MobilityFaultName(last.fault));
-  r.hazard_contacts = static_cast<int>(v.hazards_hit.size());
+  r.hazard_contacts = static_cast<int>(v.rocks_hit.size());
+  r.footprint_overlaps = static_cast<int>(v.footprint_overlaps.size());
   if (verbose) {
-    for (const int id : v.hazards_hit) {
+    for (const int id : v.rocks_hit) {
       for (const auto& rock : world.terrain.rocks) {
         if (rock.id != id) continue;
         std::printf("  hazard contact: rock %d at (%.2f, %.2f), diameter %.2f m, height %.2f m\n",
@@ -414,9 +425,13 @@ int main(int argc, char** argv) {
   app.add_option("--noise", noise, "[m] range noise sigma at 1 m (grows with r^2)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--passability", passability_margin,
-                 "[m] also search each field for a contact-free path of the judge's footprint "
-                 "grown by this margin (column free_path; - when there is none)")
+                 "[m] also search each field for a path free of the judge's hazard contacts with "
+                 "this margin around the contact parts (column free_path; - when there is none)")
       ->check(CLI::NonNegativeNumber);
+  bool passability_rectangle = false;
+  app.add_flag("--passability-rectangle", passability_rectangle,
+               "search for a path of the whole ground-footprint rectangle instead (the judge's "
+               "footprint_overlaps, which also counts straddled rocks)");
   app.add_flag("--verbose", verbose, "print every drive and status message");
   bool votes = false;
   app.add_flag("--votes", votes, "print every decision's votes (hazard/waypoint/merged)");
@@ -444,21 +459,23 @@ int main(int argc, char** argv) {
   std::printf("%s: expect %s; speed %.3g m/s, latency %.3g s, noise %.3g m at 1 m\n",
               scenario->name.c_str(), mobility->spec().expect.c_str(), wo.speed,
               wo.image_latency_s, noise);
-  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s  %s\n", "seed", "outcome", "pass", "driven",
-              "steps", "images", "sim_s", "to_goal", "contacts", "free_path", "message");
+  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s %9s  %s\n", "seed", "outcome", "pass",
+              "driven", "steps", "images", "sim_s", "to_goal", "contacts", "overlaps", "free_path",
+              "message");
   int passed = 0;
   for (const std::uint32_t seed : *seeds) {
     auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose, votes,
-                     passability_margin);
+                     passability_margin, passability_rectangle);
     if (!r.ok()) return fail(r.status());
     passed += r->pass ? 1 : 0;
     char free_path[16] = "n/a";
     if (!std::isnan(r->free_path)) {
       std::snprintf(free_path, sizeof free_path, r->free_path < 0 ? "-" : "%.1fm", r->free_path);
     }
-    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d %9s  %s\n", seed, r->outcome.c_str(),
-                r->pass ? "yes" : "no", r->distance, r->steps, r->images, r->sim_s, r->to_goal,
-                r->hazard_contacts, free_path, r->message.c_str());
+    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d %9d %9s  %s\n", seed,
+                r->outcome.c_str(), r->pass ? "yes" : "no", r->distance, r->steps, r->images,
+                r->sim_s, r->to_goal, r->hazard_contacts, r->footprint_overlaps, free_path,
+                r->message.c_str());
     std::fflush(stdout);
   }
   std::printf("passed %d of %zu (outcome %s, no hazard contact)\n", passed, seeds->size(),

@@ -276,6 +276,51 @@ Footprint RoverDescription::GroundFootprint() const {
   return f;
 }
 
+std::vector<ContactPart> RoverDescription::ContactParts() const {
+  std::vector<ContactPart> parts;
+  static const char* const kWheelName[kNumWheels] = {"wheel_lf", "wheel_lm", "wheel_lr",
+                                                     "wheel_rf", "wheel_rm", "wheel_rr"};
+  const double wheel_reach = std::hypot(wheel_radius, 0.5 * wheel_width);
+  for (int w = 0; w < kNumWheels; ++w) {
+    ContactPart p;
+    p.name = kWheelName[w];
+    p.is_disc = true;
+    p.centre = WheelCentre(w).head<2>();
+    p.radius = wheel_reach;
+    parts.push_back(p);
+  }
+  const double hw = 0.5 * wheel_width;
+  // The rocker link from its pivot to the front steering joint, where it leaves the wheel disc.
+  const double front_joint_z = wheel_radius + steer_height;
+  const double leave_x = front_wheel_x - wheel_reach;
+  const double run = front_wheel_x - rocker_pivot_x;
+  const double frac = run > 0.0 ? std::clamp((leave_x - rocker_pivot_x) / run, 0.0, 1.0) : 1.0;
+  const double rocker_clearance = rocker_pivot_z + frac * (front_joint_z - rocker_pivot_z);
+  for (int side : {kLeft, kRight}) {
+    const double y = side == kLeft ? half_track : -half_track;
+    const char* tag = side == kLeft ? "l" : "r";
+    ContactPart bogie;
+    bogie.name = std::string("bogie_") + tag;
+    bogie.min = {rear_wheel_x, y - hw};
+    bogie.max = {middle_wheel_x, y + hw};
+    parts.push_back(bogie);
+    ContactPart rocker;
+    rocker.name = std::string("rocker_") + tag;
+    rocker.min = {middle_wheel_x, y - hw};
+    rocker.max = {front_wheel_x, y + hw};
+    rocker.clearance = rocker_clearance;
+    parts.push_back(rocker);
+  }
+  ContactPart body;
+  body.name = "body";
+  const Eigen::Vector3d half_body = 0.5 * body_size;
+  body.min = {body_centre.x() - half_body.x(), body_centre.y() - half_body.y()};
+  body.max = {body_centre.x() + half_body.x(), body_centre.y() + half_body.y()};
+  body.clearance = BellyClearance();
+  parts.push_back(body);
+  return parts;
+}
+
 TurnCircle RoverDescription::TurnInPlaceCircle() const {
   TurnCircle c;
   c.centre = TurnCentre();

@@ -99,6 +99,44 @@ TEST(RoverDescription, FootprintAndTurnCircle) {
   EXPECT_TRUE(shifted.TurnInPlaceCircle().centre.isApprox(Eigen::Vector2d(0.1, 0.0)));
 }
 
+TEST(RoverDescription, ContactParts) {
+  const RoverDescription d;
+  const std::vector<ContactPart> parts = d.ContactParts();
+  ASSERT_EQ(parts.size(), 11u);
+  const double reach = std::hypot(0.125, 0.08);
+  for (int w = 0; w < kNumWheels; ++w) {
+    const ContactPart& p = parts[static_cast<std::size_t>(w)];
+    EXPECT_TRUE(p.is_disc) << p.name;
+    EXPECT_TRUE(p.centre.isApprox(d.WheelCentre(w).head<2>())) << p.name;
+    EXPECT_DOUBLE_EQ(p.radius, reach);
+    EXPECT_EQ(p.clearance, 0.0);
+  }
+  EXPECT_EQ(parts[0].name, "wheel_lf");
+  EXPECT_EQ(parts[6].name, "bogie_l");
+  EXPECT_EQ(parts[6].clearance, 0.0);
+  EXPECT_TRUE(parts[6].min.isApprox(Eigen::Vector2d(-0.625, 0.42)));
+  EXPECT_TRUE(parts[6].max.isApprox(Eigen::Vector2d(0.0, 0.58)));
+  // Rocker: pivot (0, 0.45) to the front steering joint (0.625, 0.295), left at x = 0.625 - reach.
+  EXPECT_EQ(parts[7].name, "rocker_l");
+  EXPECT_NEAR(parts[7].clearance, 0.45 + (0.625 - reach) / 0.625 * (0.295 - 0.45), 1e-12);
+  EXPECT_EQ(parts[9].name, "rocker_r");
+  EXPECT_TRUE(parts[9].min.isApprox(Eigen::Vector2d(0.0, -0.58)));
+  const ContactPart& body = parts.back();
+  EXPECT_EQ(body.name, "body");
+  EXPECT_DOUBLE_EQ(body.clearance, d.BellyClearance());
+  EXPECT_TRUE(body.min.isApprox(Eigen::Vector2d(-0.5, -0.35)));
+  // Distances: inside is 0, outside the Euclidean distance to the outline.
+  EXPECT_EQ(body.DistanceTo({0.2, 0.1}), 0.0);
+  EXPECT_NEAR(body.DistanceTo({0.8, 0.75}), 0.5, 1e-12);
+  EXPECT_NEAR(parts[0].DistanceTo({0.625 + reach + 0.1, 0.5}), 0.1, 1e-12);
+  // Every part lies inside the ground footprint.
+  const Footprint f = d.GroundFootprint();
+  for (const ContactPart& p : parts) {
+    const Eigen::Vector2d lo = p.is_disc ? p.centre : p.min, hi = p.is_disc ? p.centre : p.max;
+    EXPECT_TRUE(f.Contains(lo.x(), lo.y()) && f.Contains(hi.x(), hi.y())) << p.name;
+  }
+}
+
 TEST(RoverDescription, CameraMountsAndMast) {
   const RoverDescription d;
   // Front HAZCAM: boresight forward and 45 deg down; left camera on the left.

@@ -6,14 +6,20 @@
 #include "rover/deploy/plots.hpp"
 #include "rover/deploy/runner/autonav_judging.hpp"
 #include "rover/hwconfig/rover_description.hpp"
+#include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::deploy::runner {
 
 namespace {
+// Vertices of a rock's outline for the judge: chords sag ~ R (1 - cos(pi / n)), 1.4 mm at
+// R = 0.3 m.
+constexpr int kRockOutlineVertices = 32;
+
 std::vector<sim::judge::JudgeRock> JudgeRocks(const sim::world::World& world) {
   std::vector<sim::judge::JudgeRock> rocks;
   for (const auto& r : world.terrain.rocks) {
-    rocks.push_back({r.id, r.position.head<2>(), r.diameter, r.height});
+    rocks.push_back({r.id, r.position.head<2>(), r.diameter, r.height,
+                     sim::terrain::RockOutline(r, kRockOutlineVertices)});
   }
   return rocks;
 }

@@ -64,7 +64,7 @@ TEST(Judging, TheJudgeKnowsTheWorldsRocks) {
       judge->AddTruth(Time::FromSeconds(i * 7 + k + 3), t);
     }
   }
-  const sim::judge::Criterion* contacts = judge->Evaluate().Find("rock_contacts");
+  const sim::judge::Criterion* contacts = judge->Evaluate().Find("hazard_contacts");
   ASSERT_NE(contacts, nullptr);
   EXPECT_GT(contacts->measured, 0);
 }

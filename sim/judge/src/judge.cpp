@@ -31,12 +31,54 @@ std::string Fmt1(const char* f, double a) {
 }
 }  // namespace
 
+double JudgeRock::Reach() const {
+  double r = 0.5 * diameter;
+  if (!outline.empty()) {
+    r = 0.0;
+    for (const Eigen::Vector2d& v : outline) r = std::max(r, (v - xy).norm());
+  }
+  return r;
+}
+
+namespace {
+// Crossing-number test of site point p against a closed polygon.
+bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Eigen::Vector2d& a = poly[i];
+    const Eigen::Vector2d& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+}  // namespace
+
+bool RockTouches(const JudgeRock& rock, const Eigen::Matrix2d& rot, const Eigen::Vector2d& t,
+                 const hwconfig::ContactPart& part, double margin) {
+  const Eigen::Vector2d centre = rot.transpose() * (rock.xy - t);
+  const double d = part.DistanceTo(centre);
+  if (d >= rock.Reach() + margin) return false;
+  if (rock.outline.empty()) return d < 0.5 * rock.diameter + margin;
+  if (d <= 0.0) return true;  // the centre is on the part
+  for (const Eigen::Vector2d& v : rock.outline) {
+    if (part.DistanceTo(rot.transpose() * (v - t)) < margin) return true;
+  }
+  Eigen::Vector2d nearest;
+  if (part.is_disc) {
+    nearest = part.centre + part.radius * (centre - part.centre).normalized();
+  } else {
+    nearest = centre.cwiseMax(part.min).cwiseMin(part.max);
+  }
+  return InsidePolygon(rock.outline, rot * nearest + t);
+}
+
 RoverFootprint RoverFootprint::MerDefault() {
   RoverFootprint f;
   const hwconfig::RoverDescription rover;
-  for (double x : {rover.front_wheel_x, rover.middle_wheel_x, rover.rear_wheel_x}) {
-    for (double y : {rover.half_track, -rover.half_track}) f.wheels.emplace_back(x, y);
-  }
+  f.parts = rover.ContactParts();
   const hwconfig::Footprint g = rover.GroundFootprint();
   f.body_min = {g.min_x, g.min_y};
   f.body_max = {g.max_x, g.max_y};
@@ -78,7 +120,11 @@ Status JudgeCriteria::Validate() const {
 Result<Judge> Judge::Create(JudgeCriteria criteria, std::vector<JudgeRock> rocks,
                             RoverFootprint footprint) {
   ROVER_RETURN_IF_ERROR(criteria.Validate());
-  if (footprint.wheels.empty()) return InvalidArgument("rover footprint has no wheels");
+  if (footprint.parts.empty()) return InvalidArgument("rover footprint has no contact parts");
+  if (!(footprint.clearance_margin >= 0.0) || !std::isfinite(footprint.clearance_margin)) {
+    return InvalidArgument("rover footprint clearance_margin " +
+                           std::to_string(footprint.clearance_margin) + " must be >= 0");
+  }
   Judge j;
   j.criteria_ = criteria;
   j.footprint_ = std::move(footprint);
@@ -86,13 +132,14 @@ Result<Judge> Judge::Create(JudgeCriteria criteria, std::vector<JudgeRock> rocks
     if (r.height > criteria.traversable_height) j.rocks_.push_back(r);
   }
   j.hit_.assign(j.rocks_.size(), false);
-  j.hazard_hit_.assign(j.rocks_.size(), false);
+  j.hit_part_.assign(j.rocks_.size(), -1);
+  j.overlap_.assign(j.rocks_.size(), false);
   if (!j.rocks_.empty()) {
     Eigen::Vector2d lo = j.rocks_[0].xy, hi = lo;
     for (const auto& r : j.rocks_) {
       lo = lo.cwiseMin(r.xy);
       hi = hi.cwiseMax(r.xy);
-      j.max_rock_radius_ = std::max(j.max_rock_radius_, r.diameter / 2);
+      j.max_rock_radius_ = std::max(j.max_rock_radius_, r.Reach());
     }
     j.grid_min_ = lo;
     j.grid_nx_ = static_cast<int>((hi.x() - lo.x()) / j.cell_) + 1;
@@ -111,12 +158,16 @@ Result<Judge> Judge::Create(JudgeCriteria criteria, std::vector<JudgeRock> rocks
 
 void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
   if (rocks_.empty()) return;
-  const Eigen::Matrix2d r2 = pose.linear().topLeftCorner<2, 2>();
+  // The rover's plan view: its yaw (tilt shortens the projection by cos(tilt), ignored).
+  const Eigen::Matrix2d r2 = Eigen::Rotation2Dd(Yaw(pose)).toRotationMatrix();
   const Eigen::Vector2d t2 = pose.translation().head<2>();
-  const Eigen::Matrix2d r2_inv = r2.inverse();
-  // Candidate rocks near the rover.
+  hwconfig::ContactPart ground;  // the whole ground-footprint rectangle
+  ground.name = "footprint";
+  ground.min = footprint_.body_min;
+  ground.max = footprint_.body_max;
+  // Candidate rocks near the rover: every part lies inside the ground footprint.
   const double reach =
-      std::max({1.2, footprint_.body_min.norm(), footprint_.body_max.norm(),
+      std::max({footprint_.body_min.norm(), footprint_.body_max.norm(),
                 Eigen::Vector2d(footprint_.body_min.x(), footprint_.body_max.y()).norm(),
                 Eigen::Vector2d(footprint_.body_max.x(), footprint_.body_min.y()).norm()}) +
       max_rock_radius_;
@@ -129,29 +180,19 @@ void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
       for (std::size_t i : grid_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(grid_nx_) +
                                  static_cast<std::size_t>(cx)]) {
         const JudgeRock& rock = rocks_[i];
-        const double radius = rock.diameter / 2;
-        const Eigen::Vector2d local = r2_inv * (rock.xy - t2);
-        if (!hazard_hit_[i]) {
-          const Eigen::Vector2d nearest =
-              local.cwiseMax(footprint_.body_min).cwiseMin(footprint_.body_max);
-          hazard_hit_[i] = (local - nearest).norm() < radius;
-        }
+        if (!overlap_[i]) overlap_[i] = RockTouches(rock, r2, t2, ground);
         if (hit_[i]) continue;
-        bool hit = false;
-        for (const auto& w : footprint_.wheels) {
-          const Eigen::Vector2d wp = r2 * w + t2;
-          if ((wp - rock.xy).norm() < radius + footprint_.wheel_contact_radius) {
-            hit = true;
+        for (std::size_t p = 0; p < footprint_.parts.size(); ++p) {
+          const hwconfig::ContactPart& part = footprint_.parts[p];
+          const double clearance = part.clearance > 0.0
+                                       ? std::max(0.0, part.clearance - footprint_.clearance_margin)
+                                       : 0.0;
+          if (rock.height > clearance && RockTouches(rock, r2, t2, part)) {
+            hit_[i] = true;
+            hit_part_[i] = static_cast<int>(p);
             break;
           }
         }
-        if (!hit && rock.height > footprint_.belly_clearance) {
-          // Rock disc against the belly box, in the rover frame.
-          const Eigen::Vector2d nearest =
-              local.cwiseMax(footprint_.belly_min).cwiseMin(footprint_.belly_max);
-          hit = (local - nearest).norm() < radius;
-        }
-        if (hit) hit_[i] = true;
       }
     }
   }
@@ -263,32 +304,34 @@ Verdict Judge::Evaluate() const {
   }
   v.criteria.push_back({"max_tilt", max_tilt_ * kRadToDeg, criteria_.max_tilt * kRadToDeg, "deg",
                         max_tilt_ <= criteria_.max_tilt, ""});
+  std::string touched;  // "rocks 3 (0.24 m, wheel_lf), 9 (0.41 m, body)": the first five
   for (std::size_t i = 0; i < rocks_.size(); ++i) {
-    if (hit_[i]) v.rocks_hit.push_back(rocks_[i].id);
-    if (hazard_hit_[i]) v.hazards_hit.push_back(rocks_[i].id);
+    if (overlap_[i]) v.footprint_overlaps.push_back(rocks_[i].id);
+    if (!hit_[i]) continue;
+    if (v.rocks_hit.size() < 5) {
+      touched += (v.rocks_hit.empty() ? "rocks " : ", ") + std::to_string(rocks_[i].id) +
+                 Fmt1(" (%.2f m, ", rocks_[i].height) +
+                 footprint_.parts[static_cast<std::size_t>(hit_part_[i])].name + ")";
+    }
+    v.rocks_hit.push_back(rocks_[i].id);
   }
-  // "rocks 3, 9 (rocks taller than 0.20 m<where>)": the first five ids and what counted.
-  auto detail = [&](const std::vector<int>& ids, const char* where) {
-    std::string list;
-    for (std::size_t i = 0; i < ids.size() && i < 5; ++i) {
-      list += (i ? ", " : "rocks ") + std::to_string(ids[i]);
-    }
-    const std::string taller =
-        Fmt1("rocks taller than %.2f m", criteria_.traversable_height) + where;
-    return list.empty() ? taller : list + " (" + taller + ")";
-  };
-  v.criteria.push_back({"rock_contacts", static_cast<double>(v.rocks_hit.size()), 0, "count",
-                        v.rocks_hit.empty(), detail(v.rocks_hit, "")});
+  const std::string taller = Fmt1("rocks taller than %.2f m", criteria_.traversable_height);
   {
-    const double n = static_cast<double>(v.hazards_hit.size());
-    const std::string d = detail(v.hazards_hit, " under the rover's footprint");
-    if (criteria_.max_hazard_contacts) {
-      v.criteria.push_back({"hazard_contacts", n, static_cast<double>(*criteria_.max_hazard_contacts),
-                            "count", n <= *criteria_.max_hazard_contacts, d});
-    } else {
-      v.figures.push_back(
-          {"hazard_contacts", n, std::numeric_limits<double>::quiet_NaN(), "count", true, d});
+    const double n = static_cast<double>(v.rocks_hit.size());
+    const int limit = criteria_.max_hazard_contacts.value_or(0);
+    v.criteria.push_back(
+        {"hazard_contacts", n, static_cast<double>(limit), "count", n <= limit,
+         touched.empty() ? taller + " touched by a wheel, suspension or the body" : touched});
+  }
+  {
+    std::string list;
+    for (std::size_t i = 0; i < v.footprint_overlaps.size() && i < 5; ++i) {
+      list += (i ? ", " : "rocks ") + std::to_string(v.footprint_overlaps[i]);
     }
+    const std::string where = taller + " under the ground-footprint rectangle";
+    v.figures.push_back({"footprint_overlaps", static_cast<double>(v.footprint_overlaps.size()),
+                         std::numeric_limits<double>::quiet_NaN(), "count", true,
+                         list.empty() ? where : list + " (" + where + ")"});
   }
   if (criteria_.min_distance) {
     v.criteria.push_back({"distance_driven", distance_, *criteria_.min_distance, "m",

@@ -17,6 +17,16 @@ Eigen::Isometry3d Pose(double x, double y, double yaw, double roll = 0) {
   return p;
 }
 
+// A rock outline: the ellipse of semi-axes ax, ay about c, as 32 vertices.
+std::vector<Eigen::Vector2d> Ellipse(const Eigen::Vector2d& c, double ax, double ay) {
+  std::vector<Eigen::Vector2d> out;
+  for (int k = 0; k < 32; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / 32;
+    out.push_back(c + Eigen::Vector2d(ax * std::cos(t), ay * std::sin(t)));
+  }
+  return out;
+}
+
 // Drives straight along x from 0 to `to` in 1 cm steps at 10 cm/s.
 void DriveStraight(Judge& j, double to, double y = 0, double roll = 0) {
   for (int i = 0; i <= static_cast<int>(to * 100); ++i) {
@@ -37,7 +47,8 @@ TEST(Judge, PassingRunReportsEveryCriterion) {
   EXPECT_NEAR(v.distance_driven, 5.0, 1e-9);
   ASSERT_NE(v.Find("final_position_error"), nullptr);
   EXPECT_NEAR(v.Find("final_position_error")->measured, 0.0, 1e-9);
-  EXPECT_EQ(v.Find("rock_contacts")->measured, 0);
+  ASSERT_NE(v.Find("hazard_contacts"), nullptr);
+  EXPECT_EQ(v.Find("hazard_contacts")->measured, 0);
   EXPECT_TRUE(v.Find("distance_driven")->pass);
 }
 
@@ -54,8 +65,10 @@ TEST(Judge, TallRockUnderAWheelFailsSmallOnesDoNot) {
   EXPECT_FALSE(v.pass);
   ASSERT_EQ(v.rocks_hit.size(), 1u);
   EXPECT_EQ(v.rocks_hit[0], 7);
-  EXPECT_NE(v.FailureSummary().find("rock_contacts: 1 count"), std::string::npos)
+  EXPECT_NE(v.FailureSummary().find("hazard_contacts: 1 count"), std::string::npos)
       << v.FailureSummary();
+  EXPECT_NE(v.Find("hazard_contacts")->detail.find("rocks 7 (0.25 m, wheel_l"), std::string::npos)
+      << v.Find("hazard_contacts")->detail;
 }
 
 TEST(Judge, BellyHitsOnlyAboveClearance) {
@@ -64,19 +77,42 @@ TEST(Judge, BellyHitsOnlyAboveClearance) {
   ASSERT_TRUE(j.ok());
   DriveStraight(*j, 5.0);  // both pass between the wheel tracks, under the belly
   const Verdict v = j->Evaluate();
+  // The belly is 0.35 m up; less the judge's 0.05 m margin, 0.25 m passes and 0.35 m does not.
   ASSERT_EQ(v.rocks_hit.size(), 1u);
   EXPECT_EQ(v.rocks_hit[0], 2);
+  EXPECT_NE(v.Find("hazard_contacts")->detail.find("(0.35 m, body)"), std::string::npos);
 }
 
-TEST(Judge, HazardContactsCountRocksUnderAnyPartOfTheFootprint) {
-  // Drive along x from 0 to 5 m. The ground footprint of the default rover reaches |y| <= 0.58 m
-  // (wheel outer edges) and 0.75 m ahead of the centre.
+TEST(Judge, SuspensionBandsBetweenTheWheelsTouchRocks) {
+  // One pose at the origin; rocks of radius 0.1 m on the left wheel line, in the gaps between
+  // the wheel discs (reach hypot(0.125, 0.08) = 0.148 m).
   const std::vector<JudgeRock> rocks = {
-      {1, {2.0, 0.0}, 0.3, 0.25},   // between the wheels, under the belly: a hazard contact only
+      {1, {-0.31, 0.5}, 0.2, 0.25},  // under the bogie: its links come down to the wheels
+      {2, {0.31, 0.5}, 0.2, 0.25},   // under the rocker, whose link is 0.33 m up there
+      {3, {0.31, -0.5}, 0.2, 0.30},  // the same on the right, above the rocker's 0.28 m
+  };
+  auto j = Judge::Create(JudgeCriteria{}, rocks);
+  ASSERT_TRUE(j.ok());
+  j->AddTruth(Time::FromSeconds(0), Pose(0, 0, 0));
+  const Verdict v = j->Evaluate();
+  EXPECT_EQ(v.rocks_hit, (std::vector<int>{1, 3}));
+  const std::string& d = v.Find("hazard_contacts")->detail;
+  EXPECT_NE(d.find("1 (0.25 m, bogie_l)"), std::string::npos) << d;
+  EXPECT_NE(d.find("3 (0.30 m, rocker_r)"), std::string::npos) << d;
+}
+
+TEST(Judge, HazardContactsAreTouchesFootprintOverlapsAlsoCountStraddledRocks) {
+  // Drive along x from 0 to 5 m. The ground footprint of the default rover reaches |y| <= 0.58 m
+  // (wheel outer edges) and 0.75 m ahead of the centre; a wheel disc reaches 0.648 m out.
+  const std::vector<JudgeRock> rocks = {
+      {1, {2.0, 0.0}, 0.3, 0.25},   // between the wheels, under the belly: straddled
       {2, {3.0, 0.66}, 0.2, 0.30},  // its edge 0.56 m from the line: beside a wheel, touching
       {3, {3.0, -0.9}, 0.2, 0.30},  // 0.8 m off: clear
       {4, {4.0, 0.0}, 0.3, 0.10},   // under the rover but traversable
-      {5, {5.85, 0.0}, 0.3, 0.40},  // 0.85 m ahead of the last pose: its edge within 0.75 m
+      {5, {5.85, 0.0}, 0.3, 0.40},  // 0.85 m ahead of the last pose: within the rectangle only
+      // An ellipse 0.13 m along x, 0.30 m along y: its nominal disc (0.2 m) would end 0.66 m out,
+      // clear of the wheels (0.648 m); its long side reaches 0.76 - 0.15 = 0.61 m.
+      {6, {1.0, -0.76}, 0.2, 0.30, Ellipse({1.0, -0.76}, 0.0667, 0.15)},
   };
   JudgeCriteria judged;
   judged.max_hazard_contacts = 0;
@@ -84,31 +120,56 @@ TEST(Judge, HazardContactsCountRocksUnderAnyPartOfTheFootprint) {
   ASSERT_TRUE(j.ok());
   DriveStraight(*j, 5.0);
   const Verdict v = j->Evaluate();
-  EXPECT_EQ(v.hazards_hit, (std::vector<int>{1, 2, 5}));
+  EXPECT_EQ(v.rocks_hit, (std::vector<int>{2, 6}));
+  EXPECT_EQ(v.footprint_overlaps, (std::vector<int>{1, 2, 5}));
   const Criterion* h = v.Find("hazard_contacts");
   ASSERT_NE(h, nullptr);
-  EXPECT_EQ(h->measured, 3);
+  EXPECT_EQ(h->measured, 2);
   EXPECT_FALSE(h->pass);
   EXPECT_FALSE(v.pass);
-  EXPECT_NE(h->detail.find("rocks 1, 2, 5"), std::string::npos) << h->detail;
-  // The wheel-and-belly check sees only rock 2 at a wheel: rock 1 passes under the belly and
-  // rock 5 is ahead of the body, between the wheel tracks.
-  EXPECT_EQ(v.rocks_hit, (std::vector<int>{2}));
-
-  // Without the criterion it is a figure, and a rover that kept clear has none.
-  auto f = Judge::Create(JudgeCriteria{}, {{3, {3.0, -0.9}, 0.2, 0.30}});
-  ASSERT_TRUE(f.ok());
-  DriveStraight(*f, 5.0);
-  const Verdict clear = f->Evaluate();
-  EXPECT_EQ(clear.Find("hazard_contacts"), nullptr);
-  bool figure = false;
-  for (const auto& fig : clear.figures) {
-    if (fig.name == "hazard_contacts") figure = fig.measured == 0;
+  EXPECT_NE(h->detail.find("rocks 2 (0.30 m, wheel_lf), 6 (0.30 m, wheel_rf)"), std::string::npos)
+      << h->detail;
+  bool overlaps = false;
+  for (const auto& fig : v.figures) {
+    if (fig.name == "footprint_overlaps") {
+      overlaps = fig.measured == 3 && fig.detail.find("rocks 1, 2, 5") != std::string::npos;
+    }
   }
-  EXPECT_TRUE(figure);
+  EXPECT_TRUE(overlaps);
+
+  // A limit above the count passes; a negative one is refused.
+  JudgeCriteria lenient;
+  lenient.max_hazard_contacts = 2;
+  auto l = Judge::Create(lenient, rocks);
+  ASSERT_TRUE(l.ok());
+  DriveStraight(*l, 5.0);
+  EXPECT_TRUE(l->Evaluate().Find("hazard_contacts")->pass);
   JudgeCriteria bad;
   bad.max_hazard_contacts = -1;
   EXPECT_FALSE(Judge::Create(bad, {}).ok());
+  RoverFootprint no_parts;
+  EXPECT_FALSE(Judge::Create(JudgeCriteria{}, {}, no_parts).ok());
+}
+
+TEST(Judge, RockTouchesUsesTheOutline) {
+  hwconfig::ContactPart box;
+  box.min = {-0.5, -0.35};
+  box.max = {0.5, 0.35};
+  const Eigen::Matrix2d rot = Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d t = Eigen::Vector2d::Zero();
+  // A long thin rock beside the box, its tip 5 cm off the box's side; and one lying across the
+  // box's corner with no vertex inside it (the corner pokes into its outline).
+  const JudgeRock beside{1, {0.0, 0.6}, 0.1, 0.3, Ellipse({0.0, 0.6}, 0.4, 0.2)};
+  EXPECT_FALSE(RockTouches(beside, rot, t, box));
+  EXPECT_TRUE(RockTouches(beside, rot, t, box, 0.06));
+  std::vector<Eigen::Vector2d> square = {{0.45, 0.2}, {0.7, 0.45}, {0.45, 0.7}, {0.2, 0.45}};
+  const JudgeRock across{2, {0.45, 0.45}, 0.3, 0.3, square};
+  EXPECT_TRUE(RockTouches(across, rot, t, box));
+  // Turned by 90 degrees the rover's box reaches 0.5 m along site y: the first rock now touches.
+  const Eigen::Matrix2d quarter = Eigen::Rotation2Dd(std::numbers::pi / 2).toRotationMatrix();
+  EXPECT_TRUE(RockTouches(beside, quarter, t, box));
+  EXPECT_NEAR(beside.Reach(), 0.4, 1e-12);
+  EXPECT_NEAR((JudgeRock{3, {0, 0}, 0.3, 0.3, {}}).Reach(), 0.15, 1e-12);
 }
 
 TEST(Judge, TiltAndFinalErrorsAreMeasured) {

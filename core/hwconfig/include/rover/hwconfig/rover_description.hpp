@@ -41,6 +41,22 @@
 ///                       about its centre (any steering angle), the middle wheels and the body as
 ///                       their rectangles. MER's terrain assessment modelled its rover by such a
 ///                       disc (2.6 m across, solar arrays included); this rover's is 1.90 m.
+///   ContactParts()      the parts that can touch a rock standing on the ground, as plan-view
+///                       shapes of R's x-y plane, each with the height above the ground plane
+///                       below which a rock passes under it (its clearance):
+///                         wheel_<i>  six discs of radius hypot(wheel_radius, wheel_width / 2)
+///                                    about the wheel centres (any steering angle), clearance 0;
+///                         bogie_<s>  the band between the rear and middle wheel centres,
+///                                    wheel_width wide on the wheel line, clearance 0 (its links
+///                                    come down to the wheel centres);
+///                         rocker_<s> the band between the middle and front wheel centres,
+///                                    clearance = the rocker link's height where it leaves the
+///                                    front wheel's disc (pivot to steering joint, a straight
+///                                    line);
+///                         body       the body box's outline, clearance BellyClearance().
+///                       The mast and camera mounts stand above the body and are left out.
+///                       Heights are at zero suspension angles; a user that needs a margin for
+///                       articulation subtracts its own.
 ///
 /// Camera mounts. A stereo pair's frame P has x along the boresight, y left, z up, its origin
 /// midway between the two optical centres; the left camera sits at +baseline/2 along P's y:
@@ -60,6 +76,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "rover/base/status.hpp"
 #include "rover/base/units.hpp"
@@ -119,6 +136,27 @@ struct TurnCircle {
   double radius = 0.0;
 
   double Diameter() const { return 2.0 * radius; }
+};
+
+/// A part of the rover that can touch a rock (ContactParts(); see the file comment): a disc or an
+/// axis-aligned box of the rover frame's x-y plane [m], and its clearance above the ground [m].
+struct ContactPart {
+  std::string name;
+  bool is_disc = false;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< disc centre
+  double radius = 0.0;                               ///< disc radius
+  Eigen::Vector2d min = Eigen::Vector2d::Zero();     ///< box corner (x, y smallest)
+  Eigen::Vector2d max = Eigen::Vector2d::Zero();     ///< box corner (x, y largest)
+  double clearance = 0.0;  ///< a rock lower than this passes under the part
+
+  /// Distance from `p` to the part's outline, 0 inside [m].
+  double DistanceTo(const Eigen::Vector2d& p) const {
+    if (is_disc) {
+      const double d = (p - centre).norm() - radius;
+      return d > 0.0 ? d : 0.0;
+    }
+    return (p - p.cwiseMax(min).cwiseMin(max)).norm();
+  }
 };
 
 /// A stereo pair's mount in its parent frame (see the file comment).
@@ -219,6 +257,8 @@ struct RoverDescription {
   Footprint GroundFootprint() const;
   /// See the file comment.
   TurnCircle TurnInPlaceCircle() const;
+  /// See the file comment: 6 wheels, 2 bogies, 2 rockers, the body, in that order.
+  std::vector<ContactPart> ContactParts() const;
   /// rover_from_pair of the NAVCAM pair at mast angles `pan`, `tilt` [rad].
   Eigen::Isometry3d NavcamPose(double pan, double tilt) const;
 };

@@ -22,6 +22,10 @@
 /// 0 to θ; the first s at which a point lies in F. A turn hit, or an arc hit at s <=
 /// footprint_forbid_dist, forbids the candidate (0, 255); a later arc hit scales its goodness by
 /// s / L (at least 1).
+/// With footprint_straddle the test at a pose is against the contact parts instead of F: a
+/// point hits when it lies within footprint_margin of a part's outline, and counts for the
+/// rocker and body parts (non-zero clearance) only when it is tall (kCellTall). The points
+/// skipped at the start are then those that already hit at the rover's pose.
 ///
 /// Cost-to-go waypoint vote (cost_to_go): with the map's CostToGo toward the goal (clearance
 /// = the footprint's half width + margin), each candidate's cost is
@@ -83,6 +87,12 @@ nav_core::Vote MergeVotes(const nav_core::Vote& hazard, const nav_core::Vote& wa
 /// merged goodness is above 0. Preconditions: merged.size() == group.size().
 int ChooseCandidate(const std::vector<nav_core::Vote>& merged, const std::vector<int>& group);
 
+/// A footprint-check hazard cell as a rover-frame point (arc_evaluator.hpp file comment).
+struct FootprintHazard {
+  Eigen::Vector2d q = Eigen::Vector2d::Zero();  ///< [m] cell centre, rover frame
+  bool tall = false;                            ///< kCellTall
+};
+
 class ArcEvaluator final : public nav_core::ArcSelector {
  public:
   /// Errors: InvalidArgument naming the field when options.Validate() fails.
@@ -100,12 +110,12 @@ class ArcEvaluator final : public nav_core::ArcSelector {
   PathVote HazardVote(const nav_core::GoodnessMap& map, const std::vector<PathCell>& cells) const;
   /// The footprint check's hazard points of `map` about `pose` (rover frame, see the file
   /// comment).
-  std::vector<Eigen::Vector2d> FootprintHazards(const nav_core::GoodnessMap& map,
+  std::vector<FootprintHazard> FootprintHazards(const nav_core::GoodnessMap& map,
                                                 const Pose2& pose) const;
   /// [m] arc length (0 for a turn) of the first pose of `candidate` (arcs evaluated to
   /// `length`) whose grown footprint holds one of `hazards`; infinity when none does.
   double FirstFootprintHit(const nav_core::Candidate& candidate, double length,
-                           const std::vector<Eigen::Vector2d>& hazards) const;
+                           const std::vector<FootprintHazard>& hazards) const;
 
  private:
   explicit ArcEvaluator(const GestaltOptions& options);

@@ -10,9 +10,12 @@
 /// through cells that are not blocked. A cell is blocked when it lies within `clearance` (the
 /// footprint's half width plus margin: a lower bound of what any heading needs) of a hazard
 /// cell's centre (GoodnessMap kCellHazard), or is known with goodness below
-/// min_allowed_goodness. Sources: the goal's cell (cost 0) when the goal lies on the map, else
-/// every unblocked cell on the map's edge at its straight-line distance to the goal (beyond the
-/// map nothing is known). Cost() of a site point reads the cell under it; blocked or
+/// min_allowed_goodness. With `straddle` (GESTALT's footprint_straddle) only tall hazard cells
+/// (kCellTall) block; a lower hazard cell, which the rover may pass between its wheels but only
+/// lined up, multiplies the step cost of the cells within `clearance` of it by
+/// straddle_cost_factor instead. Sources: the goal's cell (cost 0) when the goal lies on the map,
+/// else every unblocked cell on the map's edge at its straight-line distance to the goal (beyond
+/// the map nothing is known). Cost() of a site point reads the cell under it; blocked or
 /// unreachable cells read infinity.
 
 #include <vector>
@@ -28,6 +31,8 @@ struct CostToGoOptions {
   int min_allowed_goodness = 10;      ///< known cells below this are blocked
   double goodness_weight = 1.0;       ///< extra cost of a step over a goodness-0 cell
   double unknown_cost_factor = 1.5;   ///< cost factor of unknown cells
+  bool straddle = false;              ///< only tall hazards block (file comment)
+  double straddle_cost_factor = 2.0;  ///< cost factor near a lower hazard with `straddle`
 };
 
 class CostToGo {

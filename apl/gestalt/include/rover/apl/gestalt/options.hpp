@@ -11,10 +11,12 @@
 /// 0..255 (MER's 8-bit values).
 
 #include <numbers>
+#include <vector>
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/base/units.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::apl::gestalt {
 
@@ -109,6 +111,19 @@ struct GestaltOptions {
   /// is a hazard cell. Below max_step: a cell's top is its points' mean + k sigma over 20 cm,
   /// which reads a rock's peak low (a 21 cm dome's centre cell reads ~18 cm).
   double footprint_hazard_height = 0.15;
+  /// Straddling (ours): instead of the whole footprint rectangle, the rover's contact parts
+  /// (hwconfig ContactParts(): wheel discs, bogie and rocker bands, body box) grown by
+  /// footprint_margin are swept along each path; a hazard cell counts against a part of zero
+  /// clearance (wheels, bogies), and against the rocker and body only when it is also tall
+  /// (kCellTall: cell_height >= footprint_tall_height). So a rock lower than the belly may pass
+  /// between the wheels, as MER's rover was allowed to straddle what its belly cleared.
+  bool footprint_straddle = false;
+  /// [m] a hazard cell this high is tall (body 0.35 m and rocker 0.33 m up, less articulation
+  /// and a cell's reading low)
+  double footprint_tall_height = 0.22;
+  /// The contact parts for footprint_straddle (not a parameter): the rover description's, set
+  /// by ReadGestaltOptionsForRover.
+  std::vector<hwconfig::ContactPart> contact_parts = hwconfig::RoverDescription{}.ContactParts();
   /// With footprint_check: the waypoint vote ranks candidates by the cost of driving them plus
   /// the cost-to-go from their end over the map (cost_to_go.hpp) instead of by closeness to the
   /// arc through the goal (MER). See arc_evaluator.hpp.

@@ -34,6 +34,9 @@ enum CellFlag : std::uint8_t {
   /// The cell itself holds a step (a rock) that the rover's footprint must not cover; set only
   /// by assessors that support footprint checks (GESTALT's footprint_check).
   kCellHazard = 8,
+  /// A hazard cell whose step is tall enough to reach the body or the rocker links (GESTALT's
+  /// footprint_tall_height); with footprint_straddle, lower hazards may pass between the wheels.
+  kCellTall = 16,
 };
 
 /// The value of one cell.

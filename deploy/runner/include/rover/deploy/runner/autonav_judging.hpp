@@ -3,8 +3,8 @@
 /// The judge's autonomous-driving figures (no DDS): hazard-map quality of the last
 /// apl/goodness_map against the truth rock list, and the traverse rate and share of time
 /// standing still from the truth track. Hazard contacts are the sim judge's (judge.hpp,
-/// `hazard_contacts`: a rock taller than the traversable height under any part of the rover's
-/// ground footprint).
+/// `hazard_contacts`: a rock taller than the traversable height touched by a wheel, the
+/// suspension or the body; `footprint_overlaps` also counts the ones the rover straddled).
 ///
 /// Hazard-map quality. Truth hazards are the rocks taller than the traversable height whose
 /// centre lies within `path_radius` (5 m) of a point of the truth track. The rover saw a hazard

@@ -8,21 +8,26 @@
 ///  - estimate samples: the stack's own pose estimate over time (from dl/pose), optional;
 ///  - odometry-only samples: the stack's IMU + wheel odometry baseline (dl/pose_odometry),
 ///    optional, reported beside the fused estimate (never judged);
-///  - the terrain's rock list and the rover's footprint (wheel contact points and belly box);
+///  - the terrain's rock list and the rover's contact parts and ground footprint;
 ///  - pass criteria.
 /// Output: one Criterion per check with the measured value, the limit, pass/fail and a detail
 /// line, and the overall verdict.
 ///
-/// Rock contact: a rock taller than `traversable_height` (MER/FIDO's 20 cm obstacle) counts as
-/// hit when, at any truth sample, its footprint disc (diameter D) overlaps a wheel's ground
-/// contact disc, or lies under the belly box while taller than the belly clearance. Tilt is the
-/// angle between the body z axis and the site z axis.
+/// Hazard contact: a rock taller than `traversable_height` (MER/FIDO's 20 cm obstacle) that a
+/// part of the rover touches at any truth sample. The parts are the rover description's
+/// (hwconfig::RoverDescription::ContactParts(): wheel discs covering every steering angle, the
+/// bogie and rocker bands on the wheel lines, the body box), each with its clearance less
+/// `clearance_margin` for articulation and sinkage; a rock counts against a part when it is
+/// taller than that part's clearance and its footprint (its outline polygon, elongation and
+/// lobes included; JudgeRock) reaches the part's outline. A rock lower than the belly that passes
+/// between the wheels is not a contact. Reported as the criterion `hazard_contacts` (limit
+/// `max_hazard_contacts`, 0 when unset), its detail naming the first rocks, their heights and the
+/// part that touched each.
 ///
-/// Hazard contact (autonomous driving's figure): a rock taller than `traversable_height` whose
-/// footprint disc overlaps the rover's ground footprint (the rectangle of
-/// hwconfig::RoverDescription::GroundFootprint(): wheels, body, mast, camera mounts) at any
-/// truth sample, i.e. the rover drove over or into it with any part. Reported as the criterion
-/// `hazard_contacts` when `max_hazard_contacts` is set, else as a figure. Estimate error at an estimate sample is
+/// Footprint overlaps (a figure, `footprint_overlaps`): the stricter count of such rocks whose
+/// footprint reaches the whole ground-footprint rectangle (GroundFootprint(): wheels, body, mast,
+/// camera mounts), i.e. also those the rover straddled. Tilt is the angle between the body z
+/// axis and the site z axis. Estimate error at an estimate sample is
 /// the horizontal distance between the estimated and the (linearly interpolated) true position;
 /// heading error is the estimated minus the true yaw, wrapped to (-pi, pi].
 ///
@@ -37,27 +42,36 @@
 
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::sim::judge {
 
 struct JudgeRock {
   int id = 0;
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();  ///< [m] centre
-  double diameter = 0.0;                          ///< [m]
+  double diameter = 0.0;                         ///< [m] nominal
   double height = 0.0;                            ///< [m]
+  /// [m] the footprint's outline, site frame, a polygon around `xy` (sim/terrain RockOutline:
+  /// elongation and lobes included); empty: the disc of the nominal diameter.
+  std::vector<Eigen::Vector2d> outline = {};
+  /// [m] the largest distance from `xy` to the footprint's edge.
+  double Reach() const;
 };
 
-/// Where the rover touches the ground, in the rover frame (x forward, y left, z up).
+/// Whether `rock` reaches within `margin` of `part` of a rover standing at site_from_rover =
+/// (rot, t) (2-D). With an outline: a vertex within `margin` of the part, or the part's point
+/// nearest the rock's centre inside the outline (exact for convex parts up to the polygon's
+/// chords). The height test against the part's clearance is the caller's.
+bool RockTouches(const JudgeRock& rock, const Eigen::Matrix2d& rot, const Eigen::Vector2d& t,
+                 const hwconfig::ContactPart& part, double margin = 0.0);
+
+/// What of the rover can touch a rock, in the rover frame (x forward, y left, z up).
 struct RoverFootprint {
-  std::vector<Eigen::Vector2d> wheels;  ///< wheel ground-contact points [m]
-  double wheel_contact_radius = 0.10;   ///< [m] half the wheel width plus margin
-  Eigen::Vector2d belly_min{-0.45, -0.35}, belly_max{0.45, 0.35};  ///< [m] belly box
-  double belly_clearance = 0.30;        ///< [m] rocks taller than this hit the belly
-  /// [m] the whole rover's ground footprint (hazard contacts)
+  std::vector<hwconfig::ContactPart> parts;  ///< see the file comment
+  double clearance_margin = 0.05;            ///< [m] off every non-zero part clearance
+  /// [m] the whole rover's ground footprint (footprint_overlaps)
   Eigen::Vector2d body_min{-0.75, -0.58}, body_max{0.75, 0.58};
-  /// The default rover description's wheel centres (wheelbase 1.25 m, track 1.0 m) and ground
-  /// footprint; the contact radius, belly box and clearance above are the judge's own (with
-  /// margins).
+  /// The default rover description's contact parts and ground footprint.
   static RoverFootprint MerDefault();
 };
 
@@ -72,7 +86,7 @@ struct JudgeCriteria {
   std::optional<double> max_estimate_error_fraction;  ///< of distance driven (e.g. 0.01 = 1%)
   std::optional<double> max_estimate_heading_error;  ///< [rad] largest |heading error| allowed
   std::optional<double> min_distance;        ///< [m] the rover must have driven at least this
-  std::optional<int> max_hazard_contacts;    ///< judge hazard contacts (see the file comment)
+  std::optional<int> max_hazard_contacts;    ///< hazard contacts allowed (file comment); unset = 0
   Status Validate() const;
 };
 
@@ -97,7 +111,7 @@ struct Verdict {
   double distance_driven = 0;        ///< [m] truth path length (horizontal)
   double max_tilt = 0;               ///< [rad]
   std::vector<int> rocks_hit;        ///< ids of rocks over the traversable height touched
-  std::vector<int> hazards_hit;      ///< ids of such rocks under the ground footprint
+  std::vector<int> footprint_overlaps;      ///< ids of such rocks under the ground footprint
   std::vector<ErrorSample> estimate_error;  ///< over time
   std::vector<ErrorSample> odometry_only_error;  ///< over time (empty without such samples)
   /// Not judged (limit NaN, pass true): see the file comment.
@@ -146,7 +160,8 @@ class Judge {
   std::vector<Stamped> odometry_only_;
   std::vector<ErrorSample> ErrorsOf(const std::vector<Stamped>& estimates) const;
   std::vector<bool> hit_;
-  std::vector<bool> hazard_hit_;
+  std::vector<int> hit_part_;  // index into footprint_.parts of the first contact
+  std::vector<bool> overlap_;
   double distance_ = 0;
   double max_tilt_ = 0;
   std::size_t out_of_order_ = 0;
