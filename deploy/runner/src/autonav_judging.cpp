@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "rover/geometry/polygon.hpp"
+#include "rover/geometry/transforms.hpp"
 
 namespace rover::deploy::runner {
 namespace {
@@ -109,24 +110,33 @@ HazardMapQuality EvaluateHazardMap(const GoodnessGrid& map,
   return q;
 }
 
-MotionFigures EvaluateMotion(const Track& track, double t0, double t1, double still_speed) {
+MotionFigures EvaluateMotion(const Track& track, double t0, double t1,
+                             const std::vector<double>& yaw, double still_speed,
+                             double still_turn_rate) {
   MotionFigures m;
   m.duration = std::max(0.0, t1 - t0);
-  double still_s = 0;
-  const std::array<double, 3>* prev = nullptr;
-  for (const auto& p : track) {
+  const bool with_yaw = !yaw.empty() && yaw.size() == track.size();
+  double still_s = 0, turning_s = 0;
+  std::size_t prev = track.size();
+  for (std::size_t i = 0; i < track.size(); ++i) {
+    const auto& p = track[i];
     if (p[0] < t0 || p[0] > t1) continue;
-    if (prev) {
-      const double dt = p[0] - (*prev)[0];
-      const double d = std::hypot(p[1] - (*prev)[1], p[2] - (*prev)[2]);
+    if (prev < track.size()) {
+      const auto& q = track[prev];
+      const double dt = p[0] - q[0];
+      const double d = std::hypot(p[1] - q[1], p[2] - q[2]);
       m.distance += d;
-      if (dt > 0 && d / dt < still_speed) still_s += dt;
+      if (dt > 0 && d / dt < still_speed) {
+        const double turn = with_yaw ? std::abs(geometry::WrapAngle(yaw[i] - yaw[prev])) : 0.0;
+        (turn / dt >= still_turn_rate ? turning_s : still_s) += dt;
+      }
     }
-    prev = &p;
+    prev = i;
   }
   if (m.duration > 0) {
     m.traverse_rate = m.distance / m.duration * 3600.0;
     m.standing_still = std::clamp(still_s / m.duration, 0.0, 1.0);
+    m.turning_in_place = std::clamp(turning_s / m.duration, 0.0, 1.0);
   }
   return m;
 }
@@ -135,19 +145,27 @@ std::vector<sim::judge::Criterion> AutonavFigures(const MobilityOutcome& mob,
                                                   const Track& truth_track,
                                                   const std::vector<sim::judge::JudgeRock>& rocks,
                                                   double traversable_height,
-                                                  const HazardMapOptions& options) {
+                                                  const HazardMapOptions& options,
+                                                  const std::vector<double>& truth_yaw) {
   std::vector<sim::judge::Criterion> out;
   out.push_back({"mobility_steps", static_cast<double>(mob.steps), kNan, "count", true,
                  "drive steps apl/mobility_status reported"});
   out.push_back({"mobility_images", static_cast<double>(mob.images), kNan, "count", true,
                  "range images apl/mobility_status reported"});
-  const MotionFigures m = EvaluateMotion(truth_track, mob.sim_start_s, mob.sim_end_s);
+  const MotionFigures m = EvaluateMotion(truth_track, mob.sim_start_s, mob.sim_end_s, truth_yaw);
   char buf[160];
   std::snprintf(buf, sizeof buf, "sim/truth: %.2f m in %.1f simulated s of the command", m.distance,
                 m.duration);
   out.push_back({"traverse_rate", m.traverse_rate, kNan, "m/h", true, buf});
   out.push_back({"standing_still", 100.0 * m.standing_still, kNan, "%", true,
-                 "share of the command's simulated time below 1 cm/s (sim/truth)"});
+                 truth_yaw.empty()
+                     ? "share of the command's simulated time below 1 cm/s (sim/truth)"
+                     : "share of the command's simulated time below 1 cm/s and turning below "
+                       "0.01 rad/s (sim/truth)"});
+  if (!truth_yaw.empty()) {
+    out.push_back({"turning_in_place", 100.0 * m.turning_in_place, kNan, "%", true,
+                   "share of the command's simulated time below 1 cm/s but turning (sim/truth)"});
+  }
   if (mob.last_map) {
     const HazardMapQuality q =
         EvaluateHazardMap(*mob.last_map, rocks, traversable_height, truth_track, options);

@@ -33,8 +33,9 @@ void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world
                         std::string* failure) {
   if (!result->mobility) return;
   const MobilityOutcome& mob = *result->mobility;
-  const auto figures = AutonavFigures(mob, result->truth_track, JudgeRocks(world),
-                                      scenario.criteria.traversable_height);
+  const auto figures =
+      AutonavFigures(mob, result->truth_track, JudgeRocks(world),
+                     scenario.criteria.traversable_height, HazardMapOptions{}, result->truth_yaw);
   result->figures.insert(result->figures.end(), figures.begin(), figures.end());
   if (mob.keep_out.empty()) return;
   const double front = hwconfig::RoverDescription{}.GroundFootprint().max_x;

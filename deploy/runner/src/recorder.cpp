@@ -4,6 +4,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "rover/geometry/transforms.hpp"
 #include "rover/msg/pose_idl.hpp"
 
 namespace rover::deploy::runner {
@@ -12,11 +13,13 @@ namespace {
 // One track point per this many simulated seconds.
 constexpr double kTrackStepS = 0.2;
 
-void AddTrackPoint(Time t, const rover_Pose3& pose, double* last_s,
+// Adds a point when kTrackStepS has passed; returns whether it did.
+bool AddTrackPoint(Time t, const rover_Pose3& pose, double* last_s,
                    std::vector<std::array<double, 3>>* track) {
-  if (t.seconds() - *last_s < kTrackStepS) return;
+  if (t.seconds() - *last_s < kTrackStepS) return false;
   track->push_back({t.seconds(), pose.position.x, pose.position.y});
   *last_s = t.seconds();
+  return true;
 }
 
 }  // namespace
@@ -37,8 +40,11 @@ void Recorder::Pump() {
     truth_writers_.insert(s.info().publication_handle);
     result_->truth_publishers = static_cast<int>(truth_writers_.size());
     const Time t{s->header.stamp_ns};
-    if (judge_) judge_->AddTruth(t, msg::IsometryFromIdl(s->pose));
-    AddTrackPoint(t, s->pose, &last_truth_track_, &result_->truth_track);
+    const Eigen::Isometry3d pose = msg::IsometryFromIdl(s->pose);
+    if (judge_) judge_->AddTruth(t, pose);
+    if (AddTrackPoint(t, s->pose, &last_truth_track_, &result_->truth_track)) {
+      result_->truth_yaw.push_back(geometry::RpyFromRotation(pose.linear()).z());
+    }
   });
   pose_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
     const Time t{s->header.stamp_ns};

@@ -159,6 +159,7 @@ nlohmann::json ToJson(const RunResult& r) {
   j["truth_publishers"] = r.truth_publishers;
   j["terrain_digest"] = r.terrain_digest;
   j["truth_track"] = r.truth_track;
+  j["truth_yaw"] = r.truth_yaw;
   j["estimate_track"] = r.estimate_track;
   j["odometry_only_track"] = r.odometry_only_track;
   if (r.mobility) j["mobility"] = MobilityToJson(*r.mobility);
@@ -234,6 +235,7 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.truth_publishers = j.value("truth_publishers", 0);
     r.terrain_digest = j.value("terrain_digest", "");
     r.truth_track = j.value("truth_track", std::vector<std::array<double, 3>>{});
+    r.truth_yaw = j.value("truth_yaw", std::vector<double>{});
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
     r.odometry_only_track =
         j.value("odometry_only_track", std::vector<std::array<double, 3>>{});

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 namespace rover::deploy::runner {
 namespace {
@@ -107,6 +109,30 @@ TEST(Motion, TraverseRateAndStandingStill) {
   const MotionFigures creep = EvaluateMotion(StraightTrack(0.005, 20), 0, 20);
   EXPECT_NEAR(creep.standing_still, 1.0, 1e-9);
   EXPECT_EQ(EvaluateMotion({}, 0, 0).traverse_rate, 0.0);
+}
+
+TEST(Motion, TurningInPlaceIsNotStandingStill) {
+  // 20 s standing, then 20 s turning in place at 0.1 rad/s, then 20 s at 0.005 rad/s (below
+  // the 0.01 rad/s threshold), 0.2 s apart.
+  Track t;
+  std::vector<double> yaw;
+  double a = 0;
+  for (int k = 0; k <= 300; ++k) {
+    const double time = 0.2 * k;
+    if (time > 20 && time <= 40) a += 0.1 * 0.2;
+    if (time > 40) a += 0.005 * 0.2;
+    t.push_back({time, 1.0, 2.0});
+    yaw.push_back(std::remainder(a, 2.0 * std::numbers::pi));  // wraps past pi: still a turn
+  }
+  const MotionFigures with = EvaluateMotion(t, 0, 60, yaw);
+  EXPECT_NEAR(with.standing_still, 40.0 / 60.0, 0.01);
+  EXPECT_NEAR(with.turning_in_place, 20.0 / 60.0, 0.01);
+  const MotionFigures without = EvaluateMotion(t, 0, 60);
+  EXPECT_NEAR(without.standing_still, 1.0, 1e-9);
+  EXPECT_EQ(without.turning_in_place, 0.0);
+  // Yaws that do not match the track are ignored.
+  yaw.pop_back();
+  EXPECT_NEAR(EvaluateMotion(t, 0, 60, yaw).standing_still, 1.0, 1e-9);
 }
 
 TEST(KeepOut, EntriesCountTrackPointsWithTheFrontInAZone) {

@@ -132,6 +132,7 @@ struct RunResult {
   std::string terrain_digest;
   /// Paths of the truth (x, y) and estimated (x, y) tracks, downsampled, for plots and replay.
   std::vector<std::array<double, 3>> truth_track;     ///< t, x, y
+  std::vector<double> truth_yaw;  ///< [rad] the yaw at each truth_track point (may be empty)
   std::vector<std::array<double, 3>> estimate_track;  ///< t, x, y
   std::vector<std::array<double, 3>> odometry_only_track;  ///< t, x, y (dl/pose_odometry)
   /// Set by the mobility tasks (autonav, goto_waypoint, guarded, guarded_arc).

@@ -19,7 +19,9 @@
 /// Motion. Over the track points with t in [t0, t1] (the command's window): distance = the
 /// horizontal path length, traverse rate = distance / (t1 - t0) in m/h of simulated time, and
 /// standing still = the share of the window's time in track intervals whose speed is below
-/// `still_speed`.
+/// `still_speed` and, when the track's yaws are given, whose yaw rate is below
+/// `still_turn_rate` (a turn in place is driving, not standing still); turning in place = the
+/// share below `still_speed` but turning at least that fast (0 without yaws).
 
 #include <array>
 #include <vector>
@@ -60,11 +62,14 @@ struct MotionFigures {
   double duration = 0;            ///< [s] t1 - t0
   double traverse_rate = 0;       ///< [m/h]
   double standing_still = 0;      ///< share of the window's time, [0, 1]
+  double turning_in_place = 0;    ///< share of the window's time, [0, 1]
 };
 
 /// See the file comment. Precondition: t1 >= t0.
+/// `truth_yaw` [rad]: empty, or one yaw per track point.
 MotionFigures EvaluateMotion(const Track& truth_track, double t0, double t1,
-                             double still_speed = 0.01);
+                             const std::vector<double>& truth_yaw = {}, double still_speed = 0.01,
+                             double still_turn_rate = 0.01);
 
 /// Truth track points at which the rover was inside a keep-out zone or closer to one than
 /// `margin` (the rover's front overhang: its centre that close means its front is in). Zones are
@@ -73,13 +78,15 @@ int KeepOutEntries(const Track& truth_track,
                    const std::vector<std::vector<Eigen::Vector2d>>& zones, double margin);
 
 /// The figures result.json gets for a mobility run: mobility_steps, mobility_images,
-/// traverse_rate (m/h), standing_still (%), then hazard_map_recall and
+/// traverse_rate (m/h), standing_still (%), turning_in_place (% , with yaws), then
+/// hazard_map_recall and
 /// hazard_map_false_obstacle_rate (%) when the last goodness map saw a hazard / marks a cell.
 /// Not judged.
 std::vector<sim::judge::Criterion> AutonavFigures(const MobilityOutcome& mobility,
-                                           const Track& truth_track,
-                                           const std::vector<sim::judge::JudgeRock>& rocks,
-                                           double traversable_height,
-                                           const HazardMapOptions& options = {});
+                                                  const Track& truth_track,
+                                                  const std::vector<sim::judge::JudgeRock>& rocks,
+                                                  double traversable_height,
+                                                  const HazardMapOptions& options = {},
+                                                  const std::vector<double>& truth_yaw = {});
 
 }  // namespace rover::deploy::runner
