@@ -1,11 +1,12 @@
 #include "rover/sim/judge/judge.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
+#include "rover/geometry/polygon.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 
 namespace rover::sim::judge {
@@ -40,22 +41,6 @@ double JudgeRock::Reach() const {
   return r;
 }
 
-namespace {
-// Crossing-number test of site point p against a closed polygon.
-bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool inside = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-}  // namespace
-
 bool RockTouches(const JudgeRock& rock, const Eigen::Matrix2d& rot, const Eigen::Vector2d& t,
                  const hwconfig::ContactPart& part, double margin) {
   const Eigen::Vector2d centre = rot.transpose() * (rock.xy - t);
@@ -72,7 +57,7 @@ bool RockTouches(const JudgeRock& rock, const Eigen::Matrix2d& rot, const Eigen:
   } else {
     nearest = centre.cwiseMax(part.min).cwiseMin(part.max);
   }
-  return InsidePolygon(rock.outline, rot * nearest + t);
+  return geometry::InsidePolygon(rock.outline, rot * nearest + t);
 }
 
 RoverFootprint RoverFootprint::MerDefault() {
