@@ -61,6 +61,7 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
                          ctx.MakeWriter<rover_apl_MobilityStatus>("apl/mobility_status"));
   ROVER_ASSIGN_OR_RETURN(map_writer_, ctx.MakeWriter<rover_apl_GoodnessMap>("apl/goodness_map"));
   ROVER_ASSIGN_OR_RETURN(votes_writer_, ctx.MakeWriter<rover_apl_ArcVotes>("apl/arc_votes"));
+  ROVER_ASSIGN_OR_RETURN(vo_writer_, ctx.MakeWriter<rover_dl_VoCommand>("dl/vo_command"));
 
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_MobilityCommand>(
       "apl/mobility_command", [this](const dds::Sample<rover_apl_MobilityCommand>& s) {
@@ -86,8 +87,13 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
         const rover_dl_RangeImage& m = s.data();
         const Result<msg::RangeImage> image = msg::RangeImageFromIdl(m);
         if (!image.ok()) return rejected(MobilityInput::kRangeImage, image.status(), m.request_id);
-        Publish(manager_->OnRangeImage(nav_core::RangeScanFromImage(*image), image->camera,
-                                       m.request_id, ctx_->Now()));
+        MobilityOutput out;
+        {
+          runtime::ScopedActivity planning(ctx_->activities(), "planning");
+          out = manager_->OnRangeImage(nav_core::RangeScanFromImage(*image), image->camera,
+                                       m.request_id, ctx_->Now());
+        }
+        Publish(out);
         return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_DriveStatus>(
@@ -111,8 +117,14 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
         Publish(manager_->OnVisOdom(*vo, ctx_->Now()));
         return Status::Ok();
       }));
-  ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz),
-                          [this] { Publish(manager_->Step(ctx_->Now())); });
+  ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz), [this] {
+    MobilityOutput out;
+    {
+      runtime::ScopedActivity planning(ctx_->activities(), "planning");
+      out = manager_->Step(ctx_->Now());
+    }
+    Publish(out);
+  });
   ctx.SetHealth(rover_HEALTH_OK, "");
   return Status::Ok();
 }
@@ -174,6 +186,19 @@ void MobilityService::Publish(const MobilityOutput& out) {
                                            {"message", st.message}});
     }
   }
+  UpdateVoRequest();
+}
+
+void MobilityService::UpdateVoRequest() {
+  const MobilityStatus& st = manager_->status();
+  const bool want = st.state == State::kRunning && ModeUsesVisOdom(st.mode);
+  if (want == vo_requested_) return;
+  rover_dl_VoCommand m{};
+  msg::VoCommandToIdl(msg::VoCommand{ctx_->Now(), ctx_->name(), want}, &m);
+  ctx_->Stamp(m.header, "");
+  const Status written = vo_writer_.Write(m);
+  Check(written, "dl/vo_command");
+  if (written.ok()) vo_requested_ = want;
 }
 
 }  // namespace rover::apl::mobility

@@ -54,6 +54,11 @@ class MobilityService final : public Service {
   dds::Writer<rover_apl_MobilityStatus> status_writer_;
   dds::Writer<rover_apl_GoodnessMap> map_writer_;
   dds::Writer<rover_apl_ArcVotes> votes_writer_;
+  // dl/vo_command: visual-odometry pairs asked for while a VisOdom mode runs (dl-vo images only
+  // then, unless its imaging = always).
+  dds::Writer<rover_dl_VoCommand> vo_writer_;
+  bool vo_requested_ = false;
+  void UpdateVoRequest();
 };
 
 }  // namespace rover::apl::mobility

@@ -32,6 +32,10 @@ void CameraService::DeclareParameters(ParamSet& p) {
   p.Declare("max_exposure_us", static_cast<std::int64_t>(d.max_exposure_us),
             "[us] longest exposure a request may ask for (0 = auto is always allowed)")
       .Range(0.0, 600.0e6);
+  p.Declare("max_binning", d.max_binning,
+            "largest b x b binning asked of the camera head for a request narrower than the "
+            "sensor (the readout: 1024 px -> 512, 256, ...); 1 = always read the full frame")
+      .Range(1, 16);
   p.Declare("joint_state_stale_s", 0.25,
             "[s] ddl/joint_state not arriving for this long makes the service DEGRADED")
       .Range(0.005, 60.0);
@@ -54,6 +58,7 @@ Result<CameraDriver> CameraService::MakeDriver(const ParamSet& p, std::string* p
   o.mast_max_age_s = p.GetDouble("mast_max_age_s");
   o.mast_history_s = p.GetDouble("mast_history_s");
   o.max_exposure_us = static_cast<std::uint32_t>(p.GetInt("max_exposure_us"));
+  o.max_binning = static_cast<int>(p.GetInt("max_binning"));
   if (path != nullptr) *path = *file;
   return CameraDriver::Create(std::move(*cal), o);
 }

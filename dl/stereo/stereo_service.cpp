@@ -155,7 +155,11 @@ void StereoService::OnStereoFrame(const rover_ddl_StereoFrame& m) {
   const auto o = client_->Answer(m.request_id);
   if (!o.has_value()) return;  // another requester's frame, or one after its timeout
   ++stats_.frames;
-  const Status s = Process(*o, m);
+  Status s;
+  {
+    runtime::ScopedActivity stereo(ctx_->activities(), "stereo");
+    s = Process(*o, m);
+  }
   if (!s.ok()) {
     ++stats_.bad_frames;
     Fail("ddl/stereo_frame dropped, no range image sent", {{"range_request_id", o->tag},

@@ -33,6 +33,9 @@ Status VoService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose",
       [this](const dds::Sample<rover_dl_PoseEstimate>& s) { return OnPose(s.data()); }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_VoCommand>(
+      "dl/vo_command",
+      [this](const dds::Sample<rover_dl_VoCommand>& s) { return OnVoCommand(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_StereoFrame>(
       "ddl/stereo_frame",
       [this](const dds::Sample<rover_ddl_StereoFrame>& s) { OnStereoFrame(s.data()); }));
@@ -61,6 +64,29 @@ Status VoService::OnPose(const rover_dl_PoseEstimate& m) {
   return Status::Ok();
 }
 
+Status VoService::OnVoCommand(const rover_dl_VoCommand& m) {
+  auto c = msg::VoCommandFromIdl(m);
+  if (!c.ok()) {
+    ++stats_.rejected_commands;
+    return c.status();  // on sys/health through the input monitor
+  }
+  const bool was = imaging();
+  if (c->imaging) {
+    clients_.insert(c->client);
+  } else {
+    clients_.erase(c->client);
+  }
+  if (imaging() == was) return Status::Ok();
+  // Imaging starts or stops: the chain restarts with a new reference pair, since the rover
+  // moved without VO in between (poses are kept: they are the estimator's, not VO's).
+  cadence_->Reset();
+  pipeline_->Reset();
+  (void)client_->Reset();
+  log::Info(imaging() ? "visual odometry imaging on" : "visual odometry imaging off",
+            {{"client", c->client}, {"clients", static_cast<std::uint64_t>(clients_.size())}});
+  return Status::Ok();
+}
+
 void VoService::OnTimer() {
   const Time now = ctx_->Now();
   if (client_->ClockWentBack(now)) ResetAll("the run clock went back");
@@ -75,7 +101,7 @@ void VoService::OnTimer() {
 }
 
 void VoService::MaybeRequest(Time now) {
-  if (!client_->Ready(now)) return;
+  if (!imaging() || !client_->Ready(now)) return;
   const auto latest = poses_.Latest();
   if (!latest.has_value() || ToSeconds(now - latest->stamp) > options_.pose_max_age_s) return;
   const VoCadence::Reason reason = cadence_->Due(now);
@@ -101,7 +127,11 @@ void VoService::OnStereoFrame(const rover_ddl_StereoFrame& m) {
   const auto o = client_->Answer(m.request_id);
   if (!o.has_value()) return;  // not ours
   ++stats_.frames;
-  const Status s = Process(*o, m);
+  Status s;
+  {
+    runtime::ScopedActivity vo(ctx_->activities(), "vo");
+    s = Process(*o, m);
+  }
   if (!s.ok()) {
     ++stats_.bad_frames;
     client_->Failed(ctx_->Now());

@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "rover/base/log.hpp"
@@ -66,13 +67,19 @@ class VoService final : public Service {
     std::uint64_t references = 0;       ///< pairs that only became the reference
     std::uint64_t published = 0;        ///< dl/relative_pose samples sent
     std::uint64_t converged = 0;        ///< of which RELPOSE_CONVERGED
+    std::uint64_t rejected_commands = 0;  ///< dl/vo_command samples refused (bad client name)
   };
+  /// Whether pairs are taken now: imaging = always, or a client asks (dl/vo_command).
+  bool imaging() const { return options_.imaging == "always" || !clients_.empty(); }
+  /// The clients asking for pairs now.
+  const std::set<std::string>& clients() const { return clients_; }
   const Stats& stats() const { return stats_; }
   const std::string& last_problem() const { return health_.problem(); }
   const VoCadence* cadence() const { return cadence_.get(); }
 
  private:
   Status OnPose(const rover_dl_PoseEstimate& m);
+  Status OnVoCommand(const rover_dl_VoCommand& m);
   void OnStereoFrame(const rover_ddl_StereoFrame& m);
   void OnTimer();
   void MaybeRequest(Time now);
@@ -92,6 +99,7 @@ class VoService final : public Service {
   msg::PoseHistory poses_;
   msg::HealthLatch health_;
   Stats stats_;
+  std::set<std::string> clients_;
   dds::Writer<rover_ddl_StereoRequest> request_writer_;
   dds::Writer<rover_dl_RelativePose> relpose_writer_;
 };

@@ -6,12 +6,16 @@
 //   CameraHead (rendered stereo pairs)            <- hw/camera_request -> hw/camera_frame
 // and publishes sim/clock every step. Its run clock is its own simulated time; it never follows
 // sim/clock itself. See docs/services/rover-sim.md.
+#include <cmath>
 #include <cstdlib>
 
+#include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/msg/camera.hpp"
 #include "rover/msg/hw_idl.hpp"
+#include "rover/runtime/activity.hpp"
+#include "rover/runtime/lockstep.hpp"
 #include "rover/runtime/service.hpp"
 #include "rover/sim/rover_sim/camera_head.hpp"
 #include "rover/sim/rover_sim/pacer.hpp"
@@ -36,7 +40,17 @@ class RoverSim final : public rover::Service {
   }
 
   Status ValidateParameters(const rover::ParamSet& p) const override {
-    ROVER_RETURN_IF_ERROR(rover::ReadParams<rs::PacerOptions>(p, "sim.").status());
+    ROVER_ASSIGN_OR_RETURN(const rs::PacerOptions pacing,
+                           rover::ReadParams<rs::PacerOptions>(p, "sim."));
+    if (pacing.lockstep_strict) {
+      const double period = p.GetDouble("sim.period_s");
+      const double steps = pacing.lockstep_quantum_s / period;
+      if (std::abs(steps - std::round(steps)) > 1e-6 || std::round(steps) < 1) {
+        return rover::InvalidArgument(
+            "sim.lockstep_quantum_s: " + rover::FormatNumber(pacing.lockstep_quantum_s) +
+            " s is not a whole number of sim.period_s (" + rover::FormatNumber(period) + " s)");
+      }
+    }
     return rover::ReadParams<rs::CameraHeadOptions>(p, "camera.").status();
   }
 
@@ -48,6 +62,9 @@ class RoverSim final : public rover::Service {
                            rover::ReadParams<rs::CameraHeadOptions>(p, "camera."));
     pacer_.emplace(pacing);
     pacer_->set_self(ctx.name());
+    stall_s_ = pacing.lockstep_stall_s;
+    steps_per_quantum_ =
+        std::max<long>(1, std::lround(pacing.lockstep_quantum_s / p.GetDouble("sim.period_s")));
     camera_.emplace(camera,
                     std::make_shared<const rover::sim::terrain::Terrain>(engine_->world().terrain),
                     engine_->rover());
@@ -66,7 +83,7 @@ class RoverSim final : public rover::Service {
         "hw/motor_goals", [this](const dds::Sample<rover_hw_MotorGoals>& s) { OnGoals(s.data()); }));
     ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_sim_Control>(
         "sim/control", [this](const dds::Sample<rover_sim_Control>& s) { OnControl(s.data()); }));
-    if (pacer_->lockstep()) {
+    if (pacer_->lockstep() || pacer_->strict()) {
       ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_sim_ClockAck>(
           "sim/clock_ack", [this](const dds::Sample<rover_sim_ClockAck>& s) { OnAck(s.data()); }));
     }
@@ -75,12 +92,16 @@ class RoverSim final : public rover::Service {
                                      {"start_x", engine_->world().start_x},
                                      {"start_y", engine_->world().start_y},
                                      {"real_time_factor", pacer_->real_time_factor()},
-                                     {"paused", pacer_->paused()}});
+                                     {"paused", pacer_->paused()},
+                                     {"lockstep", pacer_->strict()     ? "strict"
+                                                  : pacer_->lockstep() ? "lead"
+                                                                       : "off"}});
     return Status::Ok();
   }
 
   Status OnActivate(rover::ServiceContext&) override {
     pacer_->Anchor(rover::MonotonicNow(), engine_->time());
+    if (pacer_->strict()) StartQuantum();
     PublishClock();
     return Status::Ok();
   }
@@ -107,6 +128,28 @@ class RoverSim final : public rover::Service {
     (void)clock_w_.Write(c);
   }
 
+  // Strict lock-step: the quantum that starts now (at the barrier just published); its samples
+  // carry the barrier as their tick (core/runtime lockstep.hpp).
+  void StartQuantum() {
+    const std::int64_t barrier = rover::Time::FromSeconds(engine_->time()).ns;
+    pacer_->SetBarrier(barrier, rover::MonotonicNow());
+    rover::dds::lockstep::SetWriteTick(barrier);
+    steps_in_quantum_ = 0;
+  }
+
+  // Strict lock-step stalled: a named service never acknowledged the barrier. Say so (stamped
+  // with the wall time, so that gated readers see it at once) and stop stepping.
+  void ReportStall() {
+    const std::string what = "lock-step stalled: '" + pacer_->stalled() +
+                             "' has not served sim time " +
+                             rover::FormatNumber(engine_->time(), 3) + " s within " +
+                             rover::FormatNumber(stall_s_) + " s of wall time";
+    rover::dds::lockstep::SetWriteTick(rover::dds::lockstep::kOff);
+    rover::log::Error(what, {{"service", pacer_->stalled()}, {"sim_time_s", engine_->time()}});
+    ctx_->SetHealth(rover_HEALTH_FAILED, what);
+    stall_reported_ = true;
+  }
+
   // Called by the executor between polls: one step when one is due.
   Duration Work() {
     const rover::Time now = rover::MonotonicNow();
@@ -116,13 +159,29 @@ class RoverSim final : public rover::Service {
       rover::log::Warn("lock-step: not waiting for a service that stopped acknowledging",
                        {{"service", name}, {"sim_time_s", engine_->time()}});
     }
-    if (pacer_->paused() && now - last_paused_clock_ > rover::Seconds(0.2)) {
-      PublishClock();  // keeps late joiners' clocks valid while paused
+    if (!pacer_->stalled().empty() && !stall_reported_) ReportStall();
+    const bool waiting = wait == rs::Pacer::kLockstepPoll || wait == rs::Pacer::kStrictWait;
+    if (waiting && !waiting_) {
+      waiting_ = true;
+      wait_start_ = now;
+    } else if (!waiting && waiting_) {
+      waiting_ = false;
+      ctx_->activities().Add("lockstep_wait", now - wait_start_);
+    }
+    // Keeps late joiners' clocks valid while paused; under strict lock-step also while waiting
+    // at a barrier (an acknowledgement that was lost, or a restarted service, is made good).
+    const bool repeat = pacer_->paused() || (pacer_->strict() && waiting);
+    if (repeat && now - last_paused_clock_ > rover::Seconds(pacer_->paused() ? 0.2 : 0.5)) {
+      PublishClock();
       last_paused_clock_ = now;
     }
     if (wait > Duration::zero()) return wait;
-    auto out = engine_->Step();
+    auto out = [&] {
+      rover::runtime::ScopedActivity a(ctx_->activities(), "physics");
+      return engine_->Step();
+    }();
     if (!out.ok()) {
+      rover::dds::lockstep::SetWriteTick(rover::dds::lockstep::kOff);  // seen at once
       rover::log::Error("simulation step failed; pausing", {{"error", out.status().message()}});
       ctx_->SetHealth(rover_HEALTH_FAILED, out.status().message());
       pacer_->Pause();
@@ -147,7 +206,9 @@ class RoverSim final : public rover::Service {
   }
 
   void Publish(const rs::StepOutput& o) {
-    PublishClock();
+    // Strict lock-step: sim/clock only at the end of a quantum, after its samples.
+    const bool clock_now = !pacer_->strict() || ++steps_in_quantum_ >= steps_per_quantum_;
+    if (!pacer_->strict()) PublishClock();
     const auto& s = o.sensors;
     if (s.motor_telemetry)
       Send(telemetry_w_, *s.motor_telemetry, &msg::MotorTelemetryToIdl, "rover");
@@ -155,6 +216,10 @@ class RoverSim final : public rover::Service {
     if (s.imu) Send(imu_w_, *s.imu, &msg::ImuRawToIdl, "imu");
     if (s.sun_sensor) Send(sun_w_, *s.sun_sensor, &msg::SunSensorRawToIdl, "sun_sensor");
     if (o.truth) Send(truth_w_, *o.truth, &rs::TruthToIdl, "site");
+    if (pacer_->strict() && clock_now) {
+      PublishClock();
+      StartQuantum();
+    }
   }
 
   // A goal whose mode is not a MotorMode makes the whole sample invalid: nothing of it is applied.
@@ -182,6 +247,7 @@ class RoverSim final : public rover::Service {
           rover::log::Error("reset failed", {{"error", s.message()}});
         }
         pacer_->Anchor(now, engine_->time());
+        if (pacer_->strict()) StartQuantum();
         break;
       case rover_sim_SIM_SET_SPEED:
         if (const Status s = pacer_->SetRealTimeFactor(c.real_time_factor, now, engine_->time());
@@ -214,8 +280,9 @@ class RoverSim final : public rover::Service {
     const rover::sim::render::MastState mast{readings.joint_angle_rad[rover::hw::kMastPan],
                                              readings.joint_angle_rad[rover::hw::kMastTilt]};
     const rover::Time t0 = rover::MonotonicNow();
+    rover::runtime::ScopedActivity rendering(ctx_->activities(), "render");
     auto shot = camera_->Take(msg::CameraName(id), req.exposure_us, readings.chassis.pose_site,
-                              mast, engine_->SunDirectionSite());
+                              mast, engine_->SunDirectionSite(), req.readout_width);
     if (!shot.ok()) {
       rover::log::Error("no stereo pair", {{"camera", msg::CameraName(id)},
                                            {"request_id", req.request_id},
@@ -252,6 +319,12 @@ class RoverSim final : public rover::Service {
   std::optional<rs::Pacer> pacer_;
   std::optional<rs::CameraHead> camera_;
   rover::Time last_paused_clock_{0};
+  long steps_per_quantum_ = 1;
+  long steps_in_quantum_ = 0;
+  double stall_s_ = 30.0;
+  bool stall_reported_ = false;
+  bool waiting_ = false;
+  rover::Time wait_start_{0};
   dds::Writer<rover_sim_Clock> clock_w_;
   dds::Writer<rover_sim_Truth> truth_w_;
   dds::Writer<rover_hw_MotorTelemetry> telemetry_w_;

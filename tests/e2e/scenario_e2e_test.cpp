@@ -1,5 +1,5 @@
 // `roverctl run` end to end with the real service set: pass, fail on purpose, parallel runs that
-// must not cross-talk, Ctrl-C, and same seed -> same outcome.
+// must not cross-talk, Ctrl-C, and same seed -> the same figures bit for bit (strict lock-step).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
@@ -147,6 +147,17 @@ TEST_F(ScenarioE2e, ParallelRunsDoNotCrossTalkAndSameSeedSameOutcome) {
   const auto b = Json(dir_ + "/again/short-drive-seed1/result.json");
   EXPECT_EQ(a["pass"], b["pass"]);
   EXPECT_EQ(a["terrain_digest"], b["terrain_digest"]);
+  // Strict lock-step (the default): the same figures bit for bit, although one run had a
+  // neighbour (--jobs 2) and the other ran alone.
+  EXPECT_EQ(a["timings"]["lockstep"], "strict");
+  EXPECT_EQ(a["timings"]["late_samples"], 0);
+  EXPECT_EQ(b["timings"]["late_samples"], 0);
+  for (const char* key : {"criteria", "figures", "steps", "distance_driven_m", "estimate_error",
+                          "odometry_only_error", "truth_track", "estimate_track"}) {
+    EXPECT_EQ(a[key], b[key]) << key << ":\n--jobs 2: " << a[key].dump().substr(0, 2000)
+                              << "\n--jobs 1: " << b[key].dump().substr(0, 2000);
+  }
+  EXPECT_EQ(a["timings"]["sim_time_s"], b["timings"]["sim_time_s"]);
   EXPECT_NE(a["terrain_digest"], Json(dir_ + "/par/short-drive-seed2/result.json")["terrain_digest"]);
 }
 

@@ -119,7 +119,8 @@ void SunSensorRawToIdl(const hw::SunSensorRaw& in, rover_hw_SunSensorRaw* out) {
 }
 
 hw::CameraRequest CameraRequestFromIdl(const rover_hw_CameraRequest& in) {
-  return {in.header.stamp_ns, in.request_id, idl::RawEnum(in.camera), in.exposure_us};
+  return {in.header.stamp_ns, in.request_id, idl::RawEnum(in.camera), in.exposure_us,
+          in.readout_width};
 }
 
 void CameraRequestToIdl(const hw::CameraRequest& in, rover_hw_CameraRequest* out) {
@@ -127,6 +128,7 @@ void CameraRequestToIdl(const hw::CameraRequest& in, rover_hw_CameraRequest* out
   out->request_id = in.request_id;
   idl::SetRawEnum(&out->camera, in.camera);
   out->exposure_us = in.exposure_us;
+  out->readout_width = static_cast<std::uint16_t>(std::clamp(in.readout_width, 0, 65535));
 }
 
 hw::CameraFrame CameraFrameFromIdl(const rover_hw_CameraFrame& in) {

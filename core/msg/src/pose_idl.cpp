@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "idl_enum.hpp"
+#include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/range_check.hpp"
 #include "rover/geometry/transforms.hpp"
@@ -182,6 +183,22 @@ Result<EstimatorEvent> EstimatorEventFromIdl(const rover_dl_EstimatorEvent& in) 
   e.gate = in.gate;
   e.message = idl::ReadString(in.message);
   return e;
+}
+
+void VoCommandToIdl(const VoCommand& in, rover_dl_VoCommand* out) {
+  ROVER_DEMAND(!in.client.empty() && in.client.size() <= 63);
+  out->header.stamp_ns = in.stamp.ns;
+  idl::CopyString(out->client, in.client);
+  out->imaging = in.imaging;
+}
+
+Result<VoCommand> VoCommandFromIdl(const rover_dl_VoCommand& in) {
+  VoCommand c;
+  c.stamp = Time{in.header.stamp_ns};
+  c.client = in.client;
+  if (c.client.empty()) return InvalidArgument("dl/vo_command: client is empty");
+  c.imaging = in.imaging;
+  return c;
 }
 
 }  // namespace rover::msg

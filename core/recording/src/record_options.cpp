@@ -1,5 +1,9 @@
 #include "rover/recording/record_options.hpp"
 
+#include <algorithm>
+
+#include "rover/base/params.hpp"
+
 namespace rover::recording {
 
 Status RecordOptions::Validate() const {
@@ -36,7 +40,8 @@ std::string CompressionText(mcap::Compression compression) {
 
 namespace {
 Result<std::vector<std::string>> Patterns(const YAML::Node& n, const std::string& key,
-                                          const yaml::FileErrors& err) {
+                                          const yaml::FileErrors& err,
+                                          const std::vector<std::string>& known) {
   std::vector<std::string> out;
   if (n.IsScalar()) {
     out.push_back(n.Scalar());
@@ -53,13 +58,23 @@ Result<std::vector<std::string>> Patterns(const YAML::Node& n, const std::string
   if (Status s = check.Validate(); !s.ok()) {
     return err.At(n, key + ": " + s.message().substr(s.message().find(": ") + 2));
   }
+  if (!known.empty()) {
+    for (const auto& g : out) {
+      const bool any = std::any_of(known.begin(), known.end(),
+                                   [&](const std::string& t) { return GlobMatch(g, t); });
+      if (!any) {
+        return err.At(n, key + ": '" + g + "' matches no topic" + DidYouMean(g, known) +
+                             " (docs/topics.md lists them)");
+      }
+    }
+  }
   return out;
 }
 }  // namespace
 
 Result<RecordOptions> ParseRecordOptions(const YAML::Node& node, const std::string& where,
-                                         const yaml::FileErrors& err,
-                                         const RecordOptions& defaults) {
+                                         const yaml::FileErrors& err, const RecordOptions& defaults,
+                                         const std::vector<std::string>& known_topics) {
   RecordOptions o = defaults;
   if (node.IsScalar()) {
     const std::string v = node.Scalar();
@@ -83,10 +98,10 @@ Result<RecordOptions> ParseRecordOptions(const YAML::Node& node, const std::stri
     o.path = p.Scalar();
   }
   if (const auto t = node["topics"]) {
-    ROVER_ASSIGN_OR_RETURN(o.topics.include, Patterns(t, where + ".topics", err));
+    ROVER_ASSIGN_OR_RETURN(o.topics.include, Patterns(t, where + ".topics", err, known_topics));
   }
   if (const auto x = node["exclude"]) {
-    ROVER_ASSIGN_OR_RETURN(o.topics.exclude, Patterns(x, where + ".exclude", err));
+    ROVER_ASSIGN_OR_RETURN(o.topics.exclude, Patterns(x, where + ".exclude", err, known_topics));
   }
   bool has_cap = false;
   double cap = 0;

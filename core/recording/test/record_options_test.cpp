@@ -75,5 +75,22 @@ TEST(RecordOptions, ValidateAndCompressionNames) {
             "compression 'bz2' is not one of: zstd, lz4, none");
 }
 
+TEST(RecordOptions, APatternThatMatchesNoKnownTopicIsAnError) {
+  const yaml::FileErrors err("s.yaml");
+  const std::vector<std::string> known = {"hw/camera_frame", "ddl/stereo_frame", "dl/pose"};
+  const YAML::Node typo = YAML::Load("record:\n  exclude: [hw/camera_frames]\n");
+  auto bad = ParseRecordOptions(typo["record"], "record", err, {}, known);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(),
+            "s.yaml:2: record.exclude: 'hw/camera_frames' matches no topic (did you mean "
+            "'hw/camera_frame'?) (docs/topics.md lists them)");
+  const YAML::Node glob = YAML::Load("record:\n  topics: ['ddl/*', dl/pose]\n  exclude: []\n");
+  auto ok = ParseRecordOptions(glob["record"], "record", err, {}, known);
+  ASSERT_TRUE(ok.ok()) << ok.status().message();
+  EXPECT_TRUE(ok->topics.exclude.empty());
+  // Without the catalog nothing is checked (roverctl record checks against the live bus).
+  EXPECT_TRUE(ParseRecordOptions(typo["record"], "record", err).ok());
+}
+
 }  // namespace
 }  // namespace rover::recording

@@ -144,3 +144,25 @@ std::vector<dds_attach_t> WaitSet::Wait(std::int64_t timeout_ns) {
 }
 
 }  // namespace rover::dds
+
+namespace rover::dds::lockstep {
+namespace {
+thread_local std::int64_t t_write_tick = kOff;
+thread_local std::int64_t t_read_gate = kOff;
+std::atomic<std::uint64_t> g_late{0};
+}  // namespace
+
+void SetWriteTick(std::int64_t tick_ns) { t_write_tick = tick_ns; }
+std::int64_t WriteTick() { return t_write_tick; }
+void SetReadGate(std::int64_t before_ns) { t_read_gate = before_ns; }
+std::int64_t ReadGate() { return t_read_gate; }
+
+dds_return_t Write(dds_entity_t writer, const void* sample) {
+  if (t_write_tick == kOff) return dds_write(writer, sample);
+  return dds_write_ts(writer, sample, static_cast<dds_time_t>(t_write_tick));
+}
+
+std::uint64_t LateSamples() { return g_late.load(std::memory_order_relaxed); }
+void CountLateSample() { g_late.fetch_add(1, std::memory_order_relaxed); }
+
+}  // namespace rover::dds::lockstep

@@ -44,8 +44,9 @@ void Executor::CancelTimer(TimerId id) {
 }
 
 Status Executor::AddSubscription(dds_entity_t handle, const std::string& topic,
-                                 std::function<void()> drain, bool always, dds::TopicSeam* seam) {
-  Subscription s{handle, topic, std::move(drain), always, seam};
+                                 std::function<void()> drain, std::function<void()> stash,
+                                 bool always, dds::TopicSeam* seam) {
+  Subscription s{handle, topic, std::move(drain), std::move(stash), always, seam};
   if (always || active_) {
     ROVER_RETURN_IF_ERROR(
         waitset_.Attach(handle, static_cast<dds_attach_t>(subscriptions_.size())));
@@ -151,10 +152,49 @@ void Executor::SpinOnce(Duration max_wait) {
       continue;
     }
     const auto idx = static_cast<std::size_t>(token);
-    if (idx < subscriptions_.size() && subscriptions_[idx].attached) subscriptions_[idx].drain();
+    if (idx >= subscriptions_.size() || !subscriptions_[idx].attached) continue;
+    Subscription& s = subscriptions_[idx];
+    if (strict_ && !s.always) {
+      Invoke(s.topic, s.stash);
+    } else {
+      s.drain();
+    }
+  }
+  if (strict_) {
+    if (clock_.valid() && active_ && (!last_tick_ || clock_.Now() != *last_tick_)) {
+      ServeTick(clock_.Now());
+    } else {
+      RunDueTimers();  // wall timers (the heartbeat); no run-clock timer is newly due
+      if (after_spin_) Invoke("after-spin", after_spin_);  // may repeat an acknowledgement
+    }
+    return;
   }
   RunSeams();
   RunDueTimers();
+  if (after_spin_) Invoke("after-spin", after_spin_);
+}
+
+void Executor::SetStrictTicks(bool strict) {
+  ROVER_DEMAND(!strict || clock_.simulated());
+  strict_ = strict;
+  if (strict) dds::lockstep::SetWriteTick(last_tick_ ? last_tick_->ns : 0);
+}
+
+void Executor::ServeTick(Time now) {
+  dds::lockstep::SetWriteTick(now.ns);
+  dds::lockstep::SetReadGate(now.ns);
+  if (auto pump = dds::CurrentSeamPump()) Invoke("fault seam", [&] { pump->Pump(); });
+  for (auto& s : subscriptions_) {
+    if (s.attached && s.seam != nullptr && s.seam->Holding() && s.seam->HasDue()) {
+      Invoke(s.topic, s.stash);
+    }
+  }
+  for (auto& s : subscriptions_) {
+    if (s.attached && !s.always) s.drain();
+  }
+  RunDueTimers();
+  dds::lockstep::SetReadGate(dds::lockstep::kOff);
+  last_tick_ = now;
   if (after_spin_) Invoke("after-spin", after_spin_);
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <numbers>
 
+#include "rover/runtime/lockstep.hpp"
 #include "rover/runtime/topic_catalog.hpp"
 #include "rover/runtime/type_layout.hpp"
 
@@ -404,16 +405,16 @@ class EndpointSeam final : public dds::TopicSeam {
   }
 
   dds_return_t OnWrite(dds_entity_t writer, const void* sample, const dds_topic_descriptor_t*) override {
-    if (Idle()) return dds_write(writer, sample);
+    if (Idle()) return dds::lockstep::Write(writer, sample);
     std::lock_guard lock(mu_);
     writer_ = writer;
     RefreshIfStale();
-    if (bindings_.empty()) return dds_write(writer, sample);
+    if (bindings_.empty()) return dds::lockstep::Write(writer, sample);
     const Time now = core_->Now();
     dds_return_t rc = DDS_RETCODE_OK;
     Process(sample, dds_sample_info_t{}, now, &scratch_);
     for (const Emission& e : scratch_) {
-      const dds_return_t r = dds_write(writer, e.sample);
+      const dds_return_t r = dds::lockstep::Write(writer, e.sample);
       if (r < 0) rc = r;
     }
     scratch_.clear();  // keeps its capacity: no allocation per sample
@@ -458,7 +459,7 @@ class EndpointSeam final : public dds::TopicSeam {
   void FlushDue(Time now) {
     if (dir_ != dds::Direction::kWrite || held_due_ns_.load(std::memory_order_acquire) > now.ns) return;
     std::lock_guard lock(mu_);
-    for (const Emission& e : PopDue(now)) (void)dds_write(writer_, e.sample);
+    for (const Emission& e : PopDue(now)) (void)dds::lockstep::Write(writer_, e.sample);
   }
   std::int64_t earliest() const { return held_due_ns_.load(std::memory_order_acquire); }
 

@@ -68,6 +68,9 @@ Status ValidateOptions(const ServiceOptions& o) {
   if (o.clock != "wall" && o.clock != "sim") {
     return InvalidArgument("--clock: '" + o.clock + "' is not one of: wall, sim");
   }
+  if (o.lockstep != "lead" && o.lockstep != "strict") {
+    return InvalidArgument("--lockstep: '" + o.lockstep + "' is not one of: lead, strict");
+  }
   if (o.domain < 0 || o.domain > 232) {
     return InvalidArgument("--domain: " + std::to_string(o.domain) +
                            " is out of range [0, 232]");
@@ -114,10 +117,18 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
     if (!r.ok()) return r.status();
     ctx->clock_reader_ = std::make_unique<dds::Reader<rover_sim_Clock>>(std::move(*r));
     ManualClock* sim = ctx->sim_clock_;
+    ServiceContext* me = ctx.get();
     ROVER_RETURN_IF_ERROR(ctx->executor_->Subscribe<rover_sim_Clock>(
         *ctx->clock_reader_,
-        [sim](const dds::Sample<rover_sim_Clock>& s) { sim->Set(Time{s->sim_time_ns}); },
+        [sim, me](const dds::Sample<rover_sim_Clock>& s) {
+          sim->Set(Time{s->sim_time_ns});
+          ++me->clock_samples_;
+        },
         /*always=*/true));
+    if (options.lockstep == "strict") {
+      ctx->strict_lockstep_ = true;
+      ctx->executor_->SetStrictTicks(true);
+    }
     auto ack = dds::Writer<rover_sim_ClockAck>::Create(ctx->participant_, "sim/clock_ack");
     if (!ack.ok()) return ack.status();
     ctx->clock_ack_writer_ = std::move(*ack);
@@ -162,6 +173,31 @@ void ServiceContext::AcknowledgeClock() {
   constexpr std::int64_t kClockAckPeriodNs = 25'000'000;
   if (!sim_clock_->valid()) return;
   const Time now = sim_clock_->Now();
+  if (strict_lockstep_) {
+    // Each tick once served, and again whenever the simulator repeats its clock (it does while
+    // it waits: an acknowledgement sent before it listened, or lost, is made good).
+    const auto served = executor_->last_tick();
+    if (!served || *served != now || clock_samples_ == clock_samples_acked_) return;
+    if (const std::uint64_t late = dds::lockstep::LateSamples(); late > late_reported_) {
+      log::Warn("lock-step: samples arrived a tick late; this run may not be reproducible",
+                {{"late_samples", late}, {"sim_time_s", now.seconds()}});
+      // Counted in the heartbeat's activities, so the run report can say so.
+      for (std::uint64_t i = late_reported_; i < late; ++i) {
+        activities_.Add("late_samples", Duration::zero());
+      }
+      late_reported_ = late;
+    }
+    rover_sim_ClockAck a{};
+    a.header.stamp_ns = now.ns;
+    dds::CopyString(a.service, name_);
+    a.sim_time_ns = now.ns;
+    if (clock_ack_writer_.Write(a).ok()) {
+      clock_samples_acked_ = clock_samples_;
+      last_ack_ = now;
+      acked_once_ = true;
+    }
+    return;
+  }
   if (acked_once_ && now.ns - last_ack_.ns < kClockAckPeriodNs && now.ns >= last_ack_.ns) return;
   rover_sim_ClockAck a{};
   a.header.stamp_ns = now.ns;
@@ -257,6 +293,17 @@ void ServiceContext::PublishHeartbeat() {
   hb.count = ++heartbeat_count_;
   hb.wall_time_ns = WallNow().ns;
   dds::CopyString(hb.message, inputs_worse ? input_reason_ : health_message_);
+  hb.cpu_s = runtime::ProcessCpuSeconds();
+  const auto& entries = activities_.entries();
+  std::vector<rover_sys_ActivityTime> times(entries.size());
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    dds::CopyString(times[i].name, entries[i].name);
+    times[i].wall_s = entries[i].wall_s;
+    times[i].count = entries[i].count;
+  }
+  hb.activities._buffer = times.data();
+  hb.activities._length = hb.activities._maximum = static_cast<std::uint32_t>(times.size());
+  hb.activities._release = false;
   (void)heartbeat_writer_.Write(hb);
 }
 
@@ -376,6 +423,7 @@ int RunServiceMain(Service& service, int argc, char** argv) {
   if (const char* e = std::getenv("ROVER_SERVICE_NAME")) options.name = e;
   if (const char* e = std::getenv("ROVER_DOMAIN")) options.domain = std::atoi(e);
   if (const char* e = std::getenv("ROVER_CLOCK")) options.clock = e;
+  if (const char* e = std::getenv("ROVER_LOCKSTEP")) options.lockstep = e;
   if (const char* e = std::getenv("ROVER_PARAMS")) options.param_files = SplitColon(e);
   if (const char* e = std::getenv("ROVER_FAULTS")) options.faults_file = e;
   if (const char* e = std::getenv("ROVER_FAULT_INJECTION")) {
@@ -389,6 +437,8 @@ int RunServiceMain(Service& service, int argc, char** argv) {
   app.add_option("--name", options.name, "instance name (heartbeat key)");
   app.add_option("--domain", options.domain, "DDS domain id");
   app.add_option("--clock", options.clock, "run clock: wall or sim");
+  app.add_option("--lockstep", options.lockstep,
+                 "under sim/clock: lead (acknowledge every 25 ms) or strict (serve every tick)");
   app.add_option("--params", options.param_files, "YAML parameter files");
   app.add_option("--set", options.overrides, "parameter override key=value");
   app.add_option("--faults", options.faults_file, "YAML file of faults to inject (docs/faults.md)");
@@ -460,7 +510,9 @@ int RunServiceMain(Service& service, int argc, char** argv) {
     log::Error("failed to start", {{"error", s.message()}});
     rc = s.code() == StatusCode::kInvalidArgument || s.code() == StatusCode::kOutOfRange ? 2 : 1;
   } else {
-    log::Info("active", {{"domain", options.domain}, {"clock", options.clock}});
+    log::Info("active", {{"domain", options.domain},
+                         {"clock", options.clock},
+                         {"lockstep", options.clock == "sim" ? options.lockstep : "none"}});
     exec.Spin();
     log::Info("stopping");
   }

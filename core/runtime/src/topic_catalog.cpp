@@ -30,6 +30,7 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"dl/pose_odometry", "rover_dl_PoseEstimate", P::kState},
       {"dl/relative_pose", "rover_dl_RelativePose", P::kCommand},
       {"dl/estimator_event", "rover_dl_EstimatorEvent", P::kCommand},
+      {"dl/vo_command", "rover_dl_VoCommand", P::kLatched},
       {"dl/range_request", "rover_dl_RangeRequest", P::kCommand},
       {"dl/range_image", "rover_dl_RangeImage", P::kState},
       {"dl/mast_command", "rover_dl_MastCommand", P::kCommand},

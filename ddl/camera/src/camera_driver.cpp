@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 
 namespace rover::ddl::camera {
@@ -36,6 +37,10 @@ Status CameraDriverOptions::Validate() const {
   }
   if (max_pending < 1) {
     return InvalidArgument("max_pending: " + std::to_string(max_pending) + " must be >= 1");
+  }
+  if (max_binning < 1 || max_binning > 16) {
+    return InvalidArgument("max_binning: " + std::to_string(max_binning) +
+                           " is out of range [1, 16] (1 = always the full frame)");
   }
   return Status::Ok();
 }
@@ -77,7 +82,17 @@ Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& 
   PendingRequest p{next_hw_id_++, r, now};
   if (next_hw_id_ == 0) next_hw_id_ = 1;
   pending_.push_back(p);
-  return hw::CameraRequest{now.ns, p.hw_request_id, static_cast<int>(r.camera), r.exposure_us};
+  return hw::CameraRequest{now.ns, p.hw_request_id, static_cast<int>(r.camera), r.exposure_us,
+                           ReadoutFor(r.width, cam.left.width())};
+}
+
+int CameraDriver::ReadoutFor(int width, int sensor_width) const {
+  ROVER_DEMAND(sensor_width >= 1 && width >= 0 && width <= sensor_width);
+  if (width == 0) return 0;
+  for (int b = options_.max_binning; b > 1; --b) {
+    if (sensor_width % b == 0 && sensor_width / b >= width) return sensor_width / b;
+  }
+  return 0;
 }
 
 Status CameraDriver::HandleMast(const MastSample& s) {

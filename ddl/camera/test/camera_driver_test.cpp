@@ -285,5 +285,34 @@ TEST(CameraDriver, OptionsAreValidated) {
   EXPECT_FALSE(CameraDriver::Create(two, {}).ok());
 }
 
+TEST(CameraDriver, AsksForTheLargestBinningThatStillCoversTheRequestedWidth) {
+  CameraDriver d = Driver();  // 64 px calibration
+  auto full = d.HandleRequest(Req(1, 1, 0, 0), T(1));
+  ASSERT_TRUE(full.ok());
+  EXPECT_EQ(full->readout_width, 0);  // width 0: the full frame
+  auto quarter = d.HandleRequest(Req(2, 1, 0, 16), T(1));
+  ASSERT_TRUE(quarter.ok());
+  EXPECT_EQ(quarter->readout_width, 16);  // 4 x 4 binning
+  auto odd = d.HandleRequest(Req(3, 1, 0, 20), T(1));
+  ASSERT_TRUE(odd.ok());
+  EXPECT_EQ(odd->readout_width, 32);  // 2 x 2, then 32 -> 20 in software
+  EXPECT_EQ(d.ReadoutFor(64, 64), 0);
+  EXPECT_EQ(d.ReadoutFor(256, 1024), 256);
+  EXPECT_EQ(d.ReadoutFor(512, 1024), 512);
+  EXPECT_EQ(d.ReadoutFor(100, 1024), 128);  // 8 x 8 is the most by default
+  EXPECT_EQ(d.ReadoutFor(100, 1000), 125);  // binnings must divide the sensor width
+  CameraDriverOptions o;
+  o.max_binning = 1;
+  auto no_binning = CameraDriver::Create(SmallCalibration(), o);
+  ASSERT_TRUE(no_binning.ok());
+  EXPECT_EQ(no_binning->ReadoutFor(16, 64), 0);  // always the full frame
+  o.max_binning = 0;
+  auto bad = CameraDriver::Create(SmallCalibration(), o);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("max_binning: 0 is out of range [1, 16]"),
+            std::string::npos)
+      << bad.status().message();
+}
+
 }  // namespace
 }  // namespace rover::ddl::camera

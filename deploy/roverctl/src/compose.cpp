@@ -13,6 +13,7 @@
 #include "rover/base/params.hpp"  // DidYouMean
 #include "rover/base/yaml_check.hpp"
 #include "rover/runtime/qos.hpp"
+#include "rover/runtime/topic_catalog.hpp"
 
 namespace rover::deploy {
 namespace {
@@ -265,7 +266,10 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
     ROVER_ASSIGN_OR_RETURN(r->faults, ParseSetFaults(f, err.file()));
   }
   if (const auto rec = n["record"]) {
-    ROVER_ASSIGN_OR_RETURN(r->record, recording::ParseRecordOptions(rec, "x-rover.record", err));
+    std::vector<std::string> topics;
+    for (const auto& t : dds::TopicCatalog()) topics.emplace_back(t.name);
+    ROVER_ASSIGN_OR_RETURN(r->record,
+                           recording::ParseRecordOptions(rec, "x-rover.record", err, {}, topics));
   }
   return Status::Ok();
 }

@@ -95,6 +95,9 @@ std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& proj
   env["ROVER_SERVICE_NAME"] = s.name;
   env["ROVER_PROJECT"] = project.rover.project;
   env["ROVER_CLOCK"] = project.rover.clock;
+  if (project.rover.clock == "sim" && !project.rover.lockstep.empty()) {
+    env["ROVER_LOCKSTEP"] = project.rover.lockstep;
+  }
   env["ROVER_STATE_DIR"] = options.state_dir;
   if (!set_id.empty()) env[kSetIdVariable] = set_id + "/" + s.name;
   if (!project.rover.qos.empty()) {
@@ -416,6 +419,11 @@ Status Supervisor::Start() {
   UpdateReadiness();
   WriteState(phase_);
   return Status::Ok();
+}
+
+void Supervisor::PollHeartbeats() {
+  ReadHeartbeats();
+  UpdateReadiness();
 }
 
 void Supervisor::Poll() {

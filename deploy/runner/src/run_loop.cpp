@@ -11,7 +11,34 @@ Result<std::unique_ptr<RunLoop>> RunLoop::Create(const dds::Participant& partici
                                                  LoopLimits limits) {
   ROVER_ASSIGN_OR_RETURN(auto clock,
                          dds::Reader<rover_sim_Clock>::Create(participant, "sim/clock"));
-  return std::unique_ptr<RunLoop>(new RunLoop(std::move(clock), limits));
+  std::unique_ptr<RunLoop> loop(new RunLoop(std::move(clock), limits));
+  ROVER_ASSIGN_OR_RETURN(auto ws, dds::WaitSet::Create(participant));
+  loop->waitset_ = std::make_unique<dds::WaitSet>(std::move(ws));
+  ROVER_RETURN_IF_ERROR(loop->waitset_->Attach(loop->clock_.handle(), 0));
+  if (limits.strict_lockstep) {
+    ROVER_ASSIGN_OR_RETURN(loop->ack_,
+                           dds::Writer<rover_sim_ClockAck>::Create(participant, "sim/clock_ack"));
+    // Until the first tick is heard: writes belong to tick 0, nothing simulated is visible.
+    dds::lockstep::SetWriteTick(0);
+    dds::lockstep::SetReadGate(0);
+  }
+  return loop;
+}
+
+RunLoop::~RunLoop() {
+  if (limits_.strict_lockstep) {
+    dds::lockstep::SetWriteTick(dds::lockstep::kOff);
+    dds::lockstep::SetReadGate(dds::lockstep::kOff);
+  }
+}
+
+void RunLoop::Acknowledge() {
+  if (!limits_.strict_lockstep || !heard_ || clock_samples_ == acked_samples_) return;
+  rover_sim_ClockAck a{};
+  a.header.stamp_ns = tick_ns_;
+  dds::CopyString(a.service, kRunnerName);
+  a.sim_time_ns = tick_ns_;
+  if (ack_.Write(a).ok()) acked_samples_ = clock_samples_;
 }
 
 void RunLoop::AddPump(std::function<void()> pump) { pumps_.push_back(std::move(pump)); }
@@ -19,7 +46,21 @@ void RunLoop::AddPump(std::function<void()> pump) { pumps_.push_back(std::move(p
 void RunLoop::AddCheck(std::function<std::string()> check) { checks_.push_back(std::move(check)); }
 
 void RunLoop::Pump() {
-  for (auto& c : clock_.Take()) now_s_ = std::max(now_s_, Time{c->sim_time_ns}.seconds());
+  // The clock itself is never held back.
+  const std::int64_t gate = dds::lockstep::ReadGate();
+  dds::lockstep::SetReadGate(dds::lockstep::kOff);
+  for (auto& c : clock_.Take()) {
+    ++clock_samples_;
+    heard_ = true;
+    tick_ns_ = c->sim_time_ns;  // a reset goes back: follow it
+    now_s_ = Time{c->sim_time_ns}.seconds();
+  }
+  if (limits_.strict_lockstep) {
+    dds::lockstep::SetReadGate(heard_ ? tick_ns_ : gate);
+    if (heard_) dds::lockstep::SetWriteTick(tick_ns_);
+  } else {
+    dds::lockstep::SetReadGate(gate);
+  }
   for (auto& p : pumps_) p();
 }
 
@@ -48,7 +89,8 @@ std::string RunLoop::WaitUntil(const std::function<bool()>& done) {
     if (done()) return "";
     std::string failure = Check();
     if (!failure.empty()) return failure;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    Acknowledge();
+    (void)waitset_->Wait(std::chrono::nanoseconds(std::chrono::milliseconds(5)).count());
   }
 }
 

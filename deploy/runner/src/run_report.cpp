@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -135,11 +136,25 @@ nlohmann::json ToJson(const RunResult& r) {
                           {"sim_end_s", s.sim_end_s}});
   }
   j["distance_driven_m"] = r.distance_driven;
-  j["timings"] = {{"sim_time_s", r.sim_time_s}, {"wall_time_s", r.wall_time_s},
-                  {"startup_s", r.startup_s}, {"ready_s", r.ready_s},
-                  {"teardown_s", r.teardown_s},
-                  {"sim_seconds_per_wall_second",
-                   r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0}};
+  j["timings"] = {
+      {"sim_time_s", r.sim_time_s},
+      {"wall_time_s", r.wall_time_s},
+      {"startup_s", r.startup_s},
+      {"ready_s", r.ready_s},
+      {"teardown_s", r.teardown_s},
+      {"sim_seconds_per_wall_second", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0},
+      {"recording_mb", r.recording_mb},
+      {"lockstep", r.lockstep},
+      {"late_samples", r.late_samples}};
+  j["timings"]["services"] = nlohmann::json::array();
+  for (const auto& st : r.service_timing) {
+    nlohmann::json a = nlohmann::json::object();
+    for (const auto& act : st.activities) {
+      a[act.name] = {{"wall_s", act.wall_s}, {"count", act.count}};
+    }
+    j["timings"]["services"].push_back(
+        {{"service", st.service}, {"cpu_s", st.cpu_s}, {"activities", a}});
+  }
   j["estimate_error"] = nlohmann::json::array();
   for (const auto& e : r.estimate_error) {
     j["estimate_error"].push_back({e.t.seconds(), e.position_error, e.heading_error});
@@ -219,6 +234,18 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.startup_s = t.value("startup_s", 0.0);
     r.ready_s = t.value("ready_s", 0.0);
     r.teardown_s = t.value("teardown_s", 0.0);
+    r.recording_mb = t.value("recording_mb", 0.0);
+    r.lockstep = t.value("lockstep", std::string());
+    r.late_samples = t.value("late_samples", std::uint64_t{0});
+    for (const auto& st : t.value("services", nlohmann::json::array())) {
+      ServiceTiming timing;
+      timing.service = st.value("service", std::string());
+      timing.cpu_s = st.value("cpu_s", 0.0);
+      for (const auto& [name, a] : st.value("activities", nlohmann::json::object()).items()) {
+        timing.activities.push_back({name, a.value("wall_s", 0.0), a.value("count", 0u)});
+      }
+      r.service_timing.push_back(std::move(timing));
+    }
     for (const auto& e : j.value("estimate_error", nlohmann::json::array())) {
       r.estimate_error.push_back({Time::FromSeconds(e.at(0)), e.at(1), e.at(2)});
     }
@@ -305,6 +332,34 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
   s.figures.push_back(Stats("startup", "s", startup));
   if (!ready.empty()) s.figures.push_back(Stats("ready", "s", ready));
   s.figures.push_back(Stats("teardown", "s", teardown));
+  // Where the time went: per service CPU, per activity wall, mean over the runs.
+  std::map<std::string, double> cpu, activity;
+  std::vector<std::string> cpu_order, activity_order;
+  double mb = 0;
+  for (const auto& r : runs) {
+    mb += r.recording_mb;
+    for (const auto& st : r.service_timing) {
+      if (!cpu.count(st.service)) cpu_order.push_back(st.service);
+      cpu[st.service] += st.cpu_s;
+      for (const auto& a : st.activities) {
+        const std::string key = a.name + " (" + st.service + ")";
+        if (!activity.count(key)) activity_order.push_back(key);
+        activity[key] += a.wall_s;
+      }
+    }
+  }
+  if (!runs.empty()) {
+    const double n = static_cast<double>(runs.size());
+    double wall_mean = 0;
+    for (double w : wall) wall_mean += w / n;
+    auto add = [&](const std::string& name, double total) {
+      const double mean = total / n;
+      s.time_shares.push_back({name, mean, wall_mean > 0 ? mean / wall_mean : 0.0});
+    };
+    for (const auto& name : cpu_order) add(name + " cpu", cpu[name]);
+    for (const auto& name : activity_order) add(name, activity[name]);
+    s.recording_mb_mean = mb / n;
+  }
   s.wall_time_s = campaign_wall_s;
   s.sim_seconds_per_wall_second = campaign_wall_s > 0 ? sim_total / campaign_wall_s : 0;
   s.runs_per_hour = campaign_wall_s > 0 ? 3600.0 * s.runs / campaign_wall_s : 0;
@@ -320,6 +375,11 @@ nlohmann::json ToJson(const CampaignSummary& s) {
   j["wall_time_s"] = s.wall_time_s;
   j["sim_seconds_per_wall_second"] = s.sim_seconds_per_wall_second;
   j["runs_per_hour"] = s.runs_per_hour;
+  j["recording_mb_mean"] = s.recording_mb_mean;
+  j["time"] = nlohmann::json::array();
+  for (const auto& t : s.time_shares) {
+    j["time"].push_back({{"name", t.name}, {"mean_s", t.mean_s}, {"share_of_wall", t.share}});
+  }
   j["figures"] = nlohmann::json::array();
   for (const auto& f : s.figures) {
     j["figures"].push_back({{"name", f.name}, {"unit", f.unit}, {"mean", f.mean}, {"p95", f.p95},
@@ -454,9 +514,18 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
                   f.unit.c_str(), f.mean, f.p95, f.worst);
     o << buf;
   }
+  if (!s.time_shares.empty()) {
+    o << "\nwhere the time went (mean per run; share of a run's wall time):\n";
+    for (const auto& t : s.time_shares) {
+      std::snprintf(buf, sizeof buf, "  %-40s %9.1f s %6.1f %%\n", t.name.c_str(), t.mean_s,
+                    100.0 * t.share);
+      o << buf;
+    }
+  }
   std::snprintf(buf, sizeof buf,
-                "\ncampaign: %.1f s wall, %.2f simulated s per wall s, %.0f runs/hour\n",
-                s.wall_time_s, s.sim_seconds_per_wall_second, s.runs_per_hour);
+                "\ncampaign: %.1f s wall, %.2f simulated s per wall s, %.0f runs/hour, "
+                "%.1f MB recorded per run\n",
+                s.wall_time_s, s.sim_seconds_per_wall_second, s.runs_per_hour, s.recording_mb_mean);
   o << buf;
   return o.str();
 }

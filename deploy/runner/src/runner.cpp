@@ -74,8 +74,16 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   const Status started = set->Start();
   result.startup_s = ToSeconds(MonotonicNow() - wall_start);
   // (d) Judging and the outputs, however the run ends.
+  std::map<std::string, ServiceTiming> timing;  // each service's last heartbeat's figures
+  result.lockstep = scenario.lockstep;
   auto finish = [&](std::string failure) -> Result<RunResult> {
     const Time t0 = MonotonicNow();
+    for (auto& [name, t] : timing) {
+      for (const auto& a : t.activities) {
+        if (a.name == "late_samples") result.late_samples += a.count;
+      }
+      result.service_timing.push_back(t);
+    }
     // The final counts: every service answers LIST with what each fault touched so far.
     if (fault_client && !specs.empty()) {
       for (const auto& r : fault_client->List(std::chrono::milliseconds(500))) fault_log.Add(r);
@@ -86,6 +94,11 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
     // that failed fails the run.
     if (const std::string r = FinishRunRecording(recording.get()); !r.empty()) {
       failure = failure.empty() ? r : failure + "; " + r;
+    }
+    if (recording) {
+      std::error_code ec;
+      const auto bytes = fs::file_size(recording->path(), ec);
+      if (!ec) result.recording_mb = static_cast<double>(bytes) * 1e-6;
     }
     recording.reset();
     result.teardown_s = ToSeconds(MonotonicNow() - t0);
@@ -115,9 +128,9 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   if (!recorder.ok()) {
     return finish("cannot create the runner's DDS endpoints: " + recorder.status().message());
   }
-  auto loop = RunLoop::Create(
-      set->participant(),
-      LoopLimits{scenario.time_budget_s, scenario.wall_budget_s, wall_start, options.abort});
+  auto loop = RunLoop::Create(set->participant(),
+                              LoopLimits{scenario.time_budget_s, scenario.wall_budget_s, wall_start,
+                                         options.abort, scenario.lockstep == "strict"});
   if (!loop.ok()) {
     return finish("cannot create the runner's DDS endpoints: " + loop.status().message());
   }
@@ -130,6 +143,16 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
         auto h = msg::HealthFromIdl(s->health);
         const std::string health = h.ok() ? msg::SensorHealthName(*h) : "?";
         std::pair<std::string, std::string> now{health, s->message};
+        {
+          ServiceTiming& t = timing[s->service];
+          t.service = s->service;
+          t.cpu_s = s->cpu_s;
+          t.activities.clear();
+          for (std::uint32_t i = 0; i < s->activities._length; ++i) {
+            const auto& a = s->activities._buffer[i];
+            t.activities.push_back({a.name, a.wall_s, a.count});
+          }
+        }
         auto [it, first] = last_health.try_emplace(s->service, now);
         if (!first && it->second == now) return;
         it->second = now;
@@ -174,6 +197,13 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
     });
   }
   run_loop.AddCheck([&] { return set->CheckServices(&result.crashes); });
+  // A simulator that failed (a step that failed, strict lock-step stalled on a service) ends
+  // the run with its reason.
+  run_loop.AddCheck([&]() -> std::string {
+    auto it = last_health.find(scenario.simulator);
+    if (it == last_health.end() || it->second.first != "failed") return "";
+    return scenario.simulator + " failed: " + it->second.second;
+  });
   run_loop.AddCheck([&] { return (*recorder)->CrossTalk(result.domain); });
   run_loop.AddCheck([&]() -> std::string {
     if (!recording) return "";

@@ -4,14 +4,15 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <csignal>
 #include <fstream>
 #include <map>
 #include <random>
 
 #include "rover/base/format.hpp"
+#include "rover/deploy/runner/run_loop.hpp"
 
 namespace rover::deploy::runner {
 namespace fs = std::filesystem;
@@ -79,7 +80,8 @@ std::string TerrainDigest(const sim::terrain::Terrain& t) {
   return buf;
 }
 
-std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
+std::string SimParamsYaml(const Scenario& s, std::uint32_t seed,
+                          const std::vector<std::string>& lockstep_services) {
   YAML::Node root = YAML::Load(s.text);
   YAML::Node out(YAML::NodeType::Map);
   for (const auto& sec : sim::world::WorldSections()) {
@@ -93,7 +95,14 @@ std::string SimParamsYaml(const Scenario& s, std::uint32_t seed) {
   out["rover"]["start"]["yaw_deg"] = s.start_yaw * kRadToDeg;
   out["sim"]["seed"] = seed;
   out["sim"]["real_time_factor"] = s.real_time_factor;
-  out["sim"]["lockstep_lead_s"] = s.lockstep_lead_s;
+  out["sim"]["lockstep_lead_s"] = s.lockstep == "lead" ? s.lockstep_lead_s : 0.0;
+  out["sim"]["lockstep_strict"] = s.lockstep == "strict";
+  out["sim"]["lockstep_quantum_s"] = s.lockstep_quantum_s;
+  if (s.lockstep == "strict") {
+    std::string names;
+    for (const auto& n : lockstep_services) names += (names.empty() ? "" : ",") + n;
+    out["sim"]["lockstep_services"] = names;
+  }
   // Simulated time starts when the runner says so, once every service is up.
   out["sim"]["start_paused"] = true;
   YAML::Emitter e;
@@ -120,16 +129,24 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
   fs::create_directories(run_dir + "/params", ec);
   if (ec) return Unavailable("cannot create " + run_dir + ": " + ec.message());
 
-  // The world, exactly as the simulator will build it.
-  const std::string sim_yaml = SimParamsYaml(scenario, seed);
-  const std::string sim_params_path = run_dir + "/params/" + scenario.simulator + ".yaml";
-  std::ofstream(sim_params_path) << sim_yaml;
-  ROVER_ASSIGN_OR_RETURN(sim::world::World world, BuildRunWorld(scenario, seed, sim_params_path));
-
   // The service set.
   ROVER_ASSIGN_OR_RETURN(ComposeProject project, LoadComposeFile(scenario.compose_path));
   project.rover.project = UniqueProject(scenario, seed);
   project.rover.clock = "sim";
+  project.rover.lockstep = scenario.lockstep == "strict" ? "strict" : "lead";
+  // Strict lock-step waits for every service but the simulator, and for the runner.
+  std::vector<std::string> lockstep_services;
+  for (const auto& svc : project.services) {
+    if (svc.name != scenario.simulator) lockstep_services.push_back(svc.name);
+  }
+  lockstep_services.push_back(kRunnerName);
+
+  // The world, exactly as the simulator will build it.
+  const std::string sim_yaml = SimParamsYaml(scenario, seed, lockstep_services);
+  const std::string sim_params_path = run_dir + "/params/" + scenario.simulator + ".yaml";
+  std::ofstream(sim_params_path) << sim_yaml;
+  ROVER_ASSIGN_OR_RETURN(sim::world::World world, BuildRunWorld(scenario, seed, sim_params_path));
+
   project.rover.domain.reset();
   if (project.Find(scenario.simulator) == nullptr) {
     return InvalidArgument(scenario.file + ": simulator service '" + scenario.simulator +
@@ -190,6 +207,12 @@ Status ServiceSet::ResumeSimulator() {
 }
 
 std::string ServiceSet::CheckServices(std::vector<std::string>* crashes) {
+  const Time now = MonotonicNow();
+  if (now - last_process_poll_ < Seconds(kProcessPollS)) {
+    supervisor_->PollHeartbeats();
+    return "";
+  }
+  last_process_poll_ = now;
   supervisor_->Poll();
   for (const auto& st : supervisor_->Snapshot()) {
     // A service killed on purpose is expected to end once and be restarted; waiting for that

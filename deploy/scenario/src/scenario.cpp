@@ -9,8 +9,10 @@
 #include <numbers>
 #include <sstream>
 
+#include "rover/base/format.hpp"
 #include "rover/base/units.hpp"
 #include "rover/base/yaml_check.hpp"
+#include "rover/runtime/topic_catalog.hpp"
 
 namespace rover::deploy {
 namespace {
@@ -100,8 +102,19 @@ const std::vector<std::string>& SimulatorSections() {
 recording::RecordOptions DefaultRunRecording() {
   recording::RecordOptions o;
   o.path = "run.mcap";
+  // The camera head's raw frames are most of a run's bytes (a 1024 x 1024 pair is 2 MB); the
+  // pairs as the stack used them (ddl/stereo_frame) stay, so dl-stereo and dl-vo can be replayed.
+  o.topics.exclude = {"hw/camera_frame"};
   return o;
 }
+
+namespace {
+std::vector<std::string> CatalogTopics() {
+  std::vector<std::string> out;
+  for (const auto& t : dds::TopicCatalog()) out.emplace_back(t.name);
+  return out;
+}
+}  // namespace
 
 Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
                                const SimSectionValidator& validate_sim,
@@ -143,8 +156,24 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
     s.seed = static_cast<std::uint32_t>(v);
   }
   if (const YAML::Node sim = root["sim"]) {
-    ROVER_RETURN_IF_ERROR(CheckKeys(
-        sim, "sim", {"real_time_factor", "lockstep_lead_s", "time_budget_s", "wall_budget_s"}, c));
+    ROVER_RETURN_IF_ERROR(CheckKeys(sim, "sim",
+                                    {"real_time_factor", "lockstep", "lockstep_quantum_s",
+                                     "lockstep_lead_s", "time_budget_s", "wall_budget_s"},
+                                    c));
+    if (const YAML::Node mode = sim["lockstep"]) {
+      s.lockstep = mode.IsScalar() ? mode.Scalar() : "";
+      if (s.lockstep != "strict" && s.lockstep != "lead" && s.lockstep != "off") {
+        return c.At(mode, "sim.lockstep: '" + s.lockstep + "' is not one of: strict, lead, off");
+      }
+    }
+    ROVER_RETURN_IF_ERROR(
+        OptionalNumber(sim, "lockstep_quantum_s", "sim", 0.01, 1, c, &s.lockstep_quantum_s));
+    if (const double steps = s.lockstep_quantum_s / 0.01;
+        std::abs(steps - std::round(steps)) > 1e-6) {
+      return c.At(sim["lockstep_quantum_s"],
+                  "sim.lockstep_quantum_s: " + FormatNumber(s.lockstep_quantum_s) +
+                      " s is not a whole number of the simulator's 0.01 s periods");
+    }
     ROVER_RETURN_IF_ERROR(
         OptionalNumber(sim, "lockstep_lead_s", "sim", 0, 10, c, &s.lockstep_lead_s));
     if (s.lockstep_lead_s > 0 && s.lockstep_lead_s < 0.05) {
@@ -192,7 +221,8 @@ Result<Scenario> ParseScenario(const std::string& text, const std::string& file,
     }
   }
   if (const YAML::Node r = root["record"]) {
-    ROVER_ASSIGN_OR_RETURN(s.record, recording::ParseRecordOptions(r, "record", c, s.record));
+    ROVER_ASSIGN_OR_RETURN(
+        s.record, recording::ParseRecordOptions(r, "record", c, s.record, CatalogTopics()));
     if (s.record.path.empty()) s.record.path = DefaultRunRecording().path;
   }
   if (validate_task) ROVER_RETURN_IF_ERROR(validate_task(s));

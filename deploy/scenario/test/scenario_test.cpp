@@ -152,6 +152,35 @@ TEST_F(ScenarioTest, FaultsAreValidatedWhenTheFileIsRead) {
   EXPECT_EQ(Err(std::string(kGood) + "faults: {kind: drop}\n"), "22: faults: expected a list");
 }
 
+TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
+  auto s = Parse(kGood);
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_EQ(s->lockstep, "strict");
+  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.01);
+  // Raw camera frames stay out of the recording unless asked for.
+  EXPECT_EQ(s->record.topics.exclude, (std::vector<std::string>{"hw/camera_frame"}));
+  std::string text = kGood;
+  const std::string sim = "sim: {real_time_factor: 0, time_budget_s: 200}";
+  auto with = [&](const std::string& replacement) {
+    std::string t = text;
+    t.replace(t.find(sim), sim.size(), replacement);
+    return t;
+  };
+  auto lead = Parse(with("sim: {lockstep: lead, lockstep_quantum_s: 0.02}"));
+  ASSERT_TRUE(lead.ok()) << lead.status().message();
+  EXPECT_EQ(lead->lockstep, "lead");
+  EXPECT_DOUBLE_EQ(lead->lockstep_quantum_s, 0.02);
+  EXPECT_EQ(Err(with("sim: {lockstep: tight}")),
+            "5: sim.lockstep: 'tight' is not one of: strict, lead, off");
+  EXPECT_EQ(Err(with("sim: {lockstep_quantum_s: 0.015}")),
+            "5: sim.lockstep_quantum_s: 0.015 s is not a whole number of the simulator's 0.01 s "
+            "periods");
+  EXPECT_NE(Err(with("sim: {real_time_factor: 0}") + "record: {exclude: [hw/camera_frames]}\n")
+                .find("record.exclude: 'hw/camera_frames' matches no topic (did you mean "
+                      "'hw/camera_frame'?)"),
+            std::string::npos);
+}
+
 TEST(SeedRange, ParsesAndRejects) {
   auto r = ParseSeedRange("1..4");
   ASSERT_TRUE(r.ok());

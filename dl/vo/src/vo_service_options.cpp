@@ -20,6 +20,9 @@ Status VoServiceOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(Client().Validate());
   ROVER_RETURN_IF_ERROR(cadence.Validate());
   ROVER_RETURN_IF_ERROR(pipeline.Validate());
+  if (imaging != "on_request" && imaging != "always") {
+    return InvalidArgument("imaging: '" + imaging + "' is not one of: on_request, always");
+  }
   if (cadence.step_distance >= pipeline.vo.max_translation) {
     return InvalidArgument("step_distance " + FormatNumber(cadence.step_distance) +
                            " m must be below vo.max_translation " +
@@ -53,6 +56,10 @@ void VoServiceOptions::BindParams(ParamBinder<VoServiceOptions>& b) {
   b.Bind("poll_rate_hz", &O::poll_rate_hz, "Hz",
          "run-clock rate of the cadence, timeout and health checks")
       .Range(1.0, 100.0);
+  b.Bind("imaging", &O::imaging,
+         "on_request: take pairs only while a client asks on dl/vo_command (apl-mobility in its "
+         "VisOdom modes); always: whenever the cadence says so")
+      .OneOf({"on_request", "always"});
 }
 
 }  // namespace rover::dl::vo

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -58,7 +59,12 @@ class VoServiceTest : public ::testing::Test {
     return rig;
   }
 
+  /// Imaging always (the vision set's setting) unless `overrides` say otherwise.
   void Start(std::vector<std::string> overrides = {}, const testing::Rig& rig = Navcam()) {
+    if (std::none_of(overrides.begin(), overrides.end(),
+                     [](const std::string& o) { return o.rfind("imaging=", 0) == 0; })) {
+      overrides.push_back("imaging=always");
+    }
     driver_.rig = rig;
     h_ = std::make_unique<testing::ServiceHarness>(service_, "dl-vo-test", std::move(overrides));
     ASSERT_TRUE(h_->ok()) << h_->status().message();
@@ -292,6 +298,48 @@ TEST_F(VoServiceTest, StalePosePausesTheCadence) {
   publish_pose_ = true;  // back: the odometer has moved on, so a pair is due at once
   Drive(0.3, 0.1, 0.0);
   EXPECT_EQ(captures_.size(), 2u);
+}
+
+// MER took VO pairs only in its VisOdom modes: by default dl-vo images only while a client asks
+// on dl/vo_command, and each time imaging starts the chain starts over with a reference pair.
+TEST_F(VoServiceTest, ImagesOnlyWhileAClientAsks) {
+  Start({"imaging=on_request", "width=256"});
+  EXPECT_FALSE(service_.imaging());
+  Drive(1.0, 0.0, 0.0);
+  Drive(7.0, 0.1, 0.0);  // 0.7 m with nobody asking: no pair
+  EXPECT_TRUE(captures_.empty());
+  EXPECT_EQ(service_.stats().camera_requests, 0u);
+  auto w = h_->Writer<rover_dl_VoCommand>("dl/vo_command");
+  auto ask = [&](const char* client, bool imaging) {
+    rover_dl_VoCommand c{};
+    c.header.stamp_ns = now_.ns;
+    dds::CopyString(c.client, client);
+    c.imaging = imaging;
+    ASSERT_TRUE(w.Write(c).ok());
+    ASSERT_TRUE(
+        h_->SpinUntil([&] { return service_.clients().count(client) == (imaging ? 1u : 0u); }));
+  };
+  ask("apl-mobility", true);
+  EXPECT_TRUE(service_.imaging());
+  Drive(1.0, 0.0, 0.0);  // a new reference pair at rest
+  ASSERT_EQ(captures_.size(), 1u);
+  Drive(6.0, 0.1, 0.0);  // 0.6 m: one pair at 0.5 m of odometer, and a motion estimate
+  EXPECT_EQ(captures_.size(), 2u);
+  EXPECT_EQ(relposes_.size(), 1u);
+  ask("operator", true);
+  ask("apl-mobility", false);  // one client still asks
+  EXPECT_TRUE(service_.imaging());
+  ask("operator", false);
+  EXPECT_FALSE(service_.imaging());
+  const std::size_t before = captures_.size();
+  Drive(8.0, 0.1, 0.0);  // nobody asks again
+  EXPECT_EQ(captures_.size(), before);
+  // A command without a client name is refused (counted, on sys/health).
+  rover_dl_VoCommand bad{};
+  bad.imaging = true;
+  ASSERT_TRUE(w.Write(bad).ok());
+  ASSERT_TRUE(h_->SpinUntil([&] { return service_.stats().rejected_commands == 1; }));
+  EXPECT_FALSE(service_.imaging());
 }
 
 }  // namespace

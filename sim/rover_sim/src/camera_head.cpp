@@ -64,12 +64,34 @@ void CameraHead::UpdateSun(const Eigen::Vector3d& sun_site) {
   }
 }
 
+Status CameraHead::CheckReadout(int readout_width, int sensor_width, const std::string& camera) {
+  if (readout_width == 0) return Status::Ok();
+  const std::string what = "readout_width " + std::to_string(readout_width) + " px";
+  if (readout_width < 0) return InvalidArgument(what + " is negative (0 = the full sensor)");
+  if (readout_width > sensor_width) {
+    return InvalidArgument(what + " is wider than the " + camera + " sensor (" +
+                           std::to_string(sensor_width) + " px)");
+  }
+  if (sensor_width % readout_width != 0) {
+    return InvalidArgument(what + " is not the " + camera + " sensor width (" +
+                           std::to_string(sensor_width) + " px) divided by a whole binning factor");
+  }
+  return Status::Ok();
+}
+
 Result<CameraShot> CameraHead::Take(const std::string& camera, std::uint32_t exposure_us,
                                     const Eigen::Isometry3d& site_from_rover,
-                                    const render::MastState& mast,
-                                    const Eigen::Vector3d& sun_site) {
-  ROVER_ASSIGN_OR_RETURN(const render::StereoCameraDefinition def,
+                                    const render::MastState& mast, const Eigen::Vector3d& sun_site,
+                                    int readout_width) {
+  ROVER_ASSIGN_OR_RETURN(render::StereoCameraDefinition def,
                          render::FindStereoCamera(cameras_, camera));
+  const int sensor_width = def.left.width();
+  ROVER_RETURN_IF_ERROR(CheckReadout(readout_width, sensor_width, camera));
+  if (readout_width != 0 && readout_width != sensor_width) {
+    const double s = static_cast<double>(readout_width) / sensor_width;
+    def.left = geometry::Scale(def.left, s);
+    def.right = geometry::Scale(def.right, s);
+  }
   ROVER_ASSIGN_OR_RETURN(const render::CameraPairSpec spec,
                          render::MakeCameraPairSpec(def, mast, mast_geometry_));
   ROVER_RETURN_IF_ERROR(StartRenderer());

@@ -1,5 +1,7 @@
 #include "rover/sim/rover_sim/pacer.hpp"
 
+#include <algorithm>
+
 #include "rover/base/format.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/base/range_check.hpp"
@@ -15,7 +17,29 @@ Status PacerOptions::Validate() const {
                            "running) or at least " +
                            FormatNumber(kMinLockstepLeadS) + " s");
   }
-  return CheckRange("lockstep_stall_s", lockstep_stall_s, 0.1, 3600.0, "s");
+  ROVER_RETURN_IF_ERROR(CheckRange("lockstep_stall_s", lockstep_stall_s, 0.1, 3600.0, "s"));
+  ROVER_RETURN_IF_ERROR(CheckRange("lockstep_quantum_s", lockstep_quantum_s, 0.001, 1.0, "s"));
+  if (lockstep_services.find_first_of(" \t") != std::string::npos) {
+    return InvalidArgument("lockstep_services: '" + lockstep_services +
+                           "' has a space; give the names comma-separated");
+  }
+  if (lockstep_strict && Pacer::ParseServices(lockstep_services).empty()) {
+    return InvalidArgument(
+        "lockstep_services: empty, but lockstep_strict is on: name the services to wait for "
+        "(comma-separated, as their --name)");
+  }
+  return Status::Ok();
+}
+
+std::vector<std::string> Pacer::ParseServices(const std::string& list) {
+  std::vector<std::string> out;
+  std::size_t pos = 0;
+  while (pos <= list.size()) {
+    const std::size_t end = std::min(list.find(',', pos), list.size());
+    if (end > pos) out.push_back(list.substr(pos, end - pos));
+    pos = end + 1;
+  }
+  return out;
 }
 
 void PacerOptions::BindParams(ParamBinder<PacerOptions>& b) {
@@ -31,10 +55,38 @@ void PacerOptions::BindParams(ParamBinder<PacerOptions>& b) {
          "wall time a service may go without acknowledging before lock-step stops waiting for it "
          "(until it acknowledges again)")
       .Range(0.1, 3600.0);
+  b.Bind("lockstep_strict", &PacerOptions::lockstep_strict,
+         "strict lock-step: sim/clock only at quantum ends, each quantum only after every "
+         "service in lockstep_services has served the last (reproducible runs)");
+  b.Bind("lockstep_quantum_s", &PacerOptions::lockstep_quantum_s, "s",
+         "simulated time between two strict lock-step barriers (a whole number of periods)")
+      .Range(0.001, 1.0);
+  b.Bind("lockstep_services", &PacerOptions::lockstep_services,
+         "the services strict lock-step waits for, comma-separated (their --name)");
 }
 
 Pacer::Pacer(const PacerOptions& options)
-    : options_(options), rtf_(options.real_time_factor), paused_(options.start_paused) {}
+    : options_(options),
+      rtf_(options.real_time_factor),
+      paused_(options.start_paused),
+      expected_(options.lockstep_strict ? ParseServices(options.lockstep_services)
+                                        : std::vector<std::string>{}) {}
+
+void Pacer::SetBarrier(std::int64_t sim_ns, Time wall_now) {
+  barrier_ns_ = sim_ns;
+  barrier_wall_ = wall_now;
+}
+
+std::vector<std::string> Pacer::Missing() const {
+  std::vector<std::string> out;
+  for (const auto& name : expected_) {
+    auto it = acks_.find(name);
+    if (it == acks_.end() || !it->second.seen || it->second.sim_time_ns < barrier_ns_) {
+      out.push_back(name);
+    }
+  }
+  return out;
+}
 
 void Pacer::Anchor(Time wall_now, double sim_s) {
   wall_anchor_ = wall_now;
@@ -67,7 +119,25 @@ std::string Pacer::OnAck(const std::string& service, std::int64_t acked_ns, Time
 
 Duration Pacer::UntilNextStep(Time wall_now, double sim_s, std::vector<std::string>* dropped) {
   if (paused_) return kPausedPoll;
-  if (lockstep()) {
+  if (options_.lockstep_strict) {
+    if (!stalled_.empty()) return kPausedPoll;
+    const std::vector<std::string> missing = Missing();
+    if (!missing.empty()) {
+      // Stalled: no acknowledgement of the barrier for lockstep_stall_s since it was set (or,
+      // for a service that acknowledged something later, since then).
+      for (const auto& name : missing) {
+        auto it = acks_.find(name);
+        const Time since = it != acks_.end() && it->second.seen
+                               ? std::max(it->second.changed, barrier_wall_)
+                               : barrier_wall_;
+        if (wall_now - since > Seconds(options_.lockstep_stall_s)) {
+          stalled_ = name;
+          return kPausedPoll;
+        }
+      }
+      return kStrictWait;
+    }
+  } else if (lockstep()) {
     const std::int64_t need = Time::FromSeconds(sim_s - options_.lockstep_lead_s).ns;
     for (auto& [name, s] : acks_) {
       if (!s.waited_on || s.sim_time_ns >= need) continue;

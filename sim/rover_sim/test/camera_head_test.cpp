@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "rover/sim/terrain/terrain.hpp"
 
@@ -93,6 +93,42 @@ TEST(CameraHeadTest, ANightSunStillLightsTheSceneFromJustAboveTheHorizon) {
   TAKE_OR_SKIP(shot, head, "front_hazcam", 0, pose, render::MastState{},
                Eigen::Vector3d(0.0, 0.6, -0.8));
   EXPECT_GT(cv::mean(shot.images.left.image)[0], 0.5);
+}
+
+TEST(CameraHeadTest, ReadoutsTheSensorCannotProduceAreRefusedByValue) {
+  EXPECT_TRUE(CameraHead::CheckReadout(0, 1024, "navcam").ok());
+  EXPECT_TRUE(CameraHead::CheckReadout(256, 1024, "navcam").ok());
+  const Status wide = CameraHead::CheckReadout(2048, 1024, "navcam");
+  EXPECT_NE(wide.message().find("readout_width 2048 px is wider than the navcam sensor (1024 px)"),
+            std::string::npos)
+      << wide.message();
+  const Status odd = CameraHead::CheckReadout(300, 1024, "front_hazcam");
+  EXPECT_NE(odd.message().find("readout_width 300 px is not the front_hazcam sensor width"),
+            std::string::npos)
+      << odd.message();
+  EXPECT_FALSE(CameraHead::CheckReadout(-4, 1024, "navcam").ok());
+  CameraHead head(SmallImages(), SmallTerrain(), {});
+  auto shot = head.Take("front_hazcam", 0, Eigen::Isometry3d::Identity(), {}, kSun, 48);
+  ASSERT_FALSE(shot.ok());
+  EXPECT_EQ(shot.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(head.frames(), 0u);
+}
+
+TEST(CameraHeadTest, ABinnedReadoutRendersOnlyItsPixels) {
+  CameraHead head(SmallImages(), SmallTerrain(), {});
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.4);
+  TAKE_OR_SKIP(full, head, "front_hazcam", 0, pose, render::MastState{}, kSun, 0);
+  TAKE_OR_SKIP(binned, head, "front_hazcam", 0, pose, render::MastState{}, kSun, 64);
+  EXPECT_EQ(full.images.left.image.cols, 128);
+  EXPECT_EQ(binned.images.left.image.cols, 64);
+  EXPECT_EQ(binned.images.right.image.rows, 64);
+  // The same scene: the binned image is the full one at half the resolution, up to noise.
+  cv::Mat full_f, binned_f, down;
+  full.images.left.image.convertTo(full_f, CV_32F);
+  binned.images.left.image.convertTo(binned_f, CV_32F);
+  cv::resize(full_f, down, binned_f.size(), 0, 0, cv::INTER_AREA);
+  EXPECT_LT(cv::norm(down, binned_f, cv::NORM_L1) / down.total(), 6.0);
 }
 
 }  // namespace

@@ -125,5 +125,70 @@ TEST(PacerTest, LockstepDropsASilentServiceAndTakesItBackWhenItAcknowledges) {
   EXPECT_EQ(p.UntilNextStep(Wall(3.0), 2.0), Pacer::kLockstepPoll);
 }
 
+TEST(PacerTest, StrictOptionsNeedTheServicesAndSaneNames) {
+  PacerOptions o;
+  o.lockstep_strict = true;
+  Status s = o.Validate();
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("lockstep_services: empty"), std::string::npos) << s.message();
+  o.lockstep_services = "dl-pose, ddl-imu";
+  s = o.Validate();
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("lockstep_services: 'dl-pose, ddl-imu' has a space"),
+            std::string::npos)
+      << s.message();
+  o.lockstep_services = "dl-pose,ddl-imu";
+  EXPECT_TRUE(o.Validate().ok());
+  o.lockstep_quantum_s = 0.0;
+  EXPECT_FALSE(o.Validate().ok());
+  EXPECT_EQ(Pacer::ParseServices("a,,b,"), (std::vector<std::string>{"a", "b"}));
+}
+
+TEST(PacerTest, StrictWaitsForEveryNamedServiceFromTheStart) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  o.lockstep_strict = true;
+  o.lockstep_services = "dl-pose,scenario-runner";
+  Pacer p(o);
+  p.set_self("rover-sim");
+  p.Anchor(Wall(0), 0.0);
+  p.SetBarrier(0, Wall(0));
+  // Nobody has acknowledged tick 0 yet: a service that starts late cannot miss the start.
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 0.0), Pacer::kStrictWait);
+  EXPECT_EQ(p.Missing(), (std::vector<std::string>{"dl-pose", "scenario-runner"}));
+  p.OnAck("dl-pose", 0, Wall(0.01));
+  p.OnAck("ddl-extra", 0, Wall(0.01));  // not named: heard, not waited for
+  EXPECT_EQ(p.UntilNextStep(Wall(0.01), 0.0), Pacer::kStrictWait);
+  p.OnAck("scenario-runner", 0, Wall(0.02));
+  EXPECT_EQ(p.UntilNextStep(Wall(0.02), 0.0), Duration::zero());
+  // Mid-quantum steps run on; the next barrier waits again.
+  EXPECT_EQ(p.UntilNextStep(Wall(0.02), 0.01), Duration::zero());
+  p.SetBarrier(Time::FromSeconds(0.02).ns, Wall(0.03));
+  EXPECT_EQ(p.UntilNextStep(Wall(0.03), 0.02), Pacer::kStrictWait);
+  p.OnAck("dl-pose", Time::FromSeconds(0.02).ns, Wall(0.04));
+  p.OnAck("scenario-runner", Time::FromSeconds(0.02).ns, Wall(0.04));
+  EXPECT_EQ(p.UntilNextStep(Wall(0.04), 0.02), Duration::zero());
+  EXPECT_TRUE(p.stalled().empty());
+}
+
+TEST(PacerTest, StrictStallsOnAServiceThatNeverAnswersAndNamesIt) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  o.lockstep_strict = true;
+  o.lockstep_services = "dl-pose,dl-vo";
+  o.lockstep_stall_s = 2.0;
+  Pacer p(o);
+  p.SetBarrier(Time::FromSeconds(5.0).ns, Wall(10.0));
+  p.OnAck("dl-pose", Time::FromSeconds(5.0).ns, Wall(10.1));
+  p.OnAck("dl-vo", Time::FromSeconds(4.99).ns, Wall(9.0));
+  EXPECT_EQ(p.UntilNextStep(Wall(11.9), 5.0), Pacer::kStrictWait);
+  EXPECT_TRUE(p.stalled().empty());
+  EXPECT_EQ(p.UntilNextStep(Wall(12.1), 5.0), Pacer::kPausedPoll);
+  EXPECT_EQ(p.stalled(), "dl-vo");
+  // A stalled run stays stopped (it is no longer reproducible).
+  p.OnAck("dl-vo", Time::FromSeconds(5.0).ns, Wall(12.2));
+  EXPECT_EQ(p.UntilNextStep(Wall(12.3), 5.0), Pacer::kPausedPoll);
+}
+
 }  // namespace
 }  // namespace rover::sim::rover_sim

@@ -122,6 +122,9 @@ struct CameraRequest {
   std::uint32_t request_id = 0;   ///< the driver's own id, echoed in the frame
   int camera = 0;                 ///< rover_common.idl CameraId; any int (checked by the receiver)
   std::uint32_t exposure_us = 0;  ///< [us] 0 = auto exposure
+  /// [px] 0 = read the full sensor out; otherwise the sensor width divided by a whole binning
+  /// factor b (b x b binning: the frame is W/b x H/b). Checked by the camera head.
+  int readout_width = 0;
 };
 
 // rover_description.hpp includes this header into the simulator's C++17 Simbody translation

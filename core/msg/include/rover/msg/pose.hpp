@@ -89,6 +89,13 @@ struct RelativePose {
   std::uint32_t features = 0;  ///< features used (visual odometry)
 };
 
+/// dl/vo_command: a client asks dl-vo for visual-odometry pairs, or withdraws.
+struct VoCommand {
+  Time stamp;
+  std::string client;    ///< who asks (its service name), 1..63 characters
+  bool imaging = false;  ///< true: take pairs for this client; false: done
+};
+
 /// dl/estimator_event: one gated measurement.
 struct EstimatorEvent {
   Time stamp;  ///< time of validity of the measurement (t_to for relative poses)

@@ -36,6 +36,11 @@ void RelativePoseToIdl(const RelativePose& in, rover_dl_RelativePose* out);
 /// definite are for the consumer (PoseEkf::AddRelativePose) to reject.
 Result<RelativePose> RelativePoseFromIdl(const rover_dl_RelativePose& in);
 
+/// Precondition: in.client has 1..63 characters.
+void VoCommandToIdl(const VoCommand& in, rover_dl_VoCommand* out);
+/// Errors: an empty client name ("dl/vo_command: client is empty").
+Result<VoCommand> VoCommandFromIdl(const rover_dl_VoCommand& in);
+
 /// The message is truncated to 127 characters.
 void EstimatorEventToIdl(const EstimatorEvent& in, rover_dl_EstimatorEvent* out);
 /// Errors: an unknown source value.

@@ -17,6 +17,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 #include "rover/base/status.hpp"
 #include "rover/base/yaml_check.hpp"
@@ -44,9 +45,13 @@ Result<mcap::Compression> ParseCompression(std::string_view name);
 std::string CompressionText(mcap::Compression compression);
 
 /// Parses a `record` node: a boolean, or a map of the keys above. `where` is the key path used
-/// in messages ("record", "x-rover.record"). `defaults` are the values of absent keys.
+/// in messages ("record", "x-rover.record"). `defaults` are the values of absent keys. With
+/// `known_topics` (the topic catalog's names) a pattern that matches none of them is an error
+/// ("s.yaml:9: record.exclude: 'hw/camera_frames' matches no topic (did you mean
+/// 'hw/camera_frame'?)").
 Result<RecordOptions> ParseRecordOptions(const YAML::Node& node, const std::string& where,
                                          const yaml::FileErrors& err,
-                                         const RecordOptions& defaults = {});
+                                         const RecordOptions& defaults = {},
+                                         const std::vector<std::string>& known_topics = {});
 
 }  // namespace rover::recording

@@ -8,10 +8,14 @@
 /// (see BorrowSequence); a reader hands out Sample<T>, which owns what DDS allocated.
 ///
 /// Every Writer<T>::Write and Reader<T>::Take / TakeEach passes through the fault seam (seam.hpp).
+/// Under strict lock-step (lockstep.hpp) writes carry the thread's tick as their source
+/// timestamp and readers taken from on a gated thread hold samples back until a later tick.
 
 #include <dds/dds.h>
 
+#include <algorithm>
 #include <cstring>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <span>
@@ -23,6 +27,7 @@
 #include "rover/base/status.hpp"
 #include "rover/idl/access.hpp"
 #include "rover/idl/types.hpp"
+#include "rover/runtime/lockstep.hpp"
 #include "rover/runtime/qos.hpp"
 #include "rover/runtime/seam.hpp"
 #include "rover/runtime/topic_catalog.hpp"
@@ -209,7 +214,7 @@ class Writer {
   Status WriteAsIs(const T& sample) {
     dds_return_t rc = seam_ && !seam_->Idle()
                           ? seam_->OnWrite(writer_.handle(), &sample, TopicType<T>::Descriptor())
-                          : dds_write(writer_.handle(), &sample);
+                          : lockstep::Write(writer_.handle(), &sample);
     if (rc < 0) return DdsError("write on " + name_, rc);
     return Status::Ok();
   }
@@ -250,6 +255,15 @@ class Reader {
   template <class F>
   std::size_t TakeEach(F&& fn) {
     ROVER_DEMAND(reader_.valid());
+    if (const std::int64_t gate = lockstep::ReadGate(); gate != lockstep::kOff) {
+      Stash();
+      std::size_t delivered = 0;
+      for (auto& s : TakeVisible(gate, held_.size())) {
+        ++delivered;
+        fn(Sample<T>(&s.data(), &s.info()));
+      }
+      return delivered;
+    }
     constexpr std::size_t kBatch = 32;
     void* ptrs[kBatch];
     dds_sample_info_t infos[kBatch];
@@ -283,6 +297,28 @@ class Reader {
   /// actually taken cost an allocation.
   std::vector<OwnedSample<T>> Take(std::size_t max = 32) {
     ROVER_DEMAND(reader_.valid() && max > 0);
+    if (const std::int64_t gate = lockstep::ReadGate(); gate != lockstep::kOff) {
+      Stash();
+      return TakeVisible(gate, max);
+    }
+    return TakeFromDds(max, /*check_stale=*/true);
+  }
+
+  /// Strict lock-step: takes every sample DDS holds (through the fault seam) into this reader's
+  /// own queue without handing any out; a gated Take / TakeEach hands them out at their tick.
+  void Stash() {
+    while (true) {
+      auto got = TakeFromDds(32, /*check_stale=*/false);
+      if (got.empty()) break;
+      for (auto& s : got) held_.push_back(std::move(s));
+    }
+  }
+  /// Samples stashed and not yet handed out.
+  std::size_t held() const { return held_.size(); }
+
+ private:
+  // Up to `max` samples from DDS (and the seam's due ones), as owned copies.
+  std::vector<OwnedSample<T>> TakeFromDds(std::size_t max, bool check_stale) {
     if (pool_.size() < max) pool_.resize(max);
     std::vector<void*> ptrs(max);
     std::vector<dds_sample_info_t> infos(max);
@@ -309,7 +345,7 @@ class Reader {
     if (n <= 0) return out;
     out.reserve(out.size() + static_cast<std::size_t>(n));
     for (dds_return_t i = 0; i < n; ++i) {
-      if (!infos[i].valid_data || Stale(infos[i])) continue;
+      if (!infos[i].valid_data || (check_stale && Stale(infos[i]))) continue;
       current = static_cast<std::size_t>(i);
       if (seam_ && !seam_->Idle()) {
         seam_->OnRead(&pool_[current].data(), infos[i], TopicType<T>::Descriptor(), sink);
@@ -321,6 +357,44 @@ class Reader {
     return out;
   }
 
+  // The stashed samples visible under `gate`, oldest tick first (then stamp and header.seq, so
+  // that two writers' samples of one tick come in the same order every run); the others stay.
+  std::vector<OwnedSample<T>> TakeVisible(std::int64_t gate, std::size_t max) {
+    if (fresh_after_ != 0 && first_gate_ == lockstep::kOff) first_gate_ = gate;
+    std::vector<OwnedSample<T>> out;
+    std::deque<OwnedSample<T>> keep;
+    for (auto& s : held_) {
+      if (out.size() < max && lockstep::Visible(s.info().source_timestamp, gate)) {
+        if (!Stale(s.info())) {
+          // Visible at an earlier gate already: it came late (unless a fault delayed it).
+          if (s.info().source_timestamp < lockstep::kWallStampFloor &&
+              last_gate_ != lockstep::kOff && s.info().source_timestamp < last_gate_ &&
+              (!seam_ || seam_->Idle())) {
+            lockstep::CountLateSample();
+          }
+          out.push_back(std::move(s));
+        }
+      } else {
+        keep.push_back(std::move(s));
+      }
+    }
+    held_ = std::move(keep);
+    last_gate_ = gate;
+    std::stable_sort(out.begin(), out.end(), [](const OwnedSample<T>& a, const OwnedSample<T>& b) {
+      if (a.info().source_timestamp != b.info().source_timestamp) {
+        return a.info().source_timestamp < b.info().source_timestamp;
+      }
+      if constexpr (HasHeader<T>) {
+        if (a->header.stamp_ns != b->header.stamp_ns)
+          return a->header.stamp_ns < b->header.stamp_ns;
+        return a->header.seq < b->header.seq;
+      }
+      return false;
+    });
+    return out;
+  }
+
+ public:
   /// Writers currently matched.
   int MatchedWriters() const {
     dds_subscription_matched_status_t st{};
@@ -340,9 +414,18 @@ class Reader {
   Entity topic_;
   // Written before this reader existed (fresh-only profiles): an old command from a writer's
   // history, not one for us.
+  // Under lock-step (a tick as the stamp) the wall time of creation says nothing: a sample is
+  // stale when it was written before the first tick this reader was read at.
   bool Stale(const dds_sample_info_t& info) const {
-    return fresh_after_ != 0 && info.source_timestamp < fresh_after_;
+    if (fresh_after_ == 0) return false;
+    if (info.source_timestamp < lockstep::kWallStampFloor) {
+      return first_gate_ != lockstep::kOff && info.source_timestamp < first_gate_;
+    }
+    return info.source_timestamp < fresh_after_;
   }
+  std::deque<OwnedSample<T>> held_;
+  std::int64_t first_gate_ = lockstep::kOff;  // first gate seen (fresh-only readers)
+  std::int64_t last_gate_ = lockstep::kOff;
 
   std::string name_;
   QosProfile profile_ = QosProfile::kState;

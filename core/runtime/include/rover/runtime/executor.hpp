@@ -11,10 +11,17 @@
 /// Fault seams (seam.hpp): on every pass the executor runs the process's seam pump and drains
 /// the readers whose seams hold samples that are now due, and it does not sleep past the
 /// pump's next due time (under a simulated clock it still wakes at least every 200 ms).
+///
+/// Strict lock-step (SetStrictTicks, lockstep.hpp): samples that arrive are only stashed in
+/// their readers; each new run-clock time T (a tick of the simulator) is served in one go —
+/// the fault seams' due work, then every subscription in the order subscribed, each handing
+/// out the samples written before T, then the run-clock timers due by T — with this thread's
+/// writes stamped T. The service context acknowledges T after that (SetAfterSpin).
 
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,9 +55,16 @@ class Executor {
     auto drain = [&reader, cb = std::move(callback), this]() {
       reader.TakeEach([&](const dds::Sample<T>& s) { Invoke(reader.topic_name(), [&] { cb(s); }); });
     };
-    return AddSubscription(reader.handle(), reader.topic_name(), std::move(drain), always,
-                           reader.seam());
+    return AddSubscription(
+        reader.handle(), reader.topic_name(), std::move(drain), [&reader] { reader.Stash(); },
+        always, reader.seam());
   }
+
+  /// Strict lock-step ticks (see the file comment). Precondition: the run clock is simulated.
+  void SetStrictTicks(bool strict);
+  bool strict_ticks() const { return strict_; }
+  /// The last tick served (strict lock-step), or nullopt before the first.
+  std::optional<Time> last_tick() const { return last_tick_; }
 
   /// Active: every subscription and timer runs. Inactive: only `always` ones.
   Status SetActive(bool active);
@@ -92,14 +106,17 @@ class Executor {
     dds_entity_t handle;
     std::string topic;
     std::function<void()> drain;
+    std::function<void()> stash;  // strict lock-step: take into the reader's queue only
     bool always;
     dds::TopicSeam* seam;  // the reader's fault seam (held-back samples), or nullptr
     bool attached = false;
   };
 
   Executor(const Clock& clock, dds::WaitSet ws, dds::GuardCondition guard);
-  Status AddSubscription(dds_entity_t handle, const std::string& topic,
-                         std::function<void()> drain, bool always, dds::TopicSeam* seam);
+  Status AddSubscription(dds_entity_t handle, const std::string& topic, std::function<void()> drain,
+                         std::function<void()> stash, bool always, dds::TopicSeam* seam);
+  // Strict lock-step: serves the tick `now` (see the file comment).
+  void ServeTick(Time now);
   // The fault seams' deferred work: writes delayed samples, drains readers whose seams hold
   // samples that are due now.
   void RunSeams();
@@ -120,6 +137,8 @@ class Executor {
   Time last_run_clock_{0};
   std::function<Duration()> work_;
   std::function<void()> after_spin_;
+  bool strict_ = false;
+  std::optional<Time> last_tick_;
 };
 
 }  // namespace rover

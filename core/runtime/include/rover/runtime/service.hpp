@@ -16,6 +16,9 @@
 ///   --name NAME [ROVER_SERVICE_NAME]   instance name, the heartbeat key
 ///   --domain N [ROVER_DOMAIN]           DDS domain id
 ///   --clock wall|sim [ROVER_CLOCK]      run clock: wall time, or sim/clock from the simulator
+///   --lockstep lead|strict [ROVER_LOCKSTEP]  under sim/clock: acknowledge every 25 ms served
+///                                       (lead, the default) or serve the simulator's ticks
+///                                       strictly (lockstep.hpp; scenario runs)
 ///   --params FILE ... [ROVER_PARAMS]    YAML parameter files (ROVER_PARAMS is ':'-separated)
 ///   --set key=value ...                 overrides, applied after the files
 ///   --faults FILE [ROVER_FAULTS]         faults to inject from the start (docs/faults.md)
@@ -52,6 +55,7 @@
 #include "rover/base/clock.hpp"
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
+#include "rover/runtime/activity.hpp"
 #include "rover/runtime/dds.hpp"
 #include "rover/runtime/executor.hpp"
 #include "rover/runtime/fault_control.hpp"
@@ -73,6 +77,7 @@ struct ServiceOptions {
   std::string faults_file;               ///< initial faults (ROVER_FAULTS / --faults)
   std::vector<faults::FaultSpec> faults; ///< initial faults, parsed (LoadFaults fills it)
   std::optional<std::int64_t> fault_epoch_ns;  ///< ROVER_FAULTS_EPOCH_NS
+  std::string lockstep = "lead";               ///< "lead" or "strict" (only with clock "sim")
 };
 
 /// Parses options.faults_file into options.faults (nothing when the name is empty).
@@ -189,6 +194,9 @@ class ServiceContext {
   void PublishHeartbeat();
   /// The fault agent (nullptr when injection is off).
   faults::FaultAgent* faults() { return faults_.get(); }
+  /// Wall time per named activity (physics, render, stereo, vo, planning, ...), sent with every
+  /// heartbeat beside the process's CPU time (activity.hpp).
+  runtime::ActivityLog& activities() { return activities_; }
 
  private:
   ServiceContext() = default;
@@ -210,10 +218,15 @@ class ServiceContext {
   dds::Writer<rover_sim_ClockAck> clock_ack_writer_;
   Time last_ack_;
   bool acked_once_ = false;
+  bool strict_lockstep_ = false;
+  std::uint64_t clock_samples_ = 0;        // sim/clock samples heard
+  std::uint64_t clock_samples_acked_ = 0;  // ... when the last acknowledgement went out
+  std::uint64_t late_reported_ = 0;        // lock-step late samples already warned about
   LifecycleState state_ = LifecycleState::kUnconfigured;
   rover_SensorHealth health_ = rover_HEALTH_OK;
   std::string health_message_;
   std::uint64_t heartbeat_count_ = 0;
+  runtime::ActivityLog activities_;
   // Input monitoring.
   void LogCallbackFailure(const std::string& topic, const Status& s);
   // Starts the monitor at the first valid run-clock time after activation (under sim/clock a

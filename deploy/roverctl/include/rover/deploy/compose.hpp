@@ -89,6 +89,10 @@ struct RoverSettings {
   std::string project;
   std::optional<int> domain;
   std::string clock = "wall";
+  /// Under clock "sim": how the services keep in step with the simulator, "lead" or "strict"
+  /// (ROVER_LOCKSTEP; core/runtime lockstep.hpp). Empty: the services' default (lead). Set by
+  /// the scenario runner, not read from compose files.
+  std::string lockstep;
   double startup_timeout_s = 30.0;
   double heartbeat_timeout_s = 5.0;
   std::map<std::string, std::string> qos;  ///< topic -> profile name (validated)

@@ -116,6 +116,9 @@ class Supervisor {
   Status Start();
   /// One supervision step: reap, restart, read heartbeats, write the state file.
   void Poll();
+  /// Only the heartbeats and the readiness they give (cheap: no process polling, no state file);
+  /// the scenario runner does this every simulated tick and Poll() a few times a second.
+  void PollHeartbeats();
   /// Stops every service, reverse start order.
   void Stop();
   /// Sends `sig` to a running service's process group (a fault campaign's kill -9); the next

@@ -106,6 +106,18 @@ struct KillRecord {
   std::string error;        ///< why it was not killed ("" when it was)
 };
 
+/// Where one service's time went in a run (its last heartbeat: runtime/activity.hpp).
+struct ServiceTiming {
+  std::string service;
+  double cpu_s = 0;  ///< [s] CPU time of its process, every thread
+  struct Activity {
+    std::string name;
+    double wall_s = 0;  ///< [s] wall time summed
+    std::uint32_t count = 0;
+  };
+  std::vector<Activity> activities;  ///< physics, render, stereo, vo, planning, lockstep_wait...
+};
+
 struct RunResult {
   std::string scenario;
   std::uint32_t seed = 0;
@@ -120,6 +132,11 @@ struct RunResult {
   double startup_s = 0;            ///< wall seconds to bring the service set up
   double ready_s = 0;              ///< wall seconds from starting the set to every service ready
   double teardown_s = 0;           ///< wall seconds to stop it
+  /// Per service, in name order: CPU time and the wall time of its named activities.
+  std::vector<ServiceTiming> service_timing;
+  double recording_mb = 0;         ///< [MB = 10^6 bytes] size of the run's recording
+  std::string lockstep;            ///< "strict", "lead" or "off" (the scenario's sim.lockstep)
+  std::uint64_t late_samples = 0;  ///< strict lock-step: samples that came a tick late (0 = exact)
   std::vector<sim::judge::ErrorSample> estimate_error;
   std::vector<sim::judge::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
   /// Measured, not judged (sim::judge::Verdict::figures): estimate and odometry-only errors.
@@ -165,6 +182,15 @@ struct CampaignSummary {
   double wall_time_s = 0;            ///< of the whole campaign
   double sim_seconds_per_wall_second = 0;
   double runs_per_hour = 0;
+  /// Where the time went, mean per run: each service's CPU time, then each activity's wall time
+  /// ("render (rover-sim)"), with its share of the runs' mean wall time.
+  struct TimeShare {
+    std::string name;
+    double mean_s = 0;
+    double share = 0;  ///< of the mean run wall time
+  };
+  std::vector<TimeShare> time_shares;
+  double recording_mb_mean = 0;  ///< [MB] per run
 };
 
 CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wall_s);

@@ -55,7 +55,8 @@ struct TaskSection {
   int type_line = 0;  ///< line of task.type
 };
 
-/// What a scenario run records when the scenario says nothing: every topic, zstd, no cap, into
+/// What a scenario run records when the scenario says nothing: every topic but the camera
+/// head's raw frames (hw/camera_frame; `record: {exclude: []}` keeps them), zstd, no cap, into
 /// run.mcap.
 recording::RecordOptions DefaultRunRecording();
 
@@ -73,6 +74,14 @@ struct Scenario {
   /// [s] the simulator runs at most this far ahead of the slowest service (sim/clock_ack), so a
   /// loaded machine slows the run instead of making the stack late; 0 = free running.
   double lockstep_lead_s = 0.1;
+  /// How the simulator keeps in step with the services: "strict" (the default: tick by tick,
+  /// every service and the runner served; the same seed gives the same figures bit for bit,
+  /// core/runtime lockstep.hpp), "lead" (at most lockstep_lead_s ahead; faster on a loaded
+  /// machine, not reproducible) or "off" (free running).
+  std::string lockstep = "strict";
+  /// [s] strict lock-step's quantum: simulated time between two ticks (a whole number of the
+  /// simulator's 10 ms periods).
+  double lockstep_quantum_s = 0.01;
   double time_budget_s = 300;     ///< [s] simulated
   double wall_budget_s = 600;     ///< [s] wall-clock safety net
   double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]
@@ -83,7 +92,8 @@ struct Scenario {
   sim::judge::JudgeCriteria criteria;
   /// service -> flattened key -> YAML scalar text
   std::map<std::string, std::map<std::string, std::string>> params;
-  /// The run's recording: every catalog topic into <run folder>/run.mcap unless the
+  /// The run's recording: every catalog topic but hw/camera_frame into <run folder>/run.mcap
+  /// unless the
   /// scenario's `record` says otherwise (a relative path is inside the run folder).
   recording::RecordOptions record = DefaultRunRecording();
   std::string text;               ///< the file's text (to hand sections to the simulator)

@@ -6,7 +6,11 @@
 ///
 ///  1. HandleRequest checks a request (camera in 0..2, width 0..the camera's calibrated width,
 ///     exposure <= max_exposure_us, fewer than max_pending requests waiting) and returns the
-///     hw/camera_request to send. Hardware request ids are the driver's own (1, 2, ...), so two
+///     hw/camera_request to send, with the readout: the largest b x b binning b <= max_binning
+///     that divides the sensor width W and still gives W / b >= the requested width (0 = full
+///     frame: no binning), so a 256-px request of a 1024-px HAZCAM reads 256 x 256 out (MER read
+///     its HAZCAMs binned and downsampled the rest in software: seed 000). ReadoutFor() says
+///     which. Hardware request ids are the driver's own (1, 2, ...), so two
 ///     requesters using the same request_id do not get each other's frames; the frame echoes
 ///     the requester's request_id.
 ///  2. HandleMast stores ddl/joint_state mast angles (history of mast_history_s).
@@ -48,7 +52,9 @@ struct CameraDriverOptions {
   double mast_max_age_s = 0.1;     ///< [s] mast sample further from the capture: DEGRADED
   double mast_history_s = 2.0;     ///< [s] mast samples kept
   std::uint32_t max_exposure_us = 10'000'000;  ///< [us] longest exposure accepted
-  /// Positive finite times, max_pending >= 1, history >= max age.
+  /// Largest b x b binning the camera head is asked for (1 = always the full frame).
+  int max_binning = 8;
+  /// Positive finite times, max_pending >= 1, history >= max age, max_binning in [1, 16].
   Status Validate() const;
 };
 
@@ -96,6 +102,12 @@ class CameraDriver {
   /// Errors: InvalidArgument (unknown camera, width out of range, exposure too long), Busy
   /// (max_pending requests already wait).
   Result<hw::CameraRequest> HandleRequest(const msg::StereoRequest& request, Time now);
+
+  /// The hw readout width for an output `width` (0 = full) of a sensor `sensor_width` px wide:
+  /// sensor_width / b for the largest b <= max_binning dividing sensor_width with
+  /// sensor_width / b >= width, or 0 (full frame) when b = 1. Precondition: 0 <= width <=
+  /// sensor_width, sensor_width >= 1.
+  int ReadoutFor(int width, int sensor_width) const;
 
   /// Stores a mast sample. InvalidArgument for non-finite angles; samples not newer than the
   /// newest stored are ignored (Ok).

@@ -6,6 +6,12 @@
 /// service, Ctrl-C, the simulated time budget and the wall budget. So no wait can outlive a
 /// crashed set or a hung simulator.
 ///
+/// Strict lock-step (LoopLimits::strict_lockstep; core/runtime lockstep.hpp): the runner is one
+/// of the participants the simulator waits for. Each pass serves the latest tick T: this thread
+/// reads only samples written before T and its writes carry T; once `done()` does not hold and
+/// the checks pass, the runner acknowledges T (as kRunnerName) and waits for the next tick. So
+/// the task's commands enter the run at the same simulated time however the machine is loaded.
+///
 /// Time: `now()` is the latest sim/clock time heard [s since the start of the run]; budgets are
 /// in simulated seconds except the wall budget, the safety net for a hung run (wall seconds since
 /// LoopLimits::wall_start, monotonic).
@@ -27,7 +33,12 @@ struct LoopLimits {
   double wall_budget_s = 600;  ///< [s] wall, counted from wall_start; exceeding it fails the run
   Time wall_start;             ///< MonotonicNow() when the run began
   const std::atomic<bool>* abort = nullptr;  ///< set (Ctrl-C) to stop: "interrupted"
+  bool strict_lockstep = false;              ///< serve the simulator's ticks (see the file comment)
 };
+
+/// The name the runner acknowledges sim/clock under (the simulator's sim.lockstep_services
+/// lists it).
+inline constexpr const char* kRunnerName = "scenario-runner";
 
 class RunLoop {
  public:
@@ -49,15 +60,24 @@ class RunLoop {
   void Pump();
   /// The first failing check's line, or "".
   std::string Check() const;
-  /// Pumps until `done()` holds (returns "") or a check fails (returns its line); 5 ms (wall)
-  /// between passes.
+  /// Pumps until `done()` holds (returns "") or a check fails (returns its line); between
+  /// passes it waits up to 5 ms (wall) for a new tick.
   std::string WaitUntil(const std::function<bool()>& done);
+
+  ~RunLoop();
 
  private:
   RunLoop(dds::Reader<rover_sim_Clock> clock, LoopLimits limits)
       : clock_(std::move(clock)), limits_(limits) {}
+  // Strict lock-step: acknowledges the tick served when a clock sample came since the last one.
+  void Acknowledge();
 
   dds::Reader<rover_sim_Clock> clock_;
+  dds::Writer<rover_sim_ClockAck> ack_;
+  std::unique_ptr<dds::WaitSet> waitset_;
+  std::int64_t tick_ns_ = 0;
+  bool heard_ = false;
+  std::uint64_t clock_samples_ = 0, acked_samples_ = 0;
   LoopLimits limits_;
   double now_s_ = 0;
   std::vector<std::function<void()>> pumps_;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rover/base/clock.hpp"
 #include "rover/base/status.hpp"
 #include "rover/deploy/compose.hpp"
 #include "rover/deploy/runner.hpp"
@@ -39,7 +40,8 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
 
 /// The simulator's parameter file of a run: the scenario's world sections with this seed
 /// (terrain.seed = the seed unless the scenario fixes it), the start pose and sim.start_paused.
-std::string SimParamsYaml(const Scenario& scenario, std::uint32_t seed);
+std::string SimParamsYaml(const Scenario& scenario, std::uint32_t seed,
+                          const std::vector<std::string>& lockstep_services = {});
 /// The world of a run, exactly as the simulator builds it from SimParamsYaml (errors name
 /// `source`, the file that text is or would be in).
 Result<sim::world::World> BuildRunWorld(const Scenario& scenario, std::uint32_t seed,
@@ -67,8 +69,11 @@ class ServiceSet {
   /// Starts simulated time (sim/control RESUME).
   Status ResumeSimulator();
   /// One supervision step; "" while every service runs, else "service 'x' crashed (how it
-  /// ended)", and "x: how it ended; its last log line" is appended to `*crashes`.
+  /// ended)", and "x: how it ended; its last log line" is appended to `*crashes`. The heartbeats
+  /// (readiness) are read on every call; the processes are polled and the state file written
+  /// at most every kProcessPollS of wall time (the runner calls this every simulated tick).
   std::string CheckServices(std::vector<std::string>* crashes);
+  static constexpr double kProcessPollS = 0.05;
   /// Every service is ready by its rule (supervisor.hpp: a rover service's heartbeat says ACTIVE
   /// and health OK), as of the last CheckServices().
   bool Ready() const { return supervisor_->readiness().ready; }
@@ -91,6 +96,7 @@ class ServiceSet {
 
   std::unique_ptr<Supervisor> supervisor_;
   std::map<std::string, int> killed_;  // service -> its restart count when it was killed
+  Time last_process_poll_{0};
   dds::Participant participant_;
   dds::Writer<rover_sim_Control> control_;
 };

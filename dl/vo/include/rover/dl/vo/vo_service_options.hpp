@@ -5,6 +5,8 @@
 /// (request_id_prefix default 2, request_timeout_s, exposure_us), the cadence's
 /// (step_distance, ...) and the pipeline's (vo.*, prior.*, rectification_cache_size).
 
+#include <string>
+
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/dl/camera_client/camera_request_client.hpp"
@@ -20,6 +22,9 @@ struct VoServiceOptions {
   double retry_delay_s = 1.0;   ///< [s] run-clock wait after a bad frame
   double pose_max_age_s = 1.0;  ///< [s] dl/pose this close to a capture time and to now
   double poll_rate_hz = 10.0;   ///< [Hz] cadence, timeout and health checks
+  /// "on_request": pairs only while a client asks on dl/vo_command (MER ran VO only in its
+  /// VisOdom modes); "always": pairs whenever the cadence says so (the vision set's VO runs).
+  std::string imaging = "on_request";
   camera_client::CameraClientOptions client = DefaultClient();
   CadenceOptions cadence;
   VoPipelineOptions pipeline;

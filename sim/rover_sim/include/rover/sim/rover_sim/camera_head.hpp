@@ -57,12 +57,20 @@ class CameraHead {
 
   /// Takes a pair of `camera` ("navcam", "front_hazcam", "rear_hazcam") for the rover at
   /// `site_from_rover` with the mast at `mast` and the unit sun direction `sun_site` (site
-  /// frame). `exposure_us` 0 = auto. Errors: NotFound for an unknown camera (names the known
-  /// ones), Unavailable when the renderer cannot start (then every later call says so again
-  /// without retrying), InvalidArgument for a bad pose or mast angle, Internal for GL failures.
+  /// frame). `exposure_us` 0 = auto. `readout_width` 0 reads the full sensor (image_size);
+  /// otherwise it is image_size / b for a whole binning factor b, and the pair is rendered at
+  /// (image_size / b)^2 pixels through the models geometry::Scale(model, 1 / b) (what binning
+  /// b x b does to a CAHVOR model), so a binned readout costs the pixels it has, not the
+  /// sensor's. Errors: NotFound for an unknown camera (names the known ones), Unavailable when
+  /// the renderer cannot start (then every later call says so again without retrying),
+  /// InvalidArgument for a bad pose, mast angle or readout width (names the value and the
+  /// sensor width), Internal for GL failures.
   Result<CameraShot> Take(const std::string& camera, std::uint32_t exposure_us,
                           const Eigen::Isometry3d& site_from_rover, const render::MastState& mast,
-                          const Eigen::Vector3d& sun_site);
+                          const Eigen::Vector3d& sun_site, int readout_width = 0);
+
+  /// Ok when `readout_width` is a readout a `sensor_width`-px sensor can produce (see Take).
+  static Status CheckReadout(int readout_width, int sensor_width, const std::string& camera);
 
   /// Renders made so far (also the noise frame counter).
   std::uint64_t frames() const { return frames_; }

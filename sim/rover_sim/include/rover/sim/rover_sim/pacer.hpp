@@ -15,6 +15,14 @@
 /// acknowledgement has not moved for lockstep_stall_s of wall time is no longer waited on (it
 /// died or hung; the supervisor restarts it) until it acknowledges a new time.
 ///
+/// Strict lock-step (lockstep_strict, core/runtime lockstep.hpp): the simulator publishes
+/// sim/clock only at the end of each quantum (a barrier, SetBarrier) and starts the next quantum
+/// only when every service named in lockstep_services has acknowledged the barrier; it waits for
+/// them from the first step on (the set is known, not learned from acknowledgements, so a slow
+/// starter cannot miss the start). A named service that has not acknowledged a barrier within
+/// lockstep_stall_s of wall time stalls the run: stalled() names it, and the simulator stops
+/// stepping (a clear failure instead of a hang or a run that is no longer reproducible).
+///
 /// Times: wall times are rover::Time on the monotonic clock, simulated times are seconds.
 
 #include <map>
@@ -35,9 +43,17 @@ struct PacerOptions {
   /// Generous by default: at a load of 10+ on two cores ddl-camera and dl-pose went silent for
   /// over 2 s, and a simulator that ran on left dl-locomotion with a stale attitude (SAPP).
   double lockstep_stall_s = 30.0;
+  /// Strict lock-step (see the file comment); lockstep_lead_s is then not used.
+  bool lockstep_strict = false;
+  /// [s] simulated time between two barriers under strict lock-step (a whole number of
+  /// simulator periods; the service checks that).
+  double lockstep_quantum_s = 0.01;
+  /// The services strict lock-step waits for, comma-separated (their --name).
+  std::string lockstep_services;
 
   /// real_time_factor in [0, 1000]; lockstep_lead_s 0 or in [kMinLockstepLeadS, 10];
-  /// lockstep_stall_s in [0.1, 3600]. Messages start with the field.
+  /// lockstep_stall_s in [0.1, 3600]; lockstep_quantum_s in [0.001, 1]; strict needs at least
+  /// one service, names without spaces. Messages start with the field.
   Status Validate() const;
   static void BindParams(ParamBinder<PacerOptions>& b);
 };
@@ -51,6 +67,9 @@ class Pacer {
   static constexpr Duration kPausedPoll = std::chrono::milliseconds(50);
   /// How long to wait before asking again while lock-step waits on a service.
   static constexpr Duration kLockstepPoll = std::chrono::microseconds(200);
+  /// The same under strict lock-step: the simulator's executor wakes at once when an
+  /// acknowledgement arrives, so this only bounds the wait (no polling).
+  static constexpr Duration kStrictWait = std::chrono::milliseconds(20);
 
   /// Preconditions: options.Validate() is Ok.
   explicit Pacer(const PacerOptions& options);
@@ -83,6 +102,18 @@ class Pacer {
   std::vector<std::string> services_waited_on() const;
   void set_self(std::string name) { self_ = std::move(name); }
 
+  bool strict() const { return options_.lockstep_strict; }
+  /// Strict: the simulator published sim/clock at `sim_ns` (wall `wall_now`); the next step
+  /// waits until every named service has acknowledged it.
+  void SetBarrier(std::int64_t sim_ns, Time wall_now);
+  std::int64_t barrier_ns() const { return barrier_ns_; }
+  /// Strict: the named services that have not acknowledged the barrier yet.
+  std::vector<std::string> Missing() const;
+  /// Strict: the service that stalled the run (empty while none has).
+  const std::string& stalled() const { return stalled_; }
+  /// The names in lockstep_services.
+  static std::vector<std::string> ParseServices(const std::string& list);
+
  private:
   struct AckState {
     std::int64_t sim_time_ns = 0;
@@ -98,6 +129,10 @@ class Pacer {
   double sim_anchor_ = 0.0;
   std::string self_;
   std::map<std::string, AckState> acks_;
+  std::vector<std::string> expected_;  // strict: lockstep_services
+  std::int64_t barrier_ns_ = 0;
+  Time barrier_wall_{0};
+  std::string stalled_;
 };
 
 }  // namespace rover::sim::rover_sim

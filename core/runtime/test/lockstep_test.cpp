@@ -1,0 +1,190 @@
+// Strict lock-step stamping (lockstep.hpp): writes carry the thread's tick, a gated reader hands
+// out only what was written at earlier ticks, and an executor in strict mode serves each tick in
+// one go, in the same order whatever order the samples arrived in.
+#include "rover/runtime/lockstep.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "rover/runtime/dds.hpp"
+#include "rover/runtime/executor.hpp"
+#include "rover/testing/test_support.hpp"
+
+namespace rover::dds {
+namespace {
+
+class LockstepTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    lease_ = testing::IsolatedDomain();
+    auto p = Participant::Create(lease_.domain());
+    ASSERT_TRUE(p.ok());
+    participant_ = std::move(*p);
+  }
+  void TearDown() override {
+    lockstep::SetWriteTick(lockstep::kOff);
+    lockstep::SetReadGate(lockstep::kOff);
+  }
+  static rover_dl_DriveCommand Command(std::uint32_t id) {
+    rover_dl_DriveCommand c{};
+    c.command_id = id;
+    c.header.stamp_ns = id;
+    return c;
+  }
+  DomainLease lease_;
+  Participant participant_;
+};
+
+TEST_F(LockstepTest, WritesCarryTheThreadsTick) {
+  auto w = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  ASSERT_TRUE(w.ok() && r.ok());
+  lockstep::SetWriteTick(120'000'000);
+  ASSERT_TRUE(w->Write(Command(1)).ok());
+  lockstep::SetWriteTick(lockstep::kOff);
+  ASSERT_TRUE(w->Write(Command(2)).ok());
+  std::vector<OwnedSample<rover_dl_DriveCommand>> got;
+  ASSERT_TRUE(testing::WaitFor([&] {
+    for (auto& s : r->Take()) got.push_back(std::move(s));
+    return got.size() == 2;
+  }));
+  EXPECT_EQ(got[0].info().source_timestamp, 120'000'000);
+  EXPECT_GE(got[1].info().source_timestamp, lockstep::kWallStampFloor);  // wall time
+}
+
+TEST_F(LockstepTest, AGatedReaderHandsOutOnlyEarlierTicksOldestFirst) {
+  auto w = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  ASSERT_TRUE(w.ok() && r.ok());
+  // A command reader (fresh only) counts what was written before the first tick it was read at
+  // as history, not for it: read it first at tick 0, as a service does.
+  lockstep::SetReadGate(0);
+  EXPECT_TRUE(r->Take().empty());
+  lockstep::SetReadGate(lockstep::kOff);
+  for (std::int64_t tick : {30, 10, 20}) {  // written out of tick order
+    lockstep::SetWriteTick(tick);
+    ASSERT_TRUE(w->Write(Command(static_cast<std::uint32_t>(tick))).ok());
+  }
+  lockstep::SetWriteTick(lockstep::kOff);
+  ASSERT_TRUE(testing::WaitFor([&] {
+    r->Stash();
+    return r->held() == 3;
+  }));
+  lockstep::SetReadGate(25);  // serving tick 25: ticks 10 and 20 are visible, 30 is not
+  auto first = r->Take();
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_EQ(first[0]->command_id, 10u);
+  EXPECT_EQ(first[1]->command_id, 20u);
+  EXPECT_TRUE(r->Take().empty());
+  lockstep::SetReadGate(30);  // written at the tick being served: not yet
+  EXPECT_TRUE(r->Take().empty());
+  lockstep::SetReadGate(40);
+  auto second = r->Take();
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_EQ(second[0]->command_id, 30u);
+}
+
+TEST_F(LockstepTest, CommandsWrittenBeforeTheFirstTickReadAreHistory) {
+  auto w = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  ASSERT_TRUE(w.ok() && r.ok());
+  lockstep::SetWriteTick(10);
+  ASSERT_TRUE(w->Write(Command(1)).ok());  // before this reader's service joined at tick 50
+  lockstep::SetWriteTick(50);
+  ASSERT_TRUE(w->Write(Command(2)).ok());
+  lockstep::SetWriteTick(lockstep::kOff);
+  ASSERT_TRUE(testing::WaitFor([&] {
+    r->Stash();
+    return r->held() == 2;
+  }));
+  lockstep::SetReadGate(50);  // the first tick it serves (a restarted service)
+  EXPECT_TRUE(r->Take().empty());
+  lockstep::SetReadGate(60);
+  auto got = r->Take();
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0]->command_id, 2u);
+}
+
+TEST_F(LockstepTest, WallStampedSamplesAreNotHeldBack) {
+  auto w = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  ASSERT_TRUE(w.ok() && r.ok());
+  ASSERT_TRUE(w->Write(Command(5)).ok());  // no write tick: a writer outside lock-step
+  lockstep::SetReadGate(0);
+  std::vector<OwnedSample<rover_dl_DriveCommand>> got;
+  ASSERT_TRUE(testing::WaitFor([&] {
+    for (auto& s : r->Take()) got.push_back(std::move(s));
+    return !got.empty();
+  }));
+  EXPECT_EQ(got[0]->command_id, 5u);
+}
+
+TEST(LockstepVisibleTest, Rule) {
+  EXPECT_TRUE(lockstep::Visible(99, lockstep::kOff));
+  EXPECT_TRUE(lockstep::Visible(10, 11));
+  EXPECT_FALSE(lockstep::Visible(11, 11));
+  EXPECT_FALSE(lockstep::Visible(12, 11));
+  EXPECT_TRUE(lockstep::Visible(lockstep::kWallStampFloor + 5, 11));
+}
+
+// The executor serves a tick in one go: samples stashed while the clock stood still are handed
+// out at the next tick, in subscription order, before that tick's timers, and a sample written
+// at the tick being served waits for the next one.
+TEST_F(LockstepTest, StrictExecutorServesEachTickInOneGo) {
+  ManualClock clock(Time{0}, /*valid=*/false);
+  auto exec = Executor::Create(participant_, clock);
+  ASSERT_TRUE(exec.ok());
+  (*exec)->SetStrictTicks(true);
+  auto w_cmd = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto w_range = Writer<rover_dl_RangeRequest>::Create(participant_, "dl/range_request");
+  auto r_cmd = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r_range = Reader<rover_dl_RangeRequest>::Create(participant_, "dl/range_request");
+  ASSERT_TRUE(w_cmd.ok() && w_range.ok() && r_cmd.ok() && r_range.ok());
+  std::vector<std::string> events;
+  ASSERT_TRUE((*exec)
+                  ->Subscribe<rover_dl_DriveCommand>(*r_cmd,
+                                                     [&](const Sample<rover_dl_DriveCommand>& s) {
+                                                       events.push_back(
+                                                           "cmd" + std::to_string(s->command_id) +
+                                                           "@" + std::to_string(clock.Now().ns));
+                                                     })
+                  .ok());
+  ASSERT_TRUE((*exec)
+                  ->Subscribe<rover_dl_RangeRequest>(*r_range,
+                                                     [&](const Sample<rover_dl_RangeRequest>& s) {
+                                                       events.push_back(
+                                                           "range" + std::to_string(s->request_id) +
+                                                           "@" + std::to_string(clock.Now().ns));
+                                                     })
+                  .ok());
+  (*exec)->AddTimer(std::chrono::nanoseconds(100),
+                    [&] { events.push_back("timer@" + std::to_string(clock.Now().ns)); });
+  ASSERT_TRUE((*exec)->SetActive(true).ok());
+  clock.Set(Time{0});
+  (*exec)->SpinOnce(Duration::zero());  // tick 0: arms the timer, nothing to hand out
+  ASSERT_EQ((*exec)->last_tick(), Time{0});
+  // Written at tick 0 by "another service", range request first, then the command.
+  rover_dl_RangeRequest rr{};
+  rr.request_id = 7;
+  const std::int64_t saved = lockstep::WriteTick();
+  lockstep::SetWriteTick(0);
+  ASSERT_TRUE(w_range->Write(rr).ok());
+  ASSERT_TRUE(w_cmd->Write(Command(1)).ok());
+  lockstep::SetWriteTick(saved);
+  // They arrive while the clock stands still: stashed, not handed out.
+  ASSERT_TRUE(testing::WaitFor([&] {
+    (*exec)->SpinOnce(std::chrono::milliseconds(5));
+    return r_cmd->held() == 1 && r_range->held() == 1;
+  }));
+  EXPECT_TRUE(events.empty());
+  clock.Set(Time{100});
+  (*exec)->SpinOnce(Duration::zero());
+  // Subscription order (command first), then the timer due at 100.
+  EXPECT_EQ(events, (std::vector<std::string>{"cmd1@100", "range7@100", "timer@100"}));
+  EXPECT_EQ(lockstep::WriteTick(), 100);  // what this thread writes now belongs to tick 100
+}
+
+}  // namespace
+}  // namespace rover::dds
