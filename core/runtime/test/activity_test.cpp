@@ -55,8 +55,10 @@ TEST(ActivityLogTest, ScopedActivityAddsItsLifetime) {
 TEST(ActivityLogTest, ProcessCpuTimeMoves) {
   const double a = ProcessCpuSeconds();
   volatile double x = 0;
+  const double b = ThreadCpuSeconds();
   for (int i = 0; i < 20'000'000; ++i) x = x + 1e-9 * i;
   EXPECT_GT(ProcessCpuSeconds(), a);
+  EXPECT_GT(ThreadCpuSeconds(), b);
 }
 
 }  // namespace

@@ -131,9 +131,10 @@ nlohmann::json RecordingFigures(const recording::RecordingReport& report) {
   return j;
 }
 
-std::string FinishRunRecording(recording::BusRecorder* recorder) {
+std::string FinishRunRecording(recording::BusRecorder* recorder, double* cpu_s) {
   if (recorder == nullptr) return "";
   const recording::RecordingReport report = recorder->Stop();
+  if (cpu_s != nullptr) *cpu_s = report.cpu_s;
   // The recorder's own figures beside the file: rate, CPU share, losses, size per minute.
   const std::string figures = report.path + ".json";
   std::ofstream(figures) << RecordingFigures(report).dump(1) << "\n";

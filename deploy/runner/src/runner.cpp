@@ -14,6 +14,7 @@
 #include "rover/deploy/runner/service_set.hpp"
 #include "rover/deploy/runner/task.hpp"
 #include "rover/msg/health_idl.hpp"
+#include "rover/runtime/activity.hpp"
 #include "rover/runtime/fault_control.hpp"
 
 namespace rover::deploy {
@@ -75,6 +76,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   result.startup_s = ToSeconds(MonotonicNow() - wall_start);
   // (d) Judging and the outputs, however the run ends.
   std::map<std::string, ServiceTiming> timing;  // each service's last heartbeat's figures
+  const double runner_cpu_start = runtime::ThreadCpuSeconds();
   result.lockstep = scenario.lockstep;
   auto finish = [&](std::string failure) -> Result<RunResult> {
     const Time t0 = MonotonicNow();
@@ -92,10 +94,15 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
     set->Stop();
     // After the set: the recording keeps what the services said while stopping. A recording
     // that failed fails the run.
-    if (const std::string r = FinishRunRecording(recording.get()); !r.empty()) {
+    // The runner's own share: its thread (this one) and the recorder's.
+    result.service_timing.push_back(
+        {"scenario-runner", runtime::ThreadCpuSeconds() - runner_cpu_start, {}});
+    double recorder_cpu = 0;
+    if (const std::string r = FinishRunRecording(recording.get(), &recorder_cpu); !r.empty()) {
       failure = failure.empty() ? r : failure + "; " + r;
     }
     if (recording) {
+      result.service_timing.push_back({"recorder", recorder_cpu, {}});
       std::error_code ec;
       const auto bytes = fs::file_size(recording->path(), ec);
       if (!ec) result.recording_mb = static_cast<double>(bytes) * 1e-6;

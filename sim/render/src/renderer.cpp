@@ -196,6 +196,10 @@ Status RenderOptions::Validate() const {
     return BadOption("shadow_cascades", shadow_cascades, "is out of range [1, 3]");
   }
   ROVER_RETURN_IF_ERROR(range("shadow_distance", shadow_distance, 1.0, 1000.0));
+  if (shadow_reference_width < 256 || shadow_reference_width > 8192) {
+    return BadOption("shadow_reference_width", shadow_reference_width,
+                     "is out of range [256, 8192]");
+  }
   if (global_shadow_map_size < 512 || global_shadow_map_size > 8192) {
     return BadOption("global_shadow_map_size", global_shadow_map_size, "is out of range [512, 8192]");
   }
@@ -230,7 +234,10 @@ class Renderer::Impl {
   void SetLightingUniforms(GLuint prog, const Eigen::Vector3d& cam);
   void DrawTerrain(GLuint prog, const Planes& planes, long long* triangles);
   void DrawLander(GLuint prog, long long* triangles);
-  void RenderShadows(const std::vector<PlacedCamera>& cams, const Eigen::Vector3d& center);
+  // `image_width` [px] of the images being rendered sets the cascades' size (see
+  // RenderOptions::shadow_reference_width).
+  void RenderShadows(const std::vector<PlacedCamera>& cams, const Eigen::Vector3d& center,
+                     int image_width);
   void RenderGlobalShadow();
   // Light frame (rows: x, y, z = light travel) and the scene's light-space box.
   Eigen::Matrix3d LightFrame(Eigen::Vector3d* box_min, Eigen::Vector3d* box_max) const;
@@ -827,8 +834,19 @@ void Renderer::Impl::RenderGlobalShadow() {
 }
 
 void Renderer::Impl::RenderShadows(const std::vector<PlacedCamera>& cams,
-                                   const Eigen::Vector3d& center) {
+                                   const Eigen::Vector3d& center, int image_width) {
   if (!global_valid_) RenderGlobalShadow();
+  // The cascades' size for this image width: a power of two in [min(512, S), S]; they fill the
+  // lower-left corner of each S x S layer, and the light matrices map into that corner.
+  const int full = options.shadow_map_size;
+  int size = full;
+  while (size / 2 >= 512 &&
+         static_cast<double>(size / 2) >=
+             static_cast<double>(full) * image_width / options.shadow_reference_width) {
+    size /= 2;
+  }
+  Eigen::Matrix4d corner = Eigen::Matrix4d::Identity();
+  corner(0, 0) = corner(1, 1) = static_cast<double>(size) / full;
   const auto t0 = std::chrono::steady_clock::now();
   const int kc = options.shadow_cascades;
   Eigen::Vector3d lo, hi;
@@ -856,7 +874,7 @@ void Renderer::Impl::RenderShadows(const std::vector<PlacedCamera>& cams,
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
-  glViewport(0, 0, options.shadow_map_size, options.shadow_map_size);
+  glViewport(0, 0, size, size);
   glUseProgram(shadow_prog_);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -889,9 +907,9 @@ void Renderer::Impl::RenderShadows(const std::vector<PlacedCamera>& cams,
     const double margin = 0.02 * std::max(xmax - xmin, ymax - ymin) + 0.05;
     xmin -= margin; xmax += margin; ymin -= margin; ymax += margin;
     const Eigen::Matrix4d clip = LightClip(light_from_render, xmin, xmax, ymin, ymax, lo.z(), hi.z());
-    light_[static_cast<std::size_t>(k)] = BiasToUnit() * clip;
+    light_[static_cast<std::size_t>(k)] = corner * BiasToUnit() * clip;
     shadow_texel_[static_cast<std::size_t>(k)] =
-        static_cast<float>(std::max(xmax - xmin, ymax - ymin) / options.shadow_map_size);
+        static_cast<float>(std::max(xmax - xmin, ymax - ymin) / size);
     depth_scale_[static_cast<std::size_t>(k)] = static_cast<float>(1.0 / (hi.z() - lo.z()));
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_tex_, 0, k);
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -1009,7 +1027,7 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
   }
   mid /= static_cast<double>(cams.size());
   SelectLods(mid, focal);
-  RenderShadows(cams, mid);
+  RenderShadows(cams, mid, models.front().width());
 
   StereoImages out;
   for (std::size_t c = 0; c < cams.size(); ++c) {

@@ -56,5 +56,7 @@ class ScopedActivity {
 
 /// CPU time of this process so far, every thread [s] (CLOCK_PROCESS_CPUTIME_ID).
 double ProcessCpuSeconds();
+/// CPU time of the calling thread so far [s] (CLOCK_THREAD_CPUTIME_ID).
+double ThreadCpuSeconds();
 
 }  // namespace rover::runtime

@@ -100,6 +100,6 @@ nlohmann::json RecordingFigures(const recording::RecordingReport& report);
 /// Stops the run's recording (null: nothing to do) and writes its figures to <file>.json; ""
 /// when the file is complete, else the run's failure: "recording failed: <why>; <file> is
 /// incomplete".
-std::string FinishRunRecording(recording::BusRecorder* recorder);
+std::string FinishRunRecording(recording::BusRecorder* recorder, double* cpu_s = nullptr);
 
 }  // namespace rover::deploy::runner

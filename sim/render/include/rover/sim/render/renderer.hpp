@@ -85,6 +85,11 @@ struct RenderOptions {
   // (re-rendered every frame), and beyond that one static map of the whole terrain (rendered
   // once per sun direction).
   int shadow_map_size = 2048;         ///< per camera-fitted cascade, [256, 8192]
+  /// shadow_map_size is for images this wide; a narrower image (a binned readout) renders its
+  /// cascades proportionally smaller (a power of two, at least 512), keeping the shadow texels
+  /// per image pixel: on llvmpipe the cascades cost a third of a 256-px HAZCAM pair otherwise.
+  /// [256, 8192]
+  int shadow_reference_width = 1024;
   int shadow_cascades = 2;            ///< camera-fitted cascades, [1, 3]
   double shadow_distance = 12;        ///< [m] reach of the camera-fitted cascades, [1, 1000]
   int global_shadow_map_size = 4096;  ///< whole-terrain map, [512, 8192]
