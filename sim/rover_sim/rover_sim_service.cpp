@@ -7,6 +7,7 @@
 // and publishes sim/clock every step. Its run clock is its own simulated time; it never follows
 // sim/clock itself. See docs/services/rover-sim.md.
 #include <cmath>
+#include <map>
 #include <cstdlib>
 
 #include "rover/base/format.hpp"
@@ -63,6 +64,7 @@ class RoverSim final : public rover::Service {
     pacer_.emplace(pacing);
     pacer_->set_self(ctx.name());
     stall_s_ = pacing.lockstep_stall_s;
+    pipelined_ = pacing.lockstep_strict && pacing.lockstep_pipelined;
     steps_per_quantum_ =
         std::max<long>(1, std::lround(pacing.lockstep_quantum_s / p.GetDouble("sim.period_s")));
     camera_.emplace(camera,
@@ -125,6 +127,25 @@ class RoverSim final : public rover::Service {
     c.sim_time_ns = c.header.stamp_ns;
     c.real_time_factor = pacer_->MeasuredRealTimeFactor(rover::MonotonicNow(), engine_->time());
     c.paused = pacer_->paused();
+    // Strict lock-step: the frontier, what every participant had written when this tick was
+    // first published (its latest acknowledgement, of the tick before) and this simulator
+    // itself (rover/runtime/lockstep.hpp). A repeat of the tick repeats it: acknowledgements
+    // that came since may count samples written while serving this very tick.
+    if (pacer_->strict()) {
+      if (frontier_ns_ != c.sim_time_ns || frontier_.empty()) {
+        frontier_ = rover::dds::lockstep::WrittenBy(ctx_->participant().handle());
+        for (const auto& [service, counts] : written_) {
+          for (std::size_t i = 0; i < counts.size() && i < frontier_.size(); ++i) {
+            frontier_[i] += counts[i];
+          }
+        }
+        frontier_ns_ = c.sim_time_ns;
+        if (pipelined_) rover::dds::lockstep::SetFrontier(frontier_);  // its own gated readers
+      }
+      c.written._buffer = frontier_.data();
+      c.written._length = c.written._maximum = static_cast<std::uint32_t>(frontier_.size());
+      c.written._release = false;
+    }
     (void)clock_w_.Write(c);
   }
 
@@ -134,6 +155,9 @@ class RoverSim final : public rover::Service {
     const std::int64_t barrier = rover::Time::FromSeconds(engine_->time()).ns;
     pacer_->SetBarrier(barrier, rover::MonotonicNow());
     rover::dds::lockstep::SetWriteTick(barrier);
+    // Pipelined: the inputs this quantum applies are those written before it started; what the
+    // services write while serving this barrier waits for the next quantum.
+    if (pipelined_) rover::dds::lockstep::SetReadGate(barrier);
     steps_in_quantum_ = 0;
   }
 
@@ -154,7 +178,11 @@ class RoverSim final : public rover::Service {
   Duration Work() {
     const rover::Time now = rover::MonotonicNow();
     std::vector<std::string> dropped;
-    const Duration wait = pacer_->UntilNextStep(now, engine_->time(), &dropped);
+    // Strict lock-step: a quantum is stepped; its end's clock goes out once the barrier that
+    // began it has been served (at once without pipelining: the quantum waited for that).
+    const bool quantum_done = pacer_->strict() && steps_in_quantum_ >= steps_per_quantum_;
+    const Duration wait = quantum_done ? pacer_->UntilBarrierServed(now)
+                                       : pacer_->UntilNextStep(now, engine_->time(), &dropped);
     for (const auto& name : dropped) {
       rover::log::Warn("lock-step: not waiting for a service that stopped acknowledging",
                        {{"service", name}, {"sim_time_s", engine_->time()}});
@@ -176,6 +204,14 @@ class RoverSim final : public rover::Service {
       last_paused_clock_ = now;
     }
     if (wait > Duration::zero()) return wait;
+    if (quantum_done) {
+      PublishClock();
+      StartQuantum();
+      // Pipelined: hand out the inputs written while serving the barrier just passed (held back
+      // until now by the read gate) before the first step of the new quantum.
+      if (pipelined_) ctx_->executor().DrainAll();
+      return Duration::zero();
+    }
     auto out = [&] {
       rover::runtime::ScopedActivity a(ctx_->activities(), "physics");
       return engine_->Step();
@@ -192,6 +228,7 @@ class RoverSim final : public rover::Service {
   }
 
   void OnAck(const rover_sim_ClockAck& a) {
+    written_[a.service].assign(a.written._buffer, a.written._buffer + a.written._length);
     const std::string back = pacer_->OnAck(a.service, a.sim_time_ns, rover::MonotonicNow());
     if (!back.empty())
       rover::log::Info("lock-step: service is keeping up again", {{"service", back}});
@@ -206,9 +243,12 @@ class RoverSim final : public rover::Service {
   }
 
   void Publish(const rs::StepOutput& o) {
-    // Strict lock-step: sim/clock only at the end of a quantum, after its samples.
-    const bool clock_now = !pacer_->strict() || ++steps_in_quantum_ >= steps_per_quantum_;
-    if (!pacer_->strict()) PublishClock();
+    // Strict lock-step: sim/clock only at the end of a quantum, after its samples (Work()).
+    if (pacer_->strict()) {
+      ++steps_in_quantum_;
+    } else {
+      PublishClock();
+    }
     const auto& s = o.sensors;
     if (s.motor_telemetry)
       Send(telemetry_w_, *s.motor_telemetry, &msg::MotorTelemetryToIdl, "rover");
@@ -216,10 +256,6 @@ class RoverSim final : public rover::Service {
     if (s.imu) Send(imu_w_, *s.imu, &msg::ImuRawToIdl, "imu");
     if (s.sun_sensor) Send(sun_w_, *s.sun_sensor, &msg::SunSensorRawToIdl, "sun_sensor");
     if (o.truth) Send(truth_w_, *o.truth, &rs::TruthToIdl, "site");
-    if (pacer_->strict() && clock_now) {
-      PublishClock();
-      StartQuantum();
-    }
   }
 
   // A goal whose mode is not a MotorMode makes the whole sample invalid: nothing of it is applied.
@@ -323,6 +359,11 @@ class RoverSim final : public rover::Service {
   long steps_in_quantum_ = 0;
   double stall_s_ = 30.0;
   bool stall_reported_ = false;
+  bool pipelined_ = false;
+  // Strict lock-step: each participant's written counts from its latest acknowledgement.
+  std::map<std::string, rover::dds::lockstep::TopicCounts> written_;
+  rover::dds::lockstep::TopicCounts frontier_;  // of the tick last published
+  std::int64_t frontier_ns_ = -1;
   bool waiting_ = false;
   rover::Time wait_start_{0};
   dds::Writer<rover_sim_Clock> clock_w_;

@@ -2,6 +2,11 @@
 
 #include "rover/runtime/type_layout.hpp"
 
+#include <atomic>
+#include <cstdio>
+#include <mutex>
+#include <string>
+#include <unordered_map>
 #include <cstdlib>
 
 namespace rover::dds {
@@ -80,6 +85,16 @@ Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
 Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
                                     bool writer) {
   QosPtr qos = MakeQos(profile);
+  if (lockstep::StrictProcess()) {
+    // No sample may be lost (lockstep.hpp): every topic reliable, and histories deep enough
+    // that neither a reader's cache nor a writer's resend buffer drops one.
+    const QosSpec spec = DescribeQos(profile);
+    if (!spec.reliable) dds_qset_reliability(qos.get(), DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+    const int deep = writer ? lockstep::kStrictWriterDepth : lockstep::kStrictReaderDepth;
+    if (spec.history_depth != 0 && spec.history_depth < deep) {
+      dds_qset_history(qos.get(), DDS_HISTORY_KEEP_LAST, deep);
+    }
+  }
   const dds_entity_t e = writer ? dds_create_writer(p.handle(), topic, qos.get(), nullptr)
                                 : dds_create_reader(p.handle(), topic, qos.get(), nullptr);
   if (e < 0) return DdsError(writer ? "creating a writer" : "creating a reader", e);
@@ -157,12 +172,91 @@ std::int64_t WriteTick() { return t_write_tick; }
 void SetReadGate(std::int64_t before_ns) { t_read_gate = before_ns; }
 std::int64_t ReadGate() { return t_read_gate; }
 
+namespace {
+struct WriterCount {
+  dds_entity_t participant = 0;
+  int topic = -1;
+  std::uint64_t written = 0;
+};
+std::mutex g_writers_mu;
+std::unordered_map<dds_entity_t, WriterCount> g_writers;
+thread_local TopicCounts t_frontier;
+std::atomic<std::uint64_t> g_missing{0};
+}  // namespace
+
+int CatalogIndex(std::string_view topic) {
+  const auto& catalog = TopicCatalog();
+  for (std::size_t i = 0; i < catalog.size(); ++i) {
+    if (catalog[i].name == topic) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void RegisterWriter(dds_entity_t writer, dds_entity_t participant, std::string_view topic) {
+  const int index = CatalogIndex(topic);
+  if (index < 0) return;
+  std::lock_guard lock(g_writers_mu);
+  g_writers[writer] = WriterCount{participant, index, 0};
+}
+
+TopicCounts WrittenBy(dds_entity_t participant) {
+  TopicCounts out(TopicCatalog().size(), 0);
+  std::lock_guard lock(g_writers_mu);
+  for (const auto& [w, c] : g_writers) {
+    if (c.participant == participant) out[static_cast<std::size_t>(c.topic)] += c.written;
+  }
+  return out;
+}
+
+void SetFrontier(TopicCounts frontier) { t_frontier = std::move(frontier); }
+const TopicCounts& Frontier() { return t_frontier; }
+std::uint64_t MissingSamples() { return g_missing.load(std::memory_order_relaxed); }
+
 dds_return_t Write(dds_entity_t writer, const void* sample) {
-  if (t_write_tick == kOff) return dds_write(writer, sample);
-  return dds_write_ts(writer, sample, static_cast<dds_time_t>(t_write_tick));
+  const dds_return_t rc = t_write_tick == kOff
+                              ? dds_write(writer, sample)
+                              : dds_write_ts(writer, sample, static_cast<dds_time_t>(t_write_tick));
+  if (rc == DDS_RETCODE_OK) {
+    std::lock_guard lock(g_writers_mu);
+    if (auto it = g_writers.find(writer); it != g_writers.end()) ++it->second.written;
+  }
+  return rc;
+}
+
+namespace {
+std::atomic<bool> g_strict_process{false};
+}  // namespace
+void SetStrictProcess(bool strict) { g_strict_process.store(strict); }
+bool StrictProcess() { return g_strict_process.load(); }
+
+bool Ungated(std::string_view topic) {
+  return topic == "sim/clock" || topic == "sim/clock_ack" || topic == "sim/control";
 }
 
 std::uint64_t LateSamples() { return g_late.load(std::memory_order_relaxed); }
-void CountLateSample() { g_late.fetch_add(1, std::memory_order_relaxed); }
+namespace {
+std::mutex g_late_mu;
+std::string g_last_late;
+}  // namespace
+
+void CountLateSample(std::string_view topic, std::int64_t written_ns, std::int64_t gate_ns) {
+  g_late.fetch_add(1, std::memory_order_relaxed);
+  char text[64];
+  std::snprintf(text, sizeof text, " written at %.3f s, handed out at %.3f s",
+                static_cast<double>(written_ns) * 1e-9, static_cast<double>(gate_ns) * 1e-9);
+  std::lock_guard lock(g_late_mu);
+  g_last_late = std::string(topic) + text;
+}
+
+void CountMissingSamples(std::string_view topic, std::uint64_t n) {
+  g_missing.fetch_add(n, std::memory_order_relaxed);
+  std::lock_guard lock(g_late_mu);
+  g_last_late = std::to_string(n) + " sample(s) of " + std::string(topic) + " never arrived";
+}
+
+std::string LastLateSample() {
+  std::lock_guard lock(g_late_mu);
+  return g_last_late;
+}
 
 }  // namespace rover::dds::lockstep

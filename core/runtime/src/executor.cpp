@@ -174,6 +174,12 @@ void Executor::SpinOnce(Duration max_wait) {
   if (after_spin_) Invoke("after-spin", after_spin_);
 }
 
+void Executor::DrainAll() {
+  for (auto& s : subscriptions_) {
+    if (s.attached) s.drain();
+  }
+}
+
 void Executor::SetStrictTicks(bool strict) {
   ROVER_DEMAND(!strict || clock_.simulated());
   strict_ = strict;

@@ -93,6 +93,10 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
   auto p = dds::Participant::Create(options.domain);
   if (!p.ok()) return p.status();
   ctx->participant_ = std::move(*p);
+  // Before any reader exists (lockstep.hpp: no sample may be lost to a shallow history).
+  // The simulator (on wall time, the source of ticks) is part of it too: its writers must be as
+  // reliable as the services' readers expect.
+  if (options.lockstep == "strict") dds::lockstep::SetStrictProcess(true);
 
   if (options.clock == "sim") {
     auto clock = std::make_unique<ManualClock>(Time{0}, /*valid=*/false);
@@ -123,6 +127,11 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
         [sim, me](const dds::Sample<rover_sim_Clock>& s) {
           sim->Set(Time{s->sim_time_ns});
           ++me->clock_samples_;
+          // Strict lock-step: what the tick's readers must have received first.
+          if (me->strict_lockstep_) {
+            dds::lockstep::SetFrontier(dds::lockstep::TopicCounts(
+                s->written._buffer, s->written._buffer + s->written._length));
+          }
         },
         /*always=*/true));
     if (options.lockstep == "strict") {
@@ -180,17 +189,34 @@ void ServiceContext::AcknowledgeClock() {
     if (!served || *served != now || clock_samples_ == clock_samples_acked_) return;
     if (const std::uint64_t late = dds::lockstep::LateSamples(); late > late_reported_) {
       log::Warn("lock-step: samples arrived a tick late; this run may not be reproducible",
-                {{"late_samples", late}, {"sim_time_s", now.seconds()}});
+                {{"late_samples", late},
+                 {"sim_time_s", now.seconds()},
+                 {"last", dds::lockstep::LastLateSample()}});
       // Counted in the heartbeat's activities, so the run report can say so.
       for (std::uint64_t i = late_reported_; i < late; ++i) {
         activities_.Add("late_samples", Duration::zero());
       }
       late_reported_ = late;
     }
+    if (const std::uint64_t missing = dds::lockstep::MissingSamples(); missing > missing_reported_) {
+      log::Warn("lock-step: samples written before this tick never arrived; this run may not be "
+                "reproducible",
+                {{"missing_samples", missing},
+                 {"sim_time_s", now.seconds()},
+                 {"last", dds::lockstep::LastLateSample()}});
+      for (std::uint64_t i = missing_reported_; i < missing; ++i) {
+        activities_.Add("late_samples", Duration::zero());
+      }
+      missing_reported_ = missing;
+    }
     rover_sim_ClockAck a{};
     a.header.stamp_ns = now.ns;
     dds::CopyString(a.service, name_);
     a.sim_time_ns = now.ns;
+    dds::lockstep::TopicCounts written = dds::lockstep::WrittenBy(participant_.handle());
+    a.written._buffer = written.data();
+    a.written._length = a.written._maximum = static_cast<std::uint32_t>(written.size());
+    a.written._release = false;
     if (clock_ack_writer_.Write(a).ok()) {
       clock_samples_acked_ = clock_samples_;
       last_ack_ = now;

@@ -12,6 +12,7 @@ Result<std::unique_ptr<RunLoop>> RunLoop::Create(const dds::Participant& partici
   ROVER_ASSIGN_OR_RETURN(auto clock,
                          dds::Reader<rover_sim_Clock>::Create(participant, "sim/clock"));
   std::unique_ptr<RunLoop> loop(new RunLoop(std::move(clock), limits));
+  loop->participant_ = participant.handle();
   ROVER_ASSIGN_OR_RETURN(auto ws, dds::WaitSet::Create(participant));
   loop->waitset_ = std::make_unique<dds::WaitSet>(std::move(ws));
   ROVER_RETURN_IF_ERROR(loop->waitset_->Attach(loop->clock_.handle(), 0));
@@ -29,6 +30,7 @@ RunLoop::~RunLoop() {
   if (limits_.strict_lockstep) {
     dds::lockstep::SetWriteTick(dds::lockstep::kOff);
     dds::lockstep::SetReadGate(dds::lockstep::kOff);
+    dds::lockstep::SetFrontier({});
   }
 }
 
@@ -38,6 +40,10 @@ void RunLoop::Acknowledge() {
   a.header.stamp_ns = tick_ns_;
   dds::CopyString(a.service, kRunnerName);
   a.sim_time_ns = tick_ns_;
+  dds::lockstep::TopicCounts written = dds::lockstep::WrittenBy(participant_);
+  a.written._buffer = written.data();
+  a.written._length = a.written._maximum = static_cast<std::uint32_t>(written.size());
+  a.written._release = false;
   if (ack_.Write(a).ok()) acked_samples_ = clock_samples_;
 }
 
@@ -54,6 +60,10 @@ void RunLoop::Pump() {
     heard_ = true;
     tick_ns_ = c->sim_time_ns;  // a reset goes back: follow it
     now_s_ = Time{c->sim_time_ns}.seconds();
+    if (limits_.strict_lockstep) {
+      dds::lockstep::SetFrontier(dds::lockstep::TopicCounts(
+          c->written._buffer, c->written._buffer + c->written._length));
+    }
   }
   if (limits_.strict_lockstep) {
     dds::lockstep::SetReadGate(heard_ ? tick_ns_ : gate);

@@ -241,7 +241,8 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
       ServiceTiming timing;
       timing.service = st.value("service", std::string());
       timing.cpu_s = st.value("cpu_s", 0.0);
-      for (const auto& [name, a] : st.value("activities", nlohmann::json::object()).items()) {
+      const nlohmann::json activities = st.value("activities", nlohmann::json::object());
+      for (const auto& [name, a] : activities.items()) {
         timing.activities.push_back({name, a.value("wall_s", 0.0), a.value("count", 0u)});
       }
       r.service_timing.push_back(std::move(timing));

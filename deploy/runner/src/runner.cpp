@@ -47,6 +47,8 @@ Status PreflightScenario(const Scenario& scenario, std::uint32_t seed, const Run
 Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
                               const RunOptions& options) {
   const Time wall_start = MonotonicNow();
+  // Strict lock-step: the runner's readers (recorder, judge, task, supervisor) lose no sample.
+  if (scenario.lockstep == "strict") dds::lockstep::SetStrictProcess(true);
   // Declared first so that it is destroyed last: the task's, recorder's and loop's DDS entities
   // belong to its participant.
   std::unique_ptr<ServiceSet> set;

@@ -44,6 +44,47 @@ TEST(RunReport, JsonRoundTrip) {
   EXPECT_FALSE(RunResultFromJson(nlohmann::json{{"seed", 1}}).ok());
 }
 
+TEST(RunReport, TimingsRoundTripAndSummarizeWhereTheTimeWent) {
+  RunResult r = MakeRun(5, true, 0.1);
+  r.lockstep = "strict";
+  r.late_samples = 2;
+  r.recording_mb = 12.5;
+  r.service_timing.push_back({"rover-sim", 20.0, {{"physics", 12.0, 40000}, {"render", 4.0, 10}}});
+  r.service_timing.push_back({"scenario-runner", 1.0, {}});
+  // Through text, as roverctl report reads it.
+  auto back = RunResultFromJson(nlohmann::json::parse(ToJson(r).dump()));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(back->lockstep, "strict");
+  EXPECT_EQ(back->late_samples, 2u);
+  EXPECT_EQ(back->recording_mb, 12.5);
+  ASSERT_EQ(back->service_timing.size(), 2u);
+  EXPECT_EQ(back->service_timing[0].service, "rover-sim");
+  ASSERT_EQ(back->service_timing[0].activities.size(), 2u);
+  EXPECT_EQ(back->service_timing[0].activities[0].name, "physics");
+  EXPECT_EQ(back->service_timing[0].activities[0].count, 40000u);
+  EXPECT_TRUE(back->service_timing[1].activities.empty());
+
+  RunResult other = MakeRun(6, true, 0.1);  // wall 40 s like the first
+  other.recording_mb = 7.5;
+  other.service_timing.push_back({"rover-sim", 10.0, {{"physics", 8.0, 40000}}});
+  const CampaignSummary s = Summarize({r, other}, 80.0);
+  EXPECT_DOUBLE_EQ(s.recording_mb_mean, 10.0);
+  auto find = [&](const std::string& name) {
+    for (const auto& t : s.time_shares) {
+      if (t.name == name) return t;
+    }
+    ADD_FAILURE() << name;
+    return CampaignSummary::TimeShare{};
+  };
+  EXPECT_DOUBLE_EQ(find("rover-sim cpu").mean_s, 15.0);
+  EXPECT_DOUBLE_EQ(find("physics (rover-sim)").mean_s, 10.0);
+  EXPECT_DOUBLE_EQ(find("physics (rover-sim)").share, 0.25);  // of the mean run wall, 40 s
+  EXPECT_DOUBLE_EQ(find("render (rover-sim)").mean_s, 2.0);   // absent in one run: counts 0
+  const std::string table = FormatSummaryTable({r, other}, s);
+  EXPECT_NE(table.find("where the time went"), std::string::npos) << table;
+  EXPECT_NE(table.find("10.0 MB recorded per run"), std::string::npos) << table;
+}
+
 TEST(RunReport, NotANumberSurvivesTheRoundTrip) {
   // A figure or criterion nobody could measure is NaN, which JSON writes as null; reading the
   // folder back (roverctl report, a fault campaign's table) must not fail on it.

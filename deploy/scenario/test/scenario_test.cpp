@@ -156,7 +156,7 @@ TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
   auto s = Parse(kGood);
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->lockstep, "strict");
-  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.01);
+  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.02);
   // Raw camera frames stay out of the recording unless asked for.
   EXPECT_EQ(s->record.topics.exclude, (std::vector<std::string>{"hw/camera_frame"}));
   std::string text = kGood;
@@ -166,10 +166,10 @@ TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
     t.replace(t.find(sim), sim.size(), replacement);
     return t;
   };
-  auto lead = Parse(with("sim: {lockstep: lead, lockstep_quantum_s: 0.02}"));
+  auto lead = Parse(with("sim: {lockstep: lead, lockstep_quantum_s: 0.05}"));
   ASSERT_TRUE(lead.ok()) << lead.status().message();
   EXPECT_EQ(lead->lockstep, "lead");
-  EXPECT_DOUBLE_EQ(lead->lockstep_quantum_s, 0.02);
+  EXPECT_DOUBLE_EQ(lead->lockstep_quantum_s, 0.05);
   EXPECT_EQ(Err(with("sim: {lockstep: tight}")),
             "5: sim.lockstep: 'tight' is not one of: strict, lead, off");
   EXPECT_EQ(Err(with("sim: {lockstep_quantum_s: 0.015}")),

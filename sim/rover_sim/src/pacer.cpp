@@ -63,6 +63,9 @@ void PacerOptions::BindParams(ParamBinder<PacerOptions>& b) {
       .Range(0.001, 1.0);
   b.Bind("lockstep_services", &PacerOptions::lockstep_services,
          "the services strict lock-step waits for, comma-separated (their --name)");
+  b.Bind("lockstep_pipelined", &PacerOptions::lockstep_pipelined,
+         "strict: step a quantum while the services serve the tick that began it (their inputs "
+         "apply one quantum later; faster, not yet bit-reproducible: docs/scenarios.md)");
 }
 
 Pacer::Pacer(const PacerOptions& options)
@@ -73,6 +76,10 @@ Pacer::Pacer(const PacerOptions& options)
                                         : std::vector<std::string>{}) {}
 
 void Pacer::SetBarrier(std::int64_t sim_ns, Time wall_now) {
+  if (sim_ns < barrier_ns_) {
+    // Time went back (a reset): what was acknowledged before says nothing about the new time.
+    for (auto& [name, s] : acks_) s.seen = false;
+  }
   barrier_ns_ = sim_ns;
   barrier_wall_ = wall_now;
 }
@@ -121,21 +128,9 @@ Duration Pacer::UntilNextStep(Time wall_now, double sim_s, std::vector<std::stri
   if (paused_) return kPausedPoll;
   if (options_.lockstep_strict) {
     if (!stalled_.empty()) return kPausedPoll;
-    const std::vector<std::string> missing = Missing();
-    if (!missing.empty()) {
-      // Stalled: no acknowledgement of the barrier for lockstep_stall_s since it was set (or,
-      // for a service that acknowledged something later, since then).
-      for (const auto& name : missing) {
-        auto it = acks_.find(name);
-        const Time since = it != acks_.end() && it->second.seen
-                               ? std::max(it->second.changed, barrier_wall_)
-                               : barrier_wall_;
-        if (wall_now - since > Seconds(options_.lockstep_stall_s)) {
-          stalled_ = name;
-          return kPausedPoll;
-        }
-      }
-      return kStrictWait;
+    if (!options_.lockstep_pipelined) {
+      const Duration d = UntilBarrierServed(wall_now);
+      if (d > Duration::zero()) return d;
     }
   } else if (lockstep()) {
     const std::int64_t need = Time::FromSeconds(sim_s - options_.lockstep_lead_s).ns;
@@ -154,6 +149,25 @@ Duration Pacer::UntilNextStep(Time wall_now, double sim_s, std::vector<std::stri
     if (wall_now < due) return due - wall_now;
   }
   return Duration::zero();
+}
+
+Duration Pacer::UntilBarrierServed(Time wall_now) {
+  if (!stalled_.empty()) return kPausedPoll;
+  const std::vector<std::string> missing = Missing();
+  if (missing.empty()) return Duration::zero();
+  // Stalled: no acknowledgement of the barrier for lockstep_stall_s since it was set (or, for a
+  // service that acknowledged something later, since then).
+  for (const auto& name : missing) {
+    auto it = acks_.find(name);
+    const Time since = it != acks_.end() && it->second.seen
+                           ? std::max(it->second.changed, barrier_wall_)
+                           : barrier_wall_;
+    if (wall_now - since > Seconds(options_.lockstep_stall_s)) {
+      stalled_ = name;
+      return kPausedPoll;
+    }
+  }
+  return kStrictWait;
 }
 
 double Pacer::MeasuredRealTimeFactor(Time wall_now, double sim_s) const {

@@ -126,6 +126,11 @@ Result<std::unique_ptr<SimEngine>> SimEngine::Create(World world, const Hardware
   e->sensors_ = std::make_unique<SensorSuite>(std::move(*suite));
   e->truth_every_ = std::max(1, static_cast<int>(std::lround(1.0 / (options.period_s * options.truth_rate_hz))));
   e->rock_touched_.assign(e->world_.terrain.rocks.size(), false);
+  for (std::size_t i = 0; i < e->world_.terrain.rocks.size(); ++i) {
+    if (e->world_.terrain.rocks[i].height > e->options_.traversable_height) {
+      e->tall_rocks_.push_back(i);
+    }
+  }
   return e;
 }
 
@@ -179,8 +184,8 @@ Result<StepOutput> SimEngine::Step() {
   const auto& rocks = world_.terrain.rocks;
   for (const auto& w : r.wheels) {
     if (!w.in_contact) continue;
-    for (std::size_t i = 0; i < rocks.size(); ++i) {
-      if (rock_touched_[i] || rocks[i].height <= options_.traversable_height) continue;
+    for (const std::size_t i : tall_rocks_) {
+      if (rock_touched_[i]) continue;
       if ((w.contact_point_site.head<2>() - rocks[i].position.head<2>()).norm() < rocks[i].diameter / 2) {
         rock_touched_[i] = true;
         ++rock_contacts_;

@@ -149,6 +149,7 @@ TEST(PacerTest, StrictWaitsForEveryNamedServiceFromTheStart) {
   o.real_time_factor = 0.0;
   o.lockstep_strict = true;
   o.lockstep_services = "dl-pose,scenario-runner";
+  o.lockstep_pipelined = false;
   Pacer p(o);
   p.set_self("rover-sim");
   p.Anchor(Wall(0), 0.0);
@@ -177,6 +178,7 @@ TEST(PacerTest, StrictStallsOnAServiceThatNeverAnswersAndNamesIt) {
   o.lockstep_strict = true;
   o.lockstep_services = "dl-pose,dl-vo";
   o.lockstep_stall_s = 2.0;
+  o.lockstep_pipelined = false;
   Pacer p(o);
   p.SetBarrier(Time::FromSeconds(5.0).ns, Wall(10.0));
   p.OnAck("dl-pose", Time::FromSeconds(5.0).ns, Wall(10.1));
@@ -188,6 +190,30 @@ TEST(PacerTest, StrictStallsOnAServiceThatNeverAnswersAndNamesIt) {
   // A stalled run stays stopped (it is no longer reproducible).
   p.OnAck("dl-vo", Time::FromSeconds(5.0).ns, Wall(12.2));
   EXPECT_EQ(p.UntilNextStep(Wall(12.3), 5.0), Pacer::kPausedPoll);
+}
+
+// Pipelined: a quantum steps at once; the clock at its end waits until the barrier that began
+// it has been served.
+TEST(PacerTest, PipelinedStrictStepsAtOnceAndHoldsTheClockUntilTheBarrierIsServed) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  o.lockstep_strict = true;
+  o.lockstep_services = "dl-pose";
+  o.lockstep_stall_s = 2.0;
+  o.lockstep_pipelined = true;
+  Pacer p(o);
+  p.SetBarrier(0, Wall(0));
+  EXPECT_EQ(p.UntilNextStep(Wall(0), 0.0), Duration::zero());  // physics of (0, Q] at once
+  EXPECT_EQ(p.UntilBarrierServed(Wall(0)), Pacer::kStrictWait);  // the clock at Q waits
+  p.OnAck("dl-pose", 0, Wall(0.01));
+  EXPECT_EQ(p.UntilBarrierServed(Wall(0.01)), Duration::zero());
+  const std::int64_t q = Time::FromSeconds(0.02).ns;
+  p.SetBarrier(q, Wall(0.02));
+  EXPECT_EQ(p.UntilNextStep(Wall(0.02), 0.02), Duration::zero());
+  EXPECT_EQ(p.UntilBarrierServed(Wall(0.03)), Pacer::kStrictWait);
+  EXPECT_EQ(p.UntilBarrierServed(Wall(2.1)), Pacer::kPausedPoll);  // stalled
+  EXPECT_EQ(p.stalled(), "dl-pose");
+  EXPECT_EQ(p.UntilNextStep(Wall(2.1), 0.02), Pacer::kPausedPoll);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cstring>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -173,6 +174,7 @@ class Writer {
     out.name_ = topic;
     out.profile_ = *prof;
     out.seam_ = SeamFor(topic, Direction::kWrite);
+    lockstep::RegisterWriter(out.writer_.handle(), p.handle(), topic);
     return out;
   }
 
@@ -245,6 +247,8 @@ class Reader {
     out.name_ = topic;
     out.profile_ = *prof;
     out.seam_ = SeamFor(topic, Direction::kRead);
+    out.ungated_ = lockstep::Ungated(topic);
+    out.topic_index_ = lockstep::CatalogIndex(topic);
     if (DescribeQos(*prof).fresh_only) out.fresh_after_ = dds_time();
     return out;
   }
@@ -255,7 +259,9 @@ class Reader {
   template <class F>
   std::size_t TakeEach(F&& fn) {
     ROVER_DEMAND(reader_.valid());
-    if (const std::int64_t gate = lockstep::ReadGate(); gate != lockstep::kOff) {
+    if (const std::int64_t gate = ungated_ ? lockstep::kOff : lockstep::ReadGate();
+        gate != lockstep::kOff) {
+      AwaitFrontier(gate);
       Stash();
       std::size_t delivered = 0;
       for (auto& s : TakeVisible(gate, held_.size())) {
@@ -279,7 +285,9 @@ class Reader {
       const dds_return_t n = dds_take(reader_.handle(), ptrs, infos, kBatch, kBatch);
       if (n <= 0) break;
       for (dds_return_t i = 0; i < n; ++i) {
-        if (!infos[i].valid_data || Stale(infos[i])) continue;
+        if (!infos[i].valid_data) continue;
+        NoteArrival(infos[i]);
+        if (Stale(infos[i])) continue;
         if (seam_ && !seam_->Idle()) {
           seam_->OnRead(ptrs[i], infos[i], TopicType<T>::Descriptor(), sink);
         } else {
@@ -297,7 +305,9 @@ class Reader {
   /// actually taken cost an allocation.
   std::vector<OwnedSample<T>> Take(std::size_t max = 32) {
     ROVER_DEMAND(reader_.valid() && max > 0);
-    if (const std::int64_t gate = lockstep::ReadGate(); gate != lockstep::kOff) {
+    if (const std::int64_t gate = ungated_ ? lockstep::kOff : lockstep::ReadGate();
+        gate != lockstep::kOff) {
+      AwaitFrontier(gate);
       Stash();
       return TakeVisible(gate, max);
     }
@@ -345,7 +355,9 @@ class Reader {
     if (n <= 0) return out;
     out.reserve(out.size() + static_cast<std::size_t>(n));
     for (dds_return_t i = 0; i < n; ++i) {
-      if (!infos[i].valid_data || (check_stale && Stale(infos[i]))) continue;
+      if (!infos[i].valid_data) continue;
+      NoteArrival(infos[i]);
+      if (check_stale && Stale(infos[i])) continue;
       current = static_cast<std::size_t>(i);
       if (seam_ && !seam_->Idle()) {
         seam_->OnRead(&pool_[current].data(), infos[i], TopicType<T>::Descriptor(), sink);
@@ -355,6 +367,52 @@ class Reader {
       current = max;
     }
     return out;
+  }
+
+  // Strict lock-step: waits (stashing) until this reader has received every sample the frontier
+  // of the tick being served counts on its topic. The frontier counts samples written so far;
+  // this reader counts what it took from DDS by the tick it was written at (before the fault
+  // seam, which may drop what it received). Counting starts at the second tick it serves (B1):
+  // expected = frontier(T) - frontier(B1) samples, written at ticks in [B1, T). Gives up after
+  // kFrontierWaitS and counts the rest missing.
+  void AwaitFrontier(std::int64_t gate) {
+    const lockstep::TopicCounts& f = lockstep::Frontier();
+    if (topic_index_ < 0 || f.size() <= static_cast<std::size_t>(topic_index_)) return;
+    const std::uint64_t frontier = f[static_cast<std::size_t>(topic_index_)];
+    if (count_phase_ == 0) {  // first tick served: only note it
+      count_phase_ = 1;
+      first_tick_ = gate;
+      return;
+    }
+    if (count_phase_ == 1) {
+      if (gate <= first_tick_) return;
+      count_phase_ = 2;
+      count_from_ = gate;
+      frontier_base_ = frontier;
+      return;
+    }
+    const std::uint64_t expected = frontier > frontier_base_ ? frontier - frontier_base_ : 0;
+    auto counted = [&] {
+      // Fold what arrived for ticks before the gate into the count; later ticks wait.
+      for (auto it = arrivals_.begin(); it != arrivals_.end() && it->first < gate;) {
+        if (it->first >= count_from_) counted_ += it->second;
+        it = arrivals_.erase(it);
+      }
+      return counted_;
+    };
+    if (counted() >= expected) return;
+    const dds_time_t deadline =
+        dds_time() + static_cast<dds_time_t>(lockstep::kFrontierWaitS * 1e9);
+    while (true) {
+      Stash();
+      if (counted() >= expected) return;
+      if (dds_time() > deadline) {
+        lockstep::CountMissingSamples(name_, expected - counted_);
+        counted_ = expected;
+        return;
+      }
+      dds_sleepfor(DDS_USECS(50));
+    }
   }
 
   // The stashed samples visible under `gate`, oldest tick first (then stamp and header.seq, so
@@ -370,7 +428,7 @@ class Reader {
           if (s.info().source_timestamp < lockstep::kWallStampFloor &&
               last_gate_ != lockstep::kOff && s.info().source_timestamp < last_gate_ &&
               (!seam_ || seam_->Idle())) {
-            lockstep::CountLateSample();
+            lockstep::CountLateSample(name_, s.info().source_timestamp, gate);
           }
           out.push_back(std::move(s));
         }
@@ -425,6 +483,18 @@ class Reader {
   }
   std::deque<OwnedSample<T>> held_;
   std::int64_t first_gate_ = lockstep::kOff;  // first gate seen (fresh-only readers)
+  bool ungated_ = false;                      // lockstep::Ungated(topic)
+  int topic_index_ = -1;                      // lockstep::CatalogIndex(topic)
+  // Strict lock-step frontier counting (AwaitFrontier): samples taken from DDS per source tick.
+  void NoteArrival(const dds_sample_info_t& info) {
+    if (count_phase_ == 0 || info.source_timestamp >= lockstep::kWallStampFloor) return;
+    ++arrivals_[info.source_timestamp];
+  }
+  std::map<std::int64_t, std::uint64_t> arrivals_;  // tick -> samples not counted yet
+  std::uint64_t counted_ = 0;       // arrived with ticks in [count_from_, last gate)
+  std::uint64_t frontier_base_ = 0;
+  std::int64_t first_tick_ = 0, count_from_ = 0;
+  int count_phase_ = 0;             // 0: never served, 1: first tick served, 2: counting
   std::int64_t last_gate_ = lockstep::kOff;
 
   std::string name_;

@@ -60,6 +60,11 @@ class Executor {
         always, reader.seam());
   }
 
+  /// Drains every attached subscription now (the ones served while inactive too), whether or
+  /// not new samples woke it: for a loop that moves its own read gate (the simulator's
+  /// pipelined lock-step) and must hand out what the gate held back. Callbacks run inline.
+  void DrainAll();
+
   /// Strict lock-step ticks (see the file comment). Precondition: the run clock is simulated.
   void SetStrictTicks(bool strict);
   bool strict_ticks() const { return strict_; }

@@ -16,12 +16,19 @@
 ///                source timestamp is < T, oldest tick first, and keeps the others for a later
 ///                tick.
 ///
+///   frontier     every acknowledgement carries how many samples its participant has written
+///                per topic; the simulator sends their sum (and its own) with the next tick,
+///                and a gated reader first waits until it has received that many (bounded by
+///                kFrontierWaitS of wall time).
+///
 /// So an output written while serving tick T is seen by everyone at T + Q, never at T, however
-/// fast its writer was; and at T + Q it has arrived, because its writer acknowledged T only
-/// after writing it and the simulator published T + Q only after that acknowledgement (causal
-/// order on one host: the sample precedes the acknowledgement on the wire). A sample that
-/// nevertheless arrives a tick late (a lost fragment resent) is still delivered, and counted
-/// (LateSamples), so a run that may not be reproducible says so.
+/// fast its writer was; and at T + Q it has arrived: its writer acknowledged T only after
+/// writing it, the simulator published T + Q only after that acknowledgement, and the frontier
+/// makes the reader wait for it if it travelled slower than the clock (which happens on one
+/// host: samples of two senders are not delivered in the order they were sent). A sample that
+/// nevertheless arrives a tick late is still delivered, and counted (LateSamples), and one that
+/// never arrives within kFrontierWaitS is counted missing, so a run that may not be
+/// reproducible says so.
 ///
 /// Source timestamps below kWallStampFloor are ticks (simulated ns); a sample stamped with wall
 /// time (a writer that is not in lock-step) is not held back by a gate.
@@ -33,6 +40,9 @@
 
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace rover::dds::lockstep {
 
@@ -52,6 +62,43 @@ std::int64_t ReadGate();
 /// typed writers and of the fault seams goes through here).
 dds_return_t Write(dds_entity_t writer, const void* sample);
 
+/// A process in strict lock-step (a service with ROVER_LOCKSTEP=strict, the scenario runner of
+/// a strict scenario): its readers and writers created from then on are reliable (stream topics
+/// too) and keep kStrictReaderDepth / kStrictWriterDepth samples per instance instead of their
+/// profile's last one or eight. A keep-last-1 reader loses a sample when the next one arrives
+/// before it was taken, a best-effort one loses what the network drops, and a keep-last-1
+/// writer cannot resend what it has replaced: each makes a run depend on scheduling. Readers
+/// outside lock-step (roverctl, the recorder) still match: a reliable writer serves best-effort
+/// readers.
+void SetStrictProcess(bool strict);
+bool StrictProcess();
+inline constexpr int kStrictReaderDepth = 256;
+inline constexpr int kStrictWriterDepth = 64;
+
+/// Per topic of the catalog (TopicCatalog() order): samples written, or to be received.
+using TopicCounts = std::vector<std::uint64_t>;
+/// The catalog index of `topic`, or -1 for a topic outside the catalog.
+int CatalogIndex(std::string_view topic);
+/// Registers a writer (Writer<T>::Create does): its writes through Write() count for `topic`
+/// and for `participant`.
+void RegisterWriter(dds_entity_t writer, dds_entity_t participant, std::string_view topic);
+/// The samples the registered writers of `participant` have written, per catalog topic.
+TopicCounts WrittenBy(dds_entity_t participant);
+/// The frontier of the tick this thread serves: a gated reader of catalog topic i first waits
+/// until it has received frontier[i] samples (counting from when it first read). Empty: no
+/// waiting.
+void SetFrontier(TopicCounts frontier);
+const TopicCounts& Frontier();
+/// Wall time a reader waits for its frontier before it counts the rest missing and goes on.
+inline constexpr double kFrontierWaitS = 2.0;
+/// Samples a reader of this process gave up waiting for (see kFrontierWaitS).
+std::uint64_t MissingSamples();
+void CountMissingSamples(std::string_view topic, std::uint64_t n);
+
+/// The lock-step machinery's own topics (sim/clock, sim/clock_ack, sim/control): never held
+/// back by a gate, whatever thread reads them.
+bool Ungated(std::string_view topic);
+
 /// True when a sample with this source timestamp is visible under the gate `before_ns`.
 inline bool Visible(dds_time_t source_timestamp, std::int64_t before_ns) {
   return before_ns == kOff || source_timestamp >= kWallStampFloor || source_timestamp < before_ns;
@@ -60,6 +107,9 @@ inline bool Visible(dds_time_t source_timestamp, std::int64_t before_ns) {
 /// Samples of this process delivered later than the tick after the one they were written at
 /// (they arrived late; the run may not be reproducible).
 std::uint64_t LateSamples();
-void CountLateSample();
+/// Counts a late sample of `topic` written at tick `written_ns`, handed out under gate `gate_ns`.
+void CountLateSample(std::string_view topic, std::int64_t written_ns, std::int64_t gate_ns);
+/// The last late sample counted: "<topic> written at <t> s, handed out at <t> s" ("" if none).
+std::string LastLateSample();
 
 }  // namespace rover::dds::lockstep

@@ -222,6 +222,7 @@ class ServiceContext {
   std::uint64_t clock_samples_ = 0;        // sim/clock samples heard
   std::uint64_t clock_samples_acked_ = 0;  // ... when the last acknowledgement went out
   std::uint64_t late_reported_ = 0;        // lock-step late samples already warned about
+  std::uint64_t missing_reported_ = 0;     // lock-step missing samples already warned about
   LifecycleState state_ = LifecycleState::kUnconfigured;
   rover_SensorHealth health_ = rover_HEALTH_OK;
   std::string health_message_;

@@ -73,6 +73,7 @@ class RunLoop {
   void Acknowledge();
 
   dds::Reader<rover_sim_Clock> clock_;
+  dds_entity_t participant_ = 0;
   dds::Writer<rover_sim_ClockAck> ack_;
   std::unique_ptr<dds::WaitSet> waitset_;
   std::int64_t tick_ns_ = 0;

@@ -105,6 +105,10 @@ class SimEngine {
   /// Attitude at the previous IMU sample: the gyro reports the mean rate over the sample period.
   std::optional<Eigen::Matrix3d> last_attitude_;
   std::vector<bool> rock_touched_;
+  // Indices of the rocks taller than traversable_height, the only ones a contact is counted
+  // for (a VL-2 field has thousands of rocks and few of them tall: checking only these keeps
+  // the per-step contact test off the profile).
+  std::vector<std::size_t> tall_rocks_;
   std::uint32_t rock_contacts_ = 0;
   double max_contact_height_ = 0;
 };
