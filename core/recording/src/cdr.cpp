@@ -166,6 +166,7 @@ std::vector<std::uint8_t> WriteClockSample(const ClockSample& clock) {
   w.Int64(clock.sim_time_ns);
   w.Double(clock.real_time_factor);
   w.Bool(clock.paused);
+  w.Uint32(0);  // written: an empty frontier (a replay is not in strict lock-step)
   return std::move(w).Finish();
 }
 

@@ -17,11 +17,13 @@ TEST(Cdr, ClockRoundTripInXcdr1LittleEndian) {
   c.paused = true;
   const Bytes b = WriteClockSample(c);
   // Header 00 01 (CDR_LE); stamp at payload 0; frame length 4 at 8; "sim\0" at 12; seq at 16;
-  // sim_time_ns aligned to 8 at 24; rtf at 32; paused at 40; padded to 44 payload bytes.
-  ASSERT_EQ(b.size(), 4u + 44u);
+  // sim_time_ns aligned to 8 at 24; rtf at 32; paused at 40; the empty `written` sequence's
+  // length aligned to 4 at 44; 48 payload bytes, no padding.
+  ASSERT_EQ(b.size(), 4u + 48u);
   EXPECT_EQ(b[0], 0x00);
   EXPECT_EQ(b[1], 0x01);
-  EXPECT_EQ(b[3], 3);  // padding bytes the option field announces
+  EXPECT_EQ(b[3], 0);  // padding bytes the option field announces
+  EXPECT_EQ(b[4 + 44], 0);  // written: empty
   EXPECT_EQ(b[4 + 8], 4);
   EXPECT_EQ(b[4 + 12], 's');
   EXPECT_EQ(b[4 + 16], 7);

@@ -26,6 +26,7 @@ class LockstepTest : public ::testing::Test {
   void TearDown() override {
     lockstep::SetWriteTick(lockstep::kOff);
     lockstep::SetReadGate(lockstep::kOff);
+    lockstep::SetFrontier({});
   }
   static rover_dl_DriveCommand Command(std::uint32_t id) {
     rover_dl_DriveCommand c{};
@@ -119,6 +120,46 @@ TEST_F(LockstepTest, WallStampedSamplesAreNotHeldBack) {
     return !got.empty();
   }));
   EXPECT_EQ(got[0]->command_id, 5u);
+}
+
+// The frontier: a reader serving a tick first waits until it has received what the tick says
+// was written on its topic since it started counting (its second tick); what never comes is
+// counted missing after kFrontierWaitS, and the reader goes on.
+TEST_F(LockstepTest, AGatedReaderWaitsForTheFrontierAndCountsWhatNeverCame) {
+  auto w = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  ASSERT_TRUE(w.ok() && r.ok());
+  const int index = lockstep::CatalogIndex("dl/drive_command");
+  ASSERT_GE(index, 0);
+  auto frontier = [&](std::uint64_t n) {
+    lockstep::TopicCounts f(TopicCatalog().size(), 0);
+    f[static_cast<std::size_t>(index)] = n;
+    lockstep::SetFrontier(f);
+  };
+  frontier(5);  // written before this reader counts: never waited for
+  lockstep::SetReadGate(10);
+  EXPECT_TRUE(r->Take().empty());  // first tick served
+  lockstep::SetReadGate(20);
+  EXPECT_TRUE(r->Take().empty());  // second: counting starts (base 5)
+  lockstep::SetReadGate(lockstep::kOff);
+  lockstep::SetWriteTick(20);
+  ASSERT_TRUE(w->Write(Command(1)).ok());
+  ASSERT_TRUE(w->Write(Command(2)).ok());
+  lockstep::SetWriteTick(lockstep::kOff);
+  EXPECT_EQ(lockstep::WrittenBy(participant_.handle())[static_cast<std::size_t>(index)], 2u);
+  frontier(7);  // two more written before tick 30: Take waits until both are here
+  lockstep::SetReadGate(30);
+  auto got = r->Take();
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[1]->command_id, 2u);
+  const std::uint64_t missing = lockstep::MissingSamples();
+  frontier(8);  // one more that nobody sends
+  lockstep::SetReadGate(40);
+  EXPECT_TRUE(r->Take().empty());
+  EXPECT_EQ(lockstep::MissingSamples(), missing + 1);
+  EXPECT_NE(lockstep::LastLateSample().find("1 sample(s) of dl/drive_command never arrived"),
+            std::string::npos);
+  lockstep::SetFrontier({});
 }
 
 TEST(LockstepVisibleTest, Rule) {

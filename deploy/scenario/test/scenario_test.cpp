@@ -156,7 +156,7 @@ TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
   auto s = Parse(kGood);
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->lockstep, "strict");
-  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.02);
+  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.01);
   // Raw camera frames stay out of the recording unless asked for.
   EXPECT_EQ(s->record.topics.exclude, (std::vector<std::string>{"hw/camera_frame"}));
   std::string text = kGood;

@@ -80,9 +80,10 @@ struct Scenario {
   /// machine, not reproducible) or "off" (free running).
   std::string lockstep = "strict";
   /// [s] strict lock-step's quantum: simulated time between two ticks (a whole number of the
-  /// simulator's 10 ms periods). 20 ms: the fastest run-clock timer of the stack (ddl-joints,
-  /// 50 Hz) still fires on time; a timer faster than the quantum fires once per tick.
-  double lockstep_quantum_s = 0.02;
+  /// simulator's 10 ms periods). 10 ms, the simulator's step: each link between two services
+  /// takes one quantum, and at 20 ms the short autonav scenario already drove differently
+  /// enough to miss its goal; a timer faster than the quantum fires once per tick.
+  double lockstep_quantum_s = 0.01;
   double time_budget_s = 300;     ///< [s] simulated
   double wall_budget_s = 600;     ///< [s] wall-clock safety net
   double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]
