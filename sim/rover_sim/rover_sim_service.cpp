@@ -7,7 +7,6 @@
 // and publishes sim/clock every step. Its run clock is its own simulated time; it never follows
 // sim/clock itself. See docs/services/rover-sim.md.
 #include <cmath>
-#include <map>
 #include <cstdlib>
 
 #include "rover/base/format.hpp"
@@ -132,18 +131,12 @@ class RoverSim final : public rover::Service {
     // itself (rover/runtime/lockstep.hpp). A repeat of the tick repeats it: acknowledgements
     // that came since may count samples written while serving this very tick.
     if (pacer_->strict()) {
-      if (frontier_ns_ != c.sim_time_ns || frontier_.empty()) {
-        frontier_ = rover::dds::lockstep::WrittenBy(ctx_->participant().handle());
-        for (const auto& [service, counts] : written_) {
-          for (std::size_t i = 0; i < counts.size() && i < frontier_.size(); ++i) {
-            frontier_[i] += counts[i];
-          }
-        }
-        frontier_ns_ = c.sim_time_ns;
-        if (pipelined_) rover::dds::lockstep::SetFrontier(frontier_);  // its own gated readers
-      }
-      c.written._buffer = frontier_.data();
-      c.written._length = c.written._maximum = static_cast<std::uint32_t>(frontier_.size());
+      bool fresh = false;
+      const auto& frontier = pacer_->FrontierFor(
+          c.sim_time_ns, rover::dds::lockstep::WrittenBy(ctx_->participant().handle()), &fresh);
+      if (fresh && pipelined_) rover::dds::lockstep::SetFrontier(frontier);  // own gated readers
+      c.written._buffer = const_cast<std::uint64_t*>(frontier.data());
+      c.written._length = c.written._maximum = static_cast<std::uint32_t>(frontier.size());
       c.written._release = false;
     }
     (void)clock_w_.Write(c);
@@ -228,7 +221,7 @@ class RoverSim final : public rover::Service {
   }
 
   void OnAck(const rover_sim_ClockAck& a) {
-    written_[a.service].assign(a.written._buffer, a.written._buffer + a.written._length);
+    pacer_->OnWritten(a.service, {a.written._buffer, a.written._buffer + a.written._length});
     const std::string back = pacer_->OnAck(a.service, a.sim_time_ns, rover::MonotonicNow());
     if (!back.empty())
       rover::log::Info("lock-step: service is keeping up again", {{"service", back}});
@@ -360,10 +353,6 @@ class RoverSim final : public rover::Service {
   double stall_s_ = 30.0;
   bool stall_reported_ = false;
   bool pipelined_ = false;
-  // Strict lock-step: each participant's written counts from its latest acknowledgement.
-  std::map<std::string, rover::dds::lockstep::TopicCounts> written_;
-  rover::dds::lockstep::TopicCounts frontier_;  // of the tick last published
-  std::int64_t frontier_ns_ = -1;
   bool waiting_ = false;
   rover::Time wait_start_{0};
   dds::Writer<rover_sim_Clock> clock_w_;

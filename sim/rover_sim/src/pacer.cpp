@@ -151,6 +151,26 @@ Duration Pacer::UntilNextStep(Time wall_now, double sim_s, std::vector<std::stri
   return Duration::zero();
 }
 
+void Pacer::OnWritten(const std::string& service, std::vector<std::uint64_t> counts) {
+  written_[service] = std::move(counts);
+}
+
+const std::vector<std::uint64_t>& Pacer::FrontierFor(std::int64_t tick_ns,
+                                                     const std::vector<std::uint64_t>& own,
+                                                     bool* fresh) {
+  const bool compute = frontier_ns_ != tick_ns || frontier_.empty();
+  if (compute) {
+    frontier_ = own;
+    for (const auto& [service, counts] : written_) {
+      if (counts.size() > frontier_.size()) frontier_.resize(counts.size(), 0);
+      for (std::size_t i = 0; i < counts.size(); ++i) frontier_[i] += counts[i];
+    }
+    frontier_ns_ = tick_ns;
+  }
+  if (fresh != nullptr) *fresh = compute;
+  return frontier_;
+}
+
 Duration Pacer::UntilBarrierServed(Time wall_now) {
   if (!stalled_.empty()) return kPausedPoll;
   const std::vector<std::string> missing = Missing();

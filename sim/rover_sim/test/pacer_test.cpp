@@ -216,5 +216,22 @@ TEST(PacerTest, PipelinedStrictStepsAtOnceAndHoldsTheClockUntilTheBarrierIsServe
   EXPECT_EQ(p.UntilNextStep(Wall(2.1), 0.02), Pacer::kPausedPoll);
 }
 
+TEST(PacerTest, TheFrontierSumsTheLatestCountsAndIsFrozenPerTick) {
+  PacerOptions o;
+  o.lockstep_strict = true;
+  o.lockstep_services = "a,b";
+  Pacer p(o);
+  p.OnWritten("a", {1, 2, 0});
+  p.OnWritten("b", {0, 3, 4});
+  bool fresh = false;
+  EXPECT_EQ(p.FrontierFor(100, {10, 0, 0}, &fresh), (std::vector<std::uint64_t>{11, 5, 4}));
+  EXPECT_TRUE(fresh);
+  p.OnWritten("a", {9, 9, 9});  // an acknowledgement of the tick being served: not counted
+  EXPECT_EQ(p.FrontierFor(100, {10, 0, 0}, &fresh), (std::vector<std::uint64_t>{11, 5, 4}));
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(p.FrontierFor(200, {10, 0, 0}, &fresh), (std::vector<std::uint64_t>{19, 12, 13}));
+  EXPECT_TRUE(fresh);
+}
+
 }  // namespace
 }  // namespace rover::sim::rover_sim

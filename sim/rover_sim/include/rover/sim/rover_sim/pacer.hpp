@@ -34,6 +34,7 @@
 ///
 /// Times: wall times are rover::Time on the monotonic clock, simulated times are seconds.
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -129,6 +130,17 @@ class Pacer {
   /// The names in lockstep_services.
   static std::vector<std::string> ParseServices(const std::string& list);
 
+  /// Strict: the samples `service` has written per catalog topic, from its latest
+  /// acknowledgement (sim/clock_ack.written).
+  void OnWritten(const std::string& service, std::vector<std::uint64_t> counts);
+  /// Strict: the frontier sim/clock carries for the tick at `tick_ns`: the sum of every
+  /// participant's latest counts and `own` (the simulator's), computed when the tick is first
+  /// asked for and repeated unchanged after (acknowledgements that came since may count samples
+  /// written while serving this very tick). Returns true in `*fresh` when it was just computed.
+  const std::vector<std::uint64_t>& FrontierFor(std::int64_t tick_ns,
+                                                const std::vector<std::uint64_t>& own,
+                                                bool* fresh = nullptr);
+
  private:
   struct AckState {
     std::int64_t sim_time_ns = 0;
@@ -148,6 +160,9 @@ class Pacer {
   std::int64_t barrier_ns_ = 0;
   Time barrier_wall_{0};
   std::string stalled_;
+  std::map<std::string, std::vector<std::uint64_t>> written_;
+  std::vector<std::uint64_t> frontier_;  // of the tick last asked for
+  std::int64_t frontier_ns_ = -1;
 };
 
 }  // namespace rover::sim::rover_sim
