@@ -3,8 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "rover/apl/gestalt/arc_evaluator.hpp"
-#include "rover/apl/gestalt/terrain_map.hpp"
+#include "rover/apl/mobility/navigation.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
 #include "rover/hwconfig/rover_description.hpp"
@@ -29,29 +28,17 @@ void Check(const Status& s, const char* topic) {
 }  // namespace
 
 void MobilityService::DeclareParameters(ParamSet& params) {
-  DeclareParams<MobilityOptions>(params, "mobility.");
-  DeclareParams<gestalt::GestaltOptions>(params, "gestalt.");
-  DeclareParams<hwconfig::RoverDescription>(params, "geometry.");
+  DeclareNavigationParams(params);
 }
 
 Status MobilityService::ValidateParameters(const ParamSet& params) const {
-  ROVER_RETURN_IF_ERROR(ReadParams<MobilityOptions>(params, "mobility.").status());
-  return gestalt::ReadGestaltOptionsForRover(params).status();
+  return ValidateNavigationParams(params);
 }
 
 Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
   ctx_ = &ctx;
-  ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
-                         ReadParams<MobilityOptions>(params, "mobility."));
-  ROVER_ASSIGN_OR_RETURN(const gestalt::GestaltOptions g, gestalt::ReadGestaltOptionsForRover(params));
-  log::Info("gestalt configured", {{"rover_disc_diameter_m", g.rover_disc_diameter},
-                                   {"stereo_noise_coeff", g.stereo_noise_coeff}});
-  ROVER_ASSIGN_OR_RETURN(gestalt::TerrainMap map, gestalt::TerrainMap::Create(g));
-  ROVER_ASSIGN_OR_RETURN(gestalt::ArcEvaluator arcs, gestalt::ArcEvaluator::Create(g));
-  ROVER_ASSIGN_OR_RETURN(
-      MobilityManager manager,
-      MobilityManager::Create(options, std::make_unique<gestalt::TerrainMap>(std::move(map)),
-                              std::make_unique<gestalt::ArcEvaluator>(std::move(arcs))));
+  log::Info("local planner", {{"planner", PlannerName(params)}});
+  ROVER_ASSIGN_OR_RETURN(MobilityManager manager, MakeMobilityManager(params));
   manager_.emplace(std::move(manager));
 
   ROVER_ASSIGN_OR_RETURN(drive_writer_, ctx.MakeWriter<rover_dl_DriveCommand>("dl/drive_command"));

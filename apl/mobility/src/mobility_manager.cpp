@@ -861,7 +861,7 @@ Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Tim
   req.goal_tolerance =
       run_->goals.size() > 1 ? std::max(kLegTolerance, run_->tolerance) : run_->tolerance;
   req.last_direction = run_->last_direction;
-  return selector_->Evaluate(assessor_->goodness_map(), req);
+  return selector_->Plan(*assessor_, req);
 }
 
 CameraId MobilityManager::CameraFor(const nav_core::ArcEvaluation& eval) const {

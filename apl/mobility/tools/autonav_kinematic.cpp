@@ -30,11 +30,9 @@
 #include <vector>
 
 #include "fake_world.hpp"
-#include "rover/apl/gestalt/arc_evaluator.hpp"
-#include "rover/apl/gestalt/options.hpp"
-#include "rover/apl/gestalt/terrain_map.hpp"
 #include "rover/apl/mobility/mobility_manager.hpp"
 #include "rover/apl/mobility/mobility_options.hpp"
+#include "rover/apl/mobility/navigation.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/deploy/compose.hpp"
 #include "rover/deploy/runner.hpp"
@@ -237,9 +235,7 @@ double FeasiblePathLength(const sim::world::World& world, const sim::judge::Rove
 Result<ParamSet> ServiceParams(const deploy::Scenario& scenario,
                                const std::vector<std::string>& extra) {
   ParamSet params(kService);
-  DeclareParams<MobilityOptions>(params, "mobility.");
-  DeclareParams<apl::gestalt::GestaltOptions>(params, "gestalt.");
-  DeclareParams<hwconfig::RoverDescription>(params, "geometry.");
+  DeclareNavigationParams(params);
   ROVER_ASSIGN_OR_RETURN(const deploy::ComposeProject project,
                          deploy::LoadComposeFile(scenario.compose_path));
   const deploy::ServiceSpec* svc = project.Find(kService);
@@ -262,14 +258,7 @@ Result<ParamSet> ServiceParams(const deploy::Scenario& scenario,
 }
 
 Result<MobilityManager> MakeManager(const ParamSet& params) {
-  ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
-                         ReadParams<MobilityOptions>(params, "mobility."));
-  ROVER_ASSIGN_OR_RETURN(const apl::gestalt::GestaltOptions g,
-                         apl::gestalt::ReadGestaltOptionsForRover(params));
-  ROVER_ASSIGN_OR_RETURN(apl::gestalt::TerrainMap map, apl::gestalt::TerrainMap::Create(g));
-  ROVER_ASSIGN_OR_RETURN(apl::gestalt::ArcEvaluator arcs, apl::gestalt::ArcEvaluator::Create(g));
-  return MobilityManager::Create(options, std::make_unique<apl::gestalt::TerrainMap>(std::move(map)),
-                                 std::make_unique<apl::gestalt::ArcEvaluator>(std::move(arcs)));
+  return MakeMobilityManager(params);
 }
 
 struct SeedResult {

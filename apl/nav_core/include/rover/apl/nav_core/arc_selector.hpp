@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "rover/apl/nav_core/goodness_map.hpp"
+#include "rover/apl/nav_core/terrain_assessor.hpp"
 #include "rover/base/status.hpp"
 
 namespace rover::apl::nav_core {
@@ -73,6 +74,13 @@ struct ArcEvaluation {
   /// behind the rover too before the next step (MER's min-fwd-threshold).
   bool image_rear = false;
 
+  /// The whole chosen path, first segment first (a turn in place, then arcs), for planners
+  /// that plan several segments ahead (the ENav-class tree); empty for single-arc selectors.
+  /// Only the first segment (choice()) is driven before the next decision.
+  std::vector<Candidate> path;
+  int candidates_ranked = 0;  ///< paths costed (multi-segment planners; else candidates.size())
+  int clearance_checks = 0;   ///< paths whose clearance was checked before one passed
+
   bool has_choice() const { return chosen >= 0; }
   const Candidate& choice() const { return candidates[static_cast<std::size_t>(chosen)]; }
 };
@@ -84,6 +92,13 @@ class ArcSelector {
   /// Errors: InvalidArgument for a non-finite pose or goal or a negative tolerance.
   virtual Result<ArcEvaluation> Evaluate(const GoodnessMap& map,
                                          const ArcRequest& request) const = 0;
+  /// What the mobility manager calls: the same over everything `terrain` holds. Selectors that
+  /// need more than goodness (heights: TerrainAssessor::height_map()) override it and return
+  /// FailedPrecondition when the assessor lacks it; the default reads the goodness map only.
+  virtual Result<ArcEvaluation> Plan(const TerrainAssessor& terrain,
+                                     const ArcRequest& request) const {
+    return Evaluate(terrain.goodness_map(), request);
+  }
 };
 
 }  // namespace rover::apl::nav_core

@@ -18,6 +18,7 @@
 #include <cstdint>
 
 #include "rover/apl/nav_core/goodness_map.hpp"
+#include "rover/apl/nav_core/height_map.hpp"
 #include "rover/apl/nav_core/range_scan.hpp"
 #include "rover/base/status.hpp"
 
@@ -48,6 +49,9 @@ class TerrainAssessor {
   virtual CellValue GoodnessAt(const Eigen::Vector2d& site_xy) const {
     return goodness_map().AtPoint(site_xy.x(), site_xy.y());
   }
+  /// The elevation grid behind the goodness map, for planners that check wheels, suspension
+  /// and belly (an ENav-class path tree); nullptr when the assessor keeps none (GESTALT).
+  virtual const HeightMap* height_map() const { return nullptr; }
   /// Forgets all data (e.g. after a pose jump the map cannot be trusted).
   virtual void Clear() = 0;
 };

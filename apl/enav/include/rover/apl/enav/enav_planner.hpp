@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// EnavPlanner: an ENav-class local planner (after Mars 2020's Enhanced Navigation: a tree of
+/// candidate paths ranked by a cheap cost and a cost-to-go, then an approximate clearance check
+/// on the best few, in rank order), behind nav_core's ArcSelector so the mobility manager drives
+/// it as it drives GESTALT's arc voting. It needs heights: Plan() requires apl/enav's
+/// HeightTerrain as the manager's assessor (FailedPrecondition otherwise).
+///
+/// The tree (site frame, from the request's pose): a turn in place by one of num_turns headings
+/// evenly over the circle (0 = none), then an arc of first_length at one of num_curvatures
+/// curvatures evenly in [-k_max, k_max] (k_max = the rover description's MaxCurvature()), then a
+/// second arc of second_length at each curvature again: 24 x 9 x 9 = 1,944 paths over 5.5 m by
+/// default.
+///
+/// Cheap cost of a path (metres of driving on open known ground):
+///   J = turn_cost |turn| + sum over samples of factor(centre) ds + curvature_cost sum |k| L
+///       + switch_cost [no turn and k1 != the curvature chosen last] + CostToGo(end)
+/// with CostToGoField's factor and cost (a blocked sample discards the path). A path whose centre
+/// comes within the goal tolerance ends there (J then has no cost-to-go term), so near the goal
+/// short paths win.
+///
+/// Check in rank order (at most max_checks): the turn (poses every 10 deg of it) and every
+/// sample of the path through ClearanceChecker (ACE within ace_length of the start, the part
+/// discs all along); within known_length no more than max_unknown_fraction of the wheel patches
+/// unseen. The first path that passes is the choice; a failing turn or first segment fails
+/// every path that shares it without being checked again. If none of the forward paths passes,
+/// backward arcs of first_length (one per curvature) are checked, ranked by cost-to-go at their
+/// end (a K-turn's first half). No path passing: no choice (the manager's NOPATH).
+///
+/// What the manager drives is the first segment only (choice()): the turn when there is one,
+/// else the first arc for at most its step length; the next decision replans from the new pose.
+/// `path` carries the whole chosen path; candidates/votes carry the checked paths' first
+/// segments in rank order (hazard vote 255 passed / 0 failed; waypoint vote 255 J_best / J).
+
+#include <optional>
+#include <vector>
+
+#include "rover/apl/enav/clearance.hpp"
+#include "rover/apl/enav/cost_to_go.hpp"
+#include "rover/apl/enav/height_terrain.hpp"
+#include "rover/apl/nav_core/arc_selector.hpp"
+
+namespace rover::apl::enav {
+
+/// One path of the tree.
+struct TreePath {
+  double turn = 0.0;  ///< [rad] leading turn in place (0 = none)
+  double k1 = 0.0;    ///< [1/m]
+  double k2 = 0.0;    ///< [1/m]
+  int direction = 1;  ///< +1 forward tree, -1 a backward arc (k2, second length unused)
+  double length1 = 0.0, length2 = 0.0;  ///< [m] (length2 0 for backward arcs)
+  double end_s = 0.0;  ///< [m] arc length considered (shorter when the path reaches the goal)
+  int turn_index = 0, k1_index = 0;     ///< for sharing checks between paths
+  double cost = 0.0;                    ///< J (+inf = discarded)
+  int checked = 0;                      ///< 0 not checked, 1 passed, -1 failed
+  std::string why;                      ///< the check's failure
+};
+
+/// The latest decision, for pictures, logs and benchmarks.
+struct PlanRecord {
+  geometry::Pose2 start;
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();
+  std::vector<TreePath> paths;  ///< the forward tree (and backward arcs if they were tried)
+  int chosen = -1;              ///< index into paths
+  int ranked = 0;               ///< paths with a finite cost
+  int checks = 0;               ///< clearance checks run
+};
+
+class EnavPlanner : public nav_core::ArcSelector {
+ public:
+  /// Errors: InvalidArgument from options.Validate().
+  static Result<EnavPlanner> Create(const EnavOptions& options);
+
+  /// FailedPrecondition: the ENav planner needs heights (see the file comment).
+  Result<nav_core::ArcEvaluation> Evaluate(const nav_core::GoodnessMap& map,
+                                           const nav_core::ArcRequest& request) const override;
+  /// The decision over `terrain` (a HeightTerrain). Errors: InvalidArgument for a non-finite
+  /// pose or goal or a negative tolerance; FailedPrecondition for another assessor.
+  Result<nav_core::ArcEvaluation> Plan(const nav_core::TerrainAssessor& terrain,
+                                       const nav_core::ArcRequest& request) const override;
+
+  const PlanRecord& last() const { return last_; }
+  const CostToGoField& cost_to_go() const { return field_; }
+  /// Poses along a path every sample_spacing (the turn excluded: it is done in place).
+  std::vector<geometry::Pose2> Samples(const geometry::Pose2& start, const TreePath& p) const;
+
+ private:
+  explicit EnavPlanner(const EnavOptions& options);
+  bool CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start, TreePath* p) const;
+
+  EnavOptions options_;
+  std::vector<double> curvatures_;
+  mutable CostToGoField field_;
+  mutable PlanRecord last_;
+  mutable std::optional<double> last_k1_;
+};
+
+}  // namespace rover::apl::enav

@@ -1,0 +1,89 @@
+#pragma once
+/// @file
+/// EnavOptions: every parameter of the ENav-class planner (height map, hazard classes,
+/// cost-to-go, path tree, clearance check), declared once (BindParams, keys carry their unit)
+/// and checked by Validate() (messages start with the member's name). README.md has the table.
+///
+/// The rover's own geometry (wheels, links, body and their clearances, the curvature limit) is
+/// not here: it comes from core/hwconfig's RoverDescription (ContactParts(), MaxCurvature()),
+/// read with the same parameter set (ReadEnavOptionsForRover).
+///
+/// Units: metres, radians in members (degrees in keys that say `_deg`).
+
+#include <string>
+#include <vector>
+
+#include "rover/base/param_binder.hpp"
+#include "rover/base/status.hpp"
+#include "rover/base/units.hpp"
+#include "rover/hwconfig/rover_description.hpp"
+
+namespace rover::apl::enav {
+
+struct EnavOptions {
+  // ---- height map -------------------------------------------------------------------------
+  double cell_size = 0.1;          ///< [m] height-map cell side (half GESTALT's 0.2 m)
+  double map_size = 40.0;          ///< [m] side of the remembered square map
+  double recentre_distance = 8.0;  ///< [m] the map scrolls when the rover is this far off centre
+  double max_point_distance = 6.0; ///< [m] points farther (horizontally) from the camera unused
+  /// A fresh scan overwrites a cell unless the stored data were taken this much closer [m]
+  /// (nearer data are more accurate; stale data are replaced only by data about as good).
+  double overwrite_range_slack = 0.5;
+  int min_cell_points = 1;          ///< points a cell needs to count as known
+  double ground_radius = 0.35;      ///< [m] the local ground: lowest known mean within this
+  /// Stereo noise: height sigma = stereo_noise_coeff · r² at horizontal range r [m]; a step
+  /// counts as a hazard only above its class's limit plus step_noise_sigmas of that noise.
+  double stereo_noise_coeff = 0.0;  ///< [1/m]
+  double step_noise_sigmas = 2.0;
+  /// Steps above this reach a wheel or the bogie link [m] (the judge's traversable rock
+  /// height is 0.2 m; a margin below it).
+  double wheel_step = 0.17;
+  /// Height margin below the rocker links' and the belly's clearances (from the rover
+  /// description) for articulation and map error [m].
+  double clearance_margin = 0.05;
+
+  // ---- cost-to-go -------------------------------------------------------------------------
+  double cost_cell_size = 0.2;        ///< [m] cells of the cost-to-go field
+  double unknown_cost_factor = 1.5;   ///< step cost factor of unseen cells (priced, not forbidden)
+  double hazard_cost_radius = 0.9;    ///< [m] cells nearer a wheel hazard than this cost more
+  double hazard_cost_factor = 2.0;    ///< ... up to 1 + this at the hazard
+  double blocked_radius = 0.3;        ///< [m] cells this near a body hazard are blocked
+
+  // ---- path tree --------------------------------------------------------------------------
+  int num_turns = 24;            ///< headings of the leading turn in place over the full circle
+  int num_curvatures = 9;        ///< curvatures per arc segment in [-max, +max]
+  double first_length = 1.5;     ///< [m] first arc segment
+  double second_length = 4.0;    ///< [m] second arc segment
+  double sample_spacing = 0.1;   ///< [m] poses along a path for the checks
+  double turn_cost = 1.0;        ///< [m/rad] cost of turning in place, in metres of driving
+  double curvature_cost = 0.2;   ///< [m per 1/m] cost of |curvature| per metre driven
+  double switch_cost = 0.3;      ///< [m] cost of a first curvature other than the last driven
+
+  // ---- clearance check --------------------------------------------------------------------
+  double planar_margin = 0.08;   ///< [m] parts grown by this (tracking and map error)
+  int max_checks = 300;          ///< paths checked in rank order before giving up (NOPATH)
+  double ace_length = 2.0;       ///< [m] suspension, tilt and belly checked this far along
+  double max_tilt = 20.0 * kDegree;  ///< [rad]
+  double suspension_margin = 0.1;    ///< [rad] below the rocker and bogie stops
+  /// Unknown cells under the wheels within this far along the path make it fail [m] (the
+  /// first stretch is driven next and must have been seen); beyond, unknown passes.
+  double known_length = 1.0;
+  double max_unknown_fraction = 0.3;  ///< of the wheel samples in known_length
+
+  // ---- from the rover description (ReadEnavOptionsForRover) -----------------------------
+  std::vector<hwconfig::ContactPart> contact_parts;  ///< empty = RoverDescription's defaults
+  hwconfig::RoverDescription rover;                  ///< wheel layout, pivots, stops
+
+  /// Ranges and cross-field rules; messages start with the field.
+  Status Validate() const;
+  static void BindParams(ParamBinder<EnavOptions>& b);
+  int map_cells() const;
+};
+
+/// Reads `prefix` keys (default "enav.") and the rover description under `geometry_prefix`
+/// (default "geometry."), and takes the contact parts, suspension and curvature limit from it.
+Result<EnavOptions> ReadEnavOptionsForRover(const ParamSet& params,
+                                            const std::string& prefix = "enav.",
+                                            const std::string& geometry_prefix = "geometry.");
+
+}  // namespace rover::apl::enav

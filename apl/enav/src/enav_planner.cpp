@@ -1,0 +1,312 @@
+#include "rover/apl/enav/enav_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include "rover/base/format.hpp"
+
+namespace rover::apl::enav {
+namespace {
+
+constexpr double kNoCost = std::numeric_limits<double>::infinity();
+constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses along a turn
+
+Status CheckRequest(const nav_core::ArcRequest& r) {
+  ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
+  if (!std::isfinite(r.goal.x()) || !std::isfinite(r.goal.y())) {
+    return InvalidArgument("ArcRequest.goal = (" + FormatNumber(r.goal.x()) + ", " +
+                           FormatNumber(r.goal.y()) + ") (must be finite)");
+  }
+  if (!(r.goal_tolerance >= 0.0)) {
+    return InvalidArgument("ArcRequest.goal_tolerance = " + FormatNumber(r.goal_tolerance) +
+                           " m (must be >= 0)");
+  }
+  return Status::Ok();
+}
+
+nav_core::Candidate FirstSegment(const TreePath& p) {
+  nav_core::Candidate c;
+  if (p.turn != 0.0) {
+    c.kind = nav_core::MotionKind::kPointTurn;
+    c.turn_angle = p.turn;
+    return c;
+  }
+  c.kind = nav_core::MotionKind::kArc;
+  c.curvature = p.k1;
+  c.direction = p.direction;
+  c.length = p.length1;
+  return c;
+}
+
+}  // namespace
+
+Result<EnavPlanner> EnavPlanner::Create(const EnavOptions& options) {
+  ROVER_RETURN_IF_ERROR(options.Validate());
+  return EnavPlanner(options);
+}
+
+EnavPlanner::EnavPlanner(const EnavOptions& options) : options_(options) {
+  const double k_max = options.rover.MaxCurvature();
+  const int n = options.num_curvatures;
+  for (int i = 0; i < n; ++i) {
+    curvatures_.push_back(n == 1 ? 0.0 : -k_max + 2.0 * k_max * i / (n - 1));
+  }
+  // Exactly straight in the middle (odd counts).
+  for (double& k : curvatures_) {
+    if (std::abs(k) < 1e-9) k = 0.0;
+  }
+}
+
+Result<nav_core::ArcEvaluation> EnavPlanner::Evaluate(const nav_core::GoodnessMap& map,
+                                                      const nav_core::ArcRequest& request) const {
+  (void)map;
+  (void)request;
+  return FailedPrecondition(
+      "the ENav planner needs heights: use apl/enav's HeightTerrain as the terrain assessor");
+}
+
+std::vector<geometry::Pose2> EnavPlanner::Samples(const geometry::Pose2& start,
+                                                  const TreePath& p) const {
+  std::vector<geometry::Pose2> out;
+  const double ds = options_.sample_spacing;
+  const geometry::Pose2 s0 = geometry::Turned(start, p.turn);
+  const double end = p.end_s > 0.0 ? p.end_s : p.length1 + p.length2;
+  auto segment = [&](const geometry::Pose2& from, double k, double length, double offset) {
+    const int n = std::max(1, static_cast<int>(std::ceil(length / ds - 1e-9)));
+    for (int i = 1; i <= n; ++i) {
+      const double s = length * i / n;
+      if (offset + s > end + 1e-9) return false;
+      out.push_back(geometry::AlongArc(from, k, p.direction * s));
+    }
+    return true;
+  };
+  if (!segment(s0, p.k1, p.length1, 0.0)) return out;
+  if (p.length2 > 0.0) segment(geometry::AlongArc(s0, p.k1, p.direction * p.length1), p.k2,
+                               p.length2, p.length1);
+  return out;
+}
+
+bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
+                            TreePath* p) const {
+  // The turn in place.
+  if (p->turn != 0.0) {
+    const int n = std::max(1, static_cast<int>(std::ceil(std::abs(p->turn) / kTurnStep)));
+    for (int i = 1; i <= n; ++i) {
+      const PoseCheck c = checker.CheckPose(geometry::Turned(start, p->turn * i / n), true);
+      if (!c.ok) {
+        p->why = "turn " + FormatNumber(p->turn / kDegree, 3) + " deg: " + c.why;
+        return false;
+      }
+    }
+  }
+  const std::vector<geometry::Pose2> poses = Samples(start, *p);
+  int unknown = 0, wheels = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const double s = options_.sample_spacing * static_cast<double>(i + 1);
+    const bool ace = s <= options_.ace_length + 1e-9;
+    const PoseCheck c = checker.CheckPose(poses[i], ace);
+    if (!c.ok) {
+      p->why = "at " + FormatNumber(s, 2) + " m: " + c.why;
+      return false;
+    }
+    if (s <= options_.known_length + 1e-9) {
+      unknown += c.unknown_wheels;
+      wheels += hwconfig::kNumWheels;
+    }
+  }
+  if (wheels > 0 && unknown > options_.max_unknown_fraction * wheels) {
+    p->why = FormatNumber(100.0 * unknown / wheels, 3) + " % of the wheel patches in the first " +
+             FormatNumber(options_.known_length) + " m unseen";
+    return false;
+  }
+  return true;
+}
+
+Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssessor& terrain,
+                                                  const nav_core::ArcRequest& request) const {
+  ROVER_RETURN_IF_ERROR(CheckRequest(request));
+  const auto* ht = dynamic_cast<const HeightTerrain*>(&terrain);
+  if (ht == nullptr) {
+    return FailedPrecondition(
+        "the ENav planner needs heights: use apl/enav's HeightTerrain as the terrain assessor");
+  }
+  nav_core::ArcEvaluation eval;
+  const geometry::Pose2 start = geometry::ToPose2(request.site_from_rover);
+  eval.distance_to_goal = (request.goal - start.xy()).norm();
+  last_ = PlanRecord{};
+  last_.start = start;
+  last_.goal = request.goal;
+  if (eval.distance_to_goal <= request.goal_tolerance) {
+    eval.mode = nav_core::GoalMode::kReached;
+    return eval;
+  }
+  field_.Update(*ht, request.goal);
+  const double tol2 = request.goal_tolerance * request.goal_tolerance;
+
+  // The tree and its cheap costs.
+  std::vector<TreePath>& paths = last_.paths;
+  const int nt = options_.num_turns;
+  for (int t = 0; t < nt; ++t) {
+    const double turn = t == 0 ? 0.0 : geometry::WrapAngle(2.0 * std::numbers::pi * t / nt);
+    for (std::size_t a = 0; a < curvatures_.size(); ++a) {
+      for (std::size_t b = 0; b < curvatures_.size(); ++b) {
+        if (options_.second_length == 0.0 && b > 0) break;
+        TreePath p;
+        p.turn = turn;
+        p.turn_index = t;
+        p.k1_index = static_cast<int>(a);
+        p.k1 = curvatures_[a];
+        p.k2 = curvatures_[b];
+        p.length1 = options_.first_length;
+        p.length2 = options_.second_length;
+        paths.push_back(p);
+      }
+    }
+  }
+  for (TreePath& p : paths) {
+    double j = options_.turn_cost * std::abs(p.turn);
+    if (p.turn == 0.0 && last_k1_ && std::abs(p.k1 - *last_k1_) > 1e-9) j += options_.switch_cost;
+    const std::vector<geometry::Pose2> poses = Samples(start, p);
+    double s_prev = 0.0;
+    bool reached = false;
+    for (std::size_t i = 0; i < poses.size() && std::isfinite(j); ++i) {
+      const double s = std::min(p.length1 + p.length2, options_.sample_spacing * (i + 1.0));
+      const double ds = s - s_prev;
+      s_prev = s;
+      const double k = s <= p.length1 + 1e-9 ? p.k1 : p.k2;
+      j += ds * (field_.Factor(poses[i].xy()) + options_.curvature_cost * std::abs(k));
+      if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
+        p.end_s = s;
+        reached = true;
+        break;
+      }
+    }
+    if (!reached && std::isfinite(j) && !poses.empty()) j += field_.Cost(poses.back().xy());
+    p.cost = j;
+  }
+  std::vector<int> order;
+  for (int i = 0; i < static_cast<int>(paths.size()); ++i) {
+    if (std::isfinite(paths[static_cast<std::size_t>(i)].cost)) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
+  });
+  last_.ranked = static_cast<int>(order.size());
+  eval.candidates_ranked = last_.ranked;
+
+  // Clearance checks in rank order; a failed turn + first segment fails its whole subtree.
+  const ClearanceChecker checker(*ht);
+  std::map<std::pair<int, int>, std::string> failed_prefix;
+  std::map<std::pair<int, int>, bool> passed_prefix;
+  std::vector<int> checked;
+  for (const int idx : order) {
+    if (last_.checks >= options_.max_checks) break;
+    TreePath& p = paths[static_cast<std::size_t>(idx)];
+    const std::pair<int, int> key{p.turn_index, p.k1_index};
+    if (auto it = failed_prefix.find(key); it != failed_prefix.end()) {
+      p.checked = -1;
+      p.why = it->second;
+      continue;
+    }
+    last_.checks += 1;
+    checked.push_back(idx);
+    if (!passed_prefix.count(key)) {
+      TreePath prefix = p;
+      prefix.length2 = 0.0;
+      prefix.end_s = p.end_s > 0.0 ? std::min(p.end_s, p.length1) : p.length1;
+      if (!CheckPath(checker, start, &prefix)) {
+        failed_prefix[key] = prefix.why;
+        p.checked = -1;
+        p.why = prefix.why;
+        continue;
+      }
+      passed_prefix[key] = true;
+    }
+    if (CheckPath(checker, start, &p)) {
+      p.checked = 1;
+      last_.chosen = idx;
+      break;
+    }
+    p.checked = -1;
+  }
+  // Fallback: backward arcs, ranked by cost-to-go at their end.
+  if (last_.chosen < 0) {
+    const std::size_t first_back = paths.size();
+    for (std::size_t a = 0; a < curvatures_.size(); ++a) {
+      TreePath p;
+      p.direction = -1;
+      p.k1 = curvatures_[a];
+      p.k1_index = static_cast<int>(a);
+      p.turn_index = -1;
+      p.length1 = options_.first_length;
+      const std::vector<geometry::Pose2> poses = Samples(start, p);
+      p.cost = poses.empty() ? kNoCost : field_.Cost(poses.back().xy()) + options_.first_length;
+      paths.push_back(p);
+    }
+    std::vector<int> back;
+    for (std::size_t i = first_back; i < paths.size(); ++i) {
+      if (std::isfinite(paths[i].cost)) back.push_back(static_cast<int>(i));
+    }
+    std::stable_sort(back.begin(), back.end(), [&](int a, int b) {
+      return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
+    });
+    for (const int idx : back) {
+      TreePath& p = paths[static_cast<std::size_t>(idx)];
+      last_.checks += 1;
+      checked.push_back(idx);
+      if (CheckPath(checker, start, &p)) {
+        p.checked = 1;
+        last_.chosen = idx;
+        break;
+      }
+      p.checked = -1;
+    }
+  }
+  eval.clearance_checks = last_.checks;
+
+  // The evaluation: the checked paths' first segments in rank order.
+  double best = kNoCost;
+  for (const int idx : checked) best = std::min(best, paths[static_cast<std::size_t>(idx)].cost);
+  for (const int idx : checked) {
+    const TreePath& p = paths[static_cast<std::size_t>(idx)];
+    eval.candidates.push_back(FirstSegment(p));
+    const bool ok = p.checked == 1;
+    const int wp = p.cost > 0.0 && std::isfinite(best)
+                       ? static_cast<int>(std::lround(255.0 * std::clamp(best / p.cost, 0.0, 1.0)))
+                       : 255;
+    eval.hazard.push_back({ok ? 255 : 0, 255});
+    eval.waypoint.push_back({wp, 255});
+    eval.merged.push_back({ok ? wp : 0, 255});
+    if (idx == last_.chosen) eval.chosen = static_cast<int>(eval.candidates.size()) - 1;
+  }
+  if (last_.chosen >= 0) {
+    const TreePath& p = paths[static_cast<std::size_t>(last_.chosen)];
+    if (p.turn != 0.0) {
+      nav_core::Candidate t;
+      t.kind = nav_core::MotionKind::kPointTurn;
+      t.turn_angle = p.turn;
+      eval.path.push_back(t);
+    }
+    nav_core::Candidate a;
+    a.curvature = p.k1;
+    a.direction = p.direction;
+    a.length = p.length1;
+    eval.path.push_back(a);
+    if (p.length2 > 0.0) {
+      a.curvature = p.k2;
+      a.length = p.length2;
+      eval.path.push_back(a);
+    }
+    if (p.turn == 0.0 && p.direction > 0) {
+      last_k1_ = p.k1;
+    } else {
+      last_k1_.reset();
+    }
+  }
+  return eval;
+}
+
+}  // namespace rover::apl::enav

@@ -1,0 +1,97 @@
+#include "rover/apl/enav/clearance.hpp"
+
+#include <gtest/gtest.h>
+
+#include "scene.hpp"
+
+namespace rover::apl::enav {
+namespace {
+
+using testing::Block;
+using testing::Blocks;
+using testing::ScanOf;
+using testing::TerrainOf;
+using testing::TestOptions;
+
+
+TEST(ClearanceChecker, DiscsCoverEveryContactPart) {
+  const HeightTerrain t = TerrainOf(Blocks({}));
+  const ClearanceChecker c(t);
+  // Every point of every part lies in a disc of that part.
+  for (int p = 0; p < static_cast<int>(c.parts().size()); ++p) {
+    const hwconfig::ContactPart& part = c.parts()[static_cast<std::size_t>(p)];
+    const Eigen::Vector2d r = Eigen::Vector2d::Constant(part.radius);
+    const Eigen::Vector2d lo = part.is_disc ? Eigen::Vector2d(part.centre - r) : part.min;
+    const Eigen::Vector2d hi = part.is_disc ? Eigen::Vector2d(part.centre + r) : part.max;
+    for (double x = lo.x(); x <= hi.x(); x += 0.02) {
+      for (double y = lo.y(); y <= hi.y(); y += 0.02) {
+        if (part.DistanceTo({x, y}) > 0.0) continue;
+        bool covered = false;
+        for (const PartDisc& d : c.discs()) {
+          covered = covered || (d.part == p && (d.centre - Eigen::Vector2d(x, y)).norm() <=
+                                                   d.radius + 1e-9);
+        }
+        EXPECT_TRUE(covered) << part.name << " at " << x << ", " << y;
+      }
+    }
+  }
+}
+
+TEST(ClearanceChecker, FlatGroundPasses) {
+  const HeightTerrain t = TerrainOf(Blocks({}));
+  const PoseCheck r = ClearanceChecker(t).CheckPose({0.0, 0.0, 0.3}, true);
+  EXPECT_TRUE(r.ok) << r.why;
+  EXPECT_NEAR(r.tilt, 0.0, 1e-6);
+  EXPECT_EQ(r.unknown_wheels, 0);
+}
+
+TEST(ClearanceChecker, RockUnderAWheelLineFailsNamingThePart) {
+  // 0.25 m rock at the left wheel line (y = +0.5) beside the middle wheel.
+  const HeightTerrain t = TerrainOf(Blocks({{0.3, 0.5, 0.1, 0.25}}));
+  const PoseCheck r = ClearanceChecker(t).CheckPose({0.0, 0.0, 0.0}, true);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.why.find("_l") != std::string::npos || r.why.find("wheel_l") != std::string::npos)
+      << r.why;
+  EXPECT_NE(r.why.find("wheel hazard"), std::string::npos) << r.why;
+}
+
+TEST(ClearanceChecker, RockBetweenTheWheelsPassesUnderTheBelly) {
+  // 0.25 m tall, 0.3 m wide, centred under the body: the rover straddles it.
+  const HeightTerrain straddle = TerrainOf(Blocks({{0.0, 0.0, 0.15, 0.25}}));
+  const PoseCheck ok = ClearanceChecker(straddle).CheckPose({0.0, 0.0, 0.0}, true);
+  EXPECT_TRUE(ok.ok) << ok.why;
+  // 0.5 m tall there: the body hits it.
+  const HeightTerrain tall = TerrainOf(Blocks({{0.0, 0.0, 0.15, 0.5}}));
+  const PoseCheck bad = ClearanceChecker(tall).CheckPose({0.0, 0.0, 0.0}, true);
+  EXPECT_FALSE(bad.ok);
+  EXPECT_NE(bad.why.find("body"), std::string::npos) << bad.why;
+}
+
+TEST(ClearanceChecker, SuspensionFollowsTheWheelsAndLimitsTilt) {
+  // A 15 cm plateau under the left wheels only (wide, so no step inside the wheel patches
+  // reaches the wheel limit... it does at its edge, so raise the wheel limit for this test).
+  EnavOptions o = TestOptions();
+  o.wheel_step = 0.3;
+  o.clearance_margin = 0.0;
+  const HeightTerrain t = TerrainOf([](double, double y) { return y > 0.25 ? 0.15 : 0.0; }, o);
+  const PoseCheck r = ClearanceChecker(t).CheckPose({0.0, 0.0, 0.0}, true);
+  EXPECT_TRUE(r.ok) << r.why;
+  EXPECT_NEAR(r.tilt, std::atan2(0.15, 1.0), 0.02);  // roll over the 1 m track
+  o.max_tilt = 5.0 * kDegree;
+  const HeightTerrain steep = TerrainOf([](double, double y) { return y > 0.25 ? 0.15 : 0.0; }, o);
+  const PoseCheck tilted = ClearanceChecker(steep).CheckPose({0.0, 0.0, 0.0}, true);
+  EXPECT_FALSE(tilted.ok);
+  EXPECT_NE(tilted.why.find("tilt"), std::string::npos) << tilted.why;
+}
+
+TEST(ClearanceChecker, UnseenWheelPatchesAreCounted) {
+  auto t = HeightTerrain::Create(TestOptions());
+  ASSERT_TRUE(t.ok());
+  ASSERT_TRUE(t->Update(ScanOf(Blocks({}), -3, 0.3, -3, 3)).ok());  // nothing ahead of x = 0.3
+  const PoseCheck r = ClearanceChecker(*t).CheckPose({0.0, 0.0, 0.0}, true);
+  EXPECT_TRUE(r.ok) << r.why;
+  EXPECT_EQ(r.unknown_wheels, 2);  // the front wheels at x = 0.625
+}
+
+}  // namespace
+}  // namespace rover::apl::enav

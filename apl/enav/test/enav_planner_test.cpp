@@ -1,0 +1,118 @@
+#include "rover/apl/enav/enav_planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "scene.hpp"
+
+namespace rover::apl::enav {
+namespace {
+
+using testing::Block;
+using testing::Blocks;
+using testing::ScanOf;
+using testing::TerrainOf;
+using testing::TestOptions;
+
+nav_core::ArcRequest Toward(double x, double y) {
+  nav_core::ArcRequest r;
+  r.goal = {x, y};
+  r.goal_tolerance = 0.3;
+  return r;
+}
+
+
+TEST(EnavPlanner, NeedsHeightsAndCheckedRequests) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  nav_core::GoodnessMap map;
+  auto e = p->Evaluate(map, Toward(3, 0));
+  ASSERT_FALSE(e.ok());
+  EXPECT_EQ(e.status().code(), StatusCode::kFailedPrecondition);
+  const HeightTerrain t = TerrainOf(Blocks({}));
+  auto nan = p->Plan(t, Toward(std::nan(""), 0));
+  ASSERT_FALSE(nan.ok());
+  EXPECT_NE(nan.status().message().find("ArcRequest.goal"), std::string::npos);
+  nav_core::ArcRequest neg = Toward(3, 0);
+  neg.goal_tolerance = -1.0;
+  EXPECT_FALSE(p->Plan(t, neg).ok());
+}
+
+TEST(EnavPlanner, OpenGroundDrivesStraightAtTheGoal) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  const HeightTerrain t = TerrainOf(Blocks({}));
+  auto e = p->Plan(t, Toward(4, 0));
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_EQ(e->choice().kind, nav_core::MotionKind::kArc);
+  EXPECT_DOUBLE_EQ(e->choice().curvature, 0.0);
+  EXPECT_EQ(e->choice().direction, 1);
+  EXPECT_EQ(e->candidates_ranked, 24 * 9 * 9);
+  EXPECT_EQ(e->clearance_checks, 1);
+  EXPECT_GE(e->path.size(), 1u);
+  // Goal behind: a turn in place first (part of the way: arcs finish turning while driving).
+  auto back = p->Plan(t, Toward(-4, 0));
+  ASSERT_TRUE(back.ok());
+  ASSERT_TRUE(back->has_choice());
+  EXPECT_EQ(back->choice().kind, nav_core::MotionKind::kPointTurn);
+  EXPECT_GE(std::abs(back->choice().turn_angle), std::numbers::pi / 2);
+}
+
+TEST(EnavPlanner, RockAheadIsPassedAndTheChosenPathIsClear) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  // A 0.3 m rock 1.8 m ahead, 0.4 m across, on the line to the goal: the straight path puts a
+  // wheel line or the rocker on it? The rock is under the centre line, so the body straddles
+  // it only if 0.3 m clears the belly margin (0.35 - 0.05 = 0.30: it does not).
+  const HeightTerrain t = TerrainOf(Blocks({{1.8, 0.0, 0.2, 0.32}}));
+  auto e = p->Plan(t, Toward(4.5, 0));
+  ASSERT_TRUE(e.ok());
+  ASSERT_TRUE(e->has_choice());
+  EXPECT_GT(e->clearance_checks, 1);
+  const PlanRecord& r = p->last();
+  const TreePath& chosen = r.paths[static_cast<std::size_t>(r.chosen)];
+  const ClearanceChecker checker(t);
+  for (const geometry::Pose2& pose : p->Samples(r.start, chosen)) {
+    EXPECT_TRUE(checker.CheckPose(pose, false).ok);
+  }
+  // Not the straight path through the rock: it fails the check.
+  EXPECT_FALSE(chosen.turn == 0.0 && chosen.k1 == 0.0 && chosen.k2 == 0.0);
+  TreePath straight;
+  straight.length1 = TestOptions().first_length;
+  straight.length2 = TestOptions().second_length;
+  bool straight_clear = true;
+  for (const geometry::Pose2& pose : p->Samples(r.start, straight)) {
+    straight_clear = straight_clear && checker.CheckPose(pose, false).ok;
+  }
+  EXPECT_FALSE(straight_clear);
+}
+
+TEST(EnavPlanner, NearTheGoalItIsReached) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  const HeightTerrain t = TerrainOf(Blocks({}));
+  auto e = p->Plan(t, Toward(0.2, 0.0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->mode, nav_core::GoalMode::kReached);
+  EXPECT_FALSE(e->has_choice());
+}
+
+TEST(EnavPlanner, BoxedInByTallRocksThereIsNoChoice) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  std::vector<Block> ring;
+  for (int a = 0; a < 60; ++a) {
+    const double t = 2.0 * std::numbers::pi * a / 60;
+    ring.push_back({1.3 * std::cos(t), 1.3 * std::sin(t), 0.1, 0.6});
+  }
+  const HeightTerrain t = TerrainOf(Blocks(ring));
+  auto e = p->Plan(t, Toward(4, 0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_FALSE(e->has_choice());
+  EXPECT_EQ(e->mode, nav_core::GoalMode::kNormal);
+}
+
+}  // namespace
+}  // namespace rover::apl::enav

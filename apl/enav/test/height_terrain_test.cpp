@@ -1,0 +1,119 @@
+#include "rover/apl/enav/height_terrain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "scene.hpp"
+
+namespace rover::apl::enav {
+namespace {
+
+using testing::Block;
+using testing::Blocks;
+using testing::ScanOf;
+using testing::TestOptions;
+
+TEST(SquaredDistanceTransform, MatchesBruteForce) {
+  std::mt19937 rng(7);
+  const int w = 23, h = 17;
+  std::vector<std::uint8_t> mask(w * h, 0);
+  for (int n = 0; n < 9; ++n) mask[rng() % mask.size()] = 1;
+  const std::vector<float> d = SquaredDistanceTransform(mask, w, h);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      float best = std::numeric_limits<float>::infinity();
+      for (int q = 0; q < h; ++q) {
+        for (int p = 0; p < w; ++p) {
+          if (mask[q * w + p]) best = std::min(best, float((p - i) * (p - i) + (q - j) * (q - j)));
+        }
+      }
+      EXPECT_FLOAT_EQ(d[j * w + i], best) << i << ", " << j;
+    }
+  }
+  EXPECT_TRUE(std::isinf(SquaredDistanceTransform(std::vector<std::uint8_t>(6, 0), 3, 2)[4]));
+}
+
+TEST(HeightTerrain, ClassifiesStepsByThePartsTheyReach) {
+  auto t = HeightTerrain::Create(TestOptions());
+  ASSERT_TRUE(t.ok());
+  // 0.1 m pebble, 0.25 m rock (wheel), 0.29 m (rocker: 0.332 - 0.05 = 0.282), 0.5 m (body).
+  const auto f = Blocks({{1.0, 1.0, 0.15, 0.10}, {1.0, -1.0, 0.15, 0.25},
+                         {-1.0, 1.0, 0.15, 0.29}, {-1.0, -1.0, 0.15, 0.50}});
+  auto stats = t->Update(ScanOf(f, -3, 3, -3, 3));
+  ASSERT_TRUE(stats.ok()) << stats.status().message();
+  EXPECT_GT(stats->cells_assessed, 3000);
+  const nav_core::HeightMap& m = *t->height_map();
+  auto bits = [&](double x, double y) {
+    int i = 0, j = 0;
+    m.CellOf(x, y, &i, &j);
+    return m.hazard[m.Index(i, j)];
+  };
+  EXPECT_EQ(bits(1.0, 1.0), 0);
+  EXPECT_EQ(bits(1.0, -1.0), nav_core::kHazardWheel);
+  EXPECT_EQ(bits(-1.0, 1.0), nav_core::kHazardWheel | nav_core::kHazardRocker);
+  EXPECT_EQ(bits(-1.0, -1.0),
+            nav_core::kHazardWheel | nav_core::kHazardRocker | nav_core::kHazardBody);
+  EXPECT_EQ(bits(0.0, 0.0), 0);
+  // Distances between cell centres: the nearest block cells are centred 0.85-0.95 m out.
+  EXPECT_NEAR(t->DistanceAt(HazardLayer::kWheel, {0.0, 0.0}), std::hypot(0.9, 0.9), 0.1);
+  EXPECT_NEAR(t->DistanceAt(HazardLayer::kBody, {-1.0, 1.0}), 1.9, 0.11);
+  EXPECT_FLOAT_EQ(t->DistanceAt(HazardLayer::kWheel, {1.0, -1.0}), 0.0F);
+  // The goodness map: known, zero on the tall block, perfect far from rocks.
+  const nav_core::CellValue far = t->GoodnessAt({2.8, 0.0});
+  EXPECT_TRUE(far.known());
+  EXPECT_EQ(far.goodness, 255);
+  EXPECT_EQ(t->GoodnessAt({-1.0, -1.0}).goodness, 0);
+  EXPECT_FALSE(t->GoodnessAt({6.0, 0.0}).known());
+}
+
+TEST(HeightTerrain, NoisyFarStepsAreNotHazardsUntilSeenClose) {
+  EnavOptions o = TestOptions();
+  o.stereo_noise_coeff = 0.01;  // sigma 0.16 m at 4 m
+  auto t = HeightTerrain::Create(o);
+  ASSERT_TRUE(t.ok());
+  const auto f = Blocks({{4.0, 0.0, 0.15, 0.25}});
+  ASSERT_TRUE(t->Update(ScanOf(f, 3, 4.5, -1, 1)).ok());
+  EXPECT_GT(t->DistanceAt(HazardLayer::kWheel, {4.0, 0.0}), 1.0);
+  // Seen again from 1 m away: the closer data replace the far ones and the rock appears.
+  Eigen::Isometry3d near = Eigen::Isometry3d::Identity();
+  near.translation() = Eigen::Vector3d(3.0, 0.0, 0.0);
+  ASSERT_TRUE(t->Update(ScanOf(f, 3, 4.5, -1, 1, 0.03, near)).ok());
+  EXPECT_FLOAT_EQ(t->DistanceAt(HazardLayer::kWheel, {4.0, 0.0}), 0.0F);
+}
+
+TEST(HeightTerrain, RemembersAsItScrollsAndForgetsWhatFallsOff) {
+  auto t = HeightTerrain::Create(TestOptions());  // 16 m map, recentres beyond 2 m
+  ASSERT_TRUE(t.ok());
+  ASSERT_TRUE(t->Update(ScanOf(Blocks({{1.0, 0.0, 0.15, 0.3}}), 0, 2, -1, 1)).ok());
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(5.0, 0.0, 0.0);
+  t->Follow(pose);  // scrolls by 5 m: the rock 4 m behind is still there
+  EXPECT_FLOAT_EQ(t->DistanceAt(HazardLayer::kWheel, {1.0, 0.0}), 0.0F);
+  EXPECT_GT(t->height_map()->origin_x, -8.0 + 4.9);
+  pose.translation() = Eigen::Vector3d(14.0, 0.0, 0.0);
+  t->Follow(pose);  // 13 m on: off the map
+  EXPECT_TRUE(std::isinf(t->DistanceAt(HazardLayer::kWheel, {1.0, 0.0})));
+}
+
+TEST(HeightTerrain, MalformedScanIsRejectedAndChangesNothing) {
+  auto t = HeightTerrain::Create(TestOptions());
+  ASSERT_TRUE(t.ok());
+  nav_core::RangeScan s = ScanOf(Blocks({}), 0, 1, 0, 1);
+  s.valid.pop_back();
+  const std::uint64_t rev = t->height_map()->revision;
+  auto r = t->Update(s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("RangeScan.valid"), std::string::npos);
+  EXPECT_EQ(t->height_map()->revision, rev);
+  // NaN points marked valid are skipped, not merged.
+  nav_core::RangeScan n = ScanOf(Blocks({}), 0, 0.5, 0, 0.5);
+  n.xyz[2] = std::numeric_limits<float>::quiet_NaN();
+  auto ok = t->Update(n);
+  ASSERT_TRUE(ok.ok());
+  EXPECT_EQ(ok->points_used, ok->points_total - 1);
+}
+
+}  // namespace
+}  // namespace rover::apl::enav
