@@ -81,11 +81,43 @@ double ClearanceChecker::WheelHeight(const geometry::Pose2& pose, int wheel, boo
   return best;
 }
 
-PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace) const {
+bool StandingArea::Contains(const Eigen::Vector2d& site) const {
+  const Eigen::Vector2d d = site - pose_.xy();
+  const double c = std::cos(pose_.heading), s = std::sin(pose_.heading);
+  const double x = c * d.x() + s * d.y(), y = -s * d.x() + c * d.y();
+  return x >= f_.min_x - margin_ && x <= f_.max_x + margin_ && y >= f_.min_y - margin_ &&
+         y <= f_.max_y + margin_;
+}
+
+bool ClearanceChecker::HazardOutside(HazardLayer layer, const Eigen::Vector2d& c, double reach,
+                                     const StandingArea& standing) const {
+  const nav_core::HeightMap& m = *terrain_->height_map();
+  static constexpr std::uint8_t kBit[3] = {nav_core::kHazardWheel, nav_core::kHazardRocker,
+                                           nav_core::kHazardBody};
+  const std::uint8_t bit = kBit[static_cast<int>(layer)];
+  int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+  m.CellOf(c.x() - reach, c.y() - reach, &i0, &j0);
+  m.CellOf(c.x() + reach, c.y() + reach, &i1, &j1);
+  const double r2 = reach * reach;
+  for (int j = std::max(0, j0); j <= std::min(m.height - 1, j1); ++j) {
+    for (int i = std::max(0, i0); i <= std::min(m.width - 1, i1); ++i) {
+      if ((m.hazard[m.Index(i, j)] & bit) == 0) continue;
+      const Eigen::Vector2d q = m.CellCenter(i, j);
+      if ((q - c).squaredNorm() > r2 || standing.Contains(q)) continue;
+      return true;
+    }
+  }
+  return false;
+}
+
+PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace,
+                                      const StandingArea* standing) const {
   PoseCheck r;
   for (const PartDisc& d : discs_) {
-    const double dist = terrain_->DistanceAt(d.layer, pose.ToSite(d.centre));
-    if (dist <= d.radius + pad_) {
+    const Eigen::Vector2d c = pose.ToSite(d.centre);
+    const double dist = terrain_->DistanceAt(d.layer, c);
+    if (dist <= d.radius + pad_ &&
+        (standing == nullptr || HazardOutside(d.layer, c, d.radius + pad_, *standing))) {
       r.ok = false;
       r.why = parts_[static_cast<std::size_t>(d.part)].name + " " +
               FormatNumber(std::max(0.0, dist - d.radius), 2) + " m from a " +
@@ -108,6 +140,7 @@ PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace) con
       n += 1;
     } else {
       r.unknown_wheels += 1;
+      r.unknown_mask |= static_cast<std::uint8_t>(1U << w);
     }
   }
   if (n == 0) return r;  // nothing known under the wheels: only the parts check applies

@@ -13,6 +13,9 @@ namespace {
 
 constexpr double kNoCost = std::numeric_limits<double>::infinity();
 constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses along a turn
+constexpr double kStandingMargin = 0.2;  // [m] around the footprint: ground not "unseen"
+constexpr double kStandingHazardMargin = 0.05;  // [m] around it: hazards the rover is on
+
 
 Status CheckRequest(const nav_core::ArcRequest& r) {
   ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
@@ -91,11 +94,12 @@ std::vector<geometry::Pose2> EnavPlanner::Samples(const geometry::Pose2& start,
 
 bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
                             TreePath* p) const {
+  const StandingArea on(start, options_.rover.GroundFootprint(), kStandingHazardMargin);
   // The turn in place.
   if (p->turn != 0.0) {
     const int n = std::max(1, static_cast<int>(std::ceil(std::abs(p->turn) / kTurnStep)));
     for (int i = 1; i <= n; ++i) {
-      const PoseCheck c = checker.CheckPose(geometry::Turned(start, p->turn * i / n), true);
+      const PoseCheck c = checker.CheckPose(geometry::Turned(start, p->turn * i / n), true, &on);
       if (!c.ok) {
         p->why = "turn " + FormatNumber(p->turn / kDegree, 3) + " deg: " + c.why;
         return false;
@@ -103,18 +107,25 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
     }
   }
   const std::vector<geometry::Pose2> poses = Samples(start, *p);
+  const StandingArea standing(start, options_.rover.GroundFootprint(), kStandingMargin);
   int unknown = 0, wheels = 0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const double s = options_.sample_spacing * static_cast<double>(i + 1);
+    if (s > options_.check_length + 1e-9) break;
     const bool ace = s <= options_.ace_length + 1e-9;
-    const PoseCheck c = checker.CheckPose(poses[i], ace);
+    const PoseCheck c = checker.CheckPose(poses[i], ace, &on);
     if (!c.ok) {
       p->why = "at " + FormatNumber(s, 2) + " m: " + c.why;
       return false;
     }
     if (s <= options_.known_length + 1e-9) {
-      unknown += c.unknown_wheels;
-      wheels += hwconfig::kNumWheels;
+      // Ground the rover stands on now is not "unseen": the cameras cannot see under it.
+      for (int w = 0; w < hwconfig::kNumWheels; ++w) {
+        const Eigen::Vector2d site = poses[i].ToSite(options_.rover.WheelCentre(w).head<2>());
+        if (standing.Contains(site)) continue;
+        wheels += 1;
+        if ((c.unknown_mask & (1U << w)) != 0) unknown += 1;
+      }
     }
   }
   if (wheels > 0 && unknown > options_.max_unknown_fraction * wheels) {
@@ -280,6 +291,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     eval.hazard.push_back({ok ? 255 : 0, 255});
     eval.waypoint.push_back({wp, 255});
     eval.merged.push_back({ok ? wp : 0, 255});
+    eval.why.push_back(p.why);
     if (idx == last_.chosen) eval.chosen = static_cast<int>(eval.candidates.size()) - 1;
   }
   if (last_.chosen >= 0) {

@@ -256,7 +256,9 @@ void HeightTerrain::Derive() const {
     }
     const float step = map_.z_mean[k] - ground[k];
     map_.step[k] = step;
-    const double sigma = options_.stereo_noise_coeff * map_.range[k] * map_.range[k];
+    // The noise of the cell's mean (its points' errors taken as independent).
+    const double sigma = options_.stereo_noise_coeff * map_.range[k] * map_.range[k] /
+                         std::sqrt(static_cast<double>(map_.count[k]));
     const double s = step - options_.step_noise_sigmas * sigma;
     static constexpr std::uint8_t kBits[3] = {nav_core::kHazardWheel, nav_core::kHazardRocker,
                                               nav_core::kHazardBody};
@@ -266,6 +268,46 @@ void HeightTerrain::Derive() const {
         masks[c][k] = 1;
       }
     }
+  }
+  // Grow each class over its flanks (breadth first, 4-connected, at most flank_reach).
+  const int reach = static_cast<int>(std::floor(options_.flank_reach / map_.resolution + 1e-9));
+  if (reach > 0) {
+    std::vector<std::uint8_t> flank(cells, 0);
+    for (std::size_t k = 0; k < cells; ++k) {
+      if (map_.count[k] == 0) continue;
+      const double sigma = options_.stereo_noise_coeff * map_.range[k] * map_.range[k] /
+                           std::sqrt(static_cast<double>(map_.count[k]));
+      flank[k] = map_.step[k] - options_.step_noise_sigmas * sigma > options_.flank_step ? 1 : 0;
+    }
+    std::vector<std::size_t> front, next;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<std::uint8_t>& m = masks[c];
+      front.clear();
+      for (std::size_t k = 0; k < cells; ++k) {
+        if (m[k] != 0) front.push_back(k);
+      }
+      for (int d = 0; d < reach && !front.empty(); ++d) {
+        next.clear();
+        for (const std::size_t k : front) {
+          const int i = static_cast<int>(k % w), j = static_cast<int>(k / w);
+          const int ni[4] = {i + 1, i - 1, i, i};
+          const int nj[4] = {j, j, j + 1, j - 1};
+          for (int n = 0; n < 4; ++n) {
+            if (ni[n] < 0 || nj[n] < 0 || ni[n] >= w || nj[n] >= h) continue;
+            const std::size_t q = static_cast<std::size_t>(nj[n]) * w + ni[n];
+            if (m[q] != 0 || flank[q] == 0) continue;
+            m[q] = 1;
+            next.push_back(q);
+          }
+        }
+        front.swap(next);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < cells; ++k) {
+    map_.hazard[k] = static_cast<std::uint8_t>((masks[0][k] != 0 ? nav_core::kHazardWheel : 0) |
+                                               (masks[1][k] != 0 ? nav_core::kHazardRocker : 0) |
+                                               (masks[2][k] != 0 ? nav_core::kHazardBody : 0));
   }
   const float res = static_cast<float>(map_.resolution);
   for (int c = 0; c < 3; ++c) {

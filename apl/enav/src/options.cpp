@@ -30,6 +30,8 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("stereo_noise_coeff", stereo_noise_coeff, 0.0, 1.0, "1/m"));
   ROVER_RETURN_IF_ERROR(CheckRange("step_noise_sigmas", step_noise_sigmas, 0.0, 10.0));
   ROVER_RETURN_IF_ERROR(CheckRange("wheel_step", wheel_step, Bounds::OpenLow(0.0, 2.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("flank_step", flank_step, 0.0, wheel_step, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("flank_reach", flank_reach, 0.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("clearance_margin", clearance_margin, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("cost_cell_size", cost_cell_size,
                                    Bounds::Closed(cell_size, 2.0), "m"));
@@ -54,6 +56,7 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("switch_cost", switch_cost, 0.0, 100.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("planar_margin", planar_margin, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("max_checks", max_checks, 1, 100000));
+  ROVER_RETURN_IF_ERROR(CheckRange("check_length", check_length, Bounds::OpenLow(0.0, 20.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("ace_length", ace_length, 0.0, 20.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("max_tilt", max_tilt, Bounds::OpenLow(0.0, 1.4), "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("suspension_margin", suspension_margin, 0.0, 0.5, "rad"));
@@ -91,6 +94,11 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("wheel_step_m", &O::wheel_step, "m",
          "steps above this reach a wheel or a bogie link (judge: rocks above 0.2 m)")
       .Range(0.001, 2.0);
+  b.Bind("flank_step_m", &O::flank_step, "m",
+         "a hazard grows into neighbouring cells whose step exceeds this (its flank)")
+      .Range(0.0, 2.0);
+  b.Bind("flank_reach_m", &O::flank_reach, "m", "... up to this far from its cells")
+      .Range(0.0, 2.0);
   b.Bind("clearance_margin_m", &O::clearance_margin, "m",
          "below the rocker links' and the belly's clearances, for articulation and map error")
       .Range(0.0, 1.0);
@@ -136,6 +144,9 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("max_checks", &O::max_checks, "",
          "paths clearance-checked in rank order before the step gives up (NOPATH)")
       .Range(1, 100000);
+  b.Bind("check_length_m", &O::check_length, "m",
+         "clearance is checked over this first stretch of each path; beyond, only its cost")
+      .Range(0.01, 20.0);
   b.Bind("ace_length_m", &O::ace_length, "m",
          "suspension angles, tilt and belly are checked this far along each path")
       .Range(0.0, 20.0);

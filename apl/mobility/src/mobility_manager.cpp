@@ -873,6 +873,15 @@ CameraId MobilityManager::CameraFor(const nav_core::ArcEvaluation& eval) const {
 }
 
 void MobilityManager::AutonavStep(Time now, MobilityOutput* out) {
+  if (run_->path_next) {
+    // The chosen path turned in place first; its first arc was checked with it: drive it now.
+    const Primitive p = *run_->path_next;
+    run_->path_next.reset();
+    if (!SendDrive(p, now, out)) return;
+    run_->last_direction = p.distance < 0.0 ? -1 : 1;
+    if (run_->think) StartThinking(p, now, out);
+    return;
+  }
   assessor_->Follow(pose_->site_from_rover);
   auto eval = Evaluate(PlanarPose(pose_->site_from_rover), now);
   if (!eval.ok()) {
@@ -935,6 +944,7 @@ bool MobilityManager::LimitCycleTurn(Time now, MobilityOutput* out) {
     p.angle = std::clamp(p.angle, -options_.visodom_max_turn, options_.visodom_max_turn);
   }
   run_->limit_cycle_turns += 1;
+  run_->path_next.reset();
   run_->last_direction = 0;
   run_->goal_distance_history.assign(1, DistanceToGoal());
   EmitStatus(now, out);
@@ -976,6 +986,19 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
     p.kind = PrimitiveKind::kTurnInPlace;
     p.angle = vo ? std::clamp(c.turn_angle, -options_.visodom_max_turn, options_.visodom_max_turn)
                  : c.turn_angle;
+    // A multi-segment plan (turn, then arcs): its first arc follows the turn without a new
+    // decision, unless VO splits the turn.
+    if (!vo && eval.path.size() >= 2 && eval.path[0].kind == nav_core::MotionKind::kPointTurn &&
+        eval.path[1].kind == nav_core::MotionKind::kArc) {
+      const nav_core::Candidate& a = eval.path[1];
+      Primitive next;
+      const double len = std::min({options_.step_length, a.length,
+                                   std::max(eval.distance_to_goal, 0.05)});
+      next.kind = std::abs(a.curvature) < 1e-9 ? PrimitiveKind::kStraight : PrimitiveKind::kArc;
+      next.curvature = std::abs(a.curvature) < 1e-9 ? 0.0 : a.curvature;
+      next.distance = a.direction < 0 ? -len : len;
+      run_->path_next = next;
+    }
   } else {
     double len = std::min(options_.step_length, std::max(eval.distance_to_goal, 0.05));
     if (vo) len = std::min(len, options_.visodom_max_step);

@@ -301,7 +301,19 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
     // kind(k or angle):hazard/waypoint/merged, forbidden ones as kind:X.
     w.on_arc_votes = [](const ArcVotesSnapshot& snap) {
       const apl::nav_core::ArcEvaluation& e = snap.evaluation;
-      std::printf("    votes step %u chosen %d:", snap.step, e.chosen);
+      std::printf("    votes step %u chosen %d", snap.step, e.chosen);
+      if (!e.path.empty()) {
+        std::printf(" path");
+        for (const apl::nav_core::Candidate& c : e.path) {
+          if (c.kind == apl::nav_core::MotionKind::kPointTurn) {
+            std::printf(" t%.0f", c.turn_angle * 180 / M_PI);
+          } else {
+            std::printf(" %c%.2f/%.1fm", c.direction > 0 ? 'f' : 'b', c.curvature, c.length);
+          }
+        }
+        std::printf(" (ranked %d, checked %d)", e.candidates_ranked, e.clearance_checks);
+      }
+      std::printf(":");
       for (std::size_t k = 0; k < e.candidates.size(); ++k) {
         const apl::nav_core::Candidate& c = e.candidates[k];
         if (c.kind == apl::nav_core::MotionKind::kPointTurn) {
@@ -311,6 +323,7 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
         }
         if (e.hazard[k].goodness == 0) {
           std::printf(":X");
+          if (k < e.why.size() && !e.why[k].empty()) std::printf("(%s)", e.why[k].c_str());
         } else {
           std::printf(":%d/%d/%d", e.hazard[k].goodness, e.waypoint[k].goodness,
                       e.merged[k].goodness);

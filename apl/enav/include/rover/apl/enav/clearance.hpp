@@ -44,11 +44,27 @@ struct PartDisc {
   int part = 0;  ///< index into the contact parts (for messages)
 };
 
+/// The ground a rover stands on: its ground footprint at a pose, grown by a margin. Hazard
+/// cells there are ignored by the check (the rover is on them already, so the map is wrong
+/// or the contact has happened; either way it must be free to drive off).
+class StandingArea {
+ public:
+  StandingArea(const geometry::Pose2& pose, const hwconfig::Footprint& footprint, double margin)
+      : pose_(pose), f_(footprint), margin_(margin) {}
+  bool Contains(const Eigen::Vector2d& site) const;
+
+ private:
+  geometry::Pose2 pose_;
+  hwconfig::Footprint f_;
+  double margin_;
+};
+
 /// What a check found; `ok` false names the first failure.
 struct PoseCheck {
   bool ok = true;
   std::string why;         ///< e.g. "wheel_lf 0.04 m from a wheel hazard", "tilt 23.1 deg"
   int unknown_wheels = 0;  ///< wheel patches without a known cell
+  std::uint8_t unknown_mask = 0;  ///< bit w set: wheel w's patch unknown
   double tilt = 0.0;       ///< [rad] predicted (0 when the ACE part was not run)
 };
 
@@ -58,11 +74,16 @@ class ClearanceChecker {
   explicit ClearanceChecker(const HeightTerrain& terrain);
 
   /// The part discs check at `pose`, plus the suspension, tilt and belly when `ace`.
-  PoseCheck CheckPose(const geometry::Pose2& pose, bool ace) const;
+  /// Hazard cells inside `standing` (when given) do not count.
+  PoseCheck CheckPose(const geometry::Pose2& pose, bool ace,
+                      const StandingArea* standing = nullptr) const;
   const std::vector<PartDisc>& discs() const { return discs_; }
   const std::vector<hwconfig::ContactPart>& parts() const { return parts_; }
 
  private:
+  // Whether a hazard cell of `layer` outside `standing` lies within `reach` of site point c.
+  bool HazardOutside(HazardLayer layer, const Eigen::Vector2d& c, double reach,
+                     const StandingArea& standing) const;
   double WheelHeight(const geometry::Pose2& pose, int wheel, bool* known) const;
 
   const HeightTerrain* terrain_;

@@ -38,6 +38,11 @@ struct EnavOptions {
   /// Steps above this reach a wheel or the bogie link [m] (the judge's traversable rock
   /// height is 0.2 m; a margin below it).
   double wheel_step = 0.17;
+  /// A hazard's outline: from its cells the hazard grows into neighbouring cells whose step
+  /// (noise allowed for) still exceeds flank_step, up to flank_reach [m] (a rock's flank
+  /// below the part's limit is still the rock: the judge counts its whole outline).
+  double flank_step = 0.05;
+  double flank_reach = 0.3;
   /// Height margin below the rocker links' and the belly's clearances (from the rover
   /// description) for articulation and map error [m].
   double clearance_margin = 0.05;
@@ -62,6 +67,10 @@ struct EnavOptions {
   // ---- clearance check --------------------------------------------------------------------
   double planar_margin = 0.08;   ///< [m] parts grown by this (tracking and map error)
   int max_checks = 300;          ///< paths checked in rank order before giving up (NOPATH)
+  /// Each path's clearance is checked over its first check_length [m]; beyond, only its cost
+  /// (hazard proximity in the cost-to-go factor) counts: the far part is replanned from closer
+  /// and better data long before it is driven.
+  double check_length = 3.0;
   double ace_length = 2.0;       ///< [m] suspension, tilt and belly checked this far along
   double max_tilt = 20.0 * kDegree;  ///< [rad]
   double suspension_margin = 0.1;    ///< [rad] below the rocker and bogie stops

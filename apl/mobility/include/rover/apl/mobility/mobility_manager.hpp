@@ -207,6 +207,7 @@ class MobilityManager {
     int blind_pieces = 0;                   // guarded arc: leading pieces that run blind
     std::vector<Eigen::Vector2d> goals;     // long traverse legs (last = the goal)
     std::optional<Primitive> guarded_next;  // guarded piece waiting for its image
+    std::optional<Primitive> path_next;     // autonav: the chosen path's arc after its turn
     std::deque<CameraId> camera_queue;      // further images this step needs
     std::optional<PendingImage> image;
     std::optional<PendingDrive> drive;

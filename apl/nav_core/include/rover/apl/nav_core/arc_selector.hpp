@@ -15,6 +15,7 @@
 /// seen from above (to the left). Metres, radians.
 
 #include <Eigen/Geometry>
+#include <string>
 #include <vector>
 
 #include "rover/apl/nav_core/goodness_map.hpp"
@@ -63,6 +64,9 @@ struct ArcEvaluation {
   std::vector<Vote> hazard;    ///< per candidate
   std::vector<Vote> waypoint;  ///< per candidate
   std::vector<Vote> merged;    ///< per candidate
+  /// Per candidate, why it was forbidden ("wheel_lf 0.03 m from a wheel hazard"), for planners
+  /// that say (the ENav-class tree); empty otherwise.
+  std::vector<std::string> why;
   int chosen = -1;             ///< index into candidates; -1 = none (reached, or no safe path)
   GoalMode mode = GoalMode::kNormal;
   double distance_to_goal = 0.0;  ///< [m] horizontal
