@@ -81,16 +81,13 @@ double ClearanceChecker::WheelHeight(const geometry::Pose2& pose, int wheel, boo
   return best;
 }
 
-bool StandingArea::Contains(const Eigen::Vector2d& site) const {
-  const Eigen::Vector2d d = site - pose_.xy();
-  const double c = std::cos(pose_.heading), s = std::sin(pose_.heading);
-  const double x = c * d.x() + s * d.y(), y = -s * d.x() + c * d.y();
-  return x >= f_.min_x - margin_ && x <= f_.max_x + margin_ && y >= f_.min_y - margin_ &&
-         y <= f_.max_y + margin_;
+bool Exempt::Contains(std::size_t k) const {
+  return std::binary_search(cells.begin(), cells.end(), k);
 }
 
-bool ClearanceChecker::HazardOutside(HazardLayer layer, const Eigen::Vector2d& c, double reach,
-                                     const StandingArea& standing) const {
+template <class F>
+bool ClearanceChecker::ForHazards(HazardLayer layer, const Eigen::Vector2d& c, double reach,
+                                  F f) const {
   const nav_core::HeightMap& m = *terrain_->height_map();
   static constexpr std::uint8_t kBit[3] = {nav_core::kHazardWheel, nav_core::kHazardRocker,
                                            nav_core::kHazardBody};
@@ -101,23 +98,40 @@ bool ClearanceChecker::HazardOutside(HazardLayer layer, const Eigen::Vector2d& c
   const double r2 = reach * reach;
   for (int j = std::max(0, j0); j <= std::min(m.height - 1, j1); ++j) {
     for (int i = std::max(0, i0); i <= std::min(m.width - 1, i1); ++i) {
-      if ((m.hazard[m.Index(i, j)] & bit) == 0) continue;
-      const Eigen::Vector2d q = m.CellCenter(i, j);
-      if ((q - c).squaredNorm() > r2 || standing.Contains(q)) continue;
-      return true;
+      const std::size_t k = m.Index(i, j);
+      if ((m.hazard[k] & bit) == 0) continue;
+      if ((m.CellCenter(i, j) - c).squaredNorm() > r2) continue;
+      if (f(k)) return true;
     }
   }
   return false;
 }
 
+Exempt ClearanceChecker::Touching(const geometry::Pose2& pose, double extra) const {
+  Exempt e;
+  for (const PartDisc& d : discs_) {
+    const Eigen::Vector2d c = pose.ToSite(d.centre);
+    if (terrain_->DistanceAt(d.layer, c) > d.radius + pad_ + extra) continue;
+    ForHazards(d.layer, c, d.radius + pad_ + extra, [&](std::size_t k) {
+      e.cells.push_back(k);
+      return false;
+    });
+  }
+  std::sort(e.cells.begin(), e.cells.end());
+  e.cells.erase(std::unique(e.cells.begin(), e.cells.end()), e.cells.end());
+  return e;
+}
+
 PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace,
-                                      const StandingArea* standing) const {
+                                      const Exempt* exempt) const {
   PoseCheck r;
   for (const PartDisc& d : discs_) {
     const Eigen::Vector2d c = pose.ToSite(d.centre);
     const double dist = terrain_->DistanceAt(d.layer, c);
     if (dist <= d.radius + pad_ &&
-        (standing == nullptr || HazardOutside(d.layer, c, d.radius + pad_, *standing))) {
+        (exempt == nullptr || exempt->cells.empty() ||
+         ForHazards(d.layer, c, d.radius + pad_,
+                    [&](std::size_t k) { return !exempt->Contains(k); }))) {
       r.ok = false;
       r.why = parts_[static_cast<std::size_t>(d.part)].name + " " +
               FormatNumber(std::max(0.0, dist - d.radius), 2) + " m from a " +

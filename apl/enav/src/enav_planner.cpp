@@ -14,7 +14,17 @@ namespace {
 constexpr double kNoCost = std::numeric_limits<double>::infinity();
 constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses along a turn
 constexpr double kStandingMargin = 0.2;  // [m] around the footprint: ground not "unseen"
-constexpr double kStandingHazardMargin = 0.05;  // [m] around it: hazards the rover is on
+
+// Whether site point p lies on the rover's ground footprint at `pose`, grown by `margin`.
+bool OnFootprint(const geometry::Pose2& pose, const hwconfig::Footprint& f, double margin,
+                 const Eigen::Vector2d& p) {
+  const Eigen::Vector2d d = p - pose.xy();
+  const double c = std::cos(pose.heading), s = std::sin(pose.heading);
+  const double x = c * d.x() + s * d.y(), y = -s * d.x() + c * d.y();
+  return x >= f.min_x - margin && x <= f.max_x + margin && y >= f.min_y - margin &&
+         y <= f.max_y + margin;
+}
+
 
 
 Status CheckRequest(const nav_core::ArcRequest& r) {
@@ -93,8 +103,7 @@ std::vector<geometry::Pose2> EnavPlanner::Samples(const geometry::Pose2& start,
 }
 
 bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
-                            TreePath* p) const {
-  const StandingArea on(start, options_.rover.GroundFootprint(), kStandingHazardMargin);
+                            const Exempt& on, TreePath* p) const {
   // The turn in place.
   if (p->turn != 0.0) {
     const int n = std::max(1, static_cast<int>(std::ceil(std::abs(p->turn) / kTurnStep)));
@@ -107,7 +116,7 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
     }
   }
   const std::vector<geometry::Pose2> poses = Samples(start, *p);
-  const StandingArea standing(start, options_.rover.GroundFootprint(), kStandingMargin);
+  const hwconfig::Footprint footprint = options_.rover.GroundFootprint();
   int unknown = 0, wheels = 0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const double s = options_.sample_spacing * static_cast<double>(i + 1);
@@ -122,7 +131,7 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
       // Ground the rover stands on now is not "unseen": the cameras cannot see under it.
       for (int w = 0; w < hwconfig::kNumWheels; ++w) {
         const Eigen::Vector2d site = poses[i].ToSite(options_.rover.WheelCentre(w).head<2>());
-        if (standing.Contains(site)) continue;
+        if (OnFootprint(start, footprint, kStandingMargin, site)) continue;
         wheels += 1;
         if ((c.unknown_mask & (1U << w)) != 0) unknown += 1;
       }
@@ -208,72 +217,81 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
   last_.ranked = static_cast<int>(order.size());
   eval.candidates_ranked = last_.ranked;
 
-  // Clearance checks in rank order; a failed turn + first segment fails its whole subtree.
+  // Backward arcs (a K-turn's first half), ranked by cost-to-go at their end: tried when no
+  // forward path passes.
+  std::vector<int> back;
+  for (std::size_t a = 0; a < curvatures_.size(); ++a) {
+    TreePath p;
+    p.direction = -1;
+    p.k1 = curvatures_[a];
+    p.k1_index = static_cast<int>(a);
+    p.turn_index = -1;
+    p.length1 = options_.first_length;
+    const std::vector<geometry::Pose2> poses = Samples(start, p);
+    p.cost = poses.empty() ? kNoCost : field_.Cost(poses.back().xy()) + options_.first_length;
+    if (std::isfinite(p.cost)) back.push_back(static_cast<int>(paths.size()));
+    paths.push_back(p);
+  }
+  std::stable_sort(back.begin(), back.end(), [&](int a, int b) {
+    return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
+  });
+
+  // Clearance checks in rank order; a failed turn + first segment fails its whole subtree. If
+  // nothing passes, once more with hazards near the rover's own footprint ignored (escape: the
+  // map now says the rover stands beside a rock it was cleared to approach).
   const ClearanceChecker checker(*ht);
-  std::map<std::pair<int, int>, std::string> failed_prefix;
-  std::map<std::pair<int, int>, bool> passed_prefix;
   std::vector<int> checked;
-  for (const int idx : order) {
-    if (last_.checks >= options_.max_checks) break;
-    TreePath& p = paths[static_cast<std::size_t>(idx)];
-    const std::pair<int, int> key{p.turn_index, p.k1_index};
-    if (auto it = failed_prefix.find(key); it != failed_prefix.end()) {
-      p.checked = -1;
-      p.why = it->second;
-      continue;
-    }
-    last_.checks += 1;
-    checked.push_back(idx);
-    if (!passed_prefix.count(key)) {
-      TreePath prefix = p;
-      prefix.length2 = 0.0;
-      prefix.end_s = p.end_s > 0.0 ? std::min(p.end_s, p.length1) : p.length1;
-      if (!CheckPath(checker, start, &prefix)) {
-        failed_prefix[key] = prefix.why;
+  for (const double margin : {0.0, options_.escape_margin}) {
+    const Exempt on = checker.Touching(start, margin);
+    std::map<std::pair<int, int>, std::string> failed_prefix;
+    std::map<std::pair<int, int>, bool> passed_prefix;
+    int budget = options_.max_checks;
+    for (const int idx : order) {
+      if (budget <= 0) break;
+      TreePath& p = paths[static_cast<std::size_t>(idx)];
+      const std::pair<int, int> key{p.turn_index, p.k1_index};
+      if (auto it = failed_prefix.find(key); it != failed_prefix.end()) {
         p.checked = -1;
-        p.why = prefix.why;
+        p.why = it->second;
         continue;
       }
-      passed_prefix[key] = true;
-    }
-    if (CheckPath(checker, start, &p)) {
-      p.checked = 1;
-      last_.chosen = idx;
-      break;
-    }
-    p.checked = -1;
-  }
-  // Fallback: backward arcs, ranked by cost-to-go at their end.
-  if (last_.chosen < 0) {
-    const std::size_t first_back = paths.size();
-    for (std::size_t a = 0; a < curvatures_.size(); ++a) {
-      TreePath p;
-      p.direction = -1;
-      p.k1 = curvatures_[a];
-      p.k1_index = static_cast<int>(a);
-      p.turn_index = -1;
-      p.length1 = options_.first_length;
-      const std::vector<geometry::Pose2> poses = Samples(start, p);
-      p.cost = poses.empty() ? kNoCost : field_.Cost(poses.back().xy()) + options_.first_length;
-      paths.push_back(p);
-    }
-    std::vector<int> back;
-    for (std::size_t i = first_back; i < paths.size(); ++i) {
-      if (std::isfinite(paths[i].cost)) back.push_back(static_cast<int>(i));
-    }
-    std::stable_sort(back.begin(), back.end(), [&](int a, int b) {
-      return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
-    });
-    for (const int idx : back) {
-      TreePath& p = paths[static_cast<std::size_t>(idx)];
+      budget -= 1;
       last_.checks += 1;
       checked.push_back(idx);
-      if (CheckPath(checker, start, &p)) {
+      if (!passed_prefix.count(key)) {
+        TreePath prefix = p;
+        prefix.length2 = 0.0;
+        prefix.end_s = p.end_s > 0.0 ? std::min(p.end_s, p.length1) : p.length1;
+        if (!CheckPath(checker, start, on, &prefix)) {
+          failed_prefix[key] = prefix.why;
+          p.checked = -1;
+          p.why = prefix.why;
+          continue;
+        }
+        passed_prefix[key] = true;
+      }
+      if (CheckPath(checker, start, on, &p)) {
         p.checked = 1;
         last_.chosen = idx;
         break;
       }
       p.checked = -1;
+    }
+    for (const int idx : back) {
+      if (last_.chosen >= 0) break;
+      TreePath& p = paths[static_cast<std::size_t>(idx)];
+      last_.checks += 1;
+      checked.push_back(idx);
+      if (CheckPath(checker, start, on, &p)) {
+        p.checked = 1;
+        last_.chosen = idx;
+        break;
+      }
+      p.checked = -1;
+    }
+    if (last_.chosen >= 0) {
+      last_.escape = margin != 0.0;
+      break;
     }
   }
   eval.clearance_checks = last_.checks;

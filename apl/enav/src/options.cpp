@@ -57,6 +57,7 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("planar_margin", planar_margin, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("max_checks", max_checks, 1, 100000));
   ROVER_RETURN_IF_ERROR(CheckRange("check_length", check_length, Bounds::OpenLow(0.0, 20.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("escape_margin", escape_margin, 0.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("ace_length", ace_length, 0.0, 20.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("max_tilt", max_tilt, Bounds::OpenLow(0.0, 1.4), "rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("suspension_margin", suspension_margin, 0.0, 0.5, "rad"));
@@ -147,6 +148,9 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("check_length_m", &O::check_length, "m",
          "clearance is checked over this first stretch of each path; beyond, only its cost")
       .Range(0.01, 20.0);
+  b.Bind("escape_margin_m", &O::escape_margin, "m",
+         "when nothing passes, hazards this near the rover's footprint are ignored once")
+      .Range(0.0, 2.0);
   b.Bind("ace_length_m", &O::ace_length, "m",
          "suspension angles, tilt and belly are checked this far along each path")
       .Range(0.0, 20.0);

@@ -286,7 +286,7 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
                            const deploy::runner::MobilityTaskSpec& spec, const ParamSet& params,
                            std::uint32_t seed, const mt::WorldOptions& wo, double noise,
                            bool verbose, bool votes, std::optional<double> passability_margin,
-                           bool passability_rectangle) {
+                           bool passability_rectangle, int map_step) {
   ROVER_ASSIGN_OR_RETURN(const sim::world::World world,
                          deploy::runner::BuildRunWorld(scenario, seed, scenario.file));
   ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
@@ -296,7 +296,45 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
   const TerrainScene scene(world.terrain, rover, noise, seed, scenario.criteria.traversable_height);
   mt::FakeWorld w(&manager, wo, &scene);
   w.pose() = {world.start_x, world.start_y, world.start_yaw};
-  if (votes) {
+  if (map_step >= 0) {
+    // The height map's hazard classes around the rover at one decision (planners with heights).
+    w.on_arc_votes = [&manager, map_step](const ArcVotesSnapshot& snap) {
+      if (static_cast<int>(snap.step) != map_step) return;
+      const apl::nav_core::HeightMap* m = manager.assessor().height_map();
+      if (m == nullptr) {
+        std::printf("    (the planner keeps no height map)\n");
+        return;
+      }
+      const Eigen::Vector3d at = snap.site_from_rover.translation();
+      const Eigen::Vector3d fwd = snap.site_from_rover.linear().col(0);
+      std::printf("    step %u at (%.2f, %.2f) heading %.0f deg; x up, y left; '.' seen, 'w' "
+                  "wheel, 'r' rocker, 'B' body hazard, 'o' rover footprint, '>' heading\n",
+                  snap.step, at.x(), at.y(), std::atan2(fwd.y(), fwd.x()) * 180 / M_PI);
+      const double half = 4.0;
+      for (double x = at.x() + half; x >= at.x() - half; x -= m->resolution) {
+        std::printf("    ");
+        for (double y = at.y() + half; y >= at.y() - half; y -= m->resolution) {
+          int i = 0, j = 0;
+          m->CellOf(x, y, &i, &j);
+          char c = ' ';
+          if (m->Contains(i, j)) {
+            const std::size_t k = m->Index(i, j);
+            const std::uint8_t h = m->hazard[k];
+            c = m->count[k] == 0 ? ' '
+                : (h & apl::nav_core::kHazardBody) != 0   ? 'B'
+                : (h & apl::nav_core::kHazardRocker) != 0 ? 'r'
+                : (h & apl::nav_core::kHazardWheel) != 0  ? 'w'
+                                                          : '.';
+          }
+          const Eigen::Vector3d rel = snap.site_from_rover.inverse() * Eigen::Vector3d(x, y, at.z());
+          if (std::abs(rel.x()) <= 0.78 && std::abs(rel.y()) <= 0.58 && c == '.') c = 'o';
+          if (rel.x() > 0.8 && rel.x() < 1.0 && std::abs(rel.y()) < 0.06) c = '>';
+          std::putchar(c);
+        }
+        std::printf("\n");
+      }
+    };
+  } else if (votes) {
     // One line per decision: the chosen candidate, then each candidate as
     // kind(k or angle):hazard/waypoint/merged, forbidden ones as kind:X.
     w.on_arc_votes = [](const ArcVotesSnapshot& snap) {
@@ -436,6 +474,9 @@ int main(int argc, char** argv) {
                "footprint_overlaps, which also counts straddled rocks)");
   app.add_flag("--verbose", verbose, "print every drive and status message");
   bool votes = false;
+  int map_step = -1;
+  app.add_option("--map-at-step", map_step,
+                 "print the height map's hazards around the rover at this decision (enav)");
   app.add_flag("--votes", votes, "print every decision's votes (hazard/waypoint/merged)");
   CLI11_PARSE(app, argc, argv);
 
@@ -467,7 +508,7 @@ int main(int argc, char** argv) {
   int passed = 0;
   for (const std::uint32_t seed : *seeds) {
     auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose, votes,
-                     passability_margin, passability_rectangle);
+                     passability_margin, passability_rectangle, map_step);
     if (!r.ok()) return fail(r.status());
     passed += r->pass ? 1 : 0;
     char free_path[16] = "n/a";

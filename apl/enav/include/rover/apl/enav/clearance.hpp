@@ -44,19 +44,14 @@ struct PartDisc {
   int part = 0;  ///< index into the contact parts (for messages)
 };
 
-/// The ground a rover stands on: its ground footprint at a pose, grown by a margin. Hazard
-/// cells there are ignored by the check (the rover is on them already, so the map is wrong
-/// or the contact has happened; either way it must be free to drive off).
-class StandingArea {
- public:
-  StandingArea(const geometry::Pose2& pose, const hwconfig::Footprint& footprint, double margin)
-      : pose_(pose), f_(footprint), margin_(margin) {}
-  bool Contains(const Eigen::Vector2d& site) const;
-
- private:
-  geometry::Pose2 pose_;
-  hwconfig::Footprint f_;
-  double margin_;
+/// Hazard cells a check ignores: those the rover touches already where it stands (each cell of
+/// a part's hazard class within the part's reach plus `extra` at the start pose). The rover is on
+/// them, so the map is wrong or the contact has happened; either way it must be free to drive
+/// off. Rocks under the belly between the wheels are not touched and stay checked (a turn in
+/// place over them is not exempt). Sorted cell indices of the height map.
+struct Exempt {
+  std::vector<std::size_t> cells;
+  bool Contains(std::size_t k) const;
 };
 
 /// What a check found; `ok` false names the first failure.
@@ -74,16 +69,18 @@ class ClearanceChecker {
   explicit ClearanceChecker(const HeightTerrain& terrain);
 
   /// The part discs check at `pose`, plus the suspension, tilt and belly when `ace`.
-  /// Hazard cells inside `standing` (when given) do not count.
-  PoseCheck CheckPose(const geometry::Pose2& pose, bool ace,
-                      const StandingArea* standing = nullptr) const;
+  /// Hazard cells in `exempt` (when given) do not count.
+  PoseCheck CheckPose(const geometry::Pose2& pose, bool ace, const Exempt* exempt = nullptr) const;
+  /// The hazard cells the parts touch at `pose`, their reach grown by `extra` [m].
+  Exempt Touching(const geometry::Pose2& pose, double extra) const;
   const std::vector<PartDisc>& discs() const { return discs_; }
   const std::vector<hwconfig::ContactPart>& parts() const { return parts_; }
 
  private:
-  // Whether a hazard cell of `layer` outside `standing` lies within `reach` of site point c.
-  bool HazardOutside(HazardLayer layer, const Eigen::Vector2d& c, double reach,
-                     const StandingArea& standing) const;
+  // Calls f(cell index) for each hazard cell of `layer` within `reach` of site point c until f
+  // returns true; returns whether it did.
+  template <class F>
+  bool ForHazards(HazardLayer layer, const Eigen::Vector2d& c, double reach, F f) const;
   double WheelHeight(const geometry::Pose2& pose, int wheel, bool* known) const;
 
   const HeightTerrain* terrain_;

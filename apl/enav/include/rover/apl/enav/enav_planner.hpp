@@ -64,6 +64,7 @@ struct PlanRecord {
   int chosen = -1;              ///< index into paths
   int ranked = 0;               ///< paths with a finite cost
   int checks = 0;               ///< clearance checks run
+  bool escape = false;          ///< chosen with hazards near the footprint ignored
 };
 
 class EnavPlanner : public nav_core::ArcSelector {
@@ -86,7 +87,8 @@ class EnavPlanner : public nav_core::ArcSelector {
 
  private:
   explicit EnavPlanner(const EnavOptions& options);
-  bool CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start, TreePath* p) const;
+  bool CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
+                 const Exempt& on, TreePath* p) const;
 
   EnavOptions options_;
   std::vector<double> curvatures_;

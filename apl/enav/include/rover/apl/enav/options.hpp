@@ -71,6 +71,9 @@ struct EnavOptions {
   /// (hazard proximity in the cost-to-go factor) counts: the far part is replanned from closer
   /// and better data long before it is driven.
   double check_length = 3.0;
+  /// When no path passes, the checks run again ignoring hazard cells within this of the rover's
+  /// own ground footprint [m] (an escape from beside a rock the map now shows too close).
+  double escape_margin = 0.3;
   double ace_length = 2.0;       ///< [m] suspension, tilt and belly checked this far along
   double max_tilt = 20.0 * kDegree;  ///< [rad]
   double suspension_margin = 0.1;    ///< [rad] below the rocker and bogie stops
