@@ -1,9 +1,12 @@
 #include "rover/apl/enav/cost_to_go.hpp"
 
+#include "rover/apl/enav/clearance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <queue>
 #include <utility>
 
@@ -48,6 +51,10 @@ bool CostToGoField::Update(const HeightTerrain& terrain, const Eigen::Vector2d& 
   cost_.assign(cells, kUnreached);
   const std::vector<float>& dw = terrain.distance(HazardLayer::kWheel);
   const std::vector<float>& db = terrain.distance(HazardLayer::kBody);
+  const ClearanceChecker checker(terrain);
+  double reach = 0.0;  // farthest point of any part disc from the rover's origin, padded
+  for (const PartDisc& d : checker.discs()) reach = std::max(reach, d.centre.norm() + d.radius);
+  reach += o.planar_margin + o.cell_size;
   for (int j = 0; j < height_; ++j) {
     for (int i = 0; i < width_; ++i) {
       bool known = false;
@@ -64,6 +71,20 @@ bool CostToGoField::Update(const HeightTerrain& terrain, const Eigen::Vector2d& 
       if (b < o.blocked_radius) {
         fac = kUnreached;
         continue;
+      }
+      // Configuration space: blocked when the rover fits here in none of the headings tried
+      // (only near hazards: farther than every part's reach nothing can touch).
+      const Eigen::Vector2d centre = origin_ + resolution_ * Eigen::Vector2d(i + 0.5, j + 0.5);
+      if (o.cspace_headings > 0 && std::min(w, b) < reach) {
+        bool fits = false;
+        for (int h = 0; h < o.cspace_headings && !fits; ++h) {
+          const double heading = std::numbers::pi * h / o.cspace_headings;
+          fits = checker.CheckPose({centre.x(), centre.y(), heading}, false).ok;
+        }
+        if (!fits) {
+          fac = kUnreached;
+          continue;
+        }
       }
       double v = known ? 1.0 : o.unknown_cost_factor;
       if (o.hazard_cost_radius > 0.0 && w < o.hazard_cost_radius) {

@@ -13,6 +13,8 @@ namespace {
 
 constexpr double kNoCost = std::numeric_limits<double>::infinity();
 constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses along a turn
+constexpr double kContinueDistance = 0.2;  // [m] the rover counts as on its previous path
+constexpr double kContinueHeading = 0.2;   // [rad] ... heading this close to the path's
 constexpr double kStandingMargin = 0.2;  // [m] around the footprint: ground not "unseen"
 
 // Whether site point p lies on the rover's ground footprint at `pose`, grown by `margin`.
@@ -104,19 +106,30 @@ std::vector<geometry::Pose2> EnavPlanner::Samples(const geometry::Pose2& start,
 
 bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
                             const Exempt& on, TreePath* p) const {
+  const hwconfig::Footprint footprint = options_.rover.GroundFootprint();
   // The turn in place.
   if (p->turn != 0.0) {
     const int n = std::max(1, static_cast<int>(std::ceil(std::abs(p->turn) / kTurnStep)));
     for (int i = 1; i <= n; ++i) {
-      const PoseCheck c = checker.CheckPose(geometry::Turned(start, p->turn * i / n), true, &on);
+      const geometry::Pose2 pose = geometry::Turned(start, p->turn * i / n);
+      const PoseCheck c = checker.CheckPose(pose, true, &on);
       if (!c.ok) {
         p->why = "turn " + FormatNumber(p->turn / kDegree, 3) + " deg: " + c.why;
+        return false;
+      }
+      // A turn sweeps the corner wheels beside the rover, where the cameras may never have
+      // looked: every wheel patch off the ground it stands on must have been seen.
+      for (int w = 0; w < hwconfig::kNumWheels; ++w) {
+        if ((c.unknown_mask & (1U << w)) == 0) continue;
+        const Eigen::Vector2d site = pose.ToSite(options_.rover.WheelCentre(w).head<2>());
+        if (OnFootprint(start, footprint, kStandingMargin, site)) continue;
+        p->why = "turn " + FormatNumber(p->turn / kDegree, 3) + " deg: wheel " +
+                 hwconfig::WheelName(w) + " over unseen ground";
         return false;
       }
     }
   }
   const std::vector<geometry::Pose2> poses = Samples(start, *p);
-  const hwconfig::Footprint footprint = options_.rover.GroundFootprint();
   int unknown = 0, wheels = 0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const double s = options_.sample_spacing * static_cast<double>(i + 1);
@@ -186,9 +199,48 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       }
     }
   }
+  // The previous choice, continued from where the rover is now on it (if it is): the same
+  // curvatures, the first shortened by what was driven and the second lengthened as much, so
+  // it reaches as far as a fresh path. It gets commit_bonus off its cost (a plan is kept unless
+  // a clearly better one appears; replanning every half metre otherwise dithers).
+  if (previous_) {
+    const std::vector<geometry::Pose2> prev = Samples(previous_->start, previous_->path);
+    double best_d = kContinueDistance;
+    int best_i = -1;
+    for (int i = 0; i < static_cast<int>(prev.size()); ++i) {
+      const double d = (prev[static_cast<std::size_t>(i)].xy() - start.xy()).norm();
+      const double dh = std::abs(geometry::WrapAngle(prev[static_cast<std::size_t>(i)].heading -
+                                                     start.heading));
+      if (d < best_d && dh < kContinueHeading) {
+        best_d = d;
+        best_i = i;
+      }
+    }
+    const TreePath& q = previous_->path;
+    const double driven = options_.sample_spacing * (best_i + 1);
+    if (best_i >= 0 && driven < q.length1 + q.length2 - options_.sample_spacing) {
+      TreePath c;
+      c.turn_index = -2;
+      c.k1_index = -2;
+      c.direction = 1;
+      if (driven < q.length1) {
+        c.k1 = q.k1;
+        c.length1 = q.length1 - driven;
+        c.k2 = q.k2;
+        c.length2 = q.length2 + driven;
+      } else {
+        c.k1 = q.k2;
+        c.length1 = q.length1 + q.length2 - driven;
+        c.k2 = q.k2;
+        c.length2 = driven;
+      }
+      paths.push_back(c);
+    }
+  }
+  previous_.reset();
   for (TreePath& p : paths) {
     double j = options_.turn_cost * std::abs(p.turn);
-    if (p.turn == 0.0 && last_k1_ && std::abs(p.k1 - *last_k1_) > 1e-9) j += options_.switch_cost;
+    if (p.turn_index == -2) j -= options_.commit_bonus;
     const std::vector<geometry::Pose2> poses = Samples(start, p);
     double s_prev = 0.0;
     bool reached = false;
@@ -330,11 +382,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       a.length = p.length2;
       eval.path.push_back(a);
     }
-    if (p.turn == 0.0 && p.direction > 0) {
-      last_k1_ = p.k1;
-    } else {
-      last_k1_.reset();
-    }
+    if (p.direction > 0 && !last_.escape) previous_ = Previous{start, p};
   }
   return eval;
 }

@@ -256,10 +256,12 @@ void HeightTerrain::Derive() const {
     }
     const float step = map_.z_mean[k] - ground[k];
     map_.step[k] = step;
-    // The noise of the cell's mean (its points' errors taken as independent).
-    const double sigma = options_.stereo_noise_coeff * map_.range[k] * map_.range[k] /
-                         std::sqrt(static_cast<double>(map_.count[k]));
-    const double s = step - options_.step_noise_sigmas * sigma;
+    // The step of the mean (noise of a mean of count points) or of the highest point (noise of
+    // one point), whichever says more: a rock's top is its highest point, not its cell's mean.
+    const double sigma_point = options_.stereo_noise_coeff * map_.range[k] * map_.range[k];
+    const double sigma_mean = sigma_point / std::sqrt(static_cast<double>(map_.count[k]));
+    const double s = std::max(step - options_.step_noise_sigmas * sigma_mean,
+                              map_.z_max[k] - ground[k] - options_.step_noise_sigmas * sigma_point);
     static constexpr std::uint8_t kBits[3] = {nav_core::kHazardWheel, nav_core::kHazardRocker,
                                               nav_core::kHazardBody};
     for (int c = 0; c < 3; ++c) {

@@ -45,6 +45,7 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("hazard_cost_radius", hazard_cost_radius, 0.0, 5.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("hazard_cost_factor", hazard_cost_factor, 0.0, 100.0));
   ROVER_RETURN_IF_ERROR(CheckRange("blocked_radius", blocked_radius, 0.0, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("cspace_headings", cspace_headings, 0, 64));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_turns", num_turns, 1, 360));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_curvatures", num_curvatures, 1, 101));
   ROVER_RETURN_IF_ERROR(CheckRange("first_length", first_length, Bounds::OpenLow(0.0, 20.0), "m"));
@@ -53,7 +54,7 @@ Status EnavOptions::Validate() const {
                                    Bounds::OpenLow(0.0, first_length), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("turn_cost", turn_cost, 0.0, 100.0, "m/rad"));
   ROVER_RETURN_IF_ERROR(CheckRange("curvature_cost", curvature_cost, 0.0, 100.0, "m2"));
-  ROVER_RETURN_IF_ERROR(CheckRange("switch_cost", switch_cost, 0.0, 100.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("commit_bonus", commit_bonus, 0.0, 100.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("planar_margin", planar_margin, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("max_checks", max_checks, 1, 100000));
   ROVER_RETURN_IF_ERROR(CheckRange("check_length", check_length, Bounds::OpenLow(0.0, 20.0), "m"));
@@ -118,6 +119,10 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("blocked_radius_m", &O::blocked_radius, "m",
          "cost-to-go cells this near a hazard to the body are blocked")
       .Range(0.0, 5.0);
+  b.Bind("cspace_headings", &O::cspace_headings, "",
+         "cost-to-go cells where the rover fits in none of this many headings are blocked "
+         "(0 = off)")
+      .Range(0, 64);
   b.Bind("num_turns", &O::num_turns, "",
          "headings of the leading turn in place, evenly over the full circle (1 = none)")
       .Range(1, 360);
@@ -136,8 +141,8 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("curvature_cost", &O::curvature_cost, "m2",
          "cost of |curvature| per metre driven (prefers straight paths)")
       .Range(0.0, 100.0);
-  b.Bind("switch_cost_m", &O::switch_cost, "m",
-         "cost of a first curvature other than the last one driven (hysteresis)")
+  b.Bind("commit_bonus_m", &O::commit_bonus, "m",
+         "taken off the cost of continuing the previous choice (hysteresis against dithering)")
       .Range(0.0, 100.0);
   b.Bind("planar_margin_m", &O::planar_margin, "m",
          "the rover's parts grown by this in the clearance check (tracking and map error)")

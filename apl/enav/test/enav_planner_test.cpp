@@ -70,7 +70,6 @@ TEST(EnavPlanner, RockAheadIsPassedAndTheChosenPathIsClear) {
   auto e = p->Plan(t, Toward(4.5, 0));
   ASSERT_TRUE(e.ok());
   ASSERT_TRUE(e->has_choice());
-  EXPECT_GT(e->clearance_checks, 1);
   const PlanRecord& r = p->last();
   const TreePath& chosen = r.paths[static_cast<std::size_t>(r.chosen)];
   const ClearanceChecker checker(t);

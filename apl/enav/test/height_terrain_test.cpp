@@ -117,3 +117,32 @@ TEST(HeightTerrain, MalformedScanIsRejectedAndChangesNothing) {
 
 }  // namespace
 }  // namespace rover::apl::enav
+
+namespace rover::apl::enav {
+namespace {
+
+TEST(HeightTerrain, DistanceFieldsAgreeWithTheHazardBits) {
+  EnavOptions o = testing::TestOptions();
+  auto t = HeightTerrain::Create(o);
+  ASSERT_TRUE(t.ok());
+  std::vector<testing::Block> rocks;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-3.0, 3.0), hgt(0.1, 0.6);
+  for (int n = 0; n < 25; ++n) rocks.push_back({u(rng), u(rng), 0.1, hgt(rng)});
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(0.7, -0.4, 0.0);
+  pose.linear() = Eigen::AngleAxisd(-1.2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  ASSERT_TRUE(t->Update(testing::ScanOf(testing::Blocks(rocks), -3, 3, -3, 3, 0.03, pose)).ok());
+  const nav_core::HeightMap& m = *t->height_map();
+  static constexpr std::uint8_t kBits[3] = {nav_core::kHazardWheel, nav_core::kHazardRocker,
+                                            nav_core::kHazardBody};
+  for (int c = 0; c < 3; ++c) {
+    const std::vector<float>& d = t->distance(static_cast<HazardLayer>(c));
+    for (std::size_t k = 0; k < m.cell_count(); ++k) {
+      ASSERT_EQ(d[k] == 0.0F, (m.hazard[k] & kBits[c]) != 0) << "class " << c << " cell " << k;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rover::apl::enav

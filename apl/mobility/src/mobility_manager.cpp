@@ -910,6 +910,9 @@ bool MobilityManager::LimitCycleTurn(Time now, MobilityOutput* out) {
   const Pose2 here = PlanarPose(pose_->site_from_rover);
   auto eval = Evaluate(here, now);
   if (!eval.ok()) return false;
+  // Planners that rank whole paths (turns included, each clearance-checked) have already tried
+  // every turn; an unchecked turn here would only risk the rover.
+  if (eval->candidates_ranked > 0) return false;
   // The side of the best forward arcs: the mean curvature of those with the top merged vote.
   int top = -1;
   double k_sum = 0.0;

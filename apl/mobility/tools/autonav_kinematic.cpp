@@ -311,6 +311,17 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
                   "wheel, 'r' rocker, 'B' body hazard, 'o' rover footprint, '>' heading\n",
                   snap.step, at.x(), at.y(), std::atan2(fwd.y(), fwd.x()) * 180 / M_PI);
       const double half = 4.0;
+      int listed = 0;
+      for (int j = 0; j < m->height && listed < 40; ++j) {
+        for (int i = 0; i < m->width && listed < 40; ++i) {
+          const std::size_t k = m->Index(i, j);
+          const Eigen::Vector2d c = m->CellCenter(i, j);
+          if (m->hazard[k] == 0 || (c - at.head<2>()).norm() > 3.0) continue;
+          std::printf("    hazard %d at (%.2f, %.2f) step %.3f count %d range %.2f\n", m->hazard[k],
+                      c.x(), c.y(), m->step[k], m->count[k], m->range[k]);
+          ++listed;
+        }
+      }
       for (double x = at.x() + half; x >= at.x() - half; x -= m->resolution) {
         std::printf("    ");
         for (double y = at.y() + half; y >= at.y() - half; y -= m->resolution) {

@@ -9,7 +9,9 @@
 ///   x (1 + hazard_cost_factor · max(0, 1 - d_wheel / hazard_cost_radius))
 /// where d_wheel is its distance to the nearest wheel hazard (so the rover is steered clear of
 /// rocks without being forbidden to straddle them); cells within blocked_radius of a body
-/// hazard (a rock taller than the belly clearance) are blocked. Unknown cells are priced, never
+/// hazard (a rock taller than the belly clearance) are blocked, and so are cells where the
+/// rover's parts (ClearanceChecker without ACE) fit in none of cspace_headings headings: a gap
+/// narrower than the rover is not a route. Unknown cells are priced, never
 /// forbidden. Sources: the goal's cell at cost 0 when it lies on the map and is not blocked;
 /// otherwise every unblocked cell on the map's border at its straight-line distance to the goal
 /// (times unknown_cost_factor: beyond the map nothing is known).

@@ -14,7 +14,7 @@
 ///
 /// Cheap cost of a path (metres of driving on open known ground):
 ///   J = turn_cost |turn| + sum over samples of factor(centre) ds + curvature_cost sum |k| L
-///       + switch_cost [no turn and k1 != the curvature chosen last] + CostToGo(end)
+///       + CostToGo(end)   (- commit_bonus for the previous choice continued)
 /// with CostToGoField's factor and cost (a blocked sample discards the path). A path whose centre
 /// comes within the goal tolerance ends there (J then has no cost-to-go term), so near the goal
 /// short paths win.
@@ -94,7 +94,11 @@ class EnavPlanner : public nav_core::ArcSelector {
   std::vector<double> curvatures_;
   mutable CostToGoField field_;
   mutable PlanRecord last_;
-  mutable std::optional<double> last_k1_;
+  struct Previous {
+    geometry::Pose2 start;
+    TreePath path;
+  };
+  mutable std::optional<Previous> previous_;  ///< the last choice (forward, not an escape)
 };
 
 }  // namespace rover::apl::enav

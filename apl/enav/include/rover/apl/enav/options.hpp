@@ -53,6 +53,10 @@ struct EnavOptions {
   double hazard_cost_radius = 0.9;    ///< [m] cells nearer a wheel hazard than this cost more
   double hazard_cost_factor = 2.0;    ///< ... up to 1 + this at the hazard
   double blocked_radius = 0.3;        ///< [m] cells this near a body hazard are blocked
+  /// Cells where the rover's parts (clearance check, no ACE) fit in none of this many headings
+  /// over half a turn are blocked (a configuration-space cost-to-go: gaps narrower than the
+  /// rover are not routes). 0 = off.
+  int cspace_headings = 8;
 
   // ---- path tree --------------------------------------------------------------------------
   int num_turns = 24;            ///< headings of the leading turn in place over the full circle
@@ -62,7 +66,7 @@ struct EnavOptions {
   double sample_spacing = 0.1;   ///< [m] poses along a path for the checks
   double turn_cost = 1.0;        ///< [m/rad] cost of turning in place, in metres of driving
   double curvature_cost = 0.2;   ///< [m per 1/m] cost of |curvature| per metre driven
-  double switch_cost = 0.3;      ///< [m] cost of a first curvature other than the last driven
+  double commit_bonus = 0.5;     ///< [m] off the cost of continuing the previous choice
 
   // ---- clearance check --------------------------------------------------------------------
   double planar_margin = 0.08;   ///< [m] parts grown by this (tracking and map error)
