@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
@@ -102,14 +103,14 @@ void FakeWorld::Absorb(const MobilityOutput& out) {
         const DriveStatus rep = DriveReport(drive_->command_id, DriveState::kFailed,
                                             DriveTermination::kStopCommand, drive_done_, "stopped");
         drive_.reset();
-        Absorb(manager_->OnDriveStatus(rep, now_));
+        Absorb(Timed([&] { return manager_->OnDriveStatus(rep, now_); }));
       }
       continue;
     }
     if (drive_) {
-      Absorb(manager_->OnDriveStatus(DriveReport(d.command_id, DriveState::kRejected,
+      Absorb(Timed([&] { return manager_->OnDriveStatus(DriveReport(d.command_id, DriveState::kRejected,
                                                  DriveTermination::kRejectedBusy, 0.0, "busy"),
-                                     now_));
+                                     now_); }));
       continue;
     }
     drive_ = d;
@@ -141,12 +142,12 @@ void FakeWorld::Tick() {
       const DriveStatus rep = DriveReport(drive_->command_id, DriveState::kDone,
                                           DriveTermination::kNominal, turn ? 0.0 : goal, "");
       drive_.reset();
-      Absorb(manager_->OnDriveStatus(rep, now_));
+      Absorb(Timed([&] { return manager_->OnDriveStatus(rep, now_); }));
     } else if (options_.report_progress) {
       const DriveStatus rep =
           DriveReport(drive_->command_id, turn ? DriveState::kTurning : DriveState::kDriving,
                       DriveTermination::kNominal, turn ? 0.0 : drive_done_, "");
-      Absorb(manager_->OnDriveStatus(rep, now_));
+      Absorb(Timed([&] { return manager_->OnDriveStatus(rep, now_); }));
     }
   }
   min_clearance_ = std::min(min_clearance_, scene_ != nullptr
@@ -155,28 +156,28 @@ void FakeWorld::Tick() {
   if (options_.deliver_poses) {
     PoseSample ps = PoseNow();
     if (tamper_pose) tamper_pose(&ps);
-    Absorb(manager_->OnPose(ps, now_));
+    Absorb(Timed([&] { return manager_->OnPose(ps, now_); }));
   }
   for (std::size_t i = 0; i < images_.size();) {
     if (images_[i].due <= now_) {
       Image img = std::move(images_[i]);
       images_.erase(images_.begin() + static_cast<std::ptrdiff_t>(i));
       if (tamper_image) tamper_image(&img.scan, &img.camera);
-      Absorb(manager_->OnRangeImage(img.scan, img.camera, img.id, now_));
+      Absorb(Timed([&] { return manager_->OnRangeImage(img.scan, img.camera, img.id, now_); }));
     } else {
       ++i;
     }
   }
-  Absorb(manager_->Step(now_));
+  Absorb(Timed([&] { return manager_->Step(now_); }));
 }
 
 MobilityStatus FakeWorld::Run(const MobilityCommand& command, double max_s) {
   if (options_.deliver_poses) {
     // A current pose so the command is not rejected for want of one.
-    Absorb(manager_->OnPose(PoseNow(), now_));
+    Absorb(Timed([&] { return manager_->OnPose(PoseNow(), now_); }));
   }
   const std::size_t first = statuses_.size();
-  Absorb(manager_->OnCommand(command, now_));
+  Absorb(Timed([&] { return manager_->OnCommand(command, now_); }));
   const Time end = now_ + Seconds(max_s);
   MobilityStatus last;
   last.state = State::kRunning;
@@ -190,6 +191,12 @@ MobilityStatus FakeWorld::Run(const MobilityCommand& command, double max_s) {
     if (now_ >= end) return last;
     Tick();
   }
+}
+
+double FakeWorld::ThreadCpuNow() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace rover::apl::mobility::testing

@@ -91,12 +91,28 @@ class FakeWorld {
   const std::vector<DriveCommand>& drives() const { return drives_; }
   const std::vector<RangeRequest>& range_requests() const { return ranges_; }
   int arc_vote_snapshots() const { return arc_votes_; }
+  /// [s] thread CPU time spent inside the manager's calls (assessment and path selection
+  /// included; the world's own ray casting not).
+  double manager_cpu_s() const { return manager_cpu_s_; }
   /// Called on every range scan before delivery (tests corrupt it here).
   std::function<void(nav_core::RangeScan*, CameraId*)> tamper_image;
   /// Called on every arc-vote snapshot the manager publishes (tools print them).
   std::function<void(const ArcVotesSnapshot&)> on_arc_votes;
   /// Called on every pose before delivery.
   std::function<void(PoseSample*)> tamper_pose;
+
+ private:
+  template <class F>
+  MobilityOutput Timed(F f) {
+    const double t0 = ThreadCpuNow();
+    MobilityOutput out = f();
+    manager_cpu_s_ += ThreadCpuNow() - t0;
+    return out;
+  }
+  static double ThreadCpuNow();
+  double manager_cpu_s_ = 0.0;
+
+ public:
 
  private:
   struct Image {

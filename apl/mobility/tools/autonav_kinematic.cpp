@@ -268,6 +268,9 @@ struct SeedResult {
   int footprint_overlaps = 0;
   double distance = 0, sim_s = 0, to_goal = -1, clearance = 0;
   std::uint32_t steps = 0, images = 0;
+  int decisions = 0;                   // arc-vote snapshots (path selections)
+  double decide_ms = 0.0;              // manager CPU per decision [ms]
+  double ranked = 0.0, checks = 0.0;   // per decision (path planners)
   double free_path = std::numeric_limits<double>::quiet_NaN();  // [m] FeasiblePathLength
   std::string message;
 };
@@ -388,6 +391,17 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
   const double budget = spec.time_budget_s > 0 ? spec.time_budget_s + 60.0 : 3600.0;
 
   w.Absorb(manager.OnPose(w.PoseNow(), w.now()));
+  double ranked_sum = 0.0, checks_sum = 0.0;
+  {
+    auto print = w.on_arc_votes;
+    w.on_arc_votes = [print, &ranked_sum, &checks_sum](const ArcVotesSnapshot& snap) {
+      const apl::nav_core::ArcEvaluation& e = snap.evaluation;
+      ranked_sum += e.candidates_ranked > 0 ? e.candidates_ranked
+                                            : static_cast<double>(e.candidates.size());
+      checks_sum += e.clearance_checks;
+      if (print) print(snap);
+    };
+  }
   w.Absorb(manager.OnCommand(command, w.now()));
   judge.AddTruth(w.now(), scene.SiteFromRover(w.pose()));
   std::size_t seen_status = 0, seen_drive = 0;
@@ -440,6 +454,12 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
     }
   }
   r.pass = deploy::runner::OutcomeNameMatches(spec.expect, r.outcome) && r.hazard_contacts == 0;
+  r.decisions = w.arc_vote_snapshots();
+  if (r.decisions > 0) {
+    r.decide_ms = 1e3 * w.manager_cpu_s() / r.decisions;
+    r.ranked = ranked_sum / r.decisions;
+    r.checks = checks_sum / r.decisions;
+  }
   r.distance = last.distance_driven;
   r.steps = last.steps;
   r.images = last.images;
@@ -513,10 +533,13 @@ int main(int argc, char** argv) {
   std::printf("%s: expect %s; speed %.3g m/s, latency %.3g s, noise %.3g m at 1 m\n",
               scenario->name.c_str(), mobility->spec().expect.c_str(), wo.speed,
               wo.image_latency_s, noise);
-  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s %9s  %s\n", "seed", "outcome", "pass",
-              "driven", "steps", "images", "sim_s", "to_goal", "contacts", "overlaps", "free_path",
-              "message");
-  int passed = 0;
+  std::printf("planner %s\n", PlannerName(*params).c_str());
+  std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s %9s %9s %7s %6s  %s\n", "seed",
+              "outcome", "pass", "driven", "steps", "images", "sim_s", "to_goal", "contacts",
+              "overlaps", "free_path", "decide_ms", "ranked", "checks", "message");
+  int passed = 0, runs_decided = 0;
+  double decide_sum = 0.0, ranked_all = 0.0, checks_all = 0.0;
+  std::map<std::string, int> outcomes;
   for (const std::uint32_t seed : *seeds) {
     auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose, votes,
                      passability_margin, passability_rectangle, map_step);
@@ -526,13 +549,28 @@ int main(int argc, char** argv) {
     if (!std::isnan(r->free_path)) {
       std::snprintf(free_path, sizeof free_path, r->free_path < 0 ? "-" : "%.1fm", r->free_path);
     }
-    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d %9d %9s  %s\n", seed,
-                r->outcome.c_str(), r->pass ? "yes" : "no", r->distance, r->steps, r->images,
-                r->sim_s, r->to_goal, r->hazard_contacts, r->footprint_overlaps, free_path,
-                r->message.c_str());
+    std::printf("%5u %-12s %4s %7.1fm %6u %6u %8.0f %7.2fm %9d %9d %9s %9.2f %7.0f %6.1f  %s\n",
+                seed, r->outcome.c_str(), r->pass ? "yes" : "no", r->distance, r->steps,
+                r->images, r->sim_s, r->to_goal, r->hazard_contacts, r->footprint_overlaps,
+                free_path, r->decide_ms, r->ranked, r->checks, r->message.c_str());
+    outcomes[r->outcome + (r->hazard_contacts > 0 ? " (contact)" : "")] += 1;
+    if (r->decisions > 0) {
+      runs_decided += 1;
+      decide_sum += r->decide_ms;
+      ranked_all += r->ranked;
+      checks_all += r->checks;
+    }
     std::fflush(stdout);
   }
   std::printf("passed %d of %zu (outcome %s, no hazard contact)\n", passed, seeds->size(),
               mobility->spec().expect.c_str());
+  std::printf("outcomes:");
+  for (const auto& [name, n] : outcomes) std::printf(" %s %d;", name.c_str(), n);
+  std::printf("\n");
+  if (runs_decided > 0) {
+    std::printf("decision (mean over runs): %.2f ms manager CPU per step, %.0f paths ranked, "
+                "%.1f clearance checks\n",
+                decide_sum / runs_decided, ranked_all / runs_decided, checks_all / runs_decided);
+  }
   return passed == static_cast<int>(seeds->size()) ? 0 : 1;
 }

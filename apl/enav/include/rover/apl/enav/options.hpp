@@ -42,7 +42,7 @@ struct EnavOptions {
   /// (noise allowed for) still exceeds flank_step, up to flank_reach [m] (a rock's flank
   /// below the part's limit is still the rock: the judge counts its whole outline).
   double flank_step = 0.05;
-  double flank_reach = 0.3;
+  double flank_reach = 0.2;
   /// Height margin below the rocker links' and the belly's clearances (from the rover
   /// description) for articulation and map error [m].
   double clearance_margin = 0.05;
@@ -69,7 +69,7 @@ struct EnavOptions {
   double commit_bonus = 0.5;     ///< [m] off the cost of continuing the previous choice
 
   // ---- clearance check --------------------------------------------------------------------
-  double planar_margin = 0.08;   ///< [m] parts grown by this (tracking and map error)
+  double planar_margin = 0.04;   ///< [m] parts grown by this (tracking and map error)
   int max_checks = 300;          ///< paths checked in rank order before giving up (NOPATH)
   /// Each path's clearance is checked over its first check_length [m]; beyond, only its cost
   /// (hazard proximity in the cost-to-go factor) counts: the far part is replanned from closer
