@@ -158,6 +158,22 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
   return true;
 }
 
+bool EnavPlanner::Clears(const ClearanceChecker& checker, const geometry::Pose2& start,
+                         const Exempt& exempt, TreePath* p) const {
+  TreePath first = *p;
+  first.length2 = 0.0;
+  first.end_s = 0.0;
+  const std::vector<geometry::Pose2> poses = Samples(start, first);
+  const geometry::Pose2 end = poses.empty() ? geometry::Turned(start, p->turn) : poses.back();
+  for (const std::size_t k : checker.Touching(end, 0.0).cells) {
+    if (exempt.Contains(k)) {
+      p->why = "escape: still touching the hazard it starts beside after its first segment";
+      return false;
+    }
+  }
+  return true;
+}
+
 Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssessor& terrain,
                                                   const nav_core::ArcRequest& request) const {
   ROVER_RETURN_IF_ERROR(CheckRequest(request));
@@ -293,8 +309,10 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
   // map now says the rover stands beside a rock it was cleared to approach).
   const ClearanceChecker checker(*ht);
   std::vector<int> checked;
-  for (const double margin : {0.0, options_.escape_margin}) {
-    const Exempt on = checker.Touching(start, margin);
+  for (const bool escape : {false, true}) {
+    // Normally nothing is exempt. Escaping, the hazard cells the parts touch where the rover
+    // stands (within escape_margin) are, but the path's first segment must leave them behind.
+    const Exempt on = escape ? checker.Touching(start, options_.escape_margin) : Exempt{};
     std::map<std::pair<int, int>, std::string> failed_prefix;
     std::map<std::pair<int, int>, bool> passed_prefix;
     int budget = options_.max_checks;
@@ -322,7 +340,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
         }
         passed_prefix[key] = true;
       }
-      if (CheckPath(checker, start, on, &p)) {
+      if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
         p.checked = 1;
         last_.chosen = idx;
         break;
@@ -334,7 +352,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       TreePath& p = paths[static_cast<std::size_t>(idx)];
       last_.checks += 1;
       checked.push_back(idx);
-      if (CheckPath(checker, start, on, &p)) {
+      if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
         p.checked = 1;
         last_.chosen = idx;
         break;
@@ -342,7 +360,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       p.checked = -1;
     }
     if (last_.chosen >= 0) {
-      last_.escape = margin != 0.0;
+      last_.escape = escape;
       break;
     }
   }

@@ -450,6 +450,29 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
         if (rock.id != id) continue;
         std::printf("  hazard contact: rock %d at (%.2f, %.2f), diameter %.2f m, height %.2f m\n",
                     id, rock.position.x(), rock.position.y(), rock.diameter, rock.height);
+        // What the planner's height map (if any) says under the rock's outline.
+        if (const apl::nav_core::HeightMap* m = manager.assessor().height_map()) {
+          int cells = 0, known = 0, hazard = 0;
+          double top = -1.0, top_range = 0.0;
+          for (int j = 0; j < m->height; ++j) {
+            for (int i = 0; i < m->width; ++i) {
+              const Eigen::Vector2d c = m->CellCenter(i, j);
+              if ((c - rock.position.head<2>()).norm() > 0.5 * rock.diameter) continue;
+              const std::size_t k = m->Index(i, j);
+              ++cells;
+              if (m->count[k] == 0) continue;
+              ++known;
+              if (m->hazard[k] & apl::nav_core::kHazardWheel) ++hazard;
+              if (m->step[k] > top) {
+                top = m->step[k];
+                top_range = m->range[k];
+              }
+            }
+          }
+          std::printf("    in the height map: %d cells under it, %d seen, %d wheel hazards; highest "
+                      "step %.3f m (seen from %.2f m)\n",
+                      cells, known, hazard, top, top_range);
+        }
       }
     }
   }

@@ -89,6 +89,9 @@ class EnavPlanner : public nav_core::ArcSelector {
   explicit EnavPlanner(const EnavOptions& options);
   bool CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
                  const Exempt& on, TreePath* p) const;
+  // Escape paths: whether the first segment's end touches none of `exempt`.
+  bool Clears(const ClearanceChecker& checker, const geometry::Pose2& start, const Exempt& exempt,
+              TreePath* p) const;
 
   EnavOptions options_;
   std::vector<double> curvatures_;
