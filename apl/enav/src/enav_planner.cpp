@@ -15,7 +15,8 @@ constexpr double kNoCost = std::numeric_limits<double>::infinity();
 constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses along a turn
 constexpr double kContinueDistance = 0.2;  // [m] the rover counts as on its previous path
 constexpr double kContinueHeading = 0.2;   // [rad] ... heading this close to the path's
-constexpr double kStandingMargin = 0.2;  // [m] around the footprint: ground not "unseen"
+constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not "unseen"
+                                         // (the wheels hide their own surroundings)
 
 // Whether site point p lies on the rover's ground footprint at `pose`, grown by `margin`.
 bool OnFootprint(const geometry::Pose2& pose, const hwconfig::Footprint& f, double margin,

@@ -12,6 +12,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr int kMinPointsForMax = 4;
 
 // 1-D squared distance transform of f (Felzenszwalb & Huttenlocher 2012, lower envelope of
 // parabolas); f holds 0 at sites and +inf elsewhere. Writes d; v, z are scratch.
@@ -187,12 +188,21 @@ Result<nav_core::AssessmentStats> HeightTerrain::Update(const nav_core::RangeSca
   std::vector<std::size_t> touched;
   const Eigen::Vector2d rover_xy = scan.site_from_rover.translation().head<2>();
   const double max_d2 = options_.max_point_distance * options_.max_point_distance;
+  hwconfig::Footprint self = options_.rover.GroundFootprint();
+  self.min_x -= options_.self_margin;
+  self.max_x += options_.self_margin;
+  self.min_y -= options_.self_margin;
+  self.max_y += options_.self_margin;
   for (int v = 0; v < scan.height; ++v) {
     for (int u = 0; u < scan.width; ++u) {
       if (!scan.is_valid(u, v)) continue;
       stats.points_total += 1;
       const Eigen::Vector3d p_rover = scan.point(u, v);
       if (!p_rover.allFinite()) continue;
+      if (options_.drop_self_points && p_rover.x() >= self.min_x && p_rover.x() <= self.max_x && p_rover.y() >= self.min_y &&
+          p_rover.y() <= self.max_y) {
+        continue;  // the rover itself, or ground it hides
+      }
       const Eigen::Vector3d p = scan.site_from_rover * p_rover;
       const double d2 = (p.head<2>() - rover_xy).squaredNorm();
       if (d2 > max_d2) continue;
@@ -260,8 +270,11 @@ void HeightTerrain::Derive() const {
     // one point), whichever says more: a rock's top is its highest point, not its cell's mean.
     const double sigma_point = options_.stereo_noise_coeff * map_.range[k] * map_.range[k];
     const double sigma_mean = sigma_point / std::sqrt(static_cast<double>(map_.count[k]));
-    const double s = std::max(step - options_.step_noise_sigmas * sigma_mean,
-                              map_.z_max[k] - ground[k] - options_.step_noise_sigmas * sigma_point);
+    // (The highest point only with kMinPointsForMax points: one stereo mismatch is no rock.)
+    double s = step - options_.step_noise_sigmas * sigma_mean;
+    if (map_.count[k] >= kMinPointsForMax) {
+      s = std::max(s, map_.z_max[k] - ground[k] - options_.step_noise_sigmas * sigma_point);
+    }
     static constexpr std::uint8_t kBits[3] = {nav_core::kHazardWheel, nav_core::kHazardRocker,
                                               nav_core::kHazardBody};
     for (int c = 0; c < 3; ++c) {

@@ -25,6 +25,7 @@ Status EnavOptions::Validate() const {
   }
   ROVER_RETURN_IF_ERROR(CheckNonNegative("overwrite_range_slack", overwrite_range_slack, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("min_cell_points", min_cell_points, 1, 10000));
+  ROVER_RETURN_IF_ERROR(CheckRange("self_margin", self_margin, 0.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("ground_radius", ground_radius,
                                    Bounds::Closed(cell_size, 2.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("stereo_noise_coeff", stereo_noise_coeff, 0.0, 1.0, "1/m"));
@@ -84,6 +85,11 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
       .Range(0.0, 100.0);
   b.Bind("min_cell_points", &O::min_cell_points, "", "points a cell needs to count as known")
       .Range(1, 10000);
+  b.Bind("self_margin_m", &O::self_margin, "m",
+         "points within the rover's footprint grown by this are the rover's own: not merged")
+      .Range(0.0, 2.0);
+  b.Bind("drop_self_points", &O::drop_self_points,
+         "drop range points within the footprint grown by self_margin_m (false: keep them)");
   b.Bind("ground_radius_m", &O::ground_radius, "m",
          "a cell's ground is the lowest known mean height within this")
       .Range(0.01, 2.0);

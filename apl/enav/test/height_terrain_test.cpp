@@ -146,3 +146,25 @@ TEST(HeightTerrain, DistanceFieldsAgreeWithTheHazardBits) {
 
 }  // namespace
 }  // namespace rover::apl::enav
+
+namespace rover::apl::enav {
+namespace {
+
+TEST(HeightTerrain, PointsOnTheRoverItselfAreNotMerged) {
+  EnavOptions o = testing::TestOptions();
+  o.drop_self_points = true;
+  auto t = HeightTerrain::Create(o);
+  ASSERT_TRUE(t.ok());
+  // A 0.3 m "rock" where the left front wheel stands (points on the wheel, as a leaky stereo mask
+  // gives them) and a real one 2 m ahead.
+  const auto f = testing::Blocks({{0.625, 0.5, 0.1, 0.3}, {2.5, 0.0, 0.1, 0.3}});
+  ASSERT_TRUE(t->Update(testing::ScanOf(f, -3, 3, -3, 3)).ok());
+  EXPECT_GT(t->DistanceAt(HazardLayer::kWheel, {0.625, 0.5}), 0.5);
+  EXPECT_FLOAT_EQ(t->DistanceAt(HazardLayer::kWheel, {2.5, 0.0}), 0.0F);
+  int i = 0, j = 0;
+  t->height_map()->CellOf(0.0, 0.0, &i, &j);
+  EXPECT_EQ(t->height_map()->count[t->height_map()->Index(i, j)], 0);
+}
+
+}  // namespace
+}  // namespace rover::apl::enav

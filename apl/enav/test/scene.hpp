@@ -57,6 +57,7 @@ inline EnavOptions TestOptions() {
   o.map_size = 16.0;
   o.recentre_distance = 2.0;
   o.max_point_distance = 5.0;
+  o.drop_self_points = false;  // the scans are synthetic: no rover in them
   return o;
 }
 

@@ -975,10 +975,19 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
     return;
   }
   if (!eval.has_choice()) {
+    // Planners that say why (the ENav-class tree): the first two distinct reasons.
+    std::string reasons;
+    int distinct = 0;
+    for (std::size_t k = 0; k < eval.why.size() && distinct < 2; ++k) {
+      if (eval.why[k].empty() || reasons.find(eval.why[k]) != std::string::npos) continue;
+      reasons += (distinct == 0 ? " (first refusals: " : "; ") + eval.why[k];
+      ++distinct;
+    }
+    if (distinct > 0) reasons += ")";
     Finish(now, State::kFailed, Fault::kNoPath,
            "no safe path: all " + std::to_string(eval.candidates.size()) +
                " candidates forbidden, " + FormatNumber(eval.distance_to_goal, 4) +
-               " m from the goal",
+               " m from the goal" + reasons,
            out);
     return;
   }

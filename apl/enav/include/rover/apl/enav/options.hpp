@@ -30,6 +30,11 @@ struct EnavOptions {
   /// (nearer data are more accurate; stale data are replaced only by data about as good).
   double overwrite_range_slack = 0.5;
   int min_cell_points = 1;          ///< points a cell needs to count as known
+  /// Points within the rover's ground footprint grown by this [m] (rover frame at capture) are
+  /// not merged: they lie on the rover itself (wheels, body) where the stereo mask leaks, or on
+  /// ground it hides; merged, they become rocks the rear wheels then meet.
+  double self_margin = 0.1;
+  bool drop_self_points = true;  ///< false: merge them too (synthetic scans without a rover)
   double ground_radius = 0.35;      ///< [m] the local ground: lowest known mean within this
   /// Stereo noise: height sigma = stereo_noise_coeff · r² at horizontal range r [m]; a step
   /// counts as a hazard only above its class's limit plus step_noise_sigmas of that noise.
