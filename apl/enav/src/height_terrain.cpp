@@ -250,9 +250,17 @@ void HeightTerrain::Derive() const {
   const std::size_t cells = map_.cell_count();
   // Ground: separable square min filter of z_mean (unknown ignored).
   const int r = std::max(1, static_cast<int>(std::ceil(options_.ground_radius / map_.resolution)));
-  std::vector<float> tmp(cells), ground(cells);
+  // The ground is the lowest neighbour mean lifted by its own noise allowance: the minimum of
+  // noisy means sits below the true ground by about that much, which would read as a step.
+  std::vector<float> tmp(cells), ground(cells), lifted(map_.z_mean);
+  for (std::size_t k = 0; k < cells; ++k) {
+    if (map_.count[k] == 0) continue;
+    lifted[k] += static_cast<float>(options_.step_noise_sigmas * options_.stereo_noise_coeff *
+                                    map_.range[k] * map_.range[k] /
+                                    std::sqrt(static_cast<double>(map_.count[k])));
+  }
   for (int j = 0; j < h; ++j) {
-    MinFilter1d(map_.z_mean.data() + static_cast<std::size_t>(j) * w, w, 1, r,
+    MinFilter1d(lifted.data() + static_cast<std::size_t>(j) * w, w, 1, r,
                 tmp.data() + static_cast<std::size_t>(j) * w);
   }
   for (int i = 0; i < w; ++i) MinFilter1d(tmp.data() + i, h, w, r, ground.data() + i);

@@ -17,10 +17,13 @@
 /// new data together).
 ///
 /// Derived layers (recomputed on first use after a change):
-///   ground(c) = min of z_mean over known cells within ground_radius (a square window)
+///   ground(c) = min over known cells n within ground_radius (a square window) of
+///               z_mean(n) + step_noise_sigmas · sigma(n) / √count(n)  (noise would bias it low)
 ///   step(c)   = z_mean(c) - ground(c)
 ///   sigma(c)  = stereo_noise_coeff · range(c)²
-///   hazard(c) ∋ class X  when step(c) - step_noise_sigmas · sigma(c) > limit_X, with
+///   hazard(c) ∋ class X  when step(c) - step_noise_sigmas · sigma(c) / √count(c) > limit_X
+///               (or, with 4 points or more, z_max(c) - ground(c) - step_noise_sigmas · sigma(c)
+///               does), with
 ///               limit_wheel  = wheel_step (rocks a wheel or a bogie link would touch),
 ///               limit_rocker = the rocker parts' clearance - clearance_margin,
 ///               limit_body   = the body's clearance (belly) - clearance_margin

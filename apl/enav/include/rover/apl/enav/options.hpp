@@ -29,7 +29,7 @@ struct EnavOptions {
   /// A fresh scan overwrites a cell unless the stored data were taken this much closer [m]
   /// (nearer data are more accurate; stale data are replaced only by data about as good).
   double overwrite_range_slack = 0.5;
-  int min_cell_points = 1;          ///< points a cell needs to count as known
+  int min_cell_points = 2;          ///< points a cell needs to count as known
   /// Points within the rover's ground footprint grown by this [m] (rover frame at capture) are
   /// not merged: they lie on the rover itself (wheels, body) where the stereo mask leaks, or on
   /// ground it hides; merged, they become rocks the rear wheels then meet.
