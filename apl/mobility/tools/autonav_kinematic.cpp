@@ -528,10 +528,13 @@ int main(int argc, char** argv) {
                "footprint_overlaps, which also counts straddled rocks)");
   app.add_flag("--verbose", verbose, "print every drive and status message");
   bool votes = false;
-  bool expect_safe = false;
+  bool expect_safe = false, expect_typed = false;
   app.add_flag("--expect-safe", expect_safe,
                "exit 0 when no run touched a hazard and every run reached the goal or ended in a "
-               "goal error (NOPROGRESS, NOPATH): the safety half of a campaign, for CI");
+               "goal error (NOPROGRESS, NOPATH)");
+  app.add_flag("--expect-typed", expect_typed,
+               "exit 0 when every run reached the goal or ended in a goal error (NOPROGRESS, "
+               "NOPATH): no motion error, bad command or time-out; contacts are reported only");
   int map_step = -1;
   app.add_option("--map-at-step", map_step,
                  "print the height map's hazards around the rover at this decision (enav)");
@@ -564,7 +567,7 @@ int main(int argc, char** argv) {
   std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s %9s %9s %7s %6s  %s\n", "seed",
               "outcome", "pass", "driven", "steps", "images", "sim_s", "to_goal", "contacts",
               "overlaps", "free_path", "decide_ms", "ranked", "checks", "message");
-  int passed = 0, runs_decided = 0, unsafe = 0;
+  int passed = 0, runs_decided = 0, unsafe = 0, untyped = 0;
   double decide_sum = 0.0, ranked_all = 0.0, checks_all = 0.0;
   std::map<std::string, int> outcomes;
   for (const std::uint32_t seed : *seeds) {
@@ -581,10 +584,10 @@ int main(int argc, char** argv) {
                 r->images, r->sim_s, r->to_goal, r->hazard_contacts, r->footprint_overlaps,
                 free_path, r->decide_ms, r->ranked, r->checks, r->message.c_str());
     outcomes[r->outcome + (r->hazard_contacts > 0 ? " (contact)" : "")] += 1;
-    if (r->hazard_contacts > 0 ||
-        (r->outcome != "reached" && r->outcome != "NOPROGRESS" && r->outcome != "NOPATH")) {
-      unsafe += 1;
-    }
+    const bool typed =
+        r->outcome == "reached" || r->outcome == "NOPROGRESS" || r->outcome == "NOPATH";
+    untyped += typed ? 0 : 1;
+    if (r->hazard_contacts > 0 || !typed) unsafe += 1;
     if (r->decisions > 0) {
       runs_decided += 1;
       decide_sum += r->decide_ms;
@@ -602,6 +605,10 @@ int main(int argc, char** argv) {
     std::printf("decision (mean over runs): %.2f ms manager CPU per step, %.0f paths ranked, "
                 "%.1f clearance checks\n",
                 decide_sum / runs_decided, ranked_all / runs_decided, checks_all / runs_decided);
+  }
+  if (expect_typed) {
+    std::printf("%d run(s) ended other than reached / NOPROGRESS / NOPATH\n", untyped);
+    return untyped == 0 ? 0 : 1;
   }
   if (expect_safe) {
     std::printf("%d run(s) touched a hazard or ended other than reached / NOPROGRESS / NOPATH\n",
