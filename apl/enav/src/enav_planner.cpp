@@ -159,6 +159,16 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
   return true;
 }
 
+namespace {
+// Whether the height cell under site point xy has been seen.
+bool GoalSeen(const HeightTerrain& t, const Eigen::Vector2d& xy) {
+  const nav_core::HeightMap& m = *t.height_map();
+  int i = 0, j = 0;
+  m.CellOf(xy.x(), xy.y(), &i, &j);
+  return m.Contains(i, j) && m.count[m.Index(i, j)] > 0;
+}
+}  // namespace
+
 bool EnavPlanner::Clears(const ClearanceChecker& checker, const geometry::Pose2& start,
                          const Exempt& exempt, TreePath* p) const {
   TreePath first = *p;
@@ -195,6 +205,15 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
   }
   field_.Update(*ht, request.goal);
   const double tol2 = request.goal_tolerance * request.goal_tolerance;
+  // A goal on a seen hazard the body cannot pass over (or where the rover fits in no heading)
+  // is refused at once: no path could end there. (Unseen goals are planned toward.)
+  if (!std::isfinite(field_.Factor(request.goal)) && GoalSeen(*ht, request.goal) &&
+      eval.distance_to_goal > request.goal_tolerance + options_.first_length) {
+    eval.why.push_back("the goal (" + FormatNumber(request.goal.x(), 3) + ", " +
+                       FormatNumber(request.goal.y(), 3) +
+                       ") lies on a hazard the rover cannot stand on");
+    return eval;
+  }
 
   // The tree and its cheap costs.
   std::vector<TreePath>& paths = last_.paths;

@@ -84,6 +84,21 @@ TEST(ClearanceChecker, SuspensionFollowsTheWheelsAndLimitsTilt) {
   EXPECT_NE(tilted.why.find("tilt"), std::string::npos) << tilted.why;
 }
 
+TEST(ClearanceChecker, TouchedHazardsCanBeExemptedOthersNot) {
+  // A rock at the left middle wheel and another 1 m ahead of the right front wheel.
+  const HeightTerrain t = TerrainOf(Blocks({{0.0, 0.5, 0.1, 0.25}, {1.6, -0.5, 0.1, 0.25}}));
+  const ClearanceChecker c(t);
+  const geometry::Pose2 here{0.0, 0.0, 0.0};
+  EXPECT_FALSE(c.CheckPose(here, false).ok);
+  const Exempt touched = c.Touching(here, 0.0);
+  EXPECT_FALSE(touched.cells.empty());
+  EXPECT_TRUE(c.CheckPose(here, false, &touched).ok);
+  // Driving 1 m on: the exempt rock is beside the rear wheel, the other one under the front.
+  const PoseCheck ahead = c.CheckPose({1.0, 0.0, 0.0}, false, &touched);
+  EXPECT_FALSE(ahead.ok);
+  EXPECT_NE(ahead.why.find("_r"), std::string::npos) << ahead.why;
+}
+
 TEST(ClearanceChecker, UnseenWheelPatchesAreCounted) {
   auto t = HeightTerrain::Create(TestOptions());
   ASSERT_TRUE(t.ok());

@@ -98,6 +98,21 @@ TEST(EnavPlanner, NearTheGoalItIsReached) {
   EXPECT_FALSE(e->has_choice());
 }
 
+TEST(EnavPlanner, AGoalOnATallRockIsRefusedSayingWhy) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  const HeightTerrain t = TerrainOf(Blocks({{3.0, 0.0, 0.4, 0.6}}));
+  auto e = p->Plan(t, Toward(3.0, 0.0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_FALSE(e->has_choice());
+  ASSERT_EQ(e->why.size(), 1u);
+  EXPECT_NE(e->why[0].find("lies on a hazard"), std::string::npos) << e->why[0];
+  // Beside the rock it is a goal like any other.
+  auto beside = p->Plan(t, Toward(3.0, 2.0));
+  ASSERT_TRUE(beside.ok());
+  EXPECT_TRUE(beside->has_choice());
+}
+
 TEST(EnavPlanner, BoxedInByTallRocksThereIsNoChoice) {
   auto p = EnavPlanner::Create(TestOptions());
   ASSERT_TRUE(p.ok());

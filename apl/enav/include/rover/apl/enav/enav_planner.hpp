@@ -27,6 +27,10 @@
 /// backward arcs of first_length (one per curvature) are checked, ranked by cost-to-go at their
 /// end (a K-turn's first half). No path passing: no choice (the manager's NOPATH).
 ///
+/// A goal on a seen cell that the cost-to-go blocks (a rock the body cannot pass over, or a spot
+/// where the rover fits in no heading) gets no choice at once, `why` saying so (the manager's
+/// NOPATH, a goal error), unless the rover is within first_length of reaching it.
+///
 /// What the manager drives is the first segment only (choice()): the turn when there is one,
 /// else the first arc for at most its step length; the next decision replans from the new pose.
 /// `path` carries the whole chosen path; candidates/votes carry the checked paths' first
