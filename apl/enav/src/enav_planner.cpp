@@ -13,6 +13,7 @@ namespace {
 
 constexpr double kNoCost = std::numeric_limits<double>::infinity();
 constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses along a turn
+constexpr double kBlockedFactor = 10.0;  // [per m] a blocked cell's price when ranking blind
 constexpr double kContinueDistance = 0.2;  // [m] the rover counts as on its previous path
 constexpr double kContinueHeading = 0.2;   // [rad] ... heading this close to the path's
 constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not "unseen"
@@ -205,13 +206,14 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
   }
   field_.Update(*ht, request.goal);
   const double tol2 = request.goal_tolerance * request.goal_tolerance;
-  // A goal on a seen hazard the body cannot pass over (or where the rover fits in no heading)
-  // is refused at once: no path could end there. (Unseen goals are planned toward.)
-  if (!std::isfinite(field_.Factor(request.goal)) && GoalSeen(*ht, request.goal) &&
+  // A goal on a seen rock taller than the belly clearance is refused at once: the rover
+  // cannot stand there. (Unseen goals are planned toward; a goal the heading-blind
+  // configuration space blocks is approached: the clearance check decides.)
+  if (ht->DistanceAt(HazardLayer::kBody, request.goal) == 0.0F && GoalSeen(*ht, request.goal) &&
       eval.distance_to_goal > request.goal_tolerance + options_.first_length) {
     eval.why.push_back("the goal (" + FormatNumber(request.goal.x(), 3) + ", " +
                        FormatNumber(request.goal.y(), 3) +
-                       ") lies on a hazard the rover cannot stand on");
+                       ") lies on a rock taller than the belly clearance");
     return eval;
   }
 
@@ -274,26 +276,44 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     }
   }
   previous_.reset();
-  for (TreePath& p : paths) {
-    double j = options_.turn_cost * std::abs(p.turn);
-    if (p.turn_index == -2) j -= options_.commit_bonus;
-    const std::vector<geometry::Pose2> poses = Samples(start, p);
-    double s_prev = 0.0;
-    bool reached = false;
-    for (std::size_t i = 0; i < poses.size() && std::isfinite(j); ++i) {
-      const double s = std::min(p.length1 + p.length2, options_.sample_spacing * (i + 1.0));
-      const double ds = s - s_prev;
-      s_prev = s;
-      const double k = s <= p.length1 + 1e-9 ? p.k1 : p.k2;
-      j += ds * (field_.Factor(poses[i].xy()) + options_.curvature_cost * std::abs(k));
-      if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
-        p.end_s = s;
-        reached = true;
-        break;
+  // Cheap costs. `blind`: the cost-to-go reaches none of the tree (the rover in a pocket the
+  // heading-blind configuration space closes, or the goal cut off): price blocked cells instead
+  // of discarding them and end with the straight-line distance, so the checks still get ranked
+  // candidates to decide on.
+  auto cost_all = [&](bool blind) {
+    for (TreePath& p : paths) {
+      double j = options_.turn_cost * std::abs(p.turn);
+      if (p.turn_index == -2) j -= options_.commit_bonus;
+      const std::vector<geometry::Pose2> poses = Samples(start, p);
+      double s_prev = 0.0;
+      bool reached = false;
+      p.end_s = 0.0;
+      for (std::size_t i = 0; i < poses.size() && std::isfinite(j); ++i) {
+        const double s = std::min(p.length1 + p.length2, options_.sample_spacing * (i + 1.0));
+        const double ds = s - s_prev;
+        s_prev = s;
+        const double k = s <= p.length1 + 1e-9 ? p.k1 : p.k2;
+        double factor = field_.Factor(poses[i].xy());
+        if (blind) factor = std::min(factor, kBlockedFactor);
+        j += ds * (factor + options_.curvature_cost * std::abs(k));
+        if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
+          p.end_s = s;
+          reached = true;
+          break;
+        }
       }
+      if (!reached && std::isfinite(j) && !poses.empty()) {
+        j += blind ? options_.unknown_cost_factor * (poses.back().xy() - request.goal).norm()
+                   : field_.Cost(poses.back().xy());
+      }
+      p.cost = j;
     }
-    if (!reached && std::isfinite(j) && !poses.empty()) j += field_.Cost(poses.back().xy());
-    p.cost = j;
+  };
+  cost_all(false);
+  if (std::none_of(paths.begin(), paths.end(),
+                   [](const TreePath& p) { return std::isfinite(p.cost); })) {
+    cost_all(true);
+    last_.blind = true;
   }
   std::vector<int> order;
   for (int i = 0; i < static_cast<int>(paths.size()); ++i) {

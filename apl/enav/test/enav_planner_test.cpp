@@ -106,7 +106,7 @@ TEST(EnavPlanner, AGoalOnATallRockIsRefusedSayingWhy) {
   ASSERT_TRUE(e.ok());
   EXPECT_FALSE(e->has_choice());
   ASSERT_EQ(e->why.size(), 1u);
-  EXPECT_NE(e->why[0].find("lies on a hazard"), std::string::npos) << e->why[0];
+  EXPECT_NE(e->why[0].find("lies on a rock"), std::string::npos) << e->why[0];
   // Beside the rock it is a goal like any other.
   auto beside = p->Plan(t, Toward(3.0, 2.0));
   ASSERT_TRUE(beside.ok());

@@ -19,6 +19,10 @@
 /// comes within the goal tolerance ends there (J then has no cost-to-go term), so near the goal
 /// short paths win.
 ///
+/// When the cost-to-go reaches no path of the tree (the rover in a pocket its heading-blind
+/// configuration space closes), the tree is ranked "blind": blocked cells priced at 10 per metre
+/// and the straight-line distance (x unknown_cost_factor) in place of the cost-to-go.
+///
 /// Check in rank order (at most max_checks): the turn (poses every 10 deg of it) and every
 /// sample of the path through ClearanceChecker (ACE within ace_length of the start, the part
 /// discs all along); within known_length no more than max_unknown_fraction of the wheel patches
@@ -27,9 +31,9 @@
 /// backward arcs of first_length (one per curvature) are checked, ranked by cost-to-go at their
 /// end (a K-turn's first half). No path passing: no choice (the manager's NOPATH).
 ///
-/// A goal on a seen cell that the cost-to-go blocks (a rock the body cannot pass over, or a spot
-/// where the rover fits in no heading) gets no choice at once, `why` saying so (the manager's
-/// NOPATH, a goal error), unless the rover is within first_length of reaching it.
+/// A goal on a seen rock taller than the belly clearance (a body-class hazard cell) gets no
+/// choice at once, `why` saying so (the manager's NOPATH, a goal error), unless the rover is
+/// within first_length of reaching it.
 ///
 /// What the manager drives is the first segment only (choice()): the turn when there is one,
 /// else the first arc for at most its step length; the next decision replans from the new pose.
@@ -69,6 +73,7 @@ struct PlanRecord {
   int ranked = 0;               ///< paths with a finite cost
   int checks = 0;               ///< clearance checks run
   bool escape = false;          ///< chosen with hazards near the footprint ignored
+  bool blind = false;           ///< ranked without the cost-to-go (it reached no path)
 };
 
 class EnavPlanner : public nav_core::ArcSelector {
