@@ -113,6 +113,25 @@ TEST(EnavPlanner, AGoalOnATallRockIsRefusedSayingWhy) {
   EXPECT_TRUE(beside->has_choice());
 }
 
+TEST(EnavPlanner, WhenTheCostToGoReachesNoPathTheTreeIsRankedBlind) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  // A ring of 0.25 m rocks 0.9 m about the rover: it fits there in no heading, so the
+  // configuration-space cost-to-go cannot reach its cell, nor any path that starts there.
+  std::vector<Block> ring;
+  for (int a = 0; a < 48; ++a) {
+    const double t = 2.0 * std::numbers::pi * a / 48;
+    ring.push_back({0.9 * std::cos(t), 0.9 * std::sin(t), 0.1, 0.25});
+  }
+  const HeightTerrain t = TerrainOf(Blocks(ring));
+  auto e = p->Plan(t, Toward(4, 0));
+  ASSERT_TRUE(e.ok());
+  EXPECT_TRUE(p->last().blind);
+  EXPECT_GT(e->candidates_ranked, 0);
+  EXPECT_GT(e->clearance_checks, 0);  // the checks decided (here: nothing passes)
+  EXPECT_FALSE(e->has_choice());
+}
+
 TEST(EnavPlanner, BoxedInByTallRocksThereIsNoChoice) {
   auto p = EnavPlanner::Create(TestOptions());
   ASSERT_TRUE(p.ok());
