@@ -20,13 +20,15 @@ constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not
                                          // (the wheels hide their own surroundings)
 
 // Whether site point p lies on the rover's ground footprint at `pose`, grown by `margin`.
-bool OnFootprint(const geometry::Pose2& pose, const hwconfig::Footprint& f, double margin,
+bool OnFootprint(const geometry::Pose2& pose, hwconfig::Footprint f, double margin,
                  const Eigen::Vector2d& p) {
   const Eigen::Vector2d d = p - pose.xy();
   const double c = std::cos(pose.heading), s = std::sin(pose.heading);
-  const double x = c * d.x() + s * d.y(), y = -s * d.x() + c * d.y();
-  return x >= f.min_x - margin && x <= f.max_x + margin && y >= f.min_y - margin &&
-         y <= f.max_y + margin;
+  f.min_x -= margin;
+  f.max_x += margin;
+  f.min_y -= margin;
+  f.max_y += margin;
+  return f.Contains(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
 }
 
 

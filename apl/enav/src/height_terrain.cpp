@@ -179,12 +179,10 @@ Result<nav_core::AssessmentStats> HeightTerrain::Update(const nav_core::RangeSca
   ROVER_RETURN_IF_ERROR(scan.Validate());
   Centre(scan.site_from_rover.translation().head<2>());
   nav_core::AssessmentStats stats;
-  struct Acc {
-    double sum = 0.0, range = 0.0;
-    float lo = kInf, hi = -kInf;
-    int n = 0;
-  };
-  std::vector<Acc> acc(map_.cell_count());
+  // Per-cell sums of this scan, in a scratch grid kept between scans (only touched cells are
+  // reset afterwards: a scan touches a few thousand of the map's 160,000 cells).
+  std::vector<ScanCell>& acc = scratch_;
+  if (acc.size() != map_.cell_count()) acc.assign(map_.cell_count(), ScanCell{});
   std::vector<std::size_t> touched;
   const Eigen::Vector2d rover_xy = scan.site_from_rover.translation().head<2>();
   const double max_d2 = options_.max_point_distance * options_.max_point_distance;
@@ -211,7 +209,7 @@ Result<nav_core::AssessmentStats> HeightTerrain::Update(const nav_core::RangeSca
       if (!map_.Contains(i, j)) continue;
       stats.points_used += 1;
       const std::size_t k = map_.Index(i, j);
-      Acc& a = acc[k];
+      ScanCell& a = acc[k];
       if (a.n == 0) touched.push_back(k);
       a.n += 1;
       a.sum += p.z();
@@ -221,7 +219,7 @@ Result<nav_core::AssessmentStats> HeightTerrain::Update(const nav_core::RangeSca
     }
   }
   for (const std::size_t k : touched) {
-    const Acc& a = acc[k];
+    const ScanCell& a = acc[k];
     if (a.n < options_.min_cell_points) continue;
     stats.cells_touched += 1;
     const float range = static_cast<float>(a.range / a.n);
@@ -233,6 +231,7 @@ Result<nav_core::AssessmentStats> HeightTerrain::Update(const nav_core::RangeSca
     map_.range[k] = range;
     stats.cells_assessed += 1;
   }
+  for (const std::size_t k : touched) acc[k] = ScanCell{};
   map_.stamp = std::max(map_.stamp, scan.capture_time);
   map_.revision += 1;
   dirty_ = true;

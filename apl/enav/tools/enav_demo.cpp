@@ -11,13 +11,13 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "rover/apl/enav/enav_planner.hpp"
 #include "rover/apl/enav/height_terrain.hpp"
+#include "rover/base/cpu_time.hpp"
 #include "rover/testing/fakes/range_synth.hpp"
 
 namespace en = rover::apl::enav;
@@ -26,11 +26,7 @@ namespace geo = rover::geometry;
 
 namespace {
 
-double CpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
+double CpuMs() { return 1e3 * rover::ThreadCpuSeconds(); }
 
 // Site (x north, y west) to pixels of a window of half-size `half` about `c`: north up, west left.
 struct View {

@@ -10,17 +10,6 @@
 
 namespace rover::apl::mobility {
 
-Pose2 PlanarPose(const Eigen::Isometry3d& site_from_rover) {
-  const Eigen::Matrix3d r = site_from_rover.linear();
-  return {site_from_rover.translation().x(), site_from_rover.translation().y(),
-          std::atan2(r(1, 0), r(0, 0))};
-}
-
-double WrapAngle(double a) {
-  a = std::remainder(a, 2.0 * kPi);
-  return a <= -kPi ? a + 2.0 * kPi : a;
-}
-
 double PathLength(const Primitive& p) {
   return (p.kind == PrimitiveKind::kArc || p.kind == PrimitiveKind::kStraight)
              ? std::abs(p.distance)

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 
 #include "rover/apl/gestalt/arc_evaluator.hpp"
 #include "rover/apl/gestalt/terrain_map.hpp"
 #include "rover/base/check.hpp"
+#include "rover/base/cpu_time.hpp"
 
 namespace rover::apl::mobility::testing {
 
@@ -193,10 +193,5 @@ MobilityStatus FakeWorld::Run(const MobilityCommand& command, double max_s) {
   }
 }
 
-double FakeWorld::ThreadCpuNow() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 }  // namespace rover::apl::mobility::testing

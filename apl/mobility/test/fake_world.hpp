@@ -14,6 +14,8 @@
 /// Deterministic: no randomness but the caller's seeded rock placement.
 
 #include <functional>
+
+#include "rover/base/cpu_time.hpp"
 #include <optional>
 #include <random>
 #include <string>
@@ -104,12 +106,11 @@ class FakeWorld {
  private:
   template <class F>
   MobilityOutput Timed(F f) {
-    const double t0 = ThreadCpuNow();
+    const double t0 = ThreadCpuSeconds();
     MobilityOutput out = f();
-    manager_cpu_s_ += ThreadCpuNow() - t0;
+    manager_cpu_s_ += ThreadCpuSeconds() - t0;
     return out;
   }
-  static double ThreadCpuNow();
   double manager_cpu_s_ = 0.0;
 
  public:

@@ -1,5 +1,7 @@
 #include "rover/runtime/activity.hpp"
 
+#include "rover/base/cpu_time.hpp"
+
 #include <time.h>
 
 #include <algorithm>
@@ -39,10 +41,6 @@ double ProcessCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
 }
 
-double ThreadCpuSeconds() {
-  timespec ts{};
-  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0) return 0.0;
-  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
-}
+double ThreadCpuSeconds() { return rover::ThreadCpuSeconds(); }
 
 }  // namespace rover::runtime

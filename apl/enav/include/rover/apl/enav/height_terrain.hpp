@@ -36,6 +36,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "rover/apl/enav/options.hpp"
@@ -70,8 +71,17 @@ class HeightTerrain : public nav_core::TerrainAssessor {
   void Centre(const Eigen::Vector2d& xy);
   void Derive() const;
 
+  // One scan's sums for one cell (Update's scratch).
+  struct ScanCell {
+    double sum = 0.0, range = 0.0;
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -std::numeric_limits<float>::infinity();
+    int n = 0;
+  };
+
   EnavOptions options_;
   std::array<double, 3> limits_{};
+  std::vector<ScanCell> scratch_;
   mutable nav_core::HeightMap map_;
   mutable nav_core::GoodnessMap goodness_;
   mutable std::array<std::vector<float>, 3> distance_;

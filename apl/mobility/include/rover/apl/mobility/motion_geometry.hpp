@@ -14,21 +14,18 @@
 
 #include "rover/apl/mobility/mobility_types.hpp"
 #include "rover/base/status.hpp"
+#include "rover/geometry/planar.hpp"
 #include "rover/geometry/polygon.hpp"
 
 namespace rover::apl::mobility {
 
-struct Pose2 {
-  double x = 0.0;        ///< [m]
-  double y = 0.0;        ///< [m]
-  double heading = 0.0;  ///< [rad]
-  Eigen::Vector2d xy() const { return {x, y}; }
-};
-
-/// Yaw of a 3D pose (ZYX), position x, y.
-Pose2 PlanarPose(const Eigen::Isometry3d& site_from_rover);
-/// Wraps to (-pi, pi].
-double WrapAngle(double a);
+// Planar poses and angle wrapping are core/geometry's (rover/geometry/planar.hpp).
+using geometry::Pose2;
+using geometry::WrapAngle;
+/// Yaw of a 3D pose (ZYX), position x, y (geometry::ToPose2).
+inline Pose2 PlanarPose(const Eigen::Isometry3d& site_from_rover) {
+  return geometry::ToPose2(site_from_rover);
+}
 
 /// Pose after driving `p` (kArc, kStraight: distance along curvature; kTurnInPlace: angle;
 /// others: no motion) from `start`.
