@@ -7,6 +7,7 @@
 
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/base/range_check.hpp"
 #include "rover/base/units.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
@@ -17,7 +18,6 @@ constexpr double kRampThickness = 0.04;    // [m]
 constexpr double kLegWidth = 0.06;         // [m]
 constexpr double kBraceWidth = 0.025;      // [m]
 constexpr double kLegSplay = 0.15;         // [m] footpads this far outside the deck vertices
-constexpr double kStripeMargin = 0.10;     // [m] stripe ends inside the ramp edges
 constexpr double kStripeLift = 0.003;      // [m] stripes float above the ramp (no z-fighting)
 constexpr double kTargetClearance = 0.05;  // [m] gap kept between a target and other rocks
 
@@ -27,12 +27,6 @@ const Eigen::Vector3d kRampAlbedo(0.85, 0.85, 0.82);
 const Eigen::Vector3d kStripeAlbedo(0.05, 0.05, 0.05);
 
 double Apothem(const LanderParams& p) { return p.deck_radius * std::cos(30.0 * kDegree); }
-
-int StripeUnitsTotal() {
-  int s = 0;
-  for (int c : kRampStripeCodes[0]) s += c;
-  return s;
-}
 
 void AddQuad(std::vector<LanderQuad>* out, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
              const Eigen::Vector3d& c, const Eigen::Vector3d& d, const Eigen::Vector3d& albedo,
@@ -120,42 +114,24 @@ double LanderRamp::SlopeDeg() const {
 }
 
 Status LanderParams::Validate() const {
-  auto bad = [](const std::string& field, const std::string& what) {
-    return InvalidArgument("lander." + field + ": " + what);
-  };
-  for (auto [name, v] : {std::pair<const char*, double>{"x", x}, {"y", y}, {"yaw_deg", yaw_deg}}) {
-    if (!std::isfinite(v)) return bad(name, FormatNumber(v) + " is not a finite number");
+  for (auto [name, v] : {std::pair<const char*, double>{"lander.x", x}, {"lander.y", y},
+                         {"lander.yaw_deg", yaw_deg}}) {
+    ROVER_RETURN_IF_ERROR(CheckFinite(name, v));
   }
-  if (!(deck_height >= 0.2 && deck_height <= 5.0)) {
-    return bad("deck_height", FormatNumber(deck_height) + " is out of range [0.2, 5]");
-  }
-  if (!(deck_thickness > 0.0 && deck_thickness < deck_height)) {
-    return bad("deck_thickness", FormatNumber(deck_thickness) + " must be in (0, deck_height)");
-  }
-  if (!(deck_radius >= 0.3 && deck_radius <= 10.0)) {
-    return bad("deck_radius", FormatNumber(deck_radius) + " is out of range [0.3, 10]");
-  }
-  if (!(ramp_length > 0.0 && ramp_length <= 20.0)) {
-    return bad("ramp_length", FormatNumber(ramp_length) + " is out of range (0, 20]");
-  }
-  if (!(ramp_width > 0.0 && ramp_width <= deck_radius)) {
-    return bad("ramp_width", FormatNumber(ramp_width) + " must be in (0, deck_radius = " +
-                                 FormatNumber(deck_radius) + "], the deck edge it hangs from");
-  }
-  if (!(stripe_unit > 0.0)) return bad("stripe_unit", FormatNumber(stripe_unit) + " must be > 0");
-  if (!(stripe_gap >= 0.0)) return bad("stripe_gap", FormatNumber(stripe_gap) + " must be >= 0");
-  const double stripes = StripeUnitsTotal() * stripe_unit + 5.0 * stripe_gap;
-  if (stripes > ramp_length) {
-    return bad("stripe_unit", "the six stripes need " + FormatNumber(stripes) +
-                                  " m along the ramp, more than ramp_length " +
-                                  FormatNumber(ramp_length));
-  }
-  if (!(ramp_width > 2.0 * kStripeMargin)) {
-    return bad("ramp_width", FormatNumber(ramp_width) + " leaves no room for stripes");
-  }
-  if (!(rock_clearance >= 0.0))
-    return bad("rock_clearance", FormatNumber(rock_clearance) + " must be >= 0");
-  return Status::Ok();
+  ROVER_RETURN_IF_ERROR(Description().Validate("lander."));
+  return CheckNonNegative("lander.rock_clearance", rock_clearance, "m");
+}
+
+hwconfig::LanderDescription LanderParams::Description() const {
+  hwconfig::LanderDescription d;
+  d.deck_height = deck_height;
+  d.deck_thickness = deck_thickness;
+  d.deck_radius = deck_radius;
+  d.ramp_length = ramp_length;
+  d.ramp_width = ramp_width;
+  d.stripe_unit = stripe_unit;
+  d.stripe_gap = stripe_gap;
+  return d;
 }
 
 bool Lander::InDeck(double x, double y) const {
@@ -339,7 +315,6 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
     AddBeam(&q, low_n, leg_top[m], kBraceWidth, kLegAlbedo, LanderPart::kBrace);
   }
   // Ramps with their stripes.
-  const double unit = p.stripe_unit;
   for (int r = 0; r < 2; ++r) {
     LanderRamp& ramp = l.ramps[static_cast<std::size_t>(r)];
     const Eigen::Vector3d side(-ramp.direction.y(), ramp.direction.x(), 0.0);
@@ -350,17 +325,16 @@ Status PlaceLander(Terrain* terrain, const LanderParams& p) {
     AddBox(&q, 0.5 * (ramp.top_center + ramp.bottom_center) - 0.5 * kRampThickness * normal, down,
            side, normal, Eigen::Vector3d(0.5 * slope_len, 0.5 * p.ramp_width, 0.5 * kRampThickness),
            kRampAlbedo, LanderPart::kRamp, r);
-    const double total = StripeUnitsTotal() * unit + 5.0 * p.stripe_gap;
-    double from_bottom = 0.5 * (slope_len - total);
-    for (int s = 0; s < 6; ++s) {
+    const hwconfig::LanderDescription desc = p.Description();
+    for (int s = 0; s < hwconfig::kStripesPerRamp; ++s) {
+      const hwconfig::StripeLayout layout = desc.Stripe(r, s);
       LanderStripe& st = ramp.stripes[static_cast<std::size_t>(s)];
       st.ramp = r;
       st.index = s;
-      st.code = kRampStripeCodes[static_cast<std::size_t>(r)][static_cast<std::size_t>(s)];
-      st.width = st.code * unit;
-      st.length = p.ramp_width - 2.0 * kStripeMargin;
-      st.center = ramp.bottom_center - (from_bottom + 0.5 * st.width) * down;
-      from_bottom += st.width + p.stripe_gap;
+      st.code = layout.code;
+      st.width = layout.width;
+      st.length = layout.length;
+      st.center = ramp.bottom_center - (0.5 * slope_len + layout.u) * down;
       const Eigen::Vector3d cc = st.center + kStripeLift * normal;
       const Eigen::Vector3d hw = 0.5 * st.width * down, hl = 0.5 * st.length * side;
       AddQuad(&q, cc - hw - hl, cc + hw - hl, cc + hw + hl, cc - hw + hl, kStripeAlbedo,

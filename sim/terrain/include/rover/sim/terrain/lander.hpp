@@ -31,6 +31,7 @@
 
 #include "rover/base/params.hpp"
 #include "rover/base/status.hpp"
+#include "rover/hwconfig/lander_description.hpp"
 #include "rover/sim/heightfield.hpp"
 
 namespace rover::sim::terrain {
@@ -52,6 +53,8 @@ struct LanderParams {
 
   /// Checks the fields; messages start with "lander.<field>: ".
   Status Validate() const;
+  /// The dimensions as the rover knows them (core/hwconfig), from which the stripes are laid out.
+  hwconfig::LanderDescription Description() const;
 };
 
 enum class LanderPart : std::uint8_t { kDeck, kLeg, kBrace, kRamp, kStripe };
@@ -67,9 +70,8 @@ struct LanderQuad {
   Eigen::Vector3d Normal() const;
 };
 
-/// Stripe width codes per ramp, bottom to top.
-inline constexpr std::array<std::array<int, 6>, 2> kRampStripeCodes = {
-    {{2, 3, 4, 5, 6, 7}, {7, 5, 3, 6, 4, 2}}};
+/// Stripe width codes per ramp, bottom to top (the rover's lander description's).
+using hwconfig::kRampStripeCodes;
 
 struct LanderStripe {
   int ramp = 0;
