@@ -1,0 +1,149 @@
+#pragma once
+/// @file
+/// RETURN_TO_LANDER as a DDS-free state machine (FIDO's visual rendezvous, seed 004, plus the
+/// climb onto the deck): fed time-stamped inputs, it answers with the mobility, mast and camera
+/// requests to send and the status to publish. The apl-rendezvous service binds it to topics.
+///
+/// Phases (msg::RendezvousPhase):
+///  - MID_RANGE (LONG_RANGE when the a-priori lander is farther than 30 m; the same detector is
+///    used there today): point the mast at the lander estimate, take a NAVCAM pair, sight the
+///    lander (RendezvousVision::SightLander), fuse the fix into the site-frame estimate (a
+///    2-D information filter), then drive an autonav leg of at most `reacquire_step` towards
+///    the point `approach_radius` from the deck centre on the rover's side, and look again. A
+///    fix farther than `prior_gate` from the estimate is not the lander: it is never driven to.
+///    No fix: look around (`search_pan_step_deg`), NOT-FOUND after `search_images` pairs.
+///  - CLOSE_RANGE: sight a ramp's coded stripes (SightRamp) for the ramp's full pose; orbit the
+///    lander (autonav legs of `circle_step_deg` on a circle `circle_margin` beyond the ramp
+///    feet) until the chosen ramp is reachable; drive to the servo's start point `servo_run`
+///    before the placement point on the ramp axis; then measure-and-correct: each step takes a
+///    pair, computes the placement point P* = base - standoff * a (a the ramp's horizontal
+///    up-axis) in the rover frame of that pair and drives a directed turn-straight-turn to it;
+///    done when within `lateral_tolerance`, `along_tolerance` and `heading_tolerance_deg`, or
+///    within the accept_* bounds after `max_servo_steps`; else PLACEMENT. Fewer than
+///    `min_stripes` stripes here: TOO-FEW-STRIPES (no final servo).
+///  - AT_RAMP_BASE: stands `hold_at_base_s` (the judge measures the placement here), then
+///  - CLIMB (command.climb): one directed straight of standoff + ramp surface length + deck
+///    apothem, tilt limit `climb_max_tilt_deg`; DONE when the pose has risen by half the deck
+///    height and is level again, else MOBILITY.
+///
+/// Frames: site S (dl/pose), rover R, ramp-surface G (core/hwconfig lander_description.hpp).
+/// Every placement quantity is computed in the rover frame of the pair it comes from, so pose
+/// drift does not enter the final servo; site-frame estimates (lander centre, ramp bases) serve
+/// the mast pointing and the legs between sightings.
+///
+/// Goal errors (msg::RendezvousFault): BAD-COMMAND (the field and value named), BUSY, NOT-FOUND,
+/// TOO-FEW-STRIPES, STALE-POSE, MOBILITY, MAST, CAMERA, STOPPED, TIMEOUT, PLACEMENT. Every one
+/// stops what the executor started and leaves it ready for the next command.
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rover/apl/rendezvous/rendezvous_options.hpp"
+#include "rover/apl/rendezvous/sightings.hpp"
+#include "rover/base/time.hpp"
+#include "rover/hwconfig/lander_description.hpp"
+#include "rover/msg/camera.hpp"
+#include "rover/msg/mast.hpp"
+#include "rover/msg/mobility.hpp"
+#include "rover/msg/pose.hpp"
+#include "rover/msg/rendezvous.hpp"
+
+namespace rover::apl::rendezvous {
+
+/// Id ranges of what the executor sends (other requesters use other prefixes).
+inline constexpr std::uint32_t kMobilityIdBase = 0x52000000u;  ///< apl/mobility_command
+inline constexpr std::uint32_t kMastIdBase = 0x52000000u;      ///< dl/mast_command
+inline constexpr std::uint32_t kCameraRequestPrefix = 3;       ///< ddl/camera_request ids 3 << 24
+
+struct ExecutorOutput {
+  std::vector<msg::MobilityCommand> mobility;
+  std::vector<msg::MastCommand> mast;
+  std::vector<msg::StereoRequest> camera;
+  std::vector<msg::RendezvousStatus> statuses;
+  std::vector<DetectionImage> images;
+};
+
+class RendezvousExecutor {
+ public:
+  /// Preconditions: options.Validate() and lander.Validate() are ok, vision is not null.
+  RendezvousExecutor(const RendezvousOptions& options, const hwconfig::LanderDescription& lander,
+                     std::shared_ptr<RendezvousVision> vision);
+
+  ExecutorOutput OnCommand(const msg::RendezvousCommand& command, Time now);
+  ExecutorOutput OnPose(const msg::PoseSample& pose, Time now);
+  ExecutorOutput OnMobilityStatus(const msg::MobilityStatus& status, Time now);
+  ExecutorOutput OnMastStatus(const msg::MastStatus& status, Time now);
+  /// A NAVCAM pair; pairs that do not answer the outstanding request are ignored.
+  ExecutorOutput OnStereoPair(const NavcamPair& pair, Time now);
+  /// Time-outs, settling and holding (call at a few Hz).
+  ExecutorOutput Step(Time now);
+
+  const msg::RendezvousStatus& status() const { return status_; }
+  bool busy() const { return wait_ != Wait::kNone; }
+
+ private:
+  enum class Wait { kNone, kMast, kSettle, kFrame, kDrive, kHold };
+  enum class DriveKind { kLeg, kOrbit, kToServoStart, kServo, kClimb };
+  struct RampGoal {  // site frame
+    int ramp = -1;
+    Eigen::Vector3d base = Eigen::Vector3d::Zero();
+    Eigen::Vector2d axis = Eigen::Vector2d::UnitX();  // horizontal, up the ramp
+    double slope_len = 0.0;
+  };
+
+  void Reply(ExecutorOutput* out);
+  void Fail(msg::RendezvousFault fault, const std::string& message, ExecutorOutput* out);
+  void SetPhase(msg::RendezvousPhase phase, ExecutorOutput* out);
+  bool PoseFresh(Time now) const;
+  Eigen::Vector2d RoverXy() const;
+  double RoverHeading() const;
+  void LookAt(const Eigen::Vector3d& site_point, Time now, ExecutorOutput* out);
+  void RequestPair(Time now, ExecutorOutput* out);
+  void Drive(msg::MobilityCommand c, DriveKind kind, Time now, ExecutorOutput* out);
+  void DriveTo(const Eigen::Vector2d& goal, double tolerance, DriveKind kind, Time now,
+               ExecutorOutput* out);
+  void LookAtLander(Time now, ExecutorOutput* out);
+  void OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out);
+  void OnRampFix(const RampFix& fix, Time now, ExecutorOutput* out);
+  void AfterDrive(Time now, ExecutorOutput* out);
+  void Orbit(Time now, ExecutorOutput* out);
+  void StartClimb(Time now, ExecutorOutput* out);
+  RampGoal RampGoalFromFix(const RampFix& fix) const;
+  RampGoal OtherRamp(const RampGoal& g) const;
+  Eigen::Vector2d ServoStart() const;
+  double OrbitRadius() const;
+
+  RendezvousOptions options_;
+  hwconfig::LanderDescription lander_;
+  std::shared_ptr<RendezvousVision> vision_;
+
+  msg::RendezvousCommand command_;
+  msg::RendezvousStatus status_;
+  std::optional<msg::PoseSample> pose_;
+  Wait wait_ = Wait::kNone;
+  Time wait_since_;
+  Time deadline_;
+  std::uint32_t mobility_seq_ = 0, mast_seq_ = 0, camera_seq_ = 0;
+  std::uint32_t outstanding_ = 0;  // id of the mast command, camera request or drive awaited
+  DriveKind drive_kind_ = DriveKind::kLeg;
+  double standoff_ = 1.0;
+
+  // Lander estimate: information form of the deck centre (x, y) in the site frame.
+  Eigen::Matrix2d info_ = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d info_vec_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d center_ = Eigen::Vector2d::Zero();
+  double center_z_ = 0.0;
+  double search_bearing_offset_ = 0.0;  // [rad] look-around at a station
+  int search_count_ = 0;
+  int mobility_retries_ = 0;
+  int orbit_legs_ = 0;
+  int servo_steps_ = 0;
+  std::optional<RampGoal> goal_ramp_;
+  bool servo_started_ = false;
+  double climb_start_z_ = 0.0;
+};
+
+}  // namespace rover::apl::rendezvous

@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// What the rendezvous executor needs from one NAVCAM pair, whatever detector made it, and the
+/// interface the executor asks for it through (RendezvousVision). The service's implementation
+/// (vision_pipeline.hpp) runs the lander detector (mid range) and the stripe detector with the
+/// ramp pose solver (close range); tests give the executor a fake that sees a known world.
+///
+/// Frames: R is the rover frame at the pair's capture time (x forward, y left, z up, origin on
+/// the ground below the rocker pivots); G the ramp-surface frame of core/hwconfig's
+/// lander_description.hpp. Units metres and radians.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+
+#include "rover/base/status.hpp"
+#include "rover/base/time.hpp"
+#include "rover/geometry/camera_model.hpp"
+
+namespace cv {
+class Mat;
+}  // namespace cv
+
+namespace rover::apl::rendezvous {
+
+/// One NAVCAM pair as the executor hands it to the vision: 8-bit images (views, valid during the
+/// call) and the camera models in R at capture time.
+struct NavcamPair {
+  Time stamp;
+  std::uint32_t request_id = 0;
+  const cv::Mat* left = nullptr;
+  const cv::Mat* right = nullptr;  ///< may be null: monocular
+  const geometry::CameraModel* left_model = nullptr;
+  const geometry::CameraModel* right_model = nullptr;
+};
+
+/// The lander seen at mid range.
+struct LanderFix {
+  bool found = false;
+  Eigen::Vector3d center_rover = Eigen::Vector3d::Zero();  ///< deck centre in R [m]
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< of center_rover [m^2]
+  std::string features;  ///< which features carried the fix ("deck lines 3, legs 4, stereo")
+  std::string why;       ///< when not found: why
+};
+
+/// A ramp's pose from its coded stripes at close range.
+struct RampFix {
+  bool found = false;
+  int ramp = -1;            ///< 0 or 1
+  int stripes = 0;          ///< identified stripes used by the pose
+  double rms_px = 0.0;      ///< reprojection residual
+  Eigen::Isometry3d rover_from_ramp = Eigen::Isometry3d::Identity();  ///< G -> R
+  /// 1-sigma of the ramp-base position [m] and of the ramp's yaw [rad] in R.
+  double base_sigma = 0.0;
+  double yaw_sigma = 0.0;
+  std::string features;
+  std::string why;
+};
+
+/// Detection images the service keeps in the run folder (features drawn on them).
+struct DetectionImage {
+  std::string name;                  ///< "mid_range_03"
+  std::shared_ptr<const cv::Mat> bgr;  ///< 8-bit BGR
+};
+
+class RendezvousVision {
+ public:
+  virtual ~RendezvousVision() = default;
+  /// The lander in a pair (mid range). `prior_rover` is the expected deck centre in R (a search
+  /// window); an error only for bad input (empty image, model size mismatch).
+  virtual Result<LanderFix> SightLander(const NavcamPair& pair,
+                                        const Eigen::Vector3d& prior_rover) = 0;
+  /// A ramp's coded stripes and its pose (close range). Errors only for bad input.
+  virtual Result<RampFix> SightRamp(const NavcamPair& pair) = 0;
+  /// The image of the last sighting with its features drawn, for the run folder (may be empty).
+  virtual DetectionImage LastDrawing() { return {}; }
+};
+
+}  // namespace rover::apl::rendezvous
