@@ -51,6 +51,25 @@ void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world
   }
 }
 
+void AddRendezvousFigures(const sim::world::World& world, const std::optional<RendezvousLog>& log,
+                          RunResult* result, std::string* failure) {
+  if (!log || !world.terrain.lander) return;
+  auto figures = RendezvousFigures(*log, *world.terrain.lander, *result);
+  for (auto& f : figures) {
+    if (f.name == "on_deck" && log->expect_on_deck) {
+      f.limit = 1;
+      f.pass = f.measured >= 1.0;
+      result->criteria.push_back(f);
+      if (!f.pass && failure->empty()) {
+        *failure = "on_deck: the run ended off the deck (" + log->end_phase +
+                   (log->message.empty() ? "" : ": " + log->message) + ")";
+      }
+    } else {
+      result->figures.push_back(f);
+    }
+  }
+}
+
 void ScoreRun(const sim::judge::Judge& judge,
               const std::vector<sim::judge::Criterion>& extra_figures, RunResult* result,
               std::string* failure) {

@@ -254,6 +254,7 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
   result.sim_time_s = run_loop.now();
   ScoreRun(*judge, (*recorder)->Figures(), &result, &failure);
   AddMobilityFigures(scenario, prepared.world, &result, &failure);
+  AddRendezvousFigures(prepared.world, (*recorder)->rendezvous(), &result, &failure);
   return finish(failure);
 }
 

@@ -34,6 +34,8 @@ std::string UniqueProject(const Scenario& s, std::uint32_t seed) {
   return s.name + "-seed" + std::to_string(seed) + "-" + std::to_string(getpid()) + buf;
 }
 
+const char* const kRendezvousService = "apl-rendezvous";
+
 // The parameter files of one service: the simulator's world file, then its overrides.
 Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
                       const std::string& sim_params_path, ServiceSpec* svc) {
@@ -44,6 +46,10 @@ Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
     overrides["start.x"] = FormatNumber(scenario.start_x, 9);
     overrides["start.y"] = FormatNumber(scenario.start_y, 9);
     overrides["start.yaw_deg"] = FormatNumber(scenario.start_yaw * kRadToDeg, 9);
+  }
+  if (svc->name == kRendezvousService) {
+    // The rendezvous draws its sightings into the run folder.
+    overrides["rendezvous.detection_dir"] = run_dir + "/detections";
   }
   if (auto it = scenario.params.find(svc->name); it != scenario.params.end()) {
     for (const auto& [k, v] : it->second) overrides[k] = v;

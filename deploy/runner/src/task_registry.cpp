@@ -4,6 +4,7 @@
 #include "rover/base/check.hpp"
 #include "rover/deploy/runner/task.hpp"
 #include "rover/deploy/runner/tasks/directed_task.hpp"
+#include "rover/deploy/runner/tasks/lander_return_task.hpp"
 #include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/deploy/runner/tasks/planned_tasks.hpp"
 
@@ -15,6 +16,7 @@ const TaskRegistry& TaskRegistry::Builtin() {
     TaskRegistry r;
     RegisterDirectedTask(r);
     RegisterMobilityTasks(r);
+    RegisterLanderReturnTask(r);
     RegisterPlannedTasks(r);
     return r;
   }();

@@ -32,7 +32,7 @@ TEST_F(RunnerTest, LoadScenarioChecksTheTaskWithItsOwnKeysAndLines) {
   EXPECT_EQ(Load(text).status().message(),
             dir_ +
                 "/s.yaml:13: task.type: 'directd' is not one of: directed, autonav, "
-                "goto_waypoint, guarded, guarded_arc, long_traverse, lander_return, "
+                "goto_waypoint, guarded, guarded_arc, lander_return, long_traverse, "
                 "science_target (did you mean 'directed'?)");
   text = runner::testing::kSmallScenario;
   text.replace(text.find("distance: 2"), 11, "distance: 200");

@@ -21,7 +21,7 @@ class NullTask : public Task {
 TEST(TaskRegistry, BuiltinTypesInOrder) {
   EXPECT_EQ(TaskRegistry::Builtin().Types(),
             (std::vector<std::string>{"directed", "autonav", "goto_waypoint", "guarded",
-                                      "guarded_arc", "long_traverse", "lander_return",
+                                      "guarded_arc", "lander_return", "long_traverse",
                                       "science_target"}));
   EXPECT_NE(TaskRegistry::Builtin().Describe().find("directed "), std::string::npos);
 }
@@ -32,11 +32,11 @@ TEST(TaskRegistry, UnknownTypeNamesFileLineAndTheKnownTypes) {
   ASSERT_FALSE(t.ok());
   EXPECT_EQ(t.status().message(),
             "s.yaml:3: task.type: 'directd' is not one of: directed, autonav, goto_waypoint, "
-            "guarded, guarded_arc, long_traverse, lander_return, science_target (did you mean "
+            "guarded, guarded_arc, lander_return, long_traverse, science_target (did you mean "
             "'directed'?)");
   EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: fly}\n")).message(),
             "s.yaml:2: task.type: 'fly' is not one of: directed, autonav, goto_waypoint, guarded, "
-            "guarded_arc, long_traverse, lander_return, science_target");
+            "guarded_arc, lander_return, long_traverse, science_target");
 }
 
 TEST(TaskRegistry, AFactoryGetsItsSectionAndOwnsItsKeys) {

@@ -5,6 +5,9 @@
 /// scores the run into the RunResult, and the run folder gets result.json, map.png and
 /// estimate_error.png.
 
+#include <optional>
+
+#include "rover/deploy/runner/rendezvous_judging.hpp"
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -34,6 +37,12 @@ void ScoreRun(const sim::judge::Judge& judge,
 /// command had keep-out zones, the criterion keep_out_entries (truth track points with the
 /// rover's front, hwconfig's ground footprint, in a zone; limit 0). A failed criterion becomes
 /// `*failure` when that is empty.
+/// The lander-return figures (rendezvous_judging.hpp) of `log`, when the task kept one and the
+/// world has a lander, into result->figures; the on_deck figure becomes a criterion when the
+/// task expected to end on the deck (a failed one sets *failure when it is still empty).
+void AddRendezvousFigures(const sim::world::World& world, const std::optional<RendezvousLog>& log,
+                          RunResult* result, std::string* failure);
+
 void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world, RunResult* result,
                         std::string* failure);
 

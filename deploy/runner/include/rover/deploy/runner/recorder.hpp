@@ -20,6 +20,7 @@
 
 #include "rover/base/status.hpp"
 #include "rover/deploy/run_report.hpp"
+#include "rover/deploy/runner/rendezvous_judging.hpp"
 #include "rover/deploy/scenario.hpp"
 #include "rover/recording/bus_recorder.hpp"
 #include "rover/runtime/dds.hpp"
@@ -59,6 +60,12 @@ class Recorder {
     if (!result_->mobility) result_->mobility.emplace();
     return *result_->mobility;
   }
+  /// The lander-return task's record of apl/rendezvous_status (for the judge), made on first use.
+  RendezvousLog& Rendezvous() {
+    if (!rendezvous_) rendezvous_.emplace();
+    return *rendezvous_;
+  }
+  const std::optional<RendezvousLog>& rendezvous() const { return rendezvous_; }
   /// A figure (measured, not judged) for result.json, listed after the judge's own.
   void AddFigure(sim::judge::Criterion figure) { added_figures_.push_back(std::move(figure)); }
   /// The recorder's figures: dl/pose's rejected-measurement count (when dl/pose was heard), then
@@ -81,6 +88,7 @@ class Recorder {
   bool has_estimate_ = false;
   std::optional<double> rejected_measurements_;  // dl/pose's count, last sample
   std::vector<sim::judge::Criterion> added_figures_;
+  std::optional<RendezvousLog> rendezvous_;
 };
 
 /// The run's MCAP recording (the scenario's `record`, on by default): every catalog topic it

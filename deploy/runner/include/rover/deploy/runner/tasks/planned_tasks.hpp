@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// The task types scenarios may already name but this stack cannot run yet, because the services
-/// they command do not exist: long_traverse (a `goal` is required),
-/// lander_return and science_target (`goal` optional). Each parses and validates its section
+/// they command do not exist: long_traverse (a `goal` is required) and
+/// science_target (`goal` optional). Each parses and validates its section
 /// (keys `type` and `goal`) like a real task, so a scenario written for them is checked today;
 /// a run of one starts the set, then fails saying which services are missing. The application
 /// layer replaces each of these with its real task (apl/mobility_command, apl/rendezvous_command,
@@ -12,7 +12,7 @@
 
 namespace rover::deploy::runner {
 
-/// Registers long_traverse, lander_return and science_target (autonav and goto_waypoint are real
+/// Registers long_traverse and science_target (autonav and goto_waypoint are real
 /// tasks now: tasks/mobility_task.hpp).
 void RegisterPlannedTasks(TaskRegistry& registry);
 

@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// The service's RendezvousVision: the mid-range lander detector (lander_detector.hpp) and the
+/// stripe detector with the ramp pose solver (stripe_detector.hpp, ramp_pose.hpp) behind the
+/// executor's interface, with a drawing of every sighting for the run folder.
+///
+/// Mid range: the deck centre in R is the left camera's centre plus the sighting's horizontal
+/// range along its bearing, at deck height above the ground (R's z = 0); its covariance comes
+/// from the range and bearing sigmas (a vertical sigma of half the deck height).
+/// Close range: both images are searched; the ramp with most stripes in the left image is
+/// solved with both cameras; base and yaw sigmas come from the pose covariance.
+
+#include <memory>
+
+#include "rover/apl/rendezvous/lander_detector.hpp"
+#include "rover/apl/rendezvous/ramp_pose.hpp"
+#include "rover/apl/rendezvous/sightings.hpp"
+#include "rover/apl/rendezvous/stripe_detector.hpp"
+#include "rover/hwconfig/lander_description.hpp"
+
+namespace rover::apl::rendezvous {
+
+struct VisionOptions {
+  LanderDetectorOptions lander;
+  StripeDetectorOptions stripes;
+  RampPoseOptions pose;
+};
+
+class VisionPipeline final : public RendezvousVision {
+ public:
+  VisionPipeline(const hwconfig::LanderDescription& lander, const VisionOptions& options);
+
+  Result<LanderFix> SightLander(const NavcamPair& pair,
+                                const Eigen::Vector3d& prior_rover) override;
+  Result<RampFix> SightRamp(const NavcamPair& pair) override;
+  DetectionImage LastDrawing() override;
+
+ private:
+  hwconfig::LanderDescription lander_;
+  VisionOptions options_;
+  DetectionImage drawing_;
+  int sightings_ = 0;
+};
+
+}  // namespace rover::apl::rendezvous

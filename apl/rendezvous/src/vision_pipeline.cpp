@@ -1,0 +1,115 @@
+#include "rover/apl/rendezvous/vision_pipeline.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+
+#include "rover/base/format.hpp"
+
+namespace rover::apl::rendezvous {
+namespace {
+
+std::shared_ptr<cv::Mat> Bgr(const cv::Mat& gray) {
+  auto out = std::make_shared<cv::Mat>();
+  cv::cvtColor(gray, *out, cv::COLOR_GRAY2BGR);
+  return out;
+}
+
+std::string Name(const char* what, int n) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%s_%02d", what, n);
+  return buf;
+}
+
+}  // namespace
+
+VisionPipeline::VisionPipeline(const hwconfig::LanderDescription& lander,
+                               const VisionOptions& options)
+    : lander_(lander), options_(options) {}
+
+DetectionImage VisionPipeline::LastDrawing() {
+  DetectionImage d = std::move(drawing_);
+  drawing_ = {};
+  return d;
+}
+
+Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
+                                              const Eigen::Vector3d& prior_rover) {
+  if (pair.left == nullptr || pair.left_model == nullptr) {
+    return InvalidArgument("NAVCAM pair without a left image or model");
+  }
+  const cv::Mat none;
+  const Eigen::Vector3d cam = pair.left_model->Center();
+  LanderPrior prior;
+  prior.bearing = std::atan2(prior_rover.y() - cam.y(), prior_rover.x() - cam.x());
+  prior.range = std::max(1.0, std::hypot(prior_rover.x() - cam.x(), prior_rover.y() - cam.y()));
+  prior.bearing_window = 0.45;
+  prior.range_window = std::max(8.0, 0.6 * prior.range);
+  ROVER_ASSIGN_OR_RETURN(
+      const LanderSighting s,
+      DetectLander(*pair.left, pair.right != nullptr ? *pair.right : none, *pair.left_model,
+                   pair.right != nullptr ? pair.right_model : nullptr, lander_, options_.lander,
+                   prior));
+  auto bgr = Bgr(*pair.left);
+  DrawLanderSighting(bgr.get(), s);
+  drawing_ = {Name("lander", ++sightings_), bgr};
+  LanderFix f;
+  f.found = s.found;
+  f.why = s.reason;
+  f.features = s.features;
+  if (!s.found) return f;
+  const Eigen::Vector2d dir(std::cos(s.bearing), std::sin(s.bearing));
+  const Eigen::Vector2d xy = cam.head<2>() + s.range * dir;
+  f.center_rover = Eigen::Vector3d(xy.x(), xy.y(), lander_.deck_height);
+  const Eigen::Vector2d n(-dir.y(), dir.x());
+  const double along = s.range_sigma, across = s.range * s.bearing_sigma;
+  f.covariance.setZero();
+  f.covariance.topLeftCorner<2, 2>() =
+      along * along * dir * dir.transpose() + across * across * n * n.transpose();
+  f.covariance(2, 2) = 0.25 * lander_.deck_height * lander_.deck_height;
+  return f;
+}
+
+Result<RampFix> VisionPipeline::SightRamp(const NavcamPair& pair) {
+  if (pair.left == nullptr || pair.left_model == nullptr) {
+    return InvalidArgument("NAVCAM pair without a left image or model");
+  }
+  ROVER_ASSIGN_OR_RETURN(const StripeDetection left, DetectStripes(*pair.left, options_.stripes));
+  std::optional<StripeDetection> right;
+  if (pair.right != nullptr && pair.right_model != nullptr) {
+    ROVER_ASSIGN_OR_RETURN(right, DetectStripes(*pair.right, options_.stripes));
+  }
+  auto bgr = Bgr(*pair.left);
+  DrawStripeDetection(bgr.get(), left);
+  drawing_ = {Name("stripes", ++sightings_), bgr};
+  RampFix f;
+  f.ramp = left.BestRamp();
+  f.stripes = f.ramp >= 0 ? static_cast<int>(left.OfRamp(f.ramp).size()) : 0;
+  f.features = "stripes " + std::to_string(f.stripes) +
+               (f.ramp >= 0 ? " (ramp " + std::to_string(f.ramp) + ")" : "");
+  if (f.ramp < 0) {
+    f.why = left.why.empty() ? "no stripes identified" : left.why;
+    return f;
+  }
+  RampPoseOptions po = options_.pose;
+  po.ramp = f.ramp;
+  const Result<RampPose> pose = EstimateRampPose(lander_, left, *pair.left_model,
+                                                 right ? &*right : nullptr,
+                                                 right ? pair.right_model : nullptr, po);
+  if (!pose.ok()) {
+    f.why = pose.status().message();
+    return f;  // found stays false: too few stripes or no convergence
+  }
+  f.found = true;
+  f.stripes = pose->stripes_used;
+  f.rms_px = pose->rms_px;
+  f.rover_from_ramp = pose->rover_from_ramp;
+  // Sigmas: translation block (in G, near-isotropic) and the rotation about w (yaw).
+  f.base_sigma = std::sqrt(std::max(0.0, pose->covariance.topLeftCorner<3, 3>().trace() / 3.0));
+  f.yaw_sigma = std::sqrt(std::max(0.0, pose->covariance(5, 5)));
+  f.features = "stripes " + std::to_string(pose->stripes_used) + " (ramp " +
+               std::to_string(f.ramp) + "), " + FormatNumber(pose->rms_px) + " px";
+  return f;
+}
+
+}  // namespace rover::apl::rendezvous
