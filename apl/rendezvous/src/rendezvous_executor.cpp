@@ -147,7 +147,8 @@ void RendezvousExecutor::Drive(msg::MobilityCommand c, DriveKind kind, Time now,
 void RendezvousExecutor::DriveTo(const Eigen::Vector2d& goal, double tolerance, DriveKind kind,
                                  Time now, ExecutorOutput* out) {
   msg::MobilityCommand c;
-  c.mode = msg::MobilityMode::kAutoNav;
+  c.mode = options_.leg_mode == "goto_waypoint" ? msg::MobilityMode::kGoToWaypoint
+                                                : msg::MobilityMode::kAutoNav;
   c.goal = Eigen::Vector3d(goal.x(), goal.y(), 0.0);
   c.tolerance = tolerance;
   c.time_budget_s = 900.0;

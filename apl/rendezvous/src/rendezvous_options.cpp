@@ -26,6 +26,9 @@ Status RendezvousOptions::Validate() const {
       CheckRange(p + "search_pan_step_deg", search_pan_step_deg, 5.0, 45.0, "deg"));
   ROVER_RETURN_IF_ERROR(
       CheckRange(p + "autonav_tolerance", autonav_tolerance, 0.1, 3.0, "m"));
+  if (leg_mode != "autonav" && leg_mode != "goto_waypoint") {
+    return InvalidArgument(p + "leg_mode: '" + leg_mode + "' is not autonav or goto_waypoint");
+  }
   ROVER_RETURN_IF_ERROR(CheckRange(p + "circle_margin", circle_margin, 1.0, 10.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "circle_step_deg", circle_step_deg, 10.0, 120.0, "deg"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "servo_run", servo_run, 0.5, 5.0, "m"));
@@ -66,6 +69,8 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
   b.Bind("search_images", &O::search_images, "", "pairs tried at one station before NOT-FOUND");
   b.Bind("search_pan_step_deg", &O::search_pan_step_deg, "deg", "look-around step");
   b.Bind("autonav_tolerance", &O::autonav_tolerance, "m", "goal radius of the autonav legs");
+  b.Bind("leg_mode", &O::leg_mode,
+         "legs between sightings: autonav (hazard avoidance) or goto_waypoint (blind)");
   b.Bind("circle_margin", &O::circle_margin, "m", "orbit radius beyond the ramp feet");
   b.Bind("circle_step_deg", &O::circle_step_deg, "deg", "orbit leg");
   b.Bind("servo_run", &O::servo_run, "m", "straight run along the ramp axis before the base");

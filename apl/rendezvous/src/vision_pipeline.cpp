@@ -39,10 +39,9 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
     return InvalidArgument("NAVCAM pair without a left image or model");
   }
   const cv::Mat none;
-  const Eigen::Vector3d cam = pair.left_model->Center();
-  LanderPrior prior;
-  prior.bearing = std::atan2(prior_rover.y() - cam.y(), prior_rover.x() - cam.x());
-  prior.range = std::max(1.0, std::hypot(prior_rover.x() - cam.x(), prior_rover.y() - cam.y()));
+  LanderPrior prior;  // from R's origin, as the detector measures
+  prior.bearing = std::atan2(prior_rover.y(), prior_rover.x());
+  prior.range = std::max(1.0, std::hypot(prior_rover.x(), prior_rover.y()));
   prior.bearing_window = 0.45;
   prior.range_window = std::max(8.0, 0.6 * prior.range);
   ROVER_ASSIGN_OR_RETURN(
@@ -58,15 +57,8 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
   f.why = s.reason;
   f.features = s.features;
   if (!s.found) return f;
-  const Eigen::Vector2d dir(std::cos(s.bearing), std::sin(s.bearing));
-  const Eigen::Vector2d xy = cam.head<2>() + s.range * dir;
-  f.center_rover = Eigen::Vector3d(xy.x(), xy.y(), lander_.deck_height);
-  const Eigen::Vector2d n(-dir.y(), dir.x());
-  const double along = s.range_sigma, across = s.range * s.bearing_sigma;
-  f.covariance.setZero();
-  f.covariance.topLeftCorner<2, 2>() =
-      along * along * dir * dir.transpose() + across * across * n * n.transpose();
-  f.covariance(2, 2) = 0.25 * lander_.deck_height * lander_.deck_height;
+  f.center_rover = s.center;  // deck top centre, rover frame (range and bearing from R's origin)
+  f.covariance = s.center_covariance;
   return f;
 }
 

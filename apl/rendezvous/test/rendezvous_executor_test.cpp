@@ -118,9 +118,11 @@ class FakeVision : public RendezvousVision {
 };
 
 struct Harness {
+  explicit Harness(const RendezvousOptions& options = {})
+      : exec(options, hwconfig::LanderDescription{}, vision) {}
   World world;
   std::shared_ptr<FakeVision> vision = std::make_shared<FakeVision>(&world);
-  RendezvousExecutor exec{RendezvousOptions{}, hwconfig::LanderDescription{}, vision};
+  RendezvousExecutor exec;
   double t = 10.0;
   std::vector<msg::RendezvousStatus> statuses;
   std::vector<msg::MobilityCommand> drives;
@@ -270,6 +272,16 @@ TEST(RendezvousExecutorTest, OrbitsWhenTheLanderIsSideOn) {
   h.world.yaw = 0.5 * kPi;  // ramps point across the approach
   h.Start(h.Command());
   ExpectPlacedAndClimbed(h);
+}
+
+TEST(RendezvousExecutorTest, BlindLegsWhenAsked) {
+  RendezvousOptions o;
+  o.leg_mode = "goto_waypoint";
+  Harness h(o);
+  h.world.yaw = kPi;
+  h.Start(h.Command());
+  ExpectPlacedAndClimbed(h);
+  for (const auto& c : h.drives) EXPECT_NE(c.mode, msg::MobilityMode::kAutoNav);
 }
 
 TEST(RendezvousExecutorTest, StopsAtTheBaseWithoutClimbingWhenAsked) {

@@ -19,6 +19,9 @@ TEST(RendezvousOptionsTest, DefaultsAreValidAndBadValuesAreNamed) {
   o = {};
   o.min_stripes = 1;
   EXPECT_THAT(o.Validate().message(), HasSubstr("rendezvous.min_stripes"));
+  o = {};
+  o.leg_mode = "fly";
+  EXPECT_THAT(o.Validate().message(), HasSubstr("rendezvous.leg_mode: 'fly'"));
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 /// apl-rendezvous parameters (keys `rendezvous.*`, RendezvousOptions::BindParams) and the
 /// lander as the rover knows it (keys `lander.*`, core/hwconfig's LanderDescription).
 
+#include <string>
+
 #include "rover/base/status.hpp"
 
 namespace rover {
@@ -31,6 +33,9 @@ struct RendezvousOptions {
   int search_images = 7;             ///< pairs tried at a station before NOT-FOUND
   double search_pan_step_deg = 22.0; ///< [deg] look-around step at a station
   double autonav_tolerance = 0.6;    ///< [m] goal radius of mid-range legs
+  /// How the legs between sightings drive: "autonav" (stereo hazard avoidance) or
+  /// "goto_waypoint" (blind, pose-corrected arcs: for terrain known to be clear).
+  std::string leg_mode = "autonav";
 
   // Close range (phase 3) and the placement.
   double circle_margin = 2.2;        ///< [m] orbit radius beyond the ramp feet
