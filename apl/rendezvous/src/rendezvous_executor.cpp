@@ -151,7 +151,6 @@ void RendezvousExecutor::DriveTo(const Eigen::Vector2d& goal, double tolerance, 
                                                 : msg::MobilityMode::kAutoNav;
   c.goal = Eigen::Vector3d(goal.x(), goal.y(), 0.0);
   c.tolerance = tolerance;
-  c.time_budget_s = 900.0;
   Drive(c, kind, now, out);
 }
 
@@ -189,7 +188,11 @@ ExecutorOutput RendezvousExecutor::OnCommand(const msg::RendezvousCommand& c, Ti
     return out;
   };
   if (c.target == msg::RendezvousTarget::kStop) {
-    if (busy()) Fail(RendezvousFault::kStopped, "stopped by command " + std::to_string(c.command_id), &out);
+    if (busy()) {
+      Fail(RendezvousFault::kStopped, "stopped by command " + std::to_string(c.command_id), &out);
+    } else {
+      out.statuses.push_back(status_);  // nothing runs: the latest status answers
+    }
     return out;
   }
   if (busy()) {
@@ -383,6 +386,14 @@ ExecutorOutput RendezvousExecutor::Step(Time now) {
       }
       break;
     case Wait::kDrive:
+      // apl-mobility ends every command within its budget; a status that never comes is a fault.
+      if (waited > kMaxDriveS + 60.0) {
+        Fail(RendezvousFault::kMobility, "no terminal apl/mobility_status for command " +
+                                             std::to_string(outstanding_) + " within " +
+                                             FormatNumber(kMaxDriveS + 60.0) + " s",
+             &out);
+      }
+      break;
     case Wait::kNone:
       break;
   }

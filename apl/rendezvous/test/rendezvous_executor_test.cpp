@@ -400,5 +400,27 @@ TEST(RendezvousExecutorTest, TimeOutsAreTyped) {
   EXPECT_EQ(h.exec.status().fault, RendezvousFault::kCamera);
 }
 
+TEST(RendezvousExecutorTest, ADriveWithoutATerminalStatusIsAMobilityFault) {
+  Harness h;
+  h.world.yaw = kPi;
+  h.exec.OnPose(h.Pose(), h.Now());
+  ExecutorOutput out = h.exec.OnCommand(h.Command(), h.Now());
+  msg::MastStatus at;
+  at.command_id = out.mast.at(0).command_id;
+  at.state = msg::MastState::kAtGoal;
+  h.exec.OnMastStatus(at, h.Now());
+  out = h.exec.Step(h.Now() + Seconds(1.0));
+  NavcamPair pair;
+  pair.request_id = out.camera.at(0).request_id;
+  out = h.exec.OnStereoPair(pair, h.Now() + Seconds(1.0));
+  ASSERT_EQ(out.mobility.size(), 1u);  // the first mid-range leg
+  h.exec.OnPose(h.Pose(), h.Now() + Seconds(700.0));
+  out = h.exec.Step(h.Now() + Seconds(700.0));
+  EXPECT_EQ(h.exec.status().fault, RendezvousFault::kMobility);
+  EXPECT_THAT(h.exec.status().message, HasSubstr("no terminal apl/mobility_status"));
+  ASSERT_EQ(out.mobility.size(), 1u);  // and the drive is stopped
+  EXPECT_EQ(out.mobility[0].mode, msg::MobilityMode::kStop);
+}
+
 }  // namespace
 }  // namespace rover::apl::rendezvous

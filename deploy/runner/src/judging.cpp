@@ -6,6 +6,7 @@
 #include "rover/deploy/plots.hpp"
 #include "rover/deploy/runner/autonav_judging.hpp"
 #include "rover/hwconfig/rover_description.hpp"
+#include "rover/msg/rendezvous.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::deploy::runner {
@@ -53,7 +54,14 @@ void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world
 
 void AddRendezvousFigures(const sim::world::World& world, const std::optional<RendezvousLog>& log,
                           RunResult* result, std::string* failure) {
-  if (!log || !world.terrain.lander) return;
+  if (!log) return;
+  for (const RendezvousSample& s : log->samples) {
+    const std::string name = msg::RendezvousPhaseName(static_cast<msg::RendezvousPhase>(s.phase));
+    if (result->phases.empty() || result->phases.back().second != name) {
+      result->phases.emplace_back(s.t, name);
+    }
+  }
+  if (!world.terrain.lander) return;
   auto figures = RendezvousFigures(*log, *world.terrain.lander, *result);
   for (auto& f : figures) {
     if (f.name == "on_deck" && log->expect_on_deck) {

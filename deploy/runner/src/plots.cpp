@@ -141,6 +141,22 @@ Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
       first = false;
     }
   }
+  // A phased task's phases over the driven path, each in its own colour.
+  static const sim::terrain::MapColor kPhaseColors[] = {
+      {0, 200, 255}, {255, 220, 0}, {255, 60, 60}, {200, 80, 255}, {255, 255, 255}, {0, 0, 0}};
+  for (std::size_t k = 0; k < run.phases.size(); ++k) {
+    const double t0 = run.phases[k].first;
+    const double t1 = k + 1 < run.phases.size() ? run.phases[k + 1].first : 1e300;
+    std::vector<Eigen::Vector2d> seg;
+    for (const auto& p : run.truth_track) {
+      if (p[0] >= t0 && p[0] <= t1) seg.emplace_back(p[1], p[2]);
+    }
+    if (seg.size() == 1) seg.push_back(seg.front());
+    if (seg.size() >= 2) {
+      o.polylines.push_back({seg, kPhaseColors[k % std::size(kPhaseColors)],
+                             "phase " + run.phases[k].second, 2, true});
+    }
+  }
   if (planned.size() >= 2) {
     o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
   }

@@ -175,6 +175,10 @@ nlohmann::json ToJson(const RunResult& r) {
   j["terrain_digest"] = r.terrain_digest;
   j["truth_track"] = r.truth_track;
   j["truth_yaw"] = r.truth_yaw;
+  if (!r.phases.empty()) {
+    j["phases"] = nlohmann::json::array();
+    for (const auto& [t, name] : r.phases) j["phases"].push_back({{"t", t}, {"phase", name}});
+  }
   j["estimate_track"] = r.estimate_track;
   j["odometry_only_track"] = r.odometry_only_track;
   if (r.mobility) j["mobility"] = MobilityToJson(*r.mobility);
@@ -264,6 +268,11 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
     r.terrain_digest = j.value("terrain_digest", "");
     r.truth_track = j.value("truth_track", std::vector<std::array<double, 3>>{});
     r.truth_yaw = j.value("truth_yaw", std::vector<double>{});
+    if (j.contains("phases")) {
+      for (const auto& p : j["phases"]) {
+        r.phases.emplace_back(p.value("t", 0.0), p.value("phase", std::string()));
+      }
+    }
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
     r.odometry_only_track =
         j.value("odometry_only_track", std::vector<std::array<double, 3>>{});

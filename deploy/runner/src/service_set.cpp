@@ -37,8 +37,9 @@ std::string UniqueProject(const Scenario& s, std::uint32_t seed) {
 const char* const kRendezvousService = "apl-rendezvous";
 
 // The parameter files of one service: the simulator's world file, then its overrides.
-Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
-                      const std::string& sim_params_path, ServiceSpec* svc) {
+Status GiveParameters(const Scenario& scenario, const sim::world::World& world,
+                      const std::string& run_dir, const std::string& sim_params_path,
+                      ServiceSpec* svc) {
   std::vector<std::string> files;
   if (svc->name == scenario.simulator) files.push_back(sim_params_path);
   std::map<std::string, std::string> overrides;
@@ -48,8 +49,19 @@ Status GiveParameters(const Scenario& scenario, const std::string& run_dir,
     overrides["start.yaw_deg"] = FormatNumber(scenario.start_yaw * kRadToDeg, 9);
   }
   if (svc->name == kRendezvousService) {
-    // The rendezvous draws its sightings into the run folder.
+    // The rendezvous draws its sightings into the run folder, and knows the lander it returns
+    // to as the scenario builds it (as the estimator is told its start pose).
     overrides["rendezvous.detection_dir"] = run_dir + "/detections";
+    if (world.terrain.lander) {
+      const hwconfig::LanderDescription d = world.terrain.lander->params.Description();
+      overrides["lander.deck_height"] = FormatNumber(d.deck_height, 9);
+      overrides["lander.deck_thickness"] = FormatNumber(d.deck_thickness, 9);
+      overrides["lander.deck_radius"] = FormatNumber(d.deck_radius, 9);
+      overrides["lander.ramp_length"] = FormatNumber(d.ramp_length, 9);
+      overrides["lander.ramp_width"] = FormatNumber(d.ramp_width, 9);
+      overrides["lander.stripe_unit"] = FormatNumber(d.stripe_unit, 9);
+      overrides["lander.stripe_gap"] = FormatNumber(d.stripe_gap, 9);
+    }
   }
   if (auto it = scenario.params.find(svc->name); it != scenario.params.end()) {
     for (const auto& [k, v] : it->second) overrides[k] = v;
@@ -159,7 +171,7 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
                            "' is not in " + scenario.compose_path);
   }
   for (auto& svc : project.services) {
-    ROVER_RETURN_IF_ERROR(GiveParameters(scenario, run_dir, sim_params_path, &svc));
+    ROVER_RETURN_IF_ERROR(GiveParameters(scenario, world, run_dir, sim_params_path, &svc));
   }
   // The scenario's faults join the compose file's x-rover.faults; every service gets them at
   // start (ROVER_FAULTS, windows on simulated time), so the same seed hits the same samples.

@@ -59,7 +59,7 @@ struct RendezvousCommand {
   RendezvousTarget target = RendezvousTarget::kLander;
   Eigen::Vector3d target_estimate = Eigen::Vector3d::Zero();  ///< [m] site frame, deck centre
   double standoff = 0.0;       ///< [m] rover origin before the ramp base; 0 = default
-  int ramp = -1;               ///< 0 or 1; -1 = the nearer one
+  int ramp = -1;               ///< 0 or 1; -1 = the first one seen (the one facing the rover)
   bool climb = true;           ///< climb onto the deck after the placement
   double time_budget_s = 0.0;  ///< [s] 0 = the service's default
 };

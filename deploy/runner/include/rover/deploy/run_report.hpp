@@ -154,6 +154,9 @@ struct RunResult {
   std::vector<std::array<double, 3>> odometry_only_track;  ///< t, x, y (dl/pose_odometry)
   /// Set by the mobility tasks (autonav, goto_waypoint, guarded, guarded_arc).
   std::optional<MobilityOutcome> mobility;
+  /// A phased task's phases (lander_return: MID_RANGE, CLOSE_RANGE, ...): the sim time [s] each
+  /// began, in order; the map colours the driven path by phase.
+  std::vector<std::pair<double, std::string>> phases;
   /// Every fault of the run's set, in id order, with what it did.
   std::vector<InjectedFault> faults;
   /// The services' health over the run (sys/health), in arrival order; at most

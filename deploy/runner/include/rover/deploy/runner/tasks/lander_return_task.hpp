@@ -8,7 +8,7 @@
 ///     type: lander_return
 ///     estimate: {x: 30, y: 1.5}  # [m] a-priori deck centre, site frame (required)
 ///     standoff: 1.0              # [m] rover origin before the ramp base; 0 = the service's
-///     ramp: 0                    # 0 | 1 | -1 (the nearer one)
+///     ramp: 0                    # 0 | 1 | -1 (the first one seen)
 ///     climb: true                # drive up the ramp onto the deck after the placement
 ///     time_budget_s: 3000        # [s] the command's budget; 0 = the service's
 ///     expect: on_deck            # | at_ramp_base | a fault: NOT-FOUND, TOO-FEW-STRIPES, ...
