@@ -247,7 +247,8 @@ void HeightTerrain::Derive() const {
   dirty_ = false;
   const int w = map_.width, h = map_.height;
   const std::size_t cells = map_.cell_count();
-  // Ground: separable square min filter of z_mean (unknown ignored).
+  // Ground: a low quantile (or, with ground_quantile 0, the minimum: a separable square min
+  // filter) of z_mean over a square window (unknown ignored).
   const int r = std::max(1, static_cast<int>(std::ceil(options_.ground_radius / map_.resolution)));
   // The ground is the lowest neighbour mean lifted by its own noise allowance: the minimum of
   // noisy means sits below the true ground by about that much, which would read as a step.
@@ -258,11 +259,33 @@ void HeightTerrain::Derive() const {
                                     map_.range[k] * map_.range[k] /
                                     std::sqrt(static_cast<double>(map_.count[k])));
   }
-  for (int j = 0; j < h; ++j) {
-    MinFilter1d(lifted.data() + static_cast<std::size_t>(j) * w, w, 1, r,
-                tmp.data() + static_cast<std::size_t>(j) * w);
+  if (options_.ground_quantile <= 0.0) {
+    for (int j = 0; j < h; ++j) {
+      MinFilter1d(lifted.data() + static_cast<std::size_t>(j) * w, w, 1, r,
+                  tmp.data() + static_cast<std::size_t>(j) * w);
+    }
+    for (int i = 0; i < w; ++i) MinFilter1d(tmp.data() + i, h, w, r, ground.data() + i);
+  } else {
+    // A quantile of the window's known means: stereo holes below the ground are ignored.
+    std::vector<float> window;
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) {
+        const std::size_t k = map_.Index(i, j);
+        if (map_.count[k] == 0) continue;
+        window.clear();
+        for (int q = std::max(0, j - r); q <= std::min(h - 1, j + r); ++q) {
+          for (int p = std::max(0, i - r); p <= std::min(w - 1, i + r); ++p) {
+            const std::size_t n = map_.Index(p, q);
+            if (map_.count[n] > 0) window.push_back(lifted[n]);
+          }
+        }
+        const auto at = static_cast<std::ptrdiff_t>(
+            std::floor(options_.ground_quantile * static_cast<double>(window.size() - 1)));
+        std::nth_element(window.begin(), window.begin() + at, window.end());
+        ground[k] = window[static_cast<std::size_t>(at)];
+      }
+    }
   }
-  for (int i = 0; i < w; ++i) MinFilter1d(tmp.data() + i, h, w, r, ground.data() + i);
   std::array<std::vector<std::uint8_t>, 3> masks;
   for (auto& m : masks) m.assign(cells, 0);
   for (std::size_t k = 0; k < cells; ++k) {

@@ -28,6 +28,7 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("self_margin", self_margin, 0.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("ground_radius", ground_radius,
                                    Bounds::Closed(cell_size, 2.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("ground_quantile", ground_quantile, 0.0, 0.5));
   ROVER_RETURN_IF_ERROR(CheckRange("stereo_noise_coeff", stereo_noise_coeff, 0.0, 1.0, "1/m"));
   ROVER_RETURN_IF_ERROR(CheckRange("step_noise_sigmas", step_noise_sigmas, 0.0, 10.0));
   ROVER_RETURN_IF_ERROR(CheckRange("wheel_step", wheel_step, Bounds::OpenLow(0.0, 2.0), "m"));
@@ -91,8 +92,12 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("drop_self_points", &O::drop_self_points,
          "drop range points within the footprint grown by self_margin_m (false: keep them)");
   b.Bind("ground_radius_m", &O::ground_radius, "m",
-         "a cell's ground is the lowest known mean height within this")
+         "a cell's ground is taken from the known mean heights within this (see ground_quantile)")
       .Range(0.01, 2.0);
+  b.Bind("ground_quantile", &O::ground_quantile, "",
+         "a cell's ground is this quantile of the known mean heights within ground_radius_m "
+         "(0 = the lowest; higher ignores stereo mismatches below the ground)")
+      .Range(0.0, 0.5);
   b.Bind("stereo_noise_coeff", &O::stereo_noise_coeff, "1/m",
          "height noise sigma = coeff * r^2 of a point r m from the camera (0 = exact data)")
       .Range(0.0, 1.0);

@@ -83,6 +83,35 @@ TEST(HeightTerrain, NoisyFarStepsAreNotHazardsUntilSeenClose) {
   EXPECT_FLOAT_EQ(t->DistanceAt(HazardLayer::kWheel, {4.0, 0.0}), 0.0F);
 }
 
+TEST(HeightTerrain, AStereoHoleBelowTheGroundDoesNotMakeTheFlatAroundItSteps) {
+  // Flat ground with a 0.2 m square "hole" 0.2 m deep 2 m ahead, as a stereo mismatch ranged
+  // too far gives it (dl-stereo's HAZCAM images hold such holes at 1.5-3 m), and a real 0.25 m
+  // rock 1.5 m to its left.
+  const testing::HeightFn f = [](double x, double y) {
+    if (std::abs(x - 2.0) <= 0.1 && std::abs(y) <= 0.1) return -0.2;
+    return std::abs(x - 2.0) <= 0.15 && std::abs(y - 1.5) <= 0.15 ? 0.25 : 0.0;
+  };
+  auto wheel_hazard = [&](const EnavOptions& o, double x, double y) {
+    auto t = HeightTerrain::Create(o);
+    EXPECT_TRUE(t.ok());
+    EXPECT_TRUE(t->Update(ScanOf(f, -3, 3, -3, 3)).ok());
+    const nav_core::HeightMap& m = *t->height_map();
+    int i = 0, j = 0;
+    m.CellOf(x, y, &i, &j);
+    return (m.hazard[m.Index(i, j)] & nav_core::kHazardWheel) != 0;
+  };
+  const EnavOptions o = TestOptions();
+  EXPECT_FALSE(wheel_hazard(o, 2.35, 0.0));  // flat, 0.25 m beyond the hole
+  EXPECT_FALSE(wheel_hazard(o, 1.75, 0.25));
+  EXPECT_FALSE(wheel_hazard(o, 2.0, 0.0));   // the hole itself
+  EXPECT_TRUE(wheel_hazard(o, 2.0, 1.5));    // the rock
+  // With the minimum as the ground (ground_quantile 0) the flat around the hole reads 0.2 m.
+  EnavOptions lowest = o;
+  lowest.ground_quantile = 0.0;
+  EXPECT_TRUE(wheel_hazard(lowest, 2.35, 0.0));
+  EXPECT_TRUE(wheel_hazard(lowest, 2.0, 1.5));
+}
+
 TEST(HeightTerrain, RemembersAsItScrollsAndForgetsWhatFallsOff) {
   auto t = HeightTerrain::Create(TestOptions());  // 16 m map, recentres beyond 2 m
   ASSERT_TRUE(t.ok());

@@ -17,8 +17,12 @@
 /// new data together).
 ///
 /// Derived layers (recomputed on first use after a change):
-///   ground(c) = min over known cells n within ground_radius (a square window) of
-///               z_mean(n) + step_noise_sigmas · sigma(n) / √count(n)  (noise would bias it low)
+///   ground(c) = the ground_quantile (0.2; 0 = the minimum) over known cells n within
+///               ground_radius (a square window) of
+///               z_mean(n) + step_noise_sigmas · sigma(n) / √count(n)  (noise would bias it low);
+///               a quantile, not the minimum, because a stereo mismatch ranged too far makes a
+///               hole below the ground (dl-stereo's HAZCAM images hold holes 0.1-0.3 m deep at
+///               1.5-3 m), and as the minimum it turned the flat ground around it into steps
 ///   step(c)   = z_mean(c) - ground(c)
 ///   sigma(c)  = stereo_noise_coeff · range(c)²
 ///   hazard(c) ∋ class X  when step(c) - step_noise_sigmas · sigma(c) / √count(c) > limit_X

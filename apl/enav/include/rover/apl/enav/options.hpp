@@ -35,7 +35,12 @@ struct EnavOptions {
   /// ground it hides; merged, they become rocks the rear wheels then meet.
   double self_margin = 0.1;
   bool drop_self_points = true;  ///< false: merge them too (synthetic scans without a rover)
-  double ground_radius = 0.35;      ///< [m] the local ground: lowest known mean within this
+  double ground_radius = 0.35;      ///< [m] the local ground is taken from the means within this
+  /// The local ground is this quantile of the known means within ground_radius (0 = the
+  /// lowest). Above 0, a few cells that stereo mismatches put below the ground (dl-stereo's
+  /// HAZCAM images hold such holes 0.1-0.3 m deep at 1.5-3 m) no longer lower the ground of
+  /// every cell around them, which would make flat ground read as steps.
+  double ground_quantile = 0.2;
   /// Stereo noise: height sigma = stereo_noise_coeff · r² at horizontal range r [m]; a step
   /// counts as a hazard only above its class's limit plus step_noise_sigmas of that noise.
   double stereo_noise_coeff = 0.0;  ///< [1/m]
