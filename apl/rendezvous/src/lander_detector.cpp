@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -41,6 +42,14 @@ struct Band {
   double v_feet = 0.0;
   double range_width = 0.0;       // [m] from the band width
   double score = -1.0;
+};
+
+// Stripe edges of one ramp: level segments with aligned ends, stacked down the ramp.
+struct RampStack {
+  double u0 = 0.0, u1 = 0.0;  // column extent of the longest stripe edge
+  double v0 = 0.0, v1 = 0.0;  // row extent of the stack
+  std::vector<int> edges;     // segment indices
+  int rows = 0;               // distinct edge rows
 };
 
 double AngleBetweenLines(const Vector2d& d1, const Vector2d& d2) {
@@ -97,6 +106,11 @@ class Detector {
   // Stereo match of the left patch centred at `px` (half sizes hw, hh) with range limits;
   // returns the triangulated point.
   bool MatchStereo(const Vector2d& px, int hw, int hh, double r_lo, double r_hi, Vector3d* p) const;
+  // The deck-band hypothesis confirmed by a truss (method steps 2-4).
+  LanderSighting FromTruss();
+  // The ramp hypothesis (method step 6): a stack of stripe edges on a bright ramp.
+  LanderSighting FromRamp();
+  std::vector<RampStack> FindRampStacks() const;
 
   const cv::Mat& left_;
   const cv::Mat& right_;
@@ -107,6 +121,7 @@ class Detector {
   const std::optional<LanderPrior>& prior_;
 
   std::vector<Segment> segs_;
+  bool ramp_frontal_ = false;  // FromRamp's sighting took the view angle as 0
   mutable int rejected_tall_ = 0, rejected_truss_ = 0, rejected_extent_ = 0;
   double f_ = 1.0;          // [px/rad] near the image centre
   double baseline_ = 0.0;   // [m]
@@ -369,6 +384,20 @@ LanderSighting Detector::Run() {
   if (rm_ != nullptr && !right_.empty()) baseline_ = (rm_->Center() - lm_.Center()).norm();
 
   FindSegments();
+  LanderSighting truss = FromTruss();
+  if (baseline_ <= 0.0 || o_.min_ramp_edges == 0) return truss;
+  // The ramp hypothesis (stereo only). A frontal ramp gives the deck's bearing exactly (the
+  // ramp hangs from the middle of a deck edge) while the deck band is then cut by the ramp and
+  // often taken at the wrong scale: a frontal ramp wins; otherwise a deck band with a truss does.
+  LanderSighting ramp = FromRamp();
+  if (ramp.found && (!truss.found || ramp_frontal_)) return ramp;
+  if (truss.found) return truss;
+  truss.reason += "; ramp: " + ramp.reason;
+  return truss;
+}
+
+LanderSighting Detector::FromTruss() {
+  LanderSighting out;
   std::vector<Band> bands = MakeBands();
   Band* best = nullptr;
   for (Band& b : bands) {
@@ -501,6 +530,292 @@ LanderSighting Detector::Run() {
   return out;
 }
 
+std::vector<RampStack> Detector::FindRampStacks() const {
+  const double stripe_length = lander_.ramp_width - 2.0 * hwconfig::kStripeMargin;
+  const double l_max = 1.3 * f_ * stripe_length / o_.min_range;
+  std::vector<int> edges;
+  for (int i = 0; i < static_cast<int>(segs_.size()); ++i) {
+    const Segment& s = segs_[static_cast<std::size_t>(i)];
+    if (s.level && s.length <= l_max) edges.push_back(i);
+  }
+  std::sort(edges.begin(), edges.end(), [&](int a, int b) {
+    return segs_[static_cast<std::size_t>(a)].length > segs_[static_cast<std::size_t>(b)].length;
+  });
+  std::vector<RampStack> stacks;
+  std::vector<char> used(segs_.size(), 0);
+  for (int seed : edges) {
+    const Segment& s = segs_[static_cast<std::size_t>(seed)];
+    if (used[static_cast<std::size_t>(seed)] || s.polarity == 0) continue;
+    const double tol = std::max(3.0, 0.12 * s.length);
+    const double vs = 0.5 * (s.a.y() + s.b.y());
+    RampStack st;
+    st.u0 = s.a.x();
+    st.u1 = s.b.x();
+    st.v0 = st.v1 = vs;
+    // Candidates: inside the seed's columns, at least 40 % of its length, near-level in the
+    // image; then the run of them around the seed's row with no gap wider than a stripe spacing
+    // (dark stripe + light gap, <= 0.36 m against 1.2 m of stripe length: ~0.15 in the image, 0.2
+    // allowed).
+    std::vector<std::pair<double, int>> cand;  // (row, segment)
+    for (int j : edges) {
+      const Segment& t = segs_[static_cast<std::size_t>(j)];
+      if (t.a.x() < st.u0 - tol || t.b.x() > st.u1 + tol || t.length < 0.4 * s.length) continue;
+      if (std::abs(t.b.y() - t.a.y()) > 0.1 * t.length + 2.0) continue;
+      cand.emplace_back(0.5 * (t.a.y() + t.b.y()), j);
+    }
+    std::sort(cand.begin(), cand.end());
+    const double max_gap = std::max(5.0, 0.2 * s.length);
+    std::size_t k_seed = 0;
+    while (k_seed < cand.size() && cand[k_seed].second != seed) ++k_seed;
+    if (k_seed == cand.size()) continue;  // the seed itself is not level enough in the image
+    std::size_t k_lo = k_seed, k_hi = k_seed;
+    while (k_lo > 0 && cand[k_lo].first - cand[k_lo - 1].first <= max_gap) --k_lo;
+    while (k_hi + 1 < cand.size() && cand[k_hi + 1].first - cand[k_hi].first <= max_gap) ++k_hi;
+    std::vector<double> rows;
+    int n_top = 0, n_bottom = 0;
+    for (std::size_t k = k_lo; k <= k_hi; ++k) {
+      const int j = cand[k].second;
+      const Segment& t = segs_[static_cast<std::size_t>(j)];
+      const double vt = cand[k].first;
+      st.edges.push_back(j);
+      st.v0 = std::min(st.v0, vt);
+      st.v1 = std::max(st.v1, vt);
+      // (Thin far stripes give lines dark on both sides: polarity 0.)
+      n_top += t.polarity > 0 ? 1 : 0;
+      n_bottom += t.polarity < 0 ? 1 : 0;
+      rows.push_back(vt);
+    }
+    std::sort(rows.begin(), rows.end());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (k == 0 || rows[k] - rows[k - 1] > 1.5) ++st.rows;
+    }
+    // Dark stripes on a light ramp: edges of both polarities, and a compact stack (the block is
+    // shorter in the image than the stripes are long, seen from a rover's mast).
+    if (st.rows < o_.min_ramp_edges || n_top < 1 || n_bottom < 1) continue;
+    if (st.v1 - st.v0 > 0.8 * (st.u1 - st.u0)) continue;
+    // Stripes all end at the same margin from the ramp's sides: at least three edges aligned at
+    // both ends, or two in a stack of five or more rows (far away, where the thin stripes' edges
+    // break up); rock shadows stacked by chance are not aligned.
+    const double tol_end = std::max(2.5, 0.08 * s.length);
+    int aligned = 0;
+    for (int j : st.edges) {
+      const Segment& t = segs_[static_cast<std::size_t>(j)];
+      aligned += std::abs(t.a.x() - st.u0) <= tol_end && std::abs(t.b.x() - st.u1) <= tol_end;
+    }
+    if (aligned < 3 && !(aligned == 2 && st.rows >= 5)) continue;  // far: thin, merged edges
+    // The ramp's side edges: a near-vertical segment just outside each end of the stripes,
+    // level with the stack.
+    bool side_edge[2] = {false, false};
+    for (const Segment& t : segs_) {
+      if (!t.truss) continue;
+      if (std::max(t.a.y(), t.b.y()) < st.v0 - 2.0 || std::min(t.a.y(), t.b.y()) > st.v1 + 2.0) {
+        continue;
+      }
+      const double um = 0.5 * (t.a.x() + t.b.x());
+      const double reach = 0.2 * s.length + 3.0;
+      if (um < st.u0 + 2.0 && um > st.u0 - reach) side_edge[0] = true;
+      if (um > st.u1 - 2.0 && um < st.u1 + reach) side_edge[1] = true;
+    }
+    if (!side_edge[0] || !side_edge[1]) continue;
+    for (int j : st.edges) used[static_cast<std::size_t>(j)] = 1;
+    stacks.push_back(std::move(st));
+  }
+  return stacks;
+}
+
+LanderSighting Detector::FromRamp() {
+  LanderSighting out;
+  const std::vector<RampStack> stacks = FindRampStacks();
+  if (stacks.empty()) {
+    out.reason = "no stripe stack";
+    return out;
+  }
+  const double stripe_length = lander_.ramp_width - 2.0 * hwconfig::kStripeMargin;
+  const double to_center = lander_.Apothem() + 0.5 * lander_.ramp_length;  // ramp middle -> deck
+  std::string last;
+  for (const RampStack& st : stacks) {
+    const double len = st.u1 - st.u0;
+    const double r_len = f_ * stripe_length / len;  // >= the range (shorter when oblique)
+    // Light ramp: the bright quarter inside the stack against the ground beside the ramp.
+    const cv::Rect inner = cv::Rect(static_cast<int>(st.u0 + 2), static_cast<int>(st.v0),
+                                    std::max(1, static_cast<int>(len - 4)),
+                                    static_cast<int>(st.v1 - st.v0) + 1) &
+                           cv::Rect(0, 0, left_.cols, left_.rows);
+    const int side_w = std::max(2, static_cast<int>(0.2 * len));
+    const cv::Rect left_side = cv::Rect(static_cast<int>(st.u0 - 0.15 * len) - side_w, inner.y,
+                                        side_w, inner.height) & cv::Rect(0, 0, left_.cols, left_.rows);
+    const cv::Rect right_side = cv::Rect(static_cast<int>(st.u1 + 0.15 * len), inner.y, side_w,
+                                         inner.height) & cv::Rect(0, 0, left_.cols, left_.rows);
+    if (inner.area() < 4 || left_side.area() < 4 || right_side.area() < 4) {
+      last = "stripe stack at the image border";
+      continue;
+    }
+    auto quantile = [&](const cv::Rect& r, double q) {
+      std::vector<unsigned char> px;
+      for (int y = r.y; y < r.y + r.height; ++y) {
+        for (int x = r.x; x < r.x + r.width; ++x) px.push_back(left_.at<unsigned char>(y, x));
+      }
+      auto it = px.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(px.size() - 1));
+      std::nth_element(px.begin(), it, px.end());
+      return static_cast<double>(*it);
+    };
+    const double ramp_light = quantile(inner, 0.75);
+    const double ground = std::max(quantile(left_side, 0.5), quantile(right_side, 0.5));
+    if (ramp_light - ground < o_.min_ramp_contrast) {
+      last = "stripe stack not on a light ramp (" + FormatNumber(ramp_light - ground) + ")";
+      continue;
+    }
+    // Stereo on the stripe ends (with the ramp edges beside them): the whole stack, then each
+    // edge row; every match is one horizontal range.
+    const double r_lo = 0.45 * r_len, r_hi = 1.25 * r_len;
+    const double vm = 0.5 * (st.v0 + st.v1);
+    const int hh = static_cast<int>(std::lround(0.5 * (st.v1 - st.v0))) + 3;
+    std::vector<Vector3d> ends[2];
+    for (int side = 0; side < 2; ++side) {
+      const double u = side == 0 ? st.u0 : st.u1;
+      Vector3d p;
+      if (MatchStereo(Vector2d(u, vm), o_.stereo_half_width, hh, r_lo, r_hi, &p)) {
+        ends[side].push_back(p);
+      }
+      for (int j : st.edges) {
+        const Segment& t = segs_[static_cast<std::size_t>(j)];
+        const Vector2d e = side == 0 ? t.a : t.b;
+        if (std::abs(e.x() - u) > std::max(3.0, 0.06 * len)) continue;  // a fragment's inner end
+        if (MatchStereo(e, o_.stereo_half_width, 4, r_lo, r_hi, &p)) ends[side].push_back(p);
+      }
+    }
+    const int n_matched = static_cast<int>(ends[0].size() + ends[1].size());
+    if (ends[0].empty() || ends[1].empty() || n_matched < 3) {
+      last = "stripe stack at ~" + FormatNumber(r_len) + " m not confirmed by stereo (" +
+             std::to_string(ends[0].size()) + "+" + std::to_string(ends[1].size()) + " ends)";
+      continue;
+    }
+    // Per side the match of median range; the ramp middle between the two sides.
+    Vector3d side_point[2];
+    std::vector<double> all_ranges;
+    for (int side = 0; side < 2; ++side) {
+      auto& v = ends[side];
+      std::sort(v.begin(), v.end(), [&](const Vector3d& a, const Vector3d& b) {
+        return HorizontalNorm(a - cam_) < HorizontalNorm(b - cam_);
+      });
+      side_point[side] = v[v.size() / 2];
+      for (const auto& q : v) all_ranges.push_back(HorizontalNorm(q - cam_));
+    }
+    std::sort(all_ranges.begin(), all_ranges.end());
+    const double r_med = all_ranges[all_ranges.size() / 2];
+    const double r_sd = r_med * r_med / (f_ * baseline_) * o_.disparity_sigma;
+    int n_in = 0;
+    double r_sum = 0.0;
+    for (double r : all_ranges) {
+      if (std::abs(r - r_med) <= 3.0 * r_sd + 0.02 * r_med) {
+        r_sum += r;
+        ++n_in;
+      }
+    }
+    if (n_in < 3 || n_in * 2 < n_matched) {
+      last = "stripe stack: stereo ranges disagree";
+      continue;
+    }
+    const double r_mid = r_sum / n_in;  // camera to the ramp middle, horizontal
+    // Consistency: the stripes' length in metres at the stereo range (the cosine of the view
+    // angle times the true length) must be a stripe length seen from at most ~65 deg off axis.
+    const double seen_length = r_mid * len / f_;
+    if (seen_length > 1.15 * stripe_length || seen_length < 0.4 * stripe_length) {
+      last = "stripe stack " + FormatNumber(seen_length) + " m long at the stereo range " +
+             FormatNumber(r_mid) + " m";
+      continue;
+    }
+    const auto ray_m = lm_.Unproject(Vector2d(0.5 * (st.u0 + st.u1), vm));
+    if (!ray_m) continue;
+    Vector3d view_h(ray_m->direction.x(), ray_m->direction.y(), 0.0);
+    view_h.normalize();
+    // Ramp axis: the view angle from the stripes' foreshortening, its sign from the two sides'
+    // depths (each side point sits on its own ray, so only the depth difference is uncertain).
+    // LSD ends a stripe edge ~1 px short at each end and the cosine is flat near 0, so an angle
+    // under ~26 deg (kFrontalCos) cannot be told from a frontal view: taken as 0, with its spread in the
+    // covariance.
+    constexpr double kFrontalCos = 0.9;  // cos 26 deg
+    double cos_a = std::min(1.0, seen_length / stripe_length);
+    ramp_frontal_ = cos_a > kFrontalCos;
+    if (ramp_frontal_) cos_a = 1.0;
+    double sin_a = std::sqrt(std::max(0.0, 1.0 - cos_a * cos_a));
+    const double depth_gap =
+        HorizontalNorm(side_point[1] - cam_) - HorizontalNorm(side_point[0] - cam_);
+    // The stripes run along (-cos a) across + (sin a) view from their left end to their right
+    // end; the axis up the ramp is perpendicular: cos a view + sin a across.
+    if (depth_gap < 0.0) sin_a = -sin_a;
+    if (!ramp_frontal_) {
+      // A wrong sign would put the deck 2 x 2.8 m sin a off to the side: the two ends' depths
+      // must differ by more than 3 sigma (their medians of n matches each).
+      const double sd_gap = r_sd * std::sqrt(1.0 / static_cast<double>(ends[0].size()) +
+                                              1.0 / static_cast<double>(ends[1].size()));
+      if (std::abs(depth_gap) < 3.0 * sd_gap) {
+        last = "ramp seen ~" + FormatNumber(std::round(std::asin(std::abs(sin_a)) / kDegree)) +
+               " deg off its axis, side unknown";
+        continue;
+      }
+    }
+    const Vector3d across(-view_h.y(), view_h.x(), 0.0);  // to the left of the view
+    const Vector3d axis = (cos_a * view_h + sin_a * across).normalized();
+    const Vector3d mid = cam_ + r_mid * view_h;
+    Vector3d center = mid + to_center * axis;
+    const double range_cam = HorizontalNorm(center - cam_);
+    if (range_cam < o_.min_range || range_cam > o_.max_range) {
+      last = "ramp at " + FormatNumber(range_cam) + " m, outside the range";
+      continue;
+    }
+    // Deck top: the ramp middle is half a deck height above the ground.
+    const Vector3d mid3 = 0.5 * (side_point[0] + side_point[1]);
+    center.z() = mid3.z() + 0.5 * lander_.deck_height;
+    const double range = HorizontalNorm(center);
+    if (prior_ && std::abs(range - prior_->range) > prior_->range_window) {
+      last = "ramp at " + FormatNumber(range) + " m, outside the prior window";
+      continue;
+    }
+    const Vector3d dir_h = Vector3d(center.x() - cam_.x(), center.y() - cam_.y(), 0.0).normalized();
+    out.found = true;
+    out.range = range;
+    // Range: the ramp-middle disparity and the unknown sign/size of the view angle (its error
+    // grows with sin a); lateral: the view angle's error over the ramp-to-deck distance.
+    const double sd_mid = r_sd / std::sqrt(static_cast<double>(n_in));
+    const double sd_angle = sin_a == 0.0 ? 0.26 : 0.1 + 0.2 * std::abs(sin_a);  // [rad]
+    out.range_sigma =
+        std::hypot(sd_mid, to_center * (std::abs(sin_a) + 0.5 * sd_angle) * sd_angle + 0.05);
+    out.range_monocular = r_len + to_center;
+    out.range_stereo = range_cam;
+    out.bearing = std::atan2(center.y(), center.x());
+    const double lateral_sigma = std::hypot(to_center * sd_angle * cos_a, 0.1);
+    out.bearing_sigma = lateral_sigma / range;
+    out.elevation = std::atan2(center.z() - cam_.z(), range_cam);
+    out.elevation_sigma = 1.5 / f_;
+    out.center = center;
+    const Vector3d lat(-dir_h.y(), dir_h.x(), 0.0);
+    const double sz = range_cam * out.elevation_sigma + 0.1;
+    out.center_covariance = out.range_sigma * out.range_sigma * dir_h * dir_h.transpose() +
+                            lateral_sigma * lateral_sigma * lat * lat.transpose() +
+                            sz * sz * Vector3d::UnitZ() * Vector3d::UnitZ().transpose();
+    const auto top = lm_.Project(center);
+    const int x0 = static_cast<int>(std::floor(st.u0 - 0.9 * len));
+    const int x1 = static_cast<int>(std::ceil(st.u1 + 0.9 * len));
+    const int y0 = top ? static_cast<int>(std::floor(std::min(top->y(), st.v0))) - 2
+                       : static_cast<int>(st.v0);
+    out.box = cv::Rect(x0, y0, x1 - x0, static_cast<int>(st.v1) + 4 - y0) &
+              cv::Rect(0, 0, left_.cols, left_.rows);
+    for (int j : st.edges) {
+      const auto& t = segs_[static_cast<std::size_t>(j)];
+      out.lines.push_back({t.a, t.b, LanderLine::Kind::kDeck});
+    }
+    out.features = "ramp stripe edges " + std::to_string(st.rows) + ", stereo ends " +
+                   std::to_string(ends[0].size()) + "+" + std::to_string(ends[1].size()) +
+                   " (used " + std::to_string(n_in) + "), view angle " +
+                   FormatNumber(std::round(std::asin(sin_a) / kDegree)) + " deg";
+    out.reason = "lander at " + FormatNumber(out.range) + " m (ramp)";
+    return out;
+  }
+  out.reason = last.empty() ? "no stripe stack" : last;
+  return out;
+}
+
 Status CheckImage(const char* name, const cv::Mat& im, const geometry::CameraModel& m) {
   if (im.empty()) return InvalidArgument(std::string(name) + ": empty image");
   if (im.type() != CV_8UC1) return InvalidArgument(std::string(name) + ": not an 8-bit grey image");
@@ -530,6 +845,10 @@ Status LanderDetectorOptions::Validate(const char* prefix) const {
   ROVER_RETURN_IF_ERROR(CheckRange(p + "end_depth_offset", end_depth_offset, -2.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "monocular_sigma", monocular_sigma, Bounds::OpenLow(0.0, 1.0)));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "max_disagreement", max_disagreement, Bounds::OpenLow(0.0, 1.0)));
+  if (min_ramp_edges != 0) {
+    ROVER_RETURN_IF_ERROR(CheckRange(p + "min_ramp_edges", min_ramp_edges, 3, 12));
+  }
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_ramp_contrast", min_ramp_contrast, 0.0, 255.0));
   return Status::Ok();
 }
 
@@ -548,6 +867,8 @@ void LanderDetectorOptions::BindParams(ParamBinder<LanderDetectorOptions>& b) {
   b.Bind("end_depth_offset", &O::end_depth_offset, "m", "deck ends to deck centre along the view");
   b.Bind("monocular_sigma", &O::monocular_sigma, "", "relative 1-sigma of the monocular range");
   b.Bind("max_disagreement", &O::max_disagreement, "", "relative stereo-monocular gap tolerated");
+  b.Bind("min_ramp_edges", &O::min_ramp_edges, "", "stripe-edge rows for the ramp hypothesis (0: off)");
+  b.Bind("min_ramp_contrast", &O::min_ramp_contrast, "", "light ramp over ground [grey levels]");
 }
 
 Result<LanderSighting> DetectLander(const cv::Mat& left8, const cv::Mat& right8,

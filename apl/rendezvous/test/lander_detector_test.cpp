@@ -1,11 +1,13 @@
 // Mid-range lander detection on rendered NAVCAM pairs with the simulator's truth: range and
-// bearing errors over 5..30 m and several sides of the lander, a sun variation, a view without
-// the lander, and bad input. Set ROVER_LANDER_DRAW=<file.png> to save the ~20 m sighting drawn.
+// bearing errors over 5..30 m and several sides of the lander (the ramp-facing views must be
+// found at 10..30 m), campaign-like ramp-facing views at 25..30 m, a sun variation, views
+// without the lander, and bad input. Set ROVER_LANDER_DRAW=<file.png> to save the ~20 m sighting drawn.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -94,7 +96,8 @@ TEST_F(LanderDetectorSceneTest, RangeAndBearingOverDistancesAndSides) {
   const std::vector<double> sides = {0, 30, 90, 180};
   std::printf("  dist  side   found  range   err[m]  err[%%]  sigma   mono    stereo  bear.err[deg]  ms   features\n");
   double worst_stereo_pct = 0.0, worst_bearing = 0.0;
-  int found = 0, total = 0, stereo_used = 0;
+  double worst_ramp_pct_25 = 0.0, worst_ramp_pct_30 = 0.0;  // ramp-facing, 10..25 m and 30 m
+  int found = 0, total = 0, stereo_used = 0, ramp_facing_found = 0;
   for (double d : distances) {
     for (double side : sides) {
       if (side == 180 && d != 15 && d != 25) continue;  // the far side once or twice is enough
@@ -108,8 +111,16 @@ TEST_F(LanderDetectorSceneTest, RangeAndBearingOverDistancesAndSides) {
                   side, s.found ? "yes" : "NO", s.range, e.range_error, pct, s.range_sigma,
                   s.range_monocular, s.range_stereo, e.bearing_error / kDegree, s.elapsed_ms,
                   s.found ? s.features.c_str() : s.reason.c_str());
+      if (side == 0.0 && d >= 10.0) {
+        EXPECT_TRUE(s.found) << "ramp facing at " << d << " m: " << s.reason;
+      }
       if (!s.found) continue;
       ++found;
+      if (side == 0.0 && d >= 10.0) {
+        ++ramp_facing_found;
+        double& worst = d <= 25.0 ? worst_ramp_pct_25 : worst_ramp_pct_30;
+        worst = std::max(worst, pct);
+      }
       if (s.range_stereo > 0.0 && d >= 10.0) {
         worst_stereo_pct = std::max(worst_stereo_pct, pct);
         worst_bearing = std::max(worst_bearing, std::abs(e.bearing_error));
@@ -129,25 +140,80 @@ TEST_F(LanderDetectorSceneTest, RangeAndBearingOverDistancesAndSides) {
     }
   }
   std::printf("found %d of %d; stereo used in %d (10..30 m): worst range error %.2f %%, worst "
-              "bearing error %.3f deg\n",
-              found, total, stereo_used, worst_stereo_pct, worst_bearing / kDegree);
-  // Bounds from the measured table (doc/lander_lines.md) with margin. Known weakness: views
-  // along the ramp axis are often missed, and monocular-only ranges are off by up to ~60 %.
-  EXPECT_GE(found, 9);
-  EXPECT_GE(stereo_used, 9);
+              "bearing error %.3f deg; ramp facing found %d of 5, worst %.2f %% (10..25 m), "
+              "%.2f %% (30 m)\n",
+              found, total, stereo_used, worst_stereo_pct, worst_bearing / kDegree,
+              ramp_facing_found, worst_ramp_pct_25, worst_ramp_pct_30);
+  // Bounds from the measured table (doc/lander_lines.md) with margin. Known weakness: oblique
+  // views at 5..15 m are missed, and monocular-only ranges are off by up to ~60 %.
+  EXPECT_GE(found, 14);
+  EXPECT_GE(stereo_used, 13);
+  EXPECT_EQ(ramp_facing_found, 5);
+  EXPECT_LT(worst_ramp_pct_25, 1.6);  // measured 1.11 % (10 m, deck band and truss)
+  EXPECT_LT(worst_ramp_pct_30, 3.0);  // measured 1.93 %
   EXPECT_LT(worst_stereo_pct, 4.0);
   EXPECT_LT(worst_bearing, 0.5 * kDegree);
 }
 
 TEST_F(LanderDetectorSceneTest, NoLanderInViewIsNotFound) {
-  for (double d : {10.0, 20.0}) {
-    auto shot = scene_->Render(ViewAt(d, 90.0, 180.0));  // the rover looks away from the lander
+  // The rover looks away from the lander (180 deg) or well to one side of it (+-60 deg; the
+  // NAVCAM's half field is ~24 deg): rocks, shadows and the horizon only.
+  struct Away {
+    double distance, side_deg, yaw_offset_deg;
+  };
+  for (const Away& a : {Away{10, 90, 180}, Away{20, 90, 180}, Away{30, 0, 180}, Away{15, 0, 60},
+                        Away{25, 0, -60}, Away{25, 30, 60}}) {
+    auto shot = scene_->Render(ViewAt(a.distance, a.side_deg, a.yaw_offset_deg));
     ASSERT_TRUE(shot.ok()) << shot.status().ToString();
     auto s = DetectLander(shot->left, shot->right, shot->left_model, &shot->right_model,
                           scene_->description());
     ASSERT_TRUE(s.ok()) << s.status().ToString();
-    EXPECT_FALSE(s->found) << "at " << d << " m: " << s->features << " range " << s->range;
-    std::printf("no lander, %.0f m: %s (%.0f ms)\n", d, s->reason.c_str(), s->elapsed_ms);
+    EXPECT_FALSE(s->found) << "at " << a.distance << " m, side " << a.side_deg << ", yaw "
+                           << a.yaw_offset_deg << ": " << s->features << " range " << s->range;
+    std::printf("no lander, %.0f m side %.0f yaw %+.0f: %s (%.0f ms)\n", a.distance, a.side_deg,
+                a.yaw_offset_deg, s->reason.c_str(), s->elapsed_ms);
+  }
+}
+
+// The campaign's failed sightings (deploy/scenarios/lander_return_30m.yaml: ramp 0 pointing
+// straight at the rover 25..30 m away, VL-1-like rocks, mast tilt -3 deg), rendered with other
+// terrain seeds and noise frames than the suite's scene.
+TEST(LanderDetectorCampaignTest, RampFacingAt25To30m) {
+  for (std::uint64_t seed : {3u, 5u}) {
+    LanderSceneOptions o;
+    o.seed = seed;
+    o.size = 70.0;
+    o.lander_yaw_deg = 180.0;  // ramp 0 descends towards -x, where the rover stands
+    auto scene = LanderScene::Create(o);
+    ASSERT_TRUE(scene.ok()) << scene.status().ToString();
+    for (double d : {25.0, 27.5, 30.0}) {
+      RoverView v;
+      v.x = -d;
+      v.y = 0.0;
+      v.yaw_deg = 0.0;
+      v.tilt_deg = -3.0;
+      v.frame = static_cast<std::uint64_t>(d * 10.0);
+      auto shot = (*scene)->Render(v);
+      ASSERT_TRUE(shot.ok()) << shot.status().ToString();
+      auto s = DetectLander(shot->left, shot->right, shot->left_model, &shot->right_model,
+                            (*scene)->description());
+      ASSERT_TRUE(s.ok()) << s.status().ToString();
+      const auto& l = (*scene)->lander();
+      const Eigen::Vector3d c =
+          shot->site_from_rover.inverse() * Eigen::Vector3d(l.params.x, l.params.y, l.deck_z);
+      const double truth = std::hypot(c.x(), c.y());
+      const double bearing_err =
+          std::remainder(s->bearing - std::atan2(c.y(), c.x()), 2.0 * kPi) / kDegree;
+      std::printf("campaign-like seed %d, %.1f m: found %d range %.2f (truth %.2f, %.2f %%) "
+                  "bearing err %.3f deg, %.0f ms: %s\n",
+                  static_cast<int>(seed), d, s->found ? 1 : 0, s->range, truth,
+                  s->found ? 100.0 * (s->range - truth) / truth : 0.0, s->found ? bearing_err : 0.0,
+                  s->elapsed_ms, s->found ? s->features.c_str() : s->reason.c_str());
+      ASSERT_TRUE(s->found) << "seed " << seed << ", " << d << " m: " << s->reason;
+      // Measured: <= 0.55 % at 25-27.5 m, <= 1.40 % at 30 m; bearing <= 0.10 deg.
+      EXPECT_NEAR(s->range, truth, (d <= 25.0 ? 0.02 : 0.03) * truth);
+      EXPECT_LT(std::abs(bearing_err), 0.5);
+    }
   }
 }
 
@@ -224,6 +290,15 @@ TEST(LanderDetectorInputTest, BadInputIsInvalidArgument) {
   LanderDetectorOptions bad;
   bad.max_range = 1.0;
   expect_invalid(DetectLander(good, cv::Mat(), *model, nullptr, lander, bad), "max_range");
+  LanderDetectorOptions bad_ramp;
+  bad_ramp.min_ramp_edges = 2;  // 0 (off) or 3..12
+  expect_invalid(DetectLander(good, cv::Mat(), *model, nullptr, lander, bad_ramp),
+                 "min_ramp_edges");
+  bad_ramp.min_ramp_edges = 0;
+  EXPECT_TRUE(bad_ramp.Validate().ok());
+  bad_ramp.min_ramp_contrast = -1.0;
+  expect_invalid(DetectLander(good, cv::Mat(), *model, nullptr, lander, bad_ramp),
+                 "min_ramp_contrast");
   // A blank image is valid input without a lander.
   auto blank = DetectLander(good, good, *model, &*model, lander);
   ASSERT_TRUE(blank.ok());

@@ -25,6 +25,19 @@
 ///      range more than `max_disagreement` from R_w is dropped. With a right image, a band that
 ///      stereo does not confirm is reported not found (this is what rejects rock and shadow
 ///      bands); the two ranges are fused by inverse variance.
+///   5. Ramp hypothesis (right image needed; `min_ramp_edges` 0 turns it off). A ramp facing the
+///      camera hides the middle of the truss and cuts the deck band, so the ramp itself is lander
+///      evidence: a stack of >= min_ramp_edges level edge rows with both polarities, at least
+///      three aligned at both ends (two in a stack of five or more rows), flanked by near-vertical
+///      ramp side edges and lighter than the ground beside it by `min_ramp_contrast`. Both stripe
+///      ends (whole stack and per edge row) are matched in the right image; the ramp middle is at
+///      the mean of the inlying horizontal ranges. Stereo must confirm it: matches on both ends,
+///      >= 3 inliers, and stripes of at most 1.15x their true length at that range. The deck
+///      centre is apothem + ramp_length / 2 further along the ramp axis, which is the view
+///      direction when the stripes are foreshortened by less than cos 26 deg ("frontal"), else
+///      turned by the foreshortening angle (sign from the two ends' depths). A frontal ramp is
+///      preferred over a truss-confirmed band; otherwise a ramp sighting is used only when the
+///      band hypothesis finds nothing.
 ///
 /// Frames and units. The camera models are in the rover frame (x forward, y left, z up, origin on
 /// the ground). `center` is the deck top centre in the rover frame [m]; range = hypot(center.x,
@@ -32,7 +45,7 @@
 /// frame origin; elevation is the deck top's elevation seen from the left camera [rad].
 ///
 /// Preconditions: 8-bit grey images of their models' size; the lander between min_range and
-/// max_range and below the horizon. Cost ~50-100 ms per 1024^2 pair (one core), mostly LSD.
+/// max_range and below the horizon. Cost ~40-110 ms per 1024^2 pair (one core), mostly LSD.
 
 #include <optional>
 #include <string>
@@ -67,6 +80,10 @@ struct LanderDetectorOptions {
   double end_depth_offset = 0.3;       ///< [m] deck ends to deck centre along the view
   double monocular_sigma = 0.08;       ///< relative 1-sigma of the monocular range
   double max_disagreement = 0.25;      ///< relative stereo - monocular range gap tolerated
+  /// Ramp hypothesis (used when no truss-confirmed deck band is found and a right image is
+  /// given): distinct stripe-edge rows needed in a stack; 0 turns the hypothesis off.
+  int min_ramp_edges = 4;
+  double min_ramp_contrast = 25.0;     ///< [grey levels] light ramp over the ground beside it
 
   /// Checks every field; messages start with "<prefix><field>: ".
   Status Validate(const char* prefix = "lander_detector.") const;
