@@ -444,6 +444,21 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
   }
   Reply(out);
   if (!accepted) {
+    // Beyond the detector's reach the a-priori estimate leads: drive a leg towards it and look
+    // again (a fix was not seen, so nothing false is driven to).
+    const double prior_range = (center_ - RoverXy()).norm();
+    if (prior_range > options_.sight_range && !fix.found) {
+      search_count_ = 0;
+      search_bearing_offset_ = 0.0;
+      status_.message += "; beyond sight range (" + FormatNumber(prior_range) +
+                         " m to the estimate): a leg towards it";
+      Reply(out);
+      const Eigen::Vector2d rover = RoverXy();
+      const Eigen::Vector2d to = (center_ - rover).normalized();
+      const double step = std::min(options_.reacquire_step, prior_range - options_.sight_range + 1.0);
+      DriveTo(rover + step * to, options_.autonav_tolerance, DriveKind::kLeg, now, out);
+      return;
+    }
     if (++search_count_ >= options_.search_images) {
       Fail(RendezvousFault::kNotFound,
            "lander not found in " + std::to_string(search_count_) + " pairs: " + status_.message,

@@ -19,6 +19,7 @@ Status RendezvousOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange(p + "mast_timeout_s", mast_timeout_s, 1.0, 600.0, "s"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "settle_s", settle_s, 0.0, 10.0, "s"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "reacquire_step", reacquire_step, 1.0, 30.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "sight_range", sight_range, 5.0, 200.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "approach_radius", approach_radius, 5.0, 20.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "prior_gate", prior_gate, 0.5, 100.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange(p + "search_images", search_images, 1, 50));
@@ -64,6 +65,8 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
   b.Bind("mast_timeout_s", &O::mast_timeout_s, "s", "mast not at its goal: MAST");
   b.Bind("settle_s", &O::settle_s, "s", "wait after motion before imaging");
   b.Bind("reacquire_step", &O::reacquire_step, "m", "mid range: drive at most this far between sightings");
+  b.Bind("sight_range", &O::sight_range, "m",
+         "beyond it a missed lander means a leg towards the estimate, not a look-around");
   b.Bind("approach_radius", &O::approach_radius, "m", "close range starts this far from the deck centre");
   b.Bind("prior_gate", &O::prior_gate, "m", "a fix farther than this from the estimate is rejected");
   b.Bind("search_images", &O::search_images, "", "pairs tried at one station before NOT-FOUND");

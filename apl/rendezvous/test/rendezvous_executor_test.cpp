@@ -27,6 +27,7 @@ struct World {
   double drive_error = 0.02;   // straights and turns come out this much long
   double fix_noise = 0.01;     // relative range noise of the mid-range fix
   bool lander_visible = true;
+  double sight_limit = 60.0;  // [m] the fake detector sees the lander within this range
   int stripes = 6;
   int stripes_near = 6;  // stripes seen within 3 m of the ramp base
   std::mt19937 rng{7};
@@ -76,7 +77,7 @@ class FakeVision : public RendezvousVision {
     const Eigen::Vector3d c(w_->center.x(), w_->center.y(), w_->lander.deck_height);
     const Eigen::Vector3d in_rover = w_->SiteFromRover().inverse() * c;
     const double range = in_rover.head<2>().norm();
-    if (!w_->lander_visible || range > 60.0) {
+    if (!w_->lander_visible || range > w_->sight_limit) {
       f.why = "nothing lander-like";
       return f;
     }
@@ -295,8 +296,22 @@ TEST(RendezvousExecutorTest, StopsAtTheBaseWithoutClimbingWhenAsked) {
   EXPECT_LT(h.world.z, 0.1);
 }
 
+TEST(RendezvousExecutorTest, BeyondSightRangeTheEstimateLeadsUntilTheLanderIsSeen) {
+  Harness h;
+  h.world.center = Eigen::Vector2d(60.0, 0.0);
+  h.world.yaw = kPi;
+  h.world.sight_limit = 30.0;
+  h.Start(h.Command());
+  ExpectPlacedAndClimbed(h);
+  EXPECT_TRUE(h.SawPhase(RendezvousPhase::kLongRange));
+  // The legs before the first fix head for the estimate and are at most reacquire_step long.
+  ASSERT_FALSE(h.drives.empty());
+  EXPECT_LE(h.drives.front().goal.head<2>().norm(), 5.0 + 1e-9);
+}
+
 TEST(RendezvousExecutorTest, LanderNotFoundAfterTheSearchNeverDrives) {
   Harness h;
+  h.world.center = Eigen::Vector2d(20.0, 0.0);  // within sight range: the look-around runs
   h.world.lander_visible = false;
   h.Start(h.Command());
   EXPECT_EQ(h.exec.status().fault, RendezvousFault::kNotFound);

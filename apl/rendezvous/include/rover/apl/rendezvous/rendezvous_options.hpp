@@ -28,6 +28,10 @@ struct RendezvousOptions {
 
   // Mid range (seed 004 phase 2).
   double reacquire_step = 5.0;       ///< [m] drive at most this far between sightings
+  /// [m] farther than this from the estimate, a pair without the lander does not start the
+  /// look-around: the rover drives a leg towards the estimate and looks again (the lander
+  /// detector's reach; the long-range detector of seed 004's phase 1 is not built).
+  double sight_range = 30.0;
   double approach_radius = 7.5;      ///< [m] from the deck centre: where close range starts
   double prior_gate = 8.0;           ///< [m] a fix this far from the estimate is not the lander
   int search_images = 7;             ///< pairs tried at a station before NOT-FOUND
