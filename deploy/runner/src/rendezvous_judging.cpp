@@ -41,7 +41,7 @@ std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
   for (double d : {15.0, 25.0, 35.0, 45.0}) {
     double best_gap = 3.0, err = std::numeric_limits<double>::quiet_NaN(), truth = 0.0;
     for (const RendezvousSample& s : log.samples) {
-      if (!(s.range > 0.0)) continue;
+      if (!(s.range > 0.0) || !s.new_range) continue;
       const auto& p = result.truth_track[NearestTrackIndex(result, s.t)];
       const double true_d = TrueLanderDistance(lander, p[1], p[2]);
       if (std::abs(true_d - d) < best_gap) {

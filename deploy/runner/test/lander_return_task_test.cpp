@@ -79,8 +79,9 @@ TEST(RendezvousJudging, RangeErrorsPlacementAndOnDeck) {
   log.ramp = 0;
   log.at_base_t = 100.0;
   // Sightings: at t = 0 the rover is 30 m out, at t = 50 17.65 m out (within 3 m of 15 m).
-  log.samples.push_back({0.0, 2, 30.6, 0.5, ""});
-  log.samples.push_back({50.0, 2, 13.0, 0.2, ""});
+  log.samples.push_back({0.0, 2, 30.6, 0.5, true, ""});
+  log.samples.push_back({50.0, 2, 13.0, 0.2, true, ""});
+  log.samples.push_back({60.0, 2, 13.0, 0.2, false, ""});  // repeated: not judged
   const auto figures = RendezvousFigures(log, lander, r);
   auto find = [&](const std::string& name) -> const sim::judge::Criterion* {
     for (const auto& f : figures) {

@@ -113,6 +113,7 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
       r.range = st->range;
       r.range_sigma = st->range_sigma;
       r.features = st->features;
+      r.new_range = st->range > 0.0 && (log.samples.empty() || st->range != log.samples.back().range);
       log.samples.push_back(r);
       if (st->ramp >= 0) log.ramp = st->ramp;
       if (st->phase == msg::RendezvousPhase::kAtRampBase && !log.at_base_t) log.at_base_t = r.t;

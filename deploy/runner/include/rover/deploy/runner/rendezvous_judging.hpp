@@ -27,6 +27,9 @@ struct RendezvousSample {
   int phase = 0;   ///< msg::RendezvousPhase ordinal
   double range = 0.0;        ///< [m] the rendezvous's estimate (0: none yet)
   double range_sigma = 0.0;  ///< [m]
+  /// The status carries a new distance estimate (a sighting), not one repeated from an earlier
+  /// status while the rover moved on: only these are judged against the truth.
+  bool new_range = false;
   std::string features;
 };
 
