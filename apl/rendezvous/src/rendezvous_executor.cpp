@@ -20,7 +20,8 @@ using msg::RendezvousPhase;
 constexpr double kMidRangeLimit = 30.0;  // [m] farther: LONG_RANGE
 constexpr double kLookHeight = 0.6;      // [m] aim this far above the ground at the deck centre
 constexpr double kMaxDriveS = 600.0;     // [s] budget of one directed/servo drive
-constexpr int kMaxMobilityRetries = 2;
+constexpr int kMaxMobilityRetries = 3;
+constexpr double kApproachShiftDeg = 20.0;  // [deg] approach point moved per refused leg
 
 std::string Cm(double m) {
   char buf[32];
@@ -483,7 +484,12 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     return;
   }
   if (dist <= kMidRangeLimit) SetPhase(RendezvousPhase::kMidRange, out);
-  const Eigen::Vector2d approach = center_ + options_.approach_radius * to_rover / dist;
+  // After a refused leg (a rock on the approach point, no path) the approach point moves round
+  // the lander: +20, -20, +40 deg, ...
+  const int k = (mobility_retries_ + 1) / 2;
+  const double turn = (mobility_retries_ % 2 == 1 ? 1.0 : -1.0) * k * kApproachShiftDeg * kDegree;
+  const Eigen::Vector2d approach =
+      center_ + options_.approach_radius * Unit(std::atan2(to_rover.y(), to_rover.x()) + turn);
   const Eigen::Vector2d leg = approach - rover;
   const double step = std::min(leg.norm(), options_.reacquire_step);
   DriveTo(rover + step * leg.normalized(), options_.autonav_tolerance, DriveKind::kLeg, now, out);
@@ -663,7 +669,9 @@ void RendezvousExecutor::Orbit(Time now, ExecutorOutput* out) {
     dir = gap >= 0.0 ? 1.0 : -1.0;
     step = std::min(step, std::abs(gap));
   }
-  const Eigen::Vector2d p = center_ + OrbitRadius() * Unit(a_rover + dir * step);
+  // A refused orbit leg retries on a wider circle.
+  const double radius = OrbitRadius() + 0.6 * mobility_retries_;
+  const Eigen::Vector2d p = center_ + radius * Unit(a_rover + dir * step);
   status_.message += "; orbiting";
   Reply(out);
   DriveTo(p, options_.autonav_tolerance, DriveKind::kOrbit, now, out);

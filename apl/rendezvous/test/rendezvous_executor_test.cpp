@@ -28,6 +28,7 @@ struct World {
   double fix_noise = 0.01;     // relative range noise of the mid-range fix
   bool lander_visible = true;
   double sight_limit = 60.0;  // [m] the fake detector sees the lander within this range
+  std::optional<Eigen::Vector2d> rock;  // apl-mobility refuses (NOPATH) goals within 1.5 m of it
   int stripes = 6;
   int stripes_near = 6;  // stripes seen within 3 m of the ramp base
   std::mt19937 rng{7};
@@ -128,6 +129,7 @@ struct Harness {
   std::vector<msg::RendezvousStatus> statuses;
   std::vector<msg::MobilityCommand> drives;
   std::optional<Eigen::Vector3d> placement_at_base;
+  int refused = 0;
 
   Time Now() const { return Time::FromSeconds(t); }
   msg::PoseSample Pose() const {
@@ -195,10 +197,20 @@ struct Harness {
       for (const auto& c : out.mobility) {
         drives.push_back(c);
         if (c.mode == msg::MobilityMode::kStop) continue;
-        Execute(c);
-        exec.OnPose(Pose(), Now());
         msg::MobilityStatus s;
         s.command_id = c.command_id;
+        if (world.rock && c.mode == msg::MobilityMode::kAutoNav &&
+            (c.goal.head<2>() - *world.rock).norm() < 1.5) {
+          s.state = msg::MobilityState::kFailed;
+          s.fault = msg::MobilityFault::kNoPath;
+          s.fault_class = msg::FaultClass::kGoalError;
+          s.message = "the goal lies on a rock";
+          ++refused;
+          add(exec.OnMobilityStatus(s, Now()));
+          continue;
+        }
+        Execute(c);
+        exec.OnPose(Pose(), Now());
         s.state = msg::MobilityState::kSucceeded;
         add(exec.OnMobilityStatus(s, Now()));
       }
@@ -273,6 +285,16 @@ TEST(RendezvousExecutorTest, OrbitsWhenTheLanderIsSideOn) {
   h.world.yaw = 0.5 * kPi;  // ramps point across the approach
   h.Start(h.Command());
   ExpectPlacedAndClimbed(h);
+}
+
+TEST(RendezvousExecutorTest, ARockOnTheApproachPointMovesItRoundTheLander) {
+  Harness h;
+  h.world.yaw = kPi;
+  // A rock where the approach point falls (7.5 m short of the deck centre on the rover's side).
+  h.world.rock = Eigen::Vector2d(22.5, 0.0);
+  h.Start(h.Command());
+  ExpectPlacedAndClimbed(h);
+  EXPECT_GE(h.refused, 1);
 }
 
 TEST(RendezvousExecutorTest, BlindLegsWhenAsked) {
