@@ -53,6 +53,7 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
   ROVER_ASSIGN_OR_RETURN(const hwconfig::LanderDescription lander,
                          ReadParams<hwconfig::LanderDescription>(params, "lander."));
   VisionOptions vision;
+  vision.prior_gate = options.prior_gate;
   ROVER_ASSIGN_OR_RETURN(vision.lander, ReadParams<LanderDetectorOptions>(params, "lander_detector."));
   ROVER_ASSIGN_OR_RETURN(vision.stripes, ReadParams<StripeDetectorOptions>(params, "stripes."));
   ROVER_ASSIGN_OR_RETURN(vision.pose, ReadParams<RampPoseOptions>(params, "ramp_pose."));

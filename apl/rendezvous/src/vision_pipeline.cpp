@@ -1,5 +1,6 @@
 #include "rover/apl/rendezvous/vision_pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
@@ -42,8 +43,8 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
   LanderPrior prior;  // from R's origin, as the detector measures
   prior.bearing = std::atan2(prior_rover.y(), prior_rover.x());
   prior.range = std::max(1.0, std::hypot(prior_rover.x(), prior_rover.y()));
-  prior.bearing_window = 0.45;
-  prior.range_window = std::max(8.0, 0.6 * prior.range);
+  prior.bearing_window = std::clamp(std::atan2(options_.prior_gate, prior.range), 0.05, 0.45);
+  prior.range_window = options_.prior_gate + 0.1 * prior.range;
   ROVER_ASSIGN_OR_RETURN(
       const LanderSighting s,
       DetectLander(*pair.left, pair.right != nullptr ? *pair.right : none, *pair.left_model,

@@ -28,6 +28,8 @@ struct World {
   double fix_noise = 0.01;     // relative range noise of the mid-range fix
   bool lander_visible = true;
   double sight_limit = 60.0;  // [m] the fake detector sees the lander within this range
+  double blind_within = 0.0;  // [m] ... and not nearer than this (a view it misses)
+  std::optional<Eigen::Vector2d> decoy;  // reported instead of the lander while set
   std::optional<Eigen::Vector2d> rock;  // apl-mobility refuses (NOPATH) goals within 1.5 m of it
   int stripes = 6;
   int stripes_near = 6;  // stripes seen within 3 m of the ramp base
@@ -72,13 +74,22 @@ struct World {
 
 class FakeVision : public RendezvousVision {
  public:
+  int decoys_reported = 0;
   explicit FakeVision(World* w) : w_(w) {}
   Result<LanderFix> SightLander(const NavcamPair&, const Eigen::Vector3d&) override {
     LanderFix f;
     const Eigen::Vector3d c(w_->center.x(), w_->center.y(), w_->lander.deck_height);
     const Eigen::Vector3d in_rover = w_->SiteFromRover().inverse() * c;
     const double range = in_rover.head<2>().norm();
-    if (!w_->lander_visible || range > w_->sight_limit) {
+    if (w_->decoy) {
+      f.found = true;
+      f.center_rover = w_->SiteFromRover().inverse() *
+                       Eigen::Vector3d(w_->decoy->x(), w_->decoy->y(), w_->lander.deck_height);
+      f.covariance = Eigen::Matrix3d::Identity() * 0.25;
+      ++decoys_reported;
+      return f;
+    }
+    if (!w_->lander_visible || range > w_->sight_limit || range < w_->blind_within) {
       f.why = "nothing lander-like";
       return f;
     }
@@ -295,6 +306,30 @@ TEST(RendezvousExecutorTest, ARockOnTheApproachPointMovesItRoundTheLander) {
   h.Start(h.Command());
   ExpectPlacedAndClimbed(h);
   EXPECT_GE(h.refused, 1);
+}
+
+TEST(RendezvousExecutorTest, AFixFarFromTheEstimateIsNeverDrivenTo) {
+  Harness h;
+  h.world.center = Eigen::Vector2d(20.0, 0.0);
+  h.world.decoy = Eigen::Vector2d(14.0, 9.0);  // 11 m off the estimate (21.5, -1)
+  h.Start(h.Command());
+  EXPECT_EQ(h.exec.status().fault, RendezvousFault::kNotFound);
+  EXPECT_GE(h.vision->decoys_reported, 1);
+  EXPECT_TRUE(h.drives.empty());
+  bool rejected = false;
+  for (const auto& s : h.statuses) rejected |= s.message.find("was rejected (gate 8 m)") != std::string::npos;
+  EXPECT_TRUE(rejected);
+}
+
+TEST(RendezvousExecutorTest, AGoodEstimateLeadsWhenTheDetectorLosesTheLanderNearby) {
+  Harness h;
+  h.world.yaw = kPi;
+  h.world.blind_within = 12.0;  // mid-range sightings stop 12 m from the deck centre
+  h.Start(h.Command());
+  ExpectPlacedAndClimbed(h);
+  bool led = false;
+  for (const auto& s : h.statuses) led |= s.message.find("leads the next leg") != std::string::npos;
+  EXPECT_TRUE(led);
 }
 
 TEST(RendezvousExecutorTest, BlindLegsWhenAsked) {

@@ -11,7 +11,9 @@
 ///    2-D information filter), then drive an autonav leg of at most `reacquire_step` towards
 ///    the point `approach_radius` from the deck centre on the rover's side, and look again. A
 ///    fix farther than `prior_gate` from the estimate is not the lander: it is never driven to.
-///    No fix: look around (`search_pan_step_deg`), NOT-FOUND after `search_images` pairs.
+///    No fix: look around (`search_pan_step_deg`), NOT-FOUND after `search_images` pairs; but
+///    beyond `sight_range` the a-priori estimate leads a leg, and after two accepted fixes with
+///    the estimate within 1 m (1 sigma) it leads up to two legs in a row after three misses.
 ///  - CLOSE_RANGE: sight a ramp's coded stripes (SightRamp) for the ramp's full pose; orbit the
 ///    lander (autonav legs of `circle_step_deg` on a circle `circle_margin` beyond the ramp
 ///    feet) until the chosen ramp is reachable; drive to the servo's start point `servo_run`
@@ -107,6 +109,8 @@ class RendezvousExecutor {
                ExecutorOutput* out);
   void LookAtLander(Time now, ExecutorOutput* out);
   void OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out);
+  // Close range when near the estimate, else the next leg towards the approach point.
+  void Advance(Time now, ExecutorOutput* out);
   void OnRampFix(const RampFix& fix, Time now, ExecutorOutput* out);
   void AfterDrive(Time now, ExecutorOutput* out);
   void Orbit(Time now, ExecutorOutput* out);
@@ -138,6 +142,8 @@ class RendezvousExecutor {
   double center_z_ = 0.0;
   double search_bearing_offset_ = 0.0;  // [rad] look-around at a station
   int search_count_ = 0;
+  int fixes_ = 0;       // accepted mid-range fixes of this command
+  int blind_legs_ = 0;  // legs in a row led by the estimate alone
   int mobility_retries_ = 0;
   int orbit_legs_ = 0;
   int servo_steps_ = 0;

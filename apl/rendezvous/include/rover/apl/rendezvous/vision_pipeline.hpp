@@ -21,6 +21,9 @@
 namespace rover::apl::rendezvous {
 
 struct VisionOptions {
+  /// [m] the executor's gate (rendezvous.prior_gate): the detector searches only where a fix
+  /// could pass it (bearing window atan(gate / range), range window gate + 10 % of the range).
+  double prior_gate = 8.0;
   LanderDetectorOptions lander;
   StripeDetectorOptions stripes;
   RampPoseOptions pose;
