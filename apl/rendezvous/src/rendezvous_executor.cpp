@@ -259,6 +259,7 @@ ExecutorOutput RendezvousExecutor::OnCommand(const msg::RendezvousCommand& c, Ti
   status_.target_sigma = sigma0;
   search_bearing_offset_ = 0.0;
   search_count_ = mobility_retries_ = orbit_legs_ = servo_steps_ = fixes_ = blind_legs_ = 0;
+  backups_ = 0;
   goal_ramp_.reset();
   servo_started_ = false;
   deadline_ = now + Seconds(c.time_budget_s > 0.0 ? c.time_budget_s : options_.default_time_budget_s);
@@ -632,7 +633,14 @@ void RendezvousExecutor::OnRampFix(const RampFix& fix, Time now, ExecutorOutput*
   const bool acceptable = std::abs(lateral) <= options_.accept_lateral &&
                           std::abs(along) <= options_.accept_along &&
                           std::abs(heading) <= options_.accept_heading_deg * kDegree;
-  if (good || (servo_steps_ >= options_.max_servo_steps && acceptable)) {
+  // Too close to take a lateral error out means backing up; after one back-up an acceptable
+  // placement is kept instead (campaign seed 10 alternated forward and back until it ran out of
+  // steps), and so is one on the last step that could still correct.
+  const bool needs_backup =
+      along < 0.15 && std::abs(lateral) > options_.lateral_tolerance;
+  const bool settle = acceptable && ((needs_backup && backups_ >= 1) ||
+                                     servo_steps_ >= options_.max_servo_steps - 1);
+  if (good || settle || (servo_steps_ >= options_.max_servo_steps && acceptable)) {
     status_.phase = RendezvousPhase::kAtRampBase;
     status_.message = "at the base of ramp " + std::to_string(fix.ramp) + ": lateral " +
                       Cm(lateral) + ", along " + Cm(-along) + ", heading " + Deg(-heading) +
@@ -656,7 +664,10 @@ void RendezvousExecutor::OnRampFix(const RampFix& fix, Time now, ExecutorOutput*
   const double approach = 0.4;
   Eigen::Vector2d aim = target;
   if (along > approach + 0.15) aim = target - approach * a;
-  if (along < 0.15 && std::abs(lateral) > options_.lateral_tolerance) aim = target - approach * a;
+  if (needs_backup) {
+    aim = target - approach * a;
+    ++backups_;
+  }
   msg::MobilityCommand c;
   c.mode = msg::MobilityMode::kDirected;
   const double dist = aim.norm();

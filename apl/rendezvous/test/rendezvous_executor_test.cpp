@@ -26,6 +26,7 @@ struct World {
   double x = 0.0, y = 0.0, heading = 0.0, z = 0.0;
   double drive_error = 0.02;   // straights and turns come out this much long
   double fix_noise = 0.01;     // relative range noise of the mid-range fix
+  double lateral_drift = 0.0;  // straights drift sideways this much per metre (to the left)
   bool lander_visible = true;
   double sight_limit = 60.0;  // [m] the fake detector sees the lander within this range
   double blind_within = 0.0;  // [m] ... and not nearer than this (a view it misses)
@@ -167,8 +168,9 @@ struct Harness {
           w.heading = geometry::WrapAngle(w.heading + p.angle * (1.0 + w.drive_error));
         } else {
           const double s = p.distance * (1.0 + w.drive_error);
-          w.x += s * std::cos(w.heading);
-          w.y += s * std::sin(w.heading);
+          const double side = w.lateral_drift * std::abs(s);
+          w.x += s * std::cos(w.heading) - side * std::sin(w.heading);
+          w.y += s * std::sin(w.heading) + side * std::cos(w.heading);
           if (s > 3.0) w.z += w.lander.deck_height;  // the climb
         }
       }
@@ -330,6 +332,18 @@ TEST(RendezvousExecutorTest, AGoodEstimateLeadsWhenTheDetectorLosesTheLanderNear
   bool led = false;
   for (const auto& s : h.statuses) led |= s.message.find("leads the next leg") != std::string::npos;
   EXPECT_TRUE(led);
+}
+
+TEST(RendezvousExecutorTest, ADriftingDriveSettlesAfterOneBackUpInsteadOfRunningOutOfSteps) {
+  Harness h;
+  h.world.yaw = kPi;
+  h.world.lateral_drift = 0.035;  // 1.4 cm sideways over the last 0.4 m
+  h.Start(h.Command());
+  const msg::RendezvousStatus& s = h.exec.status();
+  EXPECT_EQ(s.phase, RendezvousPhase::kDone) << s.message;
+  ASSERT_TRUE(h.placement_at_base.has_value());
+  EXPECT_LT(std::abs(h.placement_at_base->x()), 0.03);
+  EXPECT_LT(std::abs(h.placement_at_base->y()), 0.04);
 }
 
 TEST(RendezvousExecutorTest, BlindLegsWhenAsked) {

@@ -21,7 +21,7 @@
 ///    pair, computes the placement point P* = base - standoff * a (a the ramp's horizontal
 ///    up-axis) in the rover frame of that pair and drives a directed turn-straight-turn to it;
 ///    done when within `lateral_tolerance`, `along_tolerance` and `heading_tolerance_deg`, or
-///    within the accept_* bounds after `max_servo_steps`; else PLACEMENT. Fewer than
+///    within the accept_* bounds after one back-up or on the last step; else PLACEMENT. Fewer than
 ///    `min_stripes` stripes here: TOO-FEW-STRIPES (no final servo).
 ///  - AT_RAMP_BASE: stands `hold_at_base_s` (the judge measures the placement here), then
 ///  - CLIMB (command.climb): one directed straight of standoff + ramp surface length + deck
@@ -147,6 +147,7 @@ class RendezvousExecutor {
   int mobility_retries_ = 0;
   int orbit_legs_ = 0;
   int servo_steps_ = 0;
+  int backups_ = 0;  // servo steps that backed up to take out a lateral error
   std::optional<RampGoal> goal_ramp_;
   bool servo_started_ = false;
   double climb_start_z_ = 0.0;
