@@ -60,7 +60,7 @@ struct RampFix {
 
 /// Detection images the service keeps in the run folder (features drawn on them).
 struct DetectionImage {
-  std::string name;                  ///< "mid_range_03"
+  std::string name;                  ///< "lander_03", "stripes_07"
   std::shared_ptr<const cv::Mat> bgr;  ///< 8-bit BGR
 };
 
