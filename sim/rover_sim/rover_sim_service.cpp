@@ -6,6 +6,7 @@
 //   CameraHead (rendered stereo pairs)            <- hw/camera_request -> hw/camera_frame
 // and publishes sim/clock every step. Its run clock is its own simulated time; it never follows
 // sim/clock itself. See docs/services/rover-sim.md.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -71,6 +72,15 @@ class RoverSim final : public rover::Service {
                     engine_->rover());
     ctx_ = &ctx;
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
+    if (pacing.lockstep_strict) {
+      // Each lock-step service hears only the ticks it must serve (lockstep.hpp "idle").
+      for (const auto& name : rs::Pacer::ParseServices(pacing.lockstep_services)) {
+        ROVER_ASSIGN_OR_RETURN(auto w, dds::Writer<rover_sim_Clock>::CreateInPartition(
+                                           ctx.participant(), "sim/clock",
+                                           rover::dds::lockstep::ClockPartition(name)));
+        service_clocks_.emplace_back(name, std::move(w));
+      }
+    }
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/truth", &truth_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/motor_telemetry", &telemetry_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/suspension_pots", &pots_w_));
@@ -120,7 +130,7 @@ class RoverSim final : public rover::Service {
     h.stamp_ns = rover::Time::FromSeconds(engine_->time()).ns;
   }
 
-  void PublishClock() {
+  void PublishClock(bool repeat = false) {
     rover_sim_Clock c{};
     Stamp(c.header, "sim");
     c.sim_time_ns = c.header.stamp_ns;
@@ -140,6 +150,12 @@ class RoverSim final : public rover::Service {
       c.written._release = false;
     }
     (void)clock_w_.Write(c);
+    // Strict: to each service the tick is due for; a repeat (the simulator waits) to all.
+    const auto& idle = pacer_->idle();
+    for (auto& [name, w] : service_clocks_) {
+      if (!repeat && std::find(idle.begin(), idle.end(), name) != idle.end()) continue;
+      (void)w.Write(c);
+    }
   }
 
   // Strict lock-step: the quantum that starts now (at the barrier just published); its samples
@@ -150,8 +166,12 @@ class RoverSim final : public rover::Service {
     rover::dds::lockstep::SetWriteTick(barrier);
     // Pipelined: the inputs this quantum applies are those written before it started; what the
     // services write while serving this barrier waits for the next quantum.
-    if (pipelined_) rover::dds::lockstep::SetReadGate(barrier);
+    // Not pipelined: what the services write while serving this barrier applies to this
+    // quantum, from its first step on, whenever it arrives (AbsorbInputs); until then the gate
+    // holds it back.
+    rover::dds::lockstep::SetReadGate(barrier);
     steps_in_quantum_ = 0;
+    absorbed_ = false;
   }
 
   // Strict lock-step stalled: a named service never acknowledged the barrier. Say so (stamped
@@ -193,7 +213,7 @@ class RoverSim final : public rover::Service {
     // at a barrier (an acknowledgement that was lost, or a restarted service, is made good).
     const bool repeat = pacer_->paused() || (pacer_->strict() && waiting);
     if (repeat && now - last_paused_clock_ > rover::Seconds(pacer_->paused() ? 0.2 : 0.5)) {
-      PublishClock();
+      PublishClock(/*repeat=*/true);
       last_paused_clock_ = now;
     }
     if (wait > Duration::zero()) return wait;
@@ -205,6 +225,7 @@ class RoverSim final : public rover::Service {
       if (pipelined_) ctx_->executor().DrainAll();
       return Duration::zero();
     }
+    if (pacer_->strict() && !pipelined_ && !absorbed_) AbsorbInputs();
     auto out = [&] {
       rover::runtime::ScopedActivity a(ctx_->activities(), "physics");
       return engine_->Step();
@@ -220,8 +241,24 @@ class RoverSim final : public rover::Service {
     return Duration::zero();
   }
 
+  // Strict, not pipelined, before a quantum's first step (every service due at its barrier has
+  // acknowledged it): hand out every input written up to the barrier. The acknowledgements
+  // count what was written; the readers wait until that much has arrived, so a motor goal that
+  // travelled slower than its writer's acknowledgement is applied at the quantum's first step
+  // and not at whichever step it happened to arrive before (core/runtime lockstep.hpp).
+  void AbsorbInputs() {
+    const std::int64_t barrier = pacer_->barrier_ns();
+    rover::dds::lockstep::SetFrontier(
+        pacer_->CurrentCounts(rover::dds::lockstep::WrittenBy(ctx_->participant().handle())));
+    rover::dds::lockstep::SetReadGate(barrier + 1);
+    ctx_->executor().DrainAll();
+    rover::dds::lockstep::SetReadGate(barrier);
+    absorbed_ = true;
+  }
+
   void OnAck(const rover_sim_ClockAck& a) {
     pacer_->OnWritten(a.service, {a.written._buffer, a.written._buffer + a.written._length});
+    pacer_->OnIdleState(a.service, a.sim_time_ns, a.next_due_ns, a.reads);
     const std::string back = pacer_->OnAck(a.service, a.sim_time_ns, rover::MonotonicNow());
     if (!back.empty())
       rover::log::Info("lock-step: service is keeping up again", {{"service", back}});
@@ -350,12 +387,15 @@ class RoverSim final : public rover::Service {
   rover::Time last_paused_clock_{0};
   long steps_per_quantum_ = 1;
   long steps_in_quantum_ = 0;
+  bool absorbed_ = false;  // strict: this quantum's inputs handed out (AbsorbInputs)
   double stall_s_ = 30.0;
   bool stall_reported_ = false;
   bool pipelined_ = false;
   bool waiting_ = false;
   rover::Time wait_start_{0};
   dds::Writer<rover_sim_Clock> clock_w_;
+  // Strict lock-step: sim/clock on each service's own partition (lockstep::ClockPartition).
+  std::vector<std::pair<std::string, dds::Writer<rover_sim_Clock>>> service_clocks_;
   dds::Writer<rover_sim_Truth> truth_w_;
   dds::Writer<rover_hw_MotorTelemetry> telemetry_w_;
   dds::Writer<rover_hw_SuspensionPots> pots_w_;

@@ -83,7 +83,20 @@ Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
 }
 
 Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
-                                    bool writer) {
+                                    bool writer, const std::string& partition) {
+  dds_entity_t parent = p.handle();
+  if (!partition.empty()) {
+    // A publisher / subscriber of its own (a child of the participant, deleted with it).
+    QosPtr pq(dds_create_qos());
+    dds_qset_partition1(pq.get(), partition.c_str());
+    parent = writer ? dds_create_publisher(p.handle(), pq.get(), nullptr)
+                    : dds_create_subscriber(p.handle(), pq.get(), nullptr);
+    if (parent < 0) {
+      return DdsError(writer ? "creating a publisher in partition '" + partition + "'"
+                             : "creating a subscriber in partition '" + partition + "'",
+                      parent);
+    }
+  }
   QosPtr qos = MakeQos(profile);
   if (lockstep::StrictProcess()) {
     // No sample may be lost (lockstep.hpp): every topic reliable, and histories deep enough
@@ -95,13 +108,16 @@ Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, Qo
       dds_qset_history(qos.get(), DDS_HISTORY_KEEP_LAST, deep);
     }
   }
-  const dds_entity_t e = writer ? dds_create_writer(p.handle(), topic, qos.get(), nullptr)
-                                : dds_create_reader(p.handle(), topic, qos.get(), nullptr);
-  if (e < 0) return DdsError(writer ? "creating a writer" : "creating a reader", e);
+  const dds_entity_t e = writer ? dds_create_writer(parent, topic, qos.get(), nullptr)
+                                : dds_create_reader(parent, topic, qos.get(), nullptr);
+  if (e < 0) {
+    if (parent != p.handle()) dds_delete(parent);
+    return DdsError(writer ? "creating a writer" : "creating a reader", e);
+  }
   if (!writer) {
     const dds_return_t rc = dds_set_status_mask(e, DDS_DATA_AVAILABLE_STATUS);
     if (rc < 0) {
-      dds_delete(e);
+      dds_delete(parent != p.handle() ? parent : e);
       return DdsError("setting the reader status mask", rc);
     }
   }
@@ -228,6 +244,10 @@ std::atomic<bool> g_strict_process{false};
 }  // namespace
 void SetStrictProcess(bool strict) { g_strict_process.store(strict); }
 bool StrictProcess() { return g_strict_process.load(); }
+
+std::string ClockPartition(std::string_view service) {
+  return "rover.clock." + std::string(service);
+}
 
 bool Ungated(std::string_view topic) {
   return topic == "sim/clock" || topic == "sim/clock_ack" || topic == "sim/control";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <limits>
 
 #include "rover/base/log.hpp"
 
@@ -46,13 +47,22 @@ void Executor::CancelTimer(TimerId id) {
 Status Executor::AddSubscription(dds_entity_t handle, const std::string& topic,
                                  std::function<void()> drain, std::function<void()> stash,
                                  bool always, dds::TopicSeam* seam) {
-  Subscription s{handle, topic, std::move(drain), std::move(stash), always, seam};
-  if (always || active_) {
-    ROVER_RETURN_IF_ERROR(
-        waitset_.Attach(handle, static_cast<dds_attach_t>(subscriptions_.size())));
-    s.attached = true;
-  }
+  Subscription s{handle, topic, std::move(drain), std::move(stash), always, seam,
+                 dds::lockstep::CatalogIndex(topic)};
+  s.attached = always || active_;
   subscriptions_.push_back(std::move(s));
+  return SyncWaitset(subscriptions_.size() - 1);
+}
+
+Status Executor::SyncWaitset(std::size_t i) {
+  Subscription& s = subscriptions_[i];
+  const bool want = s.attached && (s.always || !strict_);
+  if (want && !s.in_waitset) {
+    ROVER_RETURN_IF_ERROR(waitset_.Attach(s.handle, static_cast<dds_attach_t>(i)));
+  } else if (!want && s.in_waitset) {
+    ROVER_RETURN_IF_ERROR(waitset_.Detach(s.handle));
+  }
+  s.in_waitset = want;
   return Status::Ok();
 }
 
@@ -61,13 +71,8 @@ Status Executor::SetActive(bool active) {
   for (std::size_t i = 0; i < subscriptions_.size(); ++i) {
     Subscription& s = subscriptions_[i];
     if (s.always) continue;
-    if (active && !s.attached) {
-      ROVER_RETURN_IF_ERROR(waitset_.Attach(s.handle, static_cast<dds_attach_t>(i)));
-      s.attached = true;
-    } else if (!active && s.attached) {
-      ROVER_RETURN_IF_ERROR(waitset_.Detach(s.handle));
-      s.attached = false;
-    }
+    s.attached = active;
+    ROVER_RETURN_IF_ERROR(SyncWaitset(i));
   }
   for (Timer& t : timers_) {
     if (!t.always) t.armed = false;  // re-armed from "now" on the next run
@@ -184,6 +189,30 @@ void Executor::SetStrictTicks(bool strict) {
   ROVER_DEMAND(!strict || clock_.simulated());
   strict_ = strict;
   if (strict) dds::lockstep::SetWriteTick(last_tick_ ? last_tick_->ns : 0);
+  for (std::size_t i = 0; i < subscriptions_.size(); ++i) {
+    const Status s = SyncWaitset(i);
+    if (!s.ok()) log::Error("wait set", {{"error", s.message()}});
+  }
+}
+
+void Executor::NoteServed() {
+  reads_ = 0;
+  std::int64_t due = std::numeric_limits<std::int64_t>::max();
+  for (const Subscription& s : subscriptions_) {
+    if (!s.attached || s.always) continue;
+    // A topic outside the catalog has no frontier; samples held by a fault seam fall due on
+    // their own schedule: serve every tick.
+    if (s.topic_index < 0 || (s.seam != nullptr && s.seam->Holding())) due = 0;
+    reads_ |= dds::lockstep::TopicBit(s.topic_index);
+  }
+  for (const Timer& t : timers_) {
+    if (t.base != TimerBase::kRunClock || (!t.always && !active_)) continue;
+    due = std::min(due, t.armed ? t.next.ns : std::int64_t{0});
+  }
+  if (auto pump = dds::CurrentSeamPump()) {
+    if (auto d = pump->NextDue()) due = std::min(due, d->ns);
+  }
+  next_due_ns_ = due;
 }
 
 void Executor::ServeTick(Time now) {
@@ -201,6 +230,7 @@ void Executor::ServeTick(Time now) {
   RunDueTimers();
   dds::lockstep::SetReadGate(dds::lockstep::kOff);
   last_tick_ = now;
+  NoteServed();
   if (after_spin_) Invoke("after-spin", after_spin_);
 }
 

@@ -117,7 +117,12 @@ Result<std::unique_ptr<ServiceContext>> ServiceContext::Create(const ServiceOpti
   ctx->executor_ = std::move(*exec);
 
   if (ctx->sim_clock_ != nullptr) {
-    auto r = dds::Reader<rover_sim_Clock>::Create(ctx->participant_, "sim/clock");
+    // Strict lock-step: only the ticks this service must serve, on its own partition
+    // (lockstep.hpp "idle"); the simulator must name it in sim.lockstep_services.
+    auto r = options.lockstep == "strict"
+                 ? dds::Reader<rover_sim_Clock>::CreateInPartition(
+                       ctx->participant_, "sim/clock", dds::lockstep::ClockPartition(options.name))
+                 : dds::Reader<rover_sim_Clock>::Create(ctx->participant_, "sim/clock");
     if (!r.ok()) return r.status();
     ctx->clock_reader_ = std::make_unique<dds::Reader<rover_sim_Clock>>(std::move(*r));
     ManualClock* sim = ctx->sim_clock_;
@@ -217,6 +222,8 @@ void ServiceContext::AcknowledgeClock() {
     a.written._buffer = written.data();
     a.written._length = a.written._maximum = static_cast<std::uint32_t>(written.size());
     a.written._release = false;
+    a.next_due_ns = executor_->next_due_ns();
+    a.reads = executor_->reads();
     if (clock_ack_writer_.Write(a).ok()) {
       clock_samples_acked_ = clock_samples_;
       last_ack_ = now;

@@ -214,17 +214,80 @@ TEST_F(LockstepTest, StrictExecutorServesEachTickInOneGo) {
   ASSERT_TRUE(w_range->Write(rr).ok());
   ASSERT_TRUE(w_cmd->Write(Command(1)).ok());
   lockstep::SetWriteTick(saved);
-  // They arrive while the clock stands still: stashed, not handed out.
-  ASSERT_TRUE(testing::WaitFor([&] {
-    (*exec)->SpinOnce(std::chrono::milliseconds(5));
-    return r_cmd->held() == 1 && r_range->held() == 1;
-  }));
+  // They arrive while the clock stands still: they wait in DDS (a gated reader does not wake
+  // the thread), nothing is handed out.
+  for (int i = 0; i < 5; ++i) (*exec)->SpinOnce(std::chrono::milliseconds(5));
   EXPECT_TRUE(events.empty());
+  EXPECT_EQ(r_cmd->held(), 0u);
   clock.Set(Time{100});
   (*exec)->SpinOnce(Duration::zero());
   // Subscription order (command first), then the timer due at 100.
   EXPECT_EQ(events, (std::vector<std::string>{"cmd1@100", "range7@100", "timer@100"}));
   EXPECT_EQ(lockstep::WriteTick(), 100);  // what this thread writes now belongs to tick 100
+}
+
+// What an acknowledgement carries for the simulator's idle-tick rule (lockstep::MustServe): the
+// next run-clock deadline and the catalog topics read; with them the simulator leaves out the
+// ticks on which serving would hand out nothing and fire nothing.
+TEST_F(LockstepTest, StrictExecutorReportsItsNextDeadlineAndTheTopicsItReads) {
+  ManualClock clock(Time{0}, /*valid=*/false);
+  auto exec = Executor::Create(participant_, clock);
+  ASSERT_TRUE(exec.ok());
+  (*exec)->SetStrictTicks(true);
+  auto w_cmd = Writer<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  auto r_cmd = Reader<rover_dl_DriveCommand>::Create(participant_, "dl/drive_command");
+  ASSERT_TRUE(w_cmd.ok() && r_cmd.ok());
+  std::vector<std::string> events;
+  ASSERT_TRUE((*exec)
+                  ->Subscribe<rover_dl_DriveCommand>(
+                      *r_cmd,
+                      [&](const Sample<rover_dl_DriveCommand>& s) {
+                        events.push_back("cmd" + std::to_string(s->command_id) + "@" +
+                                         std::to_string(clock.Now().ns));
+                      })
+                  .ok());
+  (*exec)->AddTimer(std::chrono::nanoseconds(1000),
+                    [&] { events.push_back("timer@" + std::to_string(clock.Now().ns)); });
+  ASSERT_TRUE((*exec)->SetActive(true).ok());
+  const int cmd_topic = lockstep::CatalogIndex("dl/drive_command");
+  const int other_topic = lockstep::CatalogIndex("dl/range_request");
+  ASSERT_GE(cmd_topic, 0);
+  ASSERT_GE(other_topic, 0);
+  lockstep::TopicCounts frontier(TopicCatalog().size(), 0);
+  auto tick = [&](std::int64_t t) {
+    lockstep::SetFrontier(frontier);
+    clock.Set(Time{t});
+    (*exec)->SpinOnce(Duration::zero());
+  };
+  tick(0);  // arms the timer: due at 1000
+  ASSERT_EQ((*exec)->last_tick(), Time{0});
+  EXPECT_EQ((*exec)->next_due_ns(), 1000);
+  EXPECT_EQ((*exec)->reads(), lockstep::TopicBit(cmd_topic));
+  const lockstep::TopicCounts served_at_0 = frontier;
+  // The simulator's rule on what this executor said: another topic moving is nothing for it.
+  frontier[static_cast<std::size_t>(other_topic)] = 3;
+  EXPECT_FALSE(lockstep::MustServe(100, frontier, (*exec)->reads(), served_at_0,
+                                   (*exec)->next_due_ns()));
+  // A command written at tick 100 counts in the frontier of 200: due there, and handed out.
+  const std::int64_t saved = lockstep::WriteTick();
+  lockstep::SetWriteTick(100);
+  ASSERT_TRUE(w_cmd->Write(Command(4)).ok());
+  lockstep::SetWriteTick(saved);
+  frontier[static_cast<std::size_t>(cmd_topic)] = 1;
+  EXPECT_TRUE(lockstep::MustServe(200, frontier, (*exec)->reads(), served_at_0,
+                                  (*exec)->next_due_ns()));
+  tick(200);
+  EXPECT_EQ(events, (std::vector<std::string>{"cmd4@200"}));
+  // Served at 200, nothing new: due again only at the timer's 1000.
+  const lockstep::TopicCounts served_at_200 = frontier;
+  EXPECT_EQ((*exec)->next_due_ns(), 1000);
+  EXPECT_FALSE(lockstep::MustServe(900, frontier, (*exec)->reads(), served_at_200, 1000));
+  EXPECT_TRUE(lockstep::MustServe(1000, frontier, (*exec)->reads(), served_at_200, 1000));
+  // Ticks 300..900 left out (the simulator did not send them): the timer still fires at 1000.
+  tick(1000);
+  EXPECT_EQ(events, (std::vector<std::string>{"cmd4@200", "timer@1000"}));
+  EXPECT_EQ((*exec)->next_due_ns(), 2000);
+  lockstep::SetFrontier({});
 }
 
 }  // namespace

@@ -157,8 +157,9 @@ TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->lockstep, "strict");
   EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.01);
-  // Raw camera frames stay out of the recording unless asked for.
-  EXPECT_EQ(s->record.topics.exclude, (std::vector<std::string>{"hw/camera_frame"}));
+  // Raw camera frames and lock-step acknowledgements stay out of the recording unless asked for.
+  EXPECT_EQ(s->record.topics.exclude,
+            (std::vector<std::string>{"hw/camera_frame", "sim/clock_ack"}));
   std::string text = kGood;
   const std::string sim = "sim: {real_time_factor: 0, time_budget_s: 200}";
   auto with = [&](const std::string& replacement) {

@@ -5,6 +5,7 @@
 #include "rover/base/format.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/base/range_check.hpp"
+#include "rover/base/lockstep_rule.hpp"
 
 namespace rover::sim::rover_sim {
 
@@ -86,7 +87,9 @@ void Pacer::SetBarrier(std::int64_t sim_ns, Time wall_now) {
 
 std::vector<std::string> Pacer::Missing() const {
   std::vector<std::string> out;
+  const bool idle_known = frontier_ns_ == barrier_ns_;
   for (const auto& name : expected_) {
+    if (idle_known && std::find(idle_.begin(), idle_.end(), name) != idle_.end()) continue;
     auto it = acks_.find(name);
     if (it == acks_.end() || !it->second.seen || it->second.sim_time_ns < barrier_ns_) {
       out.push_back(name);
@@ -155,20 +158,50 @@ void Pacer::OnWritten(const std::string& service, std::vector<std::uint64_t> cou
   written_[service] = std::move(counts);
 }
 
+std::vector<std::uint64_t> Pacer::CurrentCounts(const std::vector<std::uint64_t>& own) const {
+  std::vector<std::uint64_t> out = own;
+  for (const auto& [service, counts] : written_) {
+    if (counts.size() > out.size()) out.resize(counts.size(), 0);
+    for (std::size_t i = 0; i < counts.size(); ++i) out[i] += counts[i];
+  }
+  return out;
+}
+
 const std::vector<std::uint64_t>& Pacer::FrontierFor(std::int64_t tick_ns,
                                                      const std::vector<std::uint64_t>& own,
                                                      bool* fresh) {
   const bool compute = frontier_ns_ != tick_ns || frontier_.empty();
   if (compute) {
-    frontier_ = own;
-    for (const auto& [service, counts] : written_) {
-      if (counts.size() > frontier_.size()) frontier_.resize(counts.size(), 0);
-      for (std::size_t i = 0; i < counts.size(); ++i) frontier_[i] += counts[i];
-    }
+    frontier_ = CurrentCounts(own);
     frontier_ns_ = tick_ns;
+    recent_frontiers_.emplace_back(tick_ns, frontier_);
+    constexpr std::size_t kRecentFrontiers = 8;
+    while (recent_frontiers_.size() > kRecentFrontiers) recent_frontiers_.pop_front();
+    // Who has nothing to do at this tick: the same rule the participants apply.
+    idle_.clear();
+    for (const auto& name : expected_) {
+      auto it = acks_.find(name);
+      if (it == acks_.end() || !it->second.idle_known) continue;
+      const AckState& a = it->second;
+      if (!lockstep::MustServe(tick_ns, frontier_, a.reads, a.served, a.next_due_ns)) {
+        idle_.push_back(name);
+      }
+    }
   }
   if (fresh != nullptr) *fresh = compute;
   return frontier_;
+}
+
+void Pacer::OnIdleState(const std::string& service, std::int64_t acked_ns,
+                        std::int64_t next_due_ns, std::uint64_t reads) {
+  if (service == self_) return;
+  AckState& s = acks_[service];
+  auto it = std::find_if(recent_frontiers_.begin(), recent_frontiers_.end(),
+                         [acked_ns](const auto& f) { return f.first == acked_ns; });
+  s.idle_known = it != recent_frontiers_.end();
+  if (s.idle_known) s.served = it->second;
+  s.next_due_ns = next_due_ns;
+  s.reads = reads;
 }
 
 Duration Pacer::UntilBarrierServed(Time wall_now) {

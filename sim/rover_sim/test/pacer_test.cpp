@@ -233,5 +233,53 @@ TEST(PacerTest, TheFrontierSumsTheLatestCountsAndIsFrozenPerTick) {
   EXPECT_TRUE(fresh);
 }
 
+// Idle ticks: a service whose acknowledgement says nothing is due before its next deadline and
+// whose topics got no sample is not waited for at that tick; it is again when a topic it reads
+// moves, when its deadline comes, or when its state is unknown (an acknowledgement of a tick
+// whose frontier is gone).
+TEST(PacerTest, ABarrierDoesNotWaitForAServiceWithNothingDue) {
+  PacerOptions o;
+  o.real_time_factor = 0.0;
+  o.lockstep_strict = true;
+  o.lockstep_services = "imu,camera";
+  Pacer p(o);
+  const std::int64_t q = Time::FromSeconds(0.01).ns;
+  // Tick 0: nobody has said anything: both are waited for.
+  p.FrontierFor(0, {0, 0});
+  p.SetBarrier(0, Wall(0));
+  EXPECT_EQ(p.Missing(), (std::vector<std::string>{"imu", "camera"}));
+  p.OnAck("imu", 0, Wall(0.001));
+  p.OnIdleState("imu", 0, /*next_due_ns=*/0, /*reads=*/0b01);  // every tick
+  p.OnAck("camera", 0, Wall(0.001));
+  p.OnIdleState("camera", 0, /*next_due_ns=*/10 * q, /*reads=*/0b10);
+  EXPECT_TRUE(p.Missing().empty());
+  // Tick Q: topic 0 moved (the camera does not read it), its deadline is 10 Q: idle.
+  p.FrontierFor(q, {5, 0});
+  p.SetBarrier(q, Wall(0.01));
+  EXPECT_EQ(p.idle(), (std::vector<std::string>{"camera"}));
+  EXPECT_EQ(p.Missing(), (std::vector<std::string>{"imu"}));
+  p.OnAck("imu", q, Wall(0.011));
+  p.OnIdleState("imu", q, 0, 0b01);
+  EXPECT_EQ(p.UntilBarrierServed(Wall(0.011)), Duration::zero());
+  // Tick 2Q: topic 1 moved: the camera serves.
+  p.FrontierFor(2 * q, {9, 1});
+  p.SetBarrier(2 * q, Wall(0.02));
+  EXPECT_TRUE(p.idle().empty());
+  EXPECT_EQ(p.Missing(), (std::vector<std::string>{"imu", "camera"}));
+  p.OnAck("imu", 2 * q, Wall(0.021));
+  p.OnIdleState("imu", 2 * q, 0, 0b01);
+  p.OnAck("camera", 2 * q, Wall(0.021));
+  p.OnIdleState("camera", 2 * q, 10 * q, 0b10);
+  // Its deadline comes at 10 Q whatever its topics do.
+  p.FrontierFor(3 * q, {12, 1});
+  EXPECT_EQ(p.idle(), (std::vector<std::string>{"camera"}));
+  p.FrontierFor(10 * q, {40, 1});
+  EXPECT_TRUE(p.idle().empty());
+  // An acknowledgement of a tick whose frontier is no longer kept: due every tick.
+  p.OnIdleState("camera", 77, 100 * q, 0b10);
+  p.FrontierFor(11 * q, {41, 1});
+  EXPECT_TRUE(p.idle().empty());
+}
+
 }  // namespace
 }  // namespace rover::sim::rover_sim

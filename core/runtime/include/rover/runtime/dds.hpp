@@ -87,8 +87,10 @@ Result<QosProfile> ResolveProfile(const std::string& topic, const char* type_nam
 namespace internal {
 Result<dds_entity_t> CreateTopic(const Participant& p, const std::string& name,
                                  const dds_topic_descriptor_t* desc, QosProfile profile);
+/// `partition` empty: the default partition; otherwise the endpoint gets a publisher or
+/// subscriber of its own in that one partition.
 Result<dds_entity_t> CreateEndpoint(const Participant& p, dds_entity_t topic, QosProfile profile,
-                                    bool writer);
+                                    bool writer, const std::string& partition = {});
 /// Deep-copies a sample of `type` into `dst` (zeroed), which then owns its buffers
 /// (type_layout.hpp); dds_sample_free(dst, type, DDS_FREE_CONTENTS) frees them.
 void CopySample(void* dst, const void* src, const dds_topic_descriptor_t* type);
@@ -162,11 +164,18 @@ class Writer {
   /// not in the catalog (a profile that contradicts the catalog is an error).
   static Result<Writer> Create(const Participant& p, const std::string& topic,
                                std::optional<QosProfile> profile = std::nullopt) {
+    return CreateInPartition(p, topic, {}, profile);
+  }
+  /// The same in one DDS partition (empty: the default one): it reaches only readers of that
+  /// partition (strict lock-step's per-service sim/clock, lockstep::ClockPartition).
+  static Result<Writer> CreateInPartition(const Participant& p, const std::string& topic,
+                                          const std::string& partition,
+                                          std::optional<QosProfile> profile = std::nullopt) {
     auto prof = ResolveProfile(topic, TopicType<T>::kTypeName, profile);
     if (!prof.ok()) return prof.status();
     auto t = internal::CreateTopic(p, topic, TopicType<T>::Descriptor(), *prof);
     if (!t.ok()) return t.status();
-    auto w = internal::CreateEndpoint(p, *t, *prof, true);
+    auto w = internal::CreateEndpoint(p, *t, *prof, true, partition);
     if (!w.ok()) return w.status();
     Writer out;
     out.writer_ = Entity(*w);
@@ -235,11 +244,18 @@ class Reader {
   Reader() = default;
   static Result<Reader> Create(const Participant& p, const std::string& topic,
                                std::optional<QosProfile> profile = std::nullopt) {
+    return CreateInPartition(p, topic, {}, profile);
+  }
+  /// The same in one DDS partition (empty: the default one): it hears only writers of that
+  /// partition.
+  static Result<Reader> CreateInPartition(const Participant& p, const std::string& topic,
+                                          const std::string& partition,
+                                          std::optional<QosProfile> profile = std::nullopt) {
     auto prof = ResolveProfile(topic, TopicType<T>::kTypeName, profile);
     if (!prof.ok()) return prof.status();
     auto t = internal::CreateTopic(p, topic, TopicType<T>::Descriptor(), *prof);
     if (!t.ok()) return t.status();
-    auto r = internal::CreateEndpoint(p, *t, *prof, false);
+    auto r = internal::CreateEndpoint(p, *t, *prof, false, partition);
     if (!r.ok()) return r.status();
     Reader out;
     out.reader_ = Entity(*r);

@@ -16,7 +16,10 @@
 /// their readers; each new run-clock time T (a tick of the simulator) is served in one go —
 /// the fault seams' due work, then every subscription in the order subscribed, each handing
 /// out the samples written before T, then the run-clock timers due by T — with this thread's
-/// writes stamped T. The service context acknowledges T after that (SetAfterSpin).
+/// writes stamped T. The service context acknowledges T after that (SetAfterSpin), with what
+/// the simulator needs to leave it out of ticks on which nothing would happen (next_due_ns,
+/// reads; lockstep.hpp "idle"). Gated readers are not in the wait set under strict ticks:
+/// samples wait in DDS until the tick that hands them out, so they do not wake the thread.
 
 #include <atomic>
 #include <functional>
@@ -70,6 +73,11 @@ class Executor {
   bool strict_ticks() const { return strict_; }
   /// The last tick served (strict lock-step), or nullopt before the first.
   std::optional<Time> last_tick() const { return last_tick_; }
+  /// Strict lock-step, after a tick was served: the run-clock time [ns] of the earliest timer,
+  /// fault-seam release or held sample due (0: the next tick, whatever it brings), and the
+  /// catalog topics the served subscriptions read. What the acknowledgement carries.
+  std::int64_t next_due_ns() const { return next_due_ns_; }
+  dds::lockstep::TopicMask reads() const { return reads_; }
 
   /// Active: every subscription and timer runs. Inactive: only `always` ones.
   Status SetActive(bool active);
@@ -114,7 +122,9 @@ class Executor {
     std::function<void()> stash;  // strict lock-step: take into the reader's queue only
     bool always;
     dds::TopicSeam* seam;  // the reader's fault seam (held-back samples), or nullptr
-    bool attached = false;
+    int topic_index = -1;  // lockstep::CatalogIndex(topic)
+    bool attached = false;  // served (always, or while active)
+    bool in_waitset = false;  // wakes the thread (attached, and not gated under strict ticks)
   };
 
   Executor(const Clock& clock, dds::WaitSet ws, dds::GuardCondition guard);
@@ -128,6 +138,10 @@ class Executor {
   void Invoke(const std::string& what, const std::function<void()>& fn);
   void RunDueTimers();
   Time TimerNow(const Timer& t) const;
+  // Puts subscription i in the wait set or takes it out, as its state demands.
+  Status SyncWaitset(std::size_t i);
+  // Strict lock-step: next_due_ns_ and reads_ from the timers and subscriptions.
+  void NoteServed();
 
   const Clock& clock_;
   WallClock wall_;
@@ -144,6 +158,9 @@ class Executor {
   std::function<void()> after_spin_;
   bool strict_ = false;
   std::optional<Time> last_tick_;
+  // Strict lock-step: what the acknowledgement says of the executor (NoteServed).
+  std::int64_t next_due_ns_ = 0;
+  dds::lockstep::TopicMask reads_ = 0;
 };
 
 }  // namespace rover

@@ -30,6 +30,17 @@
 /// never arrives within kFrontierWaitS is counted missing, so a run that may not be
 /// reproducible says so.
 ///
+///   idle         the simulator sends each participant only the ticks on which something is
+///                due for it, on the participant's own partition of sim/clock
+///                (ClockPartition): MustServe of the tick's frontier, the frontier of the
+///                tick it last served, and the next run-clock deadline and the catalog topics
+///                it reads, both carried by its last acknowledgement. Serving a tick on which
+///                nothing is due hands out no sample and fires no timer, so leaving it out
+///                changes nothing in the run; it saves the participant two thread wake-ups
+///                and the simulator an acknowledgement. The default partition still carries
+///                every tick (the recorder, the runner, services outside strict lock-step); a
+///                tick the simulator repeats while it waits goes to every participant.
+///
 /// Source timestamps below kWallStampFloor are ticks (simulated ns); a sample stamped with wall
 /// time (a writer that is not in lock-step) is not held back by a gate.
 ///
@@ -43,6 +54,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "rover/base/lockstep_rule.hpp"
 
 namespace rover::dds::lockstep {
 
@@ -89,11 +102,21 @@ TopicCounts WrittenBy(dds_entity_t participant);
 /// waiting.
 void SetFrontier(TopicCounts frontier);
 const TopicCounts& Frontier();
+// The idle-tick rule (TopicMask, TopicBit, MustServe) is DDS-free, shared with the simulator's
+// pacer: rover/base/lockstep_rule.hpp.
+using ::rover::lockstep::MustServe;
+using ::rover::lockstep::TopicBit;
+using ::rover::lockstep::TopicMask;
+
 /// Wall time a reader waits for its frontier before it counts the rest missing and goes on.
 inline constexpr double kFrontierWaitS = 2.0;
 /// Samples a reader of this process gave up waiting for (see kFrontierWaitS).
 std::uint64_t MissingSamples();
 void CountMissingSamples(std::string_view topic, std::uint64_t n);
+
+/// The DDS partition on which the simulator sends strict lock-step participant `service` (its
+/// --name) the ticks it must serve: "rover.clock.<service>".
+std::string ClockPartition(std::string_view service);
 
 /// The lock-step machinery's own topics (sim/clock, sim/clock_ack, sim/control): never held
 /// back by a gate, whatever thread reads them.

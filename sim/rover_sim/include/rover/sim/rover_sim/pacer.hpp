@@ -35,6 +35,7 @@
 /// Times: wall times are rover::Time on the monotonic clock, simulated times are seconds.
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -133,6 +134,18 @@ class Pacer {
   /// Strict: the samples `service` has written per catalog topic, from its latest
   /// acknowledgement (sim/clock_ack.written).
   void OnWritten(const std::string& service, std::vector<std::uint64_t> counts);
+  /// Strict: every participant's latest counts (sim/clock_ack.written) and `own`, summed per
+  /// catalog topic: what has been written so far, as far as the simulator knows.
+  std::vector<std::uint64_t> CurrentCounts(const std::vector<std::uint64_t>& own) const;
+  /// Strict: what `service` said of itself in its acknowledgement of tick `acked_ns`
+  /// (sim/clock_ack next_due_ns, reads): with the frontier of that tick, whether it must serve
+  /// a later tick (lockstep::MustServe). An acknowledgement of a tick whose frontier is no longer
+  /// known leaves the service due every tick until its next one.
+  void OnIdleState(const std::string& service, std::int64_t acked_ns, std::int64_t next_due_ns,
+                   std::uint64_t reads);
+  /// Strict: services of lockstep_services that the tick whose frontier was last computed does
+  /// not wait for (nothing is due for them: lockstep::MustServe).
+  const std::vector<std::string>& idle() const { return idle_; }
   /// Strict: the frontier sim/clock carries for the tick at `tick_ns`: the sum of every
   /// participant's latest counts and `own` (the simulator's), computed when the tick is first
   /// asked for and repeated unchanged after (acknowledgements that came since may count samples
@@ -147,6 +160,11 @@ class Pacer {
     Time changed;           ///< wall time the acknowledgement last moved
     bool waited_on = true;  ///< false while the service is considered gone
     bool seen = false;
+    // Strict idle ticks: the frontier of the tick it last served, its next deadline, its topics.
+    bool idle_known = false;
+    std::vector<std::uint64_t> served;
+    std::int64_t next_due_ns = 0;
+    std::uint64_t reads = 0;
   };
 
   PacerOptions options_;
@@ -163,6 +181,9 @@ class Pacer {
   std::map<std::string, std::vector<std::uint64_t>> written_;
   std::vector<std::uint64_t> frontier_;  // of the tick last asked for
   std::int64_t frontier_ns_ = -1;
+  // The last few ticks' frontiers (an acknowledgement may come after the next tick went out).
+  std::deque<std::pair<std::int64_t, std::vector<std::uint64_t>>> recent_frontiers_;
+  std::vector<std::string> idle_;  // of frontier_ns_
 };
 
 }  // namespace rover::sim::rover_sim
