@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <malloc.h>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -213,6 +214,11 @@ void ServiceContext::AcknowledgeClock() {
         activities_.Add("late_samples", Duration::zero());
       }
       missing_reported_ = missing;
+    }
+    // Ticks served, counted once each (a repeated tick is acknowledged again, not served).
+    if (!last_served_counted_ || *last_served_counted_ != now) {
+      activities_.Add("ticks_served", Duration::zero());
+      last_served_counted_ = now;
     }
     rover_sim_ClockAck a{};
     a.header.stamp_ns = now.ns;
@@ -452,6 +458,11 @@ std::vector<std::string> SplitColon(const std::string& s) {
 }  // namespace
 
 int RunServiceMain(Service& service, int argc, char** argv) {
+  // Services allocate the same large buffers every cycle (images, dl-pose's covariance with its
+  // clones, 1 MB): keep them on the heap rather than mapping, zero-filling and unmapping them
+  // each time (glibc maps blocks above 128 kB and trims the heap top above 128 kB by default).
+  mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  mallopt(M_TRIM_THRESHOLD, 128 << 20);
   ServiceOptions options;
   if (const char* e = std::getenv("ROVER_SERVICE_NAME")) options.name = e;
   if (const char* e = std::getenv("ROVER_DOMAIN")) options.domain = std::atoi(e);

@@ -44,6 +44,17 @@ Eigen::Matrix3d Orthonormalize(const Eigen::Matrix3d& r) {
   return Eigen::Quaterniond(r).normalized().toRotationMatrix();
 }
 
+// m = (m + m^T) / 2 without a temporary.
+void Symmetrize(Eigen::MatrixXd& m) {
+  for (Eigen::Index j = 0; j < m.cols(); ++j) {
+    for (Eigen::Index i = 0; i < j; ++i) {
+      const double v = 0.5 * (m(i, j) + m(j, i));
+      m(i, j) = v;
+      m(j, i) = v;
+    }
+  }
+}
+
 bool SymmetricPositiveDefinite(const Eigen::MatrixXd& m) {
   if (!m.allFinite()) return false;
   const double scale = std::max(1.0, m.cwiseAbs().maxCoeff());
@@ -352,8 +363,10 @@ bool PoseEkf::Update(MotionSource source, Time t, const Eigen::VectorXd& r,
   }
   const Eigen::MatrixXd k = ldlt.solve(pht.transpose()).transpose();  // n x m
   Inject(k * r);
-  P_ -= k * pht.transpose();
-  P_ = 0.5 * (P_ + P_.transpose()).eval();
+  // In place: with 60 clones P is 369 x 369 (1 MB), and a temporary of that size per update was
+  // most of dl-pose's time (allocation, page faults).
+  P_.noalias() -= k * pht.transpose();
+  Symmetrize(P_);
   return true;
 }
 

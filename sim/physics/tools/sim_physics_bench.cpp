@@ -130,6 +130,7 @@ int main(int argc, char** argv) {
   int slices = 3;
   std::string method = "see2";
   std::uint64_t seed = 7;
+  double rate_hz = 1000.0;
   app.add_option("--distance", distance, "metres to drive per scenario")
       ->check(CLI::Range(0.1, 1000.0));
   app.add_option("--speed", speed, "drive speed [m/s]")->check(CLI::Range(0.005, 0.11));
@@ -138,6 +139,8 @@ int main(int argc, char** argv) {
   app.add_option("--accuracy", accuracy, "integrator accuracy")->check(CLI::Range(1e-6, 1e-1));
   app.add_option("--slices", slices, "contact slices per wheel")->check(CLI::Range(1, 5));
   app.add_option("--seed", seed, "seed of the rough field");
+  app.add_option("--rate", rate_hz, "control rate (and see1 step) [Hz]")
+      ->check(CLI::Range(100.0, 5000.0));
   app.add_option("--integrator", method, "see2 (error-controlled) or see1 (fixed 1 ms)")
       ->check(CLI::IsMember({"see2", "see1"}));
   CLI11_PARSE(app, argc, argv);
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
   RoverModelParams params;
   params.integrator.accuracy = accuracy;
   params.contact.slices = slices;
+  params.integrator.control_rate_hz = rate_hz;
   if (method == "see1") {
     params.integrator.method = rover::sim::physics::IntegratorMethod::kSemiExplicitEulerFixed;
   }
@@ -156,11 +160,11 @@ int main(int argc, char** argv) {
   std::vector<Scenario> scenarios = {{"flat firm", MakeSlope(len, 8.0, 0.0)},
                                      {"slope firm", MakeSlope(len, 8.0, slope)},
                                      {"rough field", MakeRough(len, 8.0, seed)}};
-  std::printf("sim-physics-bench: %.1f m at %.3f m/s, %s, accuracy %.0e, %d slices, 1 kHz\n",
-              distance, speed, method.c_str(), accuracy, slices);
+  std::printf("sim-physics-bench: %.1f m at %.3f m/s, %s, accuracy %.0e, %d slices, %.0f Hz\n",
+              distance, speed, method.c_str(), accuracy, slices, rate_hz);
   std::printf("RTF = sim s / wall s; cpuRTF = sim s / process CPU s (robust on a loaded box)\n");
-  std::printf("%-12s %7s %8s %7s %7s %8s %9s %8s %8s\n", "scenario", "sim[s]", "wall[s]", "RTF",
-              "cpuRTF", "vs flat", "vs 10x", "steps/s", "slip[%]");
+  std::printf("%-12s %7s %8s %7s %7s %8s %9s %8s %8s %9s\n", "scenario", "sim[s]", "wall[s]",
+              "RTF", "cpuRTF", "vs flat", "vs 10x", "steps/s", "slip[%]", "dist[m]");
   double base = 0.0;
   for (const Scenario& sc : scenarios) {
     const RunResult r = Drive(params, sc.terrain, distance, speed);
@@ -172,9 +176,9 @@ int main(int argc, char** argv) {
     const double cpu_rtf = r.sim_s / r.cpu_s;
     if (base == 0.0) base = cpu_rtf;
     const double slip = r.odometry > 0.0 ? 100.0 * (1.0 - r.distance / r.odometry) : 0.0;
-    std::printf("%-12s %7.1f %8.2f %7.1f %7.1f %8.2f %9.2f %8.0f %8.2f\n", sc.name, r.sim_s,
+    std::printf("%-12s %7.1f %8.2f %7.1f %7.1f %8.2f %9.2f %8.0f %8.2f %9.5f\n", sc.name, r.sim_s,
                 r.wall_s, rtf, cpu_rtf, cpu_rtf / base, cpu_rtf / 10.0,
-                static_cast<double>(r.steps) / r.sim_s, slip);
+                static_cast<double>(r.steps) / r.sim_s, slip, r.distance);
   }
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "rover/base/format.hpp"
 #include "rover/base/param_binder.hpp"
 
 namespace rover::sim::rover_sim {
@@ -69,6 +70,16 @@ Status EngineOptions::Validate() const {
   if (!(truth_rate_hz > 0 && truth_rate_hz <= 1.0 / period_s)) {
     return InvalidArgument("sim.truth_rate_hz: must be in (0, 1/period_s]");
   }
+  if (!(physics_rate_hz >= 100.0 && physics_rate_hz <= 10000.0)) {
+    return InvalidArgument("sim.physics_rate_hz: " + FormatNumber(physics_rate_hz) +
+                           " Hz is out of range [100, 10000]");
+  }
+  const double steps = period_s * physics_rate_hz;
+  if (std::abs(steps - std::round(steps)) > 1e-6) {
+    return InvalidArgument("sim.physics_rate_hz: " + FormatNumber(physics_rate_hz) +
+                           " Hz does not divide sim.period_s = " + FormatNumber(period_s) +
+                           " s into whole steps");
+  }
   return Status::Ok();
 }
 
@@ -79,6 +90,9 @@ void SimEngine::DeclareParams(ParamSet& p) {
   rover::DeclareParams<hwconfig::RoverDescription>(p, kGeometryPrefix);
   p.Declare("sim.period_s", 0.01, "[s] simulation step and sim/clock period").Range(0.001, 0.1);
   p.Declare("sim.truth_rate_hz", 50.0, "[Hz] sim/truth rate (simulated time)").Range(1.0, 1000.0);
+  p.Declare("sim.physics_rate_hz", 500.0,
+            "[Hz] physics step and motor-controller rate (a whole number per sim.period_s)")
+      .Range(100.0, 10000.0);
   p.Declare("sim.seed", 1, "sensor noise seed").Min(0);
   p.Declare("sim.traversable_height", 0.20, "[m] rocks taller than this count as contacts")
       .Range(0.01, 2.0);
@@ -96,6 +110,7 @@ Result<std::unique_ptr<SimEngine>> SimEngine::Create(const ParamSet& p) {
   EngineOptions o;
   o.period_s = p.GetDouble("sim.period_s");
   o.truth_rate_hz = p.GetDouble("sim.truth_rate_hz");
+  o.physics_rate_hz = p.GetDouble("sim.physics_rate_hz");
   o.seed = static_cast<std::uint64_t>(p.GetInt("sim.seed"));
   o.traversable_height = p.GetDouble("sim.traversable_height");
   sensors->seed = o.seed;
@@ -116,6 +131,7 @@ Result<std::unique_ptr<SimEngine>> SimEngine::Create(World world, const Hardware
   e->ground_ = std::make_shared<const HeightField>(e->world_.terrain.ground);
   RoverModelParams mp;
   mp.geometry = rover;
+  mp.integrator.control_rate_hz = options.physics_rate_hz;
   ApplyHardware(hw, &mp);
   auto physics = RoverSimulation::Create(
       mp, e->ground_, StartPose{e->world_.start_x, e->world_.start_y, e->world_.start_yaw});

@@ -48,6 +48,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -216,6 +217,7 @@ class ServiceContext {
   // kClockAckPeriod (or stand still after an advance).
   void AcknowledgeClock();
   dds::Writer<rover_sim_ClockAck> clock_ack_writer_;
+  std::optional<Time> last_served_counted_;  // strict: the last tick counted in ticks_served
   Time last_ack_;
   bool acked_once_ = false;
   bool strict_lockstep_ = false;
