@@ -99,3 +99,24 @@ TEST(SimEngine, ResetRestartsTime) {
 
 }  // namespace
 }  // namespace rover::sim::rover_sim
+
+namespace rover::sim::rover_sim {
+namespace {
+
+TEST(EngineOptions, PhysicsRateMustDivideTheStepAndStayInRange) {
+  EngineOptions o;
+  EXPECT_TRUE(o.Validate().ok());
+  o.physics_rate_hz = 500.0;
+  EXPECT_TRUE(o.Validate().ok());
+  o.physics_rate_hz = 250.0;
+  const Status s = o.Validate();
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message(),
+            "sim.physics_rate_hz: 250 Hz does not divide sim.period_s = 0.01 s into whole steps");
+  o.physics_rate_hz = 50.0;
+  EXPECT_NE(o.Validate().message().find("sim.physics_rate_hz: 50 Hz is out of range"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace rover::sim::rover_sim
