@@ -254,6 +254,12 @@ class RoverSim final : public rover::Service {
     ctx_->executor().DrainAll();
     rover::dds::lockstep::SetReadGate(barrier);
     absorbed_ = true;
+    // Counted like a service's (result.json timings.late_samples): a run with any is suspect.
+    const std::uint64_t late =
+        rover::dds::lockstep::LateSamples() + rover::dds::lockstep::MissingSamples();
+    for (; late_reported_ < late; ++late_reported_) {
+      ctx_->activities().Add("late_samples", rover::Duration::zero());
+    }
   }
 
   void OnAck(const rover_sim_ClockAck& a) {
@@ -388,6 +394,7 @@ class RoverSim final : public rover::Service {
   long steps_per_quantum_ = 1;
   long steps_in_quantum_ = 0;
   bool absorbed_ = false;  // strict: this quantum's inputs handed out (AbsorbInputs)
+  std::uint64_t late_reported_ = 0;  // late and missing samples already counted
   double stall_s_ = 30.0;
   bool stall_reported_ = false;
   bool pipelined_ = false;

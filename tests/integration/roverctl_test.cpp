@@ -321,6 +321,17 @@ TEST_F(RoverctlTest, UsageErrorsExitWithTwo) {
   auto [help, text] = RunRoverctl({"--help"});
   EXPECT_TRUE(help.success()) << text;
   EXPECT_NE(text.find("up"), std::string::npos);
+  // An unknown command is named, with the ones that exist.
+  auto [frob, frob_out] = RunRoverctl({"frob"});
+  EXPECT_EQ(frob.code, 2);
+  EXPECT_NE(frob_out.find("unknown command 'frob' (the commands: up, down, ps,"),
+            std::string::npos)
+      << frob_out;
+  // up --wait takes its value after '=': "--wait 30 FILE" says so instead of "FILE not expected".
+  auto [wait, wait_out] = RunRoverctl({"up", "--wait", "30", "set.compose.yaml"});
+  EXPECT_EQ(wait.code, 2);
+  EXPECT_NE(wait_out.find("--wait takes its seconds after '=': write --wait=30"), std::string::npos)
+      << wait_out;
 }
 
 // A smoke set whose dl service stays DEGRADED for `warmup` imu samples (ddl-smoke at 20 Hz), as

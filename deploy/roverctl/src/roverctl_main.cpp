@@ -712,6 +712,32 @@ int Report(const std::string& dir) {
 
 }  // namespace
 
+// A usage error CLI11 words badly, said plainly: an unknown command is named, and an option
+// with an optional value (up --wait) given its value as the next word is shown the '=' form.
+// Empty when CLI11's own message is the better one.
+std::string UsageHint(const CLI::App& app, int argc, char** argv) {
+  if (argc >= 2 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known = known || sub->get_name() == word;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) return "unknown command '" + word + "' (the commands: " + names + ")";
+  }
+  for (int i = 1; i + 1 < argc; ++i) {
+    const std::string a = argv[i];
+    const std::string next = argv[i + 1];
+    if (a == "--wait" && !next.empty() &&
+        next.find_first_not_of("0123456789.") == std::string::npos) {
+      return "--wait takes its seconds after '=': write --wait=" + next + " (a word after --wait "
+             "is the compose file)";
+    }
+  }
+  return "";
+}
+
 int main(int argc, char** argv) {
   rover::log::Init("roverctl", rover::log::Level::kWarning);
   CLI::App app{"roverctl: run, inspect and stop rover service sets"};
@@ -866,6 +892,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (const std::string hint = UsageHint(app, argc, argv); !hint.empty()) {
+      std::fprintf(stderr, "roverctl: %s\nRun with --help for more information.\n",
+                   hint.c_str());
+      return 2;
+    }
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (*wait_flag) {

@@ -96,7 +96,17 @@ std::string RunLoop::Check() const {
 std::string RunLoop::WaitUntil(const std::function<bool()>& done) {
   while (true) {
     Pump();
-    if (done()) return "";
+    // Strict lock-step: a running tick is decided once, on its first pass. A later pass of the
+    // same tick (the wait timed out, or the simulator repeated the tick) comes after the
+    // acknowledgement, so what it wrote would miss the frontier and reach its reader a tick late
+    // or not, as the machine's load decides. Tick 0 (the simulator paused, before the run) is
+    // asked on every pass.
+    const bool decided = limits_.strict_lockstep && heard_ && tick_ns_ > 0 &&
+                         tick_ns_ == decided_tick_ns_;
+    if (!decided) {
+      decided_tick_ns_ = tick_ns_;
+      if (done()) return "";
+    }
     std::string failure = Check();
     if (!failure.empty()) return failure;
     Acknowledge();

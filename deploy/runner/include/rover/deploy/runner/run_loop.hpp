@@ -9,8 +9,10 @@
 /// Strict lock-step (LoopLimits::strict_lockstep; core/runtime lockstep.hpp): the runner is one
 /// of the participants the simulator waits for. Each pass serves the latest tick T: this thread
 /// reads only samples written before T and its writes carry T; once `done()` does not hold and
-/// the checks pass, the runner acknowledges T (as kRunnerName) and waits for the next tick. So
-/// the task's commands enter the run at the same simulated time however the machine is loaded.
+/// the checks pass, the runner acknowledges T (as kRunnerName) and waits for the next tick.
+/// `done()` is asked once per tick (after tick 0), on the tick's first pass, never after the
+/// acknowledgement. So the task's commands enter the run at the same simulated time however the
+/// machine is loaded.
 ///
 /// Time: `now()` is the latest sim/clock time heard [s since the start of the run]; budgets are
 /// in simulated seconds except the wall budget, the safety net for a hung run (wall seconds since
@@ -77,6 +79,7 @@ class RunLoop {
   dds::Writer<rover_sim_ClockAck> ack_;
   std::unique_ptr<dds::WaitSet> waitset_;
   std::int64_t tick_ns_ = 0;
+  std::int64_t decided_tick_ns_ = -1;  // strict: the tick whose condition was last asked
   bool heard_ = false;
   std::uint64_t clock_samples_ = 0, acked_samples_ = 0;
   LoopLimits limits_;
