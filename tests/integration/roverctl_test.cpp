@@ -167,6 +167,12 @@ TEST_F(RoverctlTest, SmokeSetPassesDataThroughAllThreeLayersAndCtrlCLeavesNothin
   EXPECT_TRUE(e->success()) << e->ToString();
   EXPECT_TRUE(ProcessesOfProject(project).empty());
   EXPECT_EQ(State(project)["phase"], "stopped");
+  // `ps` on the stopped set does not pass the last heartbeats off as the services' state.
+  auto [stopped_exit, stopped] = RunRoverctl({"ps", project});
+  EXPECT_TRUE(stopped_exit.success()) << stopped;
+  EXPECT_NE(stopped.find("not running"), std::string::npos) << stopped;
+  EXPECT_EQ(stopped.find("active"), std::string::npos) << stopped;
+  EXPECT_NE(stopped.find("(stopped)"), std::string::npos) << stopped;
 }
 
 TEST_F(RoverctlTest, KillNineIsRestartedByPolicyAndDataFlowsAgain) {
@@ -270,6 +276,14 @@ TEST_F(RoverctlTest, OutOfRangeParameterIsCaughtBeforeAnythingStarts) {
       << out;
   // Nothing was started, so there is not even a log of a start.
   EXPECT_FALSE(fs::exists(state_root_ + "/" + ProjectOf("param") + "/logs/ddl-smoke.log"));
+  // `config` runs the same validation (it used to pass this file and leave it to `up`).
+  auto [c, config_out] = RunRoverctl({"config", file});
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(config_out.find("--set rate_hz=5000: key 'rate_hz': 5000 is out of range"),
+            std::string::npos)
+      << config_out;
+  auto [skip, skip_out] = RunRoverctl({"config", "--no-preflight", file});
+  EXPECT_TRUE(skip.success()) << skip_out;
 }
 
 TEST_F(RoverctlTest, BadComposeFilesAreRejectedWithFileLineAndKey) {

@@ -449,10 +449,13 @@ int Ps(const std::string& root, const std::string& given, bool json) {
       if (note.empty() && alive && !s.value("ready", false) && !waiting.empty()) note = waiting;
       const std::string exit = s.value("last_exit", "");
       if (!exit.empty()) note += (note.empty() ? "" : "; ") + std::string("last exit: ") + exit;
-      const std::string health = s.value("health", "");
+      // A stopped set's last heartbeats say what the services were, not what they are.
+      const std::string health = alive ? s.value("health", "") : "";
+      const std::string lifecycle = alive ? s.value("lifecycle", "") : "-";
+      if (!alive && last > 0) hb += " (stopped)";
       std::printf("  %-22s %-10s %-8d %-3d %-9s %-8s %-5s %-14s %s\n", s.value("name", "").c_str(),
                   alive ? s.value("state", "").c_str() : "-", s.value("pid", 0),
-                  s.value("restarts", 0), s.value("lifecycle", "").c_str(),
+                  s.value("restarts", 0), lifecycle.c_str(),
                   health.empty() ? "-" : health.c_str(),
                   alive ? (s.value("ready", false) ? "yes" : "no") : "-", hb.c_str(),
                   Clip(note, 120).c_str());
@@ -496,9 +499,23 @@ int Logs(const std::string& root, const std::string& given, const std::string& s
   return 0;
 }
 
-int Config(const std::string& file) {
+int Config(const std::string& file, bool no_preflight) {
   auto project = rover::deploy::LoadComposeFile(file);
   if (!project.ok()) return Fail(project.status().message(), 2);
+  // What `up` would check before starting anything: every rover service validates its
+  // parameters (--validate), in a scratch state folder removed afterwards.
+  if (!no_preflight) {
+    std::string scratch = (fs::temp_directory_path() / "roverctl-config-XXXXXX").string();
+    if (mkdtemp(scratch.data()) == nullptr) return Fail("cannot make a scratch folder");
+    rover::deploy::SupervisorOptions options;
+    options.bin_dir = SelfDir();
+    options.state_dir = scratch;
+    options.dds_config_uri = DdsConfigUri();
+    const Status s = rover::deploy::Preflight(*project, options);
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
+    if (!s.ok()) return Fail(s.message(), 2);
+  }
   std::cout << "project: " << project->rover.project << "\nclock: " << project->rover.clock
             << "\ndomain: " << (project->rover.domain ? std::to_string(*project->rover.domain) : "auto")
             << "\nservices (start order):\n";
@@ -785,6 +802,9 @@ int main(int argc, char** argv) {
   std::string config_file;
   auto* config_cmd = app.add_subcommand("config", "validate a compose file and print the plan");
   config_cmd->add_option("file", config_file, "compose file")->required();
+  bool config_no_preflight = false;
+  config_cmd->add_flag("--no-preflight", config_no_preflight,
+                       "skip the services' parameter validation (the file is still checked)");
 
   std::string scenario_file, seeds, out_dir, report_dir;
   int jobs = 1;
@@ -915,7 +935,7 @@ int main(int argc, char** argv) {
   if (*down_cmd) return Down(state_root, project, down_timeout);
   if (*ps_cmd) return Ps(state_root, project, json);
   if (*logs_cmd) return Logs(state_root, project, service, follow, lines);
-  if (*config_cmd) return Config(config_file);
+  if (*config_cmd) return Config(config_file, config_no_preflight);
   if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir, faults_file);
   if (*report_cmd) return Report(report_dir);
   if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);

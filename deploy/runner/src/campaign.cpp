@@ -145,13 +145,24 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
         errors.push_back("seed " + std::to_string(seed) + ": " + r.status().message());
         if (!options.tty) std::printf("seed %u: ERROR %s\n", seed, r.status().message().c_str());
       } else {
+        done.push_back(std::move(*r));
         if (!options.tty) {
-          std::printf("seed %u: %s  %.2f m  %.1f sim s  %.1f wall s%s%s\n", seed,
-                      r->pass ? "PASS" : "FAIL", r->distance_driven, r->sim_time_s,
-                      r->wall_time_s, r->failure.empty() ? "" : "  ", r->failure.c_str());
+          // One line per finished run, with what is left: a campaign without a terminal (nohup,
+          // CI) is followed in its log.
+          const RunResult& d = done.back();
+          const std::size_t finished = done.size() + errors.size();
+          const double elapsed = ToSeconds(MonotonicNow() - start);
+          const std::size_t left = total - finished;
+          const double eta = finished > 0 ? elapsed / static_cast<double>(finished) *
+                                                static_cast<double>(left)
+                                          : 0.0;
+          std::printf("seed %u: %s  %.2f m  %.1f sim s  %.1f wall s  [%zu/%zu done, %zu left, "
+                      "about %s to go]%s%s\n",
+                      seed, d.pass ? "PASS" : Interrupted(d) ? "INTERRUPTED" : "FAIL",
+                      d.distance_driven, d.sim_time_s, d.wall_time_s, finished, total, left,
+                      Eta(eta).c_str(), d.failure.empty() ? "" : "  ", d.failure.c_str());
           std::fflush(stdout);
         }
-        done.push_back(std::move(*r));
       }
       draw(false);
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -28,9 +29,17 @@ double TickStep(double range, int target_ticks) {
   return 10 * mag;
 }
 
-// One panel: y(t) as a polyline with axes, ticks and labels.
+// A time window to shade in a panel (an injected fault while it acted).
+struct Window {
+  double t0, t1;
+  std::string label;
+};
+
+// One panel: y(t) as a polyline with axes, ticks and labels; `limit` (NaN: none) as a dashed red
+// line, `windows` shaded behind the curve.
 void Panel(cv::Mat& img, cv::Rect area, const std::vector<double>& t, const std::vector<double>& y,
-           const std::string& ylabel, const cv::Scalar& color) {
+           const std::string& ylabel, const cv::Scalar& color, double limit,
+           const std::vector<Window>& windows) {
   const int left = 70, bottom = 40, top = 25, right = 20;
   const cv::Rect plot(area.x + left, area.y + top, area.width - left - right,
                       area.height - top - bottom);
@@ -45,6 +54,7 @@ void Panel(cv::Mat& img, cv::Rect area, const std::vector<double>& t, const std:
   const double t0 = t.front(), t1 = std::max(t.back(), t0 + 1e-6);
   double y0 = *std::min_element(y.begin(), y.end()), y1 = *std::max_element(y.begin(), y.end());
   y0 = std::min(y0, 0.0);
+  if (std::isfinite(limit)) y1 = std::max(y1, limit * 1.05);
   if (y1 - y0 < 1e-9) y1 = y0 + 1.0;
   const double ys = TickStep(y1 - y0, 5);
   y0 = std::floor(y0 / ys) * ys;
@@ -53,8 +63,19 @@ void Panel(cv::Mat& img, cv::Rect area, const std::vector<double>& t, const std:
     return cv::Point(plot.x + static_cast<int>((tv - t0) / (t1 - t0) * plot.width),
                      plot.y + plot.height - static_cast<int>((yv - y0) / (y1 - y0) * plot.height));
   };
+  for (const Window& w : windows) {  // behind everything else
+    const double a = std::clamp(w.t0, t0, t1), b = std::clamp(w.t1 < 0 ? t1 : w.t1, t0, t1);
+    if (b <= a) continue;
+    const cv::Point pa = px(a, y1), pb = px(b, y0);
+    cv::rectangle(img, cv::Rect(pa, pb), {200, 230, 255}, cv::FILLED);
+    cv::putText(img, w.label, {pa.x + 3, pa.y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {0, 90, 200},
+                1, cv::LINE_AA);
+  }
   char buf[32];
-  for (double v = y0; v <= y1 + ys * 0.5; v += ys) {
+  const int ticks = static_cast<int>(std::lround((y1 - y0) / ys));
+  for (int k = 0; k <= ticks; ++k) {
+    double v = y0 + k * ys;  // not accumulated: no "-1.39e-17" for zero
+    if (std::abs(v) < ys * 1e-6) v = 0.0;
     const cv::Point p = px(t0, v);
     cv::line(img, p, {plot.x + plot.width, p.y}, {225, 225, 225}, 1);
     std::snprintf(buf, sizeof buf, "%.3g", v);
@@ -70,9 +91,26 @@ void Panel(cv::Mat& img, cv::Rect area, const std::vector<double>& t, const std:
   }
   cv::putText(img, "simulated time [s]", {plot.x + plot.width / 2 - 60, area.y + area.height - 6},
               cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0}, 1, cv::LINE_AA);
+  if (std::isfinite(limit)) {
+    const int yl = px(t0, limit).y;
+    for (int x = plot.x; x < plot.x + plot.width; x += 12) {
+      cv::line(img, {x, yl}, {std::min(x + 7, plot.x + plot.width), yl}, {0, 0, 220}, 2);
+    }
+    std::snprintf(buf, sizeof buf, "limit %.3g", limit);
+    cv::putText(img, buf, {plot.x + plot.width - 90, yl - 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                {0, 0, 220}, 1, cv::LINE_AA);
+  }
   std::vector<cv::Point> pts;
   for (std::size_t i = 0; i < t.size(); ++i) pts.push_back(px(t[i], y[i]));
   cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
+}
+
+// The limit a criterion of the run sets (NaN when the scenario has none).
+double CriterionLimit(const RunResult& run, const std::string& name) {
+  for (const auto& c : run.criteria) {
+    if (c.name == name) return c.limit;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 // The chosen arcs: `kArcDrawLength` of each arc from the pose it was chosen at; a point turn as
@@ -114,8 +152,8 @@ sim::terrain::MapCellLayer GoodnessLayer(const GoodnessGrid& g) {
   return l;
 }
 
-Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
-                     const std::vector<Eigen::Vector2d>& planned, const std::string& path) {
+sim::terrain::MapOptions TrackMapOptions(const RunResult& run,
+                                         const std::vector<Eigen::Vector2d>& planned) {
   sim::terrain::MapOptions o;
   o.title = run.scenario + " seed " + std::to_string(run.seed) + (run.pass ? "  PASS" : "  FAIL");
   if (run.mobility) {
@@ -160,7 +198,12 @@ Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
   if (planned.size() >= 2) {
     o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
   }
-  return sim::terrain::WriteTopDownMap(terrain, path, o);
+  return o;
+}
+
+Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
+                     const std::vector<Eigen::Vector2d>& planned, const std::string& path) {
+  return sim::terrain::WriteTopDownMap(terrain, path, TrackMapOptions(run, planned));
 }
 
 Status WriteErrorPlot(const RunResult& run, const std::string& path) {
@@ -173,8 +216,15 @@ Status WriteErrorPlot(const RunResult& run, const std::string& path) {
   }
   cv::putText(img, run.scenario + " seed " + std::to_string(run.seed) + ": pose estimate - truth",
               {10, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.55, {0, 0, 0}, 1, cv::LINE_AA);
-  Panel(img, cv::Rect(0, 25, 900, 245), t, pos, "position error [m]", {200, 90, 20});
-  Panel(img, cv::Rect(0, 270, 900, 245), t, head, "heading error [deg]", {20, 110, 230});
+  std::vector<Window> windows;
+  for (const auto& f : run.faults) {
+    if (f.start_s < 0) continue;  // never started
+    windows.push_back({f.start_s, f.end_s, "fault " + std::to_string(f.id) + " " + f.kind});
+  }
+  Panel(img, cv::Rect(0, 25, 900, 245), t, pos, "position error [m]", {200, 90, 20},
+        CriterionLimit(run, "max_estimate_error"), windows);
+  Panel(img, cv::Rect(0, 270, 900, 245), t, head, "heading error [deg]", {20, 110, 230},
+        CriterionLimit(run, "max_estimate_heading_error"), windows);
   try {
     if (!cv::imwrite(path, img)) return Unavailable(path + ": cannot write PNG");
   } catch (const cv::Exception& e) {

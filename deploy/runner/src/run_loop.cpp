@@ -79,8 +79,14 @@ std::string RunLoop::Check() const {
     std::string failure = c();
     if (!failure.empty()) return failure;
   }
-  if (limits_.abort && limits_.abort->load()) return "interrupted";
-  char b[128];
+  char b[160];
+  if (limits_.abort && limits_.abort->load()) {
+    std::snprintf(b, sizeof b,
+                  "interrupted: roverctl was stopped (Ctrl-C or a termination signal) at %.1f "
+                  "simulated s",
+                  now_s_);
+    return b;
+  }
   if (now_s_ > limits_.time_budget_s) {
     std::snprintf(b, sizeof b, "time budget of %.0f simulated s exceeded", limits_.time_budget_s);
     return b;

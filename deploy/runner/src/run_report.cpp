@@ -308,18 +308,35 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
   }
 }
 
+bool Interrupted(const RunResult& r) { return r.failure.rfind("interrupted", 0) == 0; }
+
 CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wall_s) {
   CampaignSummary s;
   s.runs = static_cast<int>(runs.size());
   if (!runs.empty()) s.scenario = runs.front().scenario;
   std::map<std::string, std::pair<std::string, std::vector<double>>> by_name;
   std::vector<std::string> order;
+  // Criteria: name -> (limit, passing); a name here is not listed again among the figures.
+  std::map<std::string, std::pair<double, int>> criteria;
   std::vector<double> wall, startup, ready, teardown, distance, sim_time;
   double sim_total = 0;
   for (const auto& r : runs) {
+    if (Interrupted(r)) {  // cut off: its wall and simulated time count for throughput only
+      ++s.interrupted;
+      sim_total += r.sim_time_s;
+      continue;
+    }
     if (r.pass) ++s.passed;
+    for (const auto& c : r.criteria) {
+      auto [it, fresh] = criteria.emplace(c.name, std::make_pair(c.limit, 0));
+      if (!fresh && !(it->second.first == c.limit)) {
+        it->second.first = std::numeric_limits<double>::quiet_NaN();
+      }
+      if (c.pass) ++it->second.second;
+    }
     for (const auto* list : {&r.criteria, &r.figures}) {
       for (const auto& c : *list) {
+        if (list == &r.figures && criteria.count(c.name)) continue;
         if (!by_name.count(c.name)) order.push_back(c.name);
         auto& e = by_name[c.name];
         e.first = c.unit;
@@ -334,8 +351,21 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
     sim_time.push_back(r.sim_time_s);
     sim_total += r.sim_time_s;
   }
-  s.pass_rate = s.runs ? static_cast<double>(s.passed) / s.runs : 0.0;
-  for (const auto& n : order) s.figures.push_back(Stats(n, by_name[n].first, by_name[n].second));
+  const int judged = s.runs - s.interrupted;
+  s.pass_rate = judged > 0 ? static_cast<double>(s.passed) / judged : 0.0;
+  for (const bool criterion : {true, false}) {
+    for (const auto& n : order) {
+      auto it = criteria.find(n);
+      if ((it != criteria.end()) != criterion) continue;
+      FigureStats f = Stats(n, by_name[n].first, by_name[n].second);
+      if (criterion) {
+        f.criterion = true;
+        f.limit = it->second.first;
+        f.passing = it->second.second;
+      }
+      s.figures.push_back(std::move(f));
+    }
+  }
   if (!by_name.count("distance_driven")) s.figures.push_back(Stats("distance_driven", "m", distance));
   s.figures.push_back(Stats("sim_time", "s", sim_time));
   s.figures.push_back(Stats("wall_time", "s", wall));
@@ -352,6 +382,7 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
       if (!cpu.count(st.service)) cpu_order.push_back(st.service);
       cpu[st.service] += st.cpu_s;
       for (const auto& a : st.activities) {
+        if (a.wall_s <= 0.0) continue;  // counts only (ticks_served, late_samples)
         const std::string key = a.name + " (" + st.service + ")";
         if (!activity.count(key)) activity_order.push_back(key);
         activity[key] += a.wall_s;
@@ -381,6 +412,7 @@ nlohmann::json ToJson(const CampaignSummary& s) {
   j["scenario"] = s.scenario;
   j["runs"] = s.runs;
   j["passed"] = s.passed;
+  j["interrupted_runs"] = s.interrupted;
   j["pass_rate"] = s.pass_rate;
   j["wall_time_s"] = s.wall_time_s;
   j["sim_seconds_per_wall_second"] = s.sim_seconds_per_wall_second;
@@ -392,8 +424,14 @@ nlohmann::json ToJson(const CampaignSummary& s) {
   }
   j["figures"] = nlohmann::json::array();
   for (const auto& f : s.figures) {
-    j["figures"].push_back({{"name", f.name}, {"unit", f.unit}, {"mean", f.mean}, {"p95", f.p95},
-                            {"worst", f.worst}, {"count", f.count}});
+    nlohmann::json e = {{"name", f.name}, {"unit", f.unit}, {"mean", f.mean}, {"p95", f.p95},
+                        {"worst", f.worst}, {"count", f.count}};
+    if (f.criterion) {
+      e["criterion"] = true;
+      e["limit"] = f.limit;
+      e["passing"] = f.passing;
+    }
+    j["figures"].push_back(std::move(e));
   }
   return j;
 }
@@ -482,9 +520,9 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
   o << buf;
   std::map<std::string, int> outcomes;  // mobility tasks: "NOPATH (goal error)" -> runs
   for (const auto& r : runs) {
-    std::snprintf(buf, sizeof buf, "%-8u %-6s %9.2f %9.1f %9.1f  %s\n", r.seed,
-                  r.pass ? "PASS" : "FAIL", r.distance_driven, r.sim_time_s, r.wall_time_s,
-                  r.failure.c_str());
+    const char* result = r.pass ? "PASS" : Interrupted(r) ? "INTR" : "FAIL";
+    std::snprintf(buf, sizeof buf, "%-8u %-6s %9.2f %9.1f %9.1f  %s\n", r.seed, result,
+                  r.distance_driven, r.sim_time_s, r.wall_time_s, r.failure.c_str());
     o << buf;
     if (r.mobility) {
       const std::string text = OutcomeText(*r.mobility);
@@ -497,8 +535,12 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
     for (const auto& f : r.faults) o << "         " << DescribeInjected(f) << "\n";
   }
   std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)", s.scenario.c_str(), s.passed,
-                s.runs, 100.0 * s.pass_rate);
+                s.runs - s.interrupted, 100.0 * s.pass_rate);
   o << buf;
+  if (s.interrupted > 0) {
+    o << "; " << s.interrupted << " run" << (s.interrupted == 1 ? "" : "s")
+      << " interrupted (not in the rate or the figures)";
+  }
   if (!missing.empty()) {
     o << "; " << missing.size() << " of " << runs.size() + missing.size()
       << " seeds have no result:\n";
@@ -516,10 +558,27 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
     o << "\n";
   }
   o << "\n";
+  // Criteria (each with its limit and the runs it held in), then what was measured.
+  bool any_criterion = false;
+  for (const auto& f : s.figures) {
+    if (!f.criterion) continue;
+    if (!any_criterion) {
+      std::snprintf(buf, sizeof buf, "%-36s %-6s %11s %8s %11s %11s %11s\n", "criterion", "unit",
+                    "limit", "held", "mean", "p95", "worst");
+      o << buf;
+      any_criterion = true;
+    }
+    const std::string held = std::to_string(f.passing) + "/" + std::to_string(s.runs);
+    std::snprintf(buf, sizeof buf, "%-36s %-6s %11.4g %8s %11.4g %11.4g %11.4g\n", f.name.c_str(),
+                  f.unit.c_str(), f.limit, held.c_str(), f.mean, f.p95, f.worst);
+    o << buf;
+  }
+  if (any_criterion) o << "\n";
   std::snprintf(buf, sizeof buf, "%-36s %-6s %11s %11s %11s\n", "figure", "unit", "mean", "p95",
                 "worst");
   o << buf;
   for (const auto& f : s.figures) {
+    if (f.criterion) continue;
     std::snprintf(buf, sizeof buf, "%-36s %-6s %11.4g %11.4g %11.4g\n", f.name.c_str(),
                   f.unit.c_str(), f.mean, f.p95, f.worst);
     o << buf;

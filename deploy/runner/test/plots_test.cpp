@@ -47,6 +47,48 @@ TEST(Plots, ErrorPlotHasBothCurves) {
   EXPECT_FALSE(WriteErrorPlot(SampleRun(), "/nonexistent/dir/err.png").ok());
 }
 
+// The criterion's limit as a dashed red line, an injected fault's window shaded, and the zero
+// tick written as 0.
+TEST(Plots, ErrorPlotDrawsTheLimitAndTheFaultWindows) {
+  RunResult run = SampleRun();
+  run.criteria.push_back({"max_estimate_error", 0.1, 0.15, "m", true, ""});
+  InjectedFault f;
+  f.id = 2;
+  f.kind = "bias";
+  f.start_s = 10;
+  f.end_s = 20;
+  run.faults.push_back(f);
+  const std::string path = ::testing::TempDir() + "/err_limit.png";
+  ASSERT_TRUE(WriteErrorPlot(run, path).ok());
+  const cv::Mat img = cv::imread(path);
+  ASSERT_FALSE(img.empty());
+  auto count = [&](cv::Vec3b colour, int row0, int row1) {
+    int n = 0;
+    for (int r = row0; r < row1; ++r) {
+      for (int c = 0; c < img.cols; ++c) n += img.at<cv::Vec3b>(r, c) == colour;
+    }
+    return n;
+  };
+  const int half = img.rows / 2;
+  EXPECT_GT(count({0, 0, 220}, 0, half), 200);      // the limit, in the position panel only
+  EXPECT_EQ(count({0, 0, 220}, half, img.rows), 0);  // no heading criterion: no line
+  EXPECT_GT(count({200, 230, 255}, 0, half), 2000);  // the window, in both panels
+  EXPECT_GT(count({200, 230, 255}, half, img.rows), 2000);
+  // Without a criterion or a fault, neither.
+  ASSERT_TRUE(WriteErrorPlot(SampleRun(), path).ok());
+  const cv::Mat plain = cv::imread(path);
+  int red = 0, shade = 0;
+  for (int r = 0; r < plain.rows; ++r) {
+    for (int c = 0; c < plain.cols; ++c) {
+      red += plain.at<cv::Vec3b>(r, c) == cv::Vec3b(0, 0, 220);
+      shade += plain.at<cv::Vec3b>(r, c) == cv::Vec3b(200, 230, 255);
+    }
+  }
+  EXPECT_EQ(red, 0);
+  EXPECT_EQ(shade, 0);
+  std::remove(path.c_str());
+}
+
 TEST(Plots, TrackMapDrawsPaths) {
   sim::terrain::TerrainParams p;
   p.size_x = 12;
@@ -107,13 +149,24 @@ TEST(Plots, TrackMapShowsTheGoodnessMapTheArcsAndEveryPathOverlapping) {
   run.mobility = mob;
   const std::string path = ::testing::TempDir() + "/map_mobility.png";
   ASSERT_TRUE(WriteTrackMap(*terrain, run, {{0, 0}, {5, 0}}, path).ok());
-  const cv::Mat img = cv::imread(path);
-  ASSERT_FALSE(img.empty());
+  ASSERT_FALSE(cv::imread(path).empty());
+  // The same map in memory: count colours on the map itself, not in the legend beside it.
+  auto rendered = sim::terrain::RenderTopDownMap(*terrain, TrackMapOptions(run, {{0, 0}, {5, 0}}));
+  ASSERT_TRUE(rendered.ok()) << rendered.status().message();
+  cv::Mat full(rendered->height, rendered->width, CV_8UC3);
+  for (int r = 0; r < full.rows; ++r) {
+    for (int c = 0; c < full.cols; ++c) {
+      const sim::terrain::MapColor m = rendered->At(c, r);
+      full.at<cv::Vec3b>(r, c) = cv::Vec3b(m.b, m.g, m.r);
+    }
+  }
+  const cv::Mat img = full(cv::Rect(rendered->map_col0, rendered->map_row0, rendered->map_width,
+                                    rendered->map_height));
   // Goodness layer (x in [-4, 0), y in [-4, 0)): known cells are blended toward black
   // (obstacle) or white (perfect), so the obstacle half is darker than the perfect half.
   const auto px = [&](double x, double y) {
-    const double s = img.cols / 12.0;
-    return img.at<cv::Vec3b>(static_cast<int>((6 - x) * s), static_cast<int>((6 - y) * s));
+    const Eigen::Vector2d at = rendered->ToPixel(x, y);
+    return full.at<cv::Vec3b>(static_cast<int>(at.y()), static_cast<int>(at.x()));
   };
   const cv::Vec3b dark = px(-2, -3), light = px(-2, -1);
   EXPECT_LT(dark[0] + dark[1] + dark[2], light[0] + light[1] + light[2] - 200);
@@ -123,7 +176,7 @@ TEST(Plots, TrackMapShowsTheGoodnessMapTheArcsAndEveryPathOverlapping) {
   EXPECT_GT(CountColour(img, {255, 90, 40}), 10);   // planned (blue, dashed)
   EXPECT_GT(CountColour(img, {0, 140, 255}), 10);   // estimate (orange), on top
   if (const char* keep = std::getenv("ROVER_KEEP_PLOTS")) {
-    cv::imwrite(std::string(keep) + "/map_mobility.png", img);
+    cv::imwrite(std::string(keep) + "/map_mobility.png", full);
   }
   std::remove(path.c_str());
 }

@@ -225,6 +225,74 @@ TEST(RunReport, SummaryStatistics) {
   EXPECT_NE(table.find("drive-flat: 19/20 passed (95%)"), std::string::npos) << table;
 }
 
+// The summary gives the criteria apart, each with its limit and the runs it held in; a figure
+// that is also a criterion is listed once; count-only activities stay out of the time table.
+TEST(RunReport, SummarySeparatesCriteriaWithTheirLimitsFromFigures) {
+  std::vector<RunResult> runs;
+  for (int i = 0; i < 4; ++i) {
+    RunResult r = MakeRun(i, i != 2, i == 2 ? 0.8 : 0.1);
+    r.figures.push_back({"max_tilt", 3.0 + i, 0, "deg", true, ""});
+    // The same quantity as a figure: not printed twice.
+    r.figures.push_back({"final_position_error", r.criteria[0].measured, 0, "m", true, ""});
+    r.service_timing.push_back(
+        {"dl-pose", 2.0, {{"ticks_served", 0.0, 40000}, {"update", 0.5, 40000}}});
+    runs.push_back(r);
+  }
+  const CampaignSummary s = Summarize(runs, 100.0);
+  ASSERT_GE(s.figures.size(), 2u);
+  EXPECT_EQ(s.figures[0].name, "final_position_error");
+  EXPECT_TRUE(s.figures[0].criterion);
+  EXPECT_DOUBLE_EQ(s.figures[0].limit, 0.5);
+  EXPECT_EQ(s.figures[0].passing, 3);
+  EXPECT_EQ(s.figures[0].count, 4);  // the criterion's values, not also the figure's
+  EXPECT_EQ(s.figures[1].name, "max_tilt");
+  EXPECT_FALSE(s.figures[1].criterion);
+  const std::string table = FormatSummaryTable(runs, s);
+  EXPECT_NE(table.find("criterion"), std::string::npos) << table;
+  EXPECT_NE(table.find("held"), std::string::npos) << table;
+  EXPECT_NE(table.find("3/4"), std::string::npos) << table;
+  const auto criteria_at = table.find("\ncriterion ");
+  ASSERT_NE(criteria_at, std::string::npos) << table;
+  const auto first = table.find("final_position_error", criteria_at);
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(table.find("final_position_error", first + 1), std::string::npos) << table;
+  EXPECT_EQ(table.find("ticks_served"), std::string::npos) << table;
+  EXPECT_NE(table.find("update (dl-pose)"), std::string::npos) << table;
+  const nlohmann::json j = ToJson(s);
+  EXPECT_TRUE(j["figures"][0]["criterion"].get<bool>());
+  EXPECT_DOUBLE_EQ(j["figures"][0]["limit"].get<double>(), 0.5);
+  EXPECT_EQ(j["figures"][0]["passing"].get<int>(), 3);
+  EXPECT_FALSE(j["figures"][1].contains("criterion"));
+}
+
+// A run cut off by stopping roverctl says nothing about the stack: counted apart, kept out of
+// the pass rate and the figures (before, its partial figures were averaged in).
+TEST(RunReport, InterruptedRunsAreCountedApartAndKeptOutOfTheFigures) {
+  std::vector<RunResult> runs = {MakeRun(1, true, 0.1), MakeRun(2, false, 0.8)};
+  RunResult cut = MakeRun(3, false, 25.0);
+  cut.failure = "interrupted: roverctl was stopped (Ctrl-C or a termination signal) at 12.0 "
+                "simulated s";
+  runs.push_back(cut);
+  EXPECT_TRUE(Interrupted(cut));
+  EXPECT_FALSE(Interrupted(runs[1]));
+  const CampaignSummary s = Summarize(runs, 100.0);
+  EXPECT_EQ(s.runs, 3);
+  EXPECT_EQ(s.interrupted, 1);
+  EXPECT_EQ(s.passed, 1);
+  EXPECT_DOUBLE_EQ(s.pass_rate, 0.5);
+  ASSERT_FALSE(s.figures.empty());
+  EXPECT_EQ(s.figures[0].name, "final_position_error");
+  EXPECT_EQ(s.figures[0].count, 2);
+  EXPECT_DOUBLE_EQ(s.figures[0].worst, 0.8);  // not the cut-off run's 25 m
+  const std::string table = FormatSummaryTable(runs, s);
+  EXPECT_NE(table.find("drive-flat: 1/2 passed (50%); 1 run interrupted (not in the rate or the "
+                       "figures)"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("INTR"), std::string::npos) << table;
+  EXPECT_EQ(ToJson(s)["interrupted_runs"].get<int>(), 1);
+}
+
 // The JUnit file must be well-formed XML with one test case per run; checked with xmllint
 // (libxml2-utils, installed by scripts/setup.sh).
 TEST(RunReport, JunitIsValidXmlWithOneCasePerRun) {

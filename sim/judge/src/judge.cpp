@@ -370,7 +370,7 @@ Verdict Judge::Evaluate() const {
   if (criteria_.max_estimate_error_fraction && !v.estimate_error.empty()) {
     const double final_err = v.estimate_error.back().position_error;
     const double pct = distance_ > 0 ? 100.0 * final_err / distance_ : 0.0;
-    v.criteria.push_back({"final_estimate_error_percent", pct,
+    v.criteria.push_back({"estimate_final_error_percent", pct,
                           100.0 * *criteria_.max_estimate_error_fraction, "%",
                           pct <= 100.0 * *criteria_.max_estimate_error_fraction,
                           Fmt("%.3f m over %.2f m driven", final_err, distance_)});

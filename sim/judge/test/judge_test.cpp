@@ -205,8 +205,8 @@ TEST(Judge, EstimateErrorAgainstInterpolatedTruth) {
   ASSERT_EQ(v.estimate_error.size(), 100u);
   EXPECT_NEAR(v.estimate_error.back().position_error, 0.02 * 9.905, 1e-6);
   EXPECT_FALSE(v.Find("max_estimate_error")->pass);                // 0.198 m > 0.05 m
-  EXPECT_NEAR(v.Find("final_estimate_error_percent")->measured, 1.981, 0.01);
-  EXPECT_FALSE(v.Find("final_estimate_error_percent")->pass);      // 1.98 % > 1 %
+  EXPECT_NEAR(v.Find("estimate_final_error_percent")->measured, 1.981, 0.01);
+  EXPECT_FALSE(v.Find("estimate_final_error_percent")->pass);      // 1.98 % > 1 %
 }
 
 TEST(Judge, OdometryOnlyBaselineAndHeadingAreFiguresBesideTheEstimate) {

@@ -99,7 +99,7 @@ Status MapOptions::Validate() const {
 }
 
 Eigen::Vector2d MapImage::ToPixel(double x, double y) const {
-  return {(max_y - y) * pixels_per_metre, (max_x - x) * pixels_per_metre};
+  return {map_col0 + (max_y - y) * pixels_per_metre, map_row0 + (max_x - x) * pixels_per_metre};
 }
 
 MapColor MapImage::At(int col, int row) const {
@@ -111,7 +111,10 @@ MapColor MapImage::At(int col, int row) const {
 
 namespace {
 
-Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
+// The map with its title band above and its legend beside it; `map_origin` and `map_size` say
+// where the map itself is in the image.
+Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale, cv::Point* map_origin,
+                       cv::Size* map_size) {
   ROVER_RETURN_IF_ERROR(o.Validate());
   const HeightField& h = t.natural;
   if (h.nx() < 2 || h.ny() < 2) return InvalidArgument("map: the terrain is empty");
@@ -320,11 +323,11 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
     Text(img, "N", base + cv::Point(-static_cast<int>(8 * font), static_cast<int>(24 * font)), font,
          kWhite);
   }
-  if (!o.title.empty()) {
-    Text(img, o.title, cv::Point(std::max(10, width / 40), static_cast<int>(30 * font) + 6), font,
-         kWhite);
-  }
-  // Legend (bottom right).
+  // The map is done; the title goes in a band above it and the legend in a panel beside it, so
+  // that neither hides what the run did and both stay readable however small the map is.
+  const double text_scale = std::max(font, 0.45);
+  const int line = static_cast<int>(26 * text_scale) + 4;
+  cv::Mat legend;
   if (o.draw_legend) {
     struct Entry {
       std::string text;
@@ -358,50 +361,84 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale) {
       any_ends = any_ends || (pl.mark_ends && !pl.label.empty());
     }
     if (any_ends) entries.push_back({"path: o start, [] end", kBlack, false});
-    const int line = static_cast<int>(26 * font) + 4;
     int text_w = 0;
     for (const Entry& e : entries) {
       int base = 0;
-      text_w =
-          std::max(text_w, cv::getTextSize(e.text, cv::FONT_HERSHEY_SIMPLEX, font, 1, &base).width);
+      text_w = std::max(
+          text_w, cv::getTextSize(e.text, cv::FONT_HERSHEY_SIMPLEX, text_scale, 1, &base).width);
     }
     const int box_w = text_w + line + 20;
-    const int box_h = line * static_cast<int>(entries.size()) + 10;
-    const cv::Point tl(width - box_w - 10, height - box_h - 10);
-    if (tl.x > 0 && tl.y > 0) {
-      cv::Mat roi = img(cv::Rect(tl, cv::Size(box_w, box_h)));
-      roi = roi * 0.25 + cv::Scalar(185, 185, 185);
-      for (std::size_t i = 0; i < entries.size(); ++i) {
-        const Entry& e = entries[i];
-        const cv::Point org = tl + cv::Point(6, 6 + line * static_cast<int>(i));
-        const cv::Rect sw(org + cv::Point(0, line / 6), cv::Size(line - 8, line - 8));
-        if (e.swatch) {
-          cv::rectangle(img, sw, e.colour, cv::FILLED);
-        } else if (e.line > 0) {
-          const int mid = sw.y + sw.height / 2;
-          cv::line(img, {sw.x, mid}, {sw.x + sw.width, mid}, e.colour, std::max(2, e.line),
-                   cv::LINE_AA);
-        } else {
-          cv::rectangle(img, sw, e.colour, 2);
-        }
-        cv::putText(img, e.text, org + cv::Point(line, line - 8), cv::FONT_HERSHEY_SIMPLEX, font,
-                    kBlack, 1, cv::LINE_AA);
+    const int box_h = line * static_cast<int>(entries.size()) + 12;
+    legend = cv::Mat(std::max(box_h, height), box_w, CV_8UC3, cv::Scalar(235, 235, 235));
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Entry& e = entries[i];
+      const cv::Point org(6, 6 + line * static_cast<int>(i));
+      const cv::Rect sw(org + cv::Point(0, line / 6), cv::Size(line - 8, line - 8));
+      if (e.swatch) {
+        cv::rectangle(legend, sw, e.colour, cv::FILLED);
+      } else if (e.line > 0) {
+        const int mid = sw.y + sw.height / 2;
+        cv::line(legend, {sw.x, mid}, {sw.x + sw.width, mid}, e.colour, std::max(2, e.line),
+                 cv::LINE_AA);
+      } else {
+        cv::rectangle(legend, sw, e.colour, 2);
       }
+      cv::putText(legend, e.text, org + cv::Point(line, line - 8), cv::FONT_HERSHEY_SIMPLEX,
+                  text_scale, kBlack, 1, cv::LINE_AA);
     }
   }
-  return img;
+  const int total_w = width + legend.cols;
+  // The title, broken at spaces into as many lines as the width needs.
+  std::vector<std::string> title_lines;
+  if (!o.title.empty()) {
+    std::string current;
+    std::size_t pos = 0;
+    while (pos <= o.title.size()) {
+      std::size_t end = o.title.find(' ', pos);
+      if (end == std::string::npos) end = o.title.size();
+      const std::string word = o.title.substr(pos, end - pos);
+      const std::string trial = current.empty() ? word : current + " " + word;
+      int base = 0;
+      const int w = cv::getTextSize(trial, cv::FONT_HERSHEY_SIMPLEX, text_scale, 1, &base).width;
+      if (w > total_w - 12 && !current.empty()) {
+        title_lines.push_back(current);
+        current = word;
+      } else {
+        current = trial;
+      }
+      pos = end + 1;
+    }
+    if (!current.empty()) title_lines.push_back(current);
+  }
+  const int band = title_lines.empty() ? 0 : line * static_cast<int>(title_lines.size()) + 8;
+  cv::Mat out(std::max(height, legend.rows) + band, total_w, CV_8UC3, cv::Scalar(235, 235, 235));
+  for (std::size_t i = 0; i < title_lines.size(); ++i) {
+    cv::putText(out, title_lines[i], cv::Point(6, line * static_cast<int>(i + 1)),
+                cv::FONT_HERSHEY_SIMPLEX, text_scale, kBlack, 1, cv::LINE_AA);
+  }
+  img.copyTo(out(cv::Rect(0, band, width, height)));
+  if (!legend.empty()) legend.copyTo(out(cv::Rect(width, band, legend.cols, legend.rows)));
+  *map_origin = cv::Point(0, band);
+  *map_size = cv::Size(width, height);
+  return out;
 }
 
 }  // namespace
 
 Result<MapImage> RenderTopDownMap(const Terrain& terrain, const MapOptions& options) {
   double s = 0.0;
-  auto img = Render(terrain, options, &s);
+  cv::Point origin;
+  cv::Size size;
+  auto img = Render(terrain, options, &s, &origin, &size);
   if (!img.ok()) return img.status();
   MapImage out;
   out.width = img->cols;
   out.height = img->rows;
   out.pixels_per_metre = s;
+  out.map_col0 = origin.x;
+  out.map_row0 = origin.y;
+  out.map_width = size.width;
+  out.map_height = size.height;
   out.max_x = terrain.natural.max_x();
   out.max_y = terrain.natural.max_y();
   out.rgb.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 3);
@@ -421,7 +458,9 @@ Result<MapImage> RenderTopDownMap(const Terrain& terrain, const MapOptions& opti
 
 Status WriteTopDownMap(const Terrain& terrain, const std::string& path, const MapOptions& options) {
   double s = 0.0;
-  auto img = Render(terrain, options, &s);
+  cv::Point origin;
+  cv::Size size;
+  auto img = Render(terrain, options, &s, &origin, &size);
   if (!img.ok()) return img.status();
   try {
     if (!cv::imwrite(path, *img)) return Unavailable(path + ": cannot write the map image");

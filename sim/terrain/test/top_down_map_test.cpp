@@ -69,7 +69,7 @@ TEST(TopDownMap, LimitsSizeAndWritesPng) {
   o.title = "VL-1 test";
   auto img = RenderTopDownMap(t, o);
   ASSERT_TRUE(img.ok());
-  EXPECT_LE(std::max(img->width, img->height), 300);
+  EXPECT_LE(std::max(img->map_width, img->map_height), 300);  // the map; title and legend beside
   const std::string path =
       (std::filesystem::temp_directory_path() / "sim_terrain_map_test.png").string();
   ASSERT_TRUE(WriteTopDownMap(t, path, o).ok());
@@ -80,6 +80,39 @@ TEST(TopDownMap, LimitsSizeAndWritesPng) {
   EXPECT_THAT(s.message(), HasSubstr("/nonexistent-dir/x.png"));
   o.max_pixels = 2;
   EXPECT_THAT(RenderTopDownMap(t, o).status().message(), HasSubstr("max_pixels"));
+}
+
+// The title sits in a band above the map and the legend in a panel to its right: neither covers
+// the map, and a title longer than the image is wrapped, not cut ("FAIL autor").
+TEST(TopDownMap, TitleAndLegendAreBesideTheMapAndTheTitleWraps) {
+  Terrain t = Make(RockPreset::kVl1);
+  MapOptions o;
+  o.max_pixels = 240;
+  o.draw_legend = false;
+  auto bare = RenderTopDownMap(t, o);
+  ASSERT_TRUE(bare.ok());
+  EXPECT_EQ(bare->width, bare->map_width);
+  EXPECT_EQ(bare->height, bare->map_height);
+  o.draw_legend = true;
+  o.title = "short-autonav-q20 seed 1  FAIL  autonav: NOPATH (goal error) after a long wander";
+  auto img = RenderTopDownMap(t, o);
+  ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img->map_width, bare->map_width);
+  EXPECT_EQ(img->map_col0, 0);
+  EXPECT_GT(img->map_row0, 40);                   // two title lines or more at this width
+  EXPECT_GT(img->width, img->map_width + 100);    // the legend panel
+  // The map's pixels are the bare map's, shifted below the band: nothing drawn over them.
+  int differ = 0;
+  for (int r = 0; r < bare->height; r += 3) {
+    for (int c = 0; c < bare->width; c += 3) {
+      const MapColor a = bare->At(c, r), b = img->At(c, r + img->map_row0);
+      differ += a.r != b.r || a.g != b.g || a.b != b.b;
+    }
+  }
+  EXPECT_EQ(differ, 0);
+  // Site-frame points map into the map region.
+  const Eigen::Vector2d px = img->ToPixel(img->max_x, img->max_y);
+  EXPECT_DOUBLE_EQ(px.y(), img->map_row0);
 }
 
 }  // namespace

@@ -26,6 +26,12 @@ namespace rover::deploy {
 /// The goodness map as a map layer: known cells (flag bit 0) grey by goodness.
 sim::terrain::MapCellLayer GoodnessLayer(const GoodnessGrid& grid);
 
+/// What map.png draws of a run: the title (scenario, seed, verdict, task outcome), the last
+/// goodness map, the truth, odometry-only and estimated paths, the chosen arcs, a phased task's
+/// phases and the planned path (dashed), each in the legend beside the map.
+sim::terrain::MapOptions TrackMapOptions(const RunResult& run,
+                                         const std::vector<Eigen::Vector2d>& planned);
+/// The map of TrackMapOptions, written as a PNG.
 Status WriteTrackMap(const sim::terrain::Terrain& terrain, const RunResult& run,
                      const std::vector<Eigen::Vector2d>& planned, const std::string& path);
 

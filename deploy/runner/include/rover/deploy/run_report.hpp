@@ -175,13 +175,24 @@ struct FigureStats {
   std::string name, unit;
   double mean = 0, p95 = 0, worst = 0;
   int count = 0;
+  /// A criterion (it has a limit and a verdict per run) rather than a measured figure.
+  bool criterion = false;
+  double limit = 0;  ///< criterion: its threshold (the first run's; NaN if the runs disagree)
+  int passing = 0;   ///< criterion: runs in which it held
 };
+
+/// The run was cut off by stopping roverctl (its failure starts with "interrupted"): it says
+/// nothing about the stack, so a summary counts it apart and keeps it out of the figures.
+bool Interrupted(const RunResult& r);
 
 struct CampaignSummary {
   std::string scenario;
   int runs = 0, passed = 0;
-  double pass_rate = 0;
-  std::vector<FigureStats> figures;  ///< each criterion's measured value, and run timings
+  int interrupted = 0;   ///< runs cut off (Interrupted): not in `passed`, the rate or the figures
+  double pass_rate = 0;  ///< passed / (runs - interrupted)
+  /// The criteria first (limit, runs passing), then the measured figures (a figure that is also
+  /// a criterion is listed once, as the criterion), then the run timings.
+  std::vector<FigureStats> figures;
   double wall_time_s = 0;            ///< of the whole campaign
   double sim_seconds_per_wall_second = 0;
   double runs_per_hour = 0;

@@ -62,8 +62,8 @@ struct MapOptions {
   double obstacle_height = 0.2;  ///< [m] rocks higher than this are drawn red
   bool draw_rocks = true;
   bool draw_keep_out = true;
-  bool draw_legend = true;
-  std::string title;  ///< drawn top-left when not empty
+  bool draw_legend = true;  ///< in a panel to the right of the map
+  std::string title;  ///< in a band above the map when not empty (wrapped to the image width)
   std::vector<MapPolyline> polylines;
   std::vector<MapCellLayer> cell_layers;  ///< drawn under the rocks and paths
 
@@ -75,6 +75,9 @@ struct MapImage {
   int height = 0;
   std::vector<std::uint8_t> rgb;  ///< row-major, 3 bytes per pixel
   double pixels_per_metre = 0.0;
+  /// Where the map itself is: the title band is above it, the legend panel to its right.
+  /// max_pixels bounds the map, not the whole image.
+  int map_col0 = 0, map_row0 = 0, map_width = 0, map_height = 0;
   /// Pixel (column, row) of a site-frame point.
   Eigen::Vector2d ToPixel(double x, double y) const;
   double max_x = 0.0;
