@@ -175,6 +175,33 @@ TEST_F(RoverctlTest, SmokeSetPassesDataThroughAllThreeLayersAndCtrlCLeavesNothin
   EXPECT_NE(stopped.find("(stopped)"), std::string::npos) << stopped;
 }
 
+// `roverctl ps` lists campaigns under way (their runs keep state in the campaign folder, not
+// in the state root), with progress and where to look; a registration whose roverctl is gone
+// is dropped.
+TEST_F(RoverctlTest, PsListsRunningCampaigns) {
+  const std::string out = dir_ + "/campaign-out";
+  fs::create_directories(out + "/tiny-seed1");
+  std::ofstream(out + "/campaign.json") << R"({"scenario": "tiny", "seeds": [1, 2, 3]})";
+  std::ofstream(out + "/tiny-seed1/result.json") << "{}";
+  fs::create_directories(state_root_ + "/campaigns");
+  // This test process stands for the roverctl running it (alive); 999999 for one that is gone.
+  std::ofstream(state_root_ + "/campaigns/" + std::to_string(getpid()) + ".json")
+      << nlohmann::json{{"pid", getpid()}, {"scenario", "tiny"}, {"kind", "campaign"},
+                        {"out", out}, {"started", "20261206-120000"}}
+             .dump();
+  std::ofstream(state_root_ + "/campaigns/999999.json")
+      << nlohmann::json{{"pid", 999999}, {"scenario", "gone"}, {"out", out}}.dump();
+  auto [e, ps] = RunRoverctl({"ps"});
+  EXPECT_TRUE(e.success()) << ps;
+  EXPECT_NE(ps.find("campaign 'tiny'  (roverctl pid " + std::to_string(getpid()) +
+                    ", since 20261206-120000): 1 of 3 runs finished, into " + out),
+            std::string::npos)
+      << ps;
+  EXPECT_NE(ps.find("the table so far: roverctl report " + out), std::string::npos) << ps;
+  EXPECT_EQ(ps.find("gone"), std::string::npos) << ps;
+  EXPECT_FALSE(fs::exists(state_root_ + "/campaigns/999999.json"));
+}
+
 TEST_F(RoverctlTest, KillNineIsRestartedByPolicyAndDataFlowsAgain) {
   const std::string file = WriteSmoke("kill");
   const std::string project = ProjectOf("kill");

@@ -397,6 +397,8 @@ std::string Clip(std::string s, std::size_t n) {
   return s;
 }
 
+int PrintCampaigns(const std::string& root);
+
 int Ps(const std::string& root, const std::string& given, bool json) {
   std::vector<std::string> projects;
   if (!given.empty()) {
@@ -462,6 +464,8 @@ int Ps(const std::string& root, const std::string& given, bool json) {
     }
   }
   if (json) std::cout << all.dump(2) << "\n";
+  // Campaigns (`roverctl run`) keep their runs' state in the campaign folder: name them here.
+  if (!json && given.empty()) PrintCampaigns(root);
   return 0;
 }
 
@@ -624,8 +628,91 @@ int FaultCampaignExit(const rover::deploy::FaultCampaignTable& t) {
   return t.missing == 0 && t.errors.empty() && !t.interrupted && t.safe_runs == t.fault_runs ? 0 : 1;
 }
 
+// A campaign under way, registered in the state root (`<root>/campaigns/<pid>.json`) for as
+// long as this roverctl runs it, so that `roverctl ps` can list it.
+class CampaignRegistration {
+ public:
+  CampaignRegistration(const std::string& root, const std::string& scenario,
+                       const std::string& out, const std::string& kind) {
+    std::error_code ec;
+    fs::create_directories(root + "/campaigns", ec);
+    path_ = root + "/campaigns/" + std::to_string(getpid()) + ".json";
+    const nlohmann::json j = {{"pid", static_cast<int>(getpid())},
+                              {"scenario", scenario},
+                              {"kind", kind},
+                              {"out", fs::absolute(out).string()},
+                              {"started", NowStamp()}};
+    std::ofstream(path_) << j.dump(2) << "\n";
+  }
+  ~CampaignRegistration() {
+    std::error_code ec;
+    fs::remove(path_, ec);
+  }
+  CampaignRegistration(const CampaignRegistration&) = delete;
+  CampaignRegistration& operator=(const CampaignRegistration&) = delete;
+
+ private:
+  std::string path_;
+};
+
+// Running campaigns (registrations whose roverctl is alive; stale ones are removed), one line
+// each with its progress and the runs under way. Returns how many it printed.
+int PrintCampaigns(const std::string& root) {
+  int printed = 0;
+  std::error_code ec;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(root + "/campaigns", ec)) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    nlohmann::json j;
+    try {
+      std::ifstream in(f);
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception&) {
+      continue;
+    }
+    const int pid = j.value("pid", 0);
+    if (pid <= 0 || kill(pid, 0) != 0) {
+      fs::remove(f, ec);
+      continue;
+    }
+    const std::string out = j.value("out", "");
+    std::size_t finished = 0;
+    std::vector<std::string> running;
+    for (const auto& e : fs::recursive_directory_iterator(out, ec)) {
+      if (e.path().filename() == "result.json") ++finished;
+      if (e.path().filename() == "state.json" &&
+          SupervisorAlive(ReadState(e.path().parent_path().string()))) {
+        running.push_back(e.path().parent_path().string());
+      }
+    }
+    std::size_t total = 0;
+    try {
+      std::ifstream in(out + "/campaign.json");
+      total = nlohmann::json::parse(in).value("seeds", std::vector<std::uint32_t>{}).size();
+    } catch (const nlohmann::json::exception&) {
+    }
+    std::printf("%s '%s'  (roverctl pid %d, since %s): %zu %s finished, into %s\n",
+                j.value("kind", "campaign").c_str(), j.value("scenario", "").c_str(), pid,
+                j.value("started", "").c_str(), finished,
+                total > 0 && j.value("kind", "") == "campaign"
+                    ? ("of " + std::to_string(total) + " runs").c_str()
+                    : "runs",
+                out.c_str());
+    for (const auto& r : running) {
+      std::printf("  running: %s  (roverctl --state-dir %s ps)\n",
+                  fs::path(r).filename().c_str(), fs::path(r).parent_path().c_str());
+    }
+    std::printf("  the table so far: roverctl report %s\n", out.c_str());
+    ++printed;
+  }
+  return printed;
+}
+
 int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out,
-        const std::string& faults_file) {
+        const std::string& faults_file, const std::string& state_root) {
   auto scenario = rover::deploy::LoadScenario(file);
   if (!scenario.ok()) return Fail(scenario.status().message(), 2);
   std::vector<std::uint32_t> seeds = {scenario->seed};
@@ -691,6 +778,7 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     fo.bin_dir = o.bin_dir;
     fo.dds_config_uri = o.dds_config_uri;
     fo.abort = &g_stop;
+    const CampaignRegistration registered(state_root, scenario->name, out, "fault campaign");
     auto t = rover::deploy::RunFaultCampaign(*scenario, faults_file, faults, fo);
     if (!t.ok()) return Fail(t.status().message(), 2);
     std::printf("\n%s\ntable: %s/campaign.txt  %s/campaign.json\n",
@@ -700,6 +788,7 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
   std::printf("roverctl: running '%s' for %zu seed%s, %d at a time, into %s\n",
               scenario->name.c_str(), seeds.size(), seeds.size() == 1 ? "" : "s", jobs, out.c_str());
   std::fflush(stdout);
+  const CampaignRegistration registered(state_root, scenario->name, out, "campaign");
   auto r = rover::deploy::RunCampaign(*scenario, o);
   if (!r.ok()) return Fail(r.status().message(), 2);
   std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary, r->missing).c_str());
@@ -936,7 +1025,7 @@ int main(int argc, char** argv) {
   if (*ps_cmd) return Ps(state_root, project, json);
   if (*logs_cmd) return Logs(state_root, project, service, follow, lines);
   if (*config_cmd) return Config(config_file, config_no_preflight);
-  if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir, faults_file);
+  if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir, faults_file, state_root);
   if (*report_cmd) return Report(report_dir);
   if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);
   if (*fault_cmd) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <mutex>
 #include <thread>
+#include <unistd.h>
 
 #include "rover/base/clock.hpp"
 
@@ -78,6 +79,7 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
     c["scenario_file"] = fs::absolute(scenario.file).string();
     c["seeds"] = options.seeds;
     c["jobs"] = options.jobs;
+    c["pid"] = static_cast<int>(getpid());  // a report on a running campaign says so
     std::ofstream(options.out_dir + "/campaign.json") << c.dump(2) << "\n";
   }
 

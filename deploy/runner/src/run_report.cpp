@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <signal.h>
 
 namespace rover::deploy {
 namespace fs = std::filesystem;
@@ -638,11 +639,13 @@ Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
   ROVER_ASSIGN_OR_RETURN(std::vector<RunResult> all, LoadRunFolder(dir));
   std::string scenario;
   std::optional<std::vector<std::uint32_t>> seeds;
+  int pid = 0;
   {
     std::ifstream cj(dir + "/campaign.json");
     try {
       const nlohmann::json c = nlohmann::json::parse(cj);
       scenario = c.value("scenario", "");
+      pid = c.value("pid", 0);
       if (c.contains("seeds")) seeds = c["seeds"].get<std::vector<std::uint32_t>>();
     } catch (const nlohmann::json::exception& e) {
       return InvalidArgument(dir + "/campaign.json: " + e.what());
@@ -662,6 +665,7 @@ Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
   }
   double wall = 0;
   std::ifstream in(dir + "/summary.json");
+  report.running = !in && pid > 0 && kill(pid, 0) == 0;
   if (in) {
     try {
       wall = nlohmann::json::parse(in).value("wall_time_s", 0.0);
@@ -673,6 +677,17 @@ Result<CampaignReport> LoadCampaignReport(const std::string& dir) {
   if (seeds) report.missing = MissingRuns(dir, report.summary.scenario, *seeds, report.runs);
   report.table =
       FormatSummaryTable(report.runs, report.summary, report.missing, report.ignored);
+  if (report.running) {
+    // Not a table of zeros: what has finished, and that the rest is under way.
+    const std::size_t total = seeds ? seeds->size() : report.runs.size();
+    const std::string note = "campaign still running (roverctl pid " + std::to_string(pid) +
+                             "): " + std::to_string(report.runs.size()) + " of " +
+                             std::to_string(total) + " runs finished so far\n\n";
+    std::string table = report.table;
+    const auto tail = table.rfind("\ncampaign: ");
+    if (tail != std::string::npos) table.erase(tail + 1);  // no throughput before the end
+    report.table = note + table;
+  }
   report.all_passed = report.summary.runs > 0 && report.missing.empty() &&
                       report.summary.passed == report.summary.runs;
   return report;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <mutex>
 #include <set>
+#include <unistd.h>
 
 #include "rover/testing/test_support.hpp"
 
@@ -107,6 +108,39 @@ TEST_F(CampaignTest, ReportReprintsTheTableOfTheCampaign) {
   EXPECT_EQ(report->table, rover::testing::ReadFile(dir_ + "/out/summary.txt"));
   EXPECT_FALSE(report->all_passed);  // seed 2 failed
   EXPECT_NE(report->table.find("tiny: 2/3 passed (67%)"), std::string::npos) << report->table;
+}
+
+// A report on a campaign whose roverctl still runs (campaign.json's pid alive, no summary.json)
+// says so, with the runs finished so far, instead of a throughput of zero.
+TEST_F(CampaignTest, ReportOnARunningCampaignSaysItRuns) {
+  auto r = RunCampaign(scenario_, Options(3, 1));
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  const std::string out = dir_ + "/out";
+  nlohmann::json c;
+  {
+    std::ifstream in(out + "/campaign.json");
+    c = nlohmann::json::parse(in);
+  }
+  EXPECT_EQ(c["pid"].get<int>(), static_cast<int>(getpid()));
+  fs::remove(out + "/summary.json");
+  fs::remove_all(out + "/tiny-seed3");
+  auto running = LoadCampaignReport(out);
+  ASSERT_TRUE(running.ok()) << running.status().message();
+  EXPECT_TRUE(running->running);
+  EXPECT_EQ(running->table.rfind("campaign still running (roverctl pid " +
+                                     std::to_string(getpid()) +
+                                     "): 2 of 3 runs finished so far",
+                                 0),
+            0u)
+      << running->table;
+  EXPECT_EQ(running->table.find("simulated s per wall s"), std::string::npos) << running->table;
+  // The same folder once that roverctl is gone: an ordinary (incomplete) report.
+  c["pid"] = 999999;
+  std::ofstream(out + "/campaign.json") << c.dump(2);
+  auto ended = LoadCampaignReport(out);
+  ASSERT_TRUE(ended.ok());
+  EXPECT_FALSE(ended->running);
+  EXPECT_NE(ended->table.find("seed 3: not run"), std::string::npos) << ended->table;
 }
 
 TEST_F(CampaignTest, AllPassedOnlyWhenEveryRunPassed) {

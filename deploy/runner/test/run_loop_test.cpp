@@ -51,7 +51,9 @@ TEST(RunLoop, InterruptedByAbort) {
   RunFixture run(testing::Limits(100, &abort));
   EXPECT_EQ(run.loop().Check(), "");
   abort = true;
-  EXPECT_EQ(run.loop().WaitUntil([] { return false; }), "interrupted");
+  EXPECT_EQ(run.loop().WaitUntil([] { return false; }).rfind(
+                "interrupted: roverctl was stopped (Ctrl-C or a termination signal) at ", 0),
+            0u);
 }
 
 TEST(RunLoop, TimeBudgetIsSimulated) {

@@ -99,7 +99,11 @@ TEST(TopDownMap, TitleAndLegendAreBesideTheMapAndTheTitleWraps) {
   ASSERT_TRUE(img.ok());
   EXPECT_EQ(img->map_width, bare->map_width);
   EXPECT_EQ(img->map_col0, 0);
-  EXPECT_GT(img->map_row0, 40);                   // two title lines or more at this width
+  o.title = "short";
+  auto one_line = RenderTopDownMap(t, o);
+  ASSERT_TRUE(one_line.ok());
+  EXPECT_GT(one_line->map_row0, 0);
+  EXPECT_GT(img->map_row0, one_line->map_row0 + 10);  // the long title took two lines or more
   EXPECT_GT(img->width, img->map_width + 100);    // the legend panel
   // The map's pixels are the bare map's, shifted below the band: nothing drawn over them.
   int differ = 0;

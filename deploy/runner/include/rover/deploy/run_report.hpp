@@ -253,6 +253,9 @@ struct CampaignReport {
   /// At least one run, every seed has a result, and every run passed (`roverctl report` exits
   /// 0 only then).
   bool all_passed = false;
+  /// The roverctl that runs the campaign is still alive (campaign.json `pid`, no summary.json
+  /// yet): the table holds the runs finished so far.
+  bool running = false;
 };
 Result<CampaignReport> LoadCampaignReport(const std::string& dir);
 /// True if `dir` looks like a campaign folder written by `roverctl run` (has campaign.json).
