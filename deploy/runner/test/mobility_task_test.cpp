@@ -89,8 +89,8 @@ TEST(MobilityTask, BadKeysAndValuesNameFileLineKeyAndValue) {
             "time_budget_s, max_steps, max_tilt_deg, keep_out, expect, goal)");
   EXPECT_EQ(Error("task:\n  type: autonav\n  goal: {x: 1, y: 1}\n  expect: NOPTH\n"),
             "s.yaml:5: task.expect: 'NOPTH' is not one of: reached, ARB, ACM, POT, TOD, STOPPED, "
-            "WAYPT-TIMEOUT, NOPATH, NOPROGRESS, BUSY, VISODOM, KEEPOUT, BAD-COMMAND, IMG, SAPP, "
-            "MOT, DRIVE-TIMEOUT, TILT, SUSPENSION, NORTH (did you mean 'NOPATH'?)");
+            "WAYPT_TIMEOUT, NOPATH, NOPROGRESS, BUSY, VISODOM, KEEPOUT, BAD_COMMAND, IMG, SAPP, "
+            "MOT, DRIVE_TIMEOUT, TILT, SUSPENSION, NORTH (did you mean 'NOPATH'?)");
   // vetoed is a guarded outcome only.
   EXPECT_NE(Error("task: {type: autonav, goal: {x: 1, y: 1}, expect: vetoed}\n")
                 .find("task.expect: 'vetoed' is not one of"),
@@ -191,16 +191,17 @@ TEST(MobilityTask, OutcomesMatchTheirExpectation) {
   EXPECT_TRUE(OutcomeMatches("vetoed", s));
   EXPECT_FALSE(OutcomeMatches("reached", s));
   s.fault = rover_apl_MOBFAULT_WAYPT_TIMEOUT;
-  EXPECT_EQ(OutcomeName(s), "WAYPT-TIMEOUT");
+  EXPECT_EQ(OutcomeName(s), "WAYPT_TIMEOUT");  // core/msg's name
+  EXPECT_TRUE(OutcomeMatches("WAYPT-TIMEOUT", s));  // MER's spelling, as seed 000 writes it
   EXPECT_FALSE(OutcomeMatches("vetoed", s));
   // The name-only form the kinematic tool uses agrees.
   EXPECT_TRUE(OutcomeNameMatches("vetoed", "NOPATH"));
   EXPECT_TRUE(OutcomeNameMatches("KEEPOUT", "KEEPOUT"));
-  EXPECT_FALSE(OutcomeNameMatches("vetoed", "WAYPT-TIMEOUT"));
+  EXPECT_FALSE(OutcomeNameMatches("vetoed", "WAYPT_TIMEOUT"));
   EXPECT_FALSE(OutcomeNameMatches("reached", "NOPATH"));
   s.state = rover_apl_MOBILITY_REJECTED;
   s.fault = rover_apl_MOBFAULT_NONE;
-  EXPECT_EQ(OutcomeName(s), "BAD-COMMAND");
+  EXPECT_EQ(OutcomeName(s), "BAD_COMMAND");
   // A running status is never an outcome.
   s.state = rover_apl_MOBILITY_RUNNING;
   s.fault = rover_apl_MOBFAULT_NONE;

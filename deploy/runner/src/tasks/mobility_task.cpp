@@ -137,17 +137,26 @@ const char* MobilityTaskTypeName(MobilityTaskType t) {
 }
 
 const std::vector<std::string>& MobilityFaultNames() {
-  // Index = rover_apl_MobilityFault (idl/rover_apl.idl's order).
-  static const std::vector<std::string> k = {
-      "NONE",       "ARB",  "ACM",         "POT",    "TOD",  "STOPPED", "WAYPT-TIMEOUT",
-      "NOPATH",     "NOPROGRESS", "BUSY",  "VISODOM", "KEEPOUT", "BAD-COMMAND", "IMG",
-      "SAPP",       "MOT",  "DRIVE-TIMEOUT", "TILT", "SUSPENSION", "NORTH"};
+  // core/msg's names, index = rover_apl_MobilityFault (core/msg checks the two orders agree).
+  static const std::vector<std::string> k = [] {
+    std::vector<std::string> v;
+    for (int i = 0; i < msg::kMobilityFaultCount; ++i) {
+      v.emplace_back(msg::MobilityFaultName(static_cast<msg::MobilityFault>(i)));
+    }
+    return v;
+  }();
   return k;
 }
 
 const char* MobilityFaultName(rover_apl_MobilityFault f) {
   const auto i = static_cast<std::size_t>(f);
   return i < MobilityFaultNames().size() ? MobilityFaultNames()[i].c_str() : "?";
+}
+
+std::string CanonicalOutcome(std::string name) {
+  // MER's papers write WAYPT-TIMEOUT, BAD-COMMAND, DRIVE-TIMEOUT; core/msg writes '_'.
+  if (name != "reached" && name != "vetoed") std::replace(name.begin(), name.end(), '-', '_');
+  return name;
 }
 
 const char* FaultClassName(rover_apl_FaultClass c) {
@@ -234,7 +243,15 @@ Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTas
     }
   }
   if (const YAML::Node e = n["expect"]) {
-    ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(e, "task.expect", ExpectChoices(type), err));
+    // MER's spelling (WAYPT-TIMEOUT) is read as core/msg's (WAYPT_TIMEOUT).
+    const std::vector<std::string> choices = ExpectChoices(type);
+    const std::string given = e.IsScalar() ? e.Scalar() : "";
+    const std::string canonical = CanonicalOutcome(given);
+    if (canonical != given && std::find(choices.begin(), choices.end(), canonical) != choices.end()) {
+      spec.expect = canonical;
+    } else {
+      ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(e, "task.expect", choices, err));
+    }
   }
   return spec;
 }
@@ -271,14 +288,16 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec,
 std::string OutcomeName(const rover_apl_MobilityStatus& s) {
   if (s.state == rover_apl_MOBILITY_SUCCEEDED) return "reached";
   if (s.fault == rover_apl_MOBFAULT_NONE) {
-    return s.state == rover_apl_MOBILITY_REJECTED ? "BAD-COMMAND" : "NONE";
+    return s.state == rover_apl_MOBILITY_REJECTED
+               ? std::string(msg::MobilityFaultName(msg::MobilityFault::kBadCommand))
+               : "NONE";
   }
   return MobilityFaultName(s.fault);
 }
 
 bool OutcomeNameMatches(const std::string& expect, const std::string& outcome) {
   return expect == "vetoed" ? outcome == MobilityFaultName(rover_apl_MOBFAULT_NOPATH)
-                            : outcome == expect;
+                            : CanonicalOutcome(outcome) == CanonicalOutcome(expect);
 }
 
 bool OutcomeMatches(const std::string& expect, const rover_apl_MobilityStatus& s) {

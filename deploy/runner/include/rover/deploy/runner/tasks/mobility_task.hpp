@@ -13,7 +13,7 @@
 ///       - {primitive: turn_in_place, angle_deg: 90}   # positive = left
 ///     visodom: false            # the VisOdom variant of the mode (seed 000, Table 2)
 ///     think: drive_while_thinking   # | stop_and_go | default (the service's parameter)
-///     time_budget_s: 1200       # [s] the command's own budget (WAYPT-TIMEOUT); 0 = none
+///     time_budget_s: 1200       # [s] the command's own budget (WAYPT_TIMEOUT); 0 = none
 ///     max_steps: 0              # autonav steps; 0 = the service's parameter
 ///     max_tilt_deg: 0           # handed to locomotion; 0 = the service's parameter
 ///     keep_out:                 # site-frame polygons (3..16 vertices, at most 8 zones)
@@ -21,9 +21,9 @@
 ///     expect: reached           # | vetoed | a fault code: NOPATH, NOPROGRESS, KEEPOUT, ...
 ///
 /// `expect: reached` passes on SUCCEEDED. A fault code passes on FAILED or REJECTED with that
-/// fault (MER's names, seed 000 Table 1: ARB ACM POT TOD STOPPED WAYPT-TIMEOUT NOPATH
-/// NOPROGRESS BUSY VISODOM KEEPOUT BAD-COMMAND IMG SAPP MOT DRIVE-TIMEOUT TILT SUSPENSION
-/// NORTH). `vetoed` (guarded modes only) passes on FAILED with NOPATH: terrain assessment
+/// fault (MER's names, seed 000 Table 1, in core/msg's spelling: ARB ACM POT TOD STOPPED
+/// WAYPT_TIMEOUT NOPATH NOPROGRESS BUSY VISODOM KEEPOUT BAD_COMMAND IMG SAPP MOT DRIVE_TIMEOUT
+/// TILT SUSPENSION NORTH; the paper's hyphens are read too). `vetoed` (guarded modes only) passes on FAILED with NOPATH: terrain assessment
 /// forbade a primitive. The modes: autonav -> MOBILITY_AUTONAV (_VISODOM), goto_waypoint ->
 /// MOBILITY_GO_TO_WAYPOINT (MOBILITY_VISODOM_GO_TO_WAYPOINT), guarded -> MOBILITY_GUARDED
 /// (_VISODOM), guarded_arc -> MOBILITY_GUARDED_ARC (no VisOdom variant: visodom: true is an
@@ -70,10 +70,13 @@ struct MobilityTaskSpec {
   std::string expect = "reached";
 };
 
-/// The fault code names scenarios use (MER's spelling), index = rover_apl_MobilityFault; "NONE"
-/// for MOBFAULT_NONE.
+/// The fault code names, core/msg's (msg::MobilityFaultName: WAYPT_TIMEOUT), index =
+/// rover_apl_MobilityFault; "NONE" for MOBFAULT_NONE.
 const std::vector<std::string>& MobilityFaultNames();
 const char* MobilityFaultName(rover_apl_MobilityFault f);
+/// An outcome or `expect:` name in core/msg's spelling: MER's hyphens (WAYPT-TIMEOUT, as seed
+/// 000 writes them) become '_'; "reached" and "vetoed" stay.
+std::string CanonicalOutcome(std::string name);
 /// "none", "goal error", "motion error".
 const char* FaultClassName(rover_apl_FaultClass c);
 /// The IDL mode of a task type with or without VisOdom.
@@ -91,7 +94,7 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec, std:
                                               double now_s, MobilityCommandStorage* storage);
 
 /// A terminal status as the outcome name `expect` compares with: "reached" for SUCCEEDED, else
-/// the fault code name (REJECTED without a fault is "BAD-COMMAND").
+/// the fault code name (REJECTED without a fault is "BAD_COMMAND").
 std::string OutcomeName(const rover_apl_MobilityStatus& status);
 /// True if `outcome` (an OutcomeName) is what `expect` names: "vetoed" is a NOPATH fault (a
 /// guarded primitive refused by terrain assessment), anything else must equal the name.
