@@ -87,6 +87,7 @@ void ScoreRun(const sim::judge::Judge& judge,
   result->estimate_error = v.estimate_error;
   result->odometry_only_error = v.odometry_only_error;
   result->figures = v.figures;
+  result->hazard_contacts = v.contacts;
   result->figures.insert(result->figures.end(), extra_figures.begin(), extra_figures.end());
   if (failure->empty() && !v.pass) {
     const std::string all = v.FailureSummary();

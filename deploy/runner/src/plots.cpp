@@ -198,6 +198,21 @@ sim::terrain::MapOptions TrackMapOptions(const RunResult& run,
   if (planned.size() >= 2) {
     o.polylines.push_back({planned, {40, 90, 255}, "planned", 2, true, /*dashed=*/true});
   }
+  // Each hazard contact: a magenta ring round the rock, labelled with the part that touched.
+  for (std::size_t k = 0; k < run.hazard_contacts.size(); ++k) {
+    const auto& c = run.hazard_contacts[k];
+    std::vector<Eigen::Vector2d> ring;
+    const double radius = 0.45;  // [m] round a rock of up to ~0.8 m: seen at any map scale
+    for (int a = 0; a <= 24; ++a) {
+      const double th = 2.0 * M_PI * a / 24.0;
+      ring.emplace_back(c.xy.x() + radius * std::cos(th), c.xy.y() + radius * std::sin(th));
+    }
+    o.polylines.push_back({ring, {255, 0, 255},
+                           k == 0 ? "hazard contact (part, time)" : "", 3, false});
+    char label[96];
+    std::snprintf(label, sizeof label, "%s %.0f s", c.part.c_str(), c.t_s);
+    o.labels.push_back({c.xy + Eigen::Vector2d(radius, radius), label, {255, 0, 255}});
+  }
   return o;
 }
 

@@ -182,6 +182,11 @@ nlohmann::json ToJson(const RunResult& r) {
   }
   j["estimate_track"] = r.estimate_track;
   j["odometry_only_track"] = r.odometry_only_track;
+  j["hazard_contacts"] = nlohmann::json::array();
+  for (const auto& c : r.hazard_contacts) {
+    j["hazard_contacts"].push_back({{"rock", c.rock_id}, {"x", c.xy.x()}, {"y", c.xy.y()},
+                                    {"height", c.height}, {"part", c.part}, {"t_s", c.t_s}});
+  }
   if (r.mobility) j["mobility"] = MobilityToJson(*r.mobility);
   j["faults"] = nlohmann::json::array();
   for (const auto& f : r.faults) {
@@ -273,6 +278,10 @@ Result<RunResult> RunResultFromJson(const nlohmann::json& j) {
       for (const auto& p : j["phases"]) {
         r.phases.emplace_back(p.value("t", 0.0), p.value("phase", std::string()));
       }
+    }
+    for (const auto& c : j.value("hazard_contacts", nlohmann::json::array())) {
+      r.hazard_contacts.push_back({c.at("rock"), Eigen::Vector2d(c.at("x"), c.at("y")),
+                                   c.at("height"), c.at("part"), c.value("t_s", 0.0)});
     }
     r.estimate_track = j.value("estimate_track", std::vector<std::array<double, 3>>{});
     r.odometry_only_track =

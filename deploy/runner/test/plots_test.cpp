@@ -47,6 +47,41 @@ TEST(Plots, ErrorPlotHasBothCurves) {
   EXPECT_FALSE(WriteErrorPlot(SampleRun(), "/nonexistent/dir/err.png").ok());
 }
 
+// A hazard contact is ringed in magenta on the map, and survives result.json.
+TEST(Plots, TrackMapMarksHazardContacts) {
+  sim::terrain::TerrainParams p;
+  p.size_x = 12;
+  p.size_y = 12;
+  p.resolution = 0.05;
+  p.rocks.preset = sim::terrain::RockPreset::kNone;
+  auto terrain = sim::terrain::GenerateTerrain(p);
+  ASSERT_TRUE(terrain.ok()) << terrain.status().message();
+  RunResult run = SampleRun();
+  auto rendered = sim::terrain::RenderTopDownMap(*terrain, TrackMapOptions(run, {}));
+  ASSERT_TRUE(rendered.ok());
+  auto magenta = [](const sim::terrain::MapImage& m) {
+    int n = 0;
+    for (int r = m.map_row0; r < m.map_row0 + m.map_height; ++r) {
+      for (int c = m.map_col0; c < m.map_col0 + m.map_width; ++c) {
+        const sim::terrain::MapColor v = m.At(c, r);
+        n += v.r == 255 && v.g == 0 && v.b == 255;
+      }
+    }
+    return n;
+  };
+  EXPECT_EQ(magenta(*rendered), 0);
+  run.hazard_contacts.push_back({7, {2.0, -1.0}, 0.31, "wheel_lf", 12.5});
+  rendered = sim::terrain::RenderTopDownMap(*terrain, TrackMapOptions(run, {}));
+  ASSERT_TRUE(rendered.ok());
+  EXPECT_GT(magenta(*rendered), 30);
+  auto back = RunResultFromJson(ToJson(run));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ASSERT_EQ(back->hazard_contacts.size(), 1u);
+  EXPECT_EQ(back->hazard_contacts[0].part, "wheel_lf");
+  EXPECT_DOUBLE_EQ(back->hazard_contacts[0].t_s, 12.5);
+  EXPECT_EQ(back->hazard_contacts[0].xy, Eigen::Vector2d(2.0, -1.0));
+}
+
 // The criterion's limit as a dashed red line, an injected fault's window shaded, and the zero
 // tick written as 0.
 TEST(Plots, ErrorPlotDrawsTheLimitAndTheFaultWindows) {

@@ -118,6 +118,7 @@ Result<Judge> Judge::Create(JudgeCriteria criteria, std::vector<JudgeRock> rocks
   }
   j.hit_.assign(j.rocks_.size(), false);
   j.hit_part_.assign(j.rocks_.size(), -1);
+  j.hit_t_.assign(j.rocks_.size(), 0.0);
   j.overlap_.assign(j.rocks_.size(), false);
   if (!j.rocks_.empty()) {
     Eigen::Vector2d lo = j.rocks_[0].xy, hi = lo;
@@ -175,6 +176,7 @@ void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
           if (rock.height > clearance && RockTouches(rock, r2, t2, part)) {
             hit_[i] = true;
             hit_part_[i] = static_cast<int>(p);
+            hit_t_[i] = now_s_;
             break;
           }
         }
@@ -193,6 +195,7 @@ void Judge::AddTruth(Time t, const Eigen::Isometry3d& pose) {
   }
   const double tilt = std::acos(std::clamp(pose.linear()(2, 2), -1.0, 1.0));
   max_tilt_ = std::max(max_tilt_, tilt);
+  now_s_ = t.seconds();
   CheckRocks(pose);
   truth_.push_back({t, pose});
 }
@@ -299,6 +302,9 @@ Verdict Judge::Evaluate() const {
                  footprint_.parts[static_cast<std::size_t>(hit_part_[i])].name + ")";
     }
     v.rocks_hit.push_back(rocks_[i].id);
+    v.contacts.push_back({rocks_[i].id, rocks_[i].xy, rocks_[i].height,
+                          footprint_.parts[static_cast<std::size_t>(hit_part_[i])].name,
+                          hit_t_[i]});
   }
   const std::string taller = Fmt1("rocks taller than %.2f m", criteria_.traversable_height);
   {

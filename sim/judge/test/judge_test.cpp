@@ -69,6 +69,13 @@ TEST(Judge, TallRockUnderAWheelFailsSmallOnesDoNot) {
       << v.FailureSummary();
   EXPECT_NE(v.Find("hazard_contacts")->detail.find("rocks 7 (0.25 m, wheel_l"), std::string::npos)
       << v.Find("hazard_contacts")->detail;
+  // Where, by which part and when, for the map.
+  ASSERT_EQ(v.contacts.size(), 1u);
+  EXPECT_EQ(v.contacts[0].rock_id, 7);
+  EXPECT_EQ(v.contacts[0].xy, Eigen::Vector2d(2.0, 0.5));
+  EXPECT_DOUBLE_EQ(v.contacts[0].height, 0.25);
+  EXPECT_EQ(v.contacts[0].part.rfind("wheel_l", 0), 0u) << v.contacts[0].part;
+  EXPECT_GT(v.contacts[0].t_s, 0.0);
 }
 
 TEST(Judge, BellyHitsOnlyAboveClearance) {

@@ -302,6 +302,11 @@ Result<cv::Mat> Render(const Terrain& t, const MapOptions& o, double* scale, cv:
     }
   }
 
+  for (const MapLabel& l : o.labels) {
+    const cv::Point at = p.Pi(l.at.x(), l.at.y());
+    Text(img, l.text, at, std::max(font, 0.4), Bgr(l.color));
+  }
+
   // Scale bar (bottom left): the round length closest to a fifth of the width.
   {
     double best = 1.0;

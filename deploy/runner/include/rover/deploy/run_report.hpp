@@ -141,6 +141,9 @@ struct RunResult {
   std::vector<sim::judge::ErrorSample> odometry_only_error;  ///< the dl/pose_odometry baseline
   /// Measured, not judged (sim::judge::Verdict::figures): estimate and odometry-only errors.
   std::vector<sim::judge::Criterion> figures;
+  /// Rocks over the traversable height the rover touched: where, by which part, when (the map
+  /// marks them).
+  std::vector<sim::judge::HazardContact> hazard_contacts;
   std::vector<std::string> crashes;  ///< "service: how it ended; last log line"
   std::string run_dir;
   /// Distinct sim/truth writers heard: 1 unless another run's simulator leaked into this one.

@@ -105,12 +105,22 @@ struct ErrorSample {
   double heading_error = 0;   ///< [rad] signed, estimate - truth
 };
 
+/// A rock over the traversable height that a part of the rover touched (its first contact).
+struct HazardContact {
+  int rock_id = 0;
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();  ///< [m] the rock's centre, site frame
+  double height = 0.0;                           ///< [m]
+  std::string part;                              ///< core/hwconfig contact part: wheel_lf, body...
+  double t_s = 0.0;                              ///< [s] run time of the first contact
+};
+
 struct Verdict {
   bool pass = false;
   std::vector<Criterion> criteria;
   double distance_driven = 0;        ///< [m] truth path length (horizontal)
   double max_tilt = 0;               ///< [rad]
   std::vector<int> rocks_hit;        ///< ids of rocks over the traversable height touched
+  std::vector<HazardContact> contacts;  ///< the same, where, by which part, when
   std::vector<int> footprint_overlaps;      ///< ids of such rocks under the ground footprint
   std::vector<ErrorSample> estimate_error;  ///< over time
   std::vector<ErrorSample> odometry_only_error;  ///< over time (empty without such samples)
@@ -161,6 +171,8 @@ class Judge {
   std::vector<ErrorSample> ErrorsOf(const std::vector<Stamped>& estimates) const;
   std::vector<bool> hit_;
   std::vector<int> hit_part_;  // index into footprint_.parts of the first contact
+  std::vector<double> hit_t_;  // [s] run time of the first contact
+  double now_s_ = 0.0;         // run time of the truth sample being checked
   std::vector<bool> overlap_;
   double distance_ = 0;
   double max_tilt_ = 0;

@@ -43,6 +43,13 @@ struct MapPolyline {
   bool dashed = false;    ///< drawn as dashes (so that lines under it show through)
 };
 
+/// A text at a site-frame point (x, y in metres), drawn over everything on the map.
+struct MapLabel {
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();
+  std::string text;
+  MapColor color{255, 255, 255};
+};
+
 /// A raster of 8-bit values on a site-frame grid: cell (i, j) covers x in
 /// [origin_x + i r, origin_x + (i+1) r), y likewise; index j * width + i.
 struct MapCellLayer {
@@ -65,6 +72,7 @@ struct MapOptions {
   bool draw_legend = true;  ///< in a panel to the right of the map
   std::string title;  ///< in a band above the map when not empty (wrapped to the image width)
   std::vector<MapPolyline> polylines;
+  std::vector<MapLabel> labels;
   std::vector<MapCellLayer> cell_layers;  ///< drawn under the rocks and paths
 
   Status Validate() const;
