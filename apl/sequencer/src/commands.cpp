@@ -144,7 +144,7 @@ const std::vector<std::string> kFaultClassNames = {"NONE", "GOAL_ERROR", "MOTION
 const std::vector<std::string> kFaultNames = {
     "NONE",       "ARB",          "ACM",           "POT",         "TOD",
     "STOPPED",    "WAYPT_TIMEOUT", "NOPATH",       "NOPROGRESS",  "BUSY",
-    "VISODOM",    "IMG",          "SAPP",          "MOT",         "IDD",
+    "VISODOM",    "KEEPOUT",      "IMG",           "SAPP",        "MOT",         "IDD",
     "DRIVE_TIMEOUT", "CSW",       "TILT",          "SUSPENSION",  "BAD_TABLES",
     "NORTH",      "TRACKING_LOST", "NO_RANGE",     "ARM_COLLISION", "NO_FOCUS",
     "INVALID",    "OTHER"};

@@ -121,7 +121,7 @@ Fault FaultOfMobilityFault(msg::MobilityFault f) {
     case F::kNoProgress: return Fault::kNoProgress;
     case F::kBusy: return Fault::kBusy;
     case F::kVisOdom: return Fault::kVisodom;
-    case F::kKeepOut: return Fault::kOther;
+    case F::kKeepOut: return Fault::kKeepOut;
     case F::kBadCommand: return Fault::kInvalid;
     case F::kImg: return Fault::kImg;
     case F::kSapp: return Fault::kSapp;

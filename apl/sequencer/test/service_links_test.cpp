@@ -123,7 +123,16 @@ TEST(ServiceLinks, StatusesEndTheirCommandOnlyWhenTerminal) {
   s.fault = msg::MobilityFault::kNone;  // an off-nominal end always names a fault
   EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault, Fault::kOther);
   EXPECT_TRUE(OutcomeOfMobilityStatus(s)->Validate().ok());
-  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kKeepOut), Fault::kOther);
+  // KEEPOUT keeps its name (it used to become OTHER) and is a goal error, as core/msg says.
+  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kKeepOut), Fault::kKeepOut);
+  EXPECT_STREQ(FaultName(Fault::kKeepOut), "KEEPOUT");
+  EXPECT_EQ(DefaultFaultClass(Fault::kKeepOut), FaultClass::kGoalError);
+  // Every mobility fault but BAD_COMMAND (INVALID, the generic refusal) keeps core/msg's name.
+  for (int i = 1; i < msg::kMobilityFaultCount; ++i) {
+    const auto f = static_cast<msg::MobilityFault>(i);
+    if (f == msg::MobilityFault::kBadCommand) continue;
+    EXPECT_EQ(std::string(FaultName(FaultOfMobilityFault(f))), msg::MobilityFaultName(f)) << i;
+  }
   EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kVisOdom), Fault::kVisodom);
   EXPECT_EQ(FaultOfMobilityFault(static_cast<msg::MobilityFault>(99)), Fault::kOther);
 

@@ -126,6 +126,7 @@ enum class Fault {
   kNoProgress,      ///< NOPROGRESS: limit cycle or stuck
   kBusy,            ///< BUSY: mobility already running
   kVisodom,         ///< VISODOM: too many visual-odometry failures
+  kKeepOut,         ///< KEEPOUT: the next step would enter a keep-out zone
   // motion errors
   kImg,             ///< IMG: image acquisition failed
   kSapp,            ///< SAPP: attitude (IMU) problem
