@@ -6,8 +6,6 @@
 // A doc that drifts from the code fails here instead of on a user's terminal.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -22,17 +20,6 @@ namespace rover::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string Capture(const std::string& command) {
-  std::string out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  ::pclose(pipe);
-  return out;
-}
 
 std::string Roverctl() { return BinDir() + "/roverctl"; }
 
@@ -117,14 +104,14 @@ std::vector<fs::path> DocFiles() {
 }
 
 TEST(DocsClaims, EveryQuotedRoverctlCommandAndFlagExists) {
-  const std::set<std::string> commands = Subcommands(Capture(Roverctl() + " --help"));
+  const std::set<std::string> commands = Subcommands(CaptureStdout(Roverctl() + " --help"));
   ASSERT_TRUE(commands.count("run") && commands.count("up")) << "roverctl --help unreadable";
   std::map<std::string, std::set<std::string>> flags;       // "run", "fault add" -> flags
   std::map<std::string, std::set<std::string>> subcommands;  // "fault" -> add, list, clear
   auto flags_of = [&](const std::string& command) -> const std::set<std::string>& {
     auto it = flags.find(command);
     if (it == flags.end()) {
-      const std::string help = Capture(Roverctl() + " " + command + " --help");
+      const std::string help = CaptureStdout(Roverctl() + " " + command + " --help");
       it = flags.emplace(command, Flags(help)).first;
       subcommands[command] = Subcommands(help);
     }

@@ -7,8 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <regex>
 #include <set>
@@ -21,18 +19,6 @@ namespace rover::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs `command` and returns what it wrote on stdout.
-std::string Capture(const std::string& command) {
-  std::string out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  ::pclose(pipe);
-  return out;
-}
 
 // Expands the first {a,b,...} group of `token`, recursively.
 void ExpandBraces(const std::string& token, std::vector<std::string>* out) {
@@ -162,7 +148,8 @@ TEST_P(ServiceParamsDocs, PageDocumentsEveryKeyAndNoStaleOne) {
   const std::string service = GetParam();
   const std::string exe = BinDir() + "/" + service;
   ASSERT_TRUE(fs::exists(exe)) << "docs/services/" << service << ".md names no executable " << exe;
-  const std::vector<std::string> keys = HelpParamKeys(Capture(exe + " --help-params 2>/dev/null"));
+  const std::vector<std::string> keys =
+      HelpParamKeys(CaptureStdout(exe + " --help-params 2>/dev/null"));
   const std::string page = ReadFile(SourceDir() + "/docs/services/" + service + ".md");
   const std::string section = ParametersSection(page);
   if (keys.empty()) {

@@ -27,6 +27,24 @@ RunResult SampleRun() {
   return r;
 }
 
+// A 12 x 12 m terrain at 5 cm, with or without rocks.
+Result<sim::terrain::Terrain> SmallTerrain(bool rocks) {
+  sim::terrain::TerrainParams p;
+  p.size_x = 12;
+  p.size_y = 12;
+  p.resolution = 0.05;
+  if (!rocks) p.rocks.preset = sim::terrain::RockPreset::kNone;
+  return sim::terrain::GenerateTerrain(p);
+}
+
+int CountColour(const cv::Mat& img, const cv::Vec3b& bgr) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r) {
+    for (int c = 0; c < img.cols; ++c) n += img.at<cv::Vec3b>(r, c) == bgr;
+  }
+  return n;
+}
+
 TEST(Plots, ErrorPlotHasBothCurves) {
   const std::string path = ::testing::TempDir() + "/err.png";
   ASSERT_TRUE(WriteErrorPlot(SampleRun(), path).ok());
@@ -49,12 +67,7 @@ TEST(Plots, ErrorPlotHasBothCurves) {
 
 // A hazard contact is ringed in magenta on the map, and survives result.json.
 TEST(Plots, TrackMapMarksHazardContacts) {
-  sim::terrain::TerrainParams p;
-  p.size_x = 12;
-  p.size_y = 12;
-  p.resolution = 0.05;
-  p.rocks.preset = sim::terrain::RockPreset::kNone;
-  auto terrain = sim::terrain::GenerateTerrain(p);
+  auto terrain = SmallTerrain(/*rocks=*/false);
   ASSERT_TRUE(terrain.ok()) << terrain.status().message();
   RunResult run = SampleRun();
   auto rendered = sim::terrain::RenderTopDownMap(*terrain, TrackMapOptions(run, {}));
@@ -112,24 +125,13 @@ TEST(Plots, ErrorPlotDrawsTheLimitAndTheFaultWindows) {
   // Without a criterion or a fault, neither.
   ASSERT_TRUE(WriteErrorPlot(SampleRun(), path).ok());
   const cv::Mat plain = cv::imread(path);
-  int red = 0, shade = 0;
-  for (int r = 0; r < plain.rows; ++r) {
-    for (int c = 0; c < plain.cols; ++c) {
-      red += plain.at<cv::Vec3b>(r, c) == cv::Vec3b(0, 0, 220);
-      shade += plain.at<cv::Vec3b>(r, c) == cv::Vec3b(200, 230, 255);
-    }
-  }
-  EXPECT_EQ(red, 0);
-  EXPECT_EQ(shade, 0);
+  EXPECT_EQ(CountColour(plain, {0, 0, 220}), 0);
+  EXPECT_EQ(CountColour(plain, {200, 230, 255}), 0);
   std::remove(path.c_str());
 }
 
 TEST(Plots, TrackMapDrawsPaths) {
-  sim::terrain::TerrainParams p;
-  p.size_x = 12;
-  p.size_y = 12;
-  p.resolution = 0.05;
-  auto terrain = sim::terrain::GenerateTerrain(p);
+  auto terrain = SmallTerrain(/*rocks=*/true);
   ASSERT_TRUE(terrain.ok()) << terrain.status().message();
   const std::string path = ::testing::TempDir() + "/map.png";
   const Status st = WriteTrackMap(*terrain, SampleRun(), {{0, 0}, {5, 0}}, path);
@@ -147,21 +149,8 @@ TEST(Plots, TrackMapDrawsPaths) {
   std::remove(path.c_str());
 }
 
-int CountColour(const cv::Mat& img, const cv::Vec3b& bgr) {
-  int n = 0;
-  for (int r = 0; r < img.rows; ++r) {
-    for (int c = 0; c < img.cols; ++c) n += img.at<cv::Vec3b>(r, c) == bgr;
-  }
-  return n;
-}
-
 TEST(Plots, TrackMapShowsTheGoodnessMapTheArcsAndEveryPathOverlapping) {
-  sim::terrain::TerrainParams p;
-  p.size_x = 12;
-  p.size_y = 12;
-  p.resolution = 0.05;
-  p.rocks.preset = sim::terrain::RockPreset::kNone;
-  auto terrain = sim::terrain::GenerateTerrain(p);
+  auto terrain = SmallTerrain(/*rocks=*/false);
   ASSERT_TRUE(terrain.ok()) << terrain.status().message();
   RunResult run = SampleRun();
   // Truth, odometry, estimate and plan all on the same line: each must still show.

@@ -39,6 +39,8 @@ std::string BinDir();
 std::string MakeTempDir(const std::string& prefix);
 /// Reads a whole file ("" if missing).
 std::string ReadFile(const std::string& path);
+/// Runs a shell command line and returns what it wrote on stdout ("" if it could not start).
+std::string CaptureStdout(const std::string& command);
 
 /// Polls `condition` every 10 ms until it holds or `timeout` (wall time) passes; returns whether
 /// it held. Wall time is right here: these are liveness limits of the test harness, never
