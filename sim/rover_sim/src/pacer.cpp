@@ -192,6 +192,10 @@ const std::vector<std::uint64_t>& Pacer::FrontierFor(std::int64_t tick_ns,
   return frontier_;
 }
 
+bool Pacer::SendsTickTo(const std::string& service, bool repeat) const {
+  return repeat || std::find(idle_.begin(), idle_.end(), service) == idle_.end();
+}
+
 void Pacer::OnIdleState(const std::string& service, std::int64_t acked_ns,
                         std::int64_t next_due_ns, std::uint64_t reads) {
   if (service == self_) return;

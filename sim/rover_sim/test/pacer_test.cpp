@@ -258,6 +258,9 @@ TEST(PacerTest, ABarrierDoesNotWaitForAServiceWithNothingDue) {
   p.SetBarrier(q, Wall(0.01));
   EXPECT_EQ(p.idle(), (std::vector<std::string>{"camera"}));
   EXPECT_EQ(p.Missing(), (std::vector<std::string>{"imu"}));
+  EXPECT_TRUE(p.SendsTickTo("imu", /*repeat=*/false));
+  EXPECT_FALSE(p.SendsTickTo("camera", /*repeat=*/false));
+  EXPECT_TRUE(p.SendsTickTo("camera", /*repeat=*/true));  // a repeat goes to everyone
   p.OnAck("imu", q, Wall(0.011));
   p.OnIdleState("imu", q, 0, 0b01);
   EXPECT_EQ(p.UntilBarrierServed(Wall(0.011)), Duration::zero());

@@ -146,6 +146,10 @@ class Pacer {
   /// Strict: services of lockstep_services that the tick whose frontier was last computed does
   /// not wait for (nothing is due for them: lockstep::MustServe).
   const std::vector<std::string>& idle() const { return idle_; }
+  /// Strict: whether `service` is sent the tick whose frontier was last computed on its own
+  /// sim/clock partition: unless it is idle at that tick; a repeat (the simulator waits) goes to
+  /// every service.
+  bool SendsTickTo(const std::string& service, bool repeat) const;
   /// Strict: the frontier sim/clock carries for the tick at `tick_ns`: the sum of every
   /// participant's latest counts and `own` (the simulator's), computed when the tick is first
   /// asked for and repeated unchanged after (acknowledgements that came since may count samples
