@@ -157,7 +157,7 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
   switch (c.family) {
     case Family::kMobility: {
       Result<msg::MobilityCommand> m = MobilityCommandOf(c, now);
-      if (!m.ok()) return Outcome::Rejected(Fault::kInvalid, m.status().message(), now);
+      if (!m.ok()) return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), m.status().message(), now);
       msg::MobilityCommandMessage out;
       msg::MobilityCommandToIdl(*m, &out);
       ctx_->Stamp(out.msg.header, "site");
@@ -172,7 +172,7 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
       break;
     }
     default:  // CheckDispatchable refused these before the start
-      return Outcome::Rejected(Fault::kInvalid, "apl-sequencer does not dispatch " +
+      return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), "apl-sequencer does not dispatch " +
                                                     std::string(FamilyName(c.family)) +
                                                     " commands yet", now);
   }

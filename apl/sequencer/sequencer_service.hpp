@@ -18,7 +18,7 @@
 /// answered by a FAILED status for its command_id whose message gives the reason (the first
 /// parse error with line and column); nothing of it runs. A running sequence's status is
 /// published again at its next change. A mobility command the manager's message cannot carry (a speed) ends its
-/// step REJECTED INVALID without being sent. Parameters: sequencer.* (InterpreterOptions).
+/// step REJECTED BAD_COMMAND without being sent. Parameters: sequencer.* (InterpreterOptions).
 /// Deactivation stops a running sequence (its outstanding mobility command gets a STOP).
 
 #include <cstdint>

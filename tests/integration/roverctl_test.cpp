@@ -200,6 +200,16 @@ TEST_F(RoverctlTest, PsListsRunningCampaigns) {
   EXPECT_NE(ps.find("the table so far: roverctl report " + out), std::string::npos) << ps;
   EXPECT_EQ(ps.find("gone"), std::string::npos) << ps;
   EXPECT_FALSE(fs::exists(state_root_ + "/campaigns/999999.json"));
+  // --json has them too, beside the sets.
+  auto [je, js] = RunRoverctl({"ps", "--json"});
+  ASSERT_TRUE(je.success()) << js;
+  const nlohmann::json j = nlohmann::json::parse(js);
+  ASSERT_TRUE(j["sets"].is_array()) << js;
+  ASSERT_EQ(j["campaigns"].size(), 1u) << js;
+  EXPECT_EQ(j["campaigns"][0]["scenario"], "tiny");
+  EXPECT_EQ(j["campaigns"][0]["finished"], 1);
+  EXPECT_EQ(j["campaigns"][0]["total"], 3);
+  EXPECT_EQ(j["campaigns"][0]["out"], out);
 }
 
 TEST_F(RoverctlTest, KillNineIsRestartedByPolicyAndDataFlowsAgain) {

@@ -69,7 +69,7 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
          "beyond it a missed lander means a leg towards the estimate, not a look-around");
   b.Bind("approach_radius", &O::approach_radius, "m", "close range starts this far from the deck centre");
   b.Bind("prior_gate", &O::prior_gate, "m", "a fix farther than this from the estimate is rejected");
-  b.Bind("search_images", &O::search_images, "", "pairs tried at one station before NOT-FOUND");
+  b.Bind("search_images", &O::search_images, "", "pairs tried at one station before NOT_FOUND");
   b.Bind("search_pan_step_deg", &O::search_pan_step_deg, "deg", "look-around step");
   b.Bind("autonav_tolerance", &O::autonav_tolerance, "m", "goal radius of the autonav legs");
   b.Bind("leg_mode", &O::leg_mode,

@@ -17,7 +17,10 @@ double WrapAngle(double a) {
 
 double Num(const CommandCall& call, const char* arg) { return call.Get(arg).number; }
 
-MobilityRequest Mobility(const CommandCall& call, MobilityMode mode, Primitive primitive) {
+using M = msg::MobilityMode;
+using P = msg::DrivePrimitive;
+
+MobilityRequest Mobility(const CommandCall& call, M mode, std::optional<P> primitive) {
   MobilityRequest r;
   r.mode = mode;
   r.primitive = primitive;
@@ -34,12 +37,12 @@ MobilityRequest Mobility(const CommandCall& call, MobilityMode mode, Primitive p
   return r;
 }
 
-Result<MobilityRequest> TurnTo(const CommandCall& call, MobilityMode mode,
+Result<MobilityRequest> TurnTo(const CommandCall& call, M mode,
                                const PoseSample* pose) {
   if (pose == nullptr) {
     return FailedPrecondition(std::string(call.spec().name) + " needs a pose estimate");
   }
-  MobilityRequest r = Mobility(call, mode, Primitive::kTurnInPlace);
+  MobilityRequest r = Mobility(call, mode, P::kTurnInPlace);
   double heading = 0.0;
   if (call.Has("target")) {
     const auto& p = call.Get("target").numbers;
@@ -57,31 +60,30 @@ Vec3 PointOf(const ArgValue& v) {
 
 Result<Request> BuildRequest(const CommandCall& call, const PoseSample* pose) {
   using K = CommandKind;
-  using M = MobilityMode;
   switch (call.kind) {
-    case K::kDriveArc: return Request{Mobility(call, M::kDirected, Primitive::kArc)};
-    case K::kDriveStraight: return Request{Mobility(call, M::kDirected, Primitive::kStraight)};
-    case K::kTurn: return Request{Mobility(call, M::kDirected, Primitive::kTurnInPlace)};
-    case K::kVisodomArc: return Request{Mobility(call, M::kVisodom, Primitive::kArc)};
-    case K::kVisodomStraight: return Request{Mobility(call, M::kVisodom, Primitive::kStraight)};
-    case K::kVisodomTurn: return Request{Mobility(call, M::kVisodom, Primitive::kTurnInPlace)};
+    case K::kDriveArc: return Request{Mobility(call, M::kDirected, P::kArc)};
+    case K::kDriveStraight: return Request{Mobility(call, M::kDirected, P::kStraight)};
+    case K::kTurn: return Request{Mobility(call, M::kDirected, P::kTurnInPlace)};
+    case K::kVisodomArc: return Request{Mobility(call, M::kVisOdom, P::kArc)};
+    case K::kVisodomStraight: return Request{Mobility(call, M::kVisOdom, P::kStraight)};
+    case K::kVisodomTurn: return Request{Mobility(call, M::kVisOdom, P::kTurnInPlace)};
     case K::kTurnTo:
     case K::kVisodomTurnTo: {
       ROVER_ASSIGN_OR_RETURN(
           MobilityRequest r,
-          TurnTo(call, call.kind == K::kTurnTo ? M::kDirected : M::kVisodom, pose));
+          TurnTo(call, call.kind == K::kTurnTo ? M::kDirected : M::kVisOdom, pose));
       return Request{r};
     }
-    case K::kGoto: return Request{Mobility(call, M::kGoToWaypoint, Primitive::kNone)};
-    case K::kVisodomGoto: return Request{Mobility(call, M::kVisodomGoToWaypoint, Primitive::kNone)};
-    case K::kGuarded: return Request{Mobility(call, M::kGuarded, Primitive::kNone)};
-    case K::kGuardedVisodom: return Request{Mobility(call, M::kGuardedVisodom, Primitive::kNone)};
-    case K::kGuardedArc: return Request{Mobility(call, M::kGuardedArc, Primitive::kArc)};
-    case K::kAutonav: return Request{Mobility(call, M::kAutonav, Primitive::kNone)};
-    case K::kAutonavVisodom: return Request{Mobility(call, M::kAutonavVisodom, Primitive::kNone)};
-    case K::kLongTraverse: return Request{Mobility(call, M::kLongTraverse, Primitive::kNone)};
-    case K::kStop: return Request{Mobility(call, M::kStop, Primitive::kNone)};
-    case K::kClearFault: return Request{Mobility(call, M::kClearFault, Primitive::kNone)};
+    case K::kGoto: return Request{Mobility(call, M::kGoToWaypoint, std::nullopt)};
+    case K::kVisodomGoto: return Request{Mobility(call, M::kVisOdomGoToWaypoint, std::nullopt)};
+    case K::kGuarded: return Request{Mobility(call, M::kGuarded, std::nullopt)};
+    case K::kGuardedVisodom: return Request{Mobility(call, M::kGuardedVisOdom, std::nullopt)};
+    case K::kGuardedArc: return Request{Mobility(call, M::kGuardedArc, P::kArc)};
+    case K::kAutonav: return Request{Mobility(call, M::kAutoNav, std::nullopt)};
+    case K::kAutonavVisodom: return Request{Mobility(call, M::kAutoNavVisOdom, std::nullopt)};
+    case K::kLongTraverse: return Request{Mobility(call, M::kLongTraverse, std::nullopt)};
+    case K::kStop: return Request{Mobility(call, M::kStop, std::nullopt)};
+    case K::kClearFault: return Request{Mobility(call, M::kClearFault, std::nullopt)};
     case K::kMast: {
       MastRequest r;
       r.kind = MastRequest::Kind::kAngles;
@@ -140,14 +142,40 @@ Result<Request> BuildRequest(const CommandCall& call, const PoseSample* pose) {
 }
 
 const std::vector<std::string> kTerminationNames = {"NONE", "NOMINAL", "FAULT", "REJECTED"};
-const std::vector<std::string> kFaultClassNames = {"NONE", "GOAL_ERROR", "MOTION_ERROR"};
-const std::vector<std::string> kFaultNames = {
-    "NONE",       "ARB",          "ACM",           "POT",         "TOD",
-    "STOPPED",    "WAYPT_TIMEOUT", "NOPATH",       "NOPROGRESS",  "BUSY",
-    "VISODOM",    "KEEPOUT",      "IMG",           "SAPP",        "MOT",         "IDD",
-    "DRIVE_TIMEOUT", "CSW",       "TILT",          "SUSPENSION",  "BAD_TABLES",
-    "NORTH",      "TRACKING_LOST", "NO_RANGE",     "ARM_COLLISION", "NO_FOCUS",
-    "INVALID",    "OTHER"};
+// NONE, core/msg's mobility faults, its rendezvous faults under names not already listed (BUSY,
+// STOPPED and BAD_COMMAND are one fault whichever service reports it), OTHER.
+struct FaultTable {
+  std::vector<std::string> names;
+  std::vector<int> of_rendezvous;  // index = msg::RendezvousFault
+  int other = 0;
+};
+
+const FaultTable& Faults() {
+  static const FaultTable table = [] {
+    FaultTable t;
+    for (int i = 0; i < msg::kMobilityFaultCount; ++i) {
+      t.names.emplace_back(msg::MobilityFaultName(static_cast<msg::MobilityFault>(i)));
+    }
+    for (int i = 0; i < msg::kRendezvousFaultCount; ++i) {
+      const std::string name = msg::RendezvousFaultName(static_cast<msg::RendezvousFault>(i));
+      const auto it = std::find(t.names.begin(), t.names.end(), name);
+      t.of_rendezvous.push_back(static_cast<int>(it - t.names.begin()));
+      if (it == t.names.end()) t.names.push_back(name);
+    }
+    t.other = static_cast<int>(t.names.size());
+    t.names.emplace_back("OTHER");
+    return t;
+  }();
+  return table;
+}
+
+const std::vector<std::string> kFaultClassNames = [] {
+  std::vector<std::string> v;
+  for (int i = 0; i < msg::kFaultClassCount; ++i) {
+    v.emplace_back(msg::FaultClassName(static_cast<msg::FaultClass>(i)));
+  }
+  return v;
+}();
 
 template <class E>
 const char* NameIn(const std::vector<std::string>& names, E e) {
@@ -165,24 +193,45 @@ const ArgValue& CommandCall::Get(const std::string& arg) const {
 }
 
 const char* TerminationName(Termination t) { return NameIn(kTerminationNames, t); }
-const char* FaultClassName(FaultClass c) { return NameIn(kFaultClassNames, c); }
-const char* FaultName(Fault f) { return NameIn(kFaultNames, f); }
 const std::vector<std::string>& TerminationNames() { return kTerminationNames; }
 const std::vector<std::string>& FaultClassNames() { return kFaultClassNames; }
-const std::vector<std::string>& FaultNames() { return kFaultNames; }
+const std::vector<std::string>& FaultNames() { return Faults().names; }
 
-FaultClass DefaultFaultClass(Fault f) {
-  if (f == Fault::kNone) return FaultClass::kNone;
-  if (f >= Fault::kImg && f <= Fault::kNorth) return FaultClass::kMotionError;
-  return FaultClass::kGoalError;
+Fault::Fault(msg::MobilityFault f) {
+  const int i = static_cast<int>(f);
+  index_ = i >= 0 && i < msg::kMobilityFaultCount ? i : Faults().other;
+}
+
+Fault::Fault(msg::RendezvousFault f) {
+  const auto i = static_cast<std::size_t>(f);
+  index_ = i < Faults().of_rendezvous.size() ? Faults().of_rendezvous[i] : Faults().other;
+}
+
+Fault Fault::Other() { return Fault(Faults().other); }
+
+std::optional<Fault> Fault::Named(std::string_view name) {
+  const auto& names = Faults().names;
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) return std::nullopt;
+  return Fault(static_cast<int>(it - names.begin()));
+}
+
+const std::string& Fault::Name() const { return Faults().names[static_cast<std::size_t>(index_)]; }
+
+msg::FaultClass Fault::DefaultClass() const {
+  if (IsNone()) return msg::FaultClass::kNone;
+  if (index_ < msg::kMobilityFaultCount) {
+    return msg::FaultClassOf(static_cast<msg::MobilityFault>(index_));
+  }
+  return msg::FaultClass::kGoalError;
 }
 
 Outcome Outcome::Failed(Fault fault, std::string message, Time stamp) {
-  return {Termination::kFault, fault, DefaultFaultClass(fault), std::move(message), stamp};
+  return {Termination::kFault, fault, fault.DefaultClass(), std::move(message), stamp};
 }
 
 Outcome Outcome::Rejected(Fault fault, std::string message, Time stamp) {
-  return {Termination::kRejected, fault, FaultClass::kGoalError, std::move(message), stamp};
+  return {Termination::kRejected, fault, msg::FaultClass::kGoalError, std::move(message), stamp};
 }
 
 Status Outcome::Validate() const {
@@ -190,13 +239,13 @@ Status Outcome::Validate() const {
     case Termination::kNone:
       return InvalidArgument("outcome termination NONE is not an outcome");
     case Termination::kNominal:
-      if (fault != Fault::kNone) {
-        return InvalidArgument(std::string("outcome NOMINAL carries fault ") + FaultName(fault));
+      if (!fault.IsNone()) {
+        return InvalidArgument("outcome NOMINAL carries fault " + fault.Name());
       }
       return Status::Ok();
     case Termination::kFault:
     case Termination::kRejected:
-      if (fault == Fault::kNone) {
+      if (fault.IsNone()) {
         return InvalidArgument(std::string("outcome ") + TerminationName(termination) +
                                " carries no fault");
       }
@@ -209,9 +258,10 @@ Status Outcome::Validate() const {
 std::string Outcome::Describe() const {
   if (termination == Termination::kNominal) return "NOMINAL";
   std::string out = termination == Termination::kRejected ? "REJECTED " : "";
-  out += FaultName(fault);
-  const FaultClass c = fault_class == FaultClass::kNone ? DefaultFaultClass(fault) : fault_class;
-  out += c == FaultClass::kMotionError ? " (motion error)" : " (goal error)";
+  out += fault.Name();
+  const msg::FaultClass c =
+      fault_class == msg::FaultClass::kNone ? fault.DefaultClass() : fault_class;
+  out += c == msg::FaultClass::kMotionError ? " (motion error)" : " (goal error)";
   if (!message.empty()) out += ": " + message;
   return out;
 }

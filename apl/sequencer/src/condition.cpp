@@ -53,10 +53,11 @@ std::optional<bool> EvaluateComparison(const Comparison& c, const ConditionInput
     case Quantity::kLastTermination:
       return Compare(c.relation, static_cast<int>(last.termination), c.enum_value);
     case Quantity::kLastFault:
-      return Compare(c.relation, static_cast<int>(last.fault), c.enum_value);
+      return Compare(c.relation, last.fault.Index(), c.enum_value);
     case Quantity::kLastClass: {
-      const FaultClass k =
-          last.fault_class == FaultClass::kNone ? DefaultFaultClass(last.fault) : last.fault_class;
+      const msg::FaultClass k = last.fault_class == msg::FaultClass::kNone
+                                    ? last.fault.DefaultClass()
+                                    : last.fault_class;
       return Compare(c.relation, static_cast<int>(k), c.enum_value);
     }
     case Quantity::kDistanceTo:

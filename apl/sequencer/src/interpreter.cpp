@@ -179,7 +179,7 @@ Status Interpreter::OnCommandResult(std::uint32_t command_id, const Outcome& out
   }
   wait_ = Wait::kNone;
   last_ = outcome;
-  if (last_.fault_class == FaultClass::kNone) last_.fault_class = DefaultFaultClass(last_.fault);
+  if (last_.fault_class == msg::FaultClass::kNone) last_.fault_class = last_.fault.DefaultClass();
   const Status valid = outcome.Validate();
   if (!valid.ok()) {
     FailStep("its service reported an inconsistent outcome: " + valid.message(), last_);
@@ -188,7 +188,7 @@ Status Interpreter::OnCommandResult(std::uint32_t command_id, const Outcome& out
   switch (last_.termination) {
     case Termination::kNominal: ++pc_; break;
     case Termination::kFault:
-      if (outstanding_continues_ && last_.fault_class == FaultClass::kGoalError) {
+      if (outstanding_continues_ && last_.fault_class == msg::FaultClass::kGoalError) {
         ++pc_;
       } else {
         FailStep(last_.Describe(), last_);

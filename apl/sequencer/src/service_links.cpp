@@ -9,34 +9,6 @@
 namespace rover::apl::sequencer {
 namespace {
 
-msg::MobilityMode ModeOf(MobilityMode m) {
-  switch (m) {
-    case MobilityMode::kDirected: return msg::MobilityMode::kDirected;
-    case MobilityMode::kVisodom: return msg::MobilityMode::kVisOdom;
-    case MobilityMode::kGoToWaypoint: return msg::MobilityMode::kGoToWaypoint;
-    case MobilityMode::kVisodomGoToWaypoint: return msg::MobilityMode::kVisOdomGoToWaypoint;
-    case MobilityMode::kGuarded: return msg::MobilityMode::kGuarded;
-    case MobilityMode::kGuardedVisodom: return msg::MobilityMode::kGuardedVisOdom;
-    case MobilityMode::kGuardedArc: return msg::MobilityMode::kGuardedArc;
-    case MobilityMode::kAutonav: return msg::MobilityMode::kAutoNav;
-    case MobilityMode::kAutonavVisodom: return msg::MobilityMode::kAutoNavVisOdom;
-    case MobilityMode::kLongTraverse: return msg::MobilityMode::kLongTraverse;
-    case MobilityMode::kStop: return msg::MobilityMode::kStop;
-    case MobilityMode::kClearFault: return msg::MobilityMode::kClearFault;
-  }
-  ROVER_UNREACHABLE();
-}
-
-msg::DrivePrimitive PrimitiveOf(Primitive p) {
-  switch (p) {
-    case Primitive::kArc: return msg::DrivePrimitive::kArc;
-    case Primitive::kStraight: return msg::DrivePrimitive::kStraight;
-    case Primitive::kTurnInPlace: return msg::DrivePrimitive::kTurnInPlace;
-    case Primitive::kNone: break;
-  }
-  ROVER_UNREACHABLE();
-}
-
 /// The first command of `statements` (in writing order, blocks included) that `pred` holds for.
 const CommandCall* FindCommand(const std::vector<Statement>& statements,
                                const std::function<bool(const CommandCall&)>& pred) {
@@ -73,13 +45,11 @@ Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp) {
   msg::MobilityCommand m;
   m.stamp = stamp;
   m.command_id = c.id;
-  m.mode = ModeOf(r.mode);
+  m.mode = r.mode;
   m.goal = Eigen::Vector3d(r.goal_x, r.goal_y, 0.0);
   m.tolerance = r.tolerance;
   m.time_budget_s = r.time_budget_s;
-  if (r.primitive != Primitive::kNone) {
-    m.primitives.push_back({PrimitiveOf(r.primitive), r.curvature, r.distance, r.angle});
-  }
+  if (r.primitive) m.primitives.push_back({*r.primitive, r.curvature, r.distance, r.angle});
   return m;
 }
 
@@ -107,33 +77,6 @@ msg::MastCommand MastCommandOf(const Command& c, Time stamp) {
   return m;
 }
 
-Fault FaultOfMobilityFault(msg::MobilityFault f) {
-  using F = msg::MobilityFault;
-  switch (f) {
-    case F::kNone: return Fault::kNone;
-    case F::kArb: return Fault::kArb;
-    case F::kAcm: return Fault::kAcm;
-    case F::kPot: return Fault::kPot;
-    case F::kTod: return Fault::kTod;
-    case F::kStopped: return Fault::kStopped;
-    case F::kWaypointTimeout: return Fault::kWaypointTimeout;
-    case F::kNoPath: return Fault::kNoPath;
-    case F::kNoProgress: return Fault::kNoProgress;
-    case F::kBusy: return Fault::kBusy;
-    case F::kVisOdom: return Fault::kVisodom;
-    case F::kKeepOut: return Fault::kKeepOut;
-    case F::kBadCommand: return Fault::kInvalid;
-    case F::kImg: return Fault::kImg;
-    case F::kSapp: return Fault::kSapp;
-    case F::kMot: return Fault::kMot;
-    case F::kDriveTimeout: return Fault::kDriveTimeout;
-    case F::kTilt: return Fault::kTilt;
-    case F::kSuspension: return Fault::kSuspension;
-    case F::kNorth: return Fault::kNorth;
-  }
-  return Fault::kOther;  // a value from the wire no enumerator has
-}
-
 std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s) {
   Outcome o;
   o.stamp = s.stamp;
@@ -151,19 +94,18 @@ std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s) {
     default:
       return std::nullopt;
   }
-  o.fault = FaultOfMobilityFault(s.fault);
-  if (o.fault == Fault::kNone) o.fault = Fault::kOther;  // an end off nominal names a fault
-  o.fault_class = s.fault_class == msg::FaultClass::kMotionError ? FaultClass::kMotionError
-                  : s.fault_class == msg::FaultClass::kGoalError ? FaultClass::kGoalError
-                                                                  : DefaultFaultClass(o.fault);
+  o.fault = Fault(s.fault);
+  if (o.fault.IsNone()) o.fault = Fault::Other();  // an end off nominal names a fault
+  o.fault_class = s.fault_class == msg::FaultClass::kNone ? o.fault.DefaultClass() : s.fault_class;
   return o;
 }
 
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s) {
   switch (s.state) {
     case msg::MastState::kAtGoal: return Outcome::Nominal(s.stamp);
-    case msg::MastState::kFault: return Outcome::Failed(Fault::kOther, s.message, s.stamp);
-    case msg::MastState::kRejected: return Outcome::Rejected(Fault::kInvalid, s.message, s.stamp);
+    case msg::MastState::kFault: return Outcome::Failed(Fault::Other(), s.message, s.stamp);
+    case msg::MastState::kRejected:
+      return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), s.message, s.stamp);
     default: return std::nullopt;
   }
 }

@@ -47,11 +47,8 @@ msg::MastCommand MastCommandOf(const Command& c, Time stamp);
 /// the status's stamp; nullopt while IDLE or RUNNING.
 std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s);
 /// The outcome a mast status gives its command: AT_GOAL -> NOMINAL, FAULT -> FAULT OTHER (goal
-/// error), REJECTED -> REJECTED INVALID; nullopt while IDLE or MOVING.
+/// error), REJECTED -> REJECTED BAD_COMMAND; nullopt while IDLE or MOVING.
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s);
-/// The sequencer's fault of a mobility fault (same names; KEEPOUT -> OTHER, BAD_COMMAND ->
-/// INVALID).
-Fault FaultOfMobilityFault(msg::MobilityFault f);
 
 /// dl/pose as the interpreter's pose input (ZYX roll, pitch, yaw of the estimate).
 PoseSample PoseOfEstimate(const msg::PoseEstimate& p);

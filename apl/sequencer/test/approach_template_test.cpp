@@ -36,7 +36,7 @@ class FakeRover {
   Outcome Execute(const Command& c) {
     const auto& m = std::get<MobilityRequest>(c.request);
     double seconds = 1.0;
-    if (m.primitive == Primitive::kStraight) {
+    if (m.primitive == msg::DrivePrimitive::kStraight) {
       const double slip = slip_(rng_);
       const double moved = m.distance * (1.0 - slip);
       // Slip on a cross-slope also pushes the rover sideways a little.
@@ -46,19 +46,19 @@ class FakeRover {
       odo_x_ += m.distance * std::cos(odo_yaw_);
       odo_y_ += m.distance * std::sin(odo_yaw_);
       seconds = std::abs(m.distance) / 0.05;
-    } else if (m.primitive == Primitive::kTurnInPlace) {
+    } else if (m.primitive == msg::DrivePrimitive::kTurnInPlace) {
       truth_yaw_ += m.angle;
       odo_yaw_ += m.angle;
       seconds = std::abs(m.angle) / 0.1 + 1.0;
     }
-    if (m.mode == MobilityMode::kVisodom && visual_odometry_) {
+    if (m.mode == msg::MobilityMode::kVisOdom && visual_odometry_) {
       odo_x_ = truth_x_;
       odo_y_ = truth_y_;
       odo_yaw_ = truth_yaw_;
       seconds += 20.0;  // one visual-odometry update
     }
     now_ += seconds;
-    if (m.mode == MobilityMode::kVisodom || m.mode == MobilityMode::kDirected) ++motions_;
+    if (m.mode == msg::MobilityMode::kVisOdom || m.mode == msg::MobilityMode::kDirected) ++motions_;
     return Outcome::Nominal(Time::FromSeconds(now_));
   }
 
@@ -152,8 +152,8 @@ TEST(ApproachTemplate, EndsWithinTheArmsSweetSpotDespiteSlip) {
     int coarse = 0, fine = 0;
     for (const Command& c : a.commands) {
       const auto& m = std::get<MobilityRequest>(c.request);
-      EXPECT_EQ(m.mode, MobilityMode::kVisodom);
-      if (m.primitive == Primitive::kStraight) (std::abs(m.distance - 0.3) < 1e-12 ? coarse : fine)++;
+      EXPECT_EQ(m.mode, msg::MobilityMode::kVisOdom);
+      if (m.primitive == msg::DrivePrimitive::kStraight) (std::abs(m.distance - 0.3) < 1e-12 ? coarse : fine)++;
     }
     EXPECT_GE(coarse, 16);
     EXPECT_LE(coarse, 27);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 #include <numbers>
 
@@ -10,6 +12,8 @@
 
 namespace rover::apl::sequencer {
 namespace {
+
+using MF = msg::MobilityFault;
 
 using testing::CallOf;
 using testing::MustParse;
@@ -28,8 +32,8 @@ TEST(BuildCommand, DirectedArcCarriesIdStepLineAndSiUnits) {
   EXPECT_EQ(c.family, Family::kMobility);
   EXPECT_EQ(c.text, "DRIVE ARC curvature=0.5 distance=150 cm speed=4 cm/s");
   const auto m = std::get<MobilityRequest>(c.request);
-  EXPECT_EQ(m.mode, MobilityMode::kDirected);
-  EXPECT_EQ(m.primitive, Primitive::kArc);
+  EXPECT_EQ(m.mode, msg::MobilityMode::kDirected);
+  EXPECT_EQ(m.primitive, msg::DrivePrimitive::kArc);
   EXPECT_DOUBLE_EQ(m.curvature, 0.5);
   EXPECT_DOUBLE_EQ(m.distance, 1.5);
   EXPECT_DOUBLE_EQ(m.speed, 0.04);
@@ -39,23 +43,23 @@ TEST(BuildCommand, DirectedArcCarriesIdStepLineAndSiUnits) {
 TEST(BuildCommand, ModesFollowTheCommandNames) {
   struct Case {
     const char* line;
-    MobilityMode mode;
-    Primitive primitive;
+    msg::MobilityMode mode;
+    std::optional<msg::DrivePrimitive> primitive;
   };
   for (const Case& k : std::vector<Case>{
-           {"TURN angle_deg=90", MobilityMode::kDirected, Primitive::kTurnInPlace},
-           {"VISODOM STRAIGHT distance=0.3", MobilityMode::kVisodom, Primitive::kStraight},
-           {"VISODOM ARC curvature=-1 distance=1", MobilityMode::kVisodom, Primitive::kArc},
-           {"GUARDED ARC curvature=0.2 distance=2", MobilityMode::kGuardedArc, Primitive::kArc},
-           {"GOTO (5, 2)", MobilityMode::kGoToWaypoint, Primitive::kNone},
-           {"VISODOM GOTO (5, 2)", MobilityMode::kVisodomGoToWaypoint, Primitive::kNone},
-           {"GUARDED goal=(5, 2)", MobilityMode::kGuarded, Primitive::kNone},
-           {"GUARDED VISODOM goal=(5, 2)", MobilityMode::kGuardedVisodom, Primitive::kNone},
-           {"AUTONAV goal=(5, 2) tolerance=0.3", MobilityMode::kAutonav, Primitive::kNone},
-           {"AUTONAV VISODOM goal=(5, 2)", MobilityMode::kAutonavVisodom, Primitive::kNone},
-           {"LONG_TRAVERSE goal=(50, 20)", MobilityMode::kLongTraverse, Primitive::kNone},
-           {"STOP", MobilityMode::kStop, Primitive::kNone},
-           {"CLEAR_FAULT", MobilityMode::kClearFault, Primitive::kNone}}) {
+           {"TURN angle_deg=90", msg::MobilityMode::kDirected, msg::DrivePrimitive::kTurnInPlace},
+           {"VISODOM STRAIGHT distance=0.3", msg::MobilityMode::kVisOdom, msg::DrivePrimitive::kStraight},
+           {"VISODOM ARC curvature=-1 distance=1", msg::MobilityMode::kVisOdom, msg::DrivePrimitive::kArc},
+           {"GUARDED ARC curvature=0.2 distance=2", msg::MobilityMode::kGuardedArc, msg::DrivePrimitive::kArc},
+           {"GOTO (5, 2)", msg::MobilityMode::kGoToWaypoint, std::nullopt},
+           {"VISODOM GOTO (5, 2)", msg::MobilityMode::kVisOdomGoToWaypoint, std::nullopt},
+           {"GUARDED goal=(5, 2)", msg::MobilityMode::kGuarded, std::nullopt},
+           {"GUARDED VISODOM goal=(5, 2)", msg::MobilityMode::kGuardedVisOdom, std::nullopt},
+           {"AUTONAV goal=(5, 2) tolerance=0.3", msg::MobilityMode::kAutoNav, std::nullopt},
+           {"AUTONAV VISODOM goal=(5, 2)", msg::MobilityMode::kAutoNavVisOdom, std::nullopt},
+           {"LONG_TRAVERSE goal=(50, 20)", msg::MobilityMode::kLongTraverse, std::nullopt},
+           {"STOP", msg::MobilityMode::kStop, std::nullopt},
+           {"CLEAR_FAULT", msg::MobilityMode::kClearFault, std::nullopt}}) {
     SCOPED_TRACE(k.line);
     const auto m = std::get<MobilityRequest>(Build(k.line).request);
     EXPECT_EQ(m.mode, k.mode);
@@ -84,7 +88,7 @@ TEST(BuildCommand, TurnToFacesAPointOrHeadingFromThePose) {
               1e-12);
   Result<Command> b = BuildCommand(s.statements[1].command, &pose, 2, 2);
   ASSERT_TRUE(b.ok());
-  EXPECT_EQ(std::get<MobilityRequest>(b->request).mode, MobilityMode::kVisodom);
+  EXPECT_EQ(std::get<MobilityRequest>(b->request).mode, msg::MobilityMode::kVisOdom);
   EXPECT_NEAR(std::get<MobilityRequest>(b->request).angle, -100 * kDegree, 1e-12);
   // 180 - 10 deg stays in (-pi, pi]; from yaw -10 deg it would be 190 -> -170.
   Result<Command> c = BuildCommand(s.statements[2].command, &pose, 3, 3);
@@ -143,41 +147,57 @@ TEST(BuildCommand, MastRendezvousAndArmRequests) {
   EXPECT_EQ(std::get<ArmRequest>(Build("ARM UNSTOW").request).kind, ArmRequest::Kind::kUnstow);
 }
 
-TEST(Faults, NamesAndClassesFollowTable1) {
-  EXPECT_EQ(FaultNames().size(), static_cast<std::size_t>(Fault::kOther) + 1);
-  EXPECT_STREQ(FaultName(Fault::kWaypointTimeout), "WAYPT_TIMEOUT");
-  EXPECT_STREQ(FaultName(Fault::kNoProgress), "NOPROGRESS");
-  EXPECT_STREQ(FaultName(Fault::kDriveTimeout), "DRIVE_TIMEOUT");
-  for (Fault f : {Fault::kArb, Fault::kAcm, Fault::kPot, Fault::kTod, Fault::kStopped,
-                  Fault::kWaypointTimeout, Fault::kNoPath, Fault::kNoProgress, Fault::kBusy,
-                  Fault::kVisodom, Fault::kTrackingLost, Fault::kNoRange}) {
-    EXPECT_EQ(DefaultFaultClass(f), FaultClass::kGoalError) << FaultName(f);
+TEST(Faults, AreCoreMsgsFaultsAndClasses) {
+  using RF = msg::RendezvousFault;
+  // NONE, every mobility fault in core/msg's order, the rendezvous faults it lacks, OTHER.
+  const auto& names = FaultNames();
+  ASSERT_GE(names.size(), static_cast<std::size_t>(msg::kMobilityFaultCount) + 2);
+  EXPECT_EQ(names.front(), "NONE");
+  EXPECT_EQ(names.back(), "OTHER");
+  for (int i = 0; i < msg::kMobilityFaultCount; ++i) {
+    const Fault f(static_cast<MF>(i));
+    EXPECT_EQ(f.Index(), i);
+    EXPECT_EQ(f.Name(), msg::MobilityFaultName(static_cast<MF>(i)));
+    EXPECT_EQ(f.DefaultClass(), msg::FaultClassOf(static_cast<MF>(i))) << f.Name();
   }
-  for (Fault f : {Fault::kImg, Fault::kSapp, Fault::kMot, Fault::kIdd, Fault::kDriveTimeout,
-                  Fault::kCsw, Fault::kTilt, Fault::kSuspension, Fault::kBadTables,
-                  Fault::kNorth}) {
-    EXPECT_EQ(DefaultFaultClass(f), FaultClass::kMotionError) << FaultName(f);
+  for (int i = 1; i < msg::kRendezvousFaultCount; ++i) {
+    const Fault f(static_cast<RF>(i));
+    EXPECT_EQ(f.Name(), msg::RendezvousFaultName(static_cast<RF>(i)));
+    EXPECT_EQ(f.DefaultClass(), msg::FaultClass::kGoalError) << f.Name();
   }
-  EXPECT_EQ(DefaultFaultClass(Fault::kNone), FaultClass::kNone);
+  // One fault whichever service reports it; every name appears once.
+  EXPECT_EQ(Fault(RF::kBusy), Fault(MF::kBusy));
+  EXPECT_EQ(Fault(RF::kBadCommand), Fault(MF::kBadCommand));
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
+  for (const std::string& n : names) EXPECT_EQ(Fault::Named(n)->Name(), n);
+  EXPECT_FALSE(Fault::Named("INVALID").has_value());
+  EXPECT_FALSE(Fault::Named("WAYPT-TIMEOUT").has_value());
+  EXPECT_EQ(Fault(static_cast<MF>(99)), Fault::Other());  // a wire value no enumerator has
+  EXPECT_EQ(Fault(static_cast<RF>(99)), Fault::Other());
+  EXPECT_EQ(Fault().Name(), "NONE");
+  EXPECT_EQ(Fault().DefaultClass(), msg::FaultClass::kNone);
+  EXPECT_EQ(Fault::Other().DefaultClass(), msg::FaultClass::kGoalError);
+  EXPECT_EQ(Fault(MF::kWaypointTimeout).Name(), "WAYPT_TIMEOUT");
+  EXPECT_EQ(Fault(MF::kTilt).DefaultClass(), msg::FaultClass::kMotionError);
   EXPECT_STREQ(TerminationName(Termination::kRejected), "REJECTED");
-  EXPECT_STREQ(FaultClassName(FaultClass::kMotionError), "MOTION_ERROR");
+  EXPECT_EQ(FaultClassNames(), (std::vector<std::string>{"NONE", "GOAL_ERROR", "MOTION_ERROR"}));
 }
 
 TEST(Outcome, ValidatesAndDescribes) {
   EXPECT_TRUE(Outcome::Nominal().Validate().ok());
   EXPECT_EQ(Outcome::Nominal().Describe(), "NOMINAL");
-  const Outcome stuck = Outcome::Failed(Fault::kNoProgress, "limit cycle");
+  const Outcome stuck = Outcome::Failed(Fault(MF::kNoProgress), "limit cycle");
   EXPECT_TRUE(stuck.Validate().ok());
-  EXPECT_EQ(stuck.fault_class, FaultClass::kGoalError);
+  EXPECT_EQ(stuck.fault_class, msg::FaultClass::kGoalError);
   EXPECT_EQ(stuck.Describe(), "NOPROGRESS (goal error): limit cycle");
-  EXPECT_EQ(Outcome::Failed(Fault::kTilt, "").Describe(), "TILT (motion error)");
-  EXPECT_EQ(Outcome::Rejected(Fault::kBusy, "running").Describe(),
+  EXPECT_EQ(Outcome::Failed(Fault(MF::kTilt), "").Describe(), "TILT (motion error)");
+  EXPECT_EQ(Outcome::Rejected(Fault(MF::kBusy), "running").Describe(),
             "REJECTED BUSY (goal error): running");
   EXPECT_EQ(Outcome{}.Validate().message(), "outcome termination NONE is not an outcome");
   Outcome bad = Outcome::Nominal();
-  bad.fault = Fault::kTilt;
+  bad.fault = Fault(MF::kTilt);
   EXPECT_EQ(bad.Validate().message(), "outcome NOMINAL carries fault TILT");
-  EXPECT_EQ(Outcome::Failed(Fault::kNone, "").Validate().message(),
+  EXPECT_EQ(Outcome::Failed(Fault(), "").Validate().message(),
             "outcome FAULT carries no fault");
 }
 

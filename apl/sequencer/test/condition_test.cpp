@@ -10,6 +10,8 @@
 namespace rover::apl::sequencer {
 namespace {
 
+using MF = msg::MobilityFault;
+
 /// The condition of "IF <text>".
 Condition Cond(const std::string& text) {
   Sequence s = testing::MustParse("TARGET rock = (3, 4, 0)\nIF " + text + "\n  STOP\nEND\n");
@@ -34,14 +36,14 @@ TEST(Condition, QuantityNamesAndUnits) {
 TEST(Condition, LastOutcome) {
   ConditionInputs in;
   EXPECT_TRUE(*Evaluate(Cond("last.termination == NONE"), in));
-  in.last = Outcome::Failed(Fault::kNoProgress, "stuck");
+  in.last = Outcome::Failed(Fault(MF::kNoProgress), "stuck");
   EXPECT_TRUE(*Evaluate(Cond("last.termination == FAULT"), in));
   EXPECT_FALSE(*Evaluate(Cond("last.termination == NOMINAL"), in));
   EXPECT_TRUE(*Evaluate(Cond("last.fault == NOPROGRESS"), in));
   EXPECT_TRUE(*Evaluate(Cond("last.fault != NOPATH"), in));
   EXPECT_TRUE(*Evaluate(Cond("last.class == GOAL_ERROR"), in));
   // A class left NONE by the service is the fault's Table 1 class.
-  in.last = Outcome{Termination::kFault, Fault::kSuspension, FaultClass::kNone, "", {}};
+  in.last = Outcome{Termination::kFault, Fault(MF::kSuspension), msg::FaultClass::kNone, "", {}};
   EXPECT_TRUE(*Evaluate(Cond("last.class == MOTION_ERROR"), in));
 }
 

@@ -16,6 +16,8 @@
 namespace rover::apl::sequencer {
 namespace {
 
+using MF = msg::MobilityFault;
+
 using testing::MustParse;
 Time T(double s) { return Time::FromSeconds(s); }
 
@@ -110,7 +112,7 @@ TEST(Interpreter, IfElseOnTheLastTermination) {
   {
     Interpreter it = Started(text);
     auto answer = [](const Command& c) {
-      return c.step == 1 ? Outcome::Failed(Fault::kNoProgress, "limit cycle") : Outcome::Nominal();
+      return c.step == 1 ? Outcome::Failed(Fault(MF::kNoProgress), "limit cycle") : Outcome::Nominal();
     };
     EXPECT_EQ(RunScripted(it, answer),
               (std::vector<std::string>{"DRIVE STRAIGHT distance=2 on_fault=CONTINUE",
@@ -120,7 +122,7 @@ TEST(Interpreter, IfElseOnTheLastTermination) {
   {
     Interpreter it = Started(text);
     auto answer = [](const Command& c) {
-      return c.step == 1 ? Outcome::Failed(Fault::kTod, "time of day") : Outcome::Nominal();
+      return c.step == 1 ? Outcome::Failed(Fault(MF::kTod), "time of day") : Outcome::Nominal();
     };
     EXPECT_EQ(RunScripted(it, answer)[1], "AUTONAV goal=(5, 0)");
   }
@@ -132,7 +134,7 @@ TEST(Interpreter, AFailingStepRunsTheAbortBlockAndEndsFailedWithItsReason) {
       "DRIVE STRAIGHT distance=1\nVISODOM STRAIGHT distance=0.3\nTURN angle_deg=10\n");
   std::vector<std::string> sent = RunScripted(it, [](const Command& c) {
     return c.kind == CommandKind::kVisodomStraight
-               ? Outcome::Failed(Fault::kNoProgress, "no progress in 3 steps")
+               ? Outcome::Failed(Fault(MF::kNoProgress), "no progress in 3 steps")
                : Outcome::Nominal();
   });
   EXPECT_EQ(sent, (std::vector<std::string>{"DRIVE STRAIGHT distance=1",
@@ -141,7 +143,7 @@ TEST(Interpreter, AFailingStepRunsTheAbortBlockAndEndsFailedWithItsReason) {
   const SequenceStatus& s = it.status();
   EXPECT_EQ(s.state, SequenceState::kFailed);
   EXPECT_EQ(s.failed_step, 4);
-  EXPECT_EQ(s.failed_outcome.fault, Fault::kNoProgress);
+  EXPECT_EQ(s.failed_outcome.fault, Fault(MF::kNoProgress));
   EXPECT_EQ(s.message,
             "step 4 (line 6: VISODOM STRAIGHT distance=0.3) failed: NOPROGRESS (goal error): no "
             "progress in 3 steps");
@@ -150,7 +152,7 @@ TEST(Interpreter, AFailingStepRunsTheAbortBlockAndEndsFailedWithItsReason) {
 TEST(Interpreter, WithoutAnAbortBlockAFailureEndsAtOnce) {
   Interpreter it = Started("TURN angle_deg=10\nSTOP\n");
   StepOutput a = it.Step(T(0));
-  ASSERT_TRUE(it.OnCommandResult(a.command->id, Outcome::Failed(Fault::kTilt, "28 deg")).ok());
+  ASSERT_TRUE(it.OnCommandResult(a.command->id, Outcome::Failed(Fault(MF::kTilt), "28 deg")).ok());
   EXPECT_EQ(it.status().state, SequenceState::kFailed);
   EXPECT_FALSE(it.Step(T(1)).command.has_value());
   EXPECT_EQ(it.status().message, "step 1 (line 1: TURN angle_deg=10) failed: TILT (motion error): 28 deg");
@@ -160,14 +162,14 @@ TEST(Interpreter, ContinueLetsOnlyGoalErrorsThrough) {
   const std::string text = "TURN angle_deg=10 on_fault=CONTINUE\nSTOP\n";
   {  // a motion error still fails
     Interpreter it = Started(text);
-    auto sent = RunScripted(it, [](const Command&) { return Outcome::Failed(Fault::kMot, "x"); });
+    auto sent = RunScripted(it, [](const Command&) { return Outcome::Failed(Fault(MF::kMot), "x"); });
     EXPECT_EQ(sent.size(), 1u);
     EXPECT_EQ(it.status().state, SequenceState::kFailed);
   }
   {  // so does a rejection
     Interpreter it = Started(text);
     auto sent = RunScripted(it, [](const Command&) {
-      return Outcome::Rejected(Fault::kBusy, "mobility already running");
+      return Outcome::Rejected(Fault(MF::kBusy), "mobility already running");
     });
     EXPECT_EQ(sent.size(), 1u);
     EXPECT_EQ(it.status().state, SequenceState::kFailed);
@@ -178,7 +180,7 @@ TEST(Interpreter, ContinueLetsOnlyGoalErrorsThrough) {
   {  // a goal error goes on
     Interpreter it = Started(text);
     auto sent = RunScripted(it, [](const Command& c) {
-      return c.step == 1 ? Outcome::Failed(Fault::kNoPath, "") : Outcome::Nominal();
+      return c.step == 1 ? Outcome::Failed(Fault(MF::kNoPath), "") : Outcome::Nominal();
     });
     EXPECT_EQ(sent.size(), 2u);
     EXPECT_EQ(it.status().state, SequenceState::kDone);
@@ -301,15 +303,15 @@ TEST(Interpreter, ASecondStopEndsTheAbortBlock) {
 TEST(Interpreter, AFailureInsideTheAbortBlockEndsIt) {
   Interpreter it = Started("ON_ABORT\n  ARM STOW\n  STOP\nEND\nTURN angle_deg=1\n");
   auto sent = RunScripted(it, [](const Command& c) {
-    if (c.kind == CommandKind::kTurn) return Outcome::Failed(Fault::kCsw, "contact");
-    return Outcome::Failed(Fault::kArmCollision, "body");
+    if (c.kind == CommandKind::kTurn) return Outcome::Failed(Fault(MF::kSuspension), "contact");
+    return Outcome::Failed(Fault::Other(), "body");
   });
   EXPECT_EQ(sent, (std::vector<std::string>{"TURN angle_deg=1", "ARM STOW"}));
   EXPECT_EQ(it.status().state, SequenceState::kFailed);
   EXPECT_EQ(it.status().failed_step, 3);
   EXPECT_EQ(it.status().message,
-            "step 3 (line 5: TURN angle_deg=1) failed: CSW (motion error): contact; ON_ABORT "
-            "step 1 (line 2: ARM STOW) failed: ARM_COLLISION (goal error): body");
+            "step 3 (line 5: TURN angle_deg=1) failed: SUSPENSION (motion error): contact; "
+            "ON_ABORT step 1 (line 2: ARM STOW) failed: OTHER (goal error): body");
 }
 
 TEST(Interpreter, NoResultInTimeFailsTheStepAndCancelsIt) {
@@ -427,7 +429,7 @@ TEST(Interpreter, ResultErrorsAreRefusedOrFailTheStep) {
             StatusCode::kInvalidArgument);
   EXPECT_TRUE(it.busy());
   Outcome bad = Outcome::Nominal();
-  bad.fault = Fault::kTilt;
+  bad.fault = Fault(MF::kTilt);
   EXPECT_EQ(it.OnCommandResult(a.command->id, bad).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(it.status().state, SequenceState::kFailed);
   EXPECT_EQ(it.status().message,
@@ -532,10 +534,10 @@ class FakeStatusStream {
       Outcome o = answer_(c);
       o.stamp = T(done);
       if (const auto* m = std::get_if<MobilityRequest>(&c.request)) {
-        if (m->primitive == Primitive::kStraight && o.termination == Termination::kNominal) {
+        if (m->primitive == msg::DrivePrimitive::kStraight && o.termination == Termination::kNominal) {
           pose_.position.x += m->distance;
         }
-        if (m->mode == MobilityMode::kVisodom && vo_fails_(++visodom_commands_)) {
+        if (m->mode == msg::MobilityMode::kVisOdom && vo_fails_(++visodom_commands_)) {
           it_->OnVisOdomFailures(++vo_failures_);
         }
       }
@@ -574,9 +576,9 @@ TEST(Interpreter, AStatusStreamDrivesEveryConstruct) {
   // motor fault. VisOdom fails on the 3rd and 4th VISODOM commands.
   auto answer = [visodom = 0](const Command& c) mutable {
     if (c.kind == CommandKind::kVisodomStraight && ++visodom == 2) {
-      return Outcome::Failed(Fault::kNoProgress, "stuck");
+      return Outcome::Failed(Fault(MF::kNoProgress), "stuck");
     }
-    if (c.kind == CommandKind::kDriveStraight) return Outcome::Failed(Fault::kMot, "stall");
+    if (c.kind == CommandKind::kDriveStraight) return Outcome::Failed(Fault(MF::kMot), "stall");
     return Outcome::Nominal();
   };
   auto vo_fails = [](int n) { return n == 3 || n == 4; };
@@ -608,7 +610,7 @@ TEST(Interpreter, AStatusStreamDrivesEveryConstruct) {
       EXPECT_DOUBLE_EQ(sent[k].sent - sent[k - 1].answered, gaps[k - 1]) << k;
     }
     EXPECT_EQ(it.status().state, SequenceState::kFailed);
-    EXPECT_EQ(it.status().failed_outcome.fault, Fault::kMot);
+    EXPECT_EQ(it.status().failed_outcome.fault, Fault(MF::kMot));
     EXPECT_EQ(it.status().message,
               "step 8 (line 18: DRIVE STRAIGHT distance=1) failed: MOT (motion error): stall");
   }
@@ -624,7 +626,7 @@ TEST(Interpreter, AStatusStreamDrivesEveryConstruct) {
     FakeStatusStream stream(
         0.0, [](const Command& c) {
           return c.kind == CommandKind::kVisodomStraight
-                     ? Outcome::Failed(Fault::kNoProgress, "stuck")
+                     ? Outcome::Failed(Fault(MF::kNoProgress), "stuck")
                      : Outcome::Nominal();
         },
         [](int) { return false; });

@@ -11,6 +11,8 @@
 namespace rover::apl::sequencer {
 namespace {
 
+using MF = msg::MobilityFault;
+
 using testing::CallOf;
 using testing::MustParse;
 using Kind = Statement::Kind;
@@ -178,7 +180,7 @@ TEST(Parser, IfElseIfElseEnd) {
   const Statement& elif = top.else_body[0];
   EXPECT_EQ(elif.kind, Kind::kIf);
   EXPECT_EQ(elif.pos, (SourcePos{4, 6}));
-  EXPECT_EQ(elif.condition.compare.enum_value, static_cast<int>(Fault::kNoProgress));
+  EXPECT_EQ(elif.condition.compare.enum_value, Fault(MF::kNoProgress).Index());
   EXPECT_EQ(elif.body.size(), 2u);
   ASSERT_EQ(elif.else_body.size(), 1u);
   EXPECT_EQ(elif.else_body[0].command.kind, CommandKind::kStop);

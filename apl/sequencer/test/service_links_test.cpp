@@ -13,6 +13,8 @@
 namespace rover::apl::sequencer {
 namespace {
 
+using MF = msg::MobilityFault;
+
 using testing::MustParse;
 
 Command Built(const std::string& line, std::uint32_t id = 7) {
@@ -112,29 +114,31 @@ TEST(ServiceLinks, StatusesEndTheirCommandOnlyWhenTerminal) {
   EXPECT_TRUE(o.Validate().ok());
   s.fault = msg::MobilityFault::kTilt;
   s.fault_class = msg::FaultClass::kMotionError;
-  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault_class, FaultClass::kMotionError);
+  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault_class, msg::FaultClass::kMotionError);
 
   s.state = msg::MobilityState::kRejected;
   s.fault = msg::MobilityFault::kBadCommand;
   s.fault_class = msg::FaultClass::kGoalError;
   o = *OutcomeOfMobilityStatus(s);
   EXPECT_EQ(o.termination, Termination::kRejected);
-  EXPECT_EQ(o.fault, Fault::kInvalid);
+  EXPECT_EQ(o.fault, Fault(MF::kBadCommand));
   s.fault = msg::MobilityFault::kNone;  // an off-nominal end always names a fault
-  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault, Fault::kOther);
+  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault, Fault::Other());
   EXPECT_TRUE(OutcomeOfMobilityStatus(s)->Validate().ok());
-  // KEEPOUT keeps its name (it used to become OTHER) and is a goal error, as core/msg says.
-  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kKeepOut), Fault::kKeepOut);
-  EXPECT_STREQ(FaultName(Fault::kKeepOut), "KEEPOUT");
-  EXPECT_EQ(DefaultFaultClass(Fault::kKeepOut), FaultClass::kGoalError);
-  // Every mobility fault but BAD_COMMAND (INVALID, the generic refusal) keeps core/msg's name.
+  // Every mobility fault keeps core/msg's name and class: KEEPOUT once became OTHER, BAD_COMMAND
+  // INVALID.
   for (int i = 1; i < msg::kMobilityFaultCount; ++i) {
-    const auto f = static_cast<msg::MobilityFault>(i);
-    if (f == msg::MobilityFault::kBadCommand) continue;
-    EXPECT_EQ(std::string(FaultName(FaultOfMobilityFault(f))), msg::MobilityFaultName(f)) << i;
+    const auto f = static_cast<MF>(i);
+    s.fault = f;
+    s.fault_class = msg::FaultClass::kNone;
+    const Outcome out = *OutcomeOfMobilityStatus(s);
+    EXPECT_EQ(out.fault.Name(), msg::MobilityFaultName(f)) << i;
+    EXPECT_EQ(out.fault_class, msg::FaultClassOf(f)) << i;
   }
-  EXPECT_EQ(FaultOfMobilityFault(msg::MobilityFault::kVisOdom), Fault::kVisodom);
-  EXPECT_EQ(FaultOfMobilityFault(static_cast<msg::MobilityFault>(99)), Fault::kOther);
+  s.fault = MF::kKeepOut;
+  EXPECT_EQ(OutcomeOfMobilityStatus(s)->Describe().substr(0, 25), "REJECTED KEEPOUT (goal er");
+  s.fault = static_cast<MF>(99);
+  EXPECT_EQ(OutcomeOfMobilityStatus(s)->fault, Fault::Other());
 
   msg::MastStatus m;
   m.state = msg::MastState::kMoving;
@@ -143,7 +147,7 @@ TEST(ServiceLinks, StatusesEndTheirCommandOnlyWhenTerminal) {
   EXPECT_EQ(OutcomeOfMastStatus(m)->termination, Termination::kNominal);
   m.state = msg::MastState::kRejected;
   m.message = "pan out of range";
-  EXPECT_EQ(OutcomeOfMastStatus(m)->Describe(), "REJECTED INVALID (goal error): pan out of range");
+  EXPECT_EQ(OutcomeOfMastStatus(m)->Describe(), "REJECTED BAD_COMMAND (goal error): pan out of range");
   m.state = msg::MastState::kFault;
   EXPECT_EQ(OutcomeOfMastStatus(m)->termination, Termination::kFault);
 }

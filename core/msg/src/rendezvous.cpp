@@ -25,7 +25,7 @@ const char* RendezvousPhaseName(RendezvousPhase p) {
 
 const char* RendezvousFaultName(RendezvousFault f) {
   static constexpr std::array<const char*, kRendezvousFaultCount> kNames = {
-      "NONE",       "BAD-COMMAND", "BUSY",   "NOT-FOUND", "TOO-FEW-STRIPES", "STALE-POSE",
+      "NONE",       "BAD_COMMAND", "BUSY",   "NOT_FOUND", "TOO_FEW_STRIPES", "STALE_POSE",
       "MOBILITY",   "MAST",        "CAMERA", "STOPPED",   "TIMEOUT",         "PLACEMENT"};
   const auto i = static_cast<std::size_t>(f);
   return i < kNames.size() ? kNames[i] : "UNKNOWN";

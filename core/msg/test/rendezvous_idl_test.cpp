@@ -63,7 +63,7 @@ TEST(RendezvousIdl, StatusRoundTripAndBadEnums) {
   EXPECT_EQ(back->features.size(), 63u);
   EXPECT_EQ(back->message, "three stripes");
   EXPECT_STREQ(RendezvousPhaseName(back->phase), "AT_RAMP_BASE");
-  EXPECT_STREQ(RendezvousFaultName(back->fault), "TOO-FEW-STRIPES");
+  EXPECT_STREQ(RendezvousFaultName(back->fault), "TOO_FEW_STRIPES");
   idl::SetRawEnum(&m.phase, 8);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),
               ::testing::HasSubstr("apl/rendezvous_status phase = 8 is not a RendezvousPhase"));

@@ -397,7 +397,8 @@ std::string Clip(std::string s, std::size_t n) {
   return s;
 }
 
-int PrintCampaigns(const std::string& root);
+nlohmann::json RunningCampaigns(const std::string& root);
+void PrintCampaigns(const nlohmann::json& campaigns);
 
 int Ps(const std::string& root, const std::string& given, bool json) {
   std::vector<std::string> projects;
@@ -463,9 +464,14 @@ int Ps(const std::string& root, const std::string& given, bool json) {
                   Clip(note, 120).c_str());
     }
   }
-  if (json) std::cout << all.dump(2) << "\n";
   // Campaigns (`roverctl run`) keep their runs' state in the campaign folder: name them here.
-  if (!json && given.empty()) PrintCampaigns(root);
+  const nlohmann::json campaigns =
+      given.empty() ? RunningCampaigns(root) : nlohmann::json::array();
+  if (json) {
+    std::cout << nlohmann::json{{"sets", all}, {"campaigns", campaigns}}.dump(2) << "\n";
+  } else {
+    PrintCampaigns(campaigns);
+  }
   return 0;
 }
 
@@ -655,10 +661,11 @@ class CampaignRegistration {
   std::string path_;
 };
 
-// Running campaigns (registrations whose roverctl is alive; stale ones are removed), one line
-// each with its progress and the runs under way. Returns how many it printed.
-int PrintCampaigns(const std::string& root) {
-  int printed = 0;
+// Running campaigns (registrations whose roverctl is alive; stale ones are removed): each
+// registration with its progress (`finished` runs, `total` seeds of a seed campaign, 0 else) and
+// the run folders whose service set is up (`running`).
+nlohmann::json RunningCampaigns(const std::string& root) {
+  nlohmann::json all = nlohmann::json::array();
   std::error_code ec;
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(root + "/campaigns", ec)) {
@@ -689,26 +696,39 @@ int PrintCampaigns(const std::string& root) {
       }
     }
     std::size_t total = 0;
-    try {
-      std::ifstream in(out + "/campaign.json");
-      total = nlohmann::json::parse(in).value("seeds", std::vector<std::uint32_t>{}).size();
-    } catch (const nlohmann::json::exception&) {
+    if (j.value("kind", "") == "campaign") {
+      try {
+        std::ifstream in(out + "/campaign.json");
+        total = nlohmann::json::parse(in).value("seeds", std::vector<std::uint32_t>{}).size();
+      } catch (const nlohmann::json::exception&) {
+      }
     }
+    j["finished"] = finished;
+    j["total"] = total;
+    j["running"] = running;
+    all.push_back(std::move(j));
+  }
+  return all;
+}
+
+// One line per running campaign with its progress and the runs under way.
+void PrintCampaigns(const nlohmann::json& campaigns) {
+  for (const auto& j : campaigns) {
+    const std::size_t total = j.value("total", std::size_t{0});
+    const std::string out = j.value("out", "");
     std::printf("%s '%s'  (roverctl pid %d, since %s): %zu %s finished, into %s\n",
-                j.value("kind", "campaign").c_str(), j.value("scenario", "").c_str(), pid,
-                j.value("started", "").c_str(), finished,
-                total > 0 && j.value("kind", "") == "campaign"
-                    ? ("of " + std::to_string(total) + " runs").c_str()
-                    : "runs",
+                j.value("kind", "campaign").c_str(), j.value("scenario", "").c_str(),
+                j.value("pid", 0), j.value("started", "").c_str(),
+                j.value("finished", std::size_t{0}),
+                total > 0 ? ("of " + std::to_string(total) + " runs").c_str() : "runs",
                 out.c_str());
-    for (const auto& r : running) {
-      std::printf("  running: %s  (roverctl --state-dir %s ps)\n",
-                  fs::path(r).filename().c_str(), fs::path(r).parent_path().c_str());
+    for (const auto& r : j["running"]) {
+      const fs::path run(r.get<std::string>());
+      std::printf("  running: %s  (roverctl --state-dir %s ps)\n", run.filename().c_str(),
+                  run.parent_path().c_str());
     }
     std::printf("  the table so far: roverctl report %s\n", out.c_str());
-    ++printed;
   }
-  return printed;
 }
 
 int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out,

@@ -81,7 +81,7 @@ TEST(AutonavScenarios, RockFieldsReachTheirGoal) {
     const Loaded l = Load(file);
     EXPECT_EQ(l.spec.type, MobilityTaskType::kAutonav) << file;
     EXPECT_EQ(l.spec.expect, "reached") << file;
-    EXPECT_EQ(l.spec.think, rover_apl_THINK_DRIVE_WHILE_THINKING) << file;
+    EXPECT_EQ(l.spec.think, msg::ThinkMode::kDriveWhileThinking) << file;
     ASSERT_TRUE(l.spec.goal.has_value());
     EXPECT_NEAR(l.spec.goal->xy.norm(), distance, 1e-9) << file;
     EXPECT_EQ(l.world.terrain.params.rocks.preset, preset) << file;

@@ -280,6 +280,18 @@ TEST_F(FaultCampaignRun, TableShapeSharesAndReport) {
   ASSERT_TRUE(back.ok()) << back.status().message();
   FaultCampaignTable expect = *t;
   EXPECT_EQ(FormatCampaignTable(*back), FormatCampaignTable(expect));
+  // A fault that makes a figure unmeasurable (a NaN pose) leaves null in result.json; the
+  // report still reads the folder (it once stopped at "type must be number, but is null").
+  {
+    const std::string f = out + "/01-no-pose/tiny-seed2/result.json";
+    nlohmann::json j = nlohmann::json::parse(rover::testing::ReadFile(f));
+    ASSERT_FALSE(j["criteria"].empty());
+    j["criteria"][0]["measured"] = nullptr;
+    std::ofstream(f) << j.dump(2);
+    auto with_null = LoadFaultCampaignReport(out);
+    ASSERT_TRUE(with_null.ok()) << with_null.status().message();
+    EXPECT_EQ(with_null->rows.size(), t->rows.size());
+  }
 
   // The folder holds this scenario's fault campaign: another scenario is refused, and so is a
   // plain folder.

@@ -36,10 +36,15 @@ TEST(LanderReturnTask, ParsesAndChecksItsSection) {
   EXPECT_THAT(ValidateTask(ScenarioWithTask(
                   "task: {type: lander_return, estimate: {x: 30, y: 1}, expect: landed}\n"))
                   .message(),
-              HasSubstr("task.expect: 'landed' is not one of: on_deck, at_ramp_base, BAD-COMMAND"));
+              HasSubstr("task.expect: 'landed' is not one of: on_deck, at_ramp_base, BAD_COMMAND"));
   auto t = TaskRegistry::Builtin().Make(ScenarioWithTask(
-      "task: {type: lander_return, estimate: {x: 30, y: 1}, expect: NOT-FOUND}\n"));
+      "task: {type: lander_return, estimate: {x: 30, y: 1}, expect: NOT_FOUND}\n"));
   ASSERT_TRUE(t.ok()) << t.status().message();
+  // core/msg's names; the hyphenated spelling of older scenarios is read as the same fault.
+  auto hyphen = TaskRegistry::Builtin().Make(ScenarioWithTask(
+      "task: {type: lander_return, estimate: {x: 30, y: 1}, expect: TOO-FEW-STRIPES}\n"));
+  ASSERT_TRUE(hyphen.ok()) << hyphen.status().message();
+  EXPECT_EQ(dynamic_cast<const LanderReturnTask&>(**hyphen).spec().expect, "TOO_FEW_STRIPES");
   EXPECT_EQ((*t)->PlannedPath(), (std::vector<Eigen::Vector2d>{{1, 2}, {30, 1}}));
 }
 

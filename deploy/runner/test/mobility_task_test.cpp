@@ -50,7 +50,7 @@ TEST(MobilityTask, ParsesEveryKey) {
   EXPECT_EQ(spec->goal->xy, Eigen::Vector2d(25, -1));
   EXPECT_EQ(spec->goal->tolerance, 0.5);
   EXPECT_TRUE(spec->visodom);
-  EXPECT_EQ(spec->think, rover_apl_THINK_STOP_AND_GO);
+  EXPECT_EQ(spec->think, msg::ThinkMode::kStopAndGo);
   EXPECT_EQ(spec->time_budget_s, 1200);
   EXPECT_EQ(spec->max_steps, 80);
   EXPECT_NEAR(spec->max_tilt, 20 * std::numbers::pi / 180, 1e-12);
@@ -66,7 +66,7 @@ TEST(MobilityTask, ParsesEveryKey) {
   ASSERT_EQ(guarded->primitives.size(), 2u);
   EXPECT_EQ(guarded->primitives[1].primitive, Primitive::kTurnInPlace);
   EXPECT_EQ(guarded->expect, "vetoed");
-  EXPECT_EQ(guarded->think, rover_apl_THINK_DEFAULT);
+  EXPECT_EQ(guarded->think, msg::ThinkMode::kDefault);
   // Every registered type parses through the registry.
   for (const char* t : {"autonav", "goto_waypoint"}) {
     EXPECT_TRUE(ValidateTask(ScenarioWithTask(std::string("task: {type: ") + t +
@@ -147,7 +147,7 @@ TEST(MobilityTask, CommandCarriesModeGoalLimitsPrimitivesAndZones) {
   EXPECT_EQ(c.tolerance, 0.5);
   EXPECT_EQ(c.time_budget_s, 600);
   EXPECT_EQ(c.max_steps, 40);
-  EXPECT_EQ(c.think, rover_apl_THINK_DRIVE_WHILE_THINKING);
+  EXPECT_EQ(c.think, rover_apl_THINK_DRIVE_WHILE_THINKING);  // on the wire
   ASSERT_EQ(c.keep_out._length, 1u);
   EXPECT_STREQ(c.keep_out._buffer[0].name, "pit");
   ASSERT_EQ(c.keep_out._buffer[0].vertices._length, 3u);
@@ -155,13 +155,13 @@ TEST(MobilityTask, CommandCarriesModeGoalLimitsPrimitivesAndZones) {
   EXPECT_EQ(c.primitives._length, 0u);
 
   for (const auto& [type, vo, mode] :
-       std::vector<std::tuple<MobilityTaskType, bool, rover_apl_MobilityMode>>{
-           {MobilityTaskType::kAutonav, false, rover_apl_MOBILITY_AUTONAV},
-           {MobilityTaskType::kGoToWaypoint, false, rover_apl_MOBILITY_GO_TO_WAYPOINT},
-           {MobilityTaskType::kGoToWaypoint, true, rover_apl_MOBILITY_VISODOM_GO_TO_WAYPOINT},
-           {MobilityTaskType::kGuarded, false, rover_apl_MOBILITY_GUARDED},
-           {MobilityTaskType::kGuarded, true, rover_apl_MOBILITY_GUARDED_VISODOM},
-           {MobilityTaskType::kGuardedArc, false, rover_apl_MOBILITY_GUARDED_ARC}}) {
+       std::vector<std::tuple<MobilityTaskType, bool, msg::MobilityMode>>{
+           {MobilityTaskType::kAutonav, false, msg::MobilityMode::kAutoNav},
+           {MobilityTaskType::kGoToWaypoint, false, msg::MobilityMode::kGoToWaypoint},
+           {MobilityTaskType::kGoToWaypoint, true, msg::MobilityMode::kVisOdomGoToWaypoint},
+           {MobilityTaskType::kGuarded, false, msg::MobilityMode::kGuarded},
+           {MobilityTaskType::kGuarded, true, msg::MobilityMode::kGuardedVisOdom},
+           {MobilityTaskType::kGuardedArc, false, msg::MobilityMode::kGuardedArc}}) {
     EXPECT_EQ(MobilityModeOf(type, vo), mode);
   }
 
@@ -179,18 +179,20 @@ TEST(MobilityTask, CommandCarriesModeGoalLimitsPrimitivesAndZones) {
 }
 
 TEST(MobilityTask, OutcomesMatchTheirExpectation) {
-  rover_apl_MobilityStatus s{};
-  s.state = rover_apl_MOBILITY_SUCCEEDED;
+  using F = msg::MobilityFault;
+  using S = msg::MobilityState;
+  msg::MobilityStatus s;
+  s.state = S::kSucceeded;
   EXPECT_EQ(OutcomeName(s), "reached");
   EXPECT_TRUE(OutcomeMatches("reached", s));
   EXPECT_FALSE(OutcomeMatches("NOPATH", s));
-  s.state = rover_apl_MOBILITY_FAILED;
-  s.fault = rover_apl_MOBFAULT_NOPATH;
+  s.state = S::kFailed;
+  s.fault = F::kNoPath;
   EXPECT_EQ(OutcomeName(s), "NOPATH");
   EXPECT_TRUE(OutcomeMatches("NOPATH", s));
   EXPECT_TRUE(OutcomeMatches("vetoed", s));
   EXPECT_FALSE(OutcomeMatches("reached", s));
-  s.fault = rover_apl_MOBFAULT_WAYPT_TIMEOUT;
+  s.fault = F::kWaypointTimeout;
   EXPECT_EQ(OutcomeName(s), "WAYPT_TIMEOUT");  // core/msg's name
   EXPECT_TRUE(OutcomeMatches("WAYPT-TIMEOUT", s));  // MER's spelling, as seed 000 writes it
   EXPECT_FALSE(OutcomeMatches("vetoed", s));
@@ -199,16 +201,21 @@ TEST(MobilityTask, OutcomesMatchTheirExpectation) {
   EXPECT_TRUE(OutcomeNameMatches("KEEPOUT", "KEEPOUT"));
   EXPECT_FALSE(OutcomeNameMatches("vetoed", "WAYPT_TIMEOUT"));
   EXPECT_FALSE(OutcomeNameMatches("reached", "NOPATH"));
-  s.state = rover_apl_MOBILITY_REJECTED;
-  s.fault = rover_apl_MOBFAULT_NONE;
+  s.state = S::kRejected;
+  s.fault = F::kNone;
   EXPECT_EQ(OutcomeName(s), "BAD_COMMAND");
   // A running status is never an outcome.
-  s.state = rover_apl_MOBILITY_RUNNING;
-  s.fault = rover_apl_MOBFAULT_NONE;
+  s.state = S::kRunning;
   EXPECT_FALSE(OutcomeMatches("reached", s));
-  EXPECT_EQ(MobilityFaultNames().size(), static_cast<std::size_t>(rover_apl_MOBFAULT_NORTH) + 1);
-  EXPECT_STREQ(MobilityFaultName(rover_apl_MOBFAULT_NORTH), "NORTH");
-  EXPECT_STREQ(FaultClassName(rover_apl_FAULT_MOTION_ERROR), "motion error");
+  // Every name is core/msg's, in its order.
+  ASSERT_EQ(MobilityFaultNames().size(), static_cast<std::size_t>(msg::kMobilityFaultCount));
+  for (int i = 0; i < msg::kMobilityFaultCount; ++i) {
+    EXPECT_EQ(MobilityFaultNames()[static_cast<std::size_t>(i)],
+              msg::MobilityFaultName(static_cast<F>(i)));
+  }
+  EXPECT_EQ(FaultClassProse(msg::FaultClass::kMotionError), "motion error");
+  EXPECT_EQ(ScenarioSpelling(msg::MobilityModeName(msg::MobilityMode::kVisOdomGoToWaypoint)),
+            "visodom_go_to_waypoint");
 }
 
 // A fake apl-mobility: hears commands, sends RUNNING at once and the scripted terminal status

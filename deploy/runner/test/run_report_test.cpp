@@ -354,6 +354,18 @@ TEST(RunReport, CampaignReportReprintsTheTable) {
   ASSERT_TRUE(report.ok());
   EXPECT_EQ(report->summary.wall_time_s, 0.0);
   EXPECT_TRUE(report->all_passed);
+  // A folder of a campaign that was interrupted: its cut-off run wrote NaN (null) figures and
+  // says why it ended; the report reads it and counts it apart.
+  RunResult cut = MakeRun(4, false, std::numeric_limits<double>::quiet_NaN());
+  cut.failure = "interrupted: roverctl was stopped (Ctrl-C or a termination signal) at 3.0 "
+                "simulated s";
+  std::filesystem::create_directories(dir + "/drive-flat-seed4");
+  std::ofstream(dir + "/drive-flat-seed4/result.json") << ToJson(cut).dump(2);
+  report = LoadCampaignReport(dir);
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  EXPECT_EQ(report->runs.size(), 3u);
+  EXPECT_EQ(report->summary.interrupted, 1);
+  EXPECT_NE(report->table.find("1 run interrupted"), std::string::npos) << report->table;
   std::filesystem::remove_all(dir);
 }
 

@@ -1,9 +1,11 @@
 #include "rover/deploy/runner/tasks/lander_return_task.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "rover/base/format.hpp"
+#include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/msg/rendezvous_idl.hpp"
 
 namespace rover::deploy::runner {
@@ -50,7 +52,15 @@ Result<LanderReturnSpec> ParseLanderReturnTask(const TaskSource& source) {
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
   spec.expect = spec.climb ? "on_deck" : "at_ramp_base";
   if (const YAML::Node x = n["expect"]) {
-    ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(x, "task.expect", ExpectChoices(), err));
+    // A hyphenated fault (NOT-FOUND) is read as core/msg's name (NOT_FOUND).
+    const std::vector<std::string> choices = ExpectChoices();
+    const std::string given = x.IsScalar() ? x.Scalar() : "";
+    const std::string canonical = CanonicalOutcome(given);
+    if (canonical != given && std::find(choices.begin(), choices.end(), canonical) != choices.end()) {
+      spec.expect = canonical;
+    } else {
+      ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(x, "task.expect", choices, err));
+    }
   }
   if (spec.expect == "on_deck" && !spec.climb) {
     return err.At(n["expect"], "task.expect: 'on_deck' needs climb: true");
@@ -130,11 +140,13 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
   });
   step.sim_end_s = ctx.Now();
   if (overdue) {
-    rover_apl_RendezvousCommand stop{};
-    stop.header.stamp_ns = Time::FromSeconds(ctx.Now()).ns;
+    msg::RendezvousCommand stop;
+    stop.stamp = Time::FromSeconds(ctx.Now());
     stop.command_id = kStopId;
-    stop.target = rover_apl_TARGET_STOP;
-    (void)command_.Write(stop);
+    stop.target = msg::RendezvousTarget::kStop;
+    rover_apl_RendezvousCommand wire{};
+    msg::RendezvousCommandToIdl(stop, &wire);
+    (void)command_.Write(wire);
     out.failure = "no terminal apl/rendezvous_status within the command's time budget of " +
                   FormatNumber(spec_.time_budget_s) + " s plus " + FormatNumber(kGraceS) +
                   " s (STOP sent)";

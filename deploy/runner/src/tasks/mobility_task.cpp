@@ -88,36 +88,9 @@ std::vector<std::string> ExpectChoices(MobilityTaskType type) {
   return out;
 }
 
-const char* StateName(rover_apl_MobilityState s) {
-  switch (s) {
-    case rover_apl_MOBILITY_IDLE:
-      return "idle";
-    case rover_apl_MOBILITY_RUNNING:
-      return "running";
-    case rover_apl_MOBILITY_SUCCEEDED:
-      return "succeeded";
-    case rover_apl_MOBILITY_FAILED:
-      return "failed";
-    case rover_apl_MOBILITY_REJECTED:
-      return "rejected";
-  }
-  return "?";
-}
-
-bool Terminal(rover_apl_MobilityState s) {
-  return s == rover_apl_MOBILITY_SUCCEEDED || s == rover_apl_MOBILITY_FAILED ||
-         s == rover_apl_MOBILITY_REJECTED;
-}
-
-std::string ModeName(rover_apl_MobilityMode m) {
-  static const char* const kNames[] = {"directed",        "visodom",
-                                       "goto_waypoint",   "visodom_goto_waypoint",
-                                       "guarded",         "guarded_visodom",
-                                       "autonav",         "autonav_visodom",
-                                       "guarded_arc",     "long_traverse",
-                                       "stop",            "clear_fault"};
-  const auto i = static_cast<std::size_t>(m);
-  return i < std::size(kNames) ? kNames[i] : "?";
+bool Terminal(msg::MobilityState s) {
+  return s == msg::MobilityState::kSucceeded || s == msg::MobilityState::kFailed ||
+         s == msg::MobilityState::kRejected;
 }
 
 }  // namespace
@@ -137,7 +110,7 @@ const char* MobilityTaskTypeName(MobilityTaskType t) {
 }
 
 const std::vector<std::string>& MobilityFaultNames() {
-  // core/msg's names, index = rover_apl_MobilityFault (core/msg checks the two orders agree).
+  // core/msg's names, index = msg::MobilityFault.
   static const std::vector<std::string> k = [] {
     std::vector<std::string> v;
     for (int i = 0; i < msg::kMobilityFaultCount; ++i) {
@@ -148,42 +121,37 @@ const std::vector<std::string>& MobilityFaultNames() {
   return k;
 }
 
-const char* MobilityFaultName(rover_apl_MobilityFault f) {
-  const auto i = static_cast<std::size_t>(f);
-  return i < MobilityFaultNames().size() ? MobilityFaultNames()[i].c_str() : "?";
-}
-
 std::string CanonicalOutcome(std::string name) {
   // MER's papers write WAYPT-TIMEOUT, BAD-COMMAND, DRIVE-TIMEOUT; core/msg writes '_'.
   if (name != "reached" && name != "vetoed") std::replace(name.begin(), name.end(), '-', '_');
   return name;
 }
 
-const char* FaultClassName(rover_apl_FaultClass c) {
-  switch (c) {
-    case rover_apl_FAULT_NONE:
-      return "none";
-    case rover_apl_FAULT_GOAL_ERROR:
-      return "goal error";
-    case rover_apl_FAULT_MOTION_ERROR:
-      return "motion error";
+std::string ScenarioSpelling(std::string_view msg_name, bool space) {
+  std::string out(msg_name);
+  for (char& c : out) {
+    c = c == '_' && space ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
-  return "?";
+  return out;
 }
 
-rover_apl_MobilityMode MobilityModeOf(MobilityTaskType type, bool visodom) {
+std::string FaultClassProse(msg::FaultClass c) {
+  return ScenarioSpelling(msg::FaultClassName(c), /*space=*/true);
+}
+
+msg::MobilityMode MobilityModeOf(MobilityTaskType type, bool visodom) {
+  using M = msg::MobilityMode;
   switch (type) {
     case MobilityTaskType::kAutonav:
-      return visodom ? rover_apl_MOBILITY_AUTONAV_VISODOM : rover_apl_MOBILITY_AUTONAV;
+      return visodom ? M::kAutoNavVisOdom : M::kAutoNav;
     case MobilityTaskType::kGoToWaypoint:
-      return visodom ? rover_apl_MOBILITY_VISODOM_GO_TO_WAYPOINT
-                     : rover_apl_MOBILITY_GO_TO_WAYPOINT;
+      return visodom ? M::kVisOdomGoToWaypoint : M::kGoToWaypoint;
     case MobilityTaskType::kGuarded:
-      return visodom ? rover_apl_MOBILITY_GUARDED_VISODOM : rover_apl_MOBILITY_GUARDED;
+      return visodom ? M::kGuardedVisOdom : M::kGuarded;
     case MobilityTaskType::kGuardedArc:
-      return rover_apl_MOBILITY_GUARDED_ARC;
+      return M::kGuardedArc;
   }
-  return rover_apl_MOBILITY_AUTONAV;
+  return M::kAutoNav;
 }
 
 Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTaskType type) {
@@ -217,8 +185,8 @@ Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTas
   if (const YAML::Node t = n["think"]) {
     const std::vector<std::string> modes = {"default", "stop_and_go", "drive_while_thinking"};
     ROVER_ASSIGN_OR_RETURN(const std::string m, yaml::OneOf(t, "task.think", modes, err));
-    spec.think = static_cast<rover_apl_ThinkMode>(std::find(modes.begin(), modes.end(), m) -
-                                                  modes.begin());
+    spec.think = static_cast<msg::ThinkMode>(std::find(modes.begin(), modes.end(), m) -
+                                             modes.begin());
   }
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
@@ -262,13 +230,13 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec,
   msg::MobilityCommand c;
   c.stamp = Time::FromSeconds(now_s);
   c.command_id = command_id;
-  c.mode = static_cast<msg::MobilityMode>(MobilityModeOf(spec.type, spec.visodom));
+  c.mode = MobilityModeOf(spec.type, spec.visodom);
   if (spec.goal) {
     c.goal = {spec.goal->xy.x(), spec.goal->xy.y(), 0.0};
     c.tolerance = spec.goal->tolerance;
   }
   c.time_budget_s = spec.time_budget_s;
-  c.think = static_cast<msg::ThinkMode>(spec.think);
+  c.think = spec.think;
   c.max_tilt = spec.max_tilt;
   c.max_steps = spec.max_steps;
   for (const auto& p : spec.primitives) {
@@ -285,24 +253,25 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec,
   return storage->msg;
 }
 
-std::string OutcomeName(const rover_apl_MobilityStatus& s) {
-  if (s.state == rover_apl_MOBILITY_SUCCEEDED) return "reached";
-  if (s.fault == rover_apl_MOBFAULT_NONE) {
-    return s.state == rover_apl_MOBILITY_REJECTED
-               ? std::string(msg::MobilityFaultName(msg::MobilityFault::kBadCommand))
+std::string OutcomeName(const msg::MobilityStatus& s) {
+  using F = msg::MobilityFault;
+  if (s.state == msg::MobilityState::kSucceeded) return "reached";
+  if (s.fault == F::kNone) {
+    return s.state == msg::MobilityState::kRejected
+               ? std::string(msg::MobilityFaultName(F::kBadCommand))
                : "NONE";
   }
-  return MobilityFaultName(s.fault);
+  return std::string(msg::MobilityFaultName(s.fault));
 }
 
 bool OutcomeNameMatches(const std::string& expect, const std::string& outcome) {
-  return expect == "vetoed" ? outcome == MobilityFaultName(rover_apl_MOBFAULT_NOPATH)
+  return expect == "vetoed" ? outcome == msg::MobilityFaultName(msg::MobilityFault::kNoPath)
                             : CanonicalOutcome(outcome) == CanonicalOutcome(expect);
 }
 
-bool OutcomeMatches(const std::string& expect, const rover_apl_MobilityStatus& s) {
+bool OutcomeMatches(const std::string& expect, const msg::MobilityStatus& s) {
   if (!Terminal(s.state)) return false;
-  if (expect == "vetoed" && s.state != rover_apl_MOBILITY_FAILED) return false;
+  if (expect == "vetoed" && s.state != msg::MobilityState::kFailed) return false;
   return OutcomeNameMatches(expect, OutcomeName(s));
 }
 
@@ -313,7 +282,7 @@ Status MobilityTask::Open(TaskContext& ctx) {
                          ctx.MakeReader<rover_apl_MobilityStatus>("apl/mobility_status"));
   MobilityOutcome& mob = ctx.recorder.Mobility();
   mob.task = MobilityTaskTypeName(spec_.type);
-  mob.mode = ModeName(MobilityModeOf(spec_.type, spec_.visodom));
+  mob.mode = ScenarioSpelling(msg::MobilityModeName(MobilityModeOf(spec_.type, spec_.visodom)));
   mob.expect = spec_.expect;
   mob.outcome = "none";
   mob.state = "interrupted";
@@ -374,7 +343,7 @@ TaskOutcome MobilityTask::Run(TaskContext& ctx) {
     out.failure = "cannot send the mobility command";
     return out;
   }
-  std::optional<rover_apl_MobilityStatus> terminal;
+  std::optional<msg::MobilityStatus> terminal;
   bool overdue = false;
   const double deadline = spec_.time_budget_s > 0
                               ? step.sim_start_s + spec_.time_budget_s + kGraceS
@@ -382,10 +351,15 @@ TaskOutcome MobilityTask::Run(TaskContext& ctx) {
   out.failure = ctx.WaitUntil([&] {
     status_.TakeEach([&](const dds::Sample<rover_apl_MobilityStatus>& s) {
       if (s->command_id != kCommandId) return;
-      mob.steps = s->steps;
-      mob.images = s->images;
-      mob.distance_to_goal = s->distance_to_goal;
-      if (Terminal(s->state) && !terminal) terminal = s.data();
+      Result<msg::MobilityStatus> st = msg::MobilityStatusFromIdl(s.data());
+      if (!st.ok()) {
+        ctx.Note("unreadable apl/mobility_status: " + st.status().message());
+        return;
+      }
+      mob.steps = st->steps;
+      mob.images = st->images;
+      mob.distance_to_goal = st->distance_to_goal;
+      if (Terminal(st->state) && !terminal) terminal = std::move(*st);
     });
     overdue = !terminal && ctx.Now() > deadline;
     return terminal.has_value() || overdue;
@@ -393,11 +367,13 @@ TaskOutcome MobilityTask::Run(TaskContext& ctx) {
   step.sim_end_s = ctx.Now();
   mob.sim_end_s = step.sim_end_s;
   if (overdue) {
-    rover_apl_MobilityCommand stop{};
-    stop.header.stamp_ns = Time::FromSeconds(ctx.Now()).ns;
+    msg::MobilityCommand stop;
+    stop.stamp = Time::FromSeconds(ctx.Now());
     stop.command_id = kStopId;
-    stop.mode = rover_apl_MOBILITY_STOP;
-    (void)command_.Write(stop);
+    stop.mode = msg::MobilityMode::kStop;
+    MobilityCommandStorage stop_storage;
+    msg::MobilityCommandToIdl(stop, &stop_storage);
+    (void)command_.Write(stop_storage.msg);
     out.failure = "no terminal apl/mobility_status within the command's time budget of " +
                   FormatNumber(spec_.time_budget_s) + " s plus " + FormatNumber(kGraceS) +
                   " s (STOP sent)";
@@ -407,14 +383,14 @@ TaskOutcome MobilityTask::Run(TaskContext& ctx) {
     out.steps.push_back(step);
     return out;
   }
-  step.state = StateName(terminal->state);
+  step.state = ScenarioSpelling(msg::MobilityStateName(terminal->state));
   step.termination = OutcomeName(*terminal);
   step.message = terminal->message;
   out.steps.push_back(step);
   mob.state = step.state;
   mob.outcome = step.termination;
-  mob.fault = MobilityFaultName(terminal->fault);
-  mob.fault_class = FaultClassName(terminal->fault_class);
+  mob.fault = msg::MobilityFaultName(terminal->fault);
+  mob.fault_class = FaultClassProse(terminal->fault_class);
   mob.message = terminal->message;
   if (!OutcomeMatches(spec_.expect, *terminal)) {
     out.failure = mob.task + " ended " + step.state + " " + mob.outcome +

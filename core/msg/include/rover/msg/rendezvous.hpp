@@ -48,7 +48,7 @@ inline constexpr int kRendezvousFaultCount = 12;
 const char* RendezvousTargetName(RendezvousTarget t);
 /// "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED".
 const char* RendezvousPhaseName(RendezvousPhase p);
-/// "NONE", "BAD-COMMAND", "BUSY", "NOT-FOUND", "TOO-FEW-STRIPES", "STALE-POSE", "MOBILITY",
+/// "NONE", "BAD_COMMAND", "BUSY", "NOT_FOUND", "TOO_FEW_STRIPES", "STALE_POSE", "MOBILITY",
 /// "MAST", "CAMERA", "STOPPED", "TIMEOUT", "PLACEMENT"; "UNKNOWN" otherwise.
 const char* RendezvousFaultName(RendezvousFault f);
 

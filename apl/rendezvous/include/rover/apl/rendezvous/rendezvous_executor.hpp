@@ -11,7 +11,7 @@
 ///    2-D information filter), then drive an autonav leg of at most `reacquire_step` towards
 ///    the point `approach_radius` from the deck centre on the rover's side, and look again. A
 ///    fix farther than `prior_gate` from the estimate is not the lander: it is never driven to.
-///    No fix: look around (`search_pan_step_deg`), NOT-FOUND after `search_images` pairs; but
+///    No fix: look around (`search_pan_step_deg`), NOT_FOUND after `search_images` pairs; but
 ///    beyond `sight_range` the a-priori estimate leads a leg, and after two accepted fixes with
 ///    the estimate within 1 m (1 sigma) it leads up to two legs in a row after three misses.
 ///  - CLOSE_RANGE: sight a ramp's coded stripes (SightRamp) for the ramp's full pose; orbit the
@@ -22,7 +22,7 @@
 ///    up-axis) in the rover frame of that pair and drives a directed turn-straight-turn to it;
 ///    done when within `lateral_tolerance`, `along_tolerance` and `heading_tolerance_deg`, or
 ///    within the accept_* bounds after one back-up or on the last step; else PLACEMENT. Fewer than
-///    `min_stripes` stripes here: TOO-FEW-STRIPES (no final servo).
+///    `min_stripes` stripes here: TOO_FEW_STRIPES (no final servo).
 ///  - AT_RAMP_BASE: stands `hold_at_base_s` (the judge measures the placement here), then
 ///  - CLIMB (command.climb): one directed straight of standoff + ramp surface length + deck
 ///    apothem, tilt limit `climb_max_tilt_deg`; DONE when the pose has risen by half the deck
@@ -33,8 +33,8 @@
 /// drift does not enter the final servo; site-frame estimates (lander centre, ramp bases) serve
 /// the mast pointing and the legs between sightings.
 ///
-/// Goal errors (msg::RendezvousFault): BAD-COMMAND (the field and value named), BUSY, NOT-FOUND,
-/// TOO-FEW-STRIPES, STALE-POSE, MOBILITY, MAST, CAMERA, STOPPED, TIMEOUT, PLACEMENT. Every one
+/// Goal errors (msg::RendezvousFault): BAD_COMMAND (the field and value named), BUSY, NOT_FOUND,
+/// TOO_FEW_STRIPES, STALE_POSE, MOBILITY, MAST, CAMERA, STOPPED, TIMEOUT, PLACEMENT. Every one
 /// stops what the executor started and leaves it ready for the next command.
 
 #include <Eigen/Core>

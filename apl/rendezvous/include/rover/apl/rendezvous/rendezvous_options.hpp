@@ -34,7 +34,7 @@ struct RendezvousOptions {
   double sight_range = 30.0;
   double approach_radius = 7.5;      ///< [m] from the deck centre: where close range starts
   double prior_gate = 8.0;           ///< [m] a fix this far from the estimate is not the lander
-  int search_images = 7;             ///< pairs tried at a station before NOT-FOUND
+  int search_images = 7;             ///< pairs tried at a station before NOT_FOUND
   double search_pan_step_deg = 22.0; ///< [deg] look-around step at a station
   double autonav_tolerance = 0.6;    ///< [m] goal radius of mid-range legs
   /// How the legs between sightings drive: "autonav" (stereo hazard avoidance) or
@@ -53,7 +53,7 @@ struct RendezvousOptions {
   double accept_along = 0.04;        ///< [m]
   double accept_heading_deg = 2.5;
   int max_servo_steps = 5;
-  int min_stripes = 4;               ///< fewer: no final servo (TOO-FEW-STRIPES)
+  int min_stripes = 4;               ///< fewer: no final servo (TOO_FEW_STRIPES)
   double hold_at_base_s = 2.0;       ///< [s] stopped at the ramp base before climbing
   double climb_max_tilt_deg = 26.0;  ///< [deg] tilt limit of the climb
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -19,32 +20,20 @@
 #include "rover/apl/sequencer/sequence.hpp"
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
+#include "rover/msg/mobility.hpp"
+#include "rover/msg/rendezvous.hpp"
 
 namespace rover::apl::sequencer {
 
 // ---- requests ----------------------------------------------------------------------------------
 
-/// Seed 000 Table 2's driving modes, the guarded arc of seed 003 and the manager's own commands.
-enum class MobilityMode {
-  kDirected,             ///< blind drive primitive
-  kVisodom,              ///< drive primitive with visual-odometry updates
-  kGoToWaypoint,         ///< blind go-to-waypoint
-  kVisodomGoToWaypoint,  ///< go-to-waypoint with visual odometry
-  kGuarded,              ///< terrain assessment, no path selection
-  kGuardedVisodom,
-  kGuardedArc,           ///< arc driven only if the hazard cameras show it safe
-  kAutonav,              ///< terrain assessment and path selection
-  kAutonavVisodom,
-  kLongTraverse,         ///< ROAMAN plan, then autonav legs
-  kStop,
-  kClearFault,
-};
-
-enum class Primitive { kNone, kArc, kStraight, kTurnInPlace };
-
+/// A mobility command in core/msg's vocabulary: its mode (seed 000 Table 2's driving modes, the
+/// guarded arc of seed 003, STOP and CLEAR_FAULT) and, for the directed, VisOdom and guarded-arc
+/// modes, its one primitive.
 struct MobilityRequest {
-  MobilityMode mode = MobilityMode::kStop;
-  Primitive primitive = Primitive::kNone;  ///< directed, visodom and guarded-arc modes
+  msg::MobilityMode mode = msg::MobilityMode::kStop;
+  /// kArc, kStraight or kTurnInPlace; none for the modes that take a goal or nothing.
+  std::optional<msg::DrivePrimitive> primitive;
   double curvature = 0.0;       ///< [1/m] + turns left
   double distance = 0.0;        ///< [m] along the path
   double angle = 0.0;           ///< [rad] turn in place, + = left (TURN TO: resolved at dispatch)
@@ -107,52 +96,37 @@ enum class Termination {
   kRejected,  ///< refused without moving (invalid or busy)
 };
 
-/// MER's two classes (seed 000 Table 1): a goal error leaves the rover safe and ready for the
-/// next goal; a motion error refuses all motion until CLEAR_FAULT.
-enum class FaultClass { kNone, kGoalError, kMotionError };
+/// A command's fault, by core/msg's name for it: the typed fault its service reported
+/// (msg::MobilityFault: "NOPROGRESS", "WAYPT_TIMEOUT", "BAD_COMMAND"; msg::RendezvousFault:
+/// "NOT_FOUND", "TOO_FEW_STRIPES"), OTHER for a failure its service names no fault for, or NONE.
+/// The sequence language's `last.fault` compares with these names (FaultNames()). The class of
+/// a fault (MER's goal and motion errors, seed 000 Table 1) is msg::FaultClass.
+class Fault {
+ public:
+  Fault() = default;  ///< NONE
+  explicit Fault(msg::MobilityFault f);
+  explicit Fault(msg::RendezvousFault f);
+  static Fault Other();
+  /// The fault of a name in FaultNames(); nullopt for any other.
+  static std::optional<Fault> Named(std::string_view name);
 
-/// Seed 000 Table 1's fault types (names as MER's, '-' written '_'), then those of the
-/// rendezvous and arm services.
-enum class Fault {
-  kNone,
-  // goal errors
-  kArb,             ///< ARB: resource rescinded
-  kAcm,             ///< ACM: not OK to drive
-  kPot,             ///< POT: steering calibration with a bad potentiometer
-  kTod,             ///< TOD: time-of-day limit
-  kStopped,         ///< STOPPED: stop command
-  kWaypointTimeout, ///< WAYPT_TIMEOUT
-  kNoPath,          ///< NOPATH: no safe path
-  kNoProgress,      ///< NOPROGRESS: limit cycle or stuck
-  kBusy,            ///< BUSY: mobility already running
-  kVisodom,         ///< VISODOM: too many visual-odometry failures
-  kKeepOut,         ///< KEEPOUT: the next step would enter a keep-out zone
-  // motion errors
-  kImg,             ///< IMG: image acquisition failed
-  kSapp,            ///< SAPP: attitude (IMU) problem
-  kMot,             ///< MOT: motor error
-  kIdd,             ///< IDD: arm unstowed during a drive
-  kDriveTimeout,    ///< DRIVE_TIMEOUT: one step timed out
-  kCsw,             ///< CSW: contact switch
-  kTilt,            ///< TILT: excessive or unknown tilt
-  kSuspension,      ///< SUSPENSION: excessive or unknown articulation
-  kBadTables,       ///< BAD_TABLES: drive tables corrupted
-  kNorth,           ///< NORTH: insufficient northerly tilt
-  // rendezvous and arm (goal errors unless the service says otherwise)
-  kTrackingLost,    ///< TRACKING_LOST: the target left the view
-  kNoRange,         ///< NO_RANGE: the designated pixel has no range
-  kArmCollision,    ///< ARM_COLLISION: the move would hit the rover
-  kNoFocus,         ///< NO_FOCUS: auto-focus found no best focus
-  kInvalid,         ///< INVALID: the service found the command invalid
-  kOther,           ///< OTHER: any other reason (see the message)
+  const std::string& Name() const;
+  int Index() const { return index_; }  ///< in FaultNames()
+  bool IsNone() const { return index_ == 0; }
+  /// msg::FaultClassOf for a mobility fault; kGoalError for the others (a rendezvous service
+  /// fault leaves the rover safe, OTHER makes no claim); kNone for NONE.
+  msg::FaultClass DefaultClass() const;
+  friend bool operator==(const Fault&, const Fault&) = default;
+
+ private:
+  explicit Fault(int index) : index_(index) {}
+  int index_ = 0;
 };
 
 const char* TerminationName(Termination t);  ///< "NOMINAL"
-const char* FaultClassName(FaultClass c);    ///< "GOAL_ERROR"
-const char* FaultName(Fault f);              ///< "NOPROGRESS"
-/// Table 1's class of a fault (kNone for kNone).
-FaultClass DefaultFaultClass(Fault f);
-/// Every name of each enumeration, in value order (index = value).
+/// Every name of each enumeration, in value order (index = value): Termination, msg::FaultClass
+/// (msg::FaultClassName's) and Fault (NONE, core/msg's mobility faults, its rendezvous faults
+/// whose names the mobility ones do not already have, OTHER).
 const std::vector<std::string>& TerminationNames();
 const std::vector<std::string>& FaultClassNames();
 const std::vector<std::string>& FaultNames();
@@ -160,16 +134,17 @@ const std::vector<std::string>& FaultNames();
 /// How a dispatched command ended, as its service reported it.
 struct Outcome {
   Termination termination = Termination::kNone;
-  Fault fault = Fault::kNone;
-  /// kNone with a fault: the fault's DefaultFaultClass.
-  FaultClass fault_class = FaultClass::kNone;
+  Fault fault;
+  /// kNone with a fault: the fault's DefaultClass().
+  msg::FaultClass fault_class = msg::FaultClass::kNone;
   std::string message;
   /// When it ended on the run clock (conditions on the pose wait for a pose at least this new);
   /// zero = unknown.
   Time stamp;
 
-  static Outcome Nominal(Time stamp = {}) { return {Termination::kNominal, Fault::kNone,
-                                                    FaultClass::kNone, "", stamp}; }
+  static Outcome Nominal(Time stamp = {}) {
+    return {Termination::kNominal, Fault(), msg::FaultClass::kNone, "", stamp};
+  }
   static Outcome Failed(Fault fault, std::string message, Time stamp = {});
   static Outcome Rejected(Fault fault, std::string message, Time stamp = {});
 

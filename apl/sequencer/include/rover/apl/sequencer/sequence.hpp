@@ -73,7 +73,7 @@ struct Comparison {
   Quantity quantity = Quantity::kLastTermination;
   Relation relation = Relation::kEq;
   double number = 0.0;  ///< numeric quantities, in the quantity's unit
-  int enum_value = 0;   ///< enumerated quantities: the Termination, Fault or FaultClass value
+  int enum_value = 0;   ///< enumerated quantities: the Termination, Fault::Index() or msg::FaultClass value
   Vec3 point;           ///< kDistanceTo: the point
   std::string name;     ///< kDistanceTo: the TARGET name ("" for a literal point)
 };

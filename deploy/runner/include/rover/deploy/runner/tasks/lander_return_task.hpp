@@ -11,7 +11,7 @@
 ///     ramp: 0                    # 0 | 1 | -1 (the first one seen)
 ///     climb: true                # drive up the ramp onto the deck after the placement
 ///     time_budget_s: 3000        # [s] the command's budget; 0 = the service's
-///     expect: on_deck            # | at_ramp_base | a fault: NOT-FOUND, TOO-FEW-STRIPES, ...
+///     expect: on_deck            # | at_ramp_base | a fault: NOT_FOUND, TOO_FEW_STRIPES, ...
 ///
 /// `on_deck` passes on DONE with the rover's last true position inside the deck hexagon (the
 /// judge's on_deck figure), `at_ramp_base` on DONE without climbing, a fault name on FAILED
@@ -50,6 +50,7 @@ class LanderReturnTask : public Task {
   bool Ready() const override;
   TaskOutcome Run(TaskContext& ctx) override;
   std::vector<Eigen::Vector2d> PlannedPath() const override;
+  const LanderReturnSpec& spec() const { return spec_; }
 
  private:
   LanderReturnSpec spec_;

@@ -61,7 +61,7 @@ struct MobilityTaskSpec {
   std::optional<TaskGoal> goal;      ///< required for autonav and goto_waypoint
   std::vector<DriveStep> primitives;  ///< required for guarded and guarded_arc
   bool visodom = false;
-  rover_apl_ThinkMode think = rover_apl_THINK_DEFAULT;
+  msg::ThinkMode think = msg::ThinkMode::kDefault;
   double time_budget_s = 0;  ///< [s] 0 = none
   int max_steps = 0;
   double max_tilt = 0;  ///< [rad]
@@ -71,16 +71,18 @@ struct MobilityTaskSpec {
 };
 
 /// The fault code names, core/msg's (msg::MobilityFaultName: WAYPT_TIMEOUT), index =
-/// rover_apl_MobilityFault; "NONE" for MOBFAULT_NONE.
+/// msg::MobilityFault; "NONE" for kNone.
 const std::vector<std::string>& MobilityFaultNames();
-const char* MobilityFaultName(rover_apl_MobilityFault f);
 /// An outcome or `expect:` name in core/msg's spelling: MER's hyphens (WAYPT-TIMEOUT, as seed
 /// 000 writes them) become '_'; "reached" and "vetoed" stay.
 std::string CanonicalOutcome(std::string name);
-/// "none", "goal error", "motion error".
-const char* FaultClassName(rover_apl_FaultClass c);
-/// The IDL mode of a task type with or without VisOdom.
-rover_apl_MobilityMode MobilityModeOf(MobilityTaskType type, bool visodom);
+/// A core/msg enumerator name as scenarios and result.json write it: lower case, "GOAL_ERROR" ->
+/// "goal error" with `space` (fault classes), "GO_TO_WAYPOINT" -> "go_to_waypoint" without.
+std::string ScenarioSpelling(std::string_view msg_name, bool space = false);
+/// "none", "goal error", "motion error" (msg::FaultClassName in prose).
+std::string FaultClassProse(msg::FaultClass c);
+/// The mode of a task type with or without VisOdom.
+msg::MobilityMode MobilityModeOf(MobilityTaskType type, bool visodom);
 
 /// Parses a mobility task's section (task.type is one of the four); errors name file, line,
 /// key and value ("s.yaml:9: task.keep_out[].vertices: 2 vertices, a zone needs 3..16").
@@ -95,12 +97,12 @@ rover_apl_MobilityCommand MakeMobilityCommand(const MobilityTaskSpec& spec, std:
 
 /// A terminal status as the outcome name `expect` compares with: "reached" for SUCCEEDED, else
 /// the fault code name (REJECTED without a fault is "BAD_COMMAND").
-std::string OutcomeName(const rover_apl_MobilityStatus& status);
+std::string OutcomeName(const msg::MobilityStatus& status);
 /// True if `outcome` (an OutcomeName) is what `expect` names: "vetoed" is a NOPATH fault (a
 /// guarded primitive refused by terrain assessment), anything else must equal the name.
 bool OutcomeNameMatches(const std::string& expect, const std::string& outcome);
 /// True if the terminal status is the outcome `expect` names.
-bool OutcomeMatches(const std::string& expect, const rover_apl_MobilityStatus& status);
+bool OutcomeMatches(const std::string& expect, const msg::MobilityStatus& status);
 
 class MobilityTask : public Task {
  public:
