@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 #include "rover/base/check.hpp"
@@ -80,6 +81,14 @@ Result<std::optional<TaskGoal>> ParseTaskGoal(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(g, "tolerance", "task.goal", 0.01, 100, err, &goal.tolerance));
   return std::optional<TaskGoal>(goal);
+}
+
+std::string ScenarioSpelling(std::string_view msg_name, bool space) {
+  std::string out(msg_name);
+  for (char& c : out) {
+    c = c == '_' && space ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return out;
 }
 
 }  // namespace rover::deploy::runner

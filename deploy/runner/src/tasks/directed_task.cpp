@@ -84,13 +84,6 @@ bool Terminal(msg::DriveState s) {
          s == msg::DriveState::kRejected;
 }
 
-// The scenario spelling of a message enumerator name: "MOTOR_STALL" -> "motor_stall".
-std::string ScenarioName(const char* idl_name) {
-  std::string out(idl_name);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 }  // namespace
 
 const char* PrimitiveName(Primitive p) {
@@ -209,8 +202,8 @@ std::string DirectedTask::AwaitTerminal(TaskContext& ctx, std::size_t index, Ste
       }
       if (!Terminal(status->state)) return;
       terminal = true;
-      sr->state = ScenarioName(msg::DriveStateName(status->state));
-      sr->termination = ScenarioName(msg::DriveTerminationName(status->termination));
+      sr->state = ScenarioSpelling(msg::DriveStateName(status->state));
+      sr->termination = ScenarioSpelling(msg::DriveTerminationName(status->termination));
       sr->message = status->message;
     });
     return terminal;

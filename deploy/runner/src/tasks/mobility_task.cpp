@@ -127,14 +127,6 @@ std::string CanonicalOutcome(std::string name) {
   return name;
 }
 
-std::string ScenarioSpelling(std::string_view msg_name, bool space) {
-  std::string out(msg_name);
-  for (char& c : out) {
-    c = c == '_' && space ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return out;
-}
-
 std::string FaultClassProse(msg::FaultClass c) {
   return ScenarioSpelling(msg::FaultClassName(c), /*space=*/true);
 }

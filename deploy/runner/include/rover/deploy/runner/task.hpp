@@ -22,6 +22,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <string_view>
 #include <vector>
 
 #include "rover/base/status.hpp"
@@ -133,5 +135,9 @@ struct TaskGoal {
 /// Reads the optional `goal` of a task section (x and y required, |x|, |y| <= 1e4, tolerance in
 /// [0.01, 100]); nullopt when there is none.
 Result<std::optional<TaskGoal>> ParseTaskGoal(const TaskSource& source);
+
+/// A core/msg enumerator name as scenarios and result.json write it: lower case, "GOAL_ERROR" ->
+/// "goal error" with `space` (fault classes), "MOTOR_STALL" -> "motor_stall" without.
+std::string ScenarioSpelling(std::string_view msg_name, bool space = false);
 
 }  // namespace rover::deploy::runner

@@ -76,9 +76,6 @@ const std::vector<std::string>& MobilityFaultNames();
 /// An outcome or `expect:` name in core/msg's spelling: MER's hyphens (WAYPT-TIMEOUT, as seed
 /// 000 writes them) become '_'; "reached" and "vetoed" stay.
 std::string CanonicalOutcome(std::string name);
-/// A core/msg enumerator name as scenarios and result.json write it: lower case, "GOAL_ERROR" ->
-/// "goal error" with `space` (fault classes), "GO_TO_WAYPOINT" -> "go_to_waypoint" without.
-std::string ScenarioSpelling(std::string_view msg_name, bool space = false);
 /// "none", "goal error", "motion error" (msg::FaultClassName in prose).
 std::string FaultClassProse(msg::FaultClass c);
 /// The mode of a task type with or without VisOdom.
