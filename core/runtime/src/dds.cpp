@@ -1,5 +1,6 @@
 #include "rover/runtime/dds.hpp"
 
+#include "rover/runtime/security_files.hpp"
 #include "rover/runtime/type_layout.hpp"
 
 #include <atomic>
@@ -20,8 +21,43 @@ Result<Participant> Participant::Create(dds_domainid_t domain) {
     return InvalidArgument("DDS domain " + std::to_string(domain) +
                            " is out of range [0, 232] (Cyclone's port mapping)");
   }
-  const dds_entity_t h = dds_create_participant(domain, nullptr, nullptr);
+  ROVER_ASSIGN_OR_RETURN(const std::optional<SecurityIdentity> secured,
+                         SecurityIdentityFromEnvironment());
+  QosPtr qos(dds_create_qos());
+  if (secured) {
+    // DDS Security 1.1's participant properties: Cyclone's builtin authentication (PKI-DH),
+    // access control (signed governance and permissions) and cryptography (AES-GCM-GMAC).
+    const SecurityFiles f = SecurityFilesFor(secured->dir, secured->role);
+    ROVER_RETURN_IF_ERROR(CheckSecurityFiles(f));
+    ROVER_ASSIGN_OR_RETURN(const std::string lib, SecurityPluginDir());
+    auto prop = [&](const char* name, const std::string& value) {
+      dds_qset_prop(qos.get(), name, value.c_str());
+    };
+    prop("dds.sec.auth.library.path", lib + "/libdds_security_auth.so");
+    prop("dds.sec.auth.library.init", "init_authentication");
+    prop("dds.sec.auth.library.finalize", "finalize_authentication");
+    prop("dds.sec.auth.identity_ca", "file:" + f.ca);
+    prop("dds.sec.auth.identity_certificate", "file:" + f.certificate);
+    prop("dds.sec.auth.private_key", "file:" + f.private_key);
+    prop("dds.sec.access.library.path", lib + "/libdds_security_ac.so");
+    prop("dds.sec.access.library.init", "init_access_control");
+    prop("dds.sec.access.library.finalize", "finalize_access_control");
+    prop("dds.sec.access.permissions_ca", "file:" + f.ca);
+    prop("dds.sec.access.governance", "file:" + f.governance);
+    prop("dds.sec.access.permissions", "file:" + f.permissions);
+    prop("dds.sec.crypto.library.path", lib + "/libdds_security_crypto.so");
+    prop("dds.sec.crypto.library.init", "init_crypto");
+    prop("dds.sec.crypto.library.finalize", "finalize_crypto");
+  }
+  const dds_entity_t h = dds_create_participant(domain, qos.get(), nullptr);
   if (h < 0) {
+    if (secured) {
+      return DdsError("creating a secured participant for identity '" + secured->role +
+                          "' on domain " + std::to_string(domain) + " from " + secured->dir +
+                          " (DDS Security refused the certificate, key or permissions: Cyclone's "
+                          "reason is logged above; `roverctl security show` checks the files)",
+                      h);
+    }
     return DdsError("creating a participant on domain " + std::to_string(domain) +
                         " (check CYCLONEDDS_URI)",
                     h);

@@ -227,7 +227,8 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   if (!n.IsMap()) return err.At(n, "x-rover: expected a map");
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "x-rover",
                                   {"project", "domain", "clock", "startup_timeout_s",
-                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario", "record"},
+                                   "heartbeat_timeout_s", "qos", "sim", "faults", "scenario", "record",
+                                   "security"},
                                   err, kComposeKeys));
   if (const auto p = n["project"]) {
     r->project = ScalarText(p);
@@ -264,6 +265,11 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   if (const auto f = n["faults"]) {
     if (!f.IsSequence()) return err.At(f, "x-rover.faults: expected a list");
     ROVER_ASSIGN_OR_RETURN(r->faults, ParseSetFaults(f, err.file()));
+  }
+  if (const auto sec = n["security"]) {
+    ROVER_ASSIGN_OR_RETURN(const std::string v,
+                           yaml::OneOf(sec, "x-rover.security", {"enabled", "disabled"}, err));
+    r->security = v == "enabled";
   }
   if (const auto rec = n["record"]) {
     std::vector<std::string> topics;
@@ -367,6 +373,9 @@ const std::vector<ReservedVariable>& ReservedEnvironment() {
       {"CYCLONEDDS_URI", "the set's Cyclone DDS configuration: give roverctl ROVER_DDS_CONFIG"},
       {"ROVER_FAULTS", "the set's faults: give them under x-rover.faults (with `service:`)"},
       {"ROVER_FAULTS_EPOCH_NS", "what the set's fault windows count from: its start"},
+      {"ROVER_SECURITY_DIR", "the set's DDS Security keys: x-rover.security and roverctl "
+                             "--security-dir"},
+      {"ROVER_SECURITY_IDENTITY", "the service's DDS Security identity: its executable's role"},
   };
   return kReserved;
 }

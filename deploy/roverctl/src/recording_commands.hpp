@@ -26,6 +26,7 @@ struct TargetSet {
   std::string clock;    ///< "sim" or "wall"; "" = unknown (a bare domain)
   std::map<std::string, std::string> qos;  ///< x-rover.qos
   std::function<bool()> alive;             ///< false once the set is down; null = unknown
+  std::string security_dir;                ///< a secured set's keys; "" = open
 };
 
 struct RecordArgs {

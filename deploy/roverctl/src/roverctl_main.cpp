@@ -42,8 +42,11 @@
 #include "rover/deploy/fault_commands.hpp"
 #include "rover/deploy/run_report.hpp"
 #include "rover/deploy/scenario.hpp"
+#include "rover/deploy/security.hpp"
 #include "rover/deploy/supervisor.hpp"
 #include "rover/runtime/domain.hpp"
+#include "rover/runtime/security_files.hpp"
+#include "rover/runtime/topic_access.hpp"
 #include "src/recording_commands.hpp"
 
 namespace fs = std::filesystem;
@@ -152,6 +155,7 @@ struct UpArgs {
   double wait_s = -1;  ///< --wait: seconds to wait for the set to be ready; < 0: do not wait
   std::string state_root;
   std::string project;
+  std::string security_dir;  ///< --security-dir; "" = <state root>/security
 };
 
 constexpr double kDefaultWaitS = 120;
@@ -172,6 +176,12 @@ int RunSupervisor(const rover::deploy::ComposeProject& project,
   };
   const bool wait = args.wait_s >= 0;
   options.abort = &g_stop;
+  if (project.rover.security && project.rover.record && project.rover.record->enabled) {
+    // One identity per process: with x-rover.record it is the recorder's (which also reads the
+    // heartbeats the supervisor needs).
+    setenv(rover::dds::kSecurityDirVariable, rover::deploy::SecurityDirFor(options).c_str(), 1);
+    setenv(rover::dds::kSecurityIdentityVariable, "recorder", 1);
+  }
   auto sup = rover::deploy::Supervisor::Create(project, options);
   if (!sup.ok()) {
     notify("error: " + sup.status().message(), true);
@@ -257,6 +267,9 @@ int Up(const UpArgs& args) {
   rover::deploy::SupervisorOptions options;
   options.bin_dir = SelfDir();
   options.state_dir = args.state_root + "/" + project->rover.project;
+  options.security_dir = args.security_dir.empty()
+                             ? rover::deploy::SecurityDirOf(args.state_root)
+                             : args.security_dir;
   options.dds_config_uri = DdsConfigUri();
   if (args.domain >= 0) options.domain = args.domain;
 
@@ -592,7 +605,16 @@ rover::Result<rover::deploy::TargetSet> ResolveTarget(const std::string& root,
   }
   const std::string dir = root + "/" + t.project;
   t.alive = [dir] { return SupervisorAlive(ReadState(dir)); };
+  t.security_dir = set.state.value("security_dir", "");
   return t;
+}
+
+// A secured set (state.json's security_dir) is joined with `role`'s identity; nothing to do
+// for an open one.
+void JoinAs(const std::string& security_dir, const char* role) {
+  if (security_dir.empty()) return;
+  setenv(rover::dds::kSecurityDirVariable, security_dir.c_str(), 1);
+  setenv(rover::dds::kSecurityIdentityVariable, role, 1);
 }
 
 // ---- fault ----------------------------------------------------------------------------------
@@ -605,6 +627,7 @@ rover::Result<rover::deploy::FaultTarget> ResolveFaultTarget(const std::string& 
   ROVER_ASSIGN_OR_RETURN(const LiveSet set, ResolveLiveSet(root, given));
   t.project = set.project;
   t.domain = set.domain;
+  t.security_dir = set.state.value("security_dir", "");
   for (const auto& s : set.state["services"]) {
     if (s.value("state", "") == "running" && s.value("last_heartbeat_wall_ns", std::int64_t{0}) > 0) {
       t.services.push_back(s.value("name", ""));
@@ -732,7 +755,8 @@ void PrintCampaigns(const nlohmann::json& campaigns) {
 }
 
 int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out,
-        const std::string& faults_file, const std::string& state_root) {
+        const std::string& faults_file, const std::string& state_root, bool security,
+        const std::string& security_dir) {
   auto scenario = rover::deploy::LoadScenario(file);
   if (!scenario.ok()) return Fail(scenario.status().message(), 2);
   std::vector<std::uint32_t> seeds = {scenario->seed};
@@ -773,12 +797,16 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
   o.dds_config_uri = DdsConfigUri();
   o.tty = isatty(STDERR_FILENO) != 0;
   o.abort = &g_stop;
+  o.security = security;
+  o.security_dir = security_dir;
   {
     // Everything that can be checked before a process starts, checked once for the campaign.
     rover::deploy::RunOptions ro;
     ro.out_dir = out + "/.preflight";
     ro.bin_dir = o.bin_dir;
     ro.dds_config_uri = o.dds_config_uri;
+    ro.security = security;
+    ro.security_dir = security_dir;
     const Status s = rover::deploy::PreflightScenario(*scenario, seeds.front(), ro);
     std::error_code ec;
     std::filesystem::remove_all(ro.out_dir, ec);
@@ -798,6 +826,8 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     fo.bin_dir = o.bin_dir;
     fo.dds_config_uri = o.dds_config_uri;
     fo.abort = &g_stop;
+    fo.security = security;
+    fo.security_dir = security_dir;
     const CampaignRegistration registered(state_root, scenario->name, out, "fault campaign");
     auto t = rover::deploy::RunFaultCampaign(*scenario, faults_file, faults, fo);
     if (!t.ok()) return Fail(t.status().message(), 2);
@@ -871,6 +901,9 @@ int main(int argc, char** argv) {
   std::string state_root = rover::deploy::DefaultStateRoot();
   app.add_option("--state-dir", state_root, "where project state and logs live")
       ->envname("ROVER_STATE_DIR");
+  std::string security_dir_flag;
+  app.add_option("--security-dir", security_dir_flag,
+                 "DDS Security keys (default: <state dir>/security; docs/security.md)");
 
   UpArgs up;
   auto* up_cmd = app.add_subcommand("up", "start the services of a compose file");
@@ -917,7 +950,10 @@ int main(int argc, char** argv) {
 
   std::string scenario_file, seeds, out_dir, report_dir;
   int jobs = 1;
+  bool run_secure = false;
   auto* run_cmd = app.add_subcommand("run", "run a scenario end to end over a range of seeds");
+  run_cmd->add_flag("--security", run_secure,
+                    "run the set with DDS Security (as x-rover.security: enabled)");
   run_cmd->add_option("scenario", scenario_file, "scenario file")->required();
   run_cmd->add_option("--seeds", seeds, "seed or range A..B (default: the scenario's seed)");
   run_cmd->add_option("--jobs", jobs, "runs at a time")->check(CLI::Range(1, 16));
@@ -962,6 +998,26 @@ int main(int argc, char** argv) {
   replay_cmd->add_flag("--force", rep_force, "publish even where others publish the same topics");
   replay_cmd->add_flag("--accept-schema-changes", rep_accept,
                        "replay topics whose recorded IDL differs from this build's");
+
+  auto* security_cmd = app.add_subcommand(
+      "security", "DDS Security keys for secured sets (x-rover.security): init, show, rotate");
+  security_cmd->require_subcommand(1);
+  std::string security_site = "rover";
+  int security_days = 365;
+  bool security_new_ca = false;
+  auto* security_init_cmd = security_cmd->add_subcommand(
+      "init", "make the authority (kept if present), an identity per role, governance and "
+              "permissions from the topic catalog");
+  security_init_cmd->add_flag("--new-authority", security_new_ca,
+                              "replace the authority too (every identity is remade)");
+  auto* security_rotate_cmd = security_cmd->add_subcommand(
+      "rotate", "new keys and certificates for every role and new documents, same authority");
+  auto* security_show_cmd = security_cmd->add_subcommand(
+      "show", "the authority, each identity's expiry and grants, and whether all verify");
+  for (auto* c : {security_init_cmd, security_rotate_cmd}) {
+    c->add_option("--site", security_site, "O= of every subject (letters, digits, - _ . space)");
+    c->add_option("--days", security_days, "validity of identities and permissions [days]");
+  }
 
   std::string info_file;
   auto* info_cmd = app.add_subcommand("info", "print a recording's topics, types, counts and span");
@@ -1040,12 +1096,43 @@ int main(int argc, char** argv) {
   signal(SIGPIPE, SIG_IGN);
 
   up.state_root = state_root;
+  up.security_dir = security_dir_flag;
   if (*up_cmd) return Up(up);
   if (*down_cmd) return Down(state_root, project, down_timeout);
   if (*ps_cmd) return Ps(state_root, project, json);
   if (*logs_cmd) return Logs(state_root, project, service, follow, lines);
   if (*config_cmd) return Config(config_file, config_no_preflight);
-  if (*run_cmd) return Run(scenario_file, seeds, jobs, out_dir, faults_file, state_root);
+  const std::string security_dir =
+      security_dir_flag.empty() ? rover::deploy::SecurityDirOf(state_root) : security_dir_flag;
+  if (*run_cmd) {
+    return Run(scenario_file, seeds, jobs, out_dir, faults_file, state_root, run_secure,
+               security_dir);
+  }
+  if (*security_cmd) {
+    rover::deploy::SecurityOptions so;
+    so.dir = security_dir;
+    so.site = security_site;
+    so.identity_days = security_days;
+    if (const Status v = so.Validate(); !v.ok()) return Fail(v.message(), 2);
+    if (*security_show_cmd) {
+      auto d = rover::deploy::DescribeSecurity(security_dir);
+      if (!d.ok()) return Fail(d.status().message());
+      std::cout << *d;
+      return rover::deploy::VerifySecurity(security_dir).ok() ? 0 : 1;
+    }
+    if (*security_init_cmd && !security_new_ca &&
+        std::filesystem::exists(security_dir + "/ca.pem")) {
+      std::cout << "roverctl: keeping the authority in " << security_dir
+                << " (--new-authority makes a new one; every set must then get new keys)\n";
+    }
+    const Status st = *security_init_cmd ? rover::deploy::InitSecurity(so, security_new_ca)
+                                         : rover::deploy::RotateSecurity(so);
+    if (!st.ok()) return Fail(st.message());
+    std::cout << "roverctl: " << (*security_init_cmd ? "made" : "rotated") << " "
+              << rover::dds::RoleAccessTable().size() << " identities, governance and "
+              << "permissions in " << security_dir << "; `roverctl security show` lists them\n";
+    return 0;
+  }
   if (*report_cmd) return Report(report_dir);
   if (*info_cmd) return rover::deploy::RunInfo(info_file, std::cout, std::cerr);
   if (*fault_cmd) {
@@ -1061,6 +1148,7 @@ int main(int argc, char** argv) {
     auto target = ResolveFaultTarget(state_root, fault_project);
     if (!target.ok()) return Fail(target.status().message());
     setenv("CYCLONEDDS_URI", DdsConfigUri().c_str(), 0);  // the set's own configuration
+    JoinAs(target->security_dir, "fault-controller");
     if (*fault_add_cmd) return rover::deploy::RunFaultAdd(*target, fault_add, std::cout, std::cerr);
     if (*fault_list_cmd) return rover::deploy::RunFaultList(*target, json, std::cout, std::cerr);
     const std::optional<std::uint32_t> id =
@@ -1071,6 +1159,7 @@ int main(int argc, char** argv) {
   if (*record_cmd) {
     auto target = ResolveTarget(state_root, project, rec_domain, true);
     if (!target.ok()) return Fail(target.status().message(), 2);
+    JoinAs(target->security_dir, "recorder");
     rover::deploy::RecordArgs a;
     a.target = std::move(*target);
     a.record.path = rec_out;
@@ -1087,6 +1176,7 @@ int main(int argc, char** argv) {
   if (*replay_cmd) {
     auto target = ResolveTarget(state_root, project, rep_domain, false);
     if (!target.ok()) return Fail(target.status().message(), 2);
+    JoinAs(target->security_dir, "replayer");
     rover::deploy::ReplayArgs a;
     a.file = replay_file;
     a.target = std::move(*target);

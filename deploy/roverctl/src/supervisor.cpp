@@ -13,6 +13,9 @@
 
 #include "rover/base/clock.hpp"
 #include "rover/base/log.hpp"
+#include "rover/deploy/security.hpp"
+#include "rover/runtime/security_files.hpp"
+#include "rover/runtime/topic_access.hpp"
 
 namespace rover::deploy {
 namespace fs = std::filesystem;
@@ -115,6 +118,10 @@ std::map<std::string, std::string> ServiceEnvironment(const ComposeProject& proj
   // x-rover.faults (and a scenario's faults:), written into the state folder by Preflight and
   // Create; under wall time Start() adds ROVER_FAULTS_EPOCH_NS (the set's start) to extra_env.
   if (!project.rover.faults.empty()) env["ROVER_FAULTS"] = SetFaultsPath(options.state_dir);
+  if (project.rover.security) {
+    env[dds::kSecurityDirVariable] = SecurityDirFor(options);
+    env[dds::kSecurityIdentityVariable] = SecurityRoleOf(s);
+  }
   for (const auto& [k, v] : options.extra_env) env[k] = v;
   for (const auto& [k, v] : s.environment) env[k] = v;  // never a reserved one (compose.cpp)
   return env;
@@ -159,7 +166,41 @@ std::string SetReadiness::Summary() const {
   return out;
 }
 
+std::string SecurityRoleOf(const ServiceSpec& service) {
+  return service.command.empty() ? "" : fs::path(service.command[0]).filename().string();
+}
+
+std::string SecurityDirFor(const SupervisorOptions& options) {
+  return options.security_dir.empty() ? SecurityDirOf(DefaultStateRoot()) : options.security_dir;
+}
+
+namespace {
+
+// A secured set starts only when every service's identity is there and verifies.
+Status CheckSetSecurity(const ComposeProject& project, const SupervisorOptions& options) {
+  const std::string dir = SecurityDirFor(options);
+  std::vector<std::string> roles;
+  for (const auto& spec : project.services) {
+    const std::string role = SecurityRoleOf(spec);
+    if (!dds::FindRole(role)) {
+      return InvalidArgument(project.file + ":" + std::to_string(spec.command_line) +
+                             ": services." + spec.name + ": x-rover.security is enabled but '" +
+                             role + "' has no DDS Security role (core/runtime topic_access.cpp "
+                             "lists the roles)");
+    }
+    roles.push_back(role);
+  }
+  const Status st = VerifySecurity(dir, roles);
+  if (!st.ok()) {
+    return FailedPrecondition(project.file + ": x-rover.security: " + st.message());
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status Preflight(const ComposeProject& project, const SupervisorOptions& options) {
+  if (project.rover.security) ROVER_RETURN_IF_ERROR(CheckSetSecurity(project, options));
   std::error_code ec;
   fs::create_directories(options.state_dir + "/logs", ec);
   const std::string tmp = options.state_dir + "/logs/.preflight";
@@ -226,6 +267,12 @@ Result<std::unique_ptr<Supervisor>> Supervisor::Create(ComposeProject project,
   std::unique_ptr<Supervisor> s(
       new Supervisor(std::move(project), std::move(options), std::move(*lease)));
   setenv("CYCLONEDDS_URI", s->options_.dds_config_uri.c_str(), 1);
+  if (s->project_.rover.security) {
+    // Its heartbeat reader joins the secured set as "supervisor", unless this process already
+    // took part under another role (roverctl run: the scenario runner's, which reads all).
+    setenv(dds::kSecurityDirVariable, SecurityDirFor(s->options_).c_str(), 0);
+    setenv(dds::kSecurityIdentityVariable, "supervisor", 0);
+  }
   auto p = dds::Participant::Create(s->lease_.domain());
   if (!p.ok()) return p.status();
   s->participant_ = std::move(*p);
@@ -520,6 +567,7 @@ void Supervisor::WriteState(const std::string& phase) const {
   j["started_wall_ns"] = started_wall_ns_;
   j["ready_after_s"] = ready_after_s_;
   j["clock"] = project_.rover.clock;
+  j["security_dir"] = project_.rover.security ? SecurityDirFor(options_) : "";
   j["heartbeat_timeout_s"] = project_.rover.heartbeat_timeout_s;
   j["written_wall_ns"] = WallNow().ns;
   j["services"] = nlohmann::json::array();

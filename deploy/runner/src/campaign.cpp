@@ -132,6 +132,8 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
       ro.out_dir = options.out_dir;
       ro.bin_dir = options.bin_dir;
       ro.dds_config_uri = options.dds_config_uri;
+      ro.security = options.security;
+      ro.security_dir = options.security_dir;
       ro.abort = options.abort;
       ro.progress = [&, slot_index](const std::string& note, double sim_s) {
         std::lock_guard lock(mu);

@@ -509,6 +509,8 @@ Result<FaultCampaignTable> RunFaultCampaign(const Scenario& scenario, const std:
       ro.kills = job->variant->kills;
       ro.bin_dir = options.bin_dir;
       ro.dds_config_uri = options.dds_config_uri;
+      ro.security = options.security;
+      ro.security_dir = options.security_dir;
       ro.abort = options.abort;
       const Scenario& sc = job->variant->scenario;
       auto r = options.run_one ? options.run_one(sc, job->seed, ro)

@@ -13,6 +13,7 @@
 
 #include "rover/base/format.hpp"
 #include "rover/deploy/runner/run_loop.hpp"
+#include "rover/runtime/security_files.hpp"
 
 namespace rover::deploy::runner {
 namespace fs = std::filesystem;
@@ -188,7 +189,15 @@ Result<PreparedRun> PrepareRun(const Scenario& scenario, std::uint32_t seed,
   sup.state_dir = run_dir;
   sup.dds_config_uri = options.dds_config_uri;
   sup.abort = options.abort;
+  sup.security_dir = options.security_dir;
+  project.rover.security = project.rover.security || options.security;
   ROVER_RETURN_IF_ERROR(Preflight(project, sup));
+  if (project.rover.security) {
+    // This process's participants (operator, clock, tasks, recorder, the set's heartbeat
+    // reader) join as the scenario runner, which may read every topic.
+    setenv(dds::kSecurityDirVariable, SecurityDirFor(sup).c_str(), 1);
+    setenv(dds::kSecurityIdentityVariable, "scenario-runner", 1);
+  }
   return PreparedRun{run_dir, std::move(world), std::move(project), sup};
 }
 

@@ -102,6 +102,9 @@ struct RoverSettings {
   /// x-rover.record; nullopt (or enabled = false) records nothing. A relative path is taken
   /// from the directory roverctl runs in; no path: <state>/<project>/recording.mcap.
   std::optional<recording::RecordOptions> record;
+  /// x-rover.security: enabled. Every service then starts with its role's DDS Security identity
+  /// (docs/security.md); roverctl checks the keys before anything starts.
+  bool security = false;
 };
 
 struct ComposeProject {

@@ -26,6 +26,7 @@ struct FaultTarget {
   std::vector<std::string> services;
   double discovery_s = 10;  ///< [s] wall: how long to wait for them
   double answer_s = 3;      ///< [s] wall: how long to wait for every service's answer
+  std::string security_dir; ///< a secured set's keys (state.json); "" = open
 };
 
 /// What `fault add` was given: an inline YAML map (`'{kind: drop, topic: dl/pose}'`), a file

@@ -44,6 +44,9 @@ struct SupervisorOptions {
   bool preflight = true;           ///< run `--validate` on rover services first
   double settle_s = 1.0;           ///< a service exiting this soon after start "exited at once"
   std::map<std::string, std::string> extra_env;  ///< added to every service's environment
+  /// DDS Security keys for a set with x-rover.security: enabled (deploy/security.hpp); empty =
+  /// SecurityDirOf(DefaultStateRoot()).
+  std::string security_dir;
   const std::atomic<bool>* abort = nullptr;      ///< set (e.g. by SIGINT) to abandon Start()
 };
 
@@ -64,8 +67,16 @@ inline constexpr const char* kSetIdVariable = "ROVER_SET_ID";
 bool IsRoverService(const ComposeProject& project, const ServiceSpec& service,
                     const SupervisorOptions& options);
 
+/// The DDS Security role of a service: its command's executable name ("dl-pose").
+std::string SecurityRoleOf(const ServiceSpec& service);
+/// The security directory a secured set uses (options.security_dir or the default).
+std::string SecurityDirFor(const SupervisorOptions& options);
+
 /// Checks that every command exists and runs `<command> --validate` for rover services (those
-/// in options.bin_dir), so bad parameters are reported before anything starts. Needs no DDS.
+/// in options.bin_dir), so bad parameters are reported before anything starts. For a secured
+/// set, also that every service's role has an identity in the security directory that verifies
+/// (deploy/security.hpp VerifySecurity), naming the service, the file and what is wrong. Needs
+/// no DDS.
 Status Preflight(const ComposeProject& project, const SupervisorOptions& options);
 
 enum class ServiceState { kPending, kRunning, kBackoff, kExited, kFailed, kStopped };

@@ -25,6 +25,8 @@ struct CampaignOptions {
   std::string out_dir;
   std::string bin_dir;
   std::string dds_config_uri;
+  bool security = false;      ///< RunOptions::security for every run
+  std::string security_dir;   ///< RunOptions::security_dir
   bool tty = false;                      ///< draw a progress bar (stderr is a terminal)
   const std::atomic<bool>* abort = nullptr;
   /// Runs one seed; RunScenario unless set (tests run the campaign without processes).

@@ -134,6 +134,8 @@ struct FaultCampaignOptions {
   std::string out_dir;
   std::string bin_dir;
   std::string dds_config_uri;
+  bool security = false;      ///< RunOptions::security for every run
+  std::string security_dir;   ///< RunOptions::security_dir
   const std::atomic<bool>* abort = nullptr;
   /// Runs one seed; RunScenario unless set (tests run the campaign without processes).
   std::function<Result<RunResult>(const Scenario&, std::uint32_t seed, const RunOptions&)> run_one;

@@ -44,6 +44,11 @@ struct RunOptions {
   std::function<void(const std::string& note, double sim_time_s)> progress;
   /// Services to kill -9 during the run (RunResult::kills says what happened).
   std::vector<ServiceKill> kills;
+  /// Run the set with DDS Security (as if its compose file said x-rover.security: enabled),
+  /// keys from `security_dir` (empty: the default under the state root). The runner itself
+  /// then takes part as the "scenario-runner" role.
+  bool security = false;
+  std::string security_dir;
 };
 
 /// Validates the simulator's sections of a scenario (terrain, lander, science targets) with the
