@@ -229,9 +229,9 @@ Status SecurityOptions::Validate() const {
   if (ca_days <= 0) {
     return InvalidArgument("security.ca_days: " + std::to_string(ca_days) + " must be positive");
   }
-  if (domain_min < 0 || domain_max > 232 || domain_min > domain_max) {
+  if (domain_min < 0 || domain_max > 230 || domain_min > domain_max) {
     return InvalidArgument("security.domains: [" + std::to_string(domain_min) + ", " +
-                           std::to_string(domain_max) + "] is not a range within [0, 232]");
+                           std::to_string(domain_max) + "] is not a range within [0, 230]");
   }
   return Status::Ok();
 }
@@ -240,7 +240,6 @@ std::string SecurityDirOf(const std::string& state_root) { return state_root + "
 
 std::string GovernanceXml(const SecurityOptions& o) {
   return R"(<?xml version="1.0" encoding="UTF-8"?>
-<!-- Made by roverctl security: who may join is decided by the permissions; everything is encrypted. -->
 <dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd">
   <domain_access_rules>
     <domain_rule>
@@ -270,7 +269,6 @@ std::string GovernanceXml(const SecurityOptions& o) {
 std::string PermissionsXml(const SecurityOptions& o, const std::string& not_before,
                            const std::string& not_after) {
   std::string s = R"(<?xml version="1.0" encoding="UTF-8"?>
-<!-- Made by roverctl security from core/runtime's topic access table: each role publishes what it writes and subscribes to what it reads. -->
 <dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_permissions.xsd">
   <permissions>
 )";

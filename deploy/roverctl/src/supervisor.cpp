@@ -254,6 +254,11 @@ Status Preflight(const ComposeProject& project, const SupervisorOptions& options
 Result<std::unique_ptr<Supervisor>> Supervisor::Create(ComposeProject project,
                                                        SupervisorOptions options) {
   std::optional<int> domain = options.domain ? options.domain : project.rover.domain;
+  if (project.rover.security && domain && *domain > 230) {
+    return InvalidArgument(project.file + ": x-rover.security: domain " +
+                           std::to_string(*domain) +
+                           " is above 230, the highest DDS Security's documents cover");
+  }
   auto lease = domain ? dds::DomainLease::Acquire(*domain) : dds::DomainLease::AcquireFree();
   if (!lease.ok()) return lease.status();
   std::error_code ec;

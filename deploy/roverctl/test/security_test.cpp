@@ -64,7 +64,7 @@ TEST(SecurityDocuments, PermissionsGrantEachRoleItsTopicsOnly) {
   const std::string g = GovernanceXml(o);
   EXPECT_THAT(g, HasSubstr("<allow_unauthenticated_participants>false"));
   EXPECT_THAT(g, HasSubstr("<data_protection_kind>ENCRYPT"));
-  EXPECT_THAT(g, HasSubstr("<min>0</min><max>232</max>"));
+  EXPECT_THAT(g, HasSubstr("<min>0</min><max>230</max>"));
 }
 
 class SecurityDir : public ::testing::Test {

@@ -28,9 +28,9 @@ struct SecurityOptions {
   int identity_days = 365;         ///< identity certificates' and permissions' validity [days]
   int ca_days = 3650;              ///< the authority's validity [days]
   int domain_min = 0;              ///< domains the governance and grants cover
-  int domain_max = 232;
+  int domain_max = 230;  ///< DDS Security documents take domain ids up to 230
   /// Ok, or InvalidArgument naming the field: an empty dir, a site with characters other than
-  /// letters, digits, '-', '_', '.' and ' ', non-positive validities, domains outside [0, 232]
+  /// letters, digits, '-', '_', '.' and ' ', non-positive validities, domains outside [0, 230]
   /// or min > max.
   Status Validate() const;
 };
@@ -60,7 +60,8 @@ Status VerifySecurity(const std::string& dir, const std::vector<std::string>& ro
 /// certificate's expiry and the topics it may write and read, and each check's result.
 Result<std::string> DescribeSecurity(const std::string& dir);
 
-/// The governance and permissions documents, unsigned (exposed for tests and `show`).
+/// The governance and permissions documents, unsigned (exposed for tests and `show`). No XML
+/// comments: Cyclone 0.10's parser of these documents refuses them.
 std::string GovernanceXml(const SecurityOptions& options);
 std::string PermissionsXml(const SecurityOptions& options, const std::string& not_before,
                            const std::string& not_after);
