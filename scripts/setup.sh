@@ -33,6 +33,8 @@ PACKAGES=(
   docker-compose
   # tools used by tests: XML validation of JUnit output, process inspection
   libxml2-utils procps python3
+  # DDS Security keys (roverctl security)
+  openssl
 )
 
 # Node.js and npm for the interop test's tool: any node already on the machine will do (it may

@@ -188,6 +188,25 @@ TEST_F(SecurityTest, IntrudersCommandNothingAndReadNothing) {
   // as far as a handshake (no certificate) or as a writer (no permission).
   EXPECT_NE(logs.find("Certificate not valid"), std::string::npos) << logs.substr(0, 4000);
 
+  // roverctl's own tools join the secured set with their identities (state.json names the
+  // keys): a recording of dl/pose, a replay of it, the fault agents' list.
+  const std::string rec = dir_ + "/pose.mcap";
+  auto [rec_exit, rec_out] = Roverctl({"record", "-p", project_, "-o", rec, "--topics",
+                                       "dl/pose", "--duration", "2"});
+  EXPECT_TRUE(rec_exit.success()) << rec_out;
+  auto [info_exit, info_out] = Roverctl({"info", rec});
+  EXPECT_NE(info_out.find("dl/pose"), std::string::npos) << info_out;
+  auto [rep_exit, rep_out] =
+      Roverctl({"replay", rec, "-p", project_, "--force", "--no-clock", "--rate", "4"});
+  EXPECT_TRUE(rep_exit.success()) << rep_out;
+  auto [add_exit, add_out] = Roverctl(
+      {"fault", "add", "{kind: drop, topic: dl/pose, service: dl-locomotion}", "-p", project_});
+  EXPECT_TRUE(add_exit.success()) << add_out;
+  auto [fault_exit, fault_out] = Roverctl({"fault", "list", "-p", project_});
+  EXPECT_TRUE(fault_exit.success()) << fault_out;
+  EXPECT_NE(fault_out.find("dl-locomotion"), std::string::npos) << fault_out;
+  EXPECT_NE(fault_out.find("drop"), std::string::npos) << fault_out;
+
   up_.Signal(SIGINT);
   auto e = up_.WaitFor(std::chrono::seconds(30));
   EXPECT_TRUE(e.has_value());

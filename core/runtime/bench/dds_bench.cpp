@@ -497,8 +497,11 @@ int main(int argc, char** argv) {
   int rounds = 3;
   app.add_option("--rounds", rounds, "interleaved repetitions (median reported)")->check(CLI::Range(1, 20));
   std::string cases = "all";
-  app.add_option("--cases", cases, "all | wrappers | seam")
-      ->check(CLI::IsMember({"all", "wrappers", "seam"}));
+  std::string security_dir;
+  app.add_option("--security-dir", security_dir,
+                 "DDS Security keys (`roverctl security init`) for --cases security");
+  app.add_option("--cases", cases, "all | wrappers | seam | security")
+      ->check(CLI::IsMember({"all", "wrappers", "seam", "security"}));
   int seam_samples = 20000, seam_rounds = 15;
   app.add_option("--seam-samples", seam_samples, "samples per seam case")->check(CLI::Range(1000, 10000000));
   app.add_option("--seam-rounds", seam_rounds, "interleaved seam rounds")->check(CLI::Range(1, 200));
@@ -617,6 +620,55 @@ int main(int argc, char** argv) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[v.size() / 2];
   };
+
+  if (cases == "security") {
+    // DDS Security's cost: the typed wrappers open and secured (sign + encrypt, the governance
+    // `roverctl security init` writes), interleaved rounds, medians, ratios secured / open.
+    if (security_dir.empty()) {
+      std::fprintf(stderr, "--cases security needs --security-dir (keys from `roverctl security "
+                           "init`)\n");
+      return 2;
+    }
+    auto secured = [&](bool on) {
+      if (on) {
+        setenv("ROVER_SECURITY_DIR", security_dir.c_str(), 1);
+        setenv("ROVER_SECURITY_IDENTITY", "rover-dds-bench", 1);
+      } else {
+        unsetenv("ROVER_SECURITY_DIR");
+        unsetenv("ROVER_SECURITY_IDENTITY");
+      }
+    };
+    std::printf("\nrover-dds-bench: DDS Security's cost, typed wrappers, %.0f s per case, "
+                "loopback, medians of %d interleaved rounds\n", seconds, rounds);
+    std::printf("%-24s %-10s %11s %11s %9s\n", "case", "unit", "open", "secured", "sec/open");
+    for (const std::string which : {"small", "stereo"}) {
+      std::map<bool, std::vector<double>> p50, p90, rate;
+      for (int round = 0; round < rounds; ++round) {
+        for (bool on : {false, true}) {
+          secured(on);
+          const Latency l = latency("ours", which);
+          p50[on].push_back(l.p50_us);
+          p90[on].push_back(l.p90_us);
+          rate[on].push_back(throughput("ours", which));
+          secured(false);
+          std::fprintf(stderr, "  %s %s round %d: p50 %.1f us, %.0f samples/s\n", which.c_str(),
+                       on ? "secured" : "open", round + 1, l.p50_us, rate[on].back());
+        }
+      }
+      auto row = [&](const std::string& name, const char* unit, double open, double sec) {
+        std::printf("%-24s %-10s %11.1f %11.1f %9.3f\n", name.c_str(), unit, open, sec,
+                    open > 0 ? sec / open : 0.0);
+      };
+      row(which + " round trip p50", "us", median(p50[false]), median(p50[true]));
+      row(which + " round trip p90", "us", median(p90[false]), median(p90[true]));
+      row(which + " throughput", "samples/s", median(rate[false]), median(rate[true]));
+      row(which + " throughput", "MB/s", median(rate[false]) * bytes_of(which) / 1e6,
+          median(rate[true]) * bytes_of(which) / 1e6);
+    }
+    std::printf("\nsecured = governance ENCRYPT for discovery, liveliness and every topic's data; "
+                "the\nratios are what DDS Security costs on this machine (2 cores, shared).\n");
+    return 0;
+  }
 
   struct Row {
     std::string name, unit;

@@ -67,6 +67,9 @@ const std::vector<RoleAccess>& RoleAccessTable() {
         {"fault-controller", "roverctl fault", false, {"sys/fault_control"},
          {"sys/fault_event"}},
         {"supervisor", "roverctl up", false, {}, {"sys/health"}},
+        // benchmarks: their own topics only
+        {"rover-dds-bench", "DDS benchmark (its bench/ topics)", false,
+         {"bench/ping", "bench/pong", "bench/data"}, {"bench/ping", "bench/pong", "bench/data"}},
     };
     std::sort(t.begin(), t.end(),
               [](const RoleAccess& a, const RoleAccess& b) { return a.role < b.role; });

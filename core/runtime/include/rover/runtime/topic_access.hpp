@@ -2,7 +2,8 @@
 /// @file
 /// Who may write and read each catalog topic, by role: every rover service executable, the
 /// operator tools and roverctl's own participants (the scenario runner with its recorder, the
-/// standalone recorder and replayer, the fault controller and the supervisor). DDS-free.
+/// standalone recorder and replayer, the fault controller and the supervisor), and
+/// rover-dds-bench on its own bench/ topics. No DDS calls.
 ///
 /// This is what DDS Security's permissions are made from (deploy/security): a role may publish
 /// exactly the topics it writes and subscribe to those it reads, nothing else. docs/topics.md
