@@ -140,22 +140,27 @@ TEST_F(ScenarioE2e, ParallelRunsDoNotCrossTalkAndSameSeedSameOutcome) {
     EXPECT_EQ(j["truth_publishers"].get<int>(), 1) << r.run_dir;
     EXPECT_TRUE(r.pass) << r.failure;
   }
-  // Same seed again: same terrain and the same outcome.
-  auto [e2, out2] = Run({"run", Scenario("short_drive.yaml"), "--seeds", "1", "--out", dir_ + "/again"});
+  // Same seed again, alone and with DDS Security (docs/security.md: every participant
+  // authenticated, every sample encrypted): same terrain and the same outcome.
+  const std::string keys = dir_ + "/keys";
+  auto [ke, kout] = Run({"--security-dir", keys, "security", "init"});
+  ASSERT_EQ(ke.code, 0) << kout;
+  auto [e2, out2] = Run({"--security-dir", keys, "run", Scenario("short_drive.yaml"), "--seeds",
+                         "1", "--security", "--out", dir_ + "/again"});
   EXPECT_EQ(e2.code, 0) << out2;
   const auto a = Json(dir_ + "/par/short-drive-seed1/result.json");
   const auto b = Json(dir_ + "/again/short-drive-seed1/result.json");
   EXPECT_EQ(a["pass"], b["pass"]);
   EXPECT_EQ(a["terrain_digest"], b["terrain_digest"]);
   // Strict lock-step (the default): the same figures bit for bit, although one run had a
-  // neighbour (--jobs 2) and the other ran alone.
+  // neighbour (--jobs 2) and the other ran alone and secured.
   EXPECT_EQ(a["timings"]["lockstep"], "strict");
   EXPECT_EQ(a["timings"]["late_samples"], 0);
   EXPECT_EQ(b["timings"]["late_samples"], 0);
   for (const char* key : {"criteria", "figures", "steps", "distance_driven_m", "estimate_error",
                           "odometry_only_error", "truth_track", "estimate_track"}) {
     EXPECT_EQ(a[key], b[key]) << key << ":\n--jobs 2: " << a[key].dump().substr(0, 2000)
-                              << "\n--jobs 1: " << b[key].dump().substr(0, 2000);
+                              << "\n--jobs 1, secured: " << b[key].dump().substr(0, 2000);
   }
   EXPECT_EQ(a["timings"]["sim_time_s"], b["timings"]["sim_time_s"]);
   EXPECT_NE(a["terrain_digest"], Json(dir_ + "/par/short-drive-seed2/result.json")["terrain_digest"]);
