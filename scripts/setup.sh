@@ -35,6 +35,8 @@ PACKAGES=(
   libxml2-utils procps python3
   # DDS Security keys (roverctl security)
   openssl
+  # campaigns through Slurm (roverctl run --backend slurm; scripts/slurm-local.sh)
+  slurm-client slurmctld slurmd munge
 )
 
 # Node.js and npm for the interop test's tool: any node already on the machine will do (it may

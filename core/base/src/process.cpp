@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -325,6 +327,46 @@ MarkedStop StopMarkedProcesses(std::string_view key, std::string_view value, Env
   SignalTree(tree, SIGKILL);
   out.all_gone = wait_gone(std::chrono::seconds(5));
   return out;
+}
+
+std::string CommandOutput::LastErrorLine() const {
+  const std::string& text = err.find_first_not_of(" \n\r\t") == std::string::npos ? out : err;
+  const std::size_t end = text.find_last_not_of(" \n\r\t");
+  if (end == std::string::npos) return "";
+  const std::size_t nl = text.rfind('\n', end);
+  const std::size_t start = nl == std::string::npos ? 0 : nl + 1;
+  return text.substr(start, end - start + 1);
+}
+
+Result<CommandOutput> RunCommand(const std::vector<std::string>& argv,
+                                 const std::string& scratch_dir, Duration timeout,
+                                 const std::map<std::string, std::string>& env) {
+  static std::atomic<int> n{0};
+  const std::string base = scratch_dir + "/.cmd-" + std::to_string(getpid()) + "-" +
+                           std::to_string(n.fetch_add(1));
+  SpawnOptions o;
+  o.argv = argv;
+  o.env = env;
+  o.stdout_path = base + ".out";
+  o.stderr_path = base + ".err";
+  ROVER_ASSIGN_OR_RETURN(Process p, Process::Spawn(o));
+  std::optional<ExitInfo> exit = p.WaitFor(timeout);
+  auto slurp = [](const std::string& path) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::remove(path.c_str());
+    return text;
+  };
+  CommandOutput c;
+  c.out = slurp(o.stdout_path);
+  c.err = slurp(o.stderr_path);
+  if (!exit) {
+    p.Terminate(std::chrono::seconds(1));
+    return Timeout(argv.front() + " did not finish in " +
+                   std::to_string(static_cast<int>(ToSeconds(timeout))) + " s");
+  }
+  c.exit = *exit;
+  return c;
 }
 
 }  // namespace rover

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -228,7 +229,7 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   ROVER_RETURN_IF_ERROR(CheckKeys(n, "x-rover",
                                   {"project", "domain", "clock", "startup_timeout_s",
                                    "heartbeat_timeout_s", "qos", "sim", "faults", "scenario", "record",
-                                   "security"},
+                                   "security", "slurm"},
                                   err, kComposeKeys));
   if (const auto p = n["project"]) {
     r->project = ScalarText(p);
@@ -265,6 +266,27 @@ Status ParseRover(const YAML::Node& n, const Errors& err, RoverSettings* r) {
   if (const auto f = n["faults"]) {
     if (!f.IsSequence()) return err.At(f, "x-rover.faults: expected a list");
     ROVER_ASSIGN_OR_RETURN(r->faults, ParseSetFaults(f, err.file()));
+  }
+  if (const auto sl = n["slurm"]) {
+    if (!sl.IsMap()) return err.At(sl, "x-rover.slurm: expected a map");
+    ROVER_RETURN_IF_ERROR(CheckKeys(sl, "x-rover.slurm",
+                                    {"partition", "time", "cpus_per_task", "sbatch_args"}, err,
+                                    kComposeKeys));
+    if (const auto p = sl["partition"]) r->slurm.partition = ScalarText(p);
+    if (const auto t = sl["time"]) r->slurm.time = ScalarText(t);
+    double cpus = 0;
+    ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(sl, "cpus_per_task", "x-rover.slurm",
+                                               Bounds::Closed(1, 256), err, &cpus));
+    if (cpus != std::floor(cpus)) {
+      return err.At(sl["cpus_per_task"], "x-rover.slurm.cpus_per_task: " +
+                                             ScalarText(sl["cpus_per_task"]) +
+                                             " is not a whole number");
+    }
+    r->slurm.cpus_per_task = static_cast<int>(cpus);
+    if (const auto a = sl["sbatch_args"]) {
+      if (!a.IsSequence()) return err.At(a, "x-rover.slurm.sbatch_args: expected a list");
+      for (const auto& x : a) r->slurm.sbatch_args.push_back(ScalarText(x));
+    }
   }
   if (const auto sec = n["security"]) {
     ROVER_ASSIGN_OR_RETURN(const std::string v,

@@ -43,6 +43,7 @@
 #include "rover/deploy/run_report.hpp"
 #include "rover/deploy/scenario.hpp"
 #include "rover/deploy/security.hpp"
+#include "rover/deploy/slurm_campaign.hpp"
 #include "rover/deploy/supervisor.hpp"
 #include "rover/runtime/domain.hpp"
 #include "rover/runtime/security_files.hpp"
@@ -159,6 +160,11 @@ struct UpArgs {
 };
 
 constexpr double kDefaultWaitS = 120;
+
+// Which x-rover.slurm settings the command line overrides.
+struct SlurmFlags {
+  bool partition = false, time = false, cpus = false, sbatch_args = false;
+};
 
 // The supervisor: starts the set, reports "ok <domain>" (and with --wait "ready <s>") on
 // `notify_fd`, then supervises until Ctrl-C, SIGTERM, `down` or --for.
@@ -756,7 +762,8 @@ void PrintCampaigns(const nlohmann::json& campaigns) {
 
 int Run(const std::string& file, const std::string& seeds_text, int jobs, std::string out,
         const std::string& faults_file, const std::string& state_root, bool security,
-        const std::string& security_dir) {
+        const std::string& security_dir, const std::string& backend,
+        rover::deploy::SlurmOptions slurm, const SlurmFlags& given) {
   auto scenario = rover::deploy::LoadScenario(file);
   if (!scenario.ok()) return Fail(scenario.status().message(), 2);
   std::vector<std::uint32_t> seeds = {scenario->seed};
@@ -813,6 +820,50 @@ int Run(const std::string& file, const std::string& seeds_text, int jobs, std::s
     if (std::filesystem::exists(out) && std::filesystem::is_empty(out)) std::filesystem::remove(out, ec);
     if (!s.ok()) return Fail(s.message(), 2);
   }
+  if (backend == "slurm") {
+    if (!faults_file.empty()) {
+      return Fail("--backend slurm runs seed campaigns; a fault campaign (--faults) runs locally",
+                  2);
+    }
+    // x-rover.slurm in the scenario's compose file, then the flags given.
+    if (auto compose = rover::deploy::LoadComposeFile(scenario->compose_path); compose.ok()) {
+      const auto& x = compose->rover.slurm;
+      if (!given.partition && !x.partition.empty()) slurm.partition = x.partition;
+      if (!given.time && !x.time.empty()) slurm.time_limit = x.time;
+      if (!given.cpus && x.cpus_per_task > 0) slurm.cpus_per_task = x.cpus_per_task;
+      if (!given.sbatch_args) slurm.sbatch_args = x.sbatch_args;
+    }
+    rover::deploy::SlurmCampaignOptions so;
+    so.seeds = seeds;
+    so.out_dir = out;
+    so.roverctl = SelfDir() + "/roverctl";
+    so.security = security;
+    so.security_dir = security_dir;
+    so.slurm = slurm;
+    so.abort = &g_stop;
+    auto job = rover::deploy::SubmitSlurmCampaign(*scenario, so);
+    if (!job.ok()) {
+      return Fail(job.status().message(), job.status().code() == rover::StatusCode::kInvalidArgument ? 2 : 1);
+    }
+    std::printf("roverctl: submitted '%s' for %zu seed%s as slurm job %s (one task per seed), "
+                "into %s\n",
+                scenario->name.c_str(), seeds.size(), seeds.size() == 1 ? "" : "s", job->c_str(),
+                out.c_str());
+    std::fflush(stdout);
+    if (slurm.detach) {
+      std::printf("detached: `roverctl report %s` gathers the results\n", out.c_str());
+      return 0;
+    }
+    const CampaignRegistration registered(state_root, scenario->name, out, "campaign");
+    auto r = rover::deploy::WaitSlurmCampaign(*scenario, so, *job);
+    if (!r.ok()) return Fail(r.status().message(), 1);
+    std::printf("\n%s", rover::deploy::FormatSummaryTable(r->runs, r->summary, r->missing).c_str());
+    for (const auto& e : r->errors) std::printf("error: %s\n", e.c_str());
+    const std::string again = rover::deploy::ResubmitCommand(out);
+    if (!again.empty()) std::printf("resubmit what has no result: %s\n", again.c_str());
+    std::printf("\nreport: %s/summary.json  junit: %s/junit.xml\n", out.c_str(), out.c_str());
+    return r->all_passed() ? 0 : 1;
+  }
   if (!faults_file.empty()) {
     std::printf("roverctl: fault campaign '%s': %zu faults x %zu seed%s + baseline, %d at a time, "
                 "into %s\n",
@@ -860,10 +911,50 @@ int Report(const std::string& dir) {
     std::printf("%s", rover::deploy::FormatCampaignTable(*t).c_str());
     return FaultCampaignExit(*t);
   }
+  bool slurm = false;
+  try {
+    std::ifstream in(dir + "/campaign.json");
+    slurm = in && nlohmann::json::parse(in).value("backend", "") == "slurm";
+  } catch (const nlohmann::json::exception&) {
+  }
+  int open = 0;
+  if (slurm) {
+    // A Slurm campaign is gathered here: tasks Slurm ended without a result get one saying so,
+    // and once none is queued or running the summary files are written.
+    auto g = rover::deploy::GatherSlurmCampaign(dir);
+    if (!g.ok()) return Fail(g.status().message(), 1);
+    open = *g;
+  }
   auto report = rover::deploy::LoadCampaignReport(dir);
   if (!report.ok()) return Fail(report.status().message(), 2);
   std::printf("%s", report->table.c_str());
-  return report->all_passed ? 0 : 1;
+  if (slurm) {
+    if (open > 0) std::printf("slurm: %d task(s) still queued or running\n", open);
+    const std::string again = rover::deploy::ResubmitCommand(dir);
+    if (!again.empty() && open == 0) std::printf("resubmit what has no result: %s\n", again.c_str());
+  }
+  return report->all_passed && open == 0 ? 0 : 1;
+}
+
+// One seed of a Slurm campaign (`run-task`, what each array task runs): the same single run as
+// a local campaign's, into the campaign folder; exit 0 when a result was written.
+int RunTask(const std::string& file, std::uint32_t seed, const std::string& out, bool security,
+            const std::string& security_dir) {
+  auto scenario = rover::deploy::LoadScenario(file);
+  if (!scenario.ok()) return Fail(scenario.status().message(), 2);
+  rover::deploy::RunOptions ro;
+  ro.out_dir = out;
+  ro.bin_dir = SelfDir();
+  ro.dds_config_uri = DdsConfigUri();
+  ro.security = security;
+  ro.security_dir = security_dir;
+  ro.abort = &g_stop;
+  auto r = rover::deploy::RunScenario(*scenario, seed, ro);
+  if (!r.ok()) return Fail("seed " + std::to_string(seed) + ": " + r.status().message(), 1);
+  std::printf("seed %u: %s  %.2f m  %.1f sim s  %.1f wall s%s%s\n", seed,
+              r->pass ? "PASS" : "FAIL", r->distance_driven, r->sim_time_s, r->wall_time_s,
+              r->failure.empty() ? "" : "  ", r->failure.c_str());
+  return 0;
 }
 
 }  // namespace
@@ -878,6 +969,7 @@ std::string UsageHint(const CLI::App& app, int argc, char** argv) {
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) {
       known = known || sub->get_name() == word;
+      if (sub->get_group().empty()) continue;  // internal (run-task)
       names += (names.empty() ? "" : ", ") + sub->get_name();
     }
     if (!known) return "unknown command '" + word + "' (the commands: " + names + ")";
@@ -962,6 +1054,31 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--faults", faults_file,
                       "fault campaign: run each fault of FILE alone over the seeds, plus a "
                       "fault-free baseline per seed (docs/faults.md \"Campaigns\")");
+  std::string backend = "local";
+  run_cmd->add_option("--backend", backend, "local (runs here, --jobs at a time) or slurm (an "
+                                            "array job, one task per seed)")
+      ->check(CLI::IsMember({"local", "slurm"}));
+  rover::deploy::SlurmOptions slurm;
+  auto* slurm_partition_opt =
+      run_cmd->add_option("--partition", slurm.partition, "slurm: partition (x-rover.slurm)");
+  auto* slurm_time_opt =
+      run_cmd->add_option("--time", slurm.time_limit, "slurm: time limit per task");
+  auto* slurm_cpus_opt = run_cmd->add_option("--cpus-per-task", slurm.cpus_per_task,
+                                             "slurm: CPUs per task (default 1)");
+  auto* slurm_args_opt = run_cmd->add_option("--sbatch-arg", slurm.sbatch_args,
+                                             "slurm: one more sbatch option (repeatable)");
+  run_cmd->add_flag("--detach", slurm.detach,
+                    "slurm: submit and return; `roverctl report DIR` gathers");
+  // What each Slurm array task runs (not for people): one seed into the campaign folder.
+  std::string task_scenario, task_out;
+  std::uint32_t task_seed = 0;
+  bool task_secure = false;
+  auto* run_task_cmd = app.add_subcommand("run-task", "");  // hidden: the group name is empty
+  run_task_cmd->group("");
+  run_task_cmd->add_option("scenario", task_scenario)->required();
+  run_task_cmd->add_option("--seed", task_seed)->required();
+  run_task_cmd->add_option("--out", task_out)->required();
+  run_task_cmd->add_flag("--security", task_secure);
   auto* report_cmd = app.add_subcommand("report", "print the summary of a campaign folder");
   report_cmd->add_option("dir", report_dir, "campaign folder")->required();
 
@@ -1105,8 +1222,17 @@ int main(int argc, char** argv) {
   const std::string security_dir =
       security_dir_flag.empty() ? rover::deploy::SecurityDirOf(state_root) : security_dir_flag;
   if (*run_cmd) {
+    SlurmFlags given;
+    given.partition = slurm_partition_opt->count() > 0;
+    given.time = slurm_time_opt->count() > 0;
+    given.cpus = slurm_cpus_opt->count() > 0;
+    given.sbatch_args = slurm_args_opt->count() > 0;
     return Run(scenario_file, seeds, jobs, out_dir, faults_file, state_root, run_secure,
-               security_dir);
+               security_dir, backend, slurm, given);
+  }
+  if (*run_task_cmd) {
+    return RunTask(task_scenario, task_seed, task_out, task_secure,
+                   security_dir_flag.empty() ? "" : security_dir);
   }
   if (*security_cmd) {
     rover::deploy::SecurityOptions so;

@@ -20,11 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 Status WriteText(const std::string& path, const std::string& text, mode_t mode) {
   {
     std::ofstream out(path, std::ios::trunc);
@@ -34,47 +29,24 @@ Status WriteText(const std::string& path, const std::string& text, mode_t mode) 
   return Status::Ok();
 }
 
-// The last non-empty line of OpenSSL's stderr: its own reason.
-std::string LastLine(const std::string& text) {
-  std::size_t end = text.find_last_not_of("\n\r ");
-  if (end == std::string::npos) return "";
-  const std::size_t start = text.rfind('\n', end);
-  return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
-}
-
-// Runs `openssl args...` in `work` (its output and errors in files there); returns stdout, or
-// an error naming `what` with OpenSSL's last line of stderr.
+// Runs `openssl args...` (scratch files in `work`); returns stdout, or an error naming `what`
+// with OpenSSL's own last line.
 Result<std::string> Openssl(const std::string& work, const std::string& what,
                             std::vector<std::string> args) {
-  static int n = 0;
-  const std::string base = work + "/.openssl-" + std::to_string(getpid()) + "-" + std::to_string(n++);
-  SpawnOptions o;
-  o.argv = {"openssl"};
-  o.argv.insert(o.argv.end(), args.begin(), args.end());
-  o.stdout_path = base + ".out";
-  o.stderr_path = base + ".err";
-  o.die_with_parent = true;
-  auto p = Process::Spawn(o);
-  if (!p.ok()) {
-    return NotFound(what + ": cannot run openssl (" + p.status().message() +
-                    "); scripts/setup.sh installs it");
+  args.insert(args.begin(), "openssl");
+  auto r = RunCommand(args, work, std::chrono::seconds(60));
+  if (!r.ok()) {
+    return r.status().code() == StatusCode::kTimeout
+               ? Timeout(what + ": " + r.status().message())
+               : NotFound(what + ": cannot run openssl (" + r.status().message() +
+                          "); scripts/setup.sh installs it");
   }
-  const auto exit = p->WaitFor(std::chrono::seconds(60));
-  const std::string out = ReadText(o.stdout_path);
-  const std::string err = ReadText(o.stderr_path);
-  std::error_code ec;
-  fs::remove(o.stdout_path, ec);
-  fs::remove(o.stderr_path, ec);
-  if (!exit) {
-    p->Terminate(std::chrono::seconds(1));
-    return Timeout(what + ": openssl did not finish in 60 s");
-  }
-  if (!exit->success()) {
-    const std::string why = LastLine(err.empty() ? out : err);
-    return FailedPrecondition(what + ": openssl " + exit->ToString() +
+  if (!r->exit.success()) {
+    const std::string why = r->LastErrorLine();
+    return FailedPrecondition(what + ": openssl " + r->exit.ToString() +
                               (why.empty() ? "" : ": " + why));
   }
-  return out;
+  return r->out;
 }
 
 std::string Stamp(std::chrono::system_clock::time_point t) {

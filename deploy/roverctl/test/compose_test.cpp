@@ -159,7 +159,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown_rover_key", "x-rover: {domian: 3}\nservices: {a: {command: x}}\n",
                 "f.yaml:1: x-rover: unknown key 'domian' (did you mean 'domain'?) (known: "
                 "project, domain, clock, startup_timeout_s, heartbeat_timeout_s, qos, sim, "
-                "faults, scenario, record)"},
+                "faults, scenario, record, security, slurm)"},
         // x-rover.faults is validated when the file is read: nothing starts on a bad fault.
         BadCase{"fault_kind",
                 "x-rover:\n  faults:\n    - topic: ddl/imu\n      kind: dorp\n"

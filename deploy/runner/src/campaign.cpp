@@ -184,20 +184,26 @@ Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptio
   std::sort(done.begin(), done.end(), [](const RunResult& a, const RunResult& b) { return a.seed < b.seed; });
   out.runs = std::move(done);
   out.errors = std::move(errors);
-  out.summary = Summarize(out.runs, ToSeconds(MonotonicNow() - start));
-  out.summary.scenario = scenario.name;
-  out.missing = MissingRuns(options.out_dir, scenario.name, options.seeds, out.runs);
-  nlohmann::json sj = ToJson(out.summary);
-  sj["interrupted"] = out.interrupted;
-  sj["errors"] = out.errors;
-  sj["seeds"] = options.seeds.size();
-  sj["missing"] = nlohmann::json::array();
-  for (const auto& m : out.missing) sj["missing"].push_back({{"seed", m.seed}, {"started", m.started}});
-  std::ofstream(options.out_dir + "/summary.json") << sj.dump(2) << "\n";
-  std::ofstream(options.out_dir + "/junit.xml") << ToJunitXml(out.runs, scenario.name);
-  std::ofstream(options.out_dir + "/summary.txt")
-      << FormatSummaryTable(out.runs, out.summary, out.missing);
+  WriteCampaignFiles(options.out_dir, scenario.name, options.seeds,
+                     ToSeconds(MonotonicNow() - start), &out);
   return out;
+}
+
+void WriteCampaignFiles(const std::string& dir, const std::string& scenario,
+                        const std::vector<std::uint32_t>& seeds, double wall_s,
+                        CampaignResult* out) {
+  out->summary = Summarize(out->runs, wall_s);
+  out->summary.scenario = scenario;
+  out->missing = MissingRuns(dir, scenario, seeds, out->runs);
+  nlohmann::json sj = ToJson(out->summary);
+  sj["interrupted"] = out->interrupted;
+  sj["errors"] = out->errors;
+  sj["seeds"] = seeds.size();
+  sj["missing"] = nlohmann::json::array();
+  for (const auto& m : out->missing) sj["missing"].push_back({{"seed", m.seed}, {"started", m.started}});
+  std::ofstream(dir + "/summary.json") << sj.dump(2) << "\n";
+  std::ofstream(dir + "/junit.xml") << ToJunitXml(out->runs, scenario);
+  std::ofstream(dir + "/summary.txt") << FormatSummaryTable(out->runs, out->summary, out->missing);
 }
 
 }  // namespace rover::deploy

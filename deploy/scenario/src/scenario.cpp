@@ -1,7 +1,9 @@
 #include "rover/deploy/scenario.hpp"
 
+
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -241,7 +243,9 @@ Result<Scenario> LoadScenarioFile(const std::string& path, const SimSectionValid
   return ParseScenario(ss.str(), path, validate_sim, validate_task);
 }
 
-Result<std::vector<std::uint32_t>> ParseSeedRange(const std::string& text) {
+namespace {
+
+Result<std::vector<std::uint32_t>> ParseOneRange(const std::string& text) {
   auto parse = [](const std::string& s, std::uint64_t* v) {
     if (s.empty() || s.size() > 10 || s.find_first_not_of("0123456789") != std::string::npos) return false;
     *v = std::stoull(s);
@@ -261,6 +265,27 @@ Result<std::vector<std::uint32_t>> ParseSeedRange(const std::string& text) {
   if (b - a >= 10000) return InvalidArgument("--seeds: '" + text + "' has more than 10000 seeds");
   std::vector<std::uint32_t> out;
   for (std::uint64_t s = a; s <= b; ++s) out.push_back(static_cast<std::uint32_t>(s));
+  return out;
+}
+
+}  // namespace
+
+Result<std::vector<std::uint32_t>> ParseSeedRange(const std::string& text) {
+  if (text.find(',') == std::string::npos) return ParseOneRange(text);
+  // A list of seeds and ranges ("3,5..7,12", what `roverctl report` prints to resubmit):
+  // in the order given, each seed once.
+  std::vector<std::uint32_t> out;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t end = std::min(text.find(',', pos), text.size());
+    ROVER_ASSIGN_OR_RETURN(const std::vector<std::uint32_t> part,
+                           ParseOneRange(text.substr(pos, end - pos)));
+    for (std::uint32_t s : part) {
+      if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+    }
+    if (out.size() > 10000) return InvalidArgument("--seeds: '" + text + "' has more than 10000 seeds");
+    pos = end + 1;
+  }
   return out;
 }
 

@@ -198,6 +198,9 @@ TEST(SeedRange, ParsesAndRejects) {
   EXPECT_EQ(ParseSeedRange("-1..3").status().message(),
             "--seeds: '-1..3' is not a range A..B of non-negative integers");
   EXPECT_EQ(ParseSeedRange("1..10000")->size(), 10000u);
+  EXPECT_EQ(*ParseSeedRange("3,5..7,3,12"), (std::vector<std::uint32_t>{3, 5, 6, 7, 12}));
+  EXPECT_EQ(ParseSeedRange("3,,4").status().message(),
+            "--seeds: '' is not a seed or a range A..B");
   EXPECT_EQ(ParseSeedRange("0..10000").status().message(),
             "--seeds: '0..10000' has more than 10000 seeds");
 }

@@ -66,6 +66,22 @@ class Process {
   std::optional<ExitInfo> exit_;
 };
 
+/// What a command printed and how it ended (RunCommand).
+struct CommandOutput {
+  ExitInfo exit;
+  std::string out;  ///< its stdout
+  std::string err;  ///< its stderr
+  /// The last non-empty line of stderr (else of stdout): a tool's own reason for failing.
+  std::string LastErrorLine() const;
+};
+
+/// Runs `argv` (argv[0] through PATH) to its end with its output captured in files under
+/// `scratch_dir` (removed after), at most `timeout` (then terminated: Timeout). NotFound when
+/// the program cannot be started. A non-zero exit is not an error here: see `exit`.
+Result<CommandOutput> RunCommand(const std::vector<std::string>& argv,
+                                 const std::string& scratch_dir, Duration timeout,
+                                 const std::map<std::string, std::string>& env = {});
+
 /// True if any process is in process group `pgid` (used to prove nothing was left behind).
 bool ProcessGroupAlive(pid_t pgid);
 /// True if `pid` exists and is not a zombie.

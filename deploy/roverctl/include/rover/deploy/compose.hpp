@@ -105,6 +105,13 @@ struct RoverSettings {
   /// x-rover.security: enabled. Every service then starts with its role's DDS Security identity
   /// (docs/security.md); roverctl checks the keys before anything starts.
   bool security = false;
+  /// x-rover.slurm: sbatch settings for `roverctl run --backend slurm` (its flags override).
+  struct Slurm {
+    std::string partition;
+    std::string time;                      ///< per task, Slurm's forms
+    int cpus_per_task = 0;                 ///< 0 = not given
+    std::vector<std::string> sbatch_args;  ///< passed as they are
+  } slurm;
 };
 
 struct ComposeProject {

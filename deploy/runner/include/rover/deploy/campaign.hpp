@@ -49,4 +49,10 @@ Status CheckOutputFolder(const std::string& dir, const std::string& scenario = "
 
 Result<CampaignResult> RunCampaign(const Scenario& scenario, const CampaignOptions& options);
 
+/// Fills `result`'s summary (with `wall_s`) and missing seeds from its runs and writes the
+/// campaign folder's summary.json, junit.xml and summary.txt: what every backend ends with.
+void WriteCampaignFiles(const std::string& dir, const std::string& scenario,
+                        const std::vector<std::uint32_t>& seeds, double wall_s,
+                        CampaignResult* result);
+
 }  // namespace rover::deploy

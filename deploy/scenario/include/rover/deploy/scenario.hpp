@@ -120,7 +120,8 @@ Result<Scenario> LoadScenarioFile(const std::string& path,
                                   const SimSectionValidator& validate_sim = nullptr,
                                   const TaskValidator& validate_task = nullptr);
 
-/// Parses a seed range "A..B" or a single "A"; A <= B, at most 10000 seeds.
+/// Parses a seed range "A..B", a single "A", or a comma-separated list of both ("3,5..7");
+/// A <= B, each seed once, at most 10000 seeds.
 Result<std::vector<std::uint32_t>> ParseSeedRange(const std::string& text);
 
 }  // namespace rover::deploy
