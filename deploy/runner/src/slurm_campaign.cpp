@@ -75,13 +75,28 @@ void ParseScontrol(const std::string& text, const JobRecord& job,
       if (eq != std::string::npos) kv[w.substr(0, eq)] = w.substr(eq + 1);
     }
     if (kv["ArrayJobId"] != job.id || kv["ArrayTaskId"].empty()) continue;
-    if (kv["ArrayTaskId"].find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::size_t index = std::stoul(kv["ArrayTaskId"]);
-    if (index >= job.seeds.size()) continue;
-    SlurmTask& t = (*tasks)[job.seeds[index]];
-    t.seed = job.seeds[index];
-    t.state = kv["JobState"];
-    t.exit_code = kv["ExitCode"];
+    // One task ("3"), or the tasks not yet split off the array, as ranges ("0-1", "2,4-5%2"):
+    // a pending array cancelled as a whole is one record.
+    std::string ids = kv["ArrayTaskId"];
+    ids = ids.substr(0, ids.find('%'));
+    ids.erase(std::remove(ids.begin(), ids.end(), '['), ids.end());
+    ids.erase(std::remove(ids.begin(), ids.end(), ']'), ids.end());
+    std::istringstream parts(ids);
+    for (std::string part; std::getline(parts, part, ',');) {
+      const std::size_t dash = part.find('-');
+      const std::string a = part.substr(0, dash);
+      const std::string b = dash == std::string::npos ? a : part.substr(dash + 1);
+      if (a.empty() || b.empty() || (a + b).find_first_not_of("0123456789") != std::string::npos) {
+        continue;
+      }
+      for (std::size_t index = std::stoul(a); index <= std::stoul(b); ++index) {
+        if (index >= job.seeds.size()) break;
+        SlurmTask& t = (*tasks)[job.seeds[index]];
+        t.seed = job.seeds[index];
+        t.state = kv["JobState"];
+        t.exit_code = kv["ExitCode"];
+      }
+    }
   }
 }
 
@@ -173,10 +188,11 @@ Result<std::string> SubmitSlurmCampaign(const Scenario& scenario,
          "campaign folder must be on storage every node sees)\" >&2\n"
          "  exit 3\n"
          "fi\n"
-      << "exec \"$ROVERCTL\" run-task " << Quote(fs::absolute(scenario.file).string())
+      << "exec \"$ROVERCTL\""
+      << (o.security && !o.security_dir.empty() ? " --security-dir " + Quote(o.security_dir) : "")
+      << " run-task " << Quote(fs::absolute(scenario.file).string())
       << " --seed \"${SEEDS[$SLURM_ARRAY_TASK_ID]}\" --out " << Quote(dir)
-      << (o.security ? " --security" : "")
-      << (o.security_dir.empty() ? "" : " --security-dir " + Quote(o.security_dir)) << "\n";
+      << (o.security ? " --security" : "") << "\n";
   }
   chmod(script.c_str(), 0755);
 

@@ -98,6 +98,9 @@ TEST_F(SlurmCampaignTest, SubmitsOneTaskPerSeedWaitsAndSummarises) {
   EXPECT_NE(script.find("SEEDS=(1 2 3 )"), std::string::npos) << script;
   EXPECT_NE(script.find("run-task"), std::string::npos);
   EXPECT_NE(script.find("has no build at $ROVERCTL"), std::string::npos);
+  // roverctl's global options go before the command; an open set passes none.
+  EXPECT_NE(script.find("exec \"$ROVERCTL\" run-task '"), std::string::npos) << script;
+  EXPECT_EQ(script.find("--security"), std::string::npos) << script;
 
   auto r = WaitSlurmCampaign(scenario_, o, *job);
   ASSERT_TRUE(r.ok()) << r.status().message();
@@ -116,6 +119,27 @@ TEST_F(SlurmCampaignTest, SubmitsOneTaskPerSeedWaitsAndSummarises) {
   EXPECT_EQ(ResubmitCommand(o.out_dir),
             "roverctl run " + fs::absolute(scenario_.file).string() +
                 " --backend slurm --seeds 3 --out " + fs::absolute(o.out_dir).string());
+}
+
+// A pending array cancelled as a whole is one scontrol record with a range of task ids.
+TEST_F(SlurmCampaignTest, AWholeArrayCancelledBeforeItRanIsEveryTask) {
+  SlurmCampaignOptions o = Options();
+  o.slurm.detach = true;
+  auto job = SubmitSlurmCampaign(scenario_, o);
+  ASSERT_TRUE(job.ok()) << job.status().message();
+  o.run = [](const std::vector<std::string>& argv) -> Result<CommandOutput> {
+    if (argv[0] == "scontrol") {
+      return Answer("JobId=42 ArrayJobId=42 ArrayTaskId=0-2 JobState=CANCELLED ExitCode=0:0\n");
+    }
+    return Answer("");
+  };
+  std::map<std::uint32_t, SlurmTask> tasks;
+  ASSERT_TRUE(QuerySlurmTasks(o, *job, &tasks).ok());
+  ASSERT_EQ(tasks.size(), 3u);
+  for (const auto& [seed, t] : tasks) {
+    EXPECT_EQ(t.state, "CANCELLED") << seed;
+    EXPECT_TRUE(t.ended());
+  }
 }
 
 TEST_F(SlurmCampaignTest, RefusalsNameWhatCausedThem) {
