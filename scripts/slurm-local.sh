@@ -38,7 +38,7 @@ write_conf() {
   cat > "$CONF" <<CONF
 $MARK
 ClusterName=rover
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmUser=root
 AuthType=auth/munge
 ProctrackType=proctrack/linuxproc
@@ -60,7 +60,7 @@ SlurmdTimeout=60
 InactiveLimit=0
 MinJobAge=300
 KillWait=10
-NodeName=$host CPUs=$cpus RealMemory=$mem State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem State=UNKNOWN
 PartitionName=rover Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 }
