@@ -138,15 +138,15 @@ TEST_F(SecurityTest, IntrudersCommandNothingAndReadNothing) {
   // for the whole test; the permitted operator (rover-drive) commands with id 104.
   const std::string obs_out = dir_ + "/observer.json";
   Process observer = Intruder(obs_out, As(keys_, "scenario-runner"),
-                              {"--seconds", "12", "--observe", "101,102,103,104"});
+                              {"--seconds", "16", "--observe", "101,102,103,104"});
   sleep(2);  // the observer has matched the set
-  Process none = Intruder(dir_ + "/none.json", {}, {"--seconds", "6", "--command-id", "101"});
+  Process none = Intruder(dir_ + "/none.json", {}, {"--seconds", "8", "--command-id", "101"});
   Process foreign = Intruder(dir_ + "/foreign.json", As(other, "scenario-runner"),
-                             {"--seconds", "6", "--command-id", "102"});
+                             {"--seconds", "8", "--command-id", "102"});
   Process unpermitted = Intruder(dir_ + "/unpermitted.json", As(keys_, "fault-controller"),
-                                 {"--seconds", "6", "--command-id", "103"});
+                                 {"--seconds", "8", "--command-id", "103"});
   Process permitted = Intruder(dir_ + "/permitted.json", As(keys_, "rover-drive"),
-                               {"--seconds", "6", "--command-id", "104"});
+                               {"--seconds", "8", "--command-id", "104"});
   const nlohmann::json n = Report(none, dir_ + "/none.json");
   const nlohmann::json f = Report(foreign, dir_ + "/foreign.json");
   const nlohmann::json u = Report(unpermitted, dir_ + "/unpermitted.json");
