@@ -51,9 +51,10 @@ Status LocomotionService::OnConfigure(ServiceContext& ctx, const ParamSet& param
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
         const auto j = msg::JointStateFromIdl(s.data());
         if (!j.ok()) return j.status();  // an unknown health value: not usable
-        if (msg::IsUsable(j->health) && j->AllFinite()) last_joint_ = j->stamp;
-        executor_->OnJointState(*j);  // ignores unhealthy, non-finite and out-of-order samples
         if (!j->AllFinite()) return InvalidArgument("a joint angle or rate is not finite");
+        // Ignores unhealthy and out-of-order samples; refuses encoder jumps (rejected input).
+        if (Status used = executor_->OnJointState(*j); !used.ok()) return used;
+        if (msg::IsUsable(j->health)) last_joint_ = j->stamp;
         return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(

@@ -100,8 +100,12 @@ Status PoseService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
-        return Forward(*estimator_, "ddl/joint_state", msg::JointStateFromIdl(s.data()),
-                       [this](const msg::JointState& j) { estimator_->OnJointState(j); });
+        // A sample the wheel odometry refuses (a jump no wheel can make) is a rejected input.
+        Status used = Status::Ok();
+        const Status read =
+            Forward(*estimator_, "ddl/joint_state", msg::JointStateFromIdl(s.data()),
+                    [&](const msg::JointState& j) { used = estimator_->OnJointState(j); });
+        return read.ok() ? used : read;
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_SunSensor>(
       "ddl/sun_sensor", [this](const dds::Sample<rover_ddl_SunSensor>& s) {

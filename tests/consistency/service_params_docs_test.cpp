@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <regex>
+#include <sstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -89,11 +90,14 @@ std::vector<std::string> BacktickedTokens(const std::string& text, const std::se
 
 // Keys from --help-params output: lines "  key (kind), default ...".
 std::vector<std::string> HelpParamKeys(const std::string& help) {
+  // Line by line: ECMAScript's '^' anchors at the start of the whole text only, so a pattern
+  // over the whole output found no key after a header line and every page passed.
   std::vector<std::string> keys;
-  const std::regex re("^  ([A-Za-z0-9_.]+) \\(");
-  for (auto it = std::sregex_iterator(help.begin(), help.end(), re, std::regex_constants::match_default);
-       it != std::sregex_iterator(); ++it) {
-    keys.push_back((*it)[1].str());
+  const std::regex re("  ([A-Za-z0-9_.]+) \\(.*");
+  std::istringstream in(help);
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (std::regex_match(line, m, re)) keys.push_back(m[1].str());
   }
   return keys;
 }

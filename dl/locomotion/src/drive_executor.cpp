@@ -1,5 +1,7 @@
 #include "rover/dl/locomotion/drive_executor.hpp"
 
+#include "rover/dl/locomotion/wheel_odometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -82,10 +84,12 @@ Result<DriveExecutor> DriveExecutor::Create(const RoverGeometry& geometry,
   return DriveExecutor(geometry, options);
 }
 
-void DriveExecutor::OnJointState(const msg::JointState& sample) {
-  if (!msg::IsUsable(sample.health) || !sample.AllFinite()) return;
-  if (joint_.has_value() && sample.stamp < joint_->stamp) return;
+Status DriveExecutor::OnJointState(const msg::JointState& sample) {
+  if (!msg::IsUsable(sample.health) || !sample.AllFinite()) return Status::Ok();
+  if (joint_.has_value() && sample.stamp < joint_->stamp) return Status::Ok();
+  if (joint_.has_value()) ROVER_RETURN_IF_ERROR(CheckWheelJump(*joint_, sample));
   joint_ = sample;
+  return Status::Ok();
 }
 
 void DriveExecutor::OnAttitude(const msg::AttitudeSample& sample) {

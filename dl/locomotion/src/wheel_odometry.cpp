@@ -44,6 +44,10 @@ Status WheelOdometryOptions::Validate() const {
     return InvalidArgument("WheelOdometryOptions.max_wheel_step: " + FormatNumber(max_wheel_step) +
                            " must be > 0");
   }
+  if (!std::isfinite(max_wheel_rate) || max_wheel_rate <= 0.0) {
+    return InvalidArgument("WheelOdometryOptions.max_wheel_rate: " + FormatNumber(max_wheel_rate) +
+                           " must be > 0");
+  }
   if (!std::isfinite(max_interval_s) || max_interval_s <= 0.0) {
     return InvalidArgument("WheelOdometryOptions.max_interval_s: " + FormatNumber(max_interval_s) +
                            " must be > 0");
@@ -56,6 +60,22 @@ Result<WheelOdometry> WheelOdometry::Create(const RoverGeometry& geometry,
   ROVER_RETURN_IF_ERROR(geometry.Validate());
   ROVER_RETURN_IF_ERROR(options.Validate());
   return WheelOdometry(geometry, options);
+}
+
+Status CheckWheelJump(const msg::JointState& from, const msg::JointState& to,
+                      double max_wheel_rate) {
+  if (to.stamp <= from.stamp) return Status::Ok();
+  const double dt = ToSeconds(to.stamp - from.stamp);
+  const double limit = max_wheel_rate * dt + kWheelJumpSlack;
+  for (std::size_t i = 0; i < to.wheel_angle.size(); ++i) {
+    const double d = to.wheel_angle[i] - from.wheel_angle[i];
+    if (!(std::abs(d) <= limit)) {
+      return OutOfRange("wheel " + std::to_string(i) + " angle jumped by " + FormatNumber(d) +
+                        " rad in " + FormatNumber(dt, 3) + " s (at most " + FormatNumber(limit, 3) +
+                        " rad at " + FormatNumber(max_wheel_rate) + " rad/s): an encoder fault");
+    }
+  }
+  return Status::Ok();
 }
 
 Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
@@ -73,6 +93,7 @@ Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
     return OutOfRange("wheel odometry: interval " + FormatNumber(dt) +
                       " s exceeds max_interval_s " + FormatNumber(options_.max_interval_s) + " s");
   }
+  ROVER_RETURN_IF_ERROR(CheckWheelJump(from, to, options_.max_wheel_rate));
   const SuspensionAngles s0 = Suspension(from, options_.use_suspension);
   const SuspensionAngles s1 = Suspension(to, options_.use_suspension);
   const double r = geometry_.wheel_radius;
@@ -179,6 +200,11 @@ void DeclareWheelOdometryParams(ParamSet& params, const std::string& prefix) {
                "[rad] largest plausible wheel rotation between two samples")
       .Range(1e-3, 100.0);
   params
+      .Declare(prefix + "max_wheel_rate", d.max_wheel_rate,
+               "[rad/s] fastest plausible wheel; a faster jump between two samples is an encoder "
+               "fault and the sample is rejected")
+      .Range(1e-3, 1000.0);
+  params
       .Declare(prefix + "max_interval_s", d.max_interval_s,
                "[s] largest plausible time between two samples")
       .Range(1e-3, 60.0);
@@ -195,6 +221,7 @@ Result<WheelOdometryOptions> WheelOdometryOptionsFromParams(const ParamSet& para
   o.yaw_variance_per_m = params.GetDouble(prefix + "yaw_variance_per_m");
   o.max_wheel_step = params.GetDouble(prefix + "max_wheel_step");
   o.max_interval_s = params.GetDouble(prefix + "max_interval_s");
+  o.max_wheel_rate = params.GetDouble(prefix + "max_wheel_rate");
   o.use_suspension = params.GetBool(prefix + "use_suspension");
   ROVER_RETURN_IF_ERROR(o.Validate());
   return o;

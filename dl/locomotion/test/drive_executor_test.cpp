@@ -149,7 +149,9 @@ class DriveExecutorTest : public ::testing::Test {
   void Tick() {
     now_ = now_ + kTick;
     plant_.Advance(kTickS);
-    if (feed_joint_) ex_->OnJointState(plant_.Joint(now_));
+    if (feed_joint_) {
+      ASSERT_TRUE(ex_->OnJointState(plant_.Joint(now_)).ok());
+    }
     if (feed_attitude_) ex_->OnAttitude(plant_.Attitude(now_));
     Absorb(ex_->Step(now_));
   }
@@ -539,13 +541,27 @@ TEST_F(DriveExecutorTest, UnhealthyAndNonFiniteSamplesDoNotCountAsFresh) {
   while (ex_->busy() && ToSeconds(now_ - cut) < 5.0) {
     msg::JointState bad = plant_.Joint(now_ + kTick);
     bad.wheel_angle[0] = std::numeric_limits<double>::quiet_NaN();
-    ex_->OnJointState(bad);
+    EXPECT_TRUE(ex_->OnJointState(bad).ok());  // ignored, not refused
     msg::JointState sick = plant_.Joint(now_ + kTick);
     sick.health = msg::SensorHealth::kFailed;
-    ex_->OnJointState(sick);
+    EXPECT_TRUE(ex_->OnJointState(sick).ok());
     Tick();
   }
   EXPECT_EQ(ex_->status().termination, DriveTermination::kStaleSensor);
+}
+
+TEST_F(DriveExecutorTest, RefusesAnEncoderJumpAndDrivesOnTheLastGoodSample) {
+  Submit(Arc(0.0, 1.0));
+  RunFor(2.0);
+  msg::JointState flipped = plant_.Joint(now_ + kTick);
+  flipped.wheel_angle[3] += 1e6;  // a flipped exponent bit
+  const Status s = ex_->OnJointState(flipped);
+  EXPECT_EQ(s.code(), StatusCode::kOutOfRange);
+  EXPECT_NE(s.message().find("wheel 3 angle jumped"), std::string::npos) << s.message();
+  // The good samples that follow are accepted and the drive ends normally.
+  const DriveStatus end = RunUntilIdle();
+  EXPECT_EQ(end.termination, DriveTermination::kNominal);
+  EXPECT_NEAR(plant_.x, 1.0, 0.05);
 }
 
 TEST_F(DriveExecutorTest, ChecksRunAtEightHertzWhateverTheStepRate) {
@@ -558,7 +574,7 @@ TEST_F(DriveExecutorTest, ChecksRunAtEightHertzWhateverTheStepRate) {
   statuses_.clear();
   for (int n = 0; n < 8; ++n) {
     now_ = now_ + std::chrono::milliseconds(125);
-    ex_->OnJointState(plant_.Joint(now_));
+    ASSERT_TRUE(ex_->OnJointState(plant_.Joint(now_)).ok());
     ex_->OnAttitude(plant_.Attitude(now_));
     Absorb(ex_->Step(now_));
   }

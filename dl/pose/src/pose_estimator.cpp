@@ -16,11 +16,15 @@ using locomotion::RoverGeometry;
 using locomotion::WheelOdometry;
 using locomotion::WheelOdometryOptions;
 
-Status PoseFusionOptions::Validate() const { return ephemeris.Validate(); }
+Status PoseFusionOptions::Validate() const {
+  ROVER_RETURN_IF_ERROR(gyro_check.Validate());
+  return ephemeris.Validate();
+}
 
 void PoseFusionOptions::BindParams(ParamBinder<PoseFusionOptions>& b) {
   b.Nest("start.", &PoseFusionOptions::start);
   b.Nest("ephemeris.", &PoseFusionOptions::ephemeris);
+  b.Nest("gyro_check.", &PoseFusionOptions::gyro_check);
   b.Bind("ephemeris.run_start_s", &PoseFusionOptions::run_start_s, "s",
          "run-clock time of the run start (0 = sim/clock zero, as the simulator)")
       .Range(-1e11, 1e11);
@@ -44,23 +48,25 @@ Result<PoseEstimator> PoseEstimator::Create(const EkfOptions& ekf_options,
   ROVER_RETURN_IF_ERROR(fusion.Validate());
   ROVER_ASSIGN_OR_RETURN(WheelOdometry odometry, WheelOdometry::Create(geometry, odometry_options));
   ROVER_ASSIGN_OR_RETURN(PoseEkf ekf, PoseEkf::Create(ekf_options));
+  ROVER_ASSIGN_OR_RETURN(GyroCheck gyro_check, GyroCheck::Create(fusion.gyro_check));
   std::optional<PoseEkf> odometry_only;
   if (fusion.odometry_only) {
     ROVER_ASSIGN_OR_RETURN(PoseEkf reference, PoseEkf::Create(ekf_options));
     odometry_only.emplace(std::move(reference));
   }
-  return PoseEstimator(std::move(ekf), std::move(odometry_only), std::move(odometry), ekf_options,
-                       fusion);
+  return PoseEstimator(std::move(ekf), std::move(odometry_only), std::move(odometry),
+                       std::move(gyro_check), ekf_options, fusion);
 }
 
 PoseEstimator::PoseEstimator(PoseEkf ekf, std::optional<PoseEkf> odometry_only,
-                             WheelOdometry odometry, const EkfOptions& ekf_options,
-                             const PoseFusionOptions& fusion)
+                             WheelOdometry odometry, GyroCheck gyro_check,
+                             const EkfOptions& ekf_options, const PoseFusionOptions& fusion)
     : ekf_options_(ekf_options),
       fusion_(fusion),
       ekf_(std::move(ekf)),
       odometry_only_(std::move(odometry_only)),
       odometry_(std::move(odometry)),
+      gyro_check_(std::move(gyro_check)),
       leveller_(fusion.start, ekf_options),
       ephemeris_(fusion.ephemeris) {}
 
@@ -82,6 +88,7 @@ void PoseEstimator::Restart(const std::string& why) {
     odometry_only_.emplace(std::move(*reference));
   }
   odometry_.Reset();
+  gyro_check_.Reset();
   leveller_.Reset();
 }
 
@@ -107,12 +114,15 @@ void PoseEstimator::OnImu(const msg::Imu& imu) {
     if (const auto d = leveller_.Add(t, w, f)) Start(*d);
     return;
   }
+  const Time before = ekf_.time();
   const Status s = ekf_.PropagateGyro(t, w);
   if (!s.ok()) {
     WarnCounted("ddl/imu sample dropped", s.message());
     return;
   }
   last_rate_ = (w - ekf_.gyro_bias()).norm();
+  gyro_check_.AddGyro(t, ToSeconds(t - before), w.z() - ekf_.gyro_bias().z());
+  CheckGyro();
   const Status a = ekf_.UpdateAccelerometer(t, f);
   if (!a.ok()) WarnCounted("accelerometer update failed", a.message());
   if (odometry_only_ && odometry_only_->initialized() && odometry_only_->PropagateGyro(t, w).ok()) {
@@ -209,22 +219,31 @@ bool PoseEstimator::ResumeOrRefuse(Time t) {
   return true;
 }
 
-void PoseEstimator::OnJointState(const msg::JointState& joints) {
+Status PoseEstimator::OnJointState(const msg::JointState& joints) {
   if (!msg::IsUsable(joints.health)) {
     WarnCounted("ddl/joint_state sample dropped: health FAILED or STALE", "");
-    return;
+    return Status::Ok();
   }
   auto inc = odometry_.Add(joints);
   if (!inc.ok()) {
     WarnCounted("ddl/joint_state sample rejected by wheel odometry", inc.status().message());
-    return;
+    return inc.status();
   }
-  if (!ekf_.initialized() || !inc->has_value()) return;
+  if (!ekf_.initialized() || !inc->has_value() || unknown_) return Status::Ok();
   const Status s = ekf_.AddWheelOdometry(**inc);
   if (!s.ok()) WarnCounted("wheel odometry increment rejected", s.message());
   if (odometry_only_ && odometry_only_->initialized()) {
     (void)odometry_only_->AddWheelOdometry(**inc);
   }
+  const locomotion::OdometryIncrement& i = **inc;
+  gyro_check_.AddOdometry(i.t_from, i.t_to, i.dyaw);
+  CheckGyro();
+  return Status::Ok();
+}
+
+void PoseEstimator::CheckGyro() {
+  if (unknown_ || !gyro_check_.failure()) return;
+  DeclareUnknown("gyro fault: " + gyro_check_.failure()->reason);
 }
 
 void PoseEstimator::OnSunSensor(const msg::SunSensor& m) {

@@ -162,7 +162,9 @@ TEST_F(PoseServiceTest, PublishesAtTheConfiguredRateOnTheSimClock) {
 }
 
 TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate) {
-  Start({"start.yaw_deg=10", "start.x=2", "start.y=-3"});
+  // The fake wheels stand still while the gyro turns: the gyro check would (rightly) call that a
+  // gyro fault; this test is about the propagation alone.
+  Start({"start.yaw_deg=10", "start.x=2", "start.y=-3", "gyro_check.enabled=false"});
   const double roll = 4.0 * kDegree, pitch = -3.0 * kDegree, g = 3.711;
   imu_.specific_force = g * Eigen::Vector3d(-std::sin(pitch), std::sin(roll) * std::cos(pitch),
                                             std::cos(roll) * std::cos(pitch));
@@ -197,6 +199,41 @@ TEST_F(PoseServiceTest, LevelsFromTheAccelerometerAndIntegratesAConstantYawRate)
   EXPECT_GT(end.covariance[35], yaw_var0);  // heading uncertainty grows with gyro propagation
   EXPECT_TRUE(end.stationary);
   EXPECT_EQ(end.rejected_measurements, 0u);
+}
+
+TEST_F(PoseServiceTest, AGyroTurningWhileTheWheelsStandStillMakesThePoseUnknown) {
+  Start({});
+  Advance(2.0);
+  ASSERT_FALSE(poses_.empty());
+  EXPECT_EQ(h_->health(), rover_HEALTH_OK);
+  // A 0.05 rad/s gyro bias appears (the safety campaign's "bias the gyro"): the wheels say the
+  // rover does not turn.
+  imu_.yaw_rate = 0.05;
+  const Time onset = now_;
+  Advance(2.0);
+  ASSERT_FALSE(poses_.empty());
+  const double last = ToSeconds(Time{poses_.back().pose.header.stamp_ns} - onset);
+  EXPECT_GT(last, 0.2);  // not before the first judged window
+  EXPECT_LT(last, 1.0);  // and no dl/pose after it
+  h_->Spin(20, std::chrono::milliseconds(5));
+  EXPECT_EQ(h_->health(), rover_HEALTH_FAILED);
+  EXPECT_NE(h_->health_message().find("gyro fault: ddl/imu gyro z disagrees with wheel odometry"),
+            std::string::npos)
+      << h_->health_message();
+}
+
+TEST_F(PoseServiceTest, AnEncoderJumpIsARejectedInput) {
+  Start({});
+  Advance(1.0);
+  wheel_angle_ += 1e5;  // one wheel-angle sample with a flipped exponent bit, then it is back
+  Advance(0.02);
+  wheel_angle_ -= 1e5;
+  Advance(0.1);
+  h_->Spin(20, std::chrono::milliseconds(5));
+  EXPECT_EQ(h_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_NE(h_->health_message().find("ddl/joint_state rejected"), std::string::npos)
+      << h_->health_message();
+  EXPECT_NE(h_->health_message().find("angle jumped"), std::string::npos) << h_->health_message();
 }
 
 TEST_F(PoseServiceTest, WheelOdometryFromJointStatesMovesThePositionAlongTheHeading) {

@@ -99,8 +99,10 @@ class DriveExecutor {
   static Result<DriveExecutor> Create(const RoverGeometry& geometry, const DriveOptions& options);
 
   /// Stores the latest sample. Non-finite or unhealthy samples are ignored (they do not refresh
-  /// the staleness timer). Samples older than the stored one are ignored.
-  void OnJointState(const msg::JointState& sample);
+  /// the staleness timer). Samples older than the stored one are ignored. A sample whose wheel
+  /// angles jumped implausibly from the stored one (CheckWheelJump: an encoder fault) is not
+  /// stored and its OutOfRange returned, so no motor goal is ever computed from it.
+  Status OnJointState(const msg::JointState& sample);
   /// Stores the latest attitude and, while a primitive runs, accumulates the unwrapped heading
   /// change. Non-finite or unhealthy samples are ignored.
   void OnAttitude(const msg::AttitudeSample& sample);

@@ -38,12 +38,26 @@
 
 namespace rover::dl::locomotion {
 
+/// [rad/s] no drive wheel turns this fast (the rover's wheels: about 0.5 rad/s at top speed).
+inline constexpr double kMaxPlausibleWheelRate = 10.0;
+/// [rad] encoder quantisation and sample-time jitter allowed on top of rate * dt.
+inline constexpr double kWheelJumpSlack = 0.05;
+
+/// The one plausibility rule for consecutive joint samples (wheel odometry and the drive
+/// executor): OutOfRange naming the wheel when a wheel angle changed by more than
+/// max_wheel_rate * (to.stamp - from.stamp) + kWheelJumpSlack. Samples not after `from` pass.
+Status CheckWheelJump(const msg::JointState& from, const msg::JointState& to,
+                      double max_wheel_rate = kMaxPlausibleWheelRate);
+
 struct WheelOdometryOptions {
   double along_variance_per_m = 1e-3;  ///< [m^2/m] along the motion (sigma 3.2 cm after 1 m)
   double cross_variance_per_m = 1e-3;  ///< [m^2/m] across the motion
   double yaw_variance_per_m = 3e-4;    ///< [rad^2/m] (sigma 1 deg after 1 m)
   double max_wheel_step = 2.0;         ///< [rad] largest plausible wheel rotation per interval
   double max_interval_s = 2.0;         ///< [s] largest plausible time between the two samples
+  /// [rad/s] fastest plausible wheel: a wheel turning more than max_wheel_rate dt +
+  /// kWheelJumpSlack between two samples is an encoder fault (a flipped bit), not motion
+  double max_wheel_rate = kMaxPlausibleWheelRate;
   bool use_suspension = true;          ///< false: ignore rocker/bogie (flat-ground model)
 
   Status Validate() const;

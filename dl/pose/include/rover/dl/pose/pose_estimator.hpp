@@ -10,6 +10,9 @@
 ///   * the start-up (Leveller, pose_startup.hpp): nothing is estimated until the filter is
 ///     levelled, and a sample more than kClockResetS older than the filter (the run clock went
 ///     back: a simulator reset) restarts both filters, the odometry and the levelling;
+///   * the gyro check (gyro_check.hpp): the bias-corrected gyro yaw rate against wheel
+///     odometry's; when it fails the pose is declared unknown (a gyro that turns the heading
+///     by itself makes every later pose wrong, and nothing may drive on it);
 ///   * the restart after a crash (pose_resume.hpp): armed with a checkpoint (ResumeFrom), the
 ///     first usable IMU sample resumes both filters from it, inflated for the gap, or declares
 ///     the pose unknown when it is too old; a pose declared unknown is never estimated again
@@ -33,6 +36,7 @@
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
 #include "rover/dl/locomotion/wheel_odometry.hpp"
+#include "rover/dl/pose/gyro_check.hpp"
 #include "rover/dl/pose/pose_ekf.hpp"
 #include "rover/dl/pose/pose_resume.hpp"
 #include "rover/dl/pose/pose_startup.hpp"
@@ -55,6 +59,7 @@ struct PoseFusionOptions {
   double sun_min_elevation = 0.0;                              ///< [rad]
   double sun_max_rate = 0.2 * 3.14159265358979323846 / 180.0;  ///< [rad/s]
   bool odometry_only = true;  ///< also run the IMU + wheel odometry filter
+  GyroCheckOptions gyro_check;  ///< gyro against wheel odometry (gyro_check.hpp)
 
   /// The ephemeris options' checks.
   Status Validate() const;
@@ -72,8 +77,10 @@ class PoseEstimator {
   /// ddl/imu: levelling until the filter runs, then gyro propagation and (at rest) an
   /// accelerometer update of both filters.
   void OnImu(const msg::Imu& imu);
-  /// ddl/joint_state: a wheel-odometry increment for both filters.
-  void OnJointState(const msg::JointState& joints);
+  /// ddl/joint_state: a wheel-odometry increment for both filters. Returns the wheel
+  /// odometry's refusal of an implausible sample (a jump no wheel can make), which the service
+  /// reports as a rejected input; OK otherwise (also for samples it merely drops).
+  Status OnJointState(const msg::JointState& joints);
   /// ddl/sun_sensor: a heading update of the main filter (see the file comment).
   void OnSunSensor(const msg::SunSensor& sun);
   /// dl/relative_pose with status CONVERGED: a measurement of the main filter (refused ones
@@ -111,20 +118,24 @@ class PoseEstimator {
     return odometry_only_.has_value() ? &*odometry_only_ : nullptr;
   }
   const PoseFusionOptions& options() const { return fusion_; }
+  const GyroCheck& gyro_check() const { return gyro_check_; }
 
  private:
   PoseEstimator(PoseEkf ekf, std::optional<PoseEkf> odometry_only,
-                locomotion::WheelOdometry odometry, const EkfOptions& ekf_options,
-                const PoseFusionOptions& fusion);
+                locomotion::WheelOdometry odometry, GyroCheck gyro_check,
+                const EkfOptions& ekf_options, const PoseFusionOptions& fusion);
   void Start(const StartDecision& d);
   /// On the first usable sample at `t` after a restart; false when the pose became unknown.
   bool ResumeOrRefuse(Time t);
+  /// A failed gyro check declares the pose unknown (once).
+  void CheckGyro();
 
   EkfOptions ekf_options_;
   PoseFusionOptions fusion_;
   PoseEkf ekf_;
   std::optional<PoseEkf> odometry_only_;
   locomotion::WheelOdometry odometry_;
+  GyroCheck gyro_check_;
   Leveller leveller_;
   geometry::SunEphemeris ephemeris_;
   double last_rate_ = 0.0;                // [rad/s] |bias-corrected gyro| of the last IMU sample
