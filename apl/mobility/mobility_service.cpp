@@ -126,6 +126,7 @@ Status MobilityService::OnDeactivate(ServiceContext& ctx) {
 }
 
 void MobilityService::Publish(const MobilityOutput& out) {
+  for (const std::string& note : out.notes) log::Warn(note);
   for (const DriveCommand& d : out.drives) {
     rover_dl_DriveCommand m{};
     msg::DriveCommandToIdl(d, &m);

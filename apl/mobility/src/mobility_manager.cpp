@@ -341,7 +341,7 @@ MobilityOutput MobilityManager::OnRangeImage(const nav_core::RangeScan& scan, Ca
                                              std::uint32_t request_id, Time now) {
   Account(now);
   MobilityOutput out;
-  if (!run_ || !run_->image || run_->image->request_id != request_id) return out;
+  if (!run_ || !run_->image || !run_->image->Answers(request_id)) return out;
   const PendingImage pending = *run_->image;
   run_->image.reset();
   const std::string req = "range image for request " + std::to_string(request_id);
@@ -483,7 +483,7 @@ MobilityOutput MobilityManager::OnInputRejected(MobilityInput input, const std::
       Finish(now, State::kFailed, Fault::kSapp, what, &out);
       return out;
     case MobilityInput::kRangeImage:
-      if (!run_->image || run_->image->request_id != request_id) return out;  // not ours
+      if (!run_->image || !run_->image->Answers(request_id)) return out;  // not ours
       Finish(now, State::kFailed, Fault::kImg,
              "range image for request " + std::to_string(request_id) + " (" +
                  std::string(CameraName(run_->image->camera)) + ") " + what,
@@ -512,13 +512,38 @@ MobilityOutput MobilityManager::Step(Time now) {
   Account(now);
   MobilityOutput out;
   if (!run_) return out;
-  if (run_->image && ToSeconds(now - run_->image->sent) > options_.image_timeout_s) {
+  if (run_->image && ToSeconds(now - run_->image->first_sent) > options_.image_timeout_s) {
+    const PendingImage& img = *run_->image;
     Finish(now, State::kFailed, Fault::kImg,
-           "no range image for request " + std::to_string(run_->image->request_id) + " (" +
-               std::string(CameraName(run_->image->camera)) + ") in " +
-               FormatNumber(options_.image_timeout_s) + " s (image_timeout_s)",
+           "no range image for request " + std::to_string(img.request_id) + " (" +
+               std::string(CameraName(img.camera)) + ") in " +
+               FormatNumber(options_.image_timeout_s) + " s (image_timeout_s" +
+               (img.earlier_ids.empty()
+                    ? ")"
+                    : ", sent " + std::to_string(img.earlier_ids.size() + 1) + " times)"),
            &out);
     return out;
+  }
+  if (run_->image && options_.image_resend_s > 0 &&
+      static_cast<int>(run_->image->earlier_ids.size()) < options_.max_image_resends &&
+      ToSeconds(now - run_->image->sent) > options_.image_resend_s) {
+    // Unanswered: a dl-stereo restarted since the request reads only what is written after it
+    // started (command readers are fresh only), so the request is asked again, same camera.
+    PendingImage& img = *run_->image;
+    img.earlier_ids.push_back(img.request_id);
+    img.request_id = next_id_++;
+    img.sent = now;
+    run_->images += 1;
+    counters_.images += 1;
+    RangeRequest r;
+    r.request_id = img.request_id;
+    r.camera = img.camera;
+    r.width = options_.image_width;
+    r.stamp = now;
+    out.range_requests.push_back(r);
+    out.notes.push_back("range request " + std::to_string(img.earlier_ids.back()) +
+                        " unanswered for " + FormatNumber(options_.image_resend_s) +
+                        " s: sent again as " + std::to_string(img.request_id));
   }
   if (run_->drive && now > run_->drive->deadline) {
     Finish(now, State::kFailed, Fault::kDriveTimeout,
@@ -1031,11 +1056,17 @@ void MobilityManager::StartThinking(const Primitive& p, Time now, MobilityOutput
   counters_.images_while_driving += 1;
 }
 
+bool MobilityManager::PendingImage::Answers(std::uint32_t id) const {
+  return id == request_id ||
+         std::find(earlier_ids.begin(), earlier_ids.end(), id) != earlier_ids.end();
+}
+
 void MobilityManager::RequestImage(CameraId camera, Purpose purpose, Time now,
                                    MobilityOutput* out) {
   PendingImage img;
   img.request_id = next_id_++;
   img.camera = camera;
+  img.first_sent = now;
   img.sent = now;
   img.purpose = purpose;
   run_->image = img;

@@ -36,6 +36,8 @@ Status MobilityOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckIntRange("max_visodom_failures", max_visodom_failures, 0, 10000));
   ROVER_RETURN_IF_ERROR(CheckPositive("visodom_timeout_s", visodom_timeout_s, "s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("image_timeout_s", image_timeout_s, "s"));
+  ROVER_RETURN_IF_ERROR(CheckRange("image_resend_s", image_resend_s, 0.0, 1e6));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("max_image_resends", max_image_resends, 0, 100));
   ROVER_RETURN_IF_ERROR(CheckIntRange("image_width", image_width, 0, 4096));
   ROVER_RETURN_IF_ERROR(CheckPositive("pose_stale_s", pose_stale_s, "s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("pose_jump", pose_jump, "m"));
@@ -107,6 +109,12 @@ void MobilityOptions::BindParams(ParamBinder<MobilityOptions>& b) {
          "a VO result not arriving in this time counts as failed (stack 30)");
   b.Bind("image_timeout_s", &O::image_timeout_s, "s",
          "IMG when a requested range image has not arrived in this time (stack 10)");
+  b.Bind("image_resend_s", &O::image_resend_s, "s",
+         "a range request unanswered this long is sent again (a restarted dl-stereo lost it); "
+         "0 = never")
+      .Range(0.0, 1e6);
+  b.Bind("max_image_resends", &O::max_image_resends, "", "times one range request is re-sent")
+      .Range(0, 100);
   b.Bind("image_width", &O::image_width, "px", "range image width asked of stereo (MER 256)")
       .Range(0, 4096);
   b.Bind("pose_stale_s", &O::pose_stale_s, "s", "SAPP when the newest dl/pose is older (stack 1)");

@@ -119,6 +119,7 @@ void FakeWorld::Absorb(const MobilityOutput& out) {
   for (const RangeRequest& r : out.range_requests) {
     ranges_.push_back(r);
     if (!options_.deliver_images) continue;
+    if (static_cast<int>(ranges_.size()) <= options_.lose_requests) continue;
     images_.push_back(
         {Capture(r.camera), r.camera, r.request_id, now_ + Seconds(options_.image_latency_s)});
   }

@@ -39,6 +39,7 @@ struct WorldOptions {
   double image_latency_s = 1.0;       ///< [s] request to delivery
   rover::testing::HazcamSpec camera;  ///< the synthetic HAZCAMs (tests/support rock_field.hpp)
   bool deliver_images = true;         ///< false: range requests are never answered
+  int lose_requests = 0;              ///< the first N range requests are lost (a restarted stereo)
   bool deliver_poses = true;          ///< false: dl/pose stops
   bool report_progress = true;        ///< false: a running drive reports nothing until it ends
 };

@@ -244,7 +244,25 @@ TEST(MobilityManagerWorld, ImagesThatStopArrivingAreImgAndLatch) {
   EXPECT_EQ(s.fault_class, FaultClass::kMotionError);
   EXPECT_TRUE(s.motion_error_latched);
   EXPECT_NE(s.message.find("image_timeout_s"), std::string::npos);
+  // Re-sent twice (image_resend_s 4 s, max_image_resends 2) before the 10 s ran out.
+  EXPECT_NE(s.message.find("sent 3 times"), std::string::npos) << s.message;
+  EXPECT_EQ(w.range_requests().size(), 3u);
   EXPECT_TRUE(w.drives().empty());
+}
+
+// A request lost to a restarted dl-stereo (it reads only what is written after it started) is
+// asked again and the drive goes on; before, the run ended IMG after image_timeout_s.
+TEST(MobilityManagerWorld, ALostRangeRequestIsSentAgain) {
+  MobilityManager m = MakeGestaltManager();
+  WorldOptions wo;
+  wo.lose_requests = 1;
+  FakeWorld w(&m, wo);
+  const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 400.0);
+  EXPECT_EQ(s.state, State::kSucceeded) << s.message;
+  ASSERT_GE(w.range_requests().size(), 2u);
+  EXPECT_NE(w.range_requests()[0].request_id, w.range_requests()[1].request_id);
+  EXPECT_EQ(w.range_requests()[0].camera, w.range_requests()[1].camera);
+  EXPECT_FALSE(w.drives().empty());
 }
 
 TEST(MobilityManagerWorld, WrongCameraAndAllInvalidAreImg) {

@@ -109,6 +109,7 @@ struct MobilityOutput {
   std::vector<MobilityStatus> statuses;
   std::optional<nav_core::GoodnessMap> goodness_map;  ///< after an assessment
   std::vector<ArcVotesSnapshot> arc_votes;
+  std::vector<std::string> notes;  ///< for the service's log: "range request 7 ... sent again"
   bool empty() const {
     return drives.empty() && range_requests.empty() && mast_requests.empty() && statuses.empty() &&
            !goodness_map && arc_votes.empty();
@@ -180,10 +181,13 @@ class MobilityManager {
  private:
   enum class Purpose { kStep, kThink };
   struct PendingImage {
-    std::uint32_t request_id = 0;
+    std::uint32_t request_id = 0;            ///< the latest send's
+    std::vector<std::uint32_t> earlier_ids;  ///< earlier sends of the same request (re-sent)
     CameraId camera = CameraId::kFrontHazcam;
-    Time sent;
+    Time first_sent;  ///< image_timeout_s counts from here
+    Time sent;        ///< the latest send
     Purpose purpose = Purpose::kStep;
+    bool Answers(std::uint32_t id) const;
   };
   struct PendingDrive {
     std::uint32_t command_id = 0;

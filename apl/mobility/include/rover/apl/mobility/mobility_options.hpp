@@ -50,6 +50,11 @@ struct MobilityOptions {
   double visodom_timeout_s = 30.0;  ///< [s] a VO result not arriving in time counts as failed
   // ---- inputs ------------------------------------------------------------------------------
   double image_timeout_s = 10.0;  ///< [s] IMG when a range image has not arrived in this time
+  /// [s] a range request unanswered this long is sent again (a restarted dl-stereo lost it),
+  /// up to max_image_resends times, while image_timeout_s (from the first) has not run out;
+  /// 0 = never. An answer to any of the sends is taken.
+  double image_resend_s = 4.0;
+  int max_image_resends = 2;
   int image_width = 256;          ///< [px] processing width asked of stereo (MER 256)
   double pose_stale_s = 1.0;      ///< [s] SAPP when the newest pose is older than this
   double pose_jump = 0.5;         ///< [m] SAPP when consecutive poses differ by more
