@@ -33,7 +33,9 @@ class MobilityService final : public Service {
   /// Staleness limits of the periodic inputs (parameters inputs.*): dl/pose (10 Hz); the manager's
   /// pose_stale_s also stops a drive on it.
   std::vector<runtime::InputSpec> Inputs() const override {
-    return {{"dl/pose", {.max_age_s = 1.0}}};
+    // A range image is used at once: one captured more than 2 s before it arrives (a delayed
+    // or replayed one) is reported on sys/health; a step is assessed on it all the same.
+    return {{"dl/pose", {.max_age_s = 1.0}}, {"dl/range_image", {.max_latency_s = 2.0}}};
   }
   void DeclareParameters(ParamSet& params) override;
   Status ValidateParameters(const ParamSet& params) const override;

@@ -20,8 +20,9 @@ int Rank(InputProblem p) {
     case InputProblem::kSeqGap: return 2;
     case InputProblem::kSeqRepeat: return 3;
     case InputProblem::kSeqReorder: return 4;
+    case InputProblem::kLate: return 5;
   }
-  return 5;
+  return 6;
 }
 
 std::string Seconds1(double s) { return FormatNumber(s, 3) + " s"; }
@@ -44,11 +45,15 @@ const char* InputProblemName(InputProblem p) {
     case InputProblem::kSeqGap: return "seq gap";
     case InputProblem::kSeqRepeat: return "seq repeated";
     case InputProblem::kSeqReorder: return "out of order";
+    case InputProblem::kLate: return "late";
   }
   return "?";
 }
 
-Status InputLimits::Validate() const { return CheckNonNegative("max_age_s", max_age_s, "s"); }
+Status InputLimits::Validate() const {
+  ROVER_RETURN_IF_ERROR(CheckNonNegative("max_latency_s", max_latency_s, "s"));
+  return CheckNonNegative("max_age_s", max_age_s, "s");
+}
 
 void InputLimits::BindParams(ParamBinder<InputLimits>& b) {
   b.Bind("max_age_s", &InputLimits::max_age_s, "s",
@@ -56,6 +61,10 @@ void InputLimits::BindParams(ParamBinder<InputLimits>& b) {
       .Min(0.0);
   b.Bind("check_seq", &InputLimits::check_seq,
          "report header.seq gaps (history topics), repeats and reordering");
+  b.Bind("max_latency_s", &InputLimits::max_latency_s, "s",
+         "late (degraded on sys/health) when an accepted sample's stamp is older than this at "
+         "its arrival; 0 = not checked")
+      .Min(0.0);
 }
 
 Status InputMonitorOptions::Validate() const {
@@ -230,6 +239,15 @@ void InputMonitor::OnAccepted(std::size_t index, Time stamp, Time now) {
   // zero means "not stamped".
   const Time fresh = stamp.ns > 0 ? std::min(stamp, now) : now;
   if (!in.newest || fresh > *in.newest) in.newest = fresh;
+  if (in.limits.max_latency_s > 0.0 && stamp.ns > 0 &&
+      ToSeconds(now - stamp) > in.limits.max_latency_s) {
+    // The episode's first late sample names it (the reason stays put while it lasts).
+    if (!in.late_at || ToSeconds(now - *in.late_at) > options_.hold_s) {
+      in.late_stamp = stamp;
+      in.late_latency_s = ToSeconds(now - stamp);
+    }
+    in.late_at = now;
+  }
   in.last_accepted = now;
   in.accepted += 1;
   in.rejected_since_accept = 0;
@@ -297,6 +315,12 @@ void InputMonitor::AddFindings(const Input& in, Time now, std::vector<InputFindi
   seq_finding(in.gap);
   seq_finding(in.repeat);
   seq_finding(in.reorder);
+  if (in.late_at && ToSeconds(now - *in.late_at) <= options_.hold_s) {
+    add(InputProblem::kLate, InputVerdict::kDegraded, *in.late_at,
+        "a sample stamped t = " + Seconds1(in.late_stamp.seconds()) + " arrived " +
+            Seconds1(in.late_latency_s) + " later (limit " + Seconds1(in.limits.max_latency_s) +
+            ")");
+  }
 }
 
 InputReport InputMonitor::Report(Time now) const {

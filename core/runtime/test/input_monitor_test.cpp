@@ -310,5 +310,37 @@ TEST(InputParams, DeclaredOnceAndReadBack) {
   }
 }
 
+// Data captured long before it arrives (a range image delayed 3 s) is late while it keeps
+// arriving: a staleness limit alone never saw it (issue 37: "delay dl/range_image 3 s" went
+// unnoticed).
+TEST(InputMonitor, LateSamplesAreDegradedWhileTheyComeAndForgottenAfterHold) {
+  InputMonitor m = MakeMonitor();
+  InputLimits l;
+  l.max_latency_s = 2.0;
+  ASSERT_TRUE(m.Declare("dl/range_image", l).ok());
+  const std::size_t i = m.Watch("dl/range_image", 0.0);
+  m.Start(T(0.0));
+  Accept(m, i, 1, 10.0, 10.5);  // 0.5 s after capture: fine
+  EXPECT_EQ(m.Report(T(10.6)).verdict, InputVerdict::kNominal);
+  Accept(m, i, 2, 12.0, 15.0);  // 3 s: late
+  Accept(m, i, 3, 14.0, 16.5);  // still late: the episode keeps its first reason
+  const InputReport r = m.Report(T(16.6));
+  EXPECT_EQ(r.verdict, InputVerdict::kDegraded);
+  EXPECT_EQ(r.reason, "dl/range_image late: a sample stamped t = 12 s arrived 3 s later (limit 2 s)");
+  ASSERT_EQ(r.findings.size(), 1u);
+  EXPECT_EQ(r.findings[0].problem, InputProblem::kLate);
+  // hold_s (2 s) after the last late sample it is forgotten.
+  EXPECT_EQ(m.Report(T(18.6)).verdict, InputVerdict::kNominal);
+  // Without a limit nothing is late.
+  InputMonitor open = MakeMonitor();
+  const std::size_t j = open.Watch("dl/range_image", 0.0);
+  open.Start(T(0.0));
+  Accept(open, j, 1, 1.0, 60.0);
+  EXPECT_EQ(open.Report(T(60.1)).verdict, InputVerdict::kNominal);
+  InputLimits bad;
+  bad.max_latency_s = -1.0;
+  EXPECT_NE(bad.Validate().message().find("max_latency_s"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rover::runtime

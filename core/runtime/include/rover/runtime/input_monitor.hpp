@@ -20,12 +20,16 @@
 ///     writer's first sample are not checked.
 ///   - rejections: samples the service refused (a failed conversion or range check), with the
 ///     conversion's message.
+///   - latency: an accepted sample whose header stamp is more than the input's max_latency_s
+///     older than its arrival (0: not checked) is late: data captured long before it is used
+///     (a delayed range image) is reported even though it keeps arriving.
 ///
 /// Findings and their verdicts:
 ///   stale                      fault     until an accepted fresh sample arrives
 ///   rejected                   degraded  until hold_s after the last rejection, and at least
 ///                                        until an accepted sample follows it
 ///   seq gap, repeat, reorder   degraded  until hold_s after the last one
+///   late                       degraded  until hold_s after the last late sample
 /// Report() orders the findings worst first (verdict, then stale > rejected > gap > repeat >
 /// reorder, then the most recent) and its reason is the first one's, e.g.
 ///   "dl/pose stale: last sample 1.8 s ago (limit 0.5 s)"
@@ -55,8 +59,15 @@ enum class InputVerdict : std::uint8_t { kNominal = 0, kDegraded = 1, kFault = 2
 /// "nominal", "degraded", "fault".
 const char* InputVerdictName(InputVerdict v);
 
-enum class InputProblem : std::uint8_t { kStale, kRejected, kSeqGap, kSeqRepeat, kSeqReorder };
-/// "stale", "rejected", "seq gap", "seq repeated", "out of order".
+enum class InputProblem : std::uint8_t {
+  kStale,
+  kRejected,
+  kSeqGap,
+  kSeqRepeat,
+  kSeqReorder,
+  kLate
+};
+/// "stale", "rejected", "seq gap", "seq repeated", "out of order", "late".
 const char* InputProblemName(InputProblem p);
 
 /// The limits of one input; parameters `inputs.<key>.*` (InputParamKey) of a service that
@@ -64,6 +75,8 @@ const char* InputProblemName(InputProblem p);
 struct InputLimits {
   double max_age_s = 0.0;  ///< [s] stale when the newest accepted sample is older; 0 = no check
   bool check_seq = true;   ///< check header.seq (gaps, repeats, order)
+  /// [s] late when an accepted sample's stamp is older than this at its arrival; 0 = no check
+  double max_latency_s = 0.0;
   /// Not a parameter (the harness sets it from the topic's QoS): the share of lost samples that
   /// is no finding; 0 = every gap is one, 1 = gaps never are.
   double tolerated_loss = 0.0;
@@ -168,6 +181,9 @@ class InputMonitor {
     std::map<std::uint64_t, std::uint32_t> last_seq;  // per writer
     double loss = 0.0;                                // lost share, exponential average
     std::optional<SeqEvent> gap, repeat, reorder;
+    std::optional<Time> late_at;     // the latest late sample's arrival
+    Time late_stamp;                 // the episode's first late sample: its stamp ...
+    double late_latency_s = 0.0;     // ... and how late it was
   };
 
   explicit InputMonitor(const InputMonitorOptions& options) : options_(options) {}
