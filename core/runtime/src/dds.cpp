@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <cstdlib>
 
@@ -33,21 +34,22 @@ Result<Participant> Participant::Create(dds_domainid_t domain) {
     auto prop = [&](const char* name, const std::string& value) {
       dds_qset_prop(qos.get(), name, value.c_str());
     };
-    prop("dds.sec.auth.library.path", lib + "/libdds_security_auth.so");
-    prop("dds.sec.auth.library.init", "init_authentication");
-    prop("dds.sec.auth.library.finalize", "finalize_authentication");
+    // The three plugins: property prefix, library, init/finalize function suffix.
+    for (const auto& [prefix, library, entry] :
+         {std::tuple{"dds.sec.auth.", "auth", "authentication"},
+          std::tuple{"dds.sec.access.", "ac", "access_control"},
+          std::tuple{"dds.sec.crypto.", "crypto", "crypto"}}) {
+      const std::string p = prefix;
+      prop((p + "library.path").c_str(), lib + "/libdds_security_" + library + ".so");
+      prop((p + "library.init").c_str(), std::string("init_") + entry);
+      prop((p + "library.finalize").c_str(), std::string("finalize_") + entry);
+    }
     prop("dds.sec.auth.identity_ca", "file:" + f.ca);
     prop("dds.sec.auth.identity_certificate", "file:" + f.certificate);
     prop("dds.sec.auth.private_key", "file:" + f.private_key);
-    prop("dds.sec.access.library.path", lib + "/libdds_security_ac.so");
-    prop("dds.sec.access.library.init", "init_access_control");
-    prop("dds.sec.access.library.finalize", "finalize_access_control");
     prop("dds.sec.access.permissions_ca", "file:" + f.ca);
     prop("dds.sec.access.governance", "file:" + f.governance);
     prop("dds.sec.access.permissions", "file:" + f.permissions);
-    prop("dds.sec.crypto.library.path", lib + "/libdds_security_crypto.so");
-    prop("dds.sec.crypto.library.init", "init_crypto");
-    prop("dds.sec.crypto.library.finalize", "finalize_crypto");
   }
   const dds_entity_t h = dds_create_participant(domain, qos.get(), nullptr);
   if (h < 0) {

@@ -83,6 +83,21 @@ Result<std::optional<TaskGoal>> ParseTaskGoal(const TaskSource& source) {
   return std::optional<TaskGoal>(goal);
 }
 
+std::string CanonicalOutcome(std::string name) {
+  if (name != "reached" && name != "vetoed") std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+Result<std::string> ParseTaskExpect(const YAML::Node& node, const std::vector<std::string>& choices,
+                                    const yaml::FileErrors& err) {
+  const std::string given = node.IsScalar() ? node.Scalar() : "";
+  const std::string canonical = CanonicalOutcome(given);
+  if (canonical != given && std::find(choices.begin(), choices.end(), canonical) != choices.end()) {
+    return canonical;
+  }
+  return yaml::OneOf(node, "task.expect", choices, err);
+}
+
 std::string ScenarioSpelling(std::string_view msg_name, bool space) {
   std::string out(msg_name);
   for (char& c : out) {

@@ -1,11 +1,9 @@
 #include "rover/deploy/runner/tasks/lander_return_task.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "rover/base/format.hpp"
-#include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/msg/rendezvous_idl.hpp"
 
 namespace rover::deploy::runner {
@@ -52,15 +50,7 @@ Result<LanderReturnSpec> ParseLanderReturnTask(const TaskSource& source) {
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
   spec.expect = spec.climb ? "on_deck" : "at_ramp_base";
   if (const YAML::Node x = n["expect"]) {
-    // A hyphenated fault (NOT-FOUND) is read as core/msg's name (NOT_FOUND).
-    const std::vector<std::string> choices = ExpectChoices();
-    const std::string given = x.IsScalar() ? x.Scalar() : "";
-    const std::string canonical = CanonicalOutcome(given);
-    if (canonical != given && std::find(choices.begin(), choices.end(), canonical) != choices.end()) {
-      spec.expect = canonical;
-    } else {
-      ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(x, "task.expect", choices, err));
-    }
+    ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(x, ExpectChoices(), err));
   }
   if (spec.expect == "on_deck" && !spec.climb) {
     return err.At(n["expect"], "task.expect: 'on_deck' needs climb: true");

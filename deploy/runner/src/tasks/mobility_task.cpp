@@ -121,12 +121,6 @@ const std::vector<std::string>& MobilityFaultNames() {
   return k;
 }
 
-std::string CanonicalOutcome(std::string name) {
-  // MER's papers write WAYPT-TIMEOUT, BAD-COMMAND, DRIVE-TIMEOUT; core/msg writes '_'.
-  if (name != "reached" && name != "vetoed") std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-}
-
 std::string FaultClassProse(msg::FaultClass c) {
   return ScenarioSpelling(msg::FaultClassName(c), /*space=*/true);
 }
@@ -203,15 +197,7 @@ Result<MobilityTaskSpec> ParseMobilityTask(const TaskSource& source, MobilityTas
     }
   }
   if (const YAML::Node e = n["expect"]) {
-    // MER's spelling (WAYPT-TIMEOUT) is read as core/msg's (WAYPT_TIMEOUT).
-    const std::vector<std::string> choices = ExpectChoices(type);
-    const std::string given = e.IsScalar() ? e.Scalar() : "";
-    const std::string canonical = CanonicalOutcome(given);
-    if (canonical != given && std::find(choices.begin(), choices.end(), canonical) != choices.end()) {
-      spec.expect = canonical;
-    } else {
-      ROVER_ASSIGN_OR_RETURN(spec.expect, yaml::OneOf(e, "task.expect", choices, err));
-    }
+    ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(e, ExpectChoices(type), err));
   }
   return spec;
 }

@@ -136,6 +136,14 @@ struct TaskGoal {
 /// [0.01, 100]); nullopt when there is none.
 Result<std::optional<TaskGoal>> ParseTaskGoal(const TaskSource& source);
 
+/// An outcome or `expect:` name in core/msg's spelling: the hyphens MER's papers write
+/// (WAYPT-TIMEOUT, NOT-FOUND) become '_'; "reached" and "vetoed" stay.
+std::string CanonicalOutcome(std::string name);
+/// A task's `expect:` (at `node`, a scalar): one of `choices`, a hyphenated fault name read as
+/// core/msg's; errors name file, line, key and the choices.
+Result<std::string> ParseTaskExpect(const YAML::Node& node, const std::vector<std::string>& choices,
+                                    const yaml::FileErrors& err);
+
 /// A core/msg enumerator name as scenarios and result.json write it: lower case, "GOAL_ERROR" ->
 /// "goal error" with `space` (fault classes), "MOTOR_STALL" -> "motor_stall" without.
 std::string ScenarioSpelling(std::string_view msg_name, bool space = false);

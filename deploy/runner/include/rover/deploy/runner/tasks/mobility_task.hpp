@@ -73,9 +73,6 @@ struct MobilityTaskSpec {
 /// The fault code names, core/msg's (msg::MobilityFaultName: WAYPT_TIMEOUT), index =
 /// msg::MobilityFault; "NONE" for kNone.
 const std::vector<std::string>& MobilityFaultNames();
-/// An outcome or `expect:` name in core/msg's spelling: MER's hyphens (WAYPT-TIMEOUT, as seed
-/// 000 writes them) become '_'; "reached" and "vetoed" stay.
-std::string CanonicalOutcome(std::string name);
 /// "none", "goal error", "motion error" (msg::FaultClassName in prose).
 std::string FaultClassProse(msg::FaultClass c);
 /// The mode of a task type with or without VisOdom.
