@@ -188,6 +188,9 @@ Status RenderOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(range("lod_max_cell_px", lod_max_cell_px, 0.5, 1000.0));
   ROVER_RETURN_IF_ERROR(range("apron_m", apron_m, 0.0, 3000.0));
   ROVER_RETURN_IF_ERROR(range("oversample", oversample, 1.0, 3.0));
+  if (binned_supersample < 1 || binned_supersample > 4) {
+    return BadOption("binned_supersample", binned_supersample, "is out of range [1, 4]");
+  }
   ROVER_RETURN_IF_ERROR(range("max_view_size", max_view_size, 64, 16384));
   if (shadow_map_size < 256 || shadow_map_size > 8192) {
     return BadOption("shadow_map_size", shadow_map_size, "is out of range [256, 8192]");
@@ -1012,10 +1015,15 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
     return InvalidArgument("rover pose: rotation is not orthonormal (a rigid transform is needed)");
   }
   ROVER_RETURN_IF_ERROR(gl->MakeCurrent());
+  // A binned readout renders `super` times finer; the radiance is area-averaged back below
+  // (geometry::Scale aligns the outer pixel edges, as the area filter does).
+  const int super = std::min(options.sensor.binning, options.binned_supersample);
   std::vector<PlacedCamera> cams;
   double focal = 1.0;
   Eigen::Vector3d mid = Eigen::Vector3d::Zero();
-  for (const auto& m : models) {
+  for (const auto& output_model : models) {
+    const geometry::CameraModel m =
+        super > 1 ? geometry::Scale(output_model, static_cast<double>(super)) : output_model;
     const geometry::CameraModel site = geometry::Transform(m, site_from_rover);
     auto plan = Plan(site);
     if (!plan.ok()) return plan.status();
@@ -1027,7 +1035,7 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
   }
   mid /= static_cast<double>(cams.size());
   SelectLods(mid, focal);
-  RenderShadows(cams, mid, models.front().width());
+  RenderShadows(cams, mid, super * models.front().width());
 
   StereoImages out;
   for (std::size_t c = 0; c < cams.size(); ++c) {
@@ -1045,6 +1053,11 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
     if (options.output_range) {
       cv::remap(range_atlas, img.range, plan.map_x, plan.map_y, cv::INTER_NEAREST,
                 cv::BORDER_CONSTANT, cv::Scalar(0));
+    }
+    if (super > 1) {
+      const cv::Size size(models[c].width(), models[c].height());
+      cv::resize(radiance, radiance, size, 0, 0, cv::INTER_AREA);
+      if (options.output_range) cv::resize(img.range, img.range, size, 0, 0, cv::INTER_NEAREST);
     }
     stats.warp_ms += Ms(t0);
     t0 = std::chrono::steady_clock::now();

@@ -42,6 +42,7 @@ Status SensorOptions::Validate() const {
   if (!(vignetting >= 0.0 && vignetting < 1.0)) {
     return Bad("vignetting", vignetting, "is out of range [0, 1)");
   }
+  if (binning < 1 || binning > 64) return Bad("binning", binning, "is out of range [1, 64]");
   return Status::Ok();
 }
 
@@ -79,8 +80,10 @@ cv::Mat ApplySensorModel(const cv::Mat& radiance, const SensorOptions& options, 
   std::mt19937_64 rng(seed);
   const double cx = 0.5 * (radiance.cols - 1), cy = 0.5 * (radiance.rows - 1);
   const double inv_r2 = 1.0 / std::max(1.0, cx * cx + cy * cy);
-  const double electrons_per_unit = exposure * options.full_well_e;
-  const double dn_per_e = options.gain * 255.0 / options.full_well_e;
+  // A binned pixel collects the charge of binning^2 sensor pixels and reports their mean.
+  const double pixels = static_cast<double>(options.binning) * options.binning;
+  const double electrons_per_unit = exposure * options.full_well_e * pixels;
+  const double dn_per_e = options.gain * 255.0 / (options.full_well_e * pixels);
   const double read_var = options.read_noise_e * options.read_noise_e;
   const bool noise = options.noise;
   const bool shot = options.shot_noise;

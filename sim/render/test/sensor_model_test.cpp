@@ -22,6 +22,9 @@ TEST(SensorModelTest, ValidateNamesField) {
   o = {};
   o.vignetting = 1.0;
   EXPECT_NE(o.Validate().message().find("sensor.vignetting"), std::string::npos);
+  o = {};
+  o.binning = 0;
+  EXPECT_NE(o.Validate().message().find("sensor.binning"), std::string::npos);
 }
 
 TEST(SensorModelTest, NoiseFreeLevelsAndClamp) {
@@ -45,6 +48,27 @@ TEST(SensorModelTest, NoiseStatisticsMatchShotAndReadNoise) {
   const double expect_sd = std::sqrt(s + o.read_noise_e * o.read_noise_e) * 255.0 / o.full_well_e;
   EXPECT_NEAR(mean[0], s * 255.0 / o.full_well_e, 0.1);
   EXPECT_NEAR(sd[0], std::sqrt(expect_sd * expect_sd + 1.0 / 12.0), 0.05 * expect_sd);
+}
+
+// A 4 x 4 binned pixel sums sixteen pixels' charge and reads once: the same brightness, the shot
+// noise a quarter and the read noise a sixteenth of one pixel's (in DN).
+TEST(SensorModelTest, BinnedReadoutKeepsBrightnessAndSumsChargeBeforeOneRead) {
+  SensorOptions o = Plain();
+  o.gain = 4.0;  // DN large enough that rounding does not hide the binned noise
+  cv::Mat r(256, 256, CV_32FC1, cv::Scalar(0.2F));
+  const double s = 0.2 * o.full_well_e;  // 4000 e- per sensor pixel at exposure 1
+  const double dn_per_e = o.gain * 255.0 / o.full_well_e;
+  for (const int b : {1, 4}) {
+    o.binning = b;
+    const cv::Mat dn = ApplySensorModel(r, o, 1.0, 3);
+    cv::Scalar mean, sd;
+    cv::meanStdDev(dn, mean, sd);
+    const double n = b * b;
+    const double expect_sd = std::sqrt(n * s + o.read_noise_e * o.read_noise_e) * dn_per_e / n;
+    EXPECT_NEAR(mean[0], s * dn_per_e, 0.1) << "binning " << b;
+    EXPECT_NEAR(sd[0], std::sqrt(expect_sd * expect_sd + 1.0 / 12.0), 0.05 * expect_sd)
+        << "binning " << b;
+  }
 }
 
 TEST(SensorModelTest, SeededNoise) {

@@ -100,6 +100,9 @@ Result<CameraShot> CameraHead::Take(const std::string& camera, std::uint32_t exp
   CameraShot shot;
   render::SensorOptions sensor = renderer_->options().sensor;
   sensor.auto_exposure = exposure_us == 0;
+  // A binned readout sums b x b pixels' charge before one read, and the renderer integrates
+  // the light over them (render::SensorOptions::binning, RenderOptions::binned_supersample).
+  sensor.binning = readout_width == 0 ? 1 : sensor_width / readout_width;
   if (exposure_us != 0) sensor.exposure = exposure_us / kExposureUnitUs;
   if (const Status st = renderer_->SetSensor(sensor); !st.ok()) {
     shot.exposure_refused = st.message();

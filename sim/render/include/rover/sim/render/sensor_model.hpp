@@ -12,6 +12,14 @@
 ///   S'     = S + sqrt(S + read_noise_e^2) * n,        n ~ N(0, 1) approximately (below)
 ///   DN     = round(bias_dn + S' * gain * 255 / full_well_e), clamped to [0, 255]
 /// i.e. shot noise (Poisson, Gaussian approximation) and read noise add in quadrature.
+/// A binned readout (`binning` b > 1: each image pixel is b x b sensor pixels whose charge is
+/// summed on the chip before one read, as MER's HAZCAMs were read out) collects b^2 S electrons
+/// per image pixel with one read noise and reports their mean:
+///   DN     = round(bias_dn + (b^2 S + sqrt(b^2 S + read_noise_e^2) n) * gain * 255 / (b^2 full_well_e))
+/// so the brightness is the unbinned one and the noise falls by b (shot) and b^2 (read), not
+/// the full per-pixel noise on a b-times-coarser image (which made a 256-px readout of the
+/// 1024-px HAZCAM four times noisier than the full frame area-averaged, and dl-stereo's ranges
+/// 2-5 times worse).
 /// Noise: n is the sum of four 16-bit uniforms from one std::mt19937_64 draw, centred and scaled
 /// to unit variance (Irwin-Hall; truncated at +-3.46 sigma), seeded per frame: the same seed
 /// gives the same image bit for bit.
@@ -44,6 +52,9 @@ struct SensorOptions {
   double gain = 1.0;                  ///< analog gain multiplier (DN per electron x 255/full well)
   double bias_dn = 2.0;               ///< [DN] dark offset
   double vignetting = 0.15;           ///< light lost at the image corners, [0, 1)
+  /// b x b sensor pixels summed per image pixel (a binned readout; set per shot by whoever
+  /// renders the readout, not a parameter), [1, 64]
+  int binning = 1;
 
   /// Checks ranges; the message names the field ("sensor.read_noise_e: ...").
   Status Validate() const;
