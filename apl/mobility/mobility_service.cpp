@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "rover/apl/mobility/command_checkpoint.hpp"
 #include "rover/apl/mobility/navigation.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
@@ -55,6 +56,10 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
         const MobilityCommand c = msg::MobilityCommandFromIdl(s.data());
         log::Info("mobility command",
                   {{"command_id", c.command_id}, {"mode", msg::MobilityModeName(c.mode)}});
+        if (restart_reported_) {  // the commander has moved on from the interrupted command
+          restart_reported_ = false;
+          ctx_->SetHealth(rover_HEALTH_OK, "");
+        }
         Publish(manager_->OnCommand(c, ctx_->Now()));
       }));
   // A rejected sample goes to the manager (its typed fault) and, returned, to sys/health.
@@ -113,7 +118,45 @@ Status MobilityService::OnConfigure(ServiceContext& ctx, const ParamSet& params)
     Publish(out);
   });
   ctx.SetHealth(rover_HEALTH_OK, "");
+  checkpoints_ = CheckpointStore::FromEnvironment(ctx.name());
+  EndInterruptedCommand();
   return Status::Ok();
+}
+
+void MobilityService::EndInterruptedCommand() {
+  if (!checkpoints_.enabled()) return;
+  const auto loaded = checkpoints_.Load();
+  if (!loaded.ok()) {
+    log::Warn("checkpoint unreadable: a command interrupted by a restart cannot be named",
+              {{"error", loaded.status().message()}});
+  } else if (loaded->has_value()) {
+    const auto c = CommandCheckpointFromFields(**loaded);
+    if (!c.ok()) {
+      log::Warn("checkpoint unreadable: a command interrupted by a restart cannot be named",
+                {{"path", checkpoints_.path()}, {"error", c.status().message()}});
+    } else if (c->running) {
+      const MobilityStatus ended = InterruptedCommandStatus(*c, ctx_->Now());
+      log::Warn("restarted: the running command is abandoned",
+                {{"command_id", c->command_id}, {"mode", msg::MobilityModeName(c->mode)}});
+      ctx_->SetHealth(rover_HEALTH_DEGRADED, "restarted: command " +
+                                                 std::to_string(c->command_id) + " (" +
+                                                 msg::MobilityModeName(c->mode) + ") abandoned");
+      restart_reported_ = true;
+      command_checkpoint_ = *c;
+      MobilityOutput out;
+      out.statuses.push_back(ended);
+      Publish(out);
+      return;
+    }
+  }
+  SaveCommandCheckpoint(CommandCheckpoint{});
+}
+
+void MobilityService::SaveCommandCheckpoint(const CommandCheckpoint& c) {
+  command_checkpoint_ = c;
+  if (!checkpoints_.enabled()) return;
+  const Status s = checkpoints_.Save(CommandCheckpointFields(c));
+  if (!s.ok()) log::Warn("checkpoint not written", {{"error", s.message()}});
 }
 
 Status MobilityService::OnDeactivate(ServiceContext& ctx) {
@@ -122,6 +165,7 @@ Status MobilityService::OnDeactivate(ServiceContext& ctx) {
     stop.mode = Mode::kStop;
     Publish(manager_->OnCommand(stop, ctx.Now()));
   }
+  checkpoints_.Remove();  // a clean stop: nothing was interrupted
   return Status::Ok();
 }
 
@@ -168,6 +212,8 @@ void MobilityService::Publish(const MobilityOutput& out) {
     msg::MobilityStatusToIdl(st, &m);
     ctx_->Stamp(m.header, "site");
     Check(status_writer_.Write(m), "apl/mobility_status");
+    const CommandCheckpoint next = NextCommandCheckpoint(command_checkpoint_, st);
+    if (next != command_checkpoint_) SaveCommandCheckpoint(next);
     if (st.state == State::kFailed || st.state == State::kRejected) {
       log::Warn("mobility command ended", {{"command_id", st.command_id},
                                            {"fault", std::string(msg::MobilityFaultName(st.fault))},

@@ -17,10 +17,17 @@
 /// conversion's message (dl/pose while running: SAPP; the pending range image: IMG; ...) and to
 /// sys/health through the harness's input monitor; nothing a sample carries can crash the
 /// service. Deactivation ends a running command STOPPED (a STOP drive is sent).
+///
+/// Restarts: in a supervised set the running command is checkpointed (command_checkpoint.hpp).
+/// Restarted after a crash or kill -9 while a command ran, the service ends that command with
+/// the goal error RESTART on apl/mobility_status and reports DEGRADED "restarted: command N
+/// (MODE) abandoned" on sys/health until the next command arrives.
 
 #include <optional>
 
 #include "rover/apl/gestalt/options.hpp"
+#include "rover/apl/mobility/command_checkpoint.hpp"
+#include "rover/base/checkpoint.hpp"
 #include "rover/apl/mobility/mobility_manager.hpp"
 #include "rover/runtime/service.hpp"
 
@@ -61,6 +68,12 @@ class MobilityService final : public Service {
   dds::Writer<rover_dl_VoCommand> vo_writer_;
   bool vo_requested_ = false;
   void UpdateVoRequest();
+  // Ends a command a restart interrupted (from the checkpoint); then checkpoints "idle".
+  void EndInterruptedCommand();
+  void SaveCommandCheckpoint(const CommandCheckpoint& c);
+  CheckpointStore checkpoints_;  // disabled outside a supervised set
+  CommandCheckpoint command_checkpoint_;
+  bool restart_reported_ = false;
 };
 
 }  // namespace rover::apl::mobility

@@ -5,10 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "rover/msg/mobility_idl.hpp"
 #include "rover/testing/fakes/fake_mobility_dl.hpp"
 #include "rover/testing/service_harness.hpp"
+#include "rover/testing/test_support.hpp"
 
 namespace rover::apl::mobility {
 namespace {
@@ -173,6 +178,54 @@ TEST_F(MobilityServiceTest, CorruptPoseWhileDrivingIsSappAndAnInputFinding) {
       << harness_->health_message();
   EXPECT_EQ(harness_->health_message().rfind("dl/pose stale: no sample since", 0), 0u)
       << harness_->health_message();
+}
+
+// kill -9 of apl-mobility mid-command (issue 37): in a supervised set the running command is
+// checkpointed, and the restarted service ends it with the goal error RESTART and says so on
+// sys/health, instead of leaving the commander waiting for a command nobody runs.
+TEST_F(MobilityServiceTest, ARestartEndsTheInterruptedCommandWithRestart) {
+  const std::string dir = rover::testing::MakeTempDir("mobility-restart");
+  ASSERT_EQ(setenv("ROVER_STATE_DIR", dir.c_str(), 1), 0);
+  ASSERT_EQ(setenv("ROVER_SET_ID", "set-1", 1), 0);
+  const std::string path = dir + "/checkpoints/apl-mobility-test.ckpt";  // the harness name
+  Start();
+  Send(Autonav(7, 6.0, 0.0));
+  for (int i = 0; i < 50 && !loco_.busy(); ++i) ASSERT_TRUE(Tick());
+  ASSERT_TRUE(loco_.busy());
+  auto written = CheckpointStore(path, "set-1").Load();
+  ASSERT_TRUE(written.ok() && written->has_value()) << written.status().message();
+  EXPECT_EQ((**written).at("running"), "1");
+  EXPECT_EQ((**written).at("command_id"), "7");
+  std::stringstream crash_leftover;
+  crash_leftover << std::ifstream(path).rdbuf();
+
+  // A crash leaves the checkpoint as it was (a clean stop removes it).
+  harness_.reset();
+  EXPECT_FALSE(std::filesystem::exists(path));
+  std::ofstream(path) << crash_leftover.str();
+  Start();
+  const auto end = WaitEnd(7, 2.0);
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->state, State::kFailed);
+  EXPECT_EQ(end->fault, Fault::kRestart);
+  EXPECT_EQ(end->fault_class, FaultClass::kGoalError);
+  for (int i = 0; i < 30 && harness_->health() != rover_HEALTH_DEGRADED; ++i) ASSERT_TRUE(Tick());
+  EXPECT_EQ(harness_->health(), rover_HEALTH_DEGRADED);
+  EXPECT_EQ(harness_->health_message(), "restarted: command 7 (AUTONAV) abandoned");
+  written = CheckpointStore(path, "set-1").Load();
+  ASSERT_TRUE(written.ok() && written->has_value());
+  EXPECT_EQ((**written).at("running"), "0");  // reported once, not again at the next restart
+
+  // The next command clears the finding and runs.
+  Send(Autonav(8, 1.0, 0.0));
+  const auto next = WaitEnd(8, 120.0);
+  ASSERT_TRUE(next.has_value());
+  EXPECT_EQ(next->state, State::kSucceeded) << next->message;
+  EXPECT_EQ(harness_->health(), rover_HEALTH_OK) << harness_->health_message();
+  harness_.reset();
+  unsetenv("ROVER_STATE_DIR");
+  unsetenv("ROVER_SET_ID");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(MobilityServiceParams, InvalidParametersRefuseConfigurationNamingTheKey) {

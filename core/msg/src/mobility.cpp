@@ -9,7 +9,8 @@ constexpr std::array<std::string_view, kMobilityFaultCount> kFaultNames = {
     "NONE",    "ARB",           "ACM",         "POT",        "TOD",
     "STOPPED", "WAYPT_TIMEOUT", "NOPATH",      "NOPROGRESS", "BUSY",
     "VISODOM", "KEEPOUT",       "BAD_COMMAND", "IMG",        "SAPP",
-    "MOT",     "DRIVE_TIMEOUT", "TILT",        "SUSPENSION", "NORTH"};
+    "MOT",     "DRIVE_TIMEOUT", "TILT",        "SUSPENSION", "NORTH",
+    "RESTART"};
 
 constexpr std::array<std::string_view, kMobilityModeCount> kModeNames = {
     "DIRECTED",    "VISODOM",         "GO_TO_WAYPOINT", "VISODOM_GO_TO_WAYPOINT",
@@ -27,6 +28,7 @@ constexpr std::array<const char*, kFaultClassCount> kClassNames = {"NONE", "GOAL
 FaultClass FaultClassOf(MobilityFault f) {
   const int v = static_cast<int>(f);
   if (v <= 0 || v >= kMobilityFaultCount) return FaultClass::kNone;
+  if (f == MobilityFault::kRestart) return FaultClass::kGoalError;
   return v >= static_cast<int>(MobilityFault::kImg) ? FaultClass::kMotionError
                                                     : FaultClass::kGoalError;
 }

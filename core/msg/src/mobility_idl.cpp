@@ -18,7 +18,8 @@ static_assert(rover_apl_FAULT_MOTION_ERROR == static_cast<int>(FaultClass::kMoti
 static_assert(rover_apl_MOBFAULT_BAD_COMMAND == static_cast<int>(MobilityFault::kBadCommand));
 static_assert(rover_apl_MOBFAULT_IMG == static_cast<int>(MobilityFault::kImg));
 static_assert(rover_apl_MOBFAULT_NORTH == static_cast<int>(MobilityFault::kNorth));
-static_assert(rover_apl_MOBFAULT_NORTH + 1 == kMobilityFaultCount);
+static_assert(rover_apl_MOBFAULT_RESTART == static_cast<int>(MobilityFault::kRestart));
+static_assert(rover_apl_MOBFAULT_RESTART + 1 == kMobilityFaultCount);
 
 MobilityCommandMessage& MobilityCommandMessage::operator=(const MobilityCommandMessage& o) {
   msg = o.msg;

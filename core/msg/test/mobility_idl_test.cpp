@@ -146,10 +146,10 @@ TEST(MobilityIdl, StatusWithAnUnknownEnumIsRefusedNamingTheField) {
   ASSERT_FALSE(b.ok());
   EXPECT_EQ(b.status().message(), "apl/mobility_status fault_class = 3 is not a FaultClass (0..2)");
   m = rover_apl_MobilityStatus{};
-  idl::SetRawEnum(&m.fault, 20);
+  idl::SetRawEnum(&m.fault, 21);
   b = MobilityStatusFromIdl(m);
   ASSERT_FALSE(b.ok());
-  EXPECT_EQ(b.status().message(), "apl/mobility_status fault = 20 is not a MobilityFault (0..19)");
+  EXPECT_EQ(b.status().message(), "apl/mobility_status fault = 21 is not a MobilityFault (0..20)");
 }
 
 }  // namespace

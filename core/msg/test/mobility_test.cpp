@@ -10,7 +10,7 @@ using F = MobilityFault;
 TEST(MobilityMsg, FaultClassesFollowMerTable1) {
   EXPECT_EQ(FaultClassOf(F::kNone), FaultClass::kNone);
   for (F f : {F::kArb, F::kAcm, F::kPot, F::kTod, F::kStopped, F::kWaypointTimeout, F::kNoPath,
-              F::kNoProgress, F::kBusy, F::kVisOdom, F::kKeepOut, F::kBadCommand}) {
+              F::kNoProgress, F::kBusy, F::kVisOdom, F::kKeepOut, F::kBadCommand, F::kRestart}) {
     EXPECT_EQ(FaultClassOf(f), FaultClass::kGoalError) << MobilityFaultName(f);
   }
   for (F f : {F::kImg, F::kSapp, F::kMot, F::kDriveTimeout, F::kTilt, F::kSuspension, F::kNorth}) {
@@ -24,6 +24,7 @@ TEST(MobilityMsg, NamesAsMer) {
   EXPECT_EQ(MobilityFaultName(F::kWaypointTimeout), "WAYPT_TIMEOUT");
   EXPECT_EQ(MobilityFaultName(F::kNone), "NONE");
   EXPECT_EQ(MobilityFaultName(F::kNorth), "NORTH");
+  EXPECT_EQ(MobilityFaultName(F::kRestart), "RESTART");
   EXPECT_EQ(MobilityFaultName(static_cast<F>(-1)), "UNKNOWN");
   EXPECT_EQ(MobilityFaultName(static_cast<F>(kMobilityFaultCount)), "UNKNOWN");
   EXPECT_EQ(MobilityModeName(MobilityMode::kDirected), "DIRECTED");

@@ -73,11 +73,13 @@ enum class MobilityFault : std::int32_t {
   kTilt,
   kSuspension,
   kNorth,
+  // goal error, numbered after the motion errors (the wire keeps earlier values)
+  kRestart,  ///< apl-mobility restarted while the command ran: the command is abandoned
 };
-inline constexpr int kMobilityFaultCount = 20;
+inline constexpr int kMobilityFaultCount = 21;
 
-/// MER's class of each fault: kGoalError for ARB .. BAD_COMMAND, kMotionError for IMG .. NORTH,
-/// kNone for NONE and values no enumerator has.
+/// MER's class of each fault: kGoalError for ARB .. BAD_COMMAND and RESTART, kMotionError for
+/// IMG .. NORTH, kNone for NONE and values no enumerator has.
 FaultClass FaultClassOf(MobilityFault f);
 /// "ARB", "WAYPT_TIMEOUT", ... (the IDL names without MOBFAULT_); "UNKNOWN" otherwise.
 std::string_view MobilityFaultName(MobilityFault f);
