@@ -10,12 +10,14 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "rover/base/clock.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/log.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/msg/camera.hpp"
 #include "rover/msg/hw_idl.hpp"
 #include "rover/runtime/activity.hpp"
+#include "rover/runtime/fault_control.hpp"
 #include "rover/runtime/lockstep.hpp"
 #include "rover/runtime/service.hpp"
 #include "rover/sim/rover_sim/camera_head.hpp"
@@ -71,6 +73,9 @@ class RoverSim final : public rover::Service {
                     std::make_shared<const rover::sim::terrain::Terrain>(engine_->world().terrain),
                     engine_->rover());
     ctx_ = &ctx;
+    // Faults on the simulator's own endpoints (hw/*, sim/clock) are timed on the run clock it
+    // makes, as every other service's are, not on the wall time it runs on.
+    if (auto* faults = ctx.faults()) faults->UseClock(run_clock_, rover::Time{0});
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/clock", &clock_w_));
     if (pacing.lockstep_strict) {
       // Each lock-step service hears only the ticks it must serve (lockstep.hpp "idle").
@@ -228,6 +233,7 @@ class RoverSim final : public rover::Service {
       rover::runtime::ScopedActivity a(ctx_->activities(), "physics");
       return engine_->Step();
     }();
+    run_clock_.Set(rover::Time::FromSeconds(engine_->time()));
     if (!out.ok()) {
       rover::dds::lockstep::SetWriteTick(rover::dds::lockstep::kOff);  // seen at once
       rover::log::Error("simulation step failed; pausing", {{"error", out.status().message()}});
@@ -385,6 +391,7 @@ class RoverSim final : public rover::Service {
   }
 
   rover::ServiceContext* ctx_ = nullptr;
+  rover::ManualClock run_clock_{rover::Time{0}};  // simulated time, for the fault agent
   std::unique_ptr<rs::SimEngine> engine_;
   std::optional<rs::Pacer> pacer_;
   std::optional<rs::CameraHead> camera_;

@@ -144,8 +144,11 @@ void Executor::SpinOnce(Duration max_wait) {
   if (auto pump = dds::CurrentSeamPump()) {
     if (auto due = pump->NextDue()) {
       // Held samples fall due on the run clock; under wall time that is a wall deadline.
+      // (At least 1 ms: a process whose faults run on another clock (the simulator's) must not
+      // spin while a held sample waits for that clock.)
       wait = std::min(wait, clock_.simulated() ? kMaxIdleWait
-                                               : std::max(Duration::zero(), *due - clock_.Now()));
+                                               : std::max(Duration{std::chrono::milliseconds(1)},
+                                                          *due - clock_.Now()));
     }
   }
   if (clock_.simulated()) wait = std::min(wait, kMaxIdleWait);

@@ -60,9 +60,14 @@ FaultRecord FromIdl(const rover_sys_FaultEvent& e) {
 // ---- FaultAgent --------------------------------------------------------------------------------
 
 FaultAgent::FaultAgent(const Clock& clock, Options options)
-    : clock_(clock),
+    : clock_(&clock),
       options_(std::move(options)),
       engine_(FaultEngine::Options{options_.service, &clock, options_.epoch, options_.report_period}) {}
+
+void FaultAgent::UseClock(const Clock& clock, Time epoch) {
+  clock_ = &clock;
+  engine_.UseClock(clock, epoch);
+}
 
 std::unique_ptr<FaultAgent> FaultAgent::Install(const Clock& clock, Options options) {
   std::unique_ptr<FaultAgent> agent(new FaultAgent(clock, std::move(options)));
@@ -89,7 +94,7 @@ Status FaultAgent::Attach(const dds::Participant& participant, Executor& executo
 
 void FaultAgent::Publish(const FaultRecord& r) {
   rover_sys_FaultEvent e{};
-  e.header.stamp_ns = clock_.Now().ns;
+  e.header.stamp_ns = clock_->Now().ns;
   e.header.seq = ++seq_;
   ToIdl(r, &e);
   (void)events_.Write(e);
@@ -108,7 +113,7 @@ void FaultAgent::Reject(std::uint32_t id, rover_sys_FaultKind kind, const std::s
   r.kind = k >= rover_sys_FAULT_DROP && k <= rover_sys_FAULT_PARTITION ? static_cast<FaultKind>(k)
                                                                        : FaultKind::kDrop;
   r.service = options_.service;
-  r.at = clock_.Now();
+  r.at = clock_->Now();
   r.detail = why;
   log::Warn("fault control rejected", {{"id", id}, {"error", why}});
   Publish(r);
@@ -142,7 +147,7 @@ void FaultAgent::OnControl(const rover_sys_FaultControl& m) {
         r.hit = st.hit;
         r.start = st.start;
         r.end = st.end;
-        r.at = clock_.Now();
+        r.at = clock_->Now();
         r.detail = std::string(FaultStateName(st.state)) + ": " + st.spec.Describe();
         if (!GlobMatch(st.spec.service, options_.service)) r.detail += " (not for this service)";
         Publish(r);

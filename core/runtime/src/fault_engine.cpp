@@ -306,6 +306,7 @@ class EngineCore final : public dds::SeamPump, public std::enable_shared_from_th
 
   std::shared_ptr<dds::TopicSeam> MakeSeam(const std::string& topic, dds::Direction d);
   Status Add(const FaultSpec& spec);
+  void UseClock(const Clock* clock, Time epoch);
   bool Remove(std::uint32_t id);
   void Clear();
   std::vector<FaultStatus> List() const;
@@ -750,6 +751,31 @@ Status EngineCore::Add(const FaultSpec& spec) {
   return Status::Ok();
 }
 
+void EngineCore::UseClock(const Clock* clock, Time epoch) {
+  std::lock_guard lock(mu_);
+  const Time old_now = Now();
+  clock_.store(clock, std::memory_order_release);
+  options_.epoch = epoch;
+  const Time now = Now();
+  // Windows that have not opened yet move to the new clock: run-epoch faults count from the
+  // new epoch, faults started on receipt keep the delay they had left.
+  std::vector<std::shared_ptr<Fault>> faults;
+  for (const auto& old : set_->faults) {
+    if (old->started || old->ended) {
+      faults.push_back(old);
+      continue;
+    }
+    auto f = std::make_shared<Fault>();
+    f->spec = old->spec;
+    f->applies = old->applies;
+    f->start = old->spec.start_mode == StartMode::kOnReceipt ? now + (old->start - old_now)
+                                                             : epoch + Seconds(old->spec.start_s);
+    if (old->spec.duration_s > 0) f->end = f->start + Seconds(old->spec.duration_s);
+    faults.push_back(std::move(f));
+  }
+  Publish(std::move(faults));
+}
+
 bool EngineCore::Remove(std::uint32_t id) {
   std::vector<FaultRecord> records;
   bool found = false;
@@ -893,6 +919,7 @@ std::shared_ptr<dds::TopicSeam> FaultEngine::MakeSeam(const std::string& topic, 
   return core_->MakeSeam(topic, d);
 }
 Status FaultEngine::Add(const FaultSpec& spec) { return core_->Add(spec); }
+void FaultEngine::UseClock(const Clock& clock, Time epoch) { core_->UseClock(&clock, epoch); }
 bool FaultEngine::Remove(std::uint32_t id) { return core_->Remove(id); }
 void FaultEngine::Clear() { core_->Clear(); }
 std::vector<FaultStatus> FaultEngine::List() const { return core_->List(); }

@@ -238,6 +238,28 @@ TEST_F(FaultEngineTest, WindowsFollowTheRunClockAndAreRecorded) {
   EXPECT_EQ(list[0].state, FaultState::kEnded);
 }
 
+// The simulator runs on wall time and makes the run clock: its faults move to the run clock
+// (UseClock) before they open, so "start_s: 5" means 5 s of simulated time there too.
+TEST_F(FaultEngineTest, UseClockMovesWindowsThatHaveNotOpenedToTheRunClock) {
+  At(1000);  // the process's own clock (wall time) is far ahead of the run clock
+  auto [w, r] = OpenCommands();
+  Add("{kind: drop, topic: dl/drive_command, start_s: 5, duration_s: 3}", 7);
+  ManualClock run(Time{0});
+  engine_->UseClock(run, Time{0});
+  for (int t = 0; t <= 10; ++t) {
+    run.Set(Time::FromSeconds(t));
+    engine_->Pump();
+    ASSERT_TRUE(w.Write(Command(static_cast<std::uint32_t>(t))).ok());
+  }
+  EXPECT_EQ(Ids(Drain(w, r)), (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 8, 9, 10}));
+  const auto started = Records(FaultRecord::Event::kStarted);
+  ASSERT_EQ(started.size(), 1u);
+  EXPECT_EQ(started[0].at, Time::FromSeconds(5));  // on the run clock
+  const auto list = engine_->List();
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_EQ(list[0].start, Time::FromSeconds(5));
+}
+
 TEST_F(FaultEngineTest, WriterDelayWritesTheSampleLaterOnTheRunClock) {
   auto [w, r] = OpenCommands();
   Add("{kind: delay, topic: dl/drive_command, delay: 2}");

@@ -16,6 +16,7 @@ Status GyroCheckOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(
       CheckPositive("gyro_check.max_odometry_rate", max_odometry_rate, "rad/s"));
   ROVER_RETURN_IF_ERROR(CheckRange("gyro_check.min_coverage", min_coverage, 1e-3, 1.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("gyro_check.rate_tolerance", rate_tolerance, 0.0, 1.0));
   const double n = window_s / bin_s;
   if (n < 1.0 - 1e-9 || std::abs(n - std::round(n)) > 1e-6) {
     return InvalidArgument("gyro_check.window_s: " + FormatNumber(window_s) +
@@ -39,6 +40,9 @@ void GyroCheckOptions::BindParams(ParamBinder<GyroCheckOptions>& b) {
   b.Bind("max_odometry_rate", &O::max_odometry_rate, "rad/s",
          "windows whose wheel-odometry yaw rate is higher are not judged (turns slip)")
       .Range(1e-4, 10.0);
+  b.Bind("rate_tolerance", &O::rate_tolerance, "",
+         "share of the wheel-odometry yaw rate added to max_disagreement (turning wheels slip)")
+      .Range(0.0, 1.0);
   b.Bind("min_coverage", &O::min_coverage, "",
          "share of a window that both the gyro and the odometry must cover to judge it")
       .Range(1e-3, 1.0);
@@ -116,7 +120,9 @@ void GyroCheck::Judge() {
     ++judged_;
     const double d = gyro_rate - odometry_rate;
     worst_ = std::max(worst_, std::abs(d));
-    if (!failure_ && std::abs(d) > options_.max_disagreement) {
+    const double tolerance =
+        options_.max_disagreement + options_.rate_tolerance * std::abs(odometry_rate);
+    if (!failure_ && std::abs(d) > tolerance) {
       GyroCheckFailure f;
       f.window_end = Time::FromSeconds(static_cast<double>(end + 1) * options_.bin_s);
       f.gyro_rate = gyro_rate;
@@ -124,8 +130,9 @@ void GyroCheck::Judge() {
       f.reason = "ddl/imu gyro z disagrees with wheel odometry: " + FormatNumber(gyro_rate, 4) +
                  " vs " + FormatNumber(odometry_rate, 4) + " rad/s over the " +
                  FormatNumber(options_.window_s) + " s to t = " +
-                 FormatNumber(f.window_end.seconds()) + " s (gyro_check.max_disagreement " +
-                 FormatNumber(options_.max_disagreement) + " rad/s)";
+                 FormatNumber(f.window_end.seconds()) + " s (allowed " +
+                 FormatNumber(tolerance, 3) + " rad/s: gyro_check.max_disagreement + " +
+                 "rate_tolerance x odometry)";
       failure_ = std::move(f);
     }
   }

@@ -48,15 +48,34 @@ TEST(GyroCheck, CatchesABiasWithinAFractionOfASecond) {
   EXPECT_NE(c->failure()->reason.find("disagrees with wheel odometry"), std::string::npos);
 }
 
-TEST(GyroCheck, DoesNotJudgeTurnsButCatchesTheBiasOnceStraight) {
+TEST(GyroCheck, DoesNotJudgeFastTurnsButCatchesTheBiasOnceStraight) {
   auto c = GyroCheck::Create({});
   ASSERT_TRUE(c.ok());
   std::mt19937 rng(3);
-  // A point turn at 0.05 rad/s whose wheels slip 40 %: not judged.
-  double t = Feed(*c, 0.0, 10.0, 0.05, 0.02, rng);
+  // A point turn at 0.15 rad/s whose wheels slip 40 %: not judged.
+  double t = Feed(*c, 0.0, 10.0, 0.15, 0.06, rng);
   EXPECT_FALSE(c->failure().has_value());
   t = Feed(*c, t, 3.0, 0.0, 0.05, rng);
   EXPECT_TRUE(c->failure().has_value());
+}
+
+// Autonav's arcs (0.03 rad/s at 0.1 m/s on a 3 m radius) are judged: a bias that starts mid-arc
+// is caught within a second, not when the rover next stands still; turning wheels are allowed
+// their slip (a point turn at 0.05 rad/s slipping 30 % holds).
+TEST(GyroCheck, CatchesABiasDuringAnArcAndAllowsTurningWheelsTheirSlip) {
+  auto c = GyroCheck::Create({});
+  ASSERT_TRUE(c.ok());
+  std::mt19937 rng(6);
+  double t = Feed(*c, 0.0, 20.0, 0.05, 0.015, rng);
+  t = Feed(*c, t, 20.0, 0.03, 0.008, rng);
+  ASSERT_FALSE(c->failure().has_value()) << c->failure()->reason;
+  Feed(*c, t, 2.0, 0.03, 0.05, rng);
+  ASSERT_TRUE(c->failure().has_value());
+  const double delay = c->failure()->window_end.seconds() - t;
+  EXPECT_GT(delay, 0.4);
+  EXPECT_LT(delay, 1.0);
+  EXPECT_NE(c->failure()->reason.find("allowed 0.029 rad/s"), std::string::npos)
+      << c->failure()->reason;
 }
 
 TEST(GyroCheck, LatchesAndResetKeepsTheFailure) {
@@ -98,6 +117,9 @@ TEST(GyroCheckOptions, ValidateNamesTheKey) {
   o = {};
   o.min_coverage = 0.0;
   EXPECT_NE(o.Validate().message().find("gyro_check.min_coverage"), std::string::npos);
+  o = {};
+  o.rate_tolerance = 1.5;
+  EXPECT_NE(o.Validate().message().find("gyro_check.rate_tolerance"), std::string::npos);
 }
 
 }  // namespace

@@ -43,6 +43,9 @@ class FaultAgent {
   ~FaultAgent();
 
   FaultEngine& engine() { return engine_; }
+  /// Times faults and stamps fault events on `clock` (FaultEngine::UseClock); it must outlive
+  /// the agent.
+  void UseClock(const Clock& clock, Time epoch);
 
  private:
   FaultAgent(const Clock& clock, Options options);
@@ -50,7 +53,7 @@ class FaultAgent {
   void Publish(const FaultRecord& r);
   void Reject(std::uint32_t id, rover_sys_FaultKind kind, const std::string& why);
 
-  const Clock& clock_;
+  const Clock* clock_;
   Options options_;
   FaultEngine engine_;
   dds::Writer<rover_sys_FaultEvent> events_;

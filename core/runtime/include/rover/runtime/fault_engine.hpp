@@ -106,6 +106,11 @@ class FaultEngine {
   /// Validates and adds a fault (replacing one with the same id). Its window starts at
   /// epoch + start_s, or now + start_s for StartMode::kOnReceipt. Reports kAdded.
   Status Add(const FaultSpec& spec);
+  /// Times every fault on `clock` from now on (it must outlive the engine), with run-epoch
+  /// faults counting from `epoch`: for a process whose own clock is not the run clock (the
+  /// simulator runs on wall time and makes the run clock). Windows that have not opened move to
+  /// the new clock; open ones keep their times.
+  void UseClock(const Clock& clock, Time epoch);
   /// Ends a fault; false if the engine has none with that id.
   bool Remove(std::uint32_t id);
   /// Ends every fault.
