@@ -322,6 +322,7 @@ ManagerOutput MotorGroupManager::HandleTelemetry(const hw::MotorTelemetry& t, Ti
     if (!g.applied && SeqDiff(t.command_id, g.hw_id) >= 0) {
       g.applied = true;
       g.applied_at = now;
+      g.start = latest_->position;
     }
     if (!g.applied) continue;
     double dt = 0.0;
@@ -439,7 +440,8 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
     return;
   }
 
-  // Stalled? Compare the progress since the tick one window ago with the planned profile's.
+  // Stalled? Compare the progress since the tick one window ago with the planned profile's, and
+  // how far the motor is behind the plan since the group started (both must say stuck).
   g.history.emplace_back(now, latest_->position);
   std::size_t ref = g.history.size();
   for (std::size_t j = 0; j < g.history.size(); ++j) {
@@ -457,21 +459,21 @@ void MotorGroupManager::CheckProgress(std::size_t index, Time now, ManagerOutput
           std::abs(latest_->position[k] - g.goal[k]) <= spec.position_tolerance) {
         continue;
       }
-      double planned = 0.0;
-      if (g.mode == GroupMode::kPosition) {
-        planned = ProfilePosition(g.distance[k], g.rate[k], spec.max_acceleration, tau1) -
-                  ProfilePosition(g.distance[k], g.rate[k], spec.max_acceleration, tau0);
-      } else {
-        planned = RampPosition(g.rate[k], spec.max_acceleration, tau1) -
-                  RampPosition(g.rate[k], spec.max_acceleration, tau0);
-      }
+      const auto plan = [&](double tau) {
+        return g.mode == GroupMode::kPosition
+                   ? ProfilePosition(g.distance[k], g.rate[k], spec.max_acceleration, tau)
+                   : RampPosition(g.rate[k], spec.max_acceleration, tau);
+      };
+      const double planned = plan(tau1) - plan(tau0);
       if (planned < options_.stall_min_motion) continue;
       const double moved = (latest_->position[k] - g.history[ref].second[k]) * g.direction[k];
-      if (moved < options_.stall_fraction * planned) {
+      const double lag = plan(tau1) - (latest_->position[k] - g.start[k]) * g.direction[k];
+      if (moved < options_.stall_fraction * planned && lag > options_.stall_max_lag) {
         EndGroup(index, GroupState::kFault, MotorFault::kStall, m,
                  MotorLabel(m) + " stalled: moved " + FormatNumber(moved, 4) + " rad of " +
                      FormatNumber(planned, 4) + " rad planned in " +
-                     FormatNumber(ToSeconds(now - t0), 4) + " s",
+                     FormatNumber(ToSeconds(now - t0), 4) + " s, " + FormatNumber(lag, 3) +
+                     " rad behind its plan",
                  true, now, out);
         return;
       }

@@ -63,6 +63,7 @@ Status MotorManagerOptions::Validate() const {
                            " must be <= 1");
   }
   ROVER_RETURN_IF_ERROR(positive("stall_min_motion", stall_min_motion));
+  ROVER_RETURN_IF_ERROR(positive("stall_max_lag", stall_max_lag));
   if (!(overcurrent_margin >= 0.0 && overcurrent_margin <= 2.0)) {
     return InvalidArgument("motor_manager.overcurrent_margin: " +
                            std::to_string(overcurrent_margin) + " must be in [0, 2]");
@@ -101,6 +102,10 @@ void DeclareMotorManagerParams(ParamSet& ps, const std::string& prefix) {
   ps.Declare(key("stall_min_motion"), d.stall_min_motion,
              "[rad] windows with less planned motion are not judged")
       .Range(1e-5, 1.0);
+  ps.Declare(key("stall_max_lag"), d.stall_max_lag,
+             "[rad] ... and only when the motor is this far behind its planned position since "
+             "the group started")
+      .Range(1e-3, 100.0);
   ps.Declare(key("overcurrent_margin"), d.overcurrent_margin,
              "the over-current monitor trips above current_limit * (1 + margin); the controller "
              "itself saturates at current_limit (a motor held there is a stall)")
@@ -138,6 +143,7 @@ Result<MotorManagerOptions> MotorManagerOptionsFromParams(const ParamSet& ps,
   o.stall_window_s = d("stall_window_s");
   o.stall_fraction = d("stall_fraction");
   o.stall_min_motion = d("stall_min_motion");
+  o.stall_max_lag = d("stall_max_lag");
   o.overcurrent_margin = d("overcurrent_margin");
   o.overcurrent_time_s = d("overcurrent_time_s");
   o.overtemp_time_s = d("overtemp_time_s");

@@ -270,6 +270,30 @@ TEST(MotorGroupManager, OneStalledMotorStopsTheWholeGroup) {
   EXPECT_FALSE(h.manager->busy());
 }
 
+// A wheel that got ahead of its plan (pushed over a rock's far side, say) and then makes no
+// progress for a whole window while the plan catches up is not stuck: it is where the plan says
+// it should be. (Two autonav runs ended MOT this way: "moved -0.0086 rad of 0.0218 rad planned
+// in 1 s".) Stuck is behind the plan as well.
+TEST(MotorGroupManager, AWheelAheadOfItsPlanThatWaitsIsNotAStall) {
+  Harness h;
+  h.Command(DriveVelocity(21, 0.4));
+  h.RunFor(1.0);
+  auto& wheel = h.plant.motors[hw::kDriveRM];
+  wheel.pos += 0.5;  // ahead of the plan by 0.5 rad (1.25 s at 0.4 rad/s)
+  wheel.frozen = true;
+  h.RunFor(1.2);  // a whole stall window without progress; the plan catches up to 0.02 rad
+  EXPECT_EQ(h.Final(21), nullptr) << h.Final(21)->message;
+  wheel.frozen = false;
+  h.RunFor(1.0);
+  EXPECT_EQ(h.Final(21), nullptr) << h.Final(21)->message;
+  // Held on: now it falls behind, and is a stall once 0.2 rad behind.
+  wheel.frozen = true;
+  ASSERT_TRUE(h.RunUntil(3.0, [&] { return h.Final(21) != nullptr; }));
+  EXPECT_EQ(h.Final(21)->fault, MotorFault::kStall);
+  EXPECT_NE(h.Final(21)->message.find("behind its plan"), std::string::npos)
+      << h.Final(21)->message;
+}
+
 TEST(MotorGroupManager, ControllerFaultFlagStopsTheGroupAtOnce) {
   Harness h;
   h.Command(DriveVelocity(30, 0.4));

@@ -186,9 +186,14 @@ Detection FirstDetection(const RunResult& r, double after_s) {
     if (t < after_s) return;
     if (!d.detected || t < d.t_s) d = {true, t, std::move(by)};
   };
+  // A run whose clock stopped short of the start (sim/clock frozen: under strict lock-step the
+  // whole run stalls) stamped its last heartbeats with its last tick, although they were taken
+  // after the fault started: those count as taken at the start.
+  const bool frozen_before = r.sim_time_s > 0 && r.sim_time_s < after_s;
   for (const auto& h : r.health_changes) {
-    if (h.t_s >= after_s && h.health != "ok" && !h.message.empty()) {
-      consider(h.t_s, "sys/health " + h.service + " " + h.health + ": " + h.message);
+    const double t = frozen_before && h.t_s >= r.sim_time_s ? after_s : h.t_s;
+    if (t >= after_s && h.health != "ok" && !h.message.empty()) {
+      consider(t, "sys/health " + h.service + " " + h.health + ": " + h.message);
     }
   }
   if (r.mobility && !r.mobility->fault.empty() && r.mobility->fault != "NONE") {

@@ -193,6 +193,17 @@ TEST(CampaignJudging, DetectionResponseSafetyGoal) {
   EXPECT_DOUBLE_EQ(m.t_s, 25);
   EXPECT_EQ(Response(mob, 22), "stopped");
   EXPECT_FALSE(GoalReached(mob));
+  // sim/clock frozen at 20 s under strict lock-step: the run stalls with its clock at the last
+  // tick (19.99 s) and rover-sim's lock-step alarm, taken after the start, carries that tick.
+  RunResult frozen = base;
+  frozen.sim_time_s = 19.99;
+  frozen.health_changes.push_back({19.99, "rover-sim", "failed", "lock-step stalled"});
+  const Detection f = FirstDetection(frozen, 20);
+  ASSERT_TRUE(f.detected);
+  EXPECT_DOUBLE_EQ(f.t_s, 20);
+  EXPECT_NE(f.by.find("lock-step stalled"), std::string::npos);
+  frozen.sim_time_s = 40;  // a clock that ran on: 19.99 s is before the start
+  EXPECT_FALSE(FirstDetection(frozen, 20).detected);
   std::error_code ec;
   fs::remove_all(dir, ec);
 }

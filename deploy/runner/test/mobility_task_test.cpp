@@ -90,7 +90,7 @@ TEST(MobilityTask, BadKeysAndValuesNameFileLineKeyAndValue) {
   EXPECT_EQ(Error("task:\n  type: autonav\n  goal: {x: 1, y: 1}\n  expect: NOPTH\n"),
             "s.yaml:5: task.expect: 'NOPTH' is not one of: reached, ARB, ACM, POT, TOD, STOPPED, "
             "WAYPT_TIMEOUT, NOPATH, NOPROGRESS, BUSY, VISODOM, KEEPOUT, BAD_COMMAND, IMG, SAPP, "
-            "MOT, DRIVE_TIMEOUT, TILT, SUSPENSION, NORTH (did you mean 'NOPATH'?)");
+            "MOT, DRIVE_TIMEOUT, TILT, SUSPENSION, NORTH, RESTART (did you mean 'NOPATH'?)");
   // vetoed is a guarded outcome only.
   EXPECT_NE(Error("task: {type: autonav, goal: {x: 1, y: 1}, expect: vetoed}\n")
                 .find("task.expect: 'vetoed' is not one of"),

@@ -99,6 +99,7 @@ class MotorGroupManager {
     Time applied_at;
     std::optional<std::int64_t> last_stamp_ns;  // of the last telemetry judged
     std::vector<std::pair<Time, std::array<double, hw::kNumMotors>>> history;  // tick positions
+    std::array<double, hw::kNumMotors> start{};  // [rad] positions when the goals were applied
     bool Has(int motor) const { return (mask >> motor) & 1u; }
   };
   MotorGroupManager(const HardwareConfig& config, const MotorManagerOptions& options);

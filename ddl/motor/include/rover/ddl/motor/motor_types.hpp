@@ -65,6 +65,10 @@ struct MotorManagerOptions {
   double stall_window_s = 1.0;       ///< progress is judged over this window
   double stall_fraction = 0.25;      ///< stall if progress < fraction of the planned progress
   double stall_min_motion = 0.01;    ///< [rad] windows planning less motion are not judged
+  /// [rad] ... and only when the motor is also this far behind where its plan puts it since the
+  /// group started: a motor that ran ahead of its profile and settles back (a wheel slipping back
+  /// at the end of an arc) makes little progress over a window without being stuck.
+  double stall_max_lag = 0.2;
   /// The goals ask the controller to saturate at MotorSpec::current_limit; a motor held at that
   /// saturation (a wheel against an obstacle) is a stall, not an over-current. The driver's own
   /// over-current monitor is the backstop for a controller that fails to limit: it trips above
