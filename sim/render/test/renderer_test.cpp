@@ -202,6 +202,16 @@ void CheckMarker(const CameraModel& model, const Eigen::Vector2d& pixel, double 
               (measured - *predicted).norm());
 }
 
+TEST(RenderOptionsTest, BinnedSupersampleIsCheckedByName) {
+  RenderOptions o;
+  EXPECT_TRUE(o.Validate().ok());
+  o.binned_supersample = 5;
+  EXPECT_NE(o.Validate().message().find("binned_supersample"), std::string::npos)
+      << o.Validate().message();
+  o.binned_supersample = 0;
+  EXPECT_FALSE(o.Validate().ok());
+}
+
 TEST(RendererTest, MarkerAppearsWherePinholePredicts) {
   const CameraModel m = PinholeAt({0, 0, 1.5}, {1, 0, -0.6}, 450.0, 512);
   CheckMarker(m, {256, 256});
