@@ -450,6 +450,9 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
         if (rock.id != id) continue;
         std::printf("  hazard contact: rock %d at (%.2f, %.2f), diameter %.2f m, height %.2f m\n",
                     id, rock.position.x(), rock.position.y(), rock.diameter, rock.height);
+        for (const auto& c : v.contacts) {
+          if (c.rock_id == id) std::printf("    first touched by %s at %.1f s\n", c.part.c_str(), c.t_s);
+        }
         // What the planner's height map (if any) says under the rock's outline.
         if (const apl::nav_core::HeightMap* m = manager.assessor().height_map()) {
           int cells = 0, known = 0, hazard = 0;
