@@ -17,13 +17,18 @@ Status GyroCheckOptions::Validate() const {
       CheckPositive("gyro_check.max_odometry_rate", max_odometry_rate, "rad/s"));
   ROVER_RETURN_IF_ERROR(CheckRange("gyro_check.min_coverage", min_coverage, 1e-3, 1.0));
   ROVER_RETURN_IF_ERROR(CheckRange("gyro_check.rate_tolerance", rate_tolerance, 0.0, 1.0));
-  const double n = window_s / bin_s;
-  if (n < 1.0 - 1e-9 || std::abs(n - std::round(n)) > 1e-6) {
-    return InvalidArgument("gyro_check.window_s: " + FormatNumber(window_s) +
-                           " s is not a whole number of bins of gyro_check.bin_s " +
-                           FormatNumber(bin_s) + " s");
-  }
-  return Status::Ok();
+  ROVER_RETURN_IF_ERROR(CheckRange("gyro_check.confirm_s", confirm_s, 0.0, 60.0, "s"));
+  const auto whole_bins = [this](const char* key, double value, double min_bins) -> Status {
+    const double n = value / bin_s;
+    if (n < min_bins - 1e-9 || std::abs(n - std::round(n)) > 1e-6) {
+      return InvalidArgument(std::string("gyro_check.") + key + ": " + FormatNumber(value) +
+                             " s is not a whole number of bins of gyro_check.bin_s " +
+                             FormatNumber(bin_s) + " s");
+    }
+    return Status::Ok();
+  };
+  ROVER_RETURN_IF_ERROR(whole_bins("window_s", window_s, 1.0));
+  return whole_bins("confirm_s", confirm_s, 0.0);
 }
 
 void GyroCheckOptions::BindParams(ParamBinder<GyroCheckOptions>& b) {
@@ -46,6 +51,10 @@ void GyroCheckOptions::BindParams(ParamBinder<GyroCheckOptions>& b) {
   b.Bind("min_coverage", &O::min_coverage, "",
          "share of a window that both the gyro and the odometry must cover to judge it")
       .Range(1e-3, 1.0);
+  b.Bind("confirm_s", &O::confirm_s, "s",
+         "a failed window counts only when the window this much earlier failed with the same "
+         "sign (a bias persists, a skid off a rock does not); 0 judges one window")
+      .Range(0.0, 60.0);
 }
 
 Result<GyroCheck> GyroCheck::Create(const GyroCheckOptions& options) {
@@ -55,10 +64,12 @@ Result<GyroCheck> GyroCheck::Create(const GyroCheckOptions& options) {
 
 GyroCheck::GyroCheck(const GyroCheckOptions& options)
     : options_(options),
-      bins_per_window_(static_cast<int>(std::lround(options.window_s / options.bin_s))) {}
+      bins_per_window_(static_cast<int>(std::lround(options.window_s / options.bin_s))),
+      confirm_bins_(static_cast<int>(std::lround(options.confirm_s / options.bin_s))) {}
 
 void GyroCheck::Reset() {
   bins_.clear();
+  failed_.clear();
   gyro_bin_ = odo_bin_ = judged_through_ = INT64_MIN;
 }
 
@@ -122,7 +133,14 @@ void GyroCheck::Judge() {
     worst_ = std::max(worst_, std::abs(d));
     const double tolerance =
         options_.max_disagreement + options_.rate_tolerance * std::abs(odometry_rate);
-    if (!failure_ && std::abs(d) > tolerance) {
+    if (failure_ || std::abs(d) <= tolerance) continue;
+    const int sign = d > 0.0 ? 1 : -1;
+    while (!failed_.empty() && failed_.front().first < end - confirm_bins_) failed_.pop_front();
+    failed_.emplace_back(end, sign);
+    const bool confirmed =
+        confirm_bins_ == 0 || (failed_.front().first == end - confirm_bins_ &&
+                               failed_.front().second == sign);
+    if (confirmed) {
       GyroCheckFailure f;
       f.window_end = Time::FromSeconds(static_cast<double>(end + 1) * options_.bin_s);
       f.gyro_rate = gyro_rate;
@@ -132,7 +150,11 @@ void GyroCheck::Judge() {
                  FormatNumber(options_.window_s) + " s to t = " +
                  FormatNumber(f.window_end.seconds()) + " s (allowed " +
                  FormatNumber(tolerance, 3) + " rad/s: gyro_check.max_disagreement + " +
-                 "rate_tolerance x odometry)";
+                 "rate_tolerance x odometry" +
+                 (confirm_bins_ > 0 ? ", and in the window " + FormatNumber(options_.confirm_s) +
+                                          " s before"
+                                    : std::string()) +
+                 ")";
       failure_ = std::move(f);
     }
   }

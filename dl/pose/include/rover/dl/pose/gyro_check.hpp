@@ -21,15 +21,23 @@
 /// turns and tight arcs on rocks are not: wheels turning the rover at 0.067 rad/s over rocks
 /// read nearly three times the gyro's rate (a VL-1 run, 2026-12-06).
 ///
-/// A bias b that starts at t0 is caught in the first judged window whose share of biased time
-/// f satisfies f b > max_disagreement + rate_tolerance |omega_o|: with the defaults (window 1 s
-/// in 0.25 s bins, 0.02 rad/s, 0.5) a 0.05 rad/s bias is caught 0.4 to 0.65 s after it starts
-/// on straight drives and at rest, 0.75 to 1 s on a 0.03 rad/s arc.
+/// A failure must be confirmed: the window that ends confirm_s earlier (disjoint from it with
+/// the default confirm_s = window_s) must have been judged and failed with the same sign. A
+/// bias persists; a wheel that skids off a rock yaws the rover once, and its extra yaw falls
+/// into one window, or splits between two (an autonav VL-2 run on rocks, 2026-12-06, read
+/// 0.029 rad/s of disagreement in one window and declared the pose unknown).
+///
+/// A bias b that starts at t0 fails the first judged window whose share of biased time f
+/// satisfies f b > max_disagreement + rate_tolerance |omega_o|, and is confirmed confirm_s later:
+/// with the defaults (window 1 s in 0.25 s bins, 0.02 rad/s, 0.5, confirm 1 s) a 0.05 rad/s bias
+/// is caught 1.4 to 1.65 s after it starts on straight drives and at rest, 1.75 to 2 s on a
+/// 0.03 rad/s arc (confirm_s 0: one window, 0.4 to 0.65 s).
 
 #include <cstdint>
 #include <deque>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "rover/base/param_binder.hpp"
 #include "rover/base/status.hpp"
@@ -46,8 +54,10 @@ struct GyroCheckOptions {
   double max_odometry_rate = 0.04;   ///< [rad/s] windows turning faster are not judged
   double rate_tolerance = 0.5;       ///< share of the odometry yaw rate added to the tolerance
   double min_coverage = 0.8;         ///< share of the window each source must cover
+  double confirm_s = 1.0;            ///< [s] the window this much earlier must fail too (0: off)
 
-  /// window_s a multiple of bin_s (>= 1 bin), every value positive, min_coverage in (0, 1].
+  /// window_s and confirm_s whole numbers of bin_s (window >= 1 bin, confirm >= 0), every other
+  /// value positive, min_coverage in (0, 1].
   Status Validate() const;
   static void BindParams(ParamBinder<GyroCheckOptions>& b);
 };
@@ -92,6 +102,8 @@ class GyroCheck {
 
   GyroCheckOptions options_;
   int bins_per_window_ = 4;
+  int confirm_bins_ = 4;
+  std::deque<std::pair<std::int64_t, int>> failed_;  // (window end bin, sign) of recent failures
   std::deque<Bin> bins_;  // consecutive indices, oldest first
   std::int64_t gyro_bin_ = INT64_MIN, odo_bin_ = INT64_MIN;  // bin of each source's latest time
   std::int64_t judged_through_ = INT64_MIN;  // last bin that ended a judged window
