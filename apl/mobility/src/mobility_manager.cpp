@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "rover/base/format.hpp"
@@ -15,6 +17,43 @@ constexpr double kMaxCurvature = 1.0;  // [1/m] dl/drive_command's limit (1 m tu
 constexpr double kMaxDistance = 50.0;  // [m] dl/drive_command's limit (locomotion max_distance)
 constexpr double kSteerAllowance_s = 10.0;  // [s] steering before a primitive, for the watchdog
 constexpr double kLegTolerance = 0.5;       // [m] long traverse: intermediate waypoints' radius
+
+// Single-arc planners (GESTALT) reach no point inside the rover's tightest turning circle;
+// their votes there may prefer backing arcs that reposition the rover, and it circles the goal
+// (short_autonav seed 4 drove 9.7 m for a goal 3 m away, backing and arcing 0.7 m to its side).
+// The bearing to turn in place by to face a goal that lies more than `tolerance` inside the
+// circle of the tightest forward arc the evaluation offers, when the planner's turn in place
+// nearest that bearing is allowed (GESTALT's vote for a turn covers the sweep and the straight
+// path it leads to); nullopt otherwise.
+std::optional<double> FaceGoalInsideTurningCircle(const nav_core::ArcEvaluation& eval,
+                                                  const Pose2& here, const Eigen::Vector2d& goal,
+                                                  double tolerance) {
+  const Eigen::Vector2d d = goal - here.xy();
+  const double ch = std::cos(here.heading), sh = std::sin(here.heading);
+  const Eigen::Vector2d g(ch * d.x() + sh * d.y(), -sh * d.x() + ch * d.y());  // rover frame
+  const double bearing = std::atan2(g.y(), g.x());
+  double k_max = 0.0;
+  int nearest_turn = -1;
+  double nearest_gap = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < eval.candidates.size(); ++k) {
+    const nav_core::Candidate& c = eval.candidates[k];
+    if (c.kind == nav_core::MotionKind::kPointTurn) {
+      const double gap = std::abs(WrapAngle(c.turn_angle - bearing));
+      if (gap < nearest_gap) {
+        nearest_gap = gap;
+        nearest_turn = static_cast<int>(k);
+      }
+    } else if (c.kind == nav_core::MotionKind::kArc && c.direction > 0) {
+      k_max = std::max(k_max, std::abs(c.curvature));
+    }
+  }
+  if (nearest_turn < 0 || k_max <= 1e-6) return std::nullopt;
+  if (eval.hazard[static_cast<std::size_t>(nearest_turn)].goodness == 0) return std::nullopt;
+  const double r = 1.0 / k_max;
+  const Eigen::Vector2d centre(0.0, g.y() >= 0.0 ? r : -r);
+  if ((g - centre).norm() >= r - tolerance) return std::nullopt;
+  return bearing;
+}
 
 std::string Xy(const Eigen::Vector2d& p) {
   return "(" + FormatNumber(p.x(), 4) + ", " + FormatNumber(p.y(), 4) + ")";
@@ -1019,7 +1058,16 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
   const nav_core::Candidate& c = eval.choice();
   const bool vo = ModeUsesVisOdom(run_->command.mode);
   Primitive p;
-  if (c.kind == nav_core::MotionKind::kPointTurn) {
+  std::optional<double> face;
+  if (eval.candidates_ranked == 0 && c.kind == nav_core::MotionKind::kArc) {
+    face = FaceGoalInsideTurningCircle(eval, PlanarPose(pose_->site_from_rover), CurrentGoal(),
+                                       run_->tolerance);
+  }
+  if (face) {
+    p.kind = PrimitiveKind::kTurnInPlace;
+    p.angle = vo ? std::clamp(*face, -options_.visodom_max_turn, options_.visodom_max_turn) : *face;
+    counters_.goal_facing_turns += 1;
+  } else if (c.kind == nav_core::MotionKind::kPointTurn) {
     p.kind = PrimitiveKind::kTurnInPlace;
     p.angle = vo ? std::clamp(c.turn_angle, -options_.visodom_max_turn, options_.visodom_max_turn)
                  : c.turn_angle;

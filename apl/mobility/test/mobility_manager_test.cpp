@@ -117,6 +117,67 @@ TEST(MobilityManagerWorld, GoalBehindTheRoverBacksOrTurns) {
   EXPECT_EQ(s.state, State::kSucceeded) << s.message;
 }
 
+// GESTALT's votes as in short_autonav seed 4, whose goal lay inside the rover's tightest turning
+// circle: the best forward arc wins over every turn in place (there, backing arcs and arcs
+// circled the goal for 9.7 m of driving toward a goal 3 m away).
+class PreferArcs : public nav_core::ArcSelector {
+ public:
+  Result<nav_core::ArcEvaluation> Evaluate(const nav_core::GoodnessMap& map,
+                                           const nav_core::ArcRequest& request) const override {
+    auto e = gestalt_.Evaluate(map, request);
+    if (!e.ok() || !e->has_choice()) return e;
+    int best = -1;
+    for (std::size_t k = 0; k < e->candidates.size(); ++k) {
+      const nav_core::Candidate& c = e->candidates[k];
+      if (c.kind != nav_core::MotionKind::kArc || c.direction < 0 || e->merged[k].goodness == 0) {
+        continue;
+      }
+      if (best < 0 || e->merged[k].goodness > e->merged[static_cast<std::size_t>(best)].goodness) {
+        best = static_cast<int>(k);
+      }
+    }
+    if (best >= 0) e->chosen = best;
+    return e;
+  }
+
+ private:
+  gestalt::ArcEvaluator gestalt_ = std::move(gestalt::ArcEvaluator::Create({})).value();
+};
+
+MobilityManager MakePreferArcsManager() {
+  auto map = gestalt::TerrainMap::Create({});
+  ROVER_DEMAND(map.ok());
+  auto m = MobilityManager::Create(MobilityOptions{},
+                                   std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
+                                   std::make_unique<PreferArcs>());
+  ROVER_DEMAND(m.ok());
+  return std::move(m).value();
+}
+
+// A goal 0.94 m away, 58 degrees to the left, lies inside the tightest turning circle (1.1 m
+// radius): no arc reaches it. The rover turns in place to face it and drives there.
+TEST(MobilityManagerWorld, AGoalInsideTheTurningCircleIsFacedByATurnInPlace) {
+  MobilityManager m = MakePreferArcsManager();
+  FakeWorld w(&m);
+  const MobilityStatus s = w.Run(Autonav(1, 0.5, 0.8), 1000.0);
+  ASSERT_EQ(s.state, State::kSucceeded) << s.message;
+  EXPECT_EQ(m.counters().goal_facing_turns, 1);
+  ASSERT_FALSE(w.drives().empty());
+  EXPECT_EQ(w.drives().front().primitive, msg::DrivePrimitive::kTurnInPlace);
+  EXPECT_NEAR(w.drives().front().angle, std::atan2(0.8, 0.5), 1e-6);
+  EXPECT_LE(s.steps, 3u);
+  EXPECT_LT(m.counters().distance, 1.5);
+}
+
+// A goal the tightest arc reaches is driven to by arcs: no turn to face it.
+TEST(MobilityManagerWorld, AGoalOutsideTheTurningCircleIsNotFacedByATurn) {
+  MobilityManager m = MakePreferArcsManager();
+  FakeWorld w(&m);
+  const MobilityStatus s = w.Run(Autonav(1, 2.0, 1.0), 1000.0);
+  ASSERT_EQ(s.state, State::kSucceeded) << s.message;
+  EXPECT_EQ(m.counters().goal_facing_turns, 0);
+}
+
 TEST(MobilityManagerWorld, GuardedDriveAtARockIsVetoed) {
   MobilityManager m = MakeGestaltManager();
   FakeWorld w(&m);

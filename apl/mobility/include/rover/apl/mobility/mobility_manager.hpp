@@ -46,7 +46,10 @@
 /// limit_cycle_turns per command, each where the turn's own cells are not forbidden: to face
 /// the goal, or when it is within limit_cycle_min_bearing of ahead by limit_cycle_turn toward
 /// the side of the best forward arc), after which the window starts again; otherwise
-/// NOPROGRESS (limit cycle). GESTALT is told the direction of the last arc
+/// NOPROGRESS (limit cycle). A single-arc planner (GESTALT) whose chosen arc is forward while the
+/// goal lies more than the tolerance inside the turning circle of its tightest forward arc
+/// (reached by no arc) turns in place to face the goal instead, where its turns in place are
+/// allowed. GESTALT is told the direction of the last arc
 /// (ArcRequest::last_direction);
 /// tilt over max_tilt -> TILT; northerly tilt (atan2 of the rover's up vector's north and up
 /// components) below min_northerly_tilt -> NORTH. Before each drive: the swept centre track
@@ -124,6 +127,7 @@ struct MotionCounters {
   int images = 0;          ///< range images requested
   int images_skipped = 0;  ///< autonav steps that skipped imaging (all paths known safe)
   int images_while_driving = 0;
+  int goal_facing_turns = 0;  ///< single-arc planners: turns to face a goal no arc reaches
   double distance = 0.0;  ///< [m] path length reported by locomotion
 };
 
