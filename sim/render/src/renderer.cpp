@@ -1034,7 +1034,9 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
     cams.push_back(pc);
   }
   mid /= static_cast<double>(cams.size());
-  SelectLods(mid, focal);
+  // The terrain's level of detail is chosen for the readout's pixels: a binned readout is
+  // rendered finer to integrate its light, not to see finer geometry than it resolves.
+  SelectLods(mid, focal / static_cast<double>(super));
   RenderShadows(cams, mid, super * models.front().width());
 
   StereoImages out;
