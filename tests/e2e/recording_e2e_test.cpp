@@ -93,10 +93,16 @@ TEST_F(RecordingE2e, ScenarioRunRecordsEveryTopicReadableByTheReferenceAndReplay
     EXPECT_EQ(t.schema_encoding, "omgidl") << t.topic;
     EXPECT_EQ(t.message_encoding, "cdr") << t.topic;
   }
-  for (const char* t : {"sim/clock", "sim/truth", "hw/imu", "hw/motor_telemetry", "ddl/imu",
-                        "ddl/joint_state", "ddl/motor_command", "dl/pose", "dl/drive_command",
+  for (const char* t : {"sim/clock", "sim/truth", "ddl/imu", "ddl/joint_state",
+                        "ddl/motor_status", "ddl/motor_command", "dl/pose", "dl/drive_command",
                         "dl/drive_status", "sys/health"}) {
     EXPECT_GT(counts[t], 0u) << t << " missing from the recording";
+  }
+  // Left out by default (scenario.cpp DefaultRunRecording): the raw camera frames, lock-step
+  // acknowledgements and the simulator's high-rate hardware streams behind the drivers.
+  for (const char* t : {"hw/camera_frame", "sim/clock_ack", "hw/imu", "hw/motor_telemetry",
+                        "hw/suspension_pots"}) {
+    EXPECT_EQ(counts.count(t), 0u) << t << " recorded although excluded by default";
   }
   EXPECT_FALSE(info->truncation.has_value());
   // The recorder's figures beside the file (the benchmark figures of docs/status.md).

@@ -156,10 +156,12 @@ TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
   auto s = Parse(kGood);
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->lockstep, "strict");
-  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.01);
-  // Raw camera frames and lock-step acknowledgements stay out of the recording unless asked for.
+  EXPECT_DOUBLE_EQ(s->lockstep_quantum_s, 0.04);
+  // Raw camera frames, lock-step acknowledgements and the simulator's high-rate hardware streams
+  // stay out of the recording unless asked for.
   EXPECT_EQ(s->record.topics.exclude,
-            (std::vector<std::string>{"hw/camera_frame", "sim/clock_ack"}));
+            (std::vector<std::string>{"hw/camera_frame", "sim/clock_ack", "hw/imu",
+                                      "hw/motor_telemetry", "hw/suspension_pots"}));
   std::string text = kGood;
   const std::string sim = "sim: {real_time_factor: 0, time_budget_s: 200}";
   auto with = [&](const std::string& replacement) {

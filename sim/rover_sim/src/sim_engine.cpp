@@ -90,7 +90,7 @@ void SimEngine::DeclareParams(ParamSet& p) {
   rover::DeclareParams<hwconfig::RoverDescription>(p, kGeometryPrefix);
   p.Declare("sim.period_s", 0.01, "[s] simulation step and sim/clock period").Range(0.001, 0.1);
   p.Declare("sim.truth_rate_hz", 50.0, "[Hz] sim/truth rate (simulated time)").Range(1.0, 1000.0);
-  p.Declare("sim.physics_rate_hz", 1000.0,
+  p.Declare("sim.physics_rate_hz", 500.0,
             "[Hz] physics step and motor-controller rate (a whole number per sim.period_s)")
       .Range(100.0, 10000.0);
   p.Declare("sim.seed", 1, "sensor noise seed").Min(0);

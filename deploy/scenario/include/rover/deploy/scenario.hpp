@@ -80,10 +80,11 @@ struct Scenario {
   /// machine, not reproducible) or "off" (free running).
   std::string lockstep = "strict";
   /// [s] strict lock-step's quantum: simulated time between two ticks (a whole number of the
-  /// simulator's 10 ms periods). 10 ms, the simulator's step: each link between two services
-  /// takes one quantum, and at 20 ms the short autonav scenario already drove differently
-  /// enough to miss its goal; a timer faster than the quantum fires once per tick.
-  double lockstep_quantum_s = 0.01;
+  /// simulator's 10 ms periods). Each link between two services takes one quantum and a timer
+  /// faster than the quantum fires once per tick (ddl-joints' 50 Hz at 25 Hz): 40 ms, a fifth
+  /// of MER's 8 Hz mobility cycle, so that campaigns run at 10 simulated s per wall s on two
+  /// cores (docs/scenarios.md "Reproducible runs").
+  double lockstep_quantum_s = 0.04;
   double time_budget_s = 300;     ///< [s] simulated
   double wall_budget_s = 600;     ///< [s] wall-clock safety net
   double start_x = 0, start_y = 0, start_yaw = 0;  ///< [m], [rad]

@@ -58,7 +58,7 @@ struct PacerOptions {
   bool lockstep_strict = false;
   /// [s] simulated time between two barriers under strict lock-step (a whole number of
   /// simulator periods; the service checks that).
-  double lockstep_quantum_s = 0.01;
+  double lockstep_quantum_s = 0.04;
   /// The services strict lock-step waits for, comma-separated (their --name).
   std::string lockstep_services;
   /// Strict: step a quantum while the services serve the tick that began it (see above).

@@ -32,7 +32,7 @@ struct EngineOptions {
   /// period_s must be a whole number of its steps. 500 Hz halves the physics' cost and matches
   /// 1 kHz on straight drives (sim-physics-bench --rate), but not in steered driving: the e2e
   /// tests' short autonav, seeds 1-4, reached its goal in 2 at 1 kHz and in none at 500 Hz.
-  double physics_rate_hz = 1000.0;
+  double physics_rate_hz = 500.0;
   double truth_rate_hz = 50.0;   ///< sim/truth publication rate
   std::uint64_t seed = 1;        ///< sensor noise seed
   double traversable_height = 0.20;  ///< [m] rocks taller than this count as contacts in truth
