@@ -24,7 +24,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <queue>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,6 +41,7 @@
 #include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/mobility_idl.hpp"
+#include "rover/sim/judge/passability.hpp"
 #include "rover/testing/fakes/range_synth.hpp"
 
 namespace {
@@ -117,118 +117,29 @@ class TerrainScene : public mt::Scene {
   mutable int unsupported_ = 0;
 };
 
-// Is the field passable at all for the judge? A Dijkstra search over (x, y, heading) on a
-// 0.1 m x 11.25 deg lattice, moving straight along the heading by one cell or turning in place
-// by one heading step. A state is free when no rock taller than the traversable height (as the
-// judge sees it: its outline polygon) comes within `margin` of a contact part that
-// it is taller than (the judge's hazard_contacts; `rectangle`: of the whole ground-footprint
-// rectangle, the judge's footprint_overlaps). Returns the shortest such path length from the start
-// to within `tolerance` of the goal, or a negative number when there is none. It ignores slopes and
-// the arcs' curvature limits: a field that fails here cannot be crossed without a contact.
+// Is the field passable at all for the judge? sim/judge passability.hpp over the whole terrain
+// (the judge's contact parts, or with `rectangle` the whole ground footprint, `margin` around
+// them): the shortest contact-free path's length, or a negative number when there is none.
 double FeasiblePathLength(const sim::world::World& world, const sim::judge::RoverFootprint& fp,
                           double traversable_height, Eigen::Vector2d goal, double tolerance,
                           double margin, bool rectangle) {
-  constexpr double kCell = 0.1;
-  constexpr int kHeadings = 32;
   const sim::terrain::HeightField& g = world.terrain.bare;
-  const int nx = static_cast<int>((g.max_x() - g.min_x()) / kCell);
-  const int ny = static_cast<int>((g.max_y() - g.min_y()) / kCell);
-
-  // Rocks binned by 1 m cell for the collision test.
-  const int bx = static_cast<int>(nx * kCell) + 1, by = static_cast<int>(ny * kCell) + 1;
-  std::vector<std::vector<sim::judge::JudgeRock>> bins(static_cast<std::size_t>(bx * by));
-  double max_r = 0;
-  for (const auto& r : world.terrain.rocks) {
-    if (r.height <= traversable_height) continue;
-    const int ix = static_cast<int>((r.position.x() - g.min_x()) / 1.0);
-    const int iy = static_cast<int>((r.position.y() - g.min_y()) / 1.0);
-    if (ix < 0 || iy < 0 || ix >= bx || iy >= by) continue;
-    sim::judge::JudgeRock jr{r.id, r.position.head<2>(), r.diameter, r.height,
-                             sim::terrain::RockOutline(r, 32)};
-    max_r = std::max(max_r, jr.Reach());
-    bins[static_cast<std::size_t>(iy * bx + ix)].push_back(std::move(jr));
+  sim::judge::PassabilityQuery q;
+  q.start = {world.start_x, world.start_y};
+  q.start_yaw = world.start_yaw;
+  q.goal = goal;
+  q.tolerance = tolerance;
+  q.area_min = {g.min_x(), g.min_y()};
+  q.area_max = {g.max_x(), g.max_y()};
+  q.margin = margin;
+  q.rectangle = rectangle;
+  q.traversable_height = traversable_height;
+  const auto len = sim::judge::ContactFreePathLength(deploy::runner::JudgeRocks(world), fp, q);
+  if (!len.ok()) {
+    std::fprintf(stderr, "passability: %s\n", len.status().message().c_str());
+    return -1.0;
   }
-  hwconfig::ContactPart ground;  // the whole ground-footprint rectangle
-  ground.min = fp.body_min;
-  ground.max = fp.body_max;
-  const double reach = std::max(fp.body_min.norm(), fp.body_max.norm()) + margin + max_r;
-  auto index = [&](int ix, int iy, int k) {
-    return (static_cast<std::size_t>(iy) * nx + ix) * kHeadings + k;
-  };
-  std::vector<signed char> free_state(static_cast<std::size_t>(nx) * ny * kHeadings, -1);
-  auto is_free = [&](int ix, int iy, int k) {
-    signed char& f = free_state[index(ix, iy, k)];
-    if (f >= 0) return f == 1;
-    const Eigen::Vector2d p(g.min_x() + (ix + 0.5) * kCell, g.min_y() + (iy + 0.5) * kCell);
-    const double a = 2.0 * M_PI * k / kHeadings;
-    const Eigen::Matrix2d rot = Eigen::Rotation2Dd(a).toRotationMatrix();
-    bool ok = true;
-    const int x0 = std::max(0, static_cast<int>(p.x() - reach - g.min_x()));
-    const int x1 = std::min(bx - 1, static_cast<int>(p.x() + reach - g.min_x()));
-    const int y0 = std::max(0, static_cast<int>(p.y() - reach - g.min_y()));
-    const int y1 = std::min(by - 1, static_cast<int>(p.y() + reach - g.min_y()));
-    for (int y = y0; ok && y <= y1; ++y) {
-      for (int x = x0; ok && x <= x1; ++x) {
-        for (const sim::judge::JudgeRock& rock : bins[static_cast<std::size_t>(y * bx + x)]) {
-          if (rectangle) {
-            ok = !sim::judge::RockTouches(rock, rot, p, ground, margin);
-          } else {
-            for (const hwconfig::ContactPart& part : fp.parts) {
-              const double clearance =
-                  part.clearance > 0.0 ? std::max(0.0, part.clearance - fp.clearance_margin) : 0.0;
-              if (rock.height > clearance && sim::judge::RockTouches(rock, rot, p, part, margin)) {
-                ok = false;
-                break;
-              }
-            }
-          }
-          if (!ok) break;
-        }
-      }
-    }
-    f = ok ? 1 : 0;
-    return ok;
-  };
-  auto cell_of = [&](double v, double o) { return static_cast<int>((v - o) / kCell); };
-  const int sx = cell_of(world.start_x, g.min_x()), sy = cell_of(world.start_y, g.min_y());
-  int sk = static_cast<int>(std::lround(world.start_yaw / (2.0 * M_PI) * kHeadings)) % kHeadings;
-  if (sk < 0) sk += kHeadings;
-  if (sx < 0 || sy < 0 || sx >= nx || sy >= ny || !is_free(sx, sy, sk)) return -1.0;
-  std::vector<float> dist(free_state.size(), std::numeric_limits<float>::infinity());
-  using Item = std::pair<float, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  dist[index(sx, sy, sk)] = 0;
-  open.push({0.0F, index(sx, sy, sk)});
-  const float turn_cost = 0.05F;  // [m] a heading step costs about half a cell
-  while (!open.empty()) {
-    const auto [d, i] = open.top();
-    open.pop();
-    if (d > dist[i]) continue;
-    const int k = static_cast<int>(i % kHeadings);
-    const int ix = static_cast<int>((i / kHeadings) % nx);
-    const int iy = static_cast<int>(i / kHeadings / nx);
-    const Eigen::Vector2d p(g.min_x() + (ix + 0.5) * kCell, g.min_y() + (iy + 0.5) * kCell);
-    if ((p - goal).norm() <= tolerance) return d;
-    auto relax = [&](int jx, int jy, int jk, float cost) {
-      if (jx < 0 || jy < 0 || jx >= nx || jy >= ny || !is_free(jx, jy, jk)) return;
-      const std::size_t j = index(jx, jy, jk);
-      if (d + cost < dist[j]) {
-        dist[j] = d + cost;
-        open.push({d + cost, j});
-      }
-    };
-    relax(ix, iy, (k + 1) % kHeadings, turn_cost);
-    relax(ix, iy, (k + kHeadings - 1) % kHeadings, turn_cost);
-    const double a = 2.0 * M_PI * k / kHeadings;
-    const Eigen::Vector2d q = p + kCell * Eigen::Vector2d(std::cos(a), std::sin(a));
-    const int jx = cell_of(q.x(), g.min_x()), jy = cell_of(q.y(), g.min_y());
-    if (jx != ix || jy != iy) {
-      relax(jx, jy, k, static_cast<float>((q - p).norm()));
-      const Eigen::Vector2d b = p - (q - p);
-      relax(cell_of(b.x(), g.min_x()), cell_of(b.y(), g.min_y()), k, static_cast<float>(kCell));
-    }
-  }
-  return -1.0;
+  return len->has_value() ? **len : -1.0;
 }
 
 // apl-mobility's parameters as the scenario's set would give them.

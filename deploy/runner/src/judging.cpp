@@ -1,12 +1,15 @@
 #include "rover/deploy/runner/judging.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include "rover/deploy/plots.hpp"
 #include "rover/deploy/runner/autonav_judging.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/rendezvous.hpp"
+#include "rover/sim/judge/passability.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::deploy::runner {
@@ -16,6 +19,53 @@ namespace {
 // R = 0.3 m.
 constexpr int kRockOutlineVertices = 32;
 
+
+// The passability figures of AddMobilityFigures (judging.hpp).
+void AddPassabilityFigures(const Scenario& scenario, const sim::world::World& world,
+                           const std::vector<sim::judge::JudgeRock>& rocks, RunResult* result) {
+  const auto& c = scenario.criteria;
+  if (!c.target_xy) return;
+  const bool any_tall = std::any_of(rocks.begin(), rocks.end(), [&](const auto& r) {
+    return r.height > c.traversable_height;
+  });
+  if (!any_tall) return;
+  const sim::terrain::HeightField& g = world.terrain.bare;
+  sim::judge::PassabilityQuery q;
+  q.start = {world.start_x, world.start_y};
+  q.start_yaw = world.start_yaw;
+  q.goal = *c.target_xy;
+  q.tolerance = c.position_tolerance;
+  q.area_min = {g.min_x(), g.min_y()};
+  q.area_max = {g.max_x(), g.max_y()};
+  q.traversable_height = c.traversable_height;
+  const auto footprint = sim::judge::RoverFootprint::MerDefault();
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  for (const double margin : {0.10, 0.05, 0.0}) {
+    q.margin = margin;
+    const auto len = sim::judge::ContactFreePathLength(rocks, footprint, q);
+    if (!len.ok()) return;  // a terrain larger than the search takes: no figure
+    if (!len->has_value()) continue;
+    char detail[160];
+    std::snprintf(detail, sizeof detail,
+                  "a path without hazard contact (judge's parts + %.2f m) from the start to "
+                  "within %.2f m of the target, sim/judge passability",
+                  margin, c.position_tolerance);
+    result->figures.push_back({"passable", 1.0, kNan, "count", true, detail});
+    result->figures.push_back(
+        {"contact_free_margin", margin, kNan, "m", true, "the largest of 0.10, 0.05, 0 m"});
+    result->figures.push_back({"contact_free_path", **len, kNan, "m", true, detail});
+    if (**len > 0.0) {
+      result->figures.push_back({"path_length_ratio", result->distance_driven / **len, kNan, "",
+                                 true, "truth distance driven / contact_free_path"});
+    }
+    return;
+  }
+  result->figures.push_back(
+      {"passable", 0.0, kNan, "count", true,
+       "no path without hazard contact (judge's parts, no margin) reaches the target"});
+}
+}  // namespace
+
 std::vector<sim::judge::JudgeRock> JudgeRocks(const sim::world::World& world) {
   std::vector<sim::judge::JudgeRock> rocks;
   for (const auto& r : world.terrain.rocks) {
@@ -24,7 +74,6 @@ std::vector<sim::judge::JudgeRock> JudgeRocks(const sim::world::World& world) {
   }
   return rocks;
 }
-}  // namespace
 
 Result<sim::judge::Judge> MakeJudge(const Scenario& scenario, const sim::world::World& world) {
   return sim::judge::Judge::Create(scenario.criteria, JudgeRocks(world));
@@ -34,10 +83,12 @@ void AddMobilityFigures(const Scenario& scenario, const sim::world::World& world
                         std::string* failure) {
   if (!result->mobility) return;
   const MobilityOutcome& mob = *result->mobility;
+  const std::vector<sim::judge::JudgeRock> rocks = JudgeRocks(world);
   const auto figures =
-      AutonavFigures(mob, result->truth_track, JudgeRocks(world),
-                     scenario.criteria.traversable_height, HazardMapOptions{}, result->truth_yaw);
+      AutonavFigures(mob, result->truth_track, rocks, scenario.criteria.traversable_height,
+                     HazardMapOptions{}, result->truth_yaw);
   result->figures.insert(result->figures.end(), figures.begin(), figures.end());
+  AddPassabilityFigures(scenario, world, rocks, result);
   if (mob.keep_out.empty()) return;
   const double front = hwconfig::RoverDescription{}.GroundFootprint().max_x;
   const int entries = KeepOutEntries(result->truth_track, mob.keep_out, front);

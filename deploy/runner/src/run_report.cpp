@@ -337,6 +337,12 @@ CampaignSummary Summarize(const std::vector<RunResult>& runs, double campaign_wa
       continue;
     }
     if (r.pass) ++s.passed;
+    for (const auto& f : r.figures) {
+      if (f.name == "passable" && f.measured >= 1.0) {
+        ++s.passable;
+        if (r.pass) ++s.passed_passable;
+      }
+    }
     for (const auto& c : r.criteria) {
       auto [it, fresh] = criteria.emplace(c.name, std::make_pair(c.limit, 0));
       if (!fresh && !(it->second.first == c.limit)) {
@@ -424,6 +430,8 @@ nlohmann::json ToJson(const CampaignSummary& s) {
   j["passed"] = s.passed;
   j["interrupted_runs"] = s.interrupted;
   j["pass_rate"] = s.pass_rate;
+  j["passable"] = s.passable;
+  j["passed_passable"] = s.passed_passable;
   j["wall_time_s"] = s.wall_time_s;
   j["sim_seconds_per_wall_second"] = s.sim_seconds_per_wall_second;
   j["runs_per_hour"] = s.runs_per_hour;
@@ -547,6 +555,10 @@ std::string FormatSummaryTable(const std::vector<RunResult>& runs, const Campaig
   std::snprintf(buf, sizeof buf, "\n%s: %d/%d passed (%.0f%%)", s.scenario.c_str(), s.passed,
                 s.runs - s.interrupted, 100.0 * s.pass_rate);
   o << buf;
+  if (s.passable > 0) {
+    std::snprintf(buf, sizeof buf, "; on passable fields %d/%d", s.passed_passable, s.passable);
+    o << buf;
+  }
   if (s.interrupted > 0) {
     o << "; " << s.interrupted << " run" << (s.interrupted == 1 ? "" : "s")
       << " interrupted (not in the rate or the figures)";

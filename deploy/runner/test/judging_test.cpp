@@ -69,6 +69,69 @@ TEST(Judging, TheJudgeKnowsTheWorldsRocks) {
   EXPECT_GT(contacts->measured, 0);
 }
 
+const sim::judge::Criterion* FigureOf(const RunResult& r, const std::string& name) {
+  for (const auto& f : r.figures) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
+// A mobility run with a target gets the field's passability from truth; a field without rocks
+// taller than the traversable height gets none (nothing to pass), and a run that is not a
+// mobility task none either.
+TEST(Judging, MobilityRunsReportWhetherAContactFreePathExisted) {
+  Scenario s;
+  s.criteria.target_xy = Eigen::Vector2d(3.0, 0.0);
+  s.criteria.position_tolerance = 0.5;
+  RunResult r;
+  r.mobility = MobilityOutcome{};
+  r.distance_driven = 3.5;
+  std::string failure;
+  AddMobilityFigures(s, SmallWorld("vl2"), &r, &failure);
+  EXPECT_TRUE(failure.empty()) << failure;
+  const sim::judge::Criterion* passable = FigureOf(r, "passable");
+  ASSERT_NE(passable, nullptr);
+  if (passable->measured >= 1.0) {
+    const sim::judge::Criterion* len = FigureOf(r, "contact_free_path");
+    const sim::judge::Criterion* margin = FigureOf(r, "contact_free_margin");
+    const sim::judge::Criterion* ratio = FigureOf(r, "path_length_ratio");
+    ASSERT_NE(len, nullptr);
+    ASSERT_NE(margin, nullptr);
+    ASSERT_NE(ratio, nullptr);
+    EXPECT_GE(len->measured, 2.4);  // 3 m to the target, less its 0.5 m tolerance and a cell
+    EXPECT_NEAR(ratio->measured, 3.5 / len->measured, 1e-12);
+    EXPECT_TRUE(margin->measured == 0.1 || margin->measured == 0.05 || margin->measured == 0.0);
+  } else {
+    EXPECT_EQ(FigureOf(r, "contact_free_path"), nullptr);
+  }
+
+  RunResult open;
+  open.mobility = MobilityOutcome{};
+  AddMobilityFigures(s, SmallWorld("none"), &open, &failure);
+  EXPECT_EQ(FigureOf(open, "passable"), nullptr);
+  RunResult drive;  // not a mobility task
+  AddMobilityFigures(s, SmallWorld("vl2"), &drive, &failure);
+  EXPECT_EQ(FigureOf(drive, "passable"), nullptr);
+}
+
+// The campaign summary counts the passable fields and the runs that passed on them.
+TEST(Judging, TheSummaryGivesSuccessOverPassableFields) {
+  std::vector<RunResult> runs(4);
+  for (int i = 0; i < 4; ++i) {
+    runs[static_cast<std::size_t>(i)].scenario = "autonav";
+    runs[static_cast<std::size_t>(i)].pass = i != 1;
+    runs[static_cast<std::size_t>(i)].figures.push_back(
+        {"passable", i == 3 ? 0.0 : 1.0, 0, "count", true, ""});
+  }
+  const CampaignSummary sum = Summarize(runs, 10.0);
+  EXPECT_EQ(sum.passed, 3);
+  EXPECT_EQ(sum.passable, 3);
+  EXPECT_EQ(sum.passed_passable, 2);
+  EXPECT_NE(FormatSummaryTable(runs, sum).find("3/4 passed (75%); on passable fields 2/3"),
+            std::string::npos)
+      << FormatSummaryTable(runs, sum);
+}
+
 TEST(Judging, ScoreFillsTheResultAndNamesTheFirstFailedCriterion) {
   const sim::judge::Judge judge = JudgedDrive(0.01);
   RunResult r;

@@ -193,6 +193,9 @@ struct CampaignSummary {
   int runs = 0, passed = 0;
   int interrupted = 0;   ///< runs cut off (Interrupted): not in `passed`, the rate or the figures
   double pass_rate = 0;  ///< passed / (runs - interrupted)
+  /// Runs whose field had a contact-free path (the figure `passable` = 1; judging.hpp), and how
+  /// many of them passed; both 0 when no run measured it.
+  int passable = 0, passed_passable = 0;
   /// The criteria first (limit, runs passing), then the measured figures (a figure that is also
   /// a criterion is listed once, as the criterion), then the run timings.
   std::vector<FigureStats> figures;
