@@ -44,7 +44,15 @@ MotorMode ToPhysics(hw::MotorMode m) {
   return MotorMode::kOff;
 }
 
-// The simulated controllers must use the calibration the drivers use.
+// The simulated controllers must use the calibration the drivers use. A goal asks a controller
+// to saturate at MotorSpec::current_limit (ddl-motor's goals carry it), and a motor held there is
+// a stall, not an over-current (ddl/motor motor_types.hpp). The controller's own trip therefore
+// sits above the saturation by the margin ddl-motor's over-current monitor uses: at the limit
+// itself, a motor that saturated while still turning read the limit plus its no-load current and
+// tripped within 50 ms (two VL-1 autonav runs ended MOT so: a wheel pushing over a rock at 1.3 A,
+// a steering motor turning a loaded wheel at 0.9 A).
+constexpr double kOverCurrentTripMargin = 0.15;
+
 void ApplyHardware(const HardwareConfig& hw, RoverModelParams* p) {
   for (int i = 0; i < kNumMotors; ++i) {
     const MotorSpec& s = hw.motors[static_cast<std::size_t>(i)];
@@ -53,8 +61,8 @@ void ApplyHardware(const HardwareConfig& hw, RoverModelParams* p) {
     m.encoder_counts_per_motor_rev = s.counts_per_rev;
     m.max_speed = s.max_rate;
     m.max_acceleration = s.max_acceleration;
-    m.overcurrent_trip = s.current_limit;
-    m.max_current = std::max(m.max_current, s.current_limit * 1.15);
+    m.overcurrent_trip = s.current_limit * (1.0 + kOverCurrentTripMargin);
+    m.max_current = std::max(m.max_current, m.overcurrent_trip);
     m.max_temperature = s.max_temperature;
     m.min_angle = s.min_angle;
     m.max_angle = s.max_angle;
@@ -156,10 +164,10 @@ Status SimEngine::ApplyMotorGoals(const hw::MotorGoals& goals) {
     const hw::MotorGoal& g = goals.goals[static_cast<std::size_t>(i)];
     if (g.mode == hw::MotorMode::kIdle) continue;
     (void)physics_->ClearMotorFaults(i);
-    // 0 mA = the controller's default trip level.
+    // 0 mA = the motor's configured current limit.
     const double limit_a = g.current_limit_ma > 0
                                ? g.current_limit_ma / 1000.0
-                               : physics_->params().motors[static_cast<std::size_t>(i)].overcurrent_trip;
+                               : hw_.motors[static_cast<std::size_t>(i)].current_limit;
     Status s = physics_->SetMotorGoal(i, ToPhysics(g.mode), g.position, g.velocity, limit_a);
     if (!s.ok()) {
       (void)physics_->SetMotorGoal(i, MotorMode::kOff, 0, 0, 0);

@@ -88,6 +88,22 @@ TEST(SimEngine, RefusedGoalBrakesThatMotorAndReportsIt) {
   EXPECT_TRUE(e->Step().ok());
 }
 
+// A goal asks a controller to saturate at the motor's configured current limit; a motor held
+// there while still turning reads the limit plus its no-load current and must not trip (two
+// VL-1 autonav runs ended MOT so when the trip sat at the limit itself). The trip sits 15 %
+// above, where ddl-motor's own over-current monitor is.
+TEST(SimEngine, TheControllersTripAboveTheCurrentTheySaturateAt) {
+  auto e = FlatEngine();
+  ASSERT_NE(e, nullptr);
+  for (int i = 0; i < hw::kNumMotors; ++i) {
+    const auto& m = e->physics().params().motors[static_cast<std::size_t>(i)];
+    const double limit = e->hardware().motors[static_cast<std::size_t>(i)].current_limit;
+    EXPECT_GT(m.overcurrent_trip, limit + m.no_load_current) << "motor " << i;
+    EXPECT_NEAR(m.overcurrent_trip, 1.15 * limit, 1e-9) << "motor " << i;
+    EXPECT_GE(m.max_current, m.overcurrent_trip) << "motor " << i;
+  }
+}
+
 TEST(SimEngine, ResetRestartsTime) {
   auto e = FlatEngine();
   ASSERT_NE(e, nullptr);

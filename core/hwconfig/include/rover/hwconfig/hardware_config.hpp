@@ -54,7 +54,7 @@ struct MotorSpec {
   double max_acceleration = 2.0;  ///< [rad/s^2] the controller's profile acceleration
   double min_angle = -std::numeric_limits<double>::infinity();  ///< [rad]; -inf for wheels
   double max_angle = std::numeric_limits<double>::infinity();   ///< [rad]; +inf for wheels
-  double current_limit = 1.3;                                   ///< [A] over-current trip level
+  double current_limit = 1.3;  ///< [A] the controller saturates here; over-current trips 15 % above
   double max_temperature = 110.0;     ///< [deg C] over-temperature trip level
   double position_tolerance = 0.005;  ///< [rad] "at goal" band used by the driver
 
