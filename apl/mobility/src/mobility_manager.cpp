@@ -28,9 +28,7 @@ constexpr double kLegTolerance = 0.5;       // [m] long traverse: intermediate w
 std::optional<double> FaceGoalInsideTurningCircle(const nav_core::ArcEvaluation& eval,
                                                   const Pose2& here, const Eigen::Vector2d& goal,
                                                   double tolerance) {
-  const Eigen::Vector2d d = goal - here.xy();
-  const double ch = std::cos(here.heading), sh = std::sin(here.heading);
-  const Eigen::Vector2d g(ch * d.x() + sh * d.y(), -sh * d.x() + ch * d.y());  // rover frame
+  const Eigen::Vector2d g = here.ToRover(goal);
   const double bearing = std::atan2(g.y(), g.x());
   double k_max = 0.0;
   int nearest_turn = -1;

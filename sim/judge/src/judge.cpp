@@ -170,10 +170,7 @@ void Judge::CheckRocks(const Eigen::Isometry3d& pose) {
         if (hit_[i]) continue;
         for (std::size_t p = 0; p < footprint_.parts.size(); ++p) {
           const hwconfig::ContactPart& part = footprint_.parts[p];
-          const double clearance = part.clearance > 0.0
-                                       ? std::max(0.0, part.clearance - footprint_.clearance_margin)
-                                       : 0.0;
-          if (rock.height > clearance && RockTouches(rock, r2, t2, part)) {
+          if (rock.height > footprint_.ClearanceOf(part) && RockTouches(rock, r2, t2, part)) {
             hit_[i] = true;
             hit_part_[i] = static_cast<int>(p);
             hit_t_[i] = now_s_;

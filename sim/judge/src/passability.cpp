@@ -88,9 +88,9 @@ Result<std::optional<double>> ContactFreePathLength(const std::vector<JudgeRock>
   auto touches = [&](const JudgeRock& rock, const Eigen::Matrix2d& rot, const Eigen::Vector2d& p) {
     if (q.rectangle) return RockTouches(rock, rot, p, ground, q.margin);
     for (const hwconfig::ContactPart& part : footprint.parts) {
-      const double clearance =
-          part.clearance > 0.0 ? std::max(0.0, part.clearance - footprint.clearance_margin) : 0.0;
-      if (rock.height > clearance && RockTouches(rock, rot, p, part, q.margin)) return true;
+      if (rock.height > footprint.ClearanceOf(part) && RockTouches(rock, rot, p, part, q.margin)) {
+        return true;
+      }
     }
     return false;
   };

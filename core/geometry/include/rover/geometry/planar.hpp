@@ -22,6 +22,12 @@ struct Pose2 {
     const double c = std::cos(heading), s = std::sin(heading);
     return {x + c * p.x() - s * p.y(), y + s * p.x() + c * p.y()};
   }
+  /// A site-frame plan-view point in the rover frame (x forward, y left): ToSite's inverse.
+  Eigen::Vector2d ToRover(const Eigen::Vector2d& p) const {
+    const double c = std::cos(heading), s = std::sin(heading);
+    const double dx = p.x() - x, dy = p.y() - y;
+    return {c * dx + s * dy, -s * dx + c * dy};
+  }
 };
 
 /// Position x, y of a 3-D pose and the heading of its projected x axis.

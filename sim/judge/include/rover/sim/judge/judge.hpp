@@ -36,6 +36,7 @@
 /// the odometry-only baseline, so every number printed names the truth comparison behind it.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,6 +74,11 @@ struct RoverFootprint {
   Eigen::Vector2d body_min{-0.75, -0.58}, body_max{0.75, 0.58};
   /// The default rover description's contact parts and ground footprint.
   static RoverFootprint MerDefault();
+  /// [m] The height a rock must exceed to touch `part`: its clearance less clearance_margin (0
+  /// for parts that reach the ground).
+  double ClearanceOf(const hwconfig::ContactPart& part) const {
+    return part.clearance > 0.0 ? std::max(0.0, part.clearance - clearance_margin) : 0.0;
+  }
 };
 
 struct JudgeCriteria {
