@@ -32,6 +32,7 @@ void RendezvousService::DeclareParameters(ParamSet& params) {
   DeclareParams<RendezvousOptions>(params, "rendezvous.");
   DeclareParams<hwconfig::LanderDescription>(params, "lander.");
   DeclareParams<LanderDetectorOptions>(params, "lander_detector.");
+  DeclareParams<LongRangeOptions>(params, "long_range.");
   DeclareParams<StripeDetectorOptions>(params, "stripes.");
   DeclareParams<RampPoseOptions>(params, "ramp_pose.");
   params.Declare(kDetectionDirKey, std::string(),
@@ -42,6 +43,7 @@ Status RendezvousService::ValidateParameters(const ParamSet& params) const {
   ROVER_RETURN_IF_ERROR(ReadParams<RendezvousOptions>(params, "rendezvous.").status());
   ROVER_RETURN_IF_ERROR(ReadParams<hwconfig::LanderDescription>(params, "lander.").status());
   ROVER_RETURN_IF_ERROR(ReadParams<LanderDetectorOptions>(params, "lander_detector.").status());
+  ROVER_RETURN_IF_ERROR(ReadParams<LongRangeOptions>(params, "long_range.").status());
   ROVER_RETURN_IF_ERROR(ReadParams<StripeDetectorOptions>(params, "stripes.").status());
   return ReadParams<RampPoseOptions>(params, "ramp_pose.").status();
 }
@@ -55,6 +57,8 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
   VisionOptions vision;
   vision.prior_gate = options.prior_gate;
   ROVER_ASSIGN_OR_RETURN(vision.lander, ReadParams<LanderDetectorOptions>(params, "lander_detector."));
+  ROVER_ASSIGN_OR_RETURN(vision.far, ReadParams<LongRangeOptions>(params, "long_range."));
+  vision.far_range = options.sight_range;
   ROVER_ASSIGN_OR_RETURN(vision.stripes, ReadParams<StripeDetectorOptions>(params, "stripes."));
   ROVER_ASSIGN_OR_RETURN(vision.pose, ReadParams<RampPoseOptions>(params, "ramp_pose."));
   detection_dir_ = params.GetString(kDetectionDirKey);

@@ -299,7 +299,14 @@ ExecutorOutput RendezvousExecutor::OnStereoPair(const NavcamPair& pair, Time now
   }
   const bool close = status_.phase == RendezvousPhase::kCloseRange;
   if (!close) {
-    const Eigen::Vector3d prior_site(center_.x(), center_.y(), center_z_ + kLookHeight);
+    // The search window follows the look-around (the ground under the deck centre, or the
+    // point the mast was turned to while searching).
+    Eigen::Vector2d look = center_;
+    if (search_bearing_offset_ != 0.0) {
+      const Eigen::Vector2d d = center_ - RoverXy();
+      look = RoverXy() + d.norm() * Unit(std::atan2(d.y(), d.x()) + search_bearing_offset_);
+    }
+    const Eigen::Vector3d prior_site(look.x(), look.y(), center_z_);
     const Eigen::Vector3d prior_rover = pose_->site_from_rover.inverse() * prior_site;
     Result<LanderFix> fix = vision_->SightLander(pair, prior_rover);
     if (DetectionImage img = vision_->LastDrawing(); img.bgr) out.images.push_back(img);
@@ -411,11 +418,26 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
   bool accepted = false;
   if (fix.found) {
     const Eigen::Vector3d c_site = site_from_rover * fix.center_rover;
-    const double off = (c_site.head<2>() - center_).norm();
+    double off = (c_site.head<2>() - center_).norm();
     // A fixed gate, not one widened by the estimate's sigma: with a wide a-priori sigma a rock
     // and a soil edge 15 m off the estimate passed as the lander (campaign seed 8).
-    const double gate = options_.prior_gate;
-    if (off <= gate) {
+    double gate = options_.prior_gate;
+    bool inside = off <= gate;
+    if (fix.far) {
+      // Long range: the fix is rough along the view and sharp across it, the estimate rough in
+      // both; gate on their combined covariance (3 sigma). The detector only searched the
+      // window about the estimate, so this does not open the gate to the whole view.
+      const Eigen::Matrix2d cov_fix =
+          (site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose())
+              .topLeftCorner<2, 2>();
+      const Eigen::Matrix2d cov = cov_fix + info_.inverse();
+      const Eigen::Vector2d e = c_site.head<2>() - center_;
+      const double d2 = e.dot(cov.ldlt().solve(e));
+      gate = 3.0;  // sigmas
+      inside = d2 <= 9.0;
+      off = std::sqrt(std::max(0.0, d2));
+    }
+    if (inside) {
       const Eigen::Matrix3d cov =
           site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose();
       const Eigen::Matrix2d cov2 = cov.topLeftCorner<2, 2>() + 1e-6 * Eigen::Matrix2d::Identity();
@@ -442,8 +464,9 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       ++fixes_;
     } else {
       status_.features = fix.features;
-      status_.message = "a lander-like fix " + FormatNumber(off) +
-                        " m from the estimate was rejected (gate " + FormatNumber(gate) + " m)";
+      const char* unit = fix.far ? " sigma" : " m";
+      status_.message = "a lander-like fix " + FormatNumber(off) + unit +
+                        " from the estimate was rejected (gate " + FormatNumber(gate) + unit + ")";
     }
   } else {
     status_.features = "";
@@ -454,7 +477,9 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     // Beyond the detector's reach the a-priori estimate leads: drive a leg towards it and look
     // again (a fix was not seen, so nothing false is driven to).
     const double prior_range = (center_ - RoverXy()).norm();
-    if (prior_range > options_.sight_range && !fix.found) {
+    // Long range (seed 004 phase 1): the traverse starts only once the lander is acquired; a
+    // later miss lets the estimate lead the next leg (reacquisition every reacquire_step).
+    if (prior_range > options_.sight_range && !fix.found && fixes_ > 0) {
       search_count_ = 0;
       search_bearing_offset_ = 0.0;
       status_.message += "; beyond sight range (" + FormatNumber(prior_range) +
@@ -487,7 +512,13 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     // Look around the estimate: 0, +s, -s, +2s, -2s, ...
     const int k = (search_count_ + 1) / 2;
     const double sign = search_count_ % 2 == 1 ? 1.0 : -1.0;
-    search_bearing_offset_ = sign * k * options_.search_pan_step_deg * kDegree;
+    // Far away the detector's window is narrow (atan(max(gate, 0.1 R) / R)): step by 1.6 of
+    // its half width, not by the mid-range pan step.
+    double step = options_.search_pan_step_deg * kDegree;
+    if (prior_range > options_.sight_range) {
+      step = std::min(step, 1.6 * std::atan2(std::max(options_.prior_gate, 0.1 * prior_range), prior_range));
+    }
+    search_bearing_offset_ = sign * k * step;
     LookAtLander(now, out);
     return;
   }

@@ -43,6 +43,25 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
   LanderPrior prior;  // from R's origin, as the detector measures
   prior.bearing = std::atan2(prior_rover.y(), prior_rover.x());
   prior.range = std::max(1.0, std::hypot(prior_rover.x(), prior_rover.y()));
+  prior.ground_z = prior_rover.z();
+  if (prior.range > options_.far_range) {
+    prior.bearing_window = std::atan2(std::max(options_.prior_gate, 0.1 * prior.range), prior.range);
+    prior.range_window = options_.prior_gate + 0.3 * prior.range;
+    ROVER_ASSIGN_OR_RETURN(const FarSighting s,
+                           DetectLanderFar(*pair.left, *pair.left_model, lander_, options_.far, prior));
+    auto bgr = Bgr(*pair.left);
+    DrawFarSighting(bgr.get(), s);
+    drawing_ = {Name("far", ++sightings_), bgr};
+    LanderFix f;
+    f.found = s.found;
+    f.far = true;
+    f.why = s.reason;
+    f.features = s.features;
+    if (!s.found) return f;
+    f.center_rover = s.center;
+    f.covariance = s.center_covariance;
+    return f;
+  }
   prior.bearing_window = std::clamp(std::atan2(options_.prior_gate, prior.range), 0.05, 0.45);
   prior.range_window = options_.prior_gate + 0.1 * prior.range;
   ROVER_ASSIGN_OR_RETURN(

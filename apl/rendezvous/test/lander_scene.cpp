@@ -40,10 +40,21 @@ Result<std::unique_ptr<LanderScene>> LanderScene::Create(const LanderSceneOption
   }
   sim::terrain::TerrainParams tp;
   tp.size_x = options.size;
-  tp.size_y = options.size;
+  tp.size_y = options.size_y > 0.0 ? options.size_y : options.size;
+  tp.center_x = options.center_x;
+  if (tp.size_x * tp.size_y > 2000.0) tp.resolution = 0.05;  // long maps: 0.05 m cells
   tp.seed = options.seed;
   tp.rocks.preset = options.rocks ? sim::terrain::RockPreset::kVl1 : sim::terrain::RockPreset::kNone;
+  if (options.rocks && options.rock_k > 0.0) {
+    tp.rocks.preset = sim::terrain::RockPreset::kCustom;
+    tp.rocks.k = options.rock_k;
+  }
   ROVER_ASSIGN_OR_RETURN(sim::terrain::Terrain terrain, sim::terrain::GenerateTerrain(tp));
+  if (!options.outcrops.empty()) {
+    sim::terrain::TerrainFeatures features;
+    features.outcrops = options.outcrops;
+    ROVER_RETURN_IF_ERROR(sim::terrain::PlaceFeatures(&terrain, features));
+  }
   sim::terrain::LanderParams lp;
   lp.x = options.lander_x;
   lp.y = options.lander_y;

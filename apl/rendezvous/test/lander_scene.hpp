@@ -26,11 +26,13 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <vector>
 #include <opencv2/core.hpp>
 
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
 #include "rover/hwconfig/lander_description.hpp"
+#include "rover/sim/terrain/features.hpp"
 #include "rover/sim/terrain/lander.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
@@ -43,11 +45,16 @@ namespace rover::apl::rendezvous::testing {
 /// The world a LanderScene builds.
 struct LanderSceneOptions {
   std::uint64_t seed = 4;        ///< terrain, texture and noise seed
-  double size = 28.0;            ///< [m] square map side, centred on the site origin
+  double size = 28.0;            ///< [m] map side along x (and y unless size_y > 0)
+  double size_y = 0.0;           ///< [m] map side along y; 0: `size`
+  double center_x = 0.0;         ///< [m] map centre along x (long-range views: a long map)
+  /// Layered outcrops (sim/terrain features.hpp), the long-range search's distractors.
+  std::vector<sim::terrain::Outcrop> outcrops;
   double lander_x = 0.0;         ///< [m] deck centre, site frame
   double lander_y = 0.0;         ///< [m]
   double lander_yaw_deg = 0.0;   ///< [deg] direction ramp 0 descends, from +x towards +y
   bool rocks = true;             ///< VL-1 rock field (false: no rocks)
+  double rock_k = 0.0;           ///< > 0: this rock cover k instead of VL-1's (when rocks)
   bool noise = true;             ///< sensor shot and read noise
   int image_size = 1024;         ///< NAVCAM side [px] (1024 = the flight camera, 512 = binned)
   double sun_azimuth_deg = 135;  ///< [deg] from +x towards +y

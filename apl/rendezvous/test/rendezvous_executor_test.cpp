@@ -96,6 +96,7 @@ class FakeVision : public RendezvousVision {
     }
     std::normal_distribution<double> n(0.0, w_->fix_noise);
     f.found = true;
+    f.far = range > 30.0;
     f.center_rover = in_rover * (1.0 + n(w_->rng));
     f.covariance = Eigen::Matrix3d::Identity() * std::pow(w_->fix_noise * range, 2);
     f.features = "fake";
@@ -367,17 +368,26 @@ TEST(RendezvousExecutorTest, StopsAtTheBaseWithoutClimbingWhenAsked) {
   EXPECT_LT(h.world.z, 0.1);
 }
 
-TEST(RendezvousExecutorTest, BeyondSightRangeTheEstimateLeadsUntilTheLanderIsSeen) {
+TEST(RendezvousExecutorTest, FarAwayTheLanderIsAcquiredBeforeTheFirstLeg) {
   Harness h;
   h.world.center = Eigen::Vector2d(60.0, 0.0);
   h.world.yaw = kPi;
-  h.world.sight_limit = 30.0;
   h.Start(h.Command());
   ExpectPlacedAndClimbed(h);
   EXPECT_TRUE(h.SawPhase(RendezvousPhase::kLongRange));
-  // The legs before the first fix head for the estimate and are at most reacquire_step long.
+  // Legs are at most reacquire_step long, each after a sighting.
   ASSERT_FALSE(h.drives.empty());
   EXPECT_LE(h.drives.front().goal.head<2>().norm(), 5.0 + 1e-9);
+}
+
+TEST(RendezvousExecutorTest, FarAwayALanderNeverSeenIsNotFoundAndNeverDrives) {
+  Harness h;
+  h.world.center = Eigen::Vector2d(60.0, 0.0);
+  h.world.lander_visible = false;
+  h.Start(h.Command());
+  EXPECT_EQ(h.exec.status().fault, RendezvousFault::kNotFound);
+  EXPECT_THAT(h.exec.status().message, HasSubstr("not found in 7 pairs"));
+  EXPECT_TRUE(h.drives.empty());
 }
 
 TEST(RendezvousExecutorTest, LanderNotFoundAfterTheSearchNeverDrives) {

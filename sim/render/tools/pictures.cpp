@@ -20,6 +20,7 @@
 #include "rover/base/params.hpp"
 #include "rover/sim/render/cameras.hpp"
 #include "rover/sim/render/renderer.hpp"
+#include "rover/sim/terrain/features.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 #include "rover/sim/terrain/top_down_map.hpp"
 
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
   int size = 1024;
   std::uint64_t seed = 1, frame = 0;
   bool help_params = false, no_noise = false, range = false, no_map = false;
-  app.add_option("--params", files, "scenario or parameter YAML file(s); their terrain, lander and science_targets sections are read");
+  app.add_option("--params", files, "scenario or parameter YAML file(s); their terrain, terrain_features, lander and science_targets sections are read");
   app.add_option("--set", sets, "override key=value (YAML value), e.g. terrain.rocks.preset=vl2");
   app.add_option("--x", x, "rover position north [m], site frame");
   app.add_option("--y", y, "rover position west [m], site frame");
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
   DeclareTerrainParams(ps);
   DeclareLanderParams(ps);
   DeclareScienceTargets(ps);
+  rover::sim::terrain::DeclareTerrainFeatures(ps, "terrain_features");
   if (help_params) {
     std::printf("%s", ps.DescribeAll().c_str());
     return 0;
@@ -89,7 +91,7 @@ int main(int argc, char** argv) {
     if (!in) return Fail(f + ": cannot open");
     std::stringstream text;
     text << in.rdbuf();
-    if (auto s = ps.LoadYamlSections(text.str(), f, {"terrain", "lander", "science_targets"});
+    if (auto s = ps.LoadYamlSections(text.str(), f, {"terrain", "terrain_features", "lander", "science_targets"});
         !s.ok()) {
       return Fail(s.message());
     }
@@ -117,6 +119,9 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   auto terrain = GenerateTerrain(*params);
   if (!terrain.ok()) return Fail(terrain.status().message());
+  if (auto s = rover::sim::terrain::PlaceScenarioFeatures(&*terrain, ps, "terrain_features"); !s.ok()) {
+    return Fail(s.message());
+  }
   if (auto s = PlaceScenarioObjects(&*terrain, ps); !s.ok()) return Fail(s.message());
   const HeightField& g = terrain->ground;
   if (!g.Contains(x, y)) {

@@ -109,6 +109,29 @@ Status PlaceFeatures(Terrain* terrain, const TerrainFeatures& f) {
       ROVER_RETURN_IF_ERROR(AddRock(terrain, what + " rock " + std::to_string(k), rock));
     }
   }
+  for (std::size_t i = 0; i < f.outcrops.size(); ++i) {
+    const Outcrop& o = f.outcrops[i];
+    const std::string what = "outcrops[" + std::to_string(i) + "]";
+    auto bad = [&](const char* field, double v, const std::string& range) {
+      return InvalidArgument(what + "." + field + ": " + FormatNumber(v) + " is out of range " + range);
+    };
+    if (!(o.length >= 0.5 && o.length <= 20.0)) return bad("length", o.length, "[0.5, 20]");
+    if (!(o.depth >= 0.3 && o.depth <= o.length)) {
+      return bad("depth", o.depth, "[0.3, length " + FormatNumber(o.length) + "]");
+    }
+    if (!(o.height >= 0.1 && o.height <= 5.0)) return bad("height", o.height, "[0.1, 5]");
+    if (!std::isfinite(o.yaw_deg)) return bad("yaw_deg", o.yaw_deg, "(finite)");
+    Rock rock;
+    rock.position = Eigen::Vector3d(o.x, o.y, 0.0);
+    rock.diameter = o.length;
+    rock.elongation = o.length / o.depth;
+    rock.height = o.height;
+    rock.yaw = o.yaw_deg * std::numbers::pi / 180.0;
+    rock.layers = std::max(2, static_cast<int>(std::lround(o.height / kOutcropBedHeight)));
+    rock.texture_id = static_cast<int>(
+        rng.UniformInt(static_cast<std::uint64_t>(std::max(1, terrain->params.rocks.texture_count))));
+    ROVER_RETURN_IF_ERROR(AddRock(terrain, what, rock));
+  }
   RebuildHeights(terrain);
   return Status::Ok();
 }
@@ -119,6 +142,9 @@ void DeclareTerrainFeatures(ParamSet& params, const std::string& prefix) {
                  "rocks.height_ratio * diameter)");
   params.Declare(prefix + ".walls", std::vector<double>{},
                  "rock walls: [x0, y0, x1, y1, rock diameter, height, ...] (site frame, m)");
+  params.Declare(prefix + ".outcrops", std::vector<double>{},
+                 "layered outcrops: [x, y, length, depth, height, yaw_deg, ...] (site frame, m; "
+                 "beds of ~0.3 m stepped back, straight level edges)");
 }
 
 Result<TerrainFeatures> TerrainFeaturesFromParamSet(const ParamSet& ps, const std::string& prefix) {
@@ -141,6 +167,17 @@ Result<TerrainFeatures> TerrainFeaturesFromParamSet(const ParamSet& ps, const st
   for (std::size_t i = 0; i < w.size(); i += 6) {
     f.walls.push_back({{w[i], w[i + 1]}, {w[i + 2], w[i + 3]}, w[i + 4], w[i + 5]});
   }
+  const std::string outcrops_key = prefix + ".outcrops";
+  const std::vector<double>& o = ps.GetDoubleList(outcrops_key);
+  if (o.size() % 6 != 0) {
+    return InvalidArgument(ps.Origin(outcrops_key).ToString() + ": key '" + outcrops_key + "': " +
+                           std::to_string(o.size()) +
+                           " numbers is not a multiple of 6 (x, y, length, depth, height, yaw_deg "
+                           "per outcrop)");
+  }
+  for (std::size_t i = 0; i < o.size(); i += 6) {
+    f.outcrops.push_back({o[i], o[i + 1], o[i + 2], o[i + 3], o[i + 4], o[i + 5]});
+  }
   return f;
 }
 
@@ -149,7 +186,10 @@ Status PlaceScenarioFeatures(Terrain* terrain, const ParamSet& ps, const std::st
   const Status s = PlaceFeatures(terrain, f);
   if (s.ok()) return s;
   // "walls[1].diameter: ..." -> the walls key's file:line.
-  const std::string key = prefix + (s.message().rfind("walls", 0) == 0 ? ".walls" : ".rocks");
+  const std::string& m = s.message();
+  const std::string key = prefix + (m.rfind("walls", 0) == 0      ? ".walls"
+                                    : m.rfind("outcrops", 0) == 0 ? ".outcrops"
+                                                                  : ".rocks");
   return Status(s.code(), ps.Origin(key).ToString() + ": key '" + key + "': " + s.message());
 }
 

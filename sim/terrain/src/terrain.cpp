@@ -1,6 +1,7 @@
 #include "rover/sim/terrain/terrain.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -73,6 +74,18 @@ ShapeAxes Axes(const Rock& r) {
 // ---- rock and crater shapes ----------------------------------------------------------------
 
 double RockRelief(const Rock& rock, double x, double y) {
+  if (rock.layers > 0) {
+    // Rectangle half sizes; bed k covers the rectangle inset by k * step on every side.
+    const double hl = 0.5 * rock.diameter, hd = 0.5 * rock.diameter / std::max(rock.elongation, 1.0);
+    const double step = kOutcropInset * 2.0 * hd / rock.layers;
+    const double dx = x - rock.position.x(), dy = y - rock.position.y();
+    const double c = std::cos(rock.yaw), sn = std::sin(rock.yaw);
+    const double u = std::abs(c * dx + sn * dy), v = std::abs(-sn * dx + c * dy);
+    const double inside = std::min(hl - u, hd - v);  // distance inside the footprint's edge
+    if (inside <= 0.0) return 0.0;
+    const int beds = std::min(rock.layers, 1 + static_cast<int>(std::floor(inside / step)));
+    return rock.height * beds / rock.layers;
+  }
   const ShapeAxes s = Axes(rock);
   const double dx = x - rock.position.x(), dy = y - rock.position.y();
   const double u = (s.cos_yaw * dx + s.sin_yaw * dy) / s.a;
@@ -95,15 +108,34 @@ double RockRelief(const Rock& rock, double x, double y) {
 }
 
 double RockBoundingRadius(const Rock& rock) {
+  if (rock.layers > 0) return 0.5 * std::hypot(rock.diameter, rock.diameter / std::max(rock.elongation, 1.0));
   const ShapeAxes s = Axes(rock);
   return std::max(s.a, s.b) * (1.0 + std::abs(s.lobe));
 }
 
 std::vector<Eigen::Vector2d> RockOutline(const Rock& rock, int n) {
   ROVER_DEMAND(n >= 3);
-  const ShapeAxes s = Axes(rock);
   std::vector<Eigen::Vector2d> out;
   out.reserve(static_cast<std::size_t>(n));
+  if (rock.layers > 0) {
+    // The rectangle's perimeter walked counter-clockwise from the +u,-v corner, n points.
+    const double hl = 0.5 * rock.diameter, hd = 0.5 * rock.diameter / std::max(rock.elongation, 1.0);
+    const double c = std::cos(rock.yaw), sn = std::sin(rock.yaw);
+    const double perimeter = 4.0 * (hl + hd);
+    const std::array<Eigen::Vector2d, 5> corner = {
+        Eigen::Vector2d(hl, -hd), Eigen::Vector2d(hl, hd), Eigen::Vector2d(-hl, hd),
+        Eigen::Vector2d(-hl, -hd), Eigen::Vector2d(hl, -hd)};
+    for (int k = 0; k < n; ++k) {
+      double t = perimeter * k / n;
+      int e = 0;
+      while (e < 3 && t > (corner[e + 1] - corner[e]).norm()) t -= (corner[e + 1] - corner[e]).norm(), ++e;
+      const Eigen::Vector2d d = corner[e + 1] - corner[e];
+      const Eigen::Vector2d p = corner[e] + d * (t / d.norm());
+      out.emplace_back(rock.position.x() + c * p.x() - sn * p.y(), rock.position.y() + sn * p.x() + c * p.y());
+    }
+    return out;
+  }
+  const ShapeAxes s = Axes(rock);
   for (int k = 0; k < n; ++k) {
     const double t = 2.0 * std::numbers::pi * k / n;
     const double l = 1.0 + s.lobe * std::cos(3.0 * t + rock.lobe_phase);

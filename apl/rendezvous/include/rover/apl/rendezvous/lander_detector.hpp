@@ -96,6 +96,9 @@ struct LanderPrior {
   double bearing_window = 0.5; ///< [rad] half width accepted around `bearing`
   double range = 15.0;         ///< [m]
   double range_window = 10.0;  ///< [m] half width accepted around `range`
+  /// [m] height of the ground at the lander in the rover frame (from the pose estimate; the
+  /// long-range detector's search band depends on it when the rover stands tilted or lower).
+  double ground_z = 0.0;
 };
 
 /// An image line segment the detector used, in left-image pixels.

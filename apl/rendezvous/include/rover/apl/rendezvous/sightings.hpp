@@ -35,9 +35,10 @@ struct NavcamPair {
   const geometry::CameraModel* right_model = nullptr;
 };
 
-/// The lander seen at mid range.
+/// The lander seen at long or mid range.
 struct LanderFix {
   bool found = false;
+  bool far = false;  ///< from the long-range detector (rough range, sharp bearing)
   Eigen::Vector3d center_rover = Eigen::Vector3d::Zero();  ///< deck centre in R [m]
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< of center_rover [m^2]
   std::string features;  ///< which features carried the fix ("deck lines 3, legs 4, stereo")
@@ -67,8 +68,9 @@ struct DetectionImage {
 class RendezvousVision {
  public:
   virtual ~RendezvousVision() = default;
-  /// The lander in a pair (mid range). `prior_rover` is the expected deck centre in R (a search
-  /// window); an error only for bad input (empty image, model size mismatch).
+  /// The lander in a pair (long or mid range). `prior_rover` is the expected deck centre on the
+  /// ground in R (x, y: the search window; z: the ground there); an error only for bad input
+  /// (empty image, model size mismatch).
   virtual Result<LanderFix> SightLander(const NavcamPair& pair,
                                         const Eigen::Vector3d& prior_rover) = 0;
   /// A ramp's coded stripes and its pose (close range). Errors only for bad input.

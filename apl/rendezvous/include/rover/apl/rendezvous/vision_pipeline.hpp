@@ -1,9 +1,14 @@
 #pragma once
 /// @file
-/// The service's RendezvousVision: the mid-range lander detector (lander_detector.hpp) and the
-/// stripe detector with the ramp pose solver (stripe_detector.hpp, ramp_pose.hpp) behind the
-/// executor's interface, with a drawing of every sighting for the run folder.
+/// The service's RendezvousVision: the long-range lander detector (long_range_detector.hpp,
+/// when the prior is farther than `far_range`), the mid-range lander detector
+/// (lander_detector.hpp) and the stripe detector with the ramp pose solver (stripe_detector.hpp,
+/// ramp_pose.hpp) behind the executor's interface, with a drawing of every sighting for the run
+/// folder.
 ///
+/// Long range: the search window is the prior bearing +- atan(max(prior_gate, 0.1 R) / R) and
+/// its range +- (prior_gate + 0.3 R); the fix's covariance is the detector's (rough in range,
+/// sharp in bearing).
 /// Mid range: the deck centre in R is the left camera's centre plus the sighting's horizontal
 /// range along its bearing, at deck height above the ground (R's z = 0); its covariance comes
 /// from the range and bearing sigmas (a vertical sigma of half the deck height).
@@ -13,6 +18,7 @@
 #include <memory>
 
 #include "rover/apl/rendezvous/lander_detector.hpp"
+#include "rover/apl/rendezvous/long_range_detector.hpp"
 #include "rover/apl/rendezvous/ramp_pose.hpp"
 #include "rover/apl/rendezvous/sightings.hpp"
 #include "rover/apl/rendezvous/stripe_detector.hpp"
@@ -25,6 +31,9 @@ struct VisionOptions {
   /// could pass it (bearing window atan(gate / range), range window gate + 10 % of the range).
   double prior_gate = 8.0;
   LanderDetectorOptions lander;
+  LongRangeOptions far;
+  /// [m] a prior farther than this is searched with the long-range detector.
+  double far_range = 30.0;
   StripeDetectorOptions stripes;
   RampPoseOptions pose;
 };

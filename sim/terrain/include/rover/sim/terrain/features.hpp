@@ -1,13 +1,16 @@
 #pragma once
 /// @file
 /// Terrain features a scenario places by hand, on top of the generated terrain: single rocks
-/// (a big rock in the way of a guarded drive) and rock walls (a row of touching rocks along a
-/// segment: a wall to detour around, three of them a cul-de-sac). Generated rocks that overlap a
+/// (a big rock in the way of a guarded drive), rock walls (a row of touching rocks along a
+/// segment: a wall to detour around, three of them a cul-de-sac) and layered outcrops (flat
+/// beds stepped back one above the other, whose straight level edges look like a lander's deck
+/// from far away: the distractors of the long-range lander search). Generated rocks that overlap a
 /// placed one are removed, so a seed's other rocks stay where they were.
 ///
 /// Scenario keys (flat number lists, as `science_targets`):
 ///   terrain_features.rocks   [x, y, diameter, height, ...]          four numbers per rock
 ///   terrain_features.walls   [x0, y0, x1, y1, diameter, height, ...] six numbers per wall
+///   terrain_features.outcrops [x, y, length, depth, height, yaw_deg, ...] six per outcrop
 /// Site frame, metres; height 0 = rocks.height_ratio * diameter. A wall's rocks are spaced
 /// 0.6 diameters apart from (x0, y0) to (x1, y1), so neighbours overlap and the wall has no gap
 /// a rover could pass; each rock's diameter and height vary by +-10 %, its long axis along the
@@ -36,9 +39,21 @@ struct RockWall {
   double height = 0.0;    ///< [m] in [0, 5]; 0 = rocks.height_ratio * diameter
 };
 
+/// A layered outcrop (Rock::layers > 0): beds of about kOutcropBedHeight each.
+struct Outcrop {
+  double x = 0, y = 0;     ///< [m] centre, site frame
+  double length = 4.0;     ///< [m] along yaw, in [0.5, 20]
+  double depth = 1.5;      ///< [m] across, in [0.3, length]
+  double height = 1.0;     ///< [m] in [0.1, 5]
+  double yaw_deg = 0.0;    ///< [deg] direction of the long side, from +x towards +y
+};
+/// [m] nominal bed height of an outcrop (layers = max(2, round(height / this))).
+inline constexpr double kOutcropBedHeight = 0.3;
+
 struct TerrainFeatures {
   std::vector<PlacedRock> rocks;
   std::vector<RockWall> walls;
+  std::vector<Outcrop> outcrops;
 };
 
 /// Adds the features' rocks to `terrain` (ids continue from next_rock_id) and rebuilds its
@@ -46,9 +61,9 @@ struct TerrainFeatures {
 /// 5]"); a feature off the map or on the rover's rock-free start disc is an error.
 Status PlaceFeatures(Terrain* terrain, const TerrainFeatures& features);
 
-/// Declares `<prefix>.rocks` and `<prefix>.walls` (empty lists).
+/// Declares `<prefix>.rocks`, `<prefix>.walls` and `<prefix>.outcrops` (empty lists).
 void DeclareTerrainFeatures(ParamSet& params, const std::string& prefix = "terrain_features");
-/// Reads them back; a list whose length is not a multiple of 4 (rocks) or 6 (walls) is an error
+/// Reads them back; a list whose length is not a multiple of 4 (rocks) or 6 (walls, outcrops) is an error
 /// naming the file:line and key.
 Result<TerrainFeatures> TerrainFeaturesFromParamSet(const ParamSet& params,
                                                     const std::string& prefix = "terrain_features");

@@ -59,7 +59,16 @@ struct Rock {
   double bluntness = 0.5;       ///< profile exponent: 0.5 = half ellipsoid, smaller = blunter
   double lobe_amplitude = 0.0;  ///< relative 3-lobe outline perturbation, [0, 0.2]
   double lobe_phase = 0.0;      ///< [rad]
+  /// > 0: a layered outcrop instead of a boulder (features.hpp): a rectangular footprint
+  /// `diameter` long along `yaw` and diameter / elongation deep, built of `layers` flat-topped
+  /// beds of height / layers each, every bed inset from the one below by kOutcropInset of the
+  /// depth / layers on all sides, so the faces show horizontal steps (straight level edges).
+  /// The lobe and bluntness fields are unused then.
+  int layers = 0;
 };
+
+/// Inset of an outcrop's bed from the one below, as a fraction of depth / layers per side.
+inline constexpr double kOutcropInset = 0.35;
 
 /// Height of the rock's surface above position.z at (x, y); 0 outside the footprint.
 double RockRelief(const Rock& rock, double x, double y);

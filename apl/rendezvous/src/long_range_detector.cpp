@@ -1,0 +1,506 @@
+#include "rover/apl/rendezvous/long_range_detector.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "rover/base/format.hpp"
+#include "rover/base/param_binder.hpp"
+#include "rover/base/range_check.hpp"
+#include "rover/base/units.hpp"
+
+namespace rover::apl::rendezvous {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+constexpr double kOrientationSigma = 0.07;  // relative: the deck's silhouette with its yaw
+constexpr double kMaxWidthOverRamps = 1.3;  // group width up to this times the full length
+constexpr double kNoPriorHalfFov = 25.0 * kDegree;
+
+struct Seg {
+  Vector2d a, b;  // a left of b
+  double length = 0.0;
+};
+
+struct Group {
+  std::vector<int> segs;
+  cv::Rect box;
+  int rows = 0;
+  double longest = 0.0;
+  int longest_seg = -1;
+};
+
+cv::Rect Expand(const cv::Rect& r, int dx, int dy) {
+  return cv::Rect(r.x - dx, r.y - dy, r.width + 2 * dx, r.height + 2 * dy);
+}
+
+double Azimuth(const geometry::CameraModel& m, const Vector2d& px) {
+  const auto ray = m.Unproject(px);
+  if (!ray) return 0.0;
+  return std::atan2(ray->direction.y(), ray->direction.x());
+}
+
+// Median of the finite values of a float map (a copy is partially sorted).
+double Median(const cv::Mat& m) {
+  std::vector<float> v;
+  v.reserve(m.total());
+  for (int r = 0; r < m.rows; ++r) {
+    const float* p = m.ptr<float>(r);
+    for (int c = 0; c < m.cols; ++c) v.push_back(p[c]);
+  }
+  if (v.empty()) return 0.0;
+  auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// One level of the orthonormal 2-D Haar transform of `in` (even size): LL, LH (top minus bottom:
+// horizontal edges), HL (left minus right: vertical edges), HH.
+void Haar(const cv::Mat& in, cv::Mat* ll, cv::Mat* lh, cv::Mat* hl, cv::Mat* hh) {
+  const int h = in.rows / 2, w = in.cols / 2;
+  *ll = cv::Mat(h, w, CV_32F);
+  *lh = cv::Mat(h, w, CV_32F);
+  *hl = cv::Mat(h, w, CV_32F);
+  *hh = cv::Mat(h, w, CV_32F);
+  for (int r = 0; r < h; ++r) {
+    const float* t = in.ptr<float>(2 * r);
+    const float* b = in.ptr<float>(2 * r + 1);
+    for (int c = 0; c < w; ++c) {
+      const float a = t[2 * c], bb = t[2 * c + 1], cc = b[2 * c], d = b[2 * c + 1];
+      ll->at<float>(r, c) = 0.5F * (a + bb + cc + d);
+      lh->at<float>(r, c) = 0.5F * (a + bb - cc - d);
+      hl->at<float>(r, c) = 0.5F * (a - bb + cc - d);
+      hh->at<float>(r, c) = 0.5F * (a - bb - cc + d);
+    }
+  }
+}
+
+Status CheckImage(const cv::Mat& im, const geometry::CameraModel& m) {
+  if (im.empty()) return InvalidArgument("left image: empty image");
+  if (im.type() != CV_8UC1) return InvalidArgument("left image: not an 8-bit grey image");
+  if (im.cols != m.width() || im.rows != m.height()) {
+    return InvalidArgument("left image: " + std::to_string(im.cols) + "x" + std::to_string(im.rows) +
+                           " image but a " + std::to_string(m.width()) + "x" +
+                           std::to_string(m.height()) + " camera model");
+  }
+  return Status::Ok();
+}
+
+class FarDetector {
+ public:
+  FarDetector(const cv::Mat& im, const geometry::CameraModel& m,
+              const hwconfig::LanderDescription& lander, const LongRangeOptions& o,
+              const std::optional<LanderPrior>& prior)
+      : im_(im), m_(m), lander_(lander), o_(o), prior_(prior) {}
+
+  FarSighting Run() {
+    FarSighting s;
+    if (!MakeBand(&s)) return s;
+    s.band = band_;
+    FindSegments();
+    s.line_candidates = LineCandidates();
+    s.texture_candidates = TextureCandidates();
+    // Fusion: a line candidate overlapping a texture candidate.
+    int best = -1;
+    double best_score = -1.0;
+    for (std::size_t i = 0; i < groups_.size(); ++i) {
+      const Group& g = groups_[i];
+      double tex = 0.0;
+      for (const CueBox& t : s.texture_candidates) {
+        if ((Expand(g.box, 2, 2) & t.box).area() > 0) tex = std::max(tex, t.strength);
+      }
+      if (tex <= 0.0) continue;
+      s.fused.push_back({g.box, static_cast<double>(g.rows)});
+      cv::Rect tex_box;
+      for (const CueBox& t : s.texture_candidates) {
+        if ((Expand(g.box, 2, 2) & t.box).area() > 0) tex_box |= t.box;
+      }
+      double score = g.rows + 0.5 * static_cast<double>(g.segs.size()) + tex / 3.0;
+      if (prior_) {
+        const double db = std::abs(Azimuth(m_, Center(g)) - prior_->bearing);
+        score -= 2.0 * db / std::max(prior_->bearing_window, 1e-3);
+      }
+      if (score > best_score) {
+        best_score = score;
+        best = static_cast<int>(i);
+        best_tex_ = tex_box;
+      }
+    }
+    if (best < 0) {
+      s.reason = "no co-located line and texture candidate (" +
+                 std::to_string(s.line_candidates.size()) + " line from " +
+                 std::to_string(segs_.size()) + " level segments, " +
+                 std::to_string(s.texture_candidates.size()) + " texture)";
+      if (std::getenv("ROVER_FAR_DEBUG") != nullptr) s.reason += " " + debug_;
+      return s;
+    }
+    Measure(groups_[static_cast<std::size_t>(best)], &s);
+    return s;
+  }
+
+ private:
+  Vector2d Center(const Group& g) const {
+    const Seg& l = segs_[static_cast<std::size_t>(g.longest_seg)];
+    return 0.5 * (l.a + l.b);
+  }
+
+  // The image box of the lander's possible positions; focal length and level direction.
+  bool MakeBand(FarSighting* s) {
+    double b0 = 0.0, bw = kNoPriorHalfFov, r_lo = o_.min_range, r_hi = o_.max_range;
+    const double z0 = prior_ ? prior_->ground_z : 0.0;
+    if (prior_) {
+      b0 = prior_->bearing;
+      bw = prior_->bearing_window;
+      r_lo = std::max(o_.min_range, prior_->range - prior_->range_window);
+      r_hi = std::min(o_.max_range, prior_->range + prior_->range_window);
+    } else {
+      b0 = Azimuth(m_, Vector2d(0.5 * (m_.width() - 1), 0.5 * (m_.height() - 1)));
+    }
+    if (r_hi <= r_lo) {
+      s->reason = "the prior's range window is outside [min_range, max_range]";
+      return false;
+    }
+    r_lo_ = r_lo;
+    r_mid_ = prior_ ? std::clamp(prior_->range, r_lo, r_hi) : 0.5 * (r_lo + r_hi);
+    double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
+    int projected = 0;
+    for (double b : {b0 - bw, b0 - 0.5 * bw, b0, b0 + 0.5 * bw, b0 + bw}) {
+      for (double r : {r_lo, r_mid_, r_hi}) {
+        for (double z : {z0 - 0.6, z0 + lander_.deck_height + 0.4}) {
+          const auto px = m_.Project(Vector3d(r * std::cos(b), r * std::sin(b), z));
+          if (!px) continue;
+          ++projected;
+          u0 = std::min(u0, px->x());
+          u1 = std::max(u1, px->x());
+          v0 = std::min(v0, px->y());
+          v1 = std::max(v1, px->y());
+        }
+      }
+    }
+    const cv::Rect image(0, 0, im_.cols, im_.rows);
+    const cv::Rect band(static_cast<int>(std::floor(u0)) - 4, static_cast<int>(std::floor(v0)) - 4,
+                        static_cast<int>(std::ceil(u1 - u0)) + 9,
+                        static_cast<int>(std::ceil(v1 - v0)) + 9);
+    band_ = band & image;
+    band_.width -= band_.width % 4;
+    band_.height -= band_.height % 4;
+    if (projected == 0 || band_.width < 16 || band_.height < 8) {
+      s->reason = "the search window is outside the image";
+      return false;
+    }
+    // Focal length [px] and the image of a level line at the prior range.
+    const Vector3d p(r_mid_ * std::cos(b0), r_mid_ * std::sin(b0), z0 + 0.5);
+    const Vector3d lat(-std::sin(b0), std::cos(b0), 0.0);
+    const auto a = m_.Project(p - 0.5 * lat), c = m_.Project(p + 0.5 * lat);
+    if (!a || !c) {
+      s->reason = "the prior direction does not project into the image";
+      return false;
+    }
+    f_ = (*c - *a).norm() * r_mid_;
+    level_ = (*c - *a).normalized();
+    return true;
+  }
+
+  void FindSegments() {
+    cv::Mat roi = im_(band_), blurred, edges;
+    cv::GaussianBlur(roi, blurred, cv::Size(3, 3), 0.8);
+    cv::Canny(blurred, edges, o_.canny_low, o_.canny_high);
+    std::vector<cv::Vec4i> lines;
+    cv::HoughLinesP(edges, lines, 1.0, kDegree, o_.min_line_length, o_.min_line_length, 1.0);
+    const double tol = std::sin(o_.level_tolerance_deg * kDegree);
+    const double max_len = kMaxWidthOverRamps * 2.0 * (lander_.Apothem() + lander_.ramp_length) * f_ / r_lo_;
+    for (const cv::Vec4i& l : lines) {
+      Seg sg;
+      sg.a = Vector2d(l[0] + band_.x, l[1] + band_.y);
+      sg.b = Vector2d(l[2] + band_.x, l[3] + band_.y);
+      if (sg.a.x() > sg.b.x()) std::swap(sg.a, sg.b);
+      const Vector2d d = sg.b - sg.a;
+      sg.length = d.norm();
+      if (sg.length < o_.min_line_length || sg.length > max_len) continue;
+      const double cross = std::abs(d.x() * level_.y() - d.y() * level_.x()) / sg.length;
+      if (cross > tol) continue;
+      segs_.push_back(sg);
+    }
+  }
+
+  // Line candidates: each long enough level segment anchors a window of the lander's image size
+  // at the prior range below it (the deck top is the lander's highest level edge); the level
+  // segments with their middle in the window form the group. Overlapping groups keep the one
+  // with most rows (no transitive chaining: a cluttered band would chain into one group).
+  std::vector<CueBox> LineCandidates() {
+    const double span = 2.0 * (lander_.Apothem() + lander_.ramp_length);  // [m] widest silhouette
+    const double w_win = kMaxWidthOverRamps * span * f_ / r_mid_;
+    const double h_win = (lander_.deck_height + 0.3) * f_ / r_mid_ + 2.0;
+    const double anchor_min = 0.4 * 2.0 * lander_.Apothem() * f_ / r_mid_;
+    std::vector<Group> all;
+    for (std::size_t i = 0; i < segs_.size(); ++i) {
+      const Seg& a = segs_[i];
+      if (a.length < anchor_min) continue;
+      const Vector2d c = 0.5 * (a.a + a.b);
+      Group g;
+      std::vector<double> ys;
+      double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+      for (std::size_t j = 0; j < segs_.size(); ++j) {
+        const Seg& s = segs_[j];
+        const Vector2d m = 0.5 * (s.a + s.b);
+        if (std::abs(m.x() - c.x()) > 0.5 * w_win || m.y() < c.y() - 1.5 || m.y() > c.y() + h_win) continue;
+        g.segs.push_back(static_cast<int>(j));
+        x0 = std::min(x0, s.a.x());
+        x1 = std::max(x1, s.b.x());
+        y0 = std::min({y0, s.a.y(), s.b.y()});
+        y1 = std::max({y1, s.a.y(), s.b.y()});
+        ys.push_back(m.y());
+        if (s.length > g.longest) {
+          g.longest = s.length;
+          g.longest_seg = static_cast<int>(j);
+        }
+      }
+      std::sort(ys.begin(), ys.end());
+      g.rows = 1;
+      for (std::size_t k = 1; k < ys.size(); ++k) {
+        if (ys[k] - ys[k - 1] >= 2.0) ++g.rows;
+      }
+      if (g.rows < o_.min_group_lines) continue;
+      g.box = cv::Rect(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0)),
+                       static_cast<int>(std::ceil(x1 - x0)) + 1, static_cast<int>(std::ceil(y1 - y0)) + 1);
+      all.push_back(g);
+    }
+    std::sort(all.begin(), all.end(), [](const Group& a, const Group& b) {
+      return a.rows != b.rows ? a.rows > b.rows : a.segs.size() > b.segs.size();
+    });
+    std::vector<CueBox> out;
+    for (const Group& g : all) {
+      bool overlaps = false;
+      for (const Group& k : groups_) overlaps = overlaps || (g.box & k.box).area() > 0;
+      if (overlaps) continue;
+      groups_.push_back(g);
+      out.push_back({g.box, static_cast<double>(g.segs.size())});
+    }
+    return out;
+  }
+
+  std::vector<CueBox> TextureCandidates() const {
+    cv::Mat f32;
+    im_(band_).convertTo(f32, CV_32F);
+    cv::Mat ll1, lh1, hl1, hh1, ll2, lh2, hl2, hh2;
+    Haar(f32, &ll1, &lh1, &hl1, &hh1);
+    Haar(ll1, &ll2, &lh2, &hl2, &hh2);
+    // Energies per level-1 cell: a level-2 coefficient covers 2 x 2 level-1 cells.
+    cv::Mat e1 = lh1.mul(lh1) + hl1.mul(hl1) + hh1.mul(hh1);
+    cv::Mat e2c = (lh2.mul(lh2) + hl2.mul(hl2) + hh2.mul(hh2)) * 0.25;
+    cv::Mat e2, l2;
+    cv::resize(e2c, e2, e1.size(), 0, 0, cv::INTER_NEAREST);
+    cv::resize(ll2, l2, e1.size(), 0, 0, cv::INTER_NEAREST);
+    const double deck_px = 2.0 * lander_.Apothem() * f_ / r_mid_;
+    const int wx = std::clamp(static_cast<int>(std::lround(0.25 * deck_px)), 3, 15);
+    const int wy = std::clamp(static_cast<int>(std::lround(0.25 * lander_.deck_height * f_ / r_mid_)), 2, 8);
+    cv::Mat b1, b2, lmax;
+    cv::blur(e1, b1, cv::Size(wx, wy));
+    cv::blur(e2, b2, cv::Size(wx, wy));
+    cv::dilate(l2, lmax, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * wx + 1, 2 * wy + 1)));
+    const double med_e2 = std::max(1.0, Median(b2));
+    const double med_l = std::max(1.0, Median(l2));
+    median_grey_ = 0.25 * med_l;  // LL2 is 4 x the mean of its 4 x 4 pixels
+    if (std::getenv("ROVER_FAR_DEBUG") != nullptr) {
+      double cmax = 0, lm = 0;
+      cv::Point at;
+      cv::minMaxLoc(b2, nullptr, &cmax, nullptr, &at);
+      debug_ += "F@maxC " + FormatNumber(b1.at<float>(at) / b2.at<float>(at)) + " L@maxC " +
+                FormatNumber(lmax.at<float>(at) / med_l) + " ";
+      cv::minMaxLoc(lmax, nullptr, &lm);
+      debug_ += "medE2 " + FormatNumber(med_e2) + " maxC " + FormatNumber(std::sqrt(cmax / med_e2)) +
+               " medL " + FormatNumber(med_l) + " maxL " + FormatNumber(lm) + " win " +
+               std::to_string(wx) + "x" + std::to_string(wy);
+    }
+    cv::Mat mask(b1.size(), CV_8U, cv::Scalar(0));
+    cv::Mat contrast(b1.size(), CV_32F, cv::Scalar(0));
+    for (int r = 0; r < b1.rows; ++r) {
+      for (int c = 0; c < b1.cols; ++c) {
+        const double E2 = b2.at<float>(r, c), E1 = b1.at<float>(r, c);
+        const double C = std::sqrt(E2 / med_e2);
+        contrast.at<float>(r, c) = static_cast<float>(C);
+        if (C >= o_.min_contrast && E1 <= o_.max_fine_ratio * E2 &&
+            lmax.at<float>(r, c) >= o_.min_brightness * med_l) {
+          mask.at<std::uint8_t>(r, c) = 255;
+        }
+      }
+    }
+    cv::Mat labels, stats, centroids;
+    const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8);
+    std::vector<CueBox> out;
+    for (int k = 1; k < n; ++k) {
+      const int x = stats.at<int>(k, cv::CC_STAT_LEFT), y = stats.at<int>(k, cv::CC_STAT_TOP);
+      const int w = stats.at<int>(k, cv::CC_STAT_WIDTH), h = stats.at<int>(k, cv::CC_STAT_HEIGHT);
+      double peak = 0.0;
+      for (int r = y; r < y + h; ++r) {
+        for (int c = x; c < x + w; ++c) {
+          if (labels.at<int>(r, c) == k) peak = std::max(peak, static_cast<double>(contrast.at<float>(r, c)));
+        }
+      }
+      // Level-1 cells to pixels, grown by half a window (the mask marks window centres).
+      const cv::Rect box(band_.x + 2 * (x - wx / 2), band_.y + 2 * (y - wy / 2), 2 * (w + wx),
+                         2 * (h + wy));
+      out.push_back({box & cv::Rect(0, 0, im_.cols, im_.rows), peak});
+    }
+    return out;
+  }
+
+  void Measure(const Group& g, FarSighting* s) const {
+    // The lander's painted parts are the brightest in the fused region: their largest bright
+    // component spans the deck top to the ramp feet (deck_height), whatever the lander's yaw.
+    const cv::Rect region = (Expand(g.box, 2, 2) | best_tex_) & band_;
+    cv::Mat bright;
+    cv::threshold(im_(region), bright, std::min(254.0, o_.min_brightness * median_grey_), 255,
+                  cv::THRESH_BINARY);
+    cv::Mat labels, stats, centroids;
+    const int n = cv::connectedComponentsWithStats(bright, labels, stats, centroids, 8);
+    int k_best = -1, area = 0;
+    for (int k = 1; k < n; ++k) {
+      if (stats.at<int>(k, cv::CC_STAT_AREA) > area) {
+        area = stats.at<int>(k, cv::CC_STAT_AREA);
+        k_best = k;
+      }
+    }
+    double h = 0.0, w = 0.0;
+    Vector2d mid = Center(g);
+    if (k_best > 0) {
+      h = stats.at<int>(k_best, cv::CC_STAT_HEIGHT);
+      w = stats.at<int>(k_best, cv::CC_STAT_WIDTH);
+      mid = Vector2d(region.x + centroids.at<double>(k_best, 0), region.y + centroids.at<double>(k_best, 1));
+    }
+    const double h_px = std::max(h, 2.0);
+    const double range = lander_.deck_height * f_ / h_px;
+    const double rel = std::hypot(o_.extent_sigma_px / h_px, kOrientationSigma);
+    s->found = true;
+    s->box = k_best > 0 ? cv::Rect(region.x + stats.at<int>(k_best, cv::CC_STAT_LEFT),
+                                   region.y + stats.at<int>(k_best, cv::CC_STAT_TOP),
+                                   static_cast<int>(w), static_cast<int>(h))
+                        : g.box;
+    s->bearing = Azimuth(m_, mid);
+    s->bearing_sigma = std::max(0.25 * std::max(w, 4.0) / f_, 1.0 / f_);
+    s->range = range;
+    s->range_sigma = rel * range;
+    s->center = Vector3d(range * std::cos(s->bearing), range * std::sin(s->bearing), lander_.deck_height);
+    const Eigen::Matrix2d R =
+        (Eigen::Matrix2d() << std::cos(s->bearing), -std::sin(s->bearing), std::sin(s->bearing),
+         std::cos(s->bearing))
+            .finished();
+    const Eigen::Vector2d sig(s->range_sigma, range * s->bearing_sigma);
+    s->center_covariance.setZero();
+    s->center_covariance.topLeftCorner<2, 2>() = R * sig.cwiseAbs2().asDiagonal() * R.transpose();
+    s->center_covariance(2, 2) = std::pow(0.5 * lander_.deck_height, 2);
+    for (int i : g.segs) {
+      const Seg& sg = segs_[static_cast<std::size_t>(i)];
+      s->lines.push_back({sg.a, sg.b, LanderLine::Kind::kDeck});
+    }
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "far: lines %zu on %d rows, lander %.0fx%.0f px; %zu line / %zu texture candidates",
+                  g.segs.size(), g.rows, w, h, s->line_candidates.size(), s->texture_candidates.size());
+    s->features = buf;
+    s->reason = "lander at " + FormatNumber(range) + " m";
+  }
+
+  const cv::Mat& im_;
+  const geometry::CameraModel& m_;
+  const hwconfig::LanderDescription& lander_;
+  const LongRangeOptions& o_;
+  const std::optional<LanderPrior>& prior_;
+  cv::Rect band_;
+  double f_ = 1.0, r_lo_ = 1.0, r_mid_ = 1.0;
+  Vector2d level_ = Vector2d::UnitX();
+  std::vector<Seg> segs_;
+  std::vector<Group> groups_;
+  mutable std::string debug_;
+  mutable double median_grey_ = 128.0;
+  cv::Rect best_tex_;
+};
+
+}  // namespace
+
+Status LongRangeOptions::Validate(const char* prefix) const {
+  const std::string p(prefix);
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_range", min_range, 2.0, 500.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "max_range", max_range, Bounds::OpenLow(min_range, 1000.0), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "canny_low", canny_low, 1.0, 1000.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "canny_high", canny_high, canny_low, 2000.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "level_tolerance_deg", level_tolerance_deg, 0.5, 45.0, "deg"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_line_length", min_line_length, 3, 200, "px"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_group_lines", min_group_lines, 1, 20));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_contrast", min_contrast, 0.0, 100.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "max_fine_ratio", max_fine_ratio, Bounds::OpenLow(0.0, 100.0)));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_brightness", min_brightness, 0.0, 100.0));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "extent_sigma_px", extent_sigma_px, Bounds::OpenLow(0.0, 20.0), "px"));
+  return Status::Ok();
+}
+
+void LongRangeOptions::BindParams(ParamBinder<LongRangeOptions>& b) {
+  using O = LongRangeOptions;
+  b.Bind("min_range", &O::min_range, "m", "nearest lander range searched without a prior");
+  b.Bind("max_range", &O::max_range, "m", "farthest lander range searched");
+  b.Bind("canny_low", &O::canny_low, "", "Canny lower hysteresis threshold [grey levels]");
+  b.Bind("canny_high", &O::canny_high, "", "Canny upper hysteresis threshold [grey levels]");
+  b.Bind("level_tolerance_deg", &O::level_tolerance_deg, "deg", "level segment: angle to a level line");
+  b.Bind("min_line_length", &O::min_line_length, "px", "shortest Hough segment");
+  b.Bind("min_group_lines", &O::min_group_lines, "", "segments on distinct rows in a line candidate");
+  b.Bind("min_contrast", &O::min_contrast, "", "texture: coarse detail over the band's median");
+  b.Bind("max_fine_ratio", &O::max_fine_ratio, "", "texture: fine over coarse detail energy");
+  b.Bind("min_brightness", &O::min_brightness, "", "texture: brightest part over the band's median");
+  b.Bind("extent_sigma_px", &O::extent_sigma_px, "px", "1-sigma of a measured width");
+}
+
+Result<FarSighting> DetectLanderFar(const cv::Mat& left8, const geometry::CameraModel& left_model,
+                                    const hwconfig::LanderDescription& lander,
+                                    const LongRangeOptions& options,
+                                    const std::optional<LanderPrior>& prior) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ROVER_RETURN_IF_ERROR(options.Validate());
+  ROVER_RETURN_IF_ERROR(lander.Validate());
+  ROVER_RETURN_IF_ERROR(CheckImage(left8, left_model));
+  if (prior) {
+    ROVER_RETURN_IF_ERROR(CheckFinite("prior.bearing", prior->bearing));
+    ROVER_RETURN_IF_ERROR(CheckPositive("prior.bearing_window", prior->bearing_window, "rad"));
+    ROVER_RETURN_IF_ERROR(CheckPositive("prior.range", prior->range, "m"));
+    ROVER_RETURN_IF_ERROR(CheckPositive("prior.range_window", prior->range_window, "m"));
+    ROVER_RETURN_IF_ERROR(CheckFinite("prior.ground_z", prior->ground_z));
+  }
+  FarDetector d(left8, left_model, lander, options, prior);
+  FarSighting s = d.Run();
+  s.elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return s;
+}
+
+void DrawFarSighting(cv::Mat* bgr, const FarSighting& s) {
+  if (bgr == nullptr || bgr->empty()) return;
+  const double scale = std::max(0.5, bgr->cols / 1024.0);
+  const int thick = std::max(1, static_cast<int>(std::lround(scale)));
+  cv::rectangle(*bgr, s.band, cv::Scalar(160, 160, 160), thick);
+  for (const CueBox& c : s.line_candidates) cv::rectangle(*bgr, c.box, cv::Scalar(0, 255, 255), thick);
+  for (const CueBox& c : s.texture_candidates) cv::rectangle(*bgr, c.box, cv::Scalar(255, 0, 255), thick);
+  for (const auto& l : s.lines) {
+    cv::line(*bgr, cv::Point2d(l.a.x(), l.a.y()), cv::Point2d(l.b.x(), l.b.y()), cv::Scalar(0, 255, 255),
+             thick, cv::LINE_AA);
+  }
+  const cv::Point org(10, static_cast<int>(30 * scale));
+  if (!s.found) {
+    cv::putText(*bgr, "no lander: " + s.reason, org, cv::FONT_HERSHEY_SIMPLEX, 0.6 * scale,
+                cv::Scalar(0, 0, 255), thick);
+    return;
+  }
+  cv::rectangle(*bgr, Expand(s.box, 3, 3), cv::Scalar(0, 255, 0), 2 * thick);
+  char text[160];
+  std::snprintf(text, sizeof text, "far: range %.1f +- %.1f m  bearing %.2f +- %.2f deg", s.range,
+                s.range_sigma, s.bearing / kDegree, s.bearing_sigma / kDegree);
+  cv::putText(*bgr, text, org, cv::FONT_HERSHEY_SIMPLEX, 0.6 * scale, cv::Scalar(0, 255, 0), thick);
+  cv::putText(*bgr, s.features, org + cv::Point(0, static_cast<int>(26 * scale)),
+              cv::FONT_HERSHEY_SIMPLEX, 0.5 * scale, cv::Scalar(0, 255, 0), thick);
+}
+
+}  // namespace rover::apl::rendezvous
