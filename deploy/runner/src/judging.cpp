@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 
+#include "rover/base/format.hpp"
 #include "rover/deploy/plots.hpp"
 #include "rover/deploy/runner/autonav_judging.hpp"
 #include "rover/hwconfig/rover_description.hpp"
@@ -113,8 +114,19 @@ void AddRendezvousFigures(const sim::world::World& world, const std::optional<Re
     }
   }
   if (!world.terrain.lander) return;
-  auto figures = RendezvousFigures(*log, *world.terrain.lander, *result);
+  auto figures = RendezvousFigures(*log, *world.terrain.lander, world.terrain.rocks, *result);
   for (auto& f : figures) {
+    if (f.name == "toward_distractor") {
+      // Never drive toward a distractor: a criterion, not only a figure.
+      f.limit = 0;
+      f.pass = f.measured <= 0.0;
+      result->criteria.push_back(f);
+      if (!f.pass && failure->empty()) {
+        *failure = "toward_distractor: " + FormatNumber(f.measured) +
+                   " sightings put the lander estimate on a layered outcrop";
+      }
+      continue;
+    }
     if (f.name == "on_deck" && log->expect_on_deck) {
       f.limit = 1;
       f.pass = f.measured >= 1.0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "rover/base/units.hpp"
 #include "rover/geometry/transforms.hpp"
@@ -34,6 +35,7 @@ double TrueLanderDistance(const sim::terrain::Lander& lander, double x, double y
 
 std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
                                                      const sim::terrain::Lander& lander,
+                                                     const std::vector<sim::terrain::Rock>& rocks,
                                                      const RunResult& result) {
   std::vector<sim::judge::Criterion> out;
   if (result.truth_track.empty()) return out;
@@ -78,6 +80,33 @@ std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
       out.push_back(Figure("placement_heading", std::abs(h) / kDegree, "deg", where));
     }
   }
+  // Acquisition and distractors (long range).
+  const Eigen::Vector2d deck(lander.params.x, lander.params.y);
+  int toward = 0;
+  std::optional<double> acquired_at;
+  for (const RendezvousSample& s : log.samples) {
+    if (!s.new_range) continue;
+    if (!acquired_at) {
+      const auto& p = result.truth_track[NearestTrackIndex(result, s.t)];
+      acquired_at = TrueLanderDistance(lander, p[1], p[2]);
+    }
+    const double to_lander = (s.target - deck).norm();
+    for (const sim::terrain::Rock& r : rocks) {
+      if (r.layers <= 0) continue;
+      const double to_rock = (s.target - r.position.head<2>()).norm();
+      if (to_rock < to_lander && to_rock < sim::terrain::RockBoundingRadius(r) + 5.0) {
+        ++toward;
+        break;
+      }
+    }
+  }
+  if (acquired_at) {
+    out.push_back(Figure("acquired_at_m", *acquired_at, "m",
+                         "true distance to the deck centre at the first sighting accepted"));
+  }
+  out.push_back(Figure("toward_distractor", toward, "count",
+                       "sightings after which the estimate lay nearer a layered outcrop than the "
+                       "lander (within 5 m of it)"));
   const auto& last = result.truth_track.back();
   const bool on_deck = lander.InDeck(last[1], last[2]);
   out.push_back(Figure("on_deck", on_deck ? 1.0 : 0.0, "count",

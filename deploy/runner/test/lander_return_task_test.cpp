@@ -36,7 +36,7 @@ TEST(LanderReturnTask, ParsesAndChecksItsSection) {
   EXPECT_THAT(ValidateTask(ScenarioWithTask(
                   "task: {type: lander_return, estimate: {x: 30, y: 1}, expect: landed}\n"))
                   .message(),
-              HasSubstr("task.expect: 'landed' is not one of: on_deck, at_ramp_base, BAD_COMMAND"));
+              HasSubstr("task.expect: 'landed' is not one of: on_deck, at_ramp_base, acquired, BAD_COMMAND"));
   auto t = TaskRegistry::Builtin().Make(ScenarioWithTask(
       "task: {type: lander_return, estimate: {x: 30, y: 1}, expect: NOT_FOUND}\n"));
   ASSERT_TRUE(t.ok()) << t.status().message();
@@ -87,7 +87,7 @@ TEST(RendezvousJudging, RangeErrorsPlacementAndOnDeck) {
   log.samples.push_back({0.0, 2, 30.6, 0.5, true, ""});
   log.samples.push_back({50.0, 2, 13.0, 0.2, true, ""});
   log.samples.push_back({60.0, 2, 13.0, 0.2, false, ""});  // repeated: not judged
-  const auto figures = RendezvousFigures(log, lander, r);
+  const auto figures = RendezvousFigures(log, lander, {}, r);
   auto find = [&](const std::string& name) -> const sim::judge::Criterion* {
     for (const auto& f : figures) {
       if (f.name == name) return &f;
@@ -104,8 +104,37 @@ TEST(RendezvousJudging, RangeErrorsPlacementAndOnDeck) {
   EXPECT_NEAR(find("placement_heading")->measured, 0.5, 1e-6);
   ASSERT_NE(find("on_deck"), nullptr);
   EXPECT_EQ(find("on_deck")->measured, 1.0);
+  ASSERT_NE(find("acquired_at_m"), nullptr);
+  EXPECT_NEAR(find("acquired_at_m")->measured, 30.0, 0.05);
+  ASSERT_NE(find("toward_distractor"), nullptr);
+  EXPECT_EQ(find("toward_distractor")->measured, 0.0);
   r.truth_track.back() = {101.0, 20.0, 0.0};
-  EXPECT_EQ(RendezvousFigures(log, lander, r).back().measured, 0.0);
+  EXPECT_EQ(RendezvousFigures(log, lander, {}, r).back().measured, 0.0);
+}
+
+TEST(RendezvousJudging, AnEstimateOnALayeredOutcropIsADriveTowardADistractor) {
+  const sim::terrain::Lander lander = TestLander();  // deck centre (30, 0)
+  RunResult r;
+  for (int i = 0; i <= 10; ++i) r.truth_track.push_back({static_cast<double>(i), 0.0, 0.0});
+  sim::terrain::Rock outcrop;
+  outcrop.position = Eigen::Vector3d(25.0, 8.0, 0.0);
+  outcrop.diameter = 4.0;
+  outcrop.elongation = 2.0;
+  outcrop.layers = 3;
+  sim::terrain::Rock boulder = outcrop;
+  boulder.layers = 0;  // an ordinary rock there is not a distractor
+  RendezvousLog log;
+  log.samples.push_back({1.0, 1, 26.0, 4.0, true, "far", Eigen::Vector2d(29.0, 0.5)});
+  log.samples.push_back({5.0, 1, 22.0, 4.0, true, "far", Eigen::Vector2d(25.5, 7.0)});
+  auto toward = [&](const std::vector<sim::terrain::Rock>& rocks) {
+    for (const auto& f : RendezvousFigures(log, lander, rocks, r)) {
+      if (f.name == "toward_distractor") return f.measured;
+    }
+    return -1.0;
+  };
+  EXPECT_EQ(toward({outcrop}), 1.0);
+  EXPECT_EQ(toward({boulder}), 0.0);
+  EXPECT_EQ(toward({}), 0.0);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ namespace rover::deploy::runner {
 namespace {
 
 std::vector<std::string> ExpectChoices() {
-  std::vector<std::string> out = {"on_deck", "at_ramp_base"};
+  std::vector<std::string> out = {"on_deck", "at_ramp_base", "acquired"};
   for (int f = 1; f < msg::kRendezvousFaultCount; ++f) {
     out.emplace_back(msg::RendezvousFaultName(static_cast<msg::RendezvousFault>(f)));
   }
@@ -67,6 +67,7 @@ Status LanderReturnTask::Open(TaskContext& ctx) {
   log.standoff = spec_.standoff > 0.0 ? spec_.standoff : 1.0;
   log.ramp = spec_.ramp;
   log.expect_on_deck = spec_.expect == "on_deck";
+  log.expect_acquired = spec_.expect == "acquired";
   return Status::Ok();
 }
 
@@ -102,6 +103,7 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
                               ? step.sim_start_s + spec_.time_budget_s + kGraceS
                               : std::numeric_limits<double>::infinity();
   std::string last_phase;
+  bool handed_over = false;
   out.failure = ctx.WaitUntil([&] {
     status_.TakeEach([&](const dds::Sample<rover_apl_RendezvousStatus>& s) {
       if (s->command_id != kCommandId) return;
@@ -113,6 +115,7 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
       r.range = st->range;
       r.range_sigma = st->range_sigma;
       r.features = st->features;
+      r.target = st->target_position.head<2>();
       r.new_range = st->range > 0.0 && (log.samples.empty() || st->range != log.samples.back().range);
       log.samples.push_back(r);
       if (st->ramp >= 0) log.ramp = st->ramp;
@@ -124,11 +127,32 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
            st->phase == msg::RendezvousPhase::kFailed) && !terminal) {
         terminal = *st;
       }
+      // Phase 1 only: done when the rendezvous hands over to mid range.
+      if (spec_.expect == "acquired" && !terminal && !handed_over &&
+          st->phase != msg::RendezvousPhase::kLongRange && st->phase != msg::RendezvousPhase::kFailed) {
+        handed_over = true;
+      }
     });
     overdue = !terminal && ctx.Now() > deadline;
-    return terminal.has_value() || overdue;
+    return terminal.has_value() || overdue || handed_over;
   });
   step.sim_end_s = ctx.Now();
+  if (handed_over && !terminal) {
+    // Phase 1 is over: stop the command where it is (the run ends here).
+    msg::RendezvousCommand stop;
+    stop.stamp = Time::FromSeconds(ctx.Now());
+    stop.command_id = kStopId;
+    stop.target = msg::RendezvousTarget::kStop;
+    rover_apl_RendezvousCommand wire{};
+    msg::RendezvousCommandToIdl(stop, &wire);
+    (void)command_.Write(wire);
+    log.end_phase = "MID_RANGE";
+    step.state = "succeeded";
+    step.termination = "acquired";
+    step.message = "long range handed over to mid range";
+    out.steps.push_back(step);
+    return out;
+  }
   if (overdue) {
     msg::RendezvousCommand stop;
     stop.stamp = Time::FromSeconds(ctx.Now());

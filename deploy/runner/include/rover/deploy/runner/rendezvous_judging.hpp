@@ -18,6 +18,7 @@
 #include "rover/deploy/run_report.hpp"
 #include "rover/sim/judge/judge.hpp"
 #include "rover/sim/terrain/lander.hpp"
+#include "rover/sim/terrain/terrain.hpp"
 
 namespace rover::deploy::runner {
 
@@ -31,6 +32,7 @@ struct RendezvousSample {
   /// status while the rover moved on: only these are judged against the truth.
   bool new_range = false;
   std::string features;
+  Eigen::Vector2d target = Eigen::Vector2d::Zero();  ///< [m] the lander estimate, site frame
 };
 
 /// What the lander-return task records for the judge.
@@ -38,6 +40,7 @@ struct RendezvousLog {
   double standoff = 1.0;  ///< [m] as commanded (or the service default)
   int ramp = -1;          ///< ramp the rendezvous approached (from its statuses)
   bool expect_on_deck = false;  ///< the task expects the run to end on the deck
+  bool expect_acquired = false;  ///< phase 1 only: the run ends at the hand-over to mid range
   std::vector<RendezvousSample> samples;
   std::optional<double> at_base_t;  ///< [s] first AT_RAMP_BASE
   std::string end_phase = "none";   ///< "DONE", "FAILED", ... of the terminal status
@@ -48,9 +51,13 @@ struct RendezvousLog {
 /// The rendezvous figures (measured; never pass/fail here): range_error_<d>m [%] for d in 15,
 /// 25, 35, 45 when a sighting's true distance came within 3 m of d; placement_lateral,
 /// placement_longitudinal [cm], placement_heading [deg] when AT_RAMP_BASE was reported;
-/// on_deck (1/0) from the last truth point inside the deck hexagon.
+/// on_deck (1/0) from the last truth point inside the deck hexagon; acquired_at_m, the true
+/// distance when the first estimate from a sighting was reported; toward_distractor, the
+/// sightings after which the estimate (what the next leg drives to) lay nearer a layered outcrop
+/// (a rock with layers > 0) than the lander and within 5 m of that outcrop's edge.
 std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
                                                      const sim::terrain::Lander& lander,
+                                                     const std::vector<sim::terrain::Rock>& rocks,
                                                      const RunResult& result);
 
 /// The true distance [m] from the rover origin at track point (x, y) to the deck centre.

@@ -11,8 +11,10 @@
 ///     ramp: 0                    # 0 | 1 | -1 (the first one seen)
 ///     climb: true                # drive up the ramp onto the deck after the placement
 ///     time_budget_s: 3000        # [s] the command's budget; 0 = the service's
-///     expect: on_deck            # | at_ramp_base | a fault: NOT_FOUND, TOO_FEW_STRIPES, ...
+///     expect: on_deck            # | at_ramp_base | acquired | a fault: NOT_FOUND, ...
 ///
+/// `acquired` (seed 004's phase 1 alone) passes when the rendezvous leaves LONG_RANGE for mid
+/// range (the runner then sends STOP and ends the run there).
 /// `on_deck` passes on DONE with the rover's last true position inside the deck hexagon (the
 /// judge's on_deck figure), `at_ramp_base` on DONE without climbing, a fault name on FAILED
 /// with that fault. The runner waits for the terminal status until the budget plus kGraceS
