@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -21,18 +20,21 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-constexpr double kOrientationSigma = 0.07;  // relative: the deck's silhouette with its yaw
+constexpr double kSizeSigma = 0.30;   // relative: the lit part of the lander against its height
+constexpr double kGroundSigma = 0.15;  // [m] the prior's ground height at the lander
 constexpr double kMaxWidthOverRamps = 1.3;  // group width up to this times the full length
 constexpr double kNoPriorHalfFov = 25.0 * kDegree;
 
 struct Seg {
   Vector2d a, b;  // a left of b
   double length = 0.0;
+  double contrast = 0.0;  // mean gradient magnitude along it (Sobel units)
 };
 
 struct Group {
   std::vector<int> segs;
   cv::Rect box;
+  cv::Rect anchor;  // the anchoring segment (deck top?) and the lander's height below it
   int rows = 0;
   double longest = 0.0;
   int longest_seg = -1;
@@ -108,21 +110,25 @@ class FarDetector {
     FindSegments();
     s.line_candidates = LineCandidates();
     s.texture_candidates = TextureCandidates();
-    // Fusion: a line candidate overlapping a texture candidate.
+    // Fusion: a line group whose anchor region (the top segment and the lander's height
+    // below it) overlaps a texture candidate. Every group is tried, not only those the line
+    // cue's own suppression kept (a wide group on an outcrop may cover the lander's).
     int best = -1;
     double best_score = -1.0;
     for (std::size_t i = 0; i < groups_.size(); ++i) {
       const Group& g = groups_[i];
       double tex = 0.0;
-      for (const CueBox& t : s.texture_candidates) {
-        if ((Expand(g.box, 2, 2) & t.box).area() > 0) tex = std::max(tex, t.strength);
-      }
-      if (tex <= 0.0) continue;
-      s.fused.push_back({g.box, static_cast<double>(g.rows)});
       cv::Rect tex_box;
       for (const CueBox& t : s.texture_candidates) {
-        if ((Expand(g.box, 2, 2) & t.box).area() > 0) tex_box |= t.box;
+        if ((g.anchor & t.box).area() > 0) {
+          tex = std::max(tex, t.strength);
+          tex_box |= t.box;
+        }
       }
+      if (tex <= 0.0) continue;
+      bool seen = false;
+      for (const CueBox& f : s.fused) seen = seen || (f.box & g.anchor).area() > 0;
+      if (!seen) s.fused.push_back({g.anchor, static_cast<double>(g.rows)});
       double score = g.rows + 0.5 * static_cast<double>(g.segs.size()) + tex / 3.0;
       if (prior_) {
         const double db = std::abs(Azimuth(m_, Center(g)) - prior_->bearing);
@@ -139,7 +145,8 @@ class FarDetector {
                  std::to_string(s.line_candidates.size()) + " line from " +
                  std::to_string(segs_.size()) + " level segments, " +
                  std::to_string(s.texture_candidates.size()) + " texture)";
-      if (std::getenv("ROVER_FAR_DEBUG") != nullptr) s.reason += " " + debug_;
+      // The strong level segments, drawn orange: what the line cue had to work with.
+      for (const Seg& sg : segs_) s.lines.push_back({sg.a, sg.b, LanderLine::Kind::kTruss});
       return s;
     }
     Measure(groups_[static_cast<std::size_t>(best)], &s);
@@ -210,13 +217,17 @@ class FarDetector {
   }
 
   void FindSegments() {
-    cv::Mat roi = im_(band_), blurred, edges;
+    cv::Mat roi = im_(band_), blurred, edges, gx, gy, mag;
     cv::GaussianBlur(roi, blurred, cv::Size(3, 3), 0.8);
     cv::Canny(blurred, edges, o_.canny_low, o_.canny_high);
+    cv::Sobel(blurred, gx, CV_32F, 1, 0);
+    cv::Sobel(blurred, gy, CV_32F, 0, 1);
+    cv::magnitude(gx, gy, mag);
     std::vector<cv::Vec4i> lines;
     cv::HoughLinesP(edges, lines, 1.0, kDegree, o_.min_line_length, o_.min_line_length, 1.0);
     const double tol = std::sin(o_.level_tolerance_deg * kDegree);
     const double max_len = kMaxWidthOverRamps * 2.0 * (lander_.Apothem() + lander_.ramp_length) * f_ / r_lo_;
+    std::vector<Seg> level;
     for (const cv::Vec4i& l : lines) {
       Seg sg;
       sg.a = Vector2d(l[0] + band_.x, l[1] + band_.y);
@@ -227,7 +238,31 @@ class FarDetector {
       if (sg.length < o_.min_line_length || sg.length > max_len) continue;
       const double cross = std::abs(d.x() * level_.y() - d.y() * level_.x()) / sg.length;
       if (cross > tol) continue;
-      segs_.push_back(sg);
+      // Contrast: the mean gradient magnitude along the segment (the strongest of the row and
+      // its two neighbours at each step).
+      const int steps = std::max(2, static_cast<int>(sg.length));
+      double sum = 0.0;
+      for (int k = 0; k <= steps; ++k) {
+        const Vector2d p = sg.a + d * (static_cast<double>(k) / steps);
+        const int c = std::clamp(static_cast<int>(std::lround(p.x())) - band_.x, 0, mag.cols - 1);
+        const int r = static_cast<int>(std::lround(p.y())) - band_.y;
+        float best = 0.0F;
+        for (int dr = -1; dr <= 1; ++dr) best = std::max(best, mag.at<float>(std::clamp(r + dr, 0, mag.rows - 1), c));
+        sum += best;
+      }
+      sg.contrast = sum / (steps + 1);
+      level.push_back(sg);
+    }
+    // Keep the strong ones: the painted lander's edges stand out of the soil and rock grain.
+    std::vector<double> c;
+    for (const Seg& sg : level) c.push_back(sg.contrast);
+    double median = 0.0;
+    if (!c.empty()) {
+      std::nth_element(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2), c.end());
+      median = c[c.size() / 2];
+    }
+    for (const Seg& sg : level) {
+      if (sg.contrast >= o_.min_line_contrast * median) segs_.push_back(sg);
     }
   }
 
@@ -239,12 +274,11 @@ class FarDetector {
     const double span = 2.0 * (lander_.Apothem() + lander_.ramp_length);  // [m] widest silhouette
     const double w_win = kMaxWidthOverRamps * span * f_ / r_mid_;
     const double h_win = (lander_.deck_height + 0.3) * f_ / r_mid_ + 2.0;
-    const double anchor_min = 0.4 * 2.0 * lander_.Apothem() * f_ / r_mid_;
-    std::vector<Group> all;
+    const double anchor_min = std::max(static_cast<double>(o_.min_line_length), 0.25 * 2.0 * lander_.Apothem() * f_ / r_mid_);
     for (std::size_t i = 0; i < segs_.size(); ++i) {
       const Seg& a = segs_[i];
       if (a.length < anchor_min) continue;
-      const Vector2d c = 0.5 * (a.a + a.b);
+        const Vector2d c = 0.5 * (a.a + a.b);
       Group g;
       std::vector<double> ys;
       double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
@@ -271,18 +305,19 @@ class FarDetector {
       if (g.rows < o_.min_group_lines) continue;
       g.box = cv::Rect(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0)),
                        static_cast<int>(std::ceil(x1 - x0)) + 1, static_cast<int>(std::ceil(y1 - y0)) + 1);
-      all.push_back(g);
+      g.anchor = cv::Rect(static_cast<int>(std::floor(a.a.x())), static_cast<int>(std::floor(c.y() - 2.0)),
+                          static_cast<int>(std::ceil(a.length)) + 1, static_cast<int>(std::ceil(h_win)) + 3);
+      groups_.push_back(g);
     }
-    std::sort(all.begin(), all.end(), [](const Group& a, const Group& b) {
+    std::sort(groups_.begin(), groups_.end(), [](const Group& a, const Group& b) {
       return a.rows != b.rows ? a.rows > b.rows : a.segs.size() > b.segs.size();
     });
+    // The line cue alone, as a detector: non-overlapping groups, most rows first.
     std::vector<CueBox> out;
-    for (const Group& g : all) {
+    for (const Group& g : groups_) {
       bool overlaps = false;
-      for (const Group& k : groups_) overlaps = overlaps || (g.box & k.box).area() > 0;
-      if (overlaps) continue;
-      groups_.push_back(g);
-      out.push_back({g.box, static_cast<double>(g.segs.size())});
+      for (const CueBox& k : out) overlaps = overlaps || (g.box & k.box).area() > 0;
+      if (!overlaps) out.push_back({g.box, static_cast<double>(g.segs.size())});
     }
     return out;
   }
@@ -309,17 +344,6 @@ class FarDetector {
     const double med_e2 = std::max(1.0, Median(b2));
     const double med_l = std::max(1.0, Median(l2));
     median_grey_ = 0.25 * med_l;  // LL2 is 4 x the mean of its 4 x 4 pixels
-    if (std::getenv("ROVER_FAR_DEBUG") != nullptr) {
-      double cmax = 0, lm = 0;
-      cv::Point at;
-      cv::minMaxLoc(b2, nullptr, &cmax, nullptr, &at);
-      debug_ += "F@maxC " + FormatNumber(b1.at<float>(at) / b2.at<float>(at)) + " L@maxC " +
-                FormatNumber(lmax.at<float>(at) / med_l) + " ";
-      cv::minMaxLoc(lmax, nullptr, &lm);
-      debug_ += "medE2 " + FormatNumber(med_e2) + " maxC " + FormatNumber(std::sqrt(cmax / med_e2)) +
-               " medL " + FormatNumber(med_l) + " maxL " + FormatNumber(lm) + " win " +
-               std::to_string(wx) + "x" + std::to_string(wy);
-    }
     cv::Mat mask(b1.size(), CV_8U, cv::Scalar(0));
     cv::Mat contrast(b1.size(), CV_32F, cv::Scalar(0));
     for (int r = 0; r < b1.rows; ++r) {
@@ -353,7 +377,7 @@ class FarDetector {
     return out;
   }
 
-  void Measure(const Group& g, FarSighting* s) const {
+  void Measure(const Group& g, FarSighting* s) {
     // The lander's painted parts are the brightest in the fused region: their largest bright
     // component spans the deck top to the ramp feet (deck_height), whatever the lander's yaw.
     const cv::Rect region = (Expand(g.box, 2, 2) | best_tex_) & band_;
@@ -377,8 +401,39 @@ class FarDetector {
       mid = Vector2d(region.x + centroids.at<double>(k_best, 0), region.y + centroids.at<double>(k_best, 1));
     }
     const double h_px = std::max(h, 2.0);
-    const double range = lander_.deck_height * f_ / h_px;
-    const double rel = std::hypot(o_.extent_sigma_px / h_px, kOrientationSigma);
+    // (a) Angular size: deck top to ramp feet is deck_height; at long range the lit part reads
+    // short by a pixel or two, hence the wide sigma.
+    const double r_size = lander_.deck_height * f_ / h_px;
+    const double s_size = std::hypot(o_.extent_sigma_px / h_px, kSizeSigma) * r_size;
+    // (b) Where the feet meet the ground: the row of the component's bottom seen as a point on
+    // the ground plane at the prior's ground height (kGroundSigma), by bisection along the ray.
+    double range = r_size, range_sigma = s_size;
+    if (k_best > 0) {
+      const double v_feet = region.y + stats.at<int>(k_best, cv::CC_STAT_TOP) + h;
+      const double b = Azimuth(m_, mid);
+      const double z0 = prior_ ? prior_->ground_z : 0.0;
+      const auto ground_range = [&](double v, double z) {
+        double lo = 1.0, hi = 4.0 * o_.max_range;
+        for (int it = 0; it < 60; ++it) {
+          const double r = 0.5 * (lo + hi);
+          const auto px = m_.Project(Vector3d(r * std::cos(b), r * std::sin(b), z));
+          if (!px) return -1.0;
+          (px->y() > v ? lo : hi) = r;  // farther ground points image higher (smaller v)
+        }
+        return 0.5 * (lo + hi);
+      };
+      const double r_g = ground_range(v_feet, z0);
+      const double r_far = ground_range(v_feet - o_.extent_sigma_px, z0 + kGroundSigma);
+      const double r_near = ground_range(v_feet + o_.extent_sigma_px, z0 - kGroundSigma);
+      if (r_g > 0.0 && r_far > 0.0 && r_near > 0.0 && r_g < 2.0 * o_.max_range) {
+        const double s_g = std::max(0.5 * (r_far - r_near), 0.02 * r_g);
+        const double w_size = 1.0 / (s_size * s_size), w_g = 1.0 / (s_g * s_g);
+        range = (w_size * r_size + w_g * r_g) / (w_size + w_g);
+        range_sigma = 1.0 / std::sqrt(w_size + w_g);
+        ground_range_ = r_g;
+      }
+    }
+    const double rel = range_sigma / range;
     s->found = true;
     s->box = k_best > 0 ? cv::Rect(region.x + stats.at<int>(k_best, cv::CC_STAT_LEFT),
                                    region.y + stats.at<int>(k_best, cv::CC_STAT_TOP),
@@ -402,8 +457,10 @@ class FarDetector {
       s->lines.push_back({sg.a, sg.b, LanderLine::Kind::kDeck});
     }
     char buf[160];
-    std::snprintf(buf, sizeof buf, "far: lines %zu on %d rows, lander %.0fx%.0f px; %zu line / %zu texture candidates",
-                  g.segs.size(), g.rows, w, h, s->line_candidates.size(), s->texture_candidates.size());
+    std::snprintf(buf, sizeof buf,
+                  "far: lines %zu on %d rows, lander %.0fx%.0f px (size %.0f m, feet %.0f m); %zu line / %zu texture candidates",
+                  g.segs.size(), g.rows, w, h, r_size, ground_range_, s->line_candidates.size(),
+                  s->texture_candidates.size());
     s->features = buf;
     s->reason = "lander at " + FormatNumber(range) + " m";
   }
@@ -418,8 +475,8 @@ class FarDetector {
   Vector2d level_ = Vector2d::UnitX();
   std::vector<Seg> segs_;
   std::vector<Group> groups_;
-  mutable std::string debug_;
   mutable double median_grey_ = 128.0;
+  double ground_range_ = 0.0;
   cv::Rect best_tex_;
 };
 
@@ -434,6 +491,7 @@ Status LongRangeOptions::Validate(const char* prefix) const {
   ROVER_RETURN_IF_ERROR(CheckRange(p + "level_tolerance_deg", level_tolerance_deg, 0.5, 45.0, "deg"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "min_line_length", min_line_length, 3, 200, "px"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "min_group_lines", min_group_lines, 1, 20));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "min_line_contrast", min_line_contrast, 0.0, 20.0));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "min_contrast", min_contrast, 0.0, 100.0));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "max_fine_ratio", max_fine_ratio, Bounds::OpenLow(0.0, 100.0)));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "min_brightness", min_brightness, 0.0, 100.0));
@@ -450,6 +508,7 @@ void LongRangeOptions::BindParams(ParamBinder<LongRangeOptions>& b) {
   b.Bind("level_tolerance_deg", &O::level_tolerance_deg, "deg", "level segment: angle to a level line");
   b.Bind("min_line_length", &O::min_line_length, "px", "shortest Hough segment");
   b.Bind("min_group_lines", &O::min_group_lines, "", "segments on distinct rows in a line candidate");
+  b.Bind("min_line_contrast", &O::min_line_contrast, "", "segment contrast over the band's median segment");
   b.Bind("min_contrast", &O::min_contrast, "", "texture: coarse detail over the band's median");
   b.Bind("max_fine_ratio", &O::max_fine_ratio, "", "texture: fine over coarse detail energy");
   b.Bind("min_brightness", &O::min_brightness, "", "texture: brightest part over the band's median");
@@ -485,8 +544,8 @@ void DrawFarSighting(cv::Mat* bgr, const FarSighting& s) {
   for (const CueBox& c : s.line_candidates) cv::rectangle(*bgr, c.box, cv::Scalar(0, 255, 255), thick);
   for (const CueBox& c : s.texture_candidates) cv::rectangle(*bgr, c.box, cv::Scalar(255, 0, 255), thick);
   for (const auto& l : s.lines) {
-    cv::line(*bgr, cv::Point2d(l.a.x(), l.a.y()), cv::Point2d(l.b.x(), l.b.y()), cv::Scalar(0, 255, 255),
-             thick, cv::LINE_AA);
+    cv::line(*bgr, cv::Point2d(l.a.x(), l.a.y()), cv::Point2d(l.b.x(), l.b.y()),
+             l.kind == LanderLine::Kind::kDeck ? cv::Scalar(0, 255, 255) : cv::Scalar(0, 128, 255), 1);
   }
   const cv::Point org(10, static_cast<int>(30 * scale));
   if (!s.found) {

@@ -3,7 +3,7 @@
 // prints, per range band, the candidates of each cue alone and fused with the true and false ones
 // (a candidate is true when its box overlaps the lander's projected box), and checks that the
 // fused detector finds the lander in most views, never reports a distractor, and measures the
-// bearing within the lander's half width and the range within 25 %. Set ROVER_FAR_DRAW=<folder>
+// bearing within 2 deg and the range within 50 % (rough by design). Set ROVER_FAR_DRAW=<folder>
 // to save every view drawn.
 
 #include <gtest/gtest.h>
@@ -182,7 +182,9 @@ TEST_F(LongRangeSceneTest, FindsTheLanderFrom60To125MAndNeverADistractor) {
   const int views_total = near_band.views + far_band.views;
   EXPECT_GE(near_band.found + far_band.found, views_total - 2);
   EXPECT_EQ(near_band.wrong + far_band.wrong, 0);
-  EXPECT_LE(std::max(near_band.max_range_error, far_band.max_range_error), 0.25);
+  // Rough range by design (the executor fuses it with the a-priori estimate), sharp bearing.
+  EXPECT_LE(std::max(near_band.max_range_error, far_band.max_range_error), 0.5);
+  EXPECT_LE(std::max(near_band.max_bearing_error, far_band.max_bearing_error), 2.0 * kDegree);
 }
 
 TEST(LongRangeDetector, BadInputIsNamed) {

@@ -65,9 +65,11 @@ struct LongRangeOptions {
   double max_range = 160.0;          ///< [m] farthest
   double canny_low = 20.0;           ///< Canny hysteresis thresholds [grey levels]
   double canny_high = 50.0;
-  double level_tolerance_deg = 12.0; ///< level segment: angle to the image of a level line
+  double level_tolerance_deg = 20.0; ///< level segment: angle to the image of a level line
   int min_line_length = 5;           ///< [px] shortest segment (Hough)
   int min_group_lines = 2;           ///< segments on distinct rows in a line candidate
+  /// Segment kept when its mean gradient along it is >= this times the band's median segment's.
+  double min_line_contrast = 2.0;
   double min_contrast = 2.5;         ///< texture: sqrt(E2 / band median E2)
   double max_fine_ratio = 1.6;       ///< texture: E1 / E2 (smooth panels, sharp edges)
   double min_brightness = 1.3;       ///< texture: max LL2 / band median LL2
