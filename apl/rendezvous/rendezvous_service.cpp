@@ -183,6 +183,9 @@ void RendezvousService::Publish(const ExecutorOutput& out) {
     } else {
       log::Info("rendezvous", {{"phase", msg::RendezvousPhaseName(st.phase)},
                                {"range", st.range},
+                               {"target_x", st.target_position.x()},
+                               {"target_y", st.target_position.y()},
+                               {"target_sigma", st.target_sigma},
                                {"message", st.message}});
     }
   }

@@ -22,6 +22,7 @@ using Eigen::Vector3d;
 
 constexpr double kSizeSigma = 0.30;   // relative: the lit part of the lander against its height
 constexpr double kGroundSigma = 0.15;  // [m] the prior's ground height at the lander
+constexpr double kMinFeetSigma = 0.08;  // relative: the feet's row against the ground's relief
 constexpr double kMaxWidthOverRamps = 1.3;  // group width up to this times the full length
 constexpr double kNoPriorHalfFov = 25.0 * kDegree;
 
@@ -409,7 +410,8 @@ class FarDetector {
     // the ground plane at the prior's ground height (kGroundSigma), by bisection along the ray.
     double range = r_size, range_sigma = s_size;
     if (k_best > 0) {
-      const double v_feet = region.y + stats.at<int>(k_best, cv::CC_STAT_TOP) + h;
+      // The centre of the component's last row (pixel centres at integer coordinates).
+      const double v_feet = region.y + stats.at<int>(k_best, cv::CC_STAT_TOP) + h - 1.0;
       const double b = Azimuth(m_, mid);
       const double z0 = prior_ ? prior_->ground_z : 0.0;
       const auto ground_range = [&](double v, double z) {
@@ -425,8 +427,11 @@ class FarDetector {
       const double r_g = ground_range(v_feet, z0);
       const double r_far = ground_range(v_feet - o_.extent_sigma_px, z0 + kGroundSigma);
       const double r_near = ground_range(v_feet + o_.extent_sigma_px, z0 - kGroundSigma);
-      if (r_g > 0.0 && r_far > 0.0 && r_near > 0.0 && r_g < 2.0 * o_.max_range) {
-        const double s_g = std::max(0.5 * (r_far - r_near), 0.02 * r_g);
+      // The feet are trusted only where they agree with the size (a bright part that ends
+      // above the ground, e.g. a ramp turned away, would put them far beyond).
+      if (r_g > 0.0 && r_far > 0.0 && r_near > 0.0 && r_g < 2.0 * o_.max_range &&
+          std::abs(r_g - r_size) <= 2.0 * s_size) {
+        const double s_g = std::max(0.5 * (r_far - r_near), kMinFeetSigma * r_g);
         const double w_size = 1.0 / (s_size * s_size), w_g = 1.0 / (s_g * s_g);
         range = (w_size * r_size + w_g * r_g) / (w_size + w_g);
         range_sigma = 1.0 / std::sqrt(w_size + w_g);
@@ -443,7 +448,21 @@ class FarDetector {
     s->bearing_sigma = std::max(0.25 * std::max(w, 4.0) / f_, 1.0 / f_);
     s->range = range;
     s->range_sigma = rel * range;
+    // The deck top: on the ray through the component's top row at the bearing, at horizontal
+    // range `range` from the rover origin (so the rover's pitch and roll carry into its height).
     s->center = Vector3d(range * std::cos(s->bearing), range * std::sin(s->bearing), lander_.deck_height);
+    if (k_best > 0) {
+      const double v_top = region.y + stats.at<int>(k_best, cv::CC_STAT_TOP);
+      if (const auto ray = m_.Unproject(Vector2d(mid.x(), v_top)); ray) {
+        const Eigen::Vector2d c(ray->origin.x(), ray->origin.y()), d(ray->direction.x(), ray->direction.y());
+        const double a = d.squaredNorm(), b = 2.0 * c.dot(d), cc = c.squaredNorm() - range * range;
+        const double disc = b * b - 4.0 * a * cc;
+        if (a > 1e-12 && disc >= 0.0) {
+          const double t = (-b + std::sqrt(disc)) / (2.0 * a);
+          if (t > 0.0) s->center = ray->origin + t * ray->direction;
+        }
+      }
+    }
     const Eigen::Matrix2d R =
         (Eigen::Matrix2d() << std::cos(s->bearing), -std::sin(s->bearing), std::sin(s->bearing),
          std::cos(s->bearing))

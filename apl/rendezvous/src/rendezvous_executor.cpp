@@ -22,6 +22,7 @@ constexpr double kLookHeight = 0.6;      // [m] aim this far above the ground at
 constexpr double kMaxDriveS = 600.0;     // [s] budget of one directed/servo drive
 constexpr int kMaxMobilityRetries = 3;
 constexpr double kApproachShiftDeg = 20.0;  // [deg] approach point moved per refused leg
+constexpr double kFarRangeFloor = 0.08;    // relative range sigma of an estimate from far fixes
 constexpr double kTrustedSigma = 1.0;       // [m] an estimate this good may lead a leg
 constexpr int kMaxBlindLegs = 2;            // legs in a row led by the estimate alone
 
@@ -423,19 +424,31 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     // and a soil edge 15 m off the estimate passed as the lander (campaign seed 8).
     double gate = options_.prior_gate;
     bool inside = off <= gate;
+    std::string detail;
     if (fix.far) {
       // Long range: the fix is rough along the view and sharp across it, the estimate rough in
-      // both; gate on their combined covariance (3 sigma). The detector only searched the
-      // window about the estimate, so this does not open the gate to the whole view.
-      const Eigen::Matrix2d cov_fix =
+      // both. Gate the bearing (3 sigma of both, at least 1 deg) and, loosely, the range (3
+      // sigma of both): the detector only searched the window about the estimate, and a biased
+      // range must not make the lander itself "inconsistent".
+      const Eigen::Vector2d rover = RoverXy();
+      const Eigen::Vector2d to_fix = c_site.head<2>() - rover, to_est = center_ - rover;
+      const double r_f = to_fix.norm(), r_e = std::max(to_est.norm(), 1.0);
+      const double db = std::abs(geometry::WrapAngle(std::atan2(to_fix.y(), to_fix.x()) -
+                                                     std::atan2(to_est.y(), to_est.x())));
+      const Eigen::Vector2d u = to_fix.normalized(), n(-u.y(), u.x());
+      const Eigen::Matrix2d c2 =
           (site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose())
               .topLeftCorner<2, 2>();
-      const Eigen::Matrix2d cov = cov_fix + info_.inverse();
-      const Eigen::Vector2d e = c_site.head<2>() - center_;
-      const double d2 = e.dot(cov.ldlt().solve(e));
-      gate = 3.0;  // sigmas
-      inside = d2 <= 9.0;
-      off = std::sqrt(std::max(0.0, d2));
+      const double s_est = std::sqrt(std::max(0.0, info_.inverse().trace() / 2.0));
+      const double s_b = std::hypot(std::sqrt(std::max(0.0, n.dot(c2 * n))) / r_f, s_est / r_e);
+      const double s_r = std::hypot(std::sqrt(std::max(0.0, u.dot(c2 * u))), s_est);
+      const double b_gate = std::max(3.0 * s_b, kDegree);
+      inside = db <= b_gate && std::abs(r_f - r_e) <= 3.0 * s_r;
+      off = (c_site.head<2>() - center_).norm();
+      detail = " (fix " + FormatNumber(r_f) + " m at " + FormatNumber(db / kDegree) +
+               " deg from the estimate's bearing, gate " + FormatNumber(b_gate / kDegree) +
+               " deg; estimate " + FormatNumber(r_e) + " m, range gate " + FormatNumber(3.0 * s_r) +
+               " m)";
     }
     if (inside) {
       const Eigen::Matrix3d cov =
@@ -445,6 +458,20 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       info_ += inv;
       info_vec_ += inv * c_site.head<2>();
       center_ = info_.ldlt().solve(info_vec_);
+      if (fix.far) {
+        // Far fixes share their range bias (the lit part's size, the ground under the feet):
+        // do not let averaging them make the range better than kFarRangeFloor of the distance.
+        const Eigen::Vector2d to = center_ - RoverXy();
+        const double r = to.norm();
+        if (r > 1.0) {
+          const Eigen::Vector2d u = to / r;
+          const double i_u = u.dot(info_ * u), i_max = 1.0 / std::pow(kFarRangeFloor * r, 2);
+          if (i_u > i_max) {
+            info_ -= (i_u - i_max) * u * u.transpose();
+            info_vec_ = info_ * center_;
+          }
+        }
+      }
       center_z_ = c_site.z() - lander_.deck_height;  // the ground at the deck centre
       const Eigen::Vector2d d = center_ - RoverXy();
       const Eigen::Vector3d in_rover = fix.center_rover;
@@ -464,9 +491,9 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       ++fixes_;
     } else {
       status_.features = fix.features;
-      const char* unit = fix.far ? " sigma" : " m";
-      status_.message = "a lander-like fix " + FormatNumber(off) + unit +
-                        " from the estimate was rejected (gate " + FormatNumber(gate) + unit + ")";
+      status_.message = "a lander-like fix " + FormatNumber(off) +
+                        " m from the estimate was rejected" +
+                        (fix.far ? detail : " (gate " + FormatNumber(gate) + " m)");
     }
   } else {
     status_.features = "";
