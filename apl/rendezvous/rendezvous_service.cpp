@@ -58,7 +58,8 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
   vision.prior_gate = options.prior_gate;
   ROVER_ASSIGN_OR_RETURN(vision.lander, ReadParams<LanderDetectorOptions>(params, "lander_detector."));
   ROVER_ASSIGN_OR_RETURN(vision.far, ReadParams<LongRangeOptions>(params, "long_range."));
-  vision.far_range = options.sight_range;
+  // The long-range detector where the mid-range one cannot reach.
+  vision.far_range = std::max(options.sight_range, vision.lander.max_range);
   ROVER_ASSIGN_OR_RETURN(vision.stripes, ReadParams<StripeDetectorOptions>(params, "stripes."));
   ROVER_ASSIGN_OR_RETURN(vision.pose, ReadParams<RampPoseOptions>(params, "ramp_pose."));
   detection_dir_ = params.GetString(kDetectionDirKey);

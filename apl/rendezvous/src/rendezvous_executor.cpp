@@ -504,9 +504,10 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     // Beyond the detector's reach the a-priori estimate leads: drive a leg towards it and look
     // again (a fix was not seen, so nothing false is driven to).
     const double prior_range = (center_ - RoverXy()).norm();
-    // Long range (seed 004 phase 1): the traverse starts only once the lander is acquired; a
-    // later miss lets the estimate lead the next leg (reacquisition every reacquire_step).
-    if (prior_range > options_.sight_range && !fix.found && fixes_ > 0) {
+    // Long range (seed 004 phase 1): the traverse starts only once the long-range detector has
+    // acquired the lander; a later miss lets the estimate lead the next leg (reacquisition every
+    // reacquire_step), as does a mid-range miss beyond sight_range (its reach is ~35 m).
+    if (prior_range > options_.sight_range && !fix.found && (fixes_ > 0 || !fix.far)) {
       search_count_ = 0;
       search_bearing_offset_ = 0.0;
       status_.message += "; beyond sight range (" + FormatNumber(prior_range) +

@@ -30,6 +30,7 @@ struct World {
   bool lander_visible = true;
   double sight_limit = 60.0;  // [m] the fake detector sees the lander within this range
   double blind_within = 0.0;  // [m] ... and not nearer than this (a view it misses)
+  double far_from = 35.0;     // [m] beyond this the long-range detector looks
   std::optional<Eigen::Vector2d> decoy;  // reported instead of the lander while set
   std::optional<Eigen::Vector2d> rock;  // apl-mobility refuses (NOPATH) goals within 1.5 m of it
   int stripes = 6;
@@ -82,6 +83,7 @@ class FakeVision : public RendezvousVision {
     const Eigen::Vector3d c(w_->center.x(), w_->center.y(), w_->lander.deck_height);
     const Eigen::Vector3d in_rover = w_->SiteFromRover().inverse() * c;
     const double range = in_rover.head<2>().norm();
+    f.far = range > w_->far_from;  // the long-range detector looked
     if (w_->decoy) {
       f.found = true;
       f.center_rover = w_->SiteFromRover().inverse() *
@@ -96,7 +98,6 @@ class FakeVision : public RendezvousVision {
     }
     std::normal_distribution<double> n(0.0, w_->fix_noise);
     f.found = true;
-    f.far = range > 30.0;
     f.center_rover = in_rover * (1.0 + n(w_->rng));
     f.covariance = Eigen::Matrix3d::Identity() * std::pow(w_->fix_noise * range, 2);
     f.features = "fake";
@@ -376,6 +377,17 @@ TEST(RendezvousExecutorTest, FarAwayTheLanderIsAcquiredBeforeTheFirstLeg) {
   ExpectPlacedAndClimbed(h);
   EXPECT_TRUE(h.SawPhase(RendezvousPhase::kLongRange));
   // Legs are at most reacquire_step long, each after a sighting.
+  ASSERT_FALSE(h.drives.empty());
+  EXPECT_LE(h.drives.front().goal.head<2>().norm(), 5.0 + 1e-9);
+}
+
+TEST(RendezvousExecutorTest, BeyondSightRangeAMidRangeMissLetsTheEstimateLead) {
+  Harness h;
+  h.world.center = Eigen::Vector2d(33.0, 0.0);  // inside the mid-range detector's reach
+  h.world.yaw = kPi;
+  h.world.sight_limit = 30.0;                   // ... which sees it only inside 30 m
+  h.Start(h.Command());
+  ExpectPlacedAndClimbed(h);
   ASSERT_FALSE(h.drives.empty());
   EXPECT_LE(h.drives.front().goal.head<2>().norm(), 5.0 + 1e-9);
 }

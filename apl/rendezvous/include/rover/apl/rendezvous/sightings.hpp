@@ -38,7 +38,7 @@ struct NavcamPair {
 /// The lander seen at long or mid range.
 struct LanderFix {
   bool found = false;
-  bool far = false;  ///< from the long-range detector (rough range, sharp bearing)
+  bool far = false;  ///< the long-range detector looked (rough range, sharp bearing)
   Eigen::Vector3d center_rover = Eigen::Vector3d::Zero();  ///< deck centre in R [m]
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< of center_rover [m^2]
   std::string features;  ///< which features carried the fix ("deck lines 3, legs 4, stereo")
