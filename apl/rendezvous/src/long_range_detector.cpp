@@ -22,7 +22,8 @@ using Eigen::Vector3d;
 
 constexpr double kSizeSigma = 0.30;   // relative: the lit part of the lander against its height
 constexpr double kGroundSigma = 0.15;  // [m] the prior's ground height at the lander
-constexpr double kMinFeetSigma = 0.08;  // relative: the feet's row against the ground's relief
+constexpr double kMinFeetSigma = 0.08;
+constexpr double kOverBright = 1.15;   // the lander's brightest part over the band's 90th percentile  // relative: the feet's row against the ground's relief
 constexpr double kMaxWidthOverRamps = 1.3;  // group width up to this times the full length
 constexpr double kNoPriorHalfFov = 25.0 * kDegree;
 
@@ -49,6 +50,15 @@ double Azimuth(const geometry::CameraModel& m, const Vector2d& px) {
   const auto ray = m.Unproject(px);
   if (!ray) return 0.0;
   return std::atan2(ray->direction.y(), ray->direction.x());
+}
+
+// Quantile q in [0, 1] of a float map's values (a copy is partially sorted).
+double Percentile(const cv::Mat& m, double q) {
+  std::vector<float> v(m.begin<float>(), m.end<float>());
+  if (v.empty()) return 0.0;
+  auto at = v.begin() + static_cast<std::ptrdiff_t>(std::min(v.size() - 1, static_cast<std::size_t>(q * v.size())));
+  std::nth_element(v.begin(), at, v.end());
+  return *at;
 }
 
 // Median of the finite values of a float map (a copy is partially sorted).
@@ -345,6 +355,9 @@ class FarDetector {
     const double med_e2 = std::max(1.0, Median(b2));
     const double med_l = std::max(1.0, Median(l2));
     median_grey_ = 0.25 * med_l;  // LL2 is 4 x the mean of its 4 x 4 pixels
+    // The painted lander outshines the band's bright background too (a far apron or sunlit
+    // soil filling a tenth of the band): its brightest part must beat the 90th percentile.
+    const double bright = std::max(o_.min_brightness * med_l, kOverBright * Percentile(l2, 0.9));
     cv::Mat mask(b1.size(), CV_8U, cv::Scalar(0));
     cv::Mat contrast(b1.size(), CV_32F, cv::Scalar(0));
     for (int r = 0; r < b1.rows; ++r) {
@@ -353,7 +366,7 @@ class FarDetector {
         const double C = std::sqrt(E2 / med_e2);
         contrast.at<float>(r, c) = static_cast<float>(C);
         if (C >= o_.min_contrast && E1 <= o_.max_fine_ratio * E2 &&
-            lmax.at<float>(r, c) >= o_.min_brightness * med_l) {
+            lmax.at<float>(r, c) >= bright) {
           mask.at<std::uint8_t>(r, c) = 255;
         }
       }

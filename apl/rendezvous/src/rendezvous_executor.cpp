@@ -439,9 +439,13 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       const Eigen::Matrix2d c2 =
           (site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose())
               .topLeftCorner<2, 2>();
-      const double s_est = std::sqrt(std::max(0.0, info_.inverse().trace() / 2.0));
-      const double s_b = std::hypot(std::sqrt(std::max(0.0, n.dot(c2 * n))) / r_f, s_est / r_e);
-      const double s_r = std::hypot(std::sqrt(std::max(0.0, u.dot(c2 * u))), s_est);
+      // The estimate's own spread across and along the view (not its mean sigma: after one far
+      // fix it is sharp across the view and rough along it).
+      const Eigen::Matrix2d ce = info_.inverse();
+      const double s_est_n = std::sqrt(std::max(0.0, n.dot(ce * n)));
+      const double s_est_u = std::sqrt(std::max(0.0, u.dot(ce * u)));
+      const double s_b = std::hypot(std::sqrt(std::max(0.0, n.dot(c2 * n))) / r_f, s_est_n / r_e);
+      const double s_r = std::hypot(std::sqrt(std::max(0.0, u.dot(c2 * u))), s_est_u);
       const double b_gate = std::max(3.0 * s_b, kDegree);
       inside = db <= b_gate && std::abs(r_f - r_e) <= 3.0 * s_r;
       off = (c_site.head<2>() - center_).norm();
