@@ -23,6 +23,8 @@ using Eigen::Vector3d;
 constexpr double kSizeSigma = 0.30;   // relative: the lit part of the lander against its height
 constexpr double kGroundSigma = 0.15;  // [m] the prior's ground height at the lander
 constexpr double kMinFeetSigma = 0.08;
+constexpr double kMinStereoNcc = 0.7;   // lowest correlation of a stereo range
+constexpr double kStereoSigmaPx = 0.3;  // [px] 1-sigma of the matched disparity
 constexpr double kOverBright = 1.15;   // the lander's brightest part over the band's 90th percentile  // relative: the feet's row against the ground's relief
 constexpr double kMaxWidthOverRamps = 1.3;  // group width up to this times the full length
 constexpr double kNoPriorHalfFov = 25.0 * kDegree;
@@ -109,10 +111,10 @@ Status CheckImage(const cv::Mat& im, const geometry::CameraModel& m) {
 
 class FarDetector {
  public:
-  FarDetector(const cv::Mat& im, const geometry::CameraModel& m,
-              const hwconfig::LanderDescription& lander, const LongRangeOptions& o,
-              const std::optional<LanderPrior>& prior)
-      : im_(im), m_(m), lander_(lander), o_(o), prior_(prior) {}
+  FarDetector(const cv::Mat& im, const geometry::CameraModel& m, const cv::Mat& right,
+              const geometry::CameraModel* right_model, const hwconfig::LanderDescription& lander,
+              const LongRangeOptions& o, const std::optional<LanderPrior>& prior)
+      : im_(im), m_(m), right_(right), rm_(right_model), lander_(lander), o_(o), prior_(prior) {}
 
   FarSighting Run() {
     FarSighting s;
@@ -391,6 +393,62 @@ class FarDetector {
     return out;
   }
 
+  // Range of the left-image patch by correlation along its ray (see Measure). False when the
+  // best correlation is below kMinStereoNcc or at the end of the searched range.
+  bool StereoRange(const cv::Rect& patch, double* range, double* sigma, double* ncc_out) const {
+    if (patch.width < 5 || patch.height < 4) return false;
+    const Vector2d c(patch.x + 0.5 * (patch.width - 1), patch.y + 0.5 * (patch.height - 1));
+    const auto ray = m_.Unproject(c);
+    if (!ray) return false;
+    cv::Mat tpl;
+    im_(patch).convertTo(tpl, CV_32F);
+    cv::Scalar tm, ts;
+    cv::meanStdDev(tpl, tm, ts);
+    if (ts[0] < 3.0) return false;
+    // Hypotheses: distances t along the ray, stepped so the right image moves ~0.25 px.
+    const double t_lo = std::max(2.0, (prior_ ? std::max(o_.min_range, prior_->range - prior_->range_window) : o_.min_range) * 0.8);
+    const double t_hi = (prior_ ? std::min(o_.max_range, prior_->range + prior_->range_window) : o_.max_range) * 1.25;
+    std::vector<double> ts_, scores;
+    double t = t_lo;
+    const cv::Size sz(patch.width, patch.height);
+    while (t <= t_hi && ts_.size() < 2000) {
+      const Vector3d p = ray->origin + t * ray->direction;
+      const auto pr = rm_->Project(p);
+      if (!pr) break;
+      cv::Mat win;
+      cv::getRectSubPix(right_, sz, cv::Point2f(static_cast<float>(pr->x()), static_cast<float>(pr->y())), win, CV_32F);
+      cv::Scalar wm, wsd;
+      cv::meanStdDev(win, wm, wsd);
+      double score = -1.0;
+      if (wsd[0] > 1e-3) {
+        score = (tpl - tm[0]).dot(win - wm[0]) / (static_cast<double>(tpl.total()) * ts[0] * wsd[0]);
+      }
+      ts_.push_back(t);
+      scores.push_back(score);
+      // Step: the right pixel moves by about f B / t^2 per metre; keep ~0.25 px per step.
+      const auto pr2 = rm_->Project(ray->origin + (t * 1.01) * ray->direction);
+      const double px_per_m = pr2 ? std::max(1e-4, (*pr2 - *pr).norm() / (0.01 * t)) : 1e-2;
+      t += std::max(0.02, 0.25 / px_per_m);
+    }
+    if (scores.size() < 3) return false;
+    const auto best = std::max_element(scores.begin(), scores.end());
+    const std::size_t k = static_cast<std::size_t>(best - scores.begin());
+    if (*best < kMinStereoNcc || k == 0 || k + 1 == scores.size()) return false;
+    // Parabola through the three scores around the peak (in t, unevenly spaced: use the
+    // local spacing as equal, the steps change slowly).
+    const double ym = scores[k - 1], y0 = scores[k], yp = scores[k + 1];
+    const double den = ym - 2.0 * y0 + yp;
+    const double off = std::abs(den) > 1e-9 ? std::clamp(0.5 * (ym - yp) / den, -0.5, 0.5) : 0.0;
+    const double step = 0.5 * (ts_[k + 1] - ts_[k - 1]);
+    const double t_best = ts_[k] + off * step;
+    const Vector3d p = ray->origin + t_best * ray->direction;
+    *range = std::hypot(p.x(), p.y());
+    // 1-sigma: kStereoSigmaPx of disparity, a step being ~0.25 px.
+    *sigma = std::max(0.01 * *range, step * (kStereoSigmaPx / 0.25) * (*range / t_best));
+    *ncc_out = *best;
+    return true;
+  }
+
   void Measure(const Group& g, FarSighting* s) {
     // The lander's painted parts are the brightest in the fused region: their largest bright
     // component spans the deck top to the ramp feet (deck_height), whatever the lander's yaw.
@@ -451,6 +509,27 @@ class FarDetector {
         ground_range_ = r_g;
       }
     }
+    // (c) Stereo: the lit part's patch slid along its left ray, each hypothesised range
+    // projected into the right image; the best normalised cross-correlation, refined by a
+    // parabola. Replaces (a) and (b) when it correlates: at 125 m the disparity is ~2 px and
+    // 0.25 px of it is 12 %, but it does not depend on the ground or on what is lit.
+    if (k_best > 0 && rm_ != nullptr && !right_.empty()) {
+      const cv::Rect patch = Expand(cv::Rect(region.x + stats.at<int>(k_best, cv::CC_STAT_LEFT),
+                                             region.y + stats.at<int>(k_best, cv::CC_STAT_TOP),
+                                             static_cast<int>(w), static_cast<int>(h)),
+                                    3, 2) &
+                             cv::Rect(0, 0, im_.cols, im_.rows);
+      double r_st = 0.0, s_st = 0.0, ncc = 0.0;
+      if (StereoRange(patch, &r_st, &s_st, &ncc)) {
+        // The lit part is mostly a ramp, between the deck edge and its foot: on average half
+        // of (apothem + half a ramp) nearer than the deck centre, as much either way.
+        const double depth = 0.5 * (lander_.Apothem() + 0.5 * lander_.ramp_length);
+        range = r_st + depth;
+        range_sigma = std::hypot(s_st, depth);
+        stereo_range_ = r_st;
+        stereo_ncc_ = ncc;
+      }
+    }
     const double rel = range_sigma / range;
     s->found = true;
     s->box = k_best > 0 ? cv::Rect(region.x + stats.at<int>(k_best, cv::CC_STAT_LEFT),
@@ -490,15 +569,17 @@ class FarDetector {
     }
     char buf[160];
     std::snprintf(buf, sizeof buf,
-                  "far: lines %zu on %d rows, lander %.0fx%.0f px (size %.0f m, feet %.0f m); %zu line / %zu texture candidates",
-                  g.segs.size(), g.rows, w, h, r_size, ground_range_, s->line_candidates.size(),
-                  s->texture_candidates.size());
+                  "far: lines %zu on %d rows, lander %.0fx%.0f px (size %.0f m, feet %.0f m, stereo %.0f m ncc %.2f); %zu line / %zu texture candidates",
+                  g.segs.size(), g.rows, w, h, r_size, ground_range_, stereo_range_, stereo_ncc_,
+                  s->line_candidates.size(), s->texture_candidates.size());
     s->features = buf;
     s->reason = "lander at " + FormatNumber(range) + " m";
   }
 
   const cv::Mat& im_;
   const geometry::CameraModel& m_;
+  const cv::Mat& right_;
+  const geometry::CameraModel* rm_;
   const hwconfig::LanderDescription& lander_;
   const LongRangeOptions& o_;
   const std::optional<LanderPrior>& prior_;
@@ -509,6 +590,8 @@ class FarDetector {
   std::vector<Group> groups_;
   mutable double median_grey_ = 128.0;
   double ground_range_ = 0.0;
+  double stereo_range_ = 0.0;
+  double stereo_ncc_ = 0.0;
   cv::Rect best_tex_;
 };
 
@@ -548,6 +631,7 @@ void LongRangeOptions::BindParams(ParamBinder<LongRangeOptions>& b) {
 }
 
 Result<FarSighting> DetectLanderFar(const cv::Mat& left8, const geometry::CameraModel& left_model,
+                                    const cv::Mat& right8, const geometry::CameraModel* right_model,
                                     const hwconfig::LanderDescription& lander,
                                     const LongRangeOptions& options,
                                     const std::optional<LanderPrior>& prior) {
@@ -555,6 +639,12 @@ Result<FarSighting> DetectLanderFar(const cv::Mat& left8, const geometry::Camera
   ROVER_RETURN_IF_ERROR(options.Validate());
   ROVER_RETURN_IF_ERROR(lander.Validate());
   ROVER_RETURN_IF_ERROR(CheckImage(left8, left_model));
+  if (!right8.empty()) {
+    if (right_model == nullptr) return InvalidArgument("right image: given without a right model");
+    if (right8.type() != CV_8UC1 || right8.cols != right_model->width() || right8.rows != right_model->height()) {
+      return InvalidArgument("right image: not an 8-bit grey image of its model's size");
+    }
+  }
   if (prior) {
     ROVER_RETURN_IF_ERROR(CheckFinite("prior.bearing", prior->bearing));
     ROVER_RETURN_IF_ERROR(CheckPositive("prior.bearing_window", prior->bearing_window, "rad"));
@@ -562,7 +652,7 @@ Result<FarSighting> DetectLanderFar(const cv::Mat& left8, const geometry::Camera
     ROVER_RETURN_IF_ERROR(CheckPositive("prior.range_window", prior->range_window, "m"));
     ROVER_RETURN_IF_ERROR(CheckFinite("prior.ground_z", prior->ground_z));
   }
-  FarDetector d(left8, left_model, lander, options, prior);
+  FarDetector d(left8, left_model, right8, right8.empty() ? nullptr : right_model, lander, options, prior);
   FarSighting s = d.Run();
   s.elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return s;

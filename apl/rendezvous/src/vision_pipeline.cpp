@@ -48,7 +48,10 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
     prior.bearing_window = std::atan2(std::max(options_.prior_gate, 0.1 * prior.range), prior.range);
     prior.range_window = options_.prior_gate + 0.3 * prior.range;
     ROVER_ASSIGN_OR_RETURN(const FarSighting s,
-                           DetectLanderFar(*pair.left, *pair.left_model, lander_, options_.far, prior));
+                           DetectLanderFar(*pair.left, *pair.left_model,
+                                           pair.right != nullptr ? *pair.right : none,
+                                           pair.right != nullptr ? pair.right_model : nullptr,
+                                           lander_, options_.far, prior));
     auto bgr = Bgr(*pair.left);
     DrawFarSighting(bgr.get(), s);
     drawing_ = {Name("far", ++sightings_), bgr};

@@ -29,9 +29,10 @@
 ///   4. Bearing from the candidate's column centre; range from the angular size: the width of the
 ///      group's top line (the deck top, 2 apothem .. 2 deck_radius wide: R = 2.8 m f / w) and the
 ///      height from the top line to the lowest row of the candidate (deck top to feet: R =
-///      deck_height f / h), fused by inverse variance (1.5 px per measured extent, plus 7 % for
-///      the deck's unknown orientation). Rough by design: the executor fuses it with the
-///      a-priori estimate and the odometry, and reacquires every few metres.
+///      deck_height f / h) and the feet put on the ground plane at the prior's ground height,
+///      fused by inverse variance; with a right image, stereo replaces both when the lit part's
+///      patch correlates (>= 0.7) along its ray (0.3 px of disparity: ~8 % at 100 m). The
+///      executor fuses the fix with the a-priori estimate and reacquires every few metres.
 ///
 /// Frames and units as lander_detector.hpp: camera models in the rover frame (x forward, y left,
 /// z up, origin on the ground); `center` is the deck top centre in that frame [m]; bearing
@@ -107,11 +108,13 @@ struct FarSighting {
   double elapsed_ms = 0.0;
 };
 
-/// Finds the lander far away in `left8` (CV_8UC1 of `left_model`'s size). Errors
+/// Finds the lander far away in `left8` (CV_8UC1 of `left_model`'s size); `right8` (may be
+/// empty, then `right_model` is ignored) gives the stereo range. Errors
 /// (InvalidArgument naming the input): empty image, wrong type or size, options or lander
 /// description failing Validate, non-finite or non-positive prior fields. Not finding the lander
 /// is not an error.
 Result<FarSighting> DetectLanderFar(const cv::Mat& left8, const geometry::CameraModel& left_model,
+                                    const cv::Mat& right8, const geometry::CameraModel* right_model,
                                     const hwconfig::LanderDescription& lander,
                                     const LongRangeOptions& options = {},
                                     const std::optional<LanderPrior>& prior = std::nullopt);
