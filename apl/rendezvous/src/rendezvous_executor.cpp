@@ -446,7 +446,9 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       const double s_est_u = std::sqrt(std::max(0.0, u.dot(ce * u)));
       const double s_b = std::hypot(std::sqrt(std::max(0.0, n.dot(c2 * n))) / r_f, s_est_n / r_e);
       const double s_r = std::hypot(std::sqrt(std::max(0.0, u.dot(c2 * u))), s_est_u);
-      const double b_gate = std::max(3.0 * s_b, kDegree);
+      // Never wider than the window the long-range detector searched about the estimate.
+      const double window = std::atan2(std::max(options_.prior_gate, 0.1 * r_e), r_e);
+      const double b_gate = std::min(std::max(3.0 * s_b, kDegree), window);
       inside = db <= b_gate && std::abs(r_f - r_e) <= 3.0 * s_r;
       off = (c_site.head<2>() - center_).norm();
       detail = " (fix " + FormatNumber(r_f) + " m at " + FormatNumber(db / kDegree) +

@@ -325,6 +325,19 @@ TEST(RendezvousExecutorTest, AFixFarFromTheEstimateIsNeverDrivenTo) {
   EXPECT_TRUE(rejected);
 }
 
+TEST(RendezvousExecutorTest, FarAwayAFixOffTheEstimatesBearingIsNeverDrivenTo) {
+  Harness h;
+  h.world.center = Eigen::Vector2d(100.0, 0.0);
+  h.world.decoy = Eigen::Vector2d(95.0, 30.0);  // 18 deg off: outside the far search window
+  h.Start(h.Command());
+  EXPECT_EQ(h.exec.status().fault, RendezvousFault::kNotFound);
+  EXPECT_GE(h.vision->decoys_reported, 1);
+  EXPECT_TRUE(h.drives.empty());
+  bool rejected = false;
+  for (const auto& s : h.statuses) rejected |= s.message.find("deg from the estimate's bearing") != std::string::npos;
+  EXPECT_TRUE(rejected);
+}
+
 TEST(RendezvousExecutorTest, AGoodEstimateLeadsWhenTheDetectorLosesTheLanderNearby) {
   Harness h;
   h.world.yaw = kPi;
