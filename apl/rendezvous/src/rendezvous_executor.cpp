@@ -414,48 +414,49 @@ ExecutorOutput RendezvousExecutor::Step(Time now) {
 
 // ---- decisions ------------------------------------------------------------------------------
 
+bool RendezvousExecutor::FarFixConsistent(const Eigen::Vector3d& c_site,
+                                          const Eigen::Matrix3d& covariance_rover,
+                                          std::string* detail) const {
+  // The fix is rough along the view and sharp across it; the estimate's spread across and
+  // along the view comes from its information matrix (after one far fix it too is sharp across
+  // and rough along). Gate the bearing at 3 sigma of both (at least 1 deg, never wider than the
+  // window the detector searched) and the range at 3 sigma of both.
+  const Eigen::Isometry3d& site_from_rover = pose_->site_from_rover;
+  const Eigen::Vector2d rover = RoverXy();
+  const Eigen::Vector2d to_fix = c_site.head<2>() - rover, to_est = center_ - rover;
+  const double r_f = std::max(to_fix.norm(), 1e-3), r_e = std::max(to_est.norm(), 1.0);
+  const double db = std::abs(geometry::WrapAngle(std::atan2(to_fix.y(), to_fix.x()) -
+                                                 std::atan2(to_est.y(), to_est.x())));
+  const Eigen::Vector2d u = to_fix / r_f, n(-u.y(), u.x());
+  const Eigen::Matrix2d c_fix =
+      (site_from_rover.linear() * covariance_rover * site_from_rover.linear().transpose())
+          .topLeftCorner<2, 2>();
+  const Eigen::Matrix2d c_est = info_.inverse();
+  const double s_b = std::hypot(std::sqrt(std::max(0.0, n.dot(c_fix * n))) / r_f,
+                                std::sqrt(std::max(0.0, n.dot(c_est * n))) / r_e);
+  const double s_r = std::hypot(std::sqrt(std::max(0.0, u.dot(c_fix * u))),
+                                std::sqrt(std::max(0.0, u.dot(c_est * u))));
+  const double b_gate =
+      std::min(std::max(3.0 * s_b, kDegree), FarSearchHalfWindow(r_e, options_.prior_gate));
+  *detail = " (fix " + FormatNumber(r_f) + " m at " + FormatNumber(db / kDegree) +
+            " deg from the estimate's bearing, gate " + FormatNumber(b_gate / kDegree) +
+            " deg; estimate " + FormatNumber(r_e) + " m, range gate " + FormatNumber(3.0 * s_r) +
+            " m)";
+  return db <= b_gate && std::abs(r_f - r_e) <= 3.0 * s_r;
+}
+
 void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out) {
   const Eigen::Isometry3d& site_from_rover = pose_->site_from_rover;
   bool accepted = false;
   if (fix.found) {
     const Eigen::Vector3d c_site = site_from_rover * fix.center_rover;
-    double off = (c_site.head<2>() - center_).norm();
+    const double off = (c_site.head<2>() - center_).norm();
     // A fixed gate, not one widened by the estimate's sigma: with a wide a-priori sigma a rock
     // and a soil edge 15 m off the estimate passed as the lander (campaign seed 8).
-    double gate = options_.prior_gate;
+    const double gate = options_.prior_gate;
     bool inside = off <= gate;
     std::string detail;
-    if (fix.far) {
-      // Long range: the fix is rough along the view and sharp across it, the estimate rough in
-      // both. Gate the bearing (3 sigma of both, at least 1 deg) and, loosely, the range (3
-      // sigma of both): the detector only searched the window about the estimate, and a biased
-      // range must not make the lander itself "inconsistent".
-      const Eigen::Vector2d rover = RoverXy();
-      const Eigen::Vector2d to_fix = c_site.head<2>() - rover, to_est = center_ - rover;
-      const double r_f = to_fix.norm(), r_e = std::max(to_est.norm(), 1.0);
-      const double db = std::abs(geometry::WrapAngle(std::atan2(to_fix.y(), to_fix.x()) -
-                                                     std::atan2(to_est.y(), to_est.x())));
-      const Eigen::Vector2d u = to_fix.normalized(), n(-u.y(), u.x());
-      const Eigen::Matrix2d c2 =
-          (site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose())
-              .topLeftCorner<2, 2>();
-      // The estimate's own spread across and along the view (not its mean sigma: after one far
-      // fix it is sharp across the view and rough along it).
-      const Eigen::Matrix2d ce = info_.inverse();
-      const double s_est_n = std::sqrt(std::max(0.0, n.dot(ce * n)));
-      const double s_est_u = std::sqrt(std::max(0.0, u.dot(ce * u)));
-      const double s_b = std::hypot(std::sqrt(std::max(0.0, n.dot(c2 * n))) / r_f, s_est_n / r_e);
-      const double s_r = std::hypot(std::sqrt(std::max(0.0, u.dot(c2 * u))), s_est_u);
-      // Never wider than the window the long-range detector searched about the estimate.
-      const double window = std::atan2(std::max(options_.prior_gate, 0.1 * r_e), r_e);
-      const double b_gate = std::min(std::max(3.0 * s_b, kDegree), window);
-      inside = db <= b_gate && std::abs(r_f - r_e) <= 3.0 * s_r;
-      off = (c_site.head<2>() - center_).norm();
-      detail = " (fix " + FormatNumber(r_f) + " m at " + FormatNumber(db / kDegree) +
-               " deg from the estimate's bearing, gate " + FormatNumber(b_gate / kDegree) +
-               " deg; estimate " + FormatNumber(r_e) + " m, range gate " + FormatNumber(3.0 * s_r) +
-               " m)";
-    }
+    if (fix.far) inside = FarFixConsistent(c_site, fix.covariance, &detail);
     if (inside) {
       const Eigen::Matrix3d cov =
           site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose();
@@ -546,11 +547,11 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     // Look around the estimate: 0, +s, -s, +2s, -2s, ...
     const int k = (search_count_ + 1) / 2;
     const double sign = search_count_ % 2 == 1 ? 1.0 : -1.0;
-    // Far away the detector's window is narrow (atan(max(gate, 0.1 R) / R)): step by 1.6 of
-    // its half width, not by the mid-range pan step.
+    // Far away the detector's window is narrow: step by 1.6 of its half width, not by the
+    // mid-range pan step.
     double step = options_.search_pan_step_deg * kDegree;
     if (prior_range > options_.sight_range) {
-      step = std::min(step, 1.6 * std::atan2(std::max(options_.prior_gate, 0.1 * prior_range), prior_range));
+      step = std::min(step, 1.6 * FarSearchHalfWindow(prior_range, options_.prior_gate));
     }
     search_bearing_offset_ = sign * k * step;
     LookAtLander(now, out);

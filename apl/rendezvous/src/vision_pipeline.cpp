@@ -45,7 +45,7 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
   prior.range = std::max(1.0, std::hypot(prior_rover.x(), prior_rover.y()));
   prior.ground_z = prior_rover.z();
   if (prior.range > options_.far_range) {
-    prior.bearing_window = std::atan2(std::max(options_.prior_gate, 0.1 * prior.range), prior.range);
+    prior.bearing_window = FarSearchHalfWindow(prior.range, options_.prior_gate);
     prior.range_window = options_.prior_gate + 0.3 * prior.range;
     ROVER_ASSIGN_OR_RETURN(const FarSighting s,
                            DetectLanderFar(*pair.left, *pair.left_model,

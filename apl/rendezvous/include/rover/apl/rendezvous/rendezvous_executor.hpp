@@ -5,8 +5,11 @@
 /// requests to send and the status to publish. The apl-rendezvous service binds it to topics.
 ///
 /// Phases (msg::RendezvousPhase):
-///  - MID_RANGE (LONG_RANGE when the a-priori lander is farther than 30 m; the same detector is
-///    used there today): point the mast at the lander estimate, take a NAVCAM pair, sight the
+///  - LONG_RANGE (the estimate farther than 30 m): as MID_RANGE below, with the long-range
+///    detector beyond the mid-range one's reach; the rover drives only once the lander is
+///    acquired, far fixes are gated on bearing and range (FarFixConsistent) and the estimate's
+///    range sigma stays >= 8 % of the distance (far fixes share their bias).
+///  - MID_RANGE: point the mast at the lander estimate, take a NAVCAM pair, sight the
 ///    lander (RendezvousVision::SightLander), fuse the fix into the site-frame estimate (a
 ///    2-D information filter), then drive an autonav leg of at most `reacquire_step` towards
 ///    the point `approach_radius` from the deck centre on the rover's side, and look again. A
@@ -109,6 +112,9 @@ class RendezvousExecutor {
                ExecutorOutput* out);
   void LookAtLander(Time now, ExecutorOutput* out);
   void OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out);
+  // A long-range fix (deck centre c_site, covariance in R) consistent with the estimate?
+  bool FarFixConsistent(const Eigen::Vector3d& c_site, const Eigen::Matrix3d& covariance_rover,
+                        std::string* detail) const;
   // Close range when near the estimate, else the next leg towards the approach point.
   void Advance(Time now, ExecutorOutput* out);
   void OnRampFix(const RampFix& fix, Time now, ExecutorOutput* out);

@@ -9,6 +9,9 @@
 /// the ground below the rocker pivots); G the ramp-surface frame of core/hwconfig's
 /// lander_description.hpp. Units metres and radians.
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
@@ -44,6 +47,13 @@ struct LanderFix {
   std::string features;  ///< which features carried the fix ("deck lines 3, legs 4, stereo")
   std::string why;       ///< when not found: why
 };
+
+/// [rad] Half width of the bearing window the long-range search covers about an estimate
+/// `range` m away: atan(max(prior_gate, 0.1 range) / range). The vision searches it and the
+/// executor never accepts a far fix outside it.
+inline double FarSearchHalfWindow(double range, double prior_gate) {
+  return std::atan2(std::max(prior_gate, 0.1 * range), range);
+}
 
 /// A ramp's pose from its coded stripes at close range.
 struct RampFix {
