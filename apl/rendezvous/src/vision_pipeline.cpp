@@ -34,6 +34,29 @@ DetectionImage VisionPipeline::LastDrawing() {
   return d;
 }
 
+Result<LanderFix> VisionPipeline::SightFar(const NavcamPair& pair, LanderPrior prior) {
+  const cv::Mat none;
+  prior.bearing_window = FarSearchHalfWindow(prior.range, options_.prior_gate);
+  prior.range_window = options_.prior_gate + 0.3 * prior.range;
+  ROVER_ASSIGN_OR_RETURN(const FarSighting s,
+                         DetectLanderFar(*pair.left, *pair.left_model,
+                                         pair.right != nullptr ? *pair.right : none,
+                                         pair.right != nullptr ? pair.right_model : nullptr,
+                                         lander_, options_.far, prior));
+  auto bgr = Bgr(*pair.left);
+  DrawFarSighting(bgr.get(), s);
+  drawing_ = {Name("far", ++sightings_), bgr};
+  LanderFix f;
+  f.found = s.found;
+  f.far = true;
+  f.why = s.reason;
+  f.features = s.features;
+  if (!s.found) return f;
+  f.center_rover = s.center;
+  f.covariance = s.center_covariance;
+  return f;
+}
+
 Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
                                               const Eigen::Vector3d& prior_rover) {
   if (pair.left == nullptr || pair.left_model == nullptr) {
@@ -44,27 +67,7 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
   prior.bearing = std::atan2(prior_rover.y(), prior_rover.x());
   prior.range = std::max(1.0, std::hypot(prior_rover.x(), prior_rover.y()));
   prior.ground_z = prior_rover.z();
-  if (prior.range > options_.far_range) {
-    prior.bearing_window = FarSearchHalfWindow(prior.range, options_.prior_gate);
-    prior.range_window = options_.prior_gate + 0.3 * prior.range;
-    ROVER_ASSIGN_OR_RETURN(const FarSighting s,
-                           DetectLanderFar(*pair.left, *pair.left_model,
-                                           pair.right != nullptr ? *pair.right : none,
-                                           pair.right != nullptr ? pair.right_model : nullptr,
-                                           lander_, options_.far, prior));
-    auto bgr = Bgr(*pair.left);
-    DrawFarSighting(bgr.get(), s);
-    drawing_ = {Name("far", ++sightings_), bgr};
-    LanderFix f;
-    f.found = s.found;
-    f.far = true;
-    f.why = s.reason;
-    f.features = s.features;
-    if (!s.found) return f;
-    f.center_rover = s.center;
-    f.covariance = s.center_covariance;
-    return f;
-  }
+  if (prior.range > options_.far_range) return SightFar(pair, prior);
   prior.bearing_window = std::clamp(std::atan2(options_.prior_gate, prior.range), 0.05, 0.45);
   prior.range_window = options_.prior_gate + 0.1 * prior.range;
   ROVER_ASSIGN_OR_RETURN(
@@ -72,6 +75,15 @@ Result<LanderFix> VisionPipeline::SightLander(const NavcamPair& pair,
       DetectLander(*pair.left, pair.right != nullptr ? *pair.right : none, *pair.left_model,
                    pair.right != nullptr ? pair.right_model : nullptr, lander_, options_.lander,
                    prior));
+  // Where the two detectors' ranges overlap (the mid-range one misses some views at 25-35 m,
+  // e.g. along the ramp axis), a mid-range miss falls back to the long-range detector.
+  if (!s.found && prior.range >= options_.far.min_range) {
+    ROVER_ASSIGN_OR_RETURN(LanderFix far, SightFar(pair, prior));
+    if (far.found) {
+      far.features = "mid range: " + s.reason + "; " + far.features;
+      return far;
+    }
+  }
   auto bgr = Bgr(*pair.left);
   DrawLanderSighting(bgr.get(), s);
   drawing_ = {Name("lander", ++sightings_), bgr};

@@ -1,10 +1,11 @@
 // Long-range lander acquisition on rendered NAVCAM images with the simulator's truth: views from
-// 60 to 125 m over a long map with layered outcrops (the distractors) in the search window. It
+// 25 to 125 m over a long map with layered outcrops (the distractors) in the search window. It
 // prints, per range band, the candidates of each cue alone and fused with the true and false ones
 // (a candidate is true when its box overlaps the lander's projected box), and checks that the
 // fused detector finds the lander in most views, never reports a distractor, and measures the
-// bearing within 2 deg and the range within 15 %. Set ROVER_FAR_DRAW=<folder>
-// to save every view drawn.
+// bearing within 2.5 m across the view (the lit part's centroid, up to half a ramp's reach off
+// the deck centre) and the range within 15 %. Set ROVER_FAR_DRAW=<folder> to save every view
+// drawn.
 
 #include <gtest/gtest.h>
 
@@ -92,10 +93,10 @@ LanderScene* LongRangeSceneTest::scene_ = nullptr;
 struct Tally {
   int views = 0, found = 0, wrong = 0;
   int line_true = 0, line_false = 0, tex_true = 0, tex_false = 0, fused_true = 0, fused_false = 0;
-  double max_range_error = 0.0, max_bearing_error = 0.0, ms = 0.0;
+  double max_range_error = 0.0, max_bearing_error = 0.0, max_lateral_error = 0.0, ms = 0.0;
 };
 
-TEST_F(LongRangeSceneTest, FindsTheLanderFrom60To125MAndNeverADistractor) {
+TEST_F(LongRangeSceneTest, FindsTheLanderFrom25To125MAndNeverADistractor) {
   struct View {
     double x, y, yaw_offset_deg, prior_error_m;
   };
@@ -103,9 +104,9 @@ TEST_F(LongRangeSceneTest, FindsTheLanderFrom60To125MAndNeverADistractor) {
   const std::vector<View> views = {
       {0, 0, 0, 4},    {0, 6, 3, -5},  {0, -6, -4, 3},  {5, 2, 5, -3},  {15, -3, -2, 6},
       {25, 3, 2, -4},  {35, 0, -3, 4}, {45, -5, 4, 3},  {55, 4, -5, -5}, {65, 0, 2, 4},
-      {65, -5, -2, -3}, {60, 6, 4, 2}};
+      {65, -5, -2, -3}, {60, 6, 4, 2},  {95, 0, 2, 3},  {92, -4, -3, -2}, {100, 3, 1, -2}};
   const char* draw = std::getenv("ROVER_FAR_DRAW");
-  Tally near_band, far_band;  // 60..90 m, 90..125 m
+  Tally near_band, far_band;  // 25..90 m (the overlap with the mid-range detector and up), 90..125 m
   int index = 0;
   for (const View& v : views) {
     const double dx = kLanderX - v.x, dy = -v.y;
@@ -150,6 +151,8 @@ TEST_F(LongRangeSceneTest, FindsTheLanderFrom60To125MAndNeverADistractor) {
         ++t.found;
         t.max_range_error = std::max(t.max_range_error, std::abs(s->range - truth_range) / truth_range);
         t.max_bearing_error = std::max(t.max_bearing_error, std::abs(s->bearing - truth_bearing));
+        t.max_lateral_error =
+            std::max(t.max_lateral_error, truth_range * std::abs(s->bearing - truth_bearing));
       } else {
         ++t.wrong;
       }
@@ -171,21 +174,22 @@ TEST_F(LongRangeSceneTest, FindsTheLanderFrom60To125MAndNeverADistractor) {
     }
     ++index;
   }
-  for (const auto& [label, t] : {std::pair{"60-90 m", near_band}, std::pair{"90-125 m", far_band}}) {
+  for (const auto& [label, t] : {std::pair{"25-90 m", near_band}, std::pair{"90-125 m", far_band}}) {
     std::printf(
         "%s: %d views, found %d, wrong %d | per image: lines %.2f true %.2f false, texture %.2f true "
-        "%.2f false, fused %.2f true %.2f false | worst range %.1f %%, bearing %.2f deg | %.1f ms\n",
+        "%.2f false, fused %.2f true %.2f false | worst range %.1f %%, bearing %.2f deg (%.2f m across) | %.1f ms\n",
         label, t.views, t.found, t.wrong, double(t.line_true) / t.views, double(t.line_false) / t.views,
         double(t.tex_true) / t.views, double(t.tex_false) / t.views, double(t.fused_true) / t.views,
         double(t.fused_false) / t.views, 100 * t.max_range_error, t.max_bearing_error / kDegree,
-        t.ms / t.views);
+        t.max_lateral_error, t.ms / t.views);
   }
   const int views_total = near_band.views + far_band.views;
   EXPECT_GE(near_band.found + far_band.found, views_total - 2);
   EXPECT_EQ(near_band.wrong + far_band.wrong, 0);
   // Stereo range (the lit part's depth against the deck centre's), sharp bearing.
   EXPECT_LE(std::max(near_band.max_range_error, far_band.max_range_error), 0.15);
-  EXPECT_LE(std::max(near_band.max_bearing_error, far_band.max_bearing_error), 2.0 * kDegree);
+  // The bearing is the lit part's centroid: up to a ramp's offset from the deck centre.
+  EXPECT_LE(std::max(near_band.max_lateral_error, far_band.max_lateral_error), 2.5);
 }
 
 TEST(LongRangeDetector, BadInputIsNamed) {

@@ -7,8 +7,9 @@
 /// folder.
 ///
 /// Long range: the search window is the prior bearing +- atan(max(prior_gate, 0.1 R) / R) and
-/// its range +- (prior_gate + 0.3 R); the fix's covariance is the detector's (rough in range,
-/// sharp in bearing).
+/// its range +- (prior_gate + 0.3 R); the fix's covariance is the detector's (sharp in bearing).
+/// Between `far.min_range` and `far_range` a mid-range miss falls back to the long-range
+/// detector (the mid-range one misses some views at 25-35 m).
 /// Mid range: the deck centre in R is the left camera's centre plus the sighting's horizontal
 /// range along its bearing, at deck height above the ground (R's z = 0); its covariance comes
 /// from the range and bearing sigmas (a vertical sigma of half the deck height).
@@ -48,6 +49,9 @@ class VisionPipeline final : public RendezvousVision {
   DetectionImage LastDrawing() override;
 
  private:
+  // The long-range detector with its window about `prior` (bearing and range set).
+  Result<LanderFix> SightFar(const NavcamPair& pair, LanderPrior prior);
+
   hwconfig::LanderDescription lander_;
   VisionOptions options_;
   DetectionImage drawing_;
