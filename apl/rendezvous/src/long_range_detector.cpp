@@ -23,6 +23,7 @@ using Eigen::Vector3d;
 constexpr double kSizeSigma = 0.30;   // relative: the lit part of the lander against its height
 constexpr double kGroundSigma = 0.15;  // [m] the prior's ground height at the lander
 constexpr double kMinFeetSigma = 0.08;
+constexpr double kWeakLineContrast = 1.0;  // texture-led groups: segments of the median contrast
 constexpr double kMinStereoNcc = 0.7;   // lowest correlation of a stereo range
 constexpr double kStereoSigmaPx = 0.3;  // [px] 1-sigma of the matched disparity
 constexpr double kOverBright = 1.15;   // the lander's brightest part over the band's 90th percentile  // relative: the feet's row against the ground's relief
@@ -154,6 +155,13 @@ class FarDetector {
       }
     }
     if (best < 0) {
+      best = TextureLedGroup(s.texture_candidates, &best_tex_);
+      if (best >= 0) {
+        texture_led_ = true;
+        s.fused.push_back({groups_[static_cast<std::size_t>(best)].anchor, 0.0});
+      }
+    }
+    if (best < 0) {
       s.reason = "no co-located line and texture candidate (" +
                  std::to_string(s.line_candidates.size()) + " line from " +
                  std::to_string(segs_.size()) + " level segments, " +
@@ -275,8 +283,67 @@ class FarDetector {
       median = c[c.size() / 2];
     }
     for (const Seg& sg : level) {
-      if (sg.contrast >= o_.min_line_contrast * median) segs_.push_back(sg);
+      if (sg.contrast >= o_.min_line_contrast * median) {
+        segs_.push_back(sg);
+      } else if (sg.contrast >= kWeakLineContrast * median) {
+        weak_.push_back(sg);
+      }
     }
+  }
+
+  // Texture-led fusion, when no line group met a texture candidate: the level segments (strong
+  // or of at least the band's median contrast) inside a texture candidate, on >= min_group_lines
+  // rows. A lander against a bright background (a light sand patch or the far apron behind it)
+  // keeps its texture but loses the contrast of its level edges. Returns the group's index.
+  int TextureLedGroup(const std::vector<CueBox>& texture, cv::Rect* tex_box) {
+    int best = -1;
+    double best_score = -1e9;
+    for (const CueBox& t : texture) {
+      const cv::Rect box = Expand(t.box, 2, 2);
+      Group g;
+      std::vector<double> ys;
+      double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+      auto take = [&](const Seg& sg) {
+        const Vector2d m = 0.5 * (sg.a + sg.b);
+        if (!box.contains(cv::Point(static_cast<int>(m.x()), static_cast<int>(m.y())))) return;
+        segs_.push_back(sg);
+        const int j = static_cast<int>(segs_.size()) - 1;
+        g.segs.push_back(j);
+        x0 = std::min(x0, sg.a.x());
+        x1 = std::max(x1, sg.b.x());
+        y0 = std::min({y0, sg.a.y(), sg.b.y()});
+        y1 = std::max({y1, sg.a.y(), sg.b.y()});
+        ys.push_back(m.y());
+        if (sg.length > g.longest) {
+          g.longest = sg.length;
+          g.longest_seg = j;
+        }
+      };
+      const std::vector<Seg> strong(segs_.begin(), segs_.end());
+      for (const Seg& sg : strong) take(sg);
+      for (const Seg& sg : weak_) take(sg);
+      std::sort(ys.begin(), ys.end());
+      g.rows = ys.empty() ? 0 : 1;
+      for (std::size_t k = 1; k < ys.size(); ++k) {
+        if (ys[k] - ys[k - 1] >= 2.0) ++g.rows;
+      }
+      if (g.rows < o_.min_group_lines) continue;
+      g.box = cv::Rect(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0)),
+                       static_cast<int>(std::ceil(x1 - x0)) + 1, static_cast<int>(std::ceil(y1 - y0)) + 1);
+      g.anchor = t.box;
+      double score = t.strength;
+      if (prior_) {
+        const double db = std::abs(Azimuth(m_, Center(g)) - prior_->bearing);
+        score -= 2.0 * db / std::max(prior_->bearing_window, 1e-3);
+      }
+      groups_.push_back(g);
+      if (score > best_score) {
+        best_score = score;
+        best = static_cast<int>(groups_.size()) - 1;
+        *tex_box = t.box;
+      }
+    }
+    return best;
   }
 
   // Line candidates: each long enough level segment anchors a window of the lander's image size
@@ -569,8 +636,8 @@ class FarDetector {
     }
     char buf[160];
     std::snprintf(buf, sizeof buf,
-                  "far: lines %zu on %d rows, lander %.0fx%.0f px (size %.0f m, feet %.0f m, stereo %.0f m ncc %.2f); %zu line / %zu texture candidates",
-                  g.segs.size(), g.rows, w, h, r_size, ground_range_, stereo_range_, stereo_ncc_,
+                  "far%s: lines %zu on %d rows, lander %.0fx%.0f px (size %.0f m, feet %.0f m, stereo %.0f m ncc %.2f); %zu line / %zu texture candidates",
+                  texture_led_ ? " (texture-led)" : "", g.segs.size(), g.rows, w, h, r_size, ground_range_, stereo_range_, stereo_ncc_,
                   s->line_candidates.size(), s->texture_candidates.size());
     s->features = buf;
     s->reason = "lander at " + FormatNumber(range) + " m";
@@ -592,6 +659,8 @@ class FarDetector {
   double ground_range_ = 0.0;
   double stereo_range_ = 0.0;
   double stereo_ncc_ = 0.0;
+  std::vector<Seg> weak_;  // level segments of at least the median contrast, not strong
+  bool texture_led_ = false;
   cv::Rect best_tex_;
 };
 
