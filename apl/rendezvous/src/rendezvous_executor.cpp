@@ -23,6 +23,8 @@ constexpr double kMaxDriveS = 600.0;     // [s] budget of one directed/servo dri
 constexpr int kMaxMobilityRetries = 3;
 constexpr double kApproachShiftDeg = 20.0;  // [deg] approach point moved per refused leg
 constexpr double kFarRangeFloor = 0.08;    // relative range sigma of an estimate from far fixes
+constexpr double kResetRangeSigma = 0.3;   // ... after far fixes on its bearing kept disagreeing
+constexpr int kMaxRangeConflicts = 2;      // such fixes in a row before the reset
 constexpr double kTrustedSigma = 1.0;       // [m] an estimate this good may lead a leg
 constexpr int kMaxBlindLegs = 2;            // legs in a row led by the estimate alone
 
@@ -259,7 +261,7 @@ ExecutorOutput RendezvousExecutor::OnCommand(const msg::RendezvousCommand& c, Ti
   status_.target_position = Eigen::Vector3d(center_.x(), center_.y(), center_z_);
   status_.target_sigma = sigma0;
   search_bearing_offset_ = 0.0;
-  search_count_ = mobility_retries_ = orbit_legs_ = servo_steps_ = fixes_ = blind_legs_ = 0;
+  search_count_ = mobility_retries_ = orbit_legs_ = servo_steps_ = fixes_ = blind_legs_ = range_conflicts_ = 0;
   backups_ = 0;
   goal_ramp_.reset();
   servo_started_ = false;
@@ -416,7 +418,8 @@ ExecutorOutput RendezvousExecutor::Step(Time now) {
 
 bool RendezvousExecutor::FarFixConsistent(const Eigen::Vector3d& c_site,
                                           const Eigen::Matrix3d& covariance_rover,
-                                          std::string* detail) const {
+                                          std::string* detail, bool* range_conflict) const {
+  *range_conflict = false;
   // The fix is rough along the view and sharp across it; the estimate's spread across and
   // along the view comes from its information matrix (after one far fix it too is sharp across
   // and rough along). Gate the bearing at 3 sigma of both (at least 1 deg, never wider than the
@@ -442,7 +445,22 @@ bool RendezvousExecutor::FarFixConsistent(const Eigen::Vector3d& c_site,
             " deg from the estimate's bearing, gate " + FormatNumber(b_gate / kDegree) +
             " deg; estimate " + FormatNumber(r_e) + " m, range gate " + FormatNumber(3.0 * s_r) +
             " m)";
-  return db <= b_gate && std::abs(r_f - r_e) <= 3.0 * s_r;
+  if (db > b_gate) return false;
+  if (std::abs(r_f - r_e) <= 3.0 * s_r) return true;
+  *range_conflict = true;
+  return false;
+}
+
+void RendezvousExecutor::WeakenRange(double relative_sigma) {
+  const Eigen::Vector2d to = center_ - RoverXy();
+  const double r = to.norm();
+  if (r <= 1.0) return;
+  const Eigen::Vector2d u = to / r;
+  const double i_u = u.dot(info_ * u), i_max = 1.0 / std::pow(relative_sigma * r, 2);
+  if (i_u > i_max) {
+    info_ -= (i_u - i_max) * u * u.transpose();
+    info_vec_ = info_ * center_;
+  }
 }
 
 void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out) {
@@ -455,8 +473,24 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
     // and a soil edge 15 m off the estimate passed as the lander (campaign seed 8).
     const double gate = options_.prior_gate;
     bool inside = off <= gate;
-    std::string detail;
-    if (fix.far) inside = FarFixConsistent(c_site, fix.covariance, &detail);
+    std::string detail, reset_note;
+    if (fix.far) {
+      bool range_conflict = false;
+      inside = FarFixConsistent(c_site, fix.covariance, &detail, &range_conflict);
+      // Fixes on the estimate's bearing that keep disagreeing with its range: the estimate's
+      // range is what is wrong (one biased far fix made it confident). After
+      // kMaxRangeConflicts in a row, weaken its information along the view to 30 % of the
+      // distance and take the fix.
+      range_conflicts_ = range_conflict ? range_conflicts_ + 1 : 0;
+      if (range_conflict && range_conflicts_ >= kMaxRangeConflicts) {
+        WeakenRange(kResetRangeSigma);
+        inside = FarFixConsistent(c_site, fix.covariance, &detail, &range_conflict);
+        reset_note = "; the estimate's range was reset after " + std::to_string(range_conflicts_) +
+                     " fixes on its bearing disagreed with it";
+        detail += reset_note;
+        range_conflicts_ = 0;
+      }
+    }
     if (inside) {
       const Eigen::Matrix3d cov =
           site_from_rover.linear() * fix.covariance * site_from_rover.linear().transpose();
@@ -465,20 +499,10 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       info_ += inv;
       info_vec_ += inv * c_site.head<2>();
       center_ = info_.ldlt().solve(info_vec_);
-      if (fix.far) {
-        // Far fixes share their range bias (the lit part's size, the ground under the feet):
-        // do not let averaging them make the range better than kFarRangeFloor of the distance.
-        const Eigen::Vector2d to = center_ - RoverXy();
-        const double r = to.norm();
-        if (r > 1.0) {
-          const Eigen::Vector2d u = to / r;
-          const double i_u = u.dot(info_ * u), i_max = 1.0 / std::pow(kFarRangeFloor * r, 2);
-          if (i_u > i_max) {
-            info_ -= (i_u - i_max) * u * u.transpose();
-            info_vec_ = info_ * center_;
-          }
-        }
-      }
+      // Far fixes share their range bias: averaging them must not make the estimate's range
+      // better than kFarRangeFloor of the distance.
+      if (fix.far) WeakenRange(kFarRangeFloor);
+
       center_z_ = c_site.z() - lander_.deck_height;  // the ground at the deck centre
       const Eigen::Vector2d d = center_ - RoverXy();
       const Eigen::Vector3d in_rover = fix.center_rover;
@@ -493,7 +517,7 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       status_.target_position = Eigen::Vector3d(center_.x(), center_.y(), center_z_);
       status_.target_sigma = std::sqrt(std::max(0.0, info_.inverse().trace() / 2.0));
       status_.features = fix.features;
-      status_.message = "lander at " + FormatNumber(d.norm()) + " m";
+      status_.message = "lander at " + FormatNumber(d.norm()) + " m" + reset_note;
       accepted = true;
       ++fixes_;
     } else {

@@ -31,6 +31,8 @@ struct World {
   double sight_limit = 60.0;  // [m] the fake detector sees the lander within this range
   double blind_within = 0.0;  // [m] ... and not nearer than this (a view it misses)
   double far_from = 35.0;     // [m] beyond this the long-range detector looks
+  int biased_fixes = 0;       // the first this many fixes report the range times range_scale
+  double range_scale = 1.0;
   std::optional<Eigen::Vector2d> decoy;  // reported instead of the lander while set
   std::optional<Eigen::Vector2d> rock;  // apl-mobility refuses (NOPATH) goals within 1.5 m of it
   int stripes = 6;
@@ -77,6 +79,7 @@ struct World {
 class FakeVision : public RendezvousVision {
  public:
   int decoys_reported = 0;
+  int fixes_reported = 0;
   explicit FakeVision(World* w) : w_(w) {}
   Result<LanderFix> SightLander(const NavcamPair&, const Eigen::Vector3d&) override {
     LanderFix f;
@@ -99,6 +102,9 @@ class FakeVision : public RendezvousVision {
     std::normal_distribution<double> n(0.0, w_->fix_noise);
     f.found = true;
     f.center_rover = in_rover * (1.0 + n(w_->rng));
+    if (fixes_reported++ < w_->biased_fixes) {
+      f.center_rover.head<2>() *= w_->range_scale;
+    }
     f.covariance = Eigen::Matrix3d::Identity() * std::pow(w_->fix_noise * range, 2);
     f.features = "fake";
     return f;
@@ -403,6 +409,20 @@ TEST(RendezvousExecutorTest, BeyondSightRangeAMidRangeMissLetsTheEstimateLead) {
   ExpectPlacedAndClimbed(h);
   ASSERT_FALSE(h.drives.empty());
   EXPECT_LE(h.drives.front().goal.head<2>().norm(), 5.0 + 1e-9);
+}
+
+TEST(RendezvousExecutorTest, FarAwayOneBiasedFixDoesNotLockTheEstimatesRange) {
+  Harness h;
+  h.world.center = Eigen::Vector2d(100.0, 0.0);
+  h.world.yaw = kPi;
+  h.world.sight_limit = 200.0;
+  h.world.biased_fixes = 1;
+  h.world.range_scale = 0.75;  // the first fix says 75 m
+  h.Start(h.Command());
+  ExpectPlacedAndClimbed(h);
+  bool reset = false;
+  for (const auto& s : h.statuses) reset |= s.message.find("range was reset") != std::string::npos;
+  EXPECT_TRUE(reset);
 }
 
 TEST(RendezvousExecutorTest, FarAwayALanderNeverSeenIsNotFoundAndNeverDrives) {

@@ -8,7 +8,8 @@
 ///  - LONG_RANGE (the estimate farther than 30 m): as MID_RANGE below, with the long-range
 ///    detector beyond the mid-range one's reach; the rover drives only once the lander is
 ///    acquired, far fixes are gated on bearing and range (FarFixConsistent) and the estimate's
-///    range sigma stays >= 8 % of the distance (far fixes share their bias).
+///    range sigma stays >= 8 % of the distance (far fixes share their bias); two fixes in a row
+///    on its bearing but off its range reset its range sigma to 30 % (the estimate was wrong).
 ///  - MID_RANGE: point the mast at the lander estimate, take a NAVCAM pair, sight the
 ///    lander (RendezvousVision::SightLander), fuse the fix into the site-frame estimate (a
 ///    2-D information filter), then drive an autonav leg of at most `reacquire_step` towards
@@ -113,8 +114,11 @@ class RendezvousExecutor {
   void LookAtLander(Time now, ExecutorOutput* out);
   void OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out);
   // A long-range fix (deck centre c_site, covariance in R) consistent with the estimate?
+  // range_conflict: on the bearing but not within the range gate.
   bool FarFixConsistent(const Eigen::Vector3d& c_site, const Eigen::Matrix3d& covariance_rover,
-                        std::string* detail) const;
+                        std::string* detail, bool* range_conflict) const;
+  // Caps the estimate's information along the view at a sigma of relative_sigma x distance.
+  void WeakenRange(double relative_sigma);
   // Close range when near the estimate, else the next leg towards the approach point.
   void Advance(Time now, ExecutorOutput* out);
   void OnRampFix(const RampFix& fix, Time now, ExecutorOutput* out);
@@ -150,6 +154,7 @@ class RendezvousExecutor {
   int search_count_ = 0;
   int fixes_ = 0;       // accepted mid-range fixes of this command
   int blind_legs_ = 0;  // legs in a row led by the estimate alone
+  int range_conflicts_ = 0;  // far fixes in a row on the estimate's bearing but off its range
   int mobility_retries_ = 0;
   int orbit_legs_ = 0;
   int servo_steps_ = 0;
