@@ -80,21 +80,31 @@ std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
       out.push_back(Figure("placement_heading", std::abs(h) / kDegree, "deg", where));
     }
   }
-  // Acquisition and distractors (long range).
+  // Acquisition and distractors (long range). A sighting drives the rover towards the estimate
+  // it leaves: toward a distractor when, seen from the rover's true position, the estimate's
+  // direction falls within a layered outcrop's angular radius and outside the lander's (deck
+  // and ramps). A range error along the right bearing is not a distractor.
   const Eigen::Vector2d deck(lander.params.x, lander.params.y);
+  const double lander_reach = lander.params.Description().Apothem() + lander.params.ramp_length;
   int toward = 0;
   std::optional<double> acquired_at;
+  const auto angle = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)));
+  };
   for (const RendezvousSample& s : log.samples) {
     if (!s.new_range) continue;
-    if (!acquired_at) {
-      const auto& p = result.truth_track[NearestTrackIndex(result, s.t)];
-      acquired_at = TrueLanderDistance(lander, p[1], p[2]);
-    }
-    const double to_lander = (s.target - deck).norm();
+    const auto& p = result.truth_track[NearestTrackIndex(result, s.t)];
+    const Eigen::Vector2d rover(p[1], p[2]);
+    if (!acquired_at) acquired_at = TrueLanderDistance(lander, p[1], p[2]);
+    const Eigen::Vector2d dir = s.target - rover;
+    const Eigen::Vector2d to_lander = deck - rover;
+    if (dir.norm() < 1e-6 || to_lander.norm() <= lander_reach) continue;
+    if (angle(dir, to_lander) <= std::asin(lander_reach / to_lander.norm())) continue;
     for (const sim::terrain::Rock& r : rocks) {
       if (r.layers <= 0) continue;
-      const double to_rock = (s.target - r.position.head<2>()).norm();
-      if (to_rock < to_lander && to_rock < sim::terrain::RockBoundingRadius(r) + 5.0) {
+      const Eigen::Vector2d to_rock = r.position.head<2>() - rover;
+      const double radius = sim::terrain::RockBoundingRadius(r) + 0.5;
+      if (to_rock.norm() <= radius || angle(dir, to_rock) <= std::asin(radius / to_rock.norm())) {
         ++toward;
         break;
       }
@@ -105,8 +115,8 @@ std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
                          "true distance to the deck centre at the first sighting accepted"));
   }
   out.push_back(Figure("toward_distractor", toward, "count",
-                       "sightings after which the estimate lay nearer a layered outcrop than the "
-                       "lander (within 5 m of it)"));
+                       "sightings after which the estimate's direction from the rover pointed at "
+                       "a layered outcrop and not at the lander"));
   const auto& last = result.truth_track.back();
   const bool on_deck = lander.InDeck(last[1], last[2]);
   out.push_back(Figure("on_deck", on_deck ? 1.0 : 0.0, "count",

@@ -135,6 +135,10 @@ TEST(RendezvousJudging, AnEstimateOnALayeredOutcropIsADriveTowardADistractor) {
   EXPECT_EQ(toward({outcrop}), 1.0);
   EXPECT_EQ(toward({boulder}), 0.0);
   EXPECT_EQ(toward({}), 0.0);
+  // An estimate short of the lander on its bearing, beside the outcrop, is a range error.
+  log.samples[1].target = Eigen::Vector2d(22.0, 0.3);
+  outcrop.position = Eigen::Vector3d(22.0, 3.5, 0.0);
+  EXPECT_EQ(toward({outcrop}), 0.0);
 }
 
 }  // namespace

@@ -53,8 +53,9 @@ struct RendezvousLog {
 /// placement_longitudinal [cm], placement_heading [deg] when AT_RAMP_BASE was reported;
 /// on_deck (1/0) from the last truth point inside the deck hexagon; acquired_at_m, the true
 /// distance when the first estimate from a sighting was reported; toward_distractor, the
-/// sightings after which the estimate (what the next leg drives to) lay nearer a layered outcrop
-/// (a rock with layers > 0) than the lander and within 5 m of that outcrop's edge.
+/// sightings after which the estimate (what the next leg drives to) pointed, from the rover's
+/// true position, within a layered outcrop's (a rock with layers > 0) angular radius + 0.5 m and
+/// outside the lander's (apothem + ramp length): a range error on the right bearing does not count.
 std::vector<sim::judge::Criterion> RendezvousFigures(const RendezvousLog& log,
                                                      const sim::terrain::Lander& lander,
                                                      const std::vector<sim::terrain::Rock>& rocks,
