@@ -42,7 +42,7 @@ Result<std::unique_ptr<LanderScene>> LanderScene::Create(const LanderSceneOption
   tp.size_x = options.size;
   tp.size_y = options.size_y > 0.0 ? options.size_y : options.size;
   tp.center_x = options.center_x;
-  if (tp.size_x * tp.size_y > 2000.0) tp.resolution = 0.05;  // long maps: 0.05 m cells
+  tp.resolution = options.resolution;
   tp.seed = options.seed;
   tp.rocks.preset = options.rocks ? sim::terrain::RockPreset::kVl1 : sim::terrain::RockPreset::kNone;
   if (options.rocks && options.rock_k > 0.0) {

@@ -48,6 +48,7 @@ struct LanderSceneOptions {
   double size = 28.0;            ///< [m] map side along x (and y unless size_y > 0)
   double size_y = 0.0;           ///< [m] map side along y; 0: `size`
   double center_x = 0.0;         ///< [m] map centre along x (long-range views: a long map)
+  double resolution = 0.04;      ///< [m] terrain cells (long maps: 0.05, as the scenarios)
   /// Layered outcrops (sim/terrain features.hpp), the long-range search's distractors.
   std::vector<sim::terrain::Outcrop> outcrops;
   double lander_x = 0.0;         ///< [m] deck centre, site frame

@@ -49,6 +49,7 @@ class LongRangeSceneTest : public ::testing::Test {
     o.size = 160.0;
     o.size_y = 50.0;
     o.center_x = 62.0;
+    o.resolution = 0.05;
     o.lander_x = kLanderX;
     o.lander_y = 0.0;
     o.lander_yaw_deg = 150.0;
