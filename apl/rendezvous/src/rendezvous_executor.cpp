@@ -479,9 +479,10 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       inside = FarFixConsistent(c_site, fix.covariance, &detail, &range_conflict);
       // Fixes on the estimate's bearing that keep disagreeing with its range: the estimate's
       // range is what is wrong (one biased far fix made it confident). After
-      // kMaxRangeConflicts in a row, weaken its information along the view to 30 % of the
-      // distance and take the fix.
-      range_conflicts_ = range_conflict ? range_conflicts_ + 1 : 0;
+      // kMaxRangeConflicts since the last accepted fix (misses and off-bearing fixes between
+      // them do not count), weaken its information along the view to 30 % of the distance and
+      // take the fix.
+      if (range_conflict) ++range_conflicts_;  // cleared by an accepted fix, not by misses
       if (range_conflict && range_conflicts_ >= kMaxRangeConflicts) {
         WeakenRange(kResetRangeSigma);
         inside = FarFixConsistent(c_site, fix.covariance, &detail, &range_conflict);
@@ -520,6 +521,7 @@ void RendezvousExecutor::OnLanderFix(const LanderFix& fix, Time now, ExecutorOut
       status_.message = "lander at " + FormatNumber(d.norm()) + " m" + reset_note;
       accepted = true;
       ++fixes_;
+      range_conflicts_ = 0;
     } else {
       status_.features = fix.features;
       status_.message = "a lander-like fix " + FormatNumber(off) +

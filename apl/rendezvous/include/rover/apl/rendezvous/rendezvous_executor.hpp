@@ -8,8 +8,8 @@
 ///  - LONG_RANGE (the estimate farther than 30 m): as MID_RANGE below, with the long-range
 ///    detector beyond the mid-range one's reach; the rover drives only once the lander is
 ///    acquired, far fixes are gated on bearing and range (FarFixConsistent) and the estimate's
-///    range sigma stays >= 8 % of the distance (far fixes share their bias); two fixes in a row
-///    on its bearing but off its range reset its range sigma to 30 % (the estimate was wrong).
+///    range sigma stays >= 8 % of the distance (far fixes share their bias); two fixes since the
+///    last accepted one on its bearing but off its range reset its range sigma to 30 %.
 ///  - MID_RANGE: point the mast at the lander estimate, take a NAVCAM pair, sight the
 ///    lander (RendezvousVision::SightLander), fuse the fix into the site-frame estimate (a
 ///    2-D information filter), then drive an autonav leg of at most `reacquire_step` towards
@@ -154,7 +154,7 @@ class RendezvousExecutor {
   int search_count_ = 0;
   int fixes_ = 0;       // accepted mid-range fixes of this command
   int blind_legs_ = 0;  // legs in a row led by the estimate alone
-  int range_conflicts_ = 0;  // far fixes in a row on the estimate's bearing but off its range
+  int range_conflicts_ = 0;  // far fixes on the estimate's bearing but off its range since the last accepted one
   int mobility_retries_ = 0;
   int orbit_legs_ = 0;
   int servo_steps_ = 0;
