@@ -64,19 +64,7 @@ double Percentile(const cv::Mat& m, double q) {
   return *at;
 }
 
-// Median of the finite values of a float map (a copy is partially sorted).
-double Median(const cv::Mat& m) {
-  std::vector<float> v;
-  v.reserve(m.total());
-  for (int r = 0; r < m.rows; ++r) {
-    const float* p = m.ptr<float>(r);
-    for (int c = 0; c < m.cols; ++c) v.push_back(p[c]);
-  }
-  if (v.empty()) return 0.0;
-  auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
+double Median(const cv::Mat& m) { return Percentile(m, 0.5); }
 
 // One level of the orthonormal 2-D Haar transform of `in` (even size): LL, LH (top minus bottom:
 // horizontal edges), HL (left minus right: vertical edges), HH.

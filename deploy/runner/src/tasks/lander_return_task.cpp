@@ -139,13 +139,7 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
   step.sim_end_s = ctx.Now();
   if (handed_over && !terminal) {
     // Phase 1 is over: stop the command where it is (the run ends here).
-    msg::RendezvousCommand stop;
-    stop.stamp = Time::FromSeconds(ctx.Now());
-    stop.command_id = kStopId;
-    stop.target = msg::RendezvousTarget::kStop;
-    rover_apl_RendezvousCommand wire{};
-    msg::RendezvousCommandToIdl(stop, &wire);
-    (void)command_.Write(wire);
+    SendStop(ctx);
     log.end_phase = "MID_RANGE";
     step.state = "succeeded";
     step.termination = "acquired";
@@ -154,13 +148,7 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
     return out;
   }
   if (overdue) {
-    msg::RendezvousCommand stop;
-    stop.stamp = Time::FromSeconds(ctx.Now());
-    stop.command_id = kStopId;
-    stop.target = msg::RendezvousTarget::kStop;
-    rover_apl_RendezvousCommand wire{};
-    msg::RendezvousCommandToIdl(stop, &wire);
-    (void)command_.Write(wire);
+    SendStop(ctx);
     out.failure = "no terminal apl/rendezvous_status within the command's time budget of " +
                   FormatNumber(spec_.time_budget_s) + " s plus " + FormatNumber(kGraceS) +
                   " s (STOP sent)";
@@ -186,6 +174,16 @@ TaskOutcome LanderReturnTask::Run(TaskContext& ctx) {
                   (log.message.empty() ? "" : ": " + log.message);
   }
   return out;
+}
+
+void LanderReturnTask::SendStop(TaskContext& ctx) {
+  msg::RendezvousCommand stop;
+  stop.stamp = Time::FromSeconds(ctx.Now());
+  stop.command_id = kStopId;
+  stop.target = msg::RendezvousTarget::kStop;
+  rover_apl_RendezvousCommand wire{};
+  msg::RendezvousCommandToIdl(stop, &wire);
+  (void)command_.Write(wire);  // best effort: the run ends either way
 }
 
 std::vector<Eigen::Vector2d> LanderReturnTask::PlannedPath() const {

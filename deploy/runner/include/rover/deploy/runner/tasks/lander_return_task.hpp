@@ -55,6 +55,9 @@ class LanderReturnTask : public Task {
   const LanderReturnSpec& spec() const { return spec_; }
 
  private:
+  // TARGET_STOP to apl-rendezvous (time budget overrun, or phase 1 done).
+  void SendStop(TaskContext& ctx);
+
   LanderReturnSpec spec_;
   double start_x_, start_y_;
   dds::Writer<rover_apl_RendezvousCommand> command_;
