@@ -160,15 +160,15 @@ void RendezvousExecutor::DriveTo(const Eigen::Vector2d& goal, double tolerance, 
   Drive(c, kind, now, out);
 }
 
+Eigen::Vector2d RendezvousExecutor::LookTarget() const {
+  // The deck centre, or a point as far away turned by the look-around offset while searching.
+  if (search_bearing_offset_ == 0.0) return center_;
+  const Eigen::Vector2d rover = RoverXy(), d = center_ - rover;
+  return rover + d.norm() * Unit(std::atan2(d.y(), d.x()) + search_bearing_offset_);
+}
+
 void RendezvousExecutor::LookAtLander(Time now, ExecutorOutput* out) {
-  // Look at the deck centre, or around it while searching.
-  const Eigen::Vector2d rover = RoverXy();
-  Eigen::Vector2d target = center_;
-  if (search_bearing_offset_ != 0.0) {
-    const Eigen::Vector2d d = center_ - rover;
-    const double r = d.norm(), b = std::atan2(d.y(), d.x()) + search_bearing_offset_;
-    target = rover + r * Unit(b);
-  }
+  const Eigen::Vector2d target = LookTarget();
   LookAt(Eigen::Vector3d(target.x(), target.y(), center_z_ + kLookHeight), now, out);
 }
 
@@ -302,13 +302,8 @@ ExecutorOutput RendezvousExecutor::OnStereoPair(const NavcamPair& pair, Time now
   }
   const bool close = status_.phase == RendezvousPhase::kCloseRange;
   if (!close) {
-    // The search window follows the look-around (the ground under the deck centre, or the
-    // point the mast was turned to while searching).
-    Eigen::Vector2d look = center_;
-    if (search_bearing_offset_ != 0.0) {
-      const Eigen::Vector2d d = center_ - RoverXy();
-      look = RoverXy() + d.norm() * Unit(std::atan2(d.y(), d.x()) + search_bearing_offset_);
-    }
+    // The search window follows the look-around: the ground under where the mast looks.
+    const Eigen::Vector2d look = LookTarget();
     const Eigen::Vector3d prior_site(look.x(), look.y(), center_z_);
     const Eigen::Vector3d prior_rover = pose_->site_from_rover.inverse() * prior_site;
     Result<LanderFix> fix = vision_->SightLander(pair, prior_rover);

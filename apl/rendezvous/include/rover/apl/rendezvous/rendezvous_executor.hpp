@@ -112,6 +112,8 @@ class RendezvousExecutor {
   void DriveTo(const Eigen::Vector2d& goal, double tolerance, DriveKind kind, Time now,
                ExecutorOutput* out);
   void LookAtLander(Time now, ExecutorOutput* out);
+  // Where the mast looks for the lander (site frame, horizontal): the estimate or the look-around.
+  Eigen::Vector2d LookTarget() const;
   void OnLanderFix(const LanderFix& fix, Time now, ExecutorOutput* out);
   // A long-range fix (deck centre c_site, covariance in R) consistent with the estimate?
   // range_conflict: on the bearing but not within the range gate.
