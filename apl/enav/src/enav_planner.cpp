@@ -299,7 +299,10 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
         if (blind) factor = std::min(factor, kBlockedFactor);
         j += ds * (factor + options_.curvature_cost * std::abs(k));
         if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
-          p.end_s = s;
+          // Priced to where it enters the goal's tolerance, but checked as far as the caller
+          // may drive it: the mobility manager's last step runs up to the goal's distance
+          // (a path reaches no point farther than its arc length, so that covers the step).
+          p.end_s = std::min(p.length1 + p.length2, std::max(s, eval.distance_to_goal));
           reached = true;
           break;
         }

@@ -98,6 +98,30 @@ TEST(EnavPlanner, NearTheGoalItIsReached) {
   EXPECT_FALSE(e->has_choice());
 }
 
+TEST(EnavPlanner, TheLastStepIsCheckedAsFarAsTheGoalNotJustIntoItsTolerance) {
+  // Goal 0.9 m ahead with 0.5 m tolerance: the straight path enters the tolerance after 0.4 m,
+  // but the mobility manager drives the last step up to the goal's distance (0.9 m), where the
+  // left front wheel (centre 0.625 m ahead, reach 0.148 m) would be on a 0.3 m rock whose near
+  // edge is 1.5 m out. The check covers what is driven, so the straight path is not chosen.
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  const HeightTerrain t = TerrainOf(Blocks({{1.65, 0.5, 0.15, 0.3}}));
+  nav_core::ArcRequest r;
+  r.goal = {0.9, 0.0};
+  r.goal_tolerance = 0.5;
+  auto e = p->Plan(t, r);
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  const PlanRecord& rec = p->last();
+  if (rec.chosen < 0) return;  // no safe path is a safe answer
+  const TreePath& chosen = rec.paths[static_cast<std::size_t>(rec.chosen)];
+  EXPECT_FALSE(chosen.turn == 0.0 && chosen.k1 == 0.0) << "the straight path puts wheel_lf on it";
+  const std::vector<geometry::Pose2> poses = p->Samples(rec.start, chosen);
+  ASSERT_FALSE(poses.empty());
+  EXPECT_GE(chosen.end_s, 0.9 - 1e-9);
+  const ClearanceChecker checker(t);
+  for (const geometry::Pose2& pose : poses) EXPECT_TRUE(checker.CheckPose(pose, false).ok);
+}
+
 TEST(EnavPlanner, AGoalOnATallRockIsRefusedSayingWhy) {
   auto p = EnavPlanner::Create(TestOptions());
   ASSERT_TRUE(p.ok());

@@ -57,7 +57,10 @@ struct TreePath {
   double k2 = 0.0;    ///< [1/m]
   int direction = 1;  ///< +1 forward tree, -1 a backward arc (k2, second length unused)
   double length1 = 0.0, length2 = 0.0;  ///< [m] (length2 0 for backward arcs)
-  double end_s = 0.0;  ///< [m] arc length considered (shorter when the path reaches the goal)
+  /// [m] arc length sampled and checked (0 = all): for a path that enters the goal's
+  /// tolerance, the larger of that entry and the goal's straight-line distance (the most the
+  /// mobility manager drives of it before deciding again).
+  double end_s = 0.0;
   int turn_index = 0, k1_index = 0;     ///< for sharing checks between paths
   double cost = 0.0;                    ///< J (+inf = discarded)
   int checked = 0;                      ///< 0 not checked, 1 passed, -1 failed
