@@ -81,8 +81,12 @@ double ClearanceChecker::WheelHeight(const geometry::Pose2& pose, int wheel, boo
   return best;
 }
 
-bool Exempt::Contains(std::size_t k) const {
-  return std::binary_search(cells.begin(), cells.end(), k);
+bool Exempt::Contains(int part, std::size_t k) const {
+  return std::binary_search(entries.begin(), entries.end(), std::make_pair(part, k));
+}
+
+bool Exempt::Has(std::size_t k) const {
+  return std::any_of(entries.begin(), entries.end(), [k](const auto& e) { return e.second == k; });
 }
 
 template <class F>
@@ -113,12 +117,12 @@ Exempt ClearanceChecker::Touching(const geometry::Pose2& pose, double extra) con
     const Eigen::Vector2d c = pose.ToSite(d.centre);
     if (terrain_->DistanceAt(d.layer, c) > d.radius + pad_ + extra) continue;
     ForHazards(d.layer, c, d.radius + pad_ + extra, [&](std::size_t k) {
-      e.cells.push_back(k);
+      e.entries.emplace_back(d.part, k);
       return false;
     });
   }
-  std::sort(e.cells.begin(), e.cells.end());
-  e.cells.erase(std::unique(e.cells.begin(), e.cells.end()), e.cells.end());
+  std::sort(e.entries.begin(), e.entries.end());
+  e.entries.erase(std::unique(e.entries.begin(), e.entries.end()), e.entries.end());
   return e;
 }
 
@@ -129,9 +133,9 @@ PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace,
     const Eigen::Vector2d c = pose.ToSite(d.centre);
     const double dist = terrain_->DistanceAt(d.layer, c);
     if (dist <= d.radius + pad_ &&
-        (exempt == nullptr || exempt->cells.empty() ||
+        (exempt == nullptr || exempt->empty() ||
          ForHazards(d.layer, c, d.radius + pad_,
-                    [&](std::size_t k) { return !exempt->Contains(k); }))) {
+                    [&](std::size_t k) { return !exempt->Contains(d.part, k); }))) {
       r.ok = false;
       r.why = parts_[static_cast<std::size_t>(d.part)].name + " " +
               FormatNumber(std::max(0.0, dist - d.radius), 2) + " m from a " +

@@ -179,8 +179,8 @@ bool EnavPlanner::Clears(const ClearanceChecker& checker, const geometry::Pose2&
   first.end_s = 0.0;
   const std::vector<geometry::Pose2> poses = Samples(start, first);
   const geometry::Pose2 end = poses.empty() ? geometry::Turned(start, p->turn) : poses.back();
-  for (const std::size_t k : checker.Touching(end, 0.0).cells) {
-    if (exempt.Contains(k)) {
+  for (const auto& [part, k] : checker.Touching(end, 0.0).entries) {
+    if (exempt.Has(k)) {
       p->why = "escape: still touching the hazard it starts beside after its first segment";
       return false;
     }

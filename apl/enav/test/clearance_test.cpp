@@ -85,18 +85,41 @@ TEST(ClearanceChecker, SuspensionFollowsTheWheelsAndLimitsTilt) {
 }
 
 TEST(ClearanceChecker, TouchedHazardsCanBeExemptedOthersNot) {
-  // A rock at the left middle wheel and another 1 m ahead of the right front wheel.
-  const HeightTerrain t = TerrainOf(Blocks({{0.0, 0.5, 0.1, 0.25}, {1.6, -0.5, 0.1, 0.25}}));
+  // A rock against the left front wheel and another 0.9 m behind the right rear wheel.
+  const HeightTerrain t = TerrainOf(Blocks({{0.85, 0.5, 0.1, 0.25}, {-1.6, -0.5, 0.1, 0.25}}));
   const ClearanceChecker c(t);
   const geometry::Pose2 here{0.0, 0.0, 0.0};
   EXPECT_FALSE(c.CheckPose(here, false).ok);
   const Exempt touched = c.Touching(here, 0.0);
-  EXPECT_FALSE(touched.cells.empty());
+  EXPECT_FALSE(touched.empty());
   EXPECT_TRUE(c.CheckPose(here, false, &touched).ok);
-  // Driving 1 m on: the exempt rock is beside the rear wheel, the other one under the front.
-  const PoseCheck ahead = c.CheckPose({1.0, 0.0, 0.0}, false, &touched);
-  EXPECT_FALSE(ahead.ok);
-  EXPECT_NE(ahead.why.find("_r"), std::string::npos) << ahead.why;
+  // Backing 0.5 m off the exempt rock is clear; 1 m puts the right rear wheel on the other.
+  EXPECT_TRUE(c.CheckPose({-0.5, 0.0, 0.0}, false, &touched).ok);
+  const PoseCheck back = c.CheckPose({-1.0, 0.0, 0.0}, false, &touched);
+  EXPECT_FALSE(back.ok);
+  EXPECT_NE(back.why.find("_rr"), std::string::npos) << back.why;
+}
+
+TEST(ClearanceChecker, AnExemptionHoldsOnlyForThePartThatTouches) {
+  // A rock against the left middle wheel only. Turning in place 40 deg clockwise swings the left
+  // rear wheel (0.8 m from the centre) through where the rock is: the middle wheel may leave
+  // it, the rear wheel may not run onto it.
+  const HeightTerrain t = TerrainOf(Blocks({{0.0, 0.72, 0.08, 0.25}}));
+  const ClearanceChecker c(t);
+  const geometry::Pose2 here{0.0, 0.0, 0.0};
+  const Exempt touched = c.Touching(here, 0.0);
+  ASSERT_FALSE(touched.empty());
+  EXPECT_TRUE(c.CheckPose(here, false, &touched).ok);
+  bool swept = false;
+  for (int deg = 5; deg <= 60; deg += 5) {
+    const PoseCheck turned = c.CheckPose({0.0, 0.0, -deg * kDegree}, false, &touched);
+    if (!turned.ok) {
+      swept = true;
+      EXPECT_NE(turned.why.find("_l"), std::string::npos) << turned.why;
+      EXPECT_EQ(turned.why.find("wheel_lm"), std::string::npos) << turned.why;
+    }
+  }
+  EXPECT_TRUE(swept);
 }
 
 TEST(ClearanceChecker, UnseenWheelPatchesAreCounted) {

@@ -44,14 +44,20 @@ struct PartDisc {
   int part = 0;  ///< index into the contact parts (for messages)
 };
 
-/// Hazard cells a check ignores: those the rover touches already where it stands (each cell of
-/// a part's hazard class within the part's reach plus `extra` at the start pose). The rover is on
-/// them, so the map is wrong or the contact has happened; either way it must be free to drive
-/// off. Rocks under the belly between the wheels are not touched and stay checked (a turn in
-/// place over them is not exempt). Sorted cell indices of the height map.
+/// Hazard cells a check ignores, each for one part only: those a part touches already where
+/// the rover stands (each cell of the part's hazard class within its reach plus `extra` at the
+/// start pose). The rover is on them, so the map is wrong or the contact has happened; either
+/// way that part must be free to move off them. Another part reaching them is checked as usual
+/// (a turn in place that swings the rear wheel onto the rock beside the middle wheel fails), and
+/// rocks under the belly between the wheels are not touched and stay checked.
 struct Exempt {
-  std::vector<std::size_t> cells;
-  bool Contains(std::size_t k) const;
+  /// (contact part index, height-map cell index), sorted.
+  std::vector<std::pair<int, std::size_t>> entries;
+  /// Whether part `part` may ignore cell `k`.
+  bool Contains(int part, std::size_t k) const;
+  /// Whether any part may ignore cell `k`.
+  bool Has(std::size_t k) const;
+  bool empty() const { return entries.empty(); }
 };
 
 /// What a check found; `ok` false names the first failure.
