@@ -33,19 +33,6 @@ bool OnFootprint(const geometry::Pose2& pose, hwconfig::Footprint f, double marg
 
 
 
-Status CheckRequest(const nav_core::ArcRequest& r) {
-  ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
-  if (!std::isfinite(r.goal.x()) || !std::isfinite(r.goal.y())) {
-    return InvalidArgument("ArcRequest.goal = (" + FormatNumber(r.goal.x()) + ", " +
-                           FormatNumber(r.goal.y()) + ") (must be finite)");
-  }
-  if (!(r.goal_tolerance >= 0.0)) {
-    return InvalidArgument("ArcRequest.goal_tolerance = " + FormatNumber(r.goal_tolerance) +
-                           " m (must be >= 0)");
-  }
-  return Status::Ok();
-}
-
 nav_core::Candidate FirstSegment(const TreePath& p) {
   nav_core::Candidate c;
   if (p.turn != 0.0) {
@@ -190,7 +177,7 @@ bool EnavPlanner::Clears(const ClearanceChecker& checker, const geometry::Pose2&
 
 Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssessor& terrain,
                                                   const nav_core::ArcRequest& request) const {
-  ROVER_RETURN_IF_ERROR(CheckRequest(request));
+  ROVER_RETURN_IF_ERROR(request.Validate());
   const auto* ht = dynamic_cast<const HeightTerrain*>(&terrain);
   if (ht == nullptr) {
     return FailedPrecondition(
@@ -282,6 +269,9 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
   // heading-blind configuration space closes, or the goal cut off): price blocked cells instead
   // of discarding them and end with the straight-line distance, so the checks still get ranked
   // candidates to decide on.
+  const double check_to = request.drive_length > 0.0
+                              ? std::min(request.drive_length, eval.distance_to_goal)
+                              : eval.distance_to_goal;
   auto cost_all = [&](bool blind) {
     for (TreePath& p : paths) {
       double j = options_.turn_cost * std::abs(p.turn);
@@ -300,9 +290,9 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
         j += ds * (factor + options_.curvature_cost * std::abs(k));
         if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
           // Priced to where it enters the goal's tolerance, but checked as far as the caller
-          // may drive it: the mobility manager's last step runs up to the goal's distance
-          // (a path reaches no point farther than its arc length, so that covers the step).
-          p.end_s = std::min(p.length1 + p.length2, std::max(s, eval.distance_to_goal));
+          // drives it: the mobility manager's last step runs up to the goal's distance (a path
+          // reaches no point farther than its arc length, so that covers the step).
+          p.end_s = std::min(p.length1 + p.length2, std::max(s, check_to));
           reached = true;
           break;
         }

@@ -120,6 +120,23 @@ TEST(EnavPlanner, TheLastStepIsCheckedAsFarAsTheGoalNotJustIntoItsTolerance) {
   EXPECT_GE(chosen.end_s, 0.9 - 1e-9);
   const ClearanceChecker checker(t);
   for (const geometry::Pose2& pose : poses) EXPECT_TRUE(checker.CheckPose(pose, false).ok);
+  // A caller that says it drives 0.3 m of the path before deciding again: checked into the
+  // tolerance (0.4 m), the wheel stays short of the rock and the straight path is taken.
+  // (A fresh planner: the first one would favour continuing its last choice.)
+  r.drive_length = 0.3;
+  auto p2 = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p2.ok());
+  auto short_step = p2->Plan(t, r);
+  ASSERT_TRUE(short_step.ok()) << short_step.status().message();
+  const PlanRecord& rec2 = p2->last();
+  ASSERT_GE(rec2.chosen, 0);
+  const TreePath& straight = rec2.paths[static_cast<std::size_t>(rec2.chosen)];
+  EXPECT_TRUE(straight.turn == 0.0 && straight.k1 == 0.0);
+  EXPECT_NEAR(straight.end_s, 0.4, 1e-9);
+  r.drive_length = -1.0;
+  auto bad = p->Plan(t, r);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("ArcRequest.drive_length"), std::string::npos);
 }
 
 TEST(EnavPlanner, AGoalOnATallRockIsRefusedSayingWhy) {

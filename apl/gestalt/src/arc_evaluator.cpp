@@ -32,14 +32,6 @@ double WrapPi(double a) {
 
 int Round255(double v) { return std::clamp(static_cast<int>(std::lround(v)), 0, 255); }
 
-Status CheckRequest(const ArcRequest& r) {
-  ROVER_RETURN_IF_ERROR(nav_core::CheckPoseFinite("ArcRequest.site_from_rover", r.site_from_rover));
-  ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.x", r.goal.x()));
-  ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.y", r.goal.y()));
-  ROVER_RETURN_IF_ERROR(CheckNonNegative("ArcRequest.goal_tolerance", r.goal_tolerance, "m"));
-  return CheckIntRange("ArcRequest.last_direction", r.last_direction, -1, 1);
-}
-
 }  // namespace
 
 Vote MergeVotes(const Vote& hazard, const Vote& waypoint, int min_vote_goodness) {
@@ -220,7 +212,7 @@ double ArcEvaluator::FirstFootprintHit(const Candidate& candidate, double length
 
 Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
                                              const ArcRequest& request) const {
-  ROVER_RETURN_IF_ERROR(CheckRequest(request));
+  ROVER_RETURN_IF_ERROR(request.Validate());
   const GestaltOptions& o = options_;
   ArcEvaluation e;
   e.candidates = candidates_;

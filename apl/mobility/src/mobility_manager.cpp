@@ -923,6 +923,10 @@ Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Tim
   req.goal_tolerance =
       run_->goals.size() > 1 ? std::max(kLegTolerance, run_->tolerance) : run_->tolerance;
   req.last_direction = run_->last_direction;
+  // What Command() drives of an arc before deciding again (VO splits it, never lengthens it).
+  req.drive_length = ModeUsesVisOdom(run_->command.mode)
+                         ? std::min(options_.step_length, options_.visodom_max_step)
+                         : options_.step_length;
   return selector_->Plan(*assessor_, req);
 }
 

@@ -20,6 +20,7 @@
 
 #include "rover/apl/nav_core/goodness_map.hpp"
 #include "rover/apl/nav_core/terrain_assessor.hpp"
+#include "rover/base/range_check.hpp"
 #include "rover/base/status.hpp"
 
 namespace rover::apl::nav_core {
@@ -50,6 +51,21 @@ struct ArcRequest {
   /// Direction of the arc driven last: +1 forward, -1 backward, 0 none yet (selectors may keep
   /// driving that way while the goal is near abeam instead of reversing at once).
   int last_direction = 0;
+  /// [m] the most of the chosen path the caller drives before it asks again; 0 = not said.
+  /// Planners that check their paths check at least this far (without it, as far as the goal's
+  /// straight-line distance: no caller drives past the goal).
+  double drive_length = 0.0;
+
+  /// OK, or InvalidArgument naming the field: a non-finite pose or goal, a negative tolerance
+  /// or drive_length, last_direction outside {-1, 0, 1}.
+  Status Validate() const {
+    ROVER_RETURN_IF_ERROR(CheckPoseFinite("ArcRequest.site_from_rover", site_from_rover));
+    ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.x", goal.x()));
+    ROVER_RETURN_IF_ERROR(CheckFinite("ArcRequest.goal.y", goal.y()));
+    ROVER_RETURN_IF_ERROR(CheckNonNegative("ArcRequest.goal_tolerance", goal_tolerance, "m"));
+    ROVER_RETURN_IF_ERROR(CheckNonNegative("ArcRequest.drive_length", drive_length, "m"));
+    return CheckIntRange("ArcRequest.last_direction", last_direction, -1, 1);
+  }
 };
 
 /// How the selector read the goal.
