@@ -16,6 +16,7 @@ constexpr double kTurnStep = 10.0 * std::numbers::pi / 180.0;  // [rad] poses al
 constexpr double kBlockedFactor = 10.0;  // [per m] a blocked cell's price when ranking blind
 constexpr double kContinueDistance = 0.2;  // [m] the rover counts as on its previous path
 constexpr double kContinueHeading = 0.2;   // [rad] ... heading this close to the path's
+constexpr double kEntryReach = 0.05;  // [m] past the tolerance's edge: far enough to count
 constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not "unseen"
                                          // (the wheels hide their own surroundings)
 
@@ -64,6 +65,14 @@ EnavPlanner::EnavPlanner(const EnavOptions& options) : options_(options) {
   for (double& k : curvatures_) {
     if (std::abs(k) < 1e-9) k = 0.0;
   }
+}
+
+std::optional<double> EnavPlanner::CostToGo(const Eigen::Vector2d& goal,
+                                            const Eigen::Vector2d& xy) const {
+  if (field_.goal() != goal) return std::nullopt;
+  const double c = field_.Cost(xy);
+  if (!std::isfinite(c)) return std::nullopt;
+  return c;
 }
 
 Result<nav_core::ArcEvaluation> EnavPlanner::Evaluate(const nav_core::GoodnessMap& map,
@@ -146,6 +155,19 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
              FormatNumber(options_.known_length) + " m unseen";
     return false;
   }
+  return true;
+}
+
+bool EnavPlanner::Settle(const ClearanceChecker& checker, const geometry::Pose2& start,
+                         const Exempt& on, bool escape, TreePath* p) const {
+  if (p->entry_s <= 0.0 || p->end_s <= p->entry_s + kEntryReach) return false;
+  TreePath shorter = *p;
+  shorter.end_s = p->entry_s + kEntryReach;
+  if (!CheckPath(checker, start, on, &shorter)) return false;
+  if (escape && !Clears(checker, start, on, &shorter)) return false;
+  *p = shorter;
+  p->settled = true;
+  p->checked = 1;
   return true;
 }
 
@@ -280,6 +302,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       double s_prev = 0.0;
       bool reached = false;
       p.end_s = 0.0;
+      p.entry_s = 0.0;
       for (std::size_t i = 0; i < poses.size() && std::isfinite(j); ++i) {
         const double s = std::min(p.length1 + p.length2, options_.sample_spacing * (i + 1.0));
         const double ds = s - s_prev;
@@ -293,6 +316,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
           // drives it: the mobility manager's last step runs up to the goal's distance (a path
           // reaches no point farther than its arc length, so that covers the step).
           p.end_s = std::min(p.length1 + p.length2, std::max(s, check_to));
+          p.entry_s = s;
           reached = true;
           break;
         }
@@ -368,6 +392,10 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
         prefix.length2 = 0.0;
         prefix.end_s = p.end_s > 0.0 ? std::min(p.end_s, p.length1) : p.length1;
         if (!CheckPath(checker, start, on, &prefix)) {
+          if (Settle(checker, start, on, escape, &p)) {
+            last_.chosen = idx;
+            break;
+          }
           failed_prefix[key] = prefix.why;
           p.checked = -1;
           p.why = prefix.why;
@@ -377,6 +405,10 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       }
       if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
         p.checked = 1;
+        last_.chosen = idx;
+        break;
+      }
+      if (Settle(checker, start, on, escape, &p)) {
         last_.chosen = idx;
         break;
       }
@@ -435,6 +467,8 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       a.length = p.length2;
       eval.path.push_back(a);
     }
+    // A path settled into the goal's tolerance is cleared no farther than it was checked.
+    if (p.settled) eval.max_drive = p.end_s;
     if (p.direction > 0 && !last_.escape) previous_ = Previous{start, p};
   }
   return eval;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <numbers>
+#include <optional>
 
 #include "scene.hpp"
 
@@ -102,7 +103,9 @@ TEST(EnavPlanner, TheLastStepIsCheckedAsFarAsTheGoalNotJustIntoItsTolerance) {
   // Goal 0.9 m ahead with 0.5 m tolerance: the straight path enters the tolerance after 0.4 m,
   // but the mobility manager drives the last step up to the goal's distance (0.9 m), where the
   // left front wheel (centre 0.625 m ahead, reach 0.148 m) would be on a 0.3 m rock whose near
-  // edge is 1.5 m out. The check covers what is driven, so the straight path is not chosen.
+  // edge is 1.5 m out. The check covers what is driven, so the straight path is not cleared to
+  // the goal: it is checked again only 5 cm into the tolerance (0.45 m: the wheel stays 0.2 m
+  // short of the rock), passes, and is offered that far (max_drive), no farther.
   auto p = EnavPlanner::Create(TestOptions());
   ASSERT_TRUE(p.ok());
   const HeightTerrain t = TerrainOf(Blocks({{1.65, 0.5, 0.15, 0.3}}));
@@ -112,14 +115,33 @@ TEST(EnavPlanner, TheLastStepIsCheckedAsFarAsTheGoalNotJustIntoItsTolerance) {
   auto e = p->Plan(t, r);
   ASSERT_TRUE(e.ok()) << e.status().message();
   const PlanRecord& rec = p->last();
-  ASSERT_GE(rec.chosen, 0) << "a turn or a curve past the rock is open";
+  ASSERT_GE(rec.chosen, 0);
   const TreePath& chosen = rec.paths[static_cast<std::size_t>(rec.chosen)];
-  EXPECT_FALSE(chosen.turn == 0.0 && chosen.k1 == 0.0) << "the straight path puts wheel_lf on it";
-  const std::vector<geometry::Pose2> poses = p->Samples(rec.start, chosen);
-  ASSERT_FALSE(poses.empty());
-  EXPECT_GE(chosen.end_s, 0.9 - 1e-9);
+  EXPECT_TRUE(chosen.turn == 0.0 && chosen.k1 == 0.0);
+  EXPECT_TRUE(chosen.settled);
+  EXPECT_NEAR(chosen.end_s, 0.45, 1e-9);
+  EXPECT_NEAR(e->max_drive, 0.45, 1e-9);
   const ClearanceChecker checker(t);
-  for (const geometry::Pose2& pose : poses) EXPECT_TRUE(checker.CheckPose(pose, false).ok);
+  for (const geometry::Pose2& pose : p->Samples(rec.start, chosen)) {
+    EXPECT_TRUE(checker.CheckPose(pose, false).ok);
+  }
+  // The rock 0.3 m nearer (near edge 1.2 m): not even 0.45 m of the straight path is clear, so
+  // something else is chosen, checked all the way to the goal.
+  {
+    auto q = EnavPlanner::Create(TestOptions());
+    ASSERT_TRUE(q.ok());
+    const HeightTerrain near = TerrainOf(Blocks({{1.35, 0.5, 0.15, 0.3}}));
+    auto f = q->Plan(near, r);
+    ASSERT_TRUE(f.ok()) << f.status().message();
+    const PlanRecord& qr = q->last();
+    ASSERT_GE(qr.chosen, 0) << "a turn or a curve past the rock is open";
+    const TreePath& other = qr.paths[static_cast<std::size_t>(qr.chosen)];
+    EXPECT_FALSE(other.turn == 0.0 && other.k1 == 0.0) << "the straight path puts wheel_lf on it";
+    const ClearanceChecker near_checker(near);
+    for (const geometry::Pose2& pose : q->Samples(qr.start, other)) {
+      EXPECT_TRUE(near_checker.CheckPose(pose, false).ok);
+    }
+  }
   // A caller that says it drives 0.3 m of the path before deciding again: checked into the
   // tolerance (0.4 m), the wheel stays short of the rock and the straight path is taken.
   // (A fresh planner: the first one would favour continuing its last choice.)
@@ -133,6 +155,8 @@ TEST(EnavPlanner, TheLastStepIsCheckedAsFarAsTheGoalNotJustIntoItsTolerance) {
   const TreePath& straight = rec2.paths[static_cast<std::size_t>(rec2.chosen)];
   EXPECT_TRUE(straight.turn == 0.0 && straight.k1 == 0.0);
   EXPECT_NEAR(straight.end_s, 0.4, 1e-9);
+  EXPECT_FALSE(straight.settled);
+  EXPECT_EQ(short_step->max_drive, 0.0);
   r.drive_length = -1.0;
   auto bad = p->Plan(t, r);
   ASSERT_FALSE(bad.ok());
@@ -171,6 +195,25 @@ TEST(EnavPlanner, WhenTheCostToGoReachesNoPathTheTreeIsRankedBlind) {
   EXPECT_GT(e->candidates_ranked, 0);
   EXPECT_GT(e->clearance_checks, 0);  // the checks decided (here: nothing passes)
   EXPECT_FALSE(e->has_choice());
+}
+
+// The cost-to-go the mobility manager's progress window reads: the field's value for the goal
+// of the latest decision; none for another goal, nor where the field is blocked.
+TEST(EnavPlanner, ItsCostToGoIsTheLatestFieldsForThatGoalOnly) {
+  std::vector<Block> wall;
+  for (double y = -1.0; y <= 1.0 + 1e-9; y += 0.2) wall.push_back({3.0, y, 0.1, 0.6});
+  const HeightTerrain t = TerrainOf(Blocks(wall));
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  const Eigen::Vector2d goal(6.0, 0.0);
+  EXPECT_FALSE(p->CostToGo(goal, {0.0, 0.0}).has_value());  // no decision yet
+  ASSERT_TRUE(p->Plan(t, Toward(goal.x(), goal.y())).ok());
+  const std::optional<double> here = p->CostToGo(goal, {0.0, 0.0});
+  ASSERT_TRUE(here.has_value());
+  EXPECT_DOUBLE_EQ(*here, p->cost_to_go().Cost({0.0, 0.0}));
+  EXPECT_GT(*here, 6.0 + 0.5);  // round the wall's end, not through it
+  EXPECT_FALSE(p->CostToGo(goal, {3.0, 0.0}).has_value());   // on the wall: blocked
+  EXPECT_FALSE(p->CostToGo({7.0, 0.0}, {0.0, 0.0}).has_value());  // another goal
 }
 
 TEST(EnavPlanner, BoxedInByTallRocksThereIsNoChoice) {

@@ -12,9 +12,9 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "decision_picture.hpp"
 #include "rover/apl/enav/enav_planner.hpp"
 #include "rover/apl/enav/height_terrain.hpp"
 #include "rover/base/cpu_time.hpp"
@@ -27,24 +27,6 @@ namespace geo = rover::geometry;
 namespace {
 
 double CpuMs() { return 1e3 * rover::ThreadCpuSeconds(); }
-
-// Site (x north, y west) to pixels of a window of half-size `half` about `c`: north up, west left.
-struct View {
-  Eigen::Vector2d c;
-  double half = 7.0, ppm = 40.0;
-  cv::Point Px(const Eigen::Vector2d& p) const {
-    return {static_cast<int>(std::lround((c.y() - p.y() + half) * ppm)),
-            static_cast<int>(std::lround((c.x() - p.x() + half) * ppm))};
-  }
-  int size() const { return static_cast<int>(std::lround(2 * half * ppm)); }
-};
-
-void DrawTreePath(const en::EnavPlanner& planner, const geo::Pose2& start, const en::TreePath& p,
-                  const View& v, const cv::Scalar& colour, int width, cv::Mat* img) {
-  std::vector<cv::Point> pts{v.Px(start.xy())};
-  for (const geo::Pose2& s : planner.Samples(start, p)) pts.push_back(v.Px(s.xy()));
-  cv::polylines(*img, pts, false, colour, width, cv::LINE_AA);
-}
 
 }  // namespace
 
@@ -128,92 +110,17 @@ int main(int argc, char** argv) {
   }
 
   // The picture of the last decision.
-  const nc::HeightMap& m = *terrain.height_map();
-  View v;
-  v.c = rover.xy();
-  const int s = v.size();
-  cv::Mat left(s, s, CV_8UC3, cv::Scalar(60, 60, 60));
-  for (int r = 0; r < s; ++r) {
-    for (int q = 0; q < s; ++q) {
-      const Eigen::Vector2d p(v.c.x() + v.half - (r + 0.5) / v.ppm,
-                              v.c.y() + v.half - (q + 0.5) / v.ppm);
-      int i = 0, j = 0;
-      m.CellOf(p.x(), p.y(), &i, &j);
-      if (!m.Contains(i, j)) continue;
-      const std::size_t k = m.Index(i, j);
-      if (m.count[k] == 0) continue;
-      const std::uint8_t h = m.hazard[k];
-      cv::Vec3b colour(200, 215, 200);                                       // seen, no hazard
-      if ((h & nc::kHazardWheel) != 0) colour = cv::Vec3b(40, 150, 250);     // wheels: orange
-      if ((h & nc::kHazardRocker) != 0) colour = cv::Vec3b(40, 60, 230);     // rockers: red
-      if ((h & nc::kHazardBody) != 0) colour = cv::Vec3b(30, 20, 120);       // body: dark red
-      left.at<cv::Vec3b>(r, q) = colour;
-    }
-  }
+  std::vector<en::PictureRock> rocks;
   for (const auto& rock : world.rocks) {
-    if (rock.height <= 0.2) continue;
-    cv::circle(left, v.Px(rock.position.head<2>()),
-               static_cast<int>(std::lround(0.5 * rock.diameter * v.ppm)), cv::Scalar(0, 0, 0), 1,
-               cv::LINE_AA);
+    if (rock.height > 0.2) rocks.push_back({rock.position.head<2>(), 0.5 * rock.diameter});
   }
-  const en::PlanRecord& rec = planner.last();
-  for (std::size_t i = 0; i < rec.paths.size(); i += 7) {  // a thinned tree
-    const en::TreePath& p = rec.paths[i];
-    if (p.direction > 0 && p.turn_index >= 0) {
-      DrawTreePath(planner, rec.start, p, v, cv::Scalar(150, 150, 150), 1, &left);
-    }
-  }
-  for (const en::TreePath& p : rec.paths) {
-    if (p.checked == -1) DrawTreePath(planner, rec.start, p, v, cv::Scalar(0, 0, 255), 1, &left);
-  }
-  if (rec.chosen >= 0) {
-    DrawTreePath(planner, rec.start, rec.paths[static_cast<std::size_t>(rec.chosen)], v,
-                 cv::Scalar(255, 80, 0), 3, &left);
-  }
-  std::vector<cv::Point> trail;
-  for (const Eigen::Vector2d& p : driven_path) trail.push_back(v.Px(p));
-  cv::polylines(left, trail, false, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
-  cv::circle(left, v.Px({goal_x, goal_y}), 8, cv::Scalar(0, 200, 0), 2, cv::LINE_AA);
-
-  const en::CostToGoField& f = planner.cost_to_go();
-  cv::Mat cost(s, s, CV_8UC1, cv::Scalar(0));
-  cv::Mat blocked(s, s, CV_8UC1, cv::Scalar(0));
-  double lo = 1e18, hi = -1e18;
-  for (int r = 0; r < s; ++r) {
-    for (int q = 0; q < s; ++q) {
-      const double c = f.Cost({v.c.x() + v.half - (r + 0.5) / v.ppm, v.c.y() + v.half - (q + 0.5) / v.ppm});
-      if (std::isfinite(c)) {
-        lo = std::min(lo, c);
-        hi = std::max(hi, c);
-      }
-    }
-  }
-  for (int r = 0; r < s; ++r) {
-    for (int q = 0; q < s; ++q) {
-      const double c = f.Cost({v.c.x() + v.half - (r + 0.5) / v.ppm, v.c.y() + v.half - (q + 0.5) / v.ppm});
-      if (!std::isfinite(c)) {
-        blocked.at<std::uint8_t>(r, q) = 255;
-        continue;
-      }
-      cost.at<std::uint8_t>(r, q) =
-          static_cast<std::uint8_t>(std::lround(255.0 * (c - lo) / std::max(hi - lo, 1e-9)));
-    }
-  }
-  cv::Mat right;
-  cv::applyColorMap(cost, right, cv::COLORMAP_VIRIDIS);
-  right.setTo(cv::Scalar(0, 0, 0), blocked);
-  cv::polylines(right, trail, false, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
-  if (rec.chosen >= 0) {
-    DrawTreePath(planner, rec.start, rec.paths[static_cast<std::size_t>(rec.chosen)], v,
-                 cv::Scalar(255, 80, 0), 3, &right);
-  }
-  cv::Mat both;
-  cv::hconcat(left, right, both);
+  const cv::Mat both = en::DrawDecision(planner, *terrain.height_map(), options.rover,
+                                        driven_path, rocks);
   if (!cv::imwrite(out, both)) {
     std::fprintf(stderr, "enav-demo: error: could not write %s\n", out.c_str());
     return 1;
   }
   std::printf("wrote %s (%.0f x %.0f m about the rover; left hazards and tree, right cost-to-go)\n",
-              out.c_str(), 2 * v.half, 2 * v.half);
+              out.c_str(), 2 * en::PictureOptions{}.half, 2 * en::PictureOptions{}.half);
   return 0;
 }

@@ -318,7 +318,7 @@ Result<ArcEvaluation> ArcEvaluator::Evaluate(const GoodnessMap& map,
     co.min_allowed_goodness = o.min_allowed_goodness;
     co.goodness_weight = o.cost_goodness_weight;
     co.unknown_cost_factor = o.cost_unknown_factor;
-    const CostToGo ctg(map, request.goal, co);
+    const gestalt::CostToGo ctg(map, request.goal, co);
     std::vector<double> cost(n, std::numeric_limits<double>::infinity());
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < n; ++k) {

@@ -700,7 +700,7 @@ void MobilityManager::Start(const MobilityCommand& c, Time now, MobilityOutput* 
       run_->goals.push_back(req.goal);
     }
   }
-  if (ModeHasGoal(c.mode)) run_->goal_distance_history.push_back(DistanceToGoal());
+  if (ModeHasGoal(c.mode)) RecordProgress();
   EmitStatus(now, out);
   NextStep(now, out);
 }
@@ -753,6 +753,40 @@ Eigen::Vector2d MobilityManager::CurrentGoal() const {
 double MobilityManager::DistanceToGoal() const {
   if (!run_ || run_->goals.empty() || !pose_) return -1.0;
   return (run_->goals.back() - PlanarPose(pose_->site_from_rover).xy()).norm();
+}
+
+void MobilityManager::RecordProgress() {
+  run_->goal_distance_history.push_back(DistanceToGoal());
+  run_->position_history.push_back(pose_ ? PlanarPose(pose_->site_from_rover).xy()
+                                         : Eigen::Vector2d::Zero());
+}
+
+void MobilityManager::ResetProgress() {
+  run_->goal_distance_history.clear();
+  run_->position_history.clear();
+  RecordProgress();
+}
+
+bool MobilityManager::NoProgress(std::string* why) const {
+  const auto& h = run_->goal_distance_history;
+  const std::size_t n = static_cast<std::size_t>(options_.progress_steps);
+  if (h.size() <= n || h[h.size() - 1 - n] - h.back() >= options_.min_progress) return false;
+  *why = "distance to the goal went from " + FormatNumber(h[h.size() - 1 - n], 4) + " to " +
+         FormatNumber(h.back(), 4) + " m";
+  // Along the planner's cost-to-go, both ends priced over today's map: a detour that runs down
+  // it is progress; an oscillation, or a walk that the map now shows leads nowhere, is not.
+  const auto& p = run_->position_history;
+  const Eigen::Vector2d goal = CurrentGoal();
+  const std::optional<double> from = selector_->CostToGo(goal, p[p.size() - 1 - n]);
+  const std::optional<double> to = selector_->CostToGo(goal, p.back());
+  if (from && to) {
+    if (*from - *to >= options_.min_progress) return false;
+    *why += " and the planner's cost-to-go from " + FormatNumber(*from, 4) + " to " +
+            FormatNumber(*to, 4) + " m";
+  }
+  *why += " in " + std::to_string(n) + " steps (min_progress_m = " +
+          FormatNumber(options_.min_progress) + ")";
+  return true;
 }
 
 bool MobilityManager::CheckLimits(Time now, MobilityOutput* out) {
@@ -808,7 +842,7 @@ void MobilityManager::NextStep(Time now, MobilityOutput* out) {
     while (run_->goals.size() > 1 &&
            (run_->goals.front() - here).norm() <= std::max(kLegTolerance, run_->tolerance)) {
       run_->goals.erase(run_->goals.begin());
-      run_->goal_distance_history.assign(1, DistanceToGoal());
+      ResetProgress();
     }
     const double d = (run_->goals.front() - here).norm();
     if (run_->goals.size() == 1 && d <= run_->tolerance) {
@@ -823,14 +857,7 @@ void MobilityManager::NextStep(Time now, MobilityOutput* out) {
              out);
       return;
     }
-    const auto& h = run_->goal_distance_history;
-    const std::size_t n = static_cast<std::size_t>(options_.progress_steps);
-    if (h.size() > n && h[h.size() - 1 - n] - h.back() < options_.min_progress) {
-      const std::string window = "distance to the goal went from " +
-                                 FormatNumber(h[h.size() - 1 - n], 4) + " to " +
-                                 FormatNumber(h.back(), 4) + " m in " + std::to_string(n) +
-                                 " steps (min_progress_m = " +
-                                 FormatNumber(options_.min_progress) + ")";
+    if (std::string window; NoProgress(&window)) {
       if (LimitCycleTurn(now, out)) return;
       Finish(now, State::kFailed, Fault::kNoProgress,
              window + (run_->limit_cycle_turns > 0
@@ -915,6 +942,30 @@ void MobilityManager::WaypointStep(Time now, MobilityOutput* out) {
   SendDrive(p, now, out);
 }
 
+double MobilityManager::ArcStepLength(const Pose2& from, double curvature, int direction) const {
+  const Eigen::Vector2d goal = CurrentGoal();
+  const double d = std::max((goal - from.xy()).norm(), 0.05);
+  const double most = options_.step_length + run_->tolerance;
+  if (run_->goals.size() != 1 || d > most || !selector_->ChecksDriveLength()) {
+    return std::min(options_.step_length, d);
+  }
+  // The last step ends where the arc passes nearest the goal, not at the edge of its tolerance:
+  // the tolerance is what the rover accepts, and the estimate's own error adds to wherever it
+  // stops. (An arc that bends away passes nearest early; driving it the goal's whole straight
+  // distance would carry the rover past.) An arc that does not enter the tolerance within
+  // `most` is driven a normal step.
+  constexpr double kSearchStep = 0.01;  // [m]
+  double best_s = 0.05, best = std::numeric_limits<double>::infinity();
+  for (double s = 0.05; s <= most + 1e-9; s += kSearchStep) {
+    const double e = (geometry::AlongArc(from, curvature, direction * s).xy() - goal).norm();
+    if (e < best) {
+      best = e;
+      best_s = s;
+    }
+  }
+  return best <= run_->tolerance ? best_s : std::min(options_.step_length, d);
+}
+
 Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Time now) const {
   (void)now;
   nav_core::ArcRequest req;
@@ -923,10 +974,14 @@ Result<nav_core::ArcEvaluation> MobilityManager::Evaluate(const Pose2& from, Tim
   req.goal_tolerance =
       run_->goals.size() > 1 ? std::max(kLegTolerance, run_->tolerance) : run_->tolerance;
   req.last_direction = run_->last_direction;
-  // What Command() drives of an arc before deciding again (VO splits it, never lengthens it).
+  // The most Command() drives of an arc before deciding again (ArcStepLength; VO splits it,
+  // never lengthens it).
+  const double most = run_->goals.size() == 1 && selector_->ChecksDriveLength()
+                          ? options_.step_length + run_->tolerance
+                          : options_.step_length;
   req.drive_length = ModeUsesVisOdom(run_->command.mode)
-                         ? std::min(options_.step_length, options_.visodom_max_step)
-                         : options_.step_length;
+                         ? std::min(most, options_.visodom_max_step)
+                         : most;
   return selector_->Plan(*assessor_, req);
 }
 
@@ -1015,7 +1070,7 @@ bool MobilityManager::LimitCycleTurn(Time now, MobilityOutput* out) {
   run_->limit_cycle_turns += 1;
   run_->path_next.reset();
   run_->last_direction = 0;
-  run_->goal_distance_history.assign(1, DistanceToGoal());
+  ResetProgress();
   EmitStatus(now, out);
   SendDrive(p, now, out);  // a keep-out hit ends the command there
   return true;
@@ -1079,15 +1134,17 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
         eval.path[1].kind == nav_core::MotionKind::kArc) {
       const nav_core::Candidate& a = eval.path[1];
       Primitive next;
-      const double len = std::min({options_.step_length, a.length,
-                                   std::max(eval.distance_to_goal, 0.05)});
+      const Pose2 turned = geometry::Turned(PlanarPose(pose_->site_from_rover), c.turn_angle);
+      double len = std::min(ArcStepLength(turned, a.curvature, a.direction), a.length);
+      if (eval.max_drive > 0.0) len = std::min(len, eval.max_drive);
       next.kind = std::abs(a.curvature) < 1e-9 ? PrimitiveKind::kStraight : PrimitiveKind::kArc;
       next.curvature = std::abs(a.curvature) < 1e-9 ? 0.0 : a.curvature;
       next.distance = a.direction < 0 ? -len : len;
       run_->path_next = next;
     }
   } else {
-    double len = std::min(options_.step_length, std::max(eval.distance_to_goal, 0.05));
+    double len = ArcStepLength(PlanarPose(pose_->site_from_rover), c.curvature, c.direction);
+    if (eval.max_drive > 0.0) len = std::min(len, eval.max_drive);
     if (vo) len = std::min(len, options_.visodom_max_step);
     p.kind = std::abs(c.curvature) < 1e-9 ? PrimitiveKind::kStraight : PrimitiveKind::kArc;
     p.curvature = std::abs(c.curvature) < 1e-9 ? 0.0 : c.curvature;
@@ -1173,7 +1230,7 @@ bool MobilityManager::SendDrive(const Primitive& p, Time now, MobilityOutput* ou
 }
 
 void MobilityManager::StepDone(Time now, MobilityOutput* out) {
-  if (ModeHasGoal(run_->command.mode)) run_->goal_distance_history.push_back(DistanceToGoal());
+  if (ModeHasGoal(run_->command.mode)) RecordProgress();
   if (ModeUsesVisOdom(run_->command.mode)) {
     run_->vo_since = now;
     EmitStatus(now, out);

@@ -50,6 +50,34 @@ PoseSample PoseAt(Time t, double x, double y, double heading = 0.0) {
 
 Time T(double s) { return Time::FromSeconds(s); }
 
+// GESTALT's votes behind a selector that also keeps a scripted cost-to-go (lower the farther
+// the position lies toward +y with `falls`, else the same everywhere) and may say it checks the
+// drive length: what the manager does with a planner like ENav, on GESTALT's simple world.
+class ScriptedCostToGo : public nav_core::ArcSelector {
+ public:
+  explicit ScriptedCostToGo(bool falls, bool checks_drive_length = false)
+      : falls_(falls), checks_drive_length_(checks_drive_length) {
+    auto arcs = gestalt::ArcEvaluator::Create(gestalt::GestaltOptions{});
+    ROVER_DEMAND(arcs.ok());
+    arcs_ = std::make_unique<gestalt::ArcEvaluator>(std::move(arcs).value());
+  }
+  Result<nav_core::ArcEvaluation> Evaluate(const nav_core::GoodnessMap& map,
+                                           const nav_core::ArcRequest& request) const override {
+    return arcs_->Evaluate(map, request);
+  }
+  std::optional<double> CostToGo(const Eigen::Vector2d& goal,
+                                 const Eigen::Vector2d& xy) const override {
+    (void)goal;
+    return falls_ ? 100.0 - xy.y() : 100.0;
+  }
+  bool ChecksDriveLength() const override { return checks_drive_length_; }
+
+ private:
+  bool falls_;
+  bool checks_drive_length_;
+  std::unique_ptr<gestalt::ArcEvaluator> arcs_;
+};
+
 // ---- driving in the fake world ---------------------------------------------------------------
 
 TEST(MobilityManagerWorld, AutonavReachesGoalThroughRocks) {
@@ -68,6 +96,36 @@ TEST(MobilityManagerWorld, AutonavReachesGoalThroughRocks) {
   EXPECT_GT(w.min_rock_clearance(), 0.3);  // the rover centre never came near a rock
   EXPECT_GT(s.steps, 15u);
   EXPECT_GT(w.arc_vote_snapshots(), 0);
+}
+
+// The last step ends at the goal, not at the edge of its tolerance, with a planner that checks
+// as far as the manager drives (ENav): 2.3 m ahead on open ground, three 0.5 m steps leave
+// 0.8 m, within step_length + tolerance, so the fourth drives all of it (it used to drive 0.5 m
+// and stop 0.3 m short, which the estimate's own error then adds to). Arc voting keeps MER's
+// fixed steps: its arcs are judged by goodness, not checked over a length.
+TEST(MobilityManagerWorld, TheLastStepEndsAtTheGoalNotAtTheEdgeOfItsTolerance) {
+  for (const bool checks : {true, false}) {
+    auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
+    ASSERT_TRUE(map.ok());
+    auto created = MobilityManager::Create(
+        MobilityOptions{}, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
+        std::make_unique<ScriptedCostToGo>(false, checks));
+    ASSERT_TRUE(created.ok()) << created.status().message();
+    MobilityManager m = std::move(created).value();
+    FakeWorld w(&m);
+    const MobilityStatus s = w.Run(Autonav(1, 2.3, 0.0, 0.5), 2000.0);
+    ASSERT_EQ(s.state, State::kSucceeded) << s.message;
+    ASSERT_FALSE(w.drives().empty());
+    // Farther than step_length + tolerance, a step is step_length.
+    EXPECT_NEAR(w.drives().front().distance, 0.5, 1e-9);
+    if (checks) {
+      EXPECT_LT(s.distance_to_goal, 0.05) << s.message;
+      EXPECT_NEAR(w.drives().back().distance, 0.8, 0.05);
+    } else {
+      EXPECT_GT(s.distance_to_goal, 0.2) << s.message;
+      EXPECT_NEAR(w.drives().back().distance, 0.5, 1e-9);
+    }
+  }
 }
 
 TEST(MobilityManagerWorld, DriveWhileThinkingStandsStillLessThanStopAndGo) {
@@ -292,6 +350,42 @@ TEST(MobilityManagerWorld, NoProgressTurnsInPlaceBeforeItGivesUp) {
       EXPECT_GE(std::abs(angles[1]), o.limit_cycle_min_bearing);
     }
     EXPECT_EQ(s.message.find("limit-cycle turn") != std::string::npos, turns > 0) << s.message;
+  }
+}
+
+// The NOPROGRESS window counts progress along the planner's cost-to-go too: a detour that takes
+// the rover no nearer the goal in a straight line for many steps, yet runs down the cost-to-go
+// (here the reported pose walks sideways, +y, as the rover drives), is not stopped; a planner
+// whose cost-to-go stands still is, and the message gives both figures.
+TEST(MobilityManagerWorld, ProgressCountsAlongThePlannersCostToGo) {
+  for (const bool falls : {true, false}) {
+    MobilityOptions o;
+    o.progress_steps = 4;
+    o.limit_cycle_turns = 0;
+    o.max_steps = 12;
+    auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
+    ASSERT_TRUE(map.ok());
+    auto created = MobilityManager::Create(
+        o, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
+        std::make_unique<ScriptedCostToGo>(falls));
+    ASSERT_TRUE(created.ok()) << created.status().message();
+    MobilityManager m = std::move(created).value();
+    FakeWorld w(&m);
+    // The reported position moves along +y as far as the rover drives along +x: the straight
+    // distance to a goal ahead on +x grows.
+    w.tamper_pose = [](PoseSample* p) {
+      const Eigen::Vector3d t = p->site_from_rover.translation();
+      p->site_from_rover.translation() = Eigen::Vector3d(0.0, t.x(), t.z());
+    };
+    const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 2000.0);
+    EXPECT_EQ(s.fault, Fault::kNoProgress) << s.message;
+    if (falls) {
+      EXPECT_NE(s.message.find("max_steps"), std::string::npos) << s.message;
+      EXPECT_EQ(s.steps, 12u) << s.message;
+    } else {
+      EXPECT_NE(s.message.find("cost-to-go from 100 to 100 m"), std::string::npos) << s.message;
+      EXPECT_LT(s.steps, 12u) << s.message;
+    }
   }
 }
 

@@ -19,16 +19,20 @@
 //
 //   autonav-kinematic deploy/scenarios/autonav_vl2.yaml --seeds 1..20
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "decision_picture.hpp"
 #include "fake_world.hpp"
+#include "rover/apl/enav/enav_planner.hpp"
 #include "rover/apl/mobility/mobility_manager.hpp"
 #include "rover/apl/mobility/mobility_options.hpp"
 #include "rover/apl/mobility/navigation.hpp"
@@ -200,7 +204,8 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
                            const deploy::runner::MobilityTaskSpec& spec, const ParamSet& params,
                            std::uint32_t seed, const mt::WorldOptions& wo, double noise,
                            bool verbose, bool votes, std::optional<double> passability_margin,
-                           bool passability_rectangle, int map_step) {
+                           bool passability_rectangle, int map_step,
+                           const std::vector<int>& picture_steps) {
   ROVER_ASSIGN_OR_RETURN(const sim::world::World world,
                          deploy::runner::BuildRunWorld(scenario, seed, scenario.file));
   ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
@@ -303,6 +308,37 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
 
   w.Absorb(manager.OnPose(w.PoseNow(), w.now()));
   double ranked_sum = 0.0, checks_sum = 0.0;
+  std::vector<Eigen::Vector2d> trail;
+  if (!picture_steps.empty()) {
+    // A picture of the ENav decision at each listed step (hazards, tree, checks, cost-to-go).
+    auto print = w.on_arc_votes;
+    w.on_arc_votes = [print, &manager, &trail, &picture_steps, &world, &rover, seed,
+                      &scenario](const ArcVotesSnapshot& snap) {
+      trail.push_back(snap.site_from_rover.translation().head<2>());
+      if (print) print(snap);
+      if (std::find(picture_steps.begin(), picture_steps.end(), static_cast<int>(snap.step)) ==
+          picture_steps.end()) {
+        return;
+      }
+      const auto* planner = dynamic_cast<const apl::enav::EnavPlanner*>(&manager.selector());
+      const apl::nav_core::HeightMap* m = manager.assessor().height_map();
+      if (planner == nullptr || m == nullptr) {
+        std::printf("    (no picture: the planner is not ENav)\n");
+        return;
+      }
+      std::vector<apl::enav::PictureRock> rocks;
+      for (const auto& rock : world.terrain.rocks) {
+        if (rock.height > scenario.criteria.traversable_height) {
+          rocks.push_back({rock.position.head<2>(), 0.5 * rock.diameter});
+        }
+      }
+      const std::string file = "enav_seed" + std::to_string(seed) + "_step" +
+                               std::to_string(snap.step) + ".png";
+      const cv::Mat img = apl::enav::DrawDecision(*planner, *m, rover, trail, rocks);
+      std::printf("    step %u: %s %s\n", snap.step, cv::imwrite(file, img) ? "wrote" : "could not write",
+                  file.c_str());
+    };
+  }
   {
     auto print = w.on_arc_votes;
     w.on_arc_votes = [print, &ranked_sum, &checks_sum](const ArcVotesSnapshot& snap) {
@@ -452,6 +488,10 @@ int main(int argc, char** argv) {
   int map_step = -1;
   app.add_option("--map-at-step", map_step,
                  "print the height map's hazards around the rover at this decision (enav)");
+  std::vector<int> picture_steps;
+  app.add_option("--picture-at-step", picture_steps,
+                 "write enav_seed<S>_step<N>.png: the ENav decision at these steps (the height "
+                 "map's hazards, the path tree, the refused and chosen paths, the cost-to-go)");
   app.add_flag("--votes", votes, "print every decision's votes (hazard/waypoint/merged)");
   CLI11_PARSE(app, argc, argv);
 
@@ -486,7 +526,7 @@ int main(int argc, char** argv) {
   std::map<std::string, int> outcomes;
   for (const std::uint32_t seed : *seeds) {
     auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose, votes,
-                     passability_margin, passability_rectangle, map_step);
+                     passability_margin, passability_rectangle, map_step, picture_steps);
     if (!r.ok()) return fail(r.status());
     passed += r->pass ? 1 : 0;
     char free_path[16] = "n/a";

@@ -47,6 +47,8 @@ class CostToGoField {
   Eigen::Vector2d origin() const { return origin_; }
   const std::vector<float>& costs() const { return cost_; }
   int searches() const { return searches_; }  ///< Dijkstra runs so far
+  /// The goal of the latest Update() (NaN before the first).
+  const Eigen::Vector2d& goal() const { return goal_; }
 
  private:
   bool Cell(const Eigen::Vector2d& xy, int* i, int* j) const;

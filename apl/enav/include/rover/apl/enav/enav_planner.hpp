@@ -61,6 +61,12 @@ struct TreePath {
   /// tolerance, the larger of that entry and the goal's straight-line distance (the most the
   /// mobility manager drives of it before deciding again).
   double end_s = 0.0;
+  /// [m] for a path that enters the goal's tolerance: where it does (0 otherwise). When the
+  /// check to end_s fails beyond this, the path is checked again only a little past it and,
+  /// passing, offered with its first segment that short (the rover stops inside the tolerance
+  /// rather than at the goal).
+  double entry_s = 0.0;
+  bool settled = false;  ///< chosen on that shorter check (end_s = entry_s + 5 cm)
   int turn_index = 0, k1_index = 0;     ///< for sharing checks between paths
   double cost = 0.0;                    ///< J (+inf = discarded)
   int checked = 0;                      ///< 0 not checked, 1 passed, -1 failed
@@ -92,6 +98,12 @@ class EnavPlanner : public nav_core::ArcSelector {
   Result<nav_core::ArcEvaluation> Plan(const nav_core::TerrainAssessor& terrain,
                                        const nav_core::ArcRequest& request) const override;
 
+  /// The cost-to-go field's value at xy when its goal is `goal` (nullopt otherwise, or when xy
+  /// is blocked, unreached or off the map).
+  std::optional<double> CostToGo(const Eigen::Vector2d& goal,
+                                 const Eigen::Vector2d& xy) const override;
+  bool ChecksDriveLength() const override { return true; }
+
   const PlanRecord& last() const { return last_; }
   const CostToGoField& cost_to_go() const { return field_; }
   /// Poses along a path every sample_spacing (the turn excluded: it is done in place).
@@ -101,6 +113,10 @@ class EnavPlanner : public nav_core::ArcSelector {
   explicit EnavPlanner(const EnavOptions& options);
   bool CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
                  const Exempt& on, TreePath* p) const;
+  // A path into the goal's tolerance that failed its check to the goal: checked again only to
+  // kEntryReach past its entry; passing, *p becomes that (settled, checked) and true.
+  bool Settle(const ClearanceChecker& checker, const geometry::Pose2& start, const Exempt& on,
+              bool escape, TreePath* p) const;
   // Escape paths: whether the first segment's end touches none of `exempt`.
   bool Clears(const ClearanceChecker& checker, const geometry::Pose2& start, const Exempt& exempt,
               TreePath* p) const;

@@ -177,6 +177,7 @@ class MobilityManager {
   const MotionCounters& counters() const { return counters_; }
   const MobilityOptions& options() const { return options_; }
   const nav_core::TerrainAssessor& assessor() const { return *assessor_; }
+  const nav_core::ArcSelector& selector() const { return *selector_; }
 
   /// The command checks of OnCommand without the state ones (BUSY, ACM, latch, pose): Ok or
   /// InvalidArgument naming the field and value ("tolerance = -1 m is outside [0, inf)").
@@ -227,6 +228,7 @@ class MobilityManager {
     int vo_failures = 0;
     double distance_driven = 0.0;
     std::vector<double> goal_distance_history;  // at each step end
+    std::vector<Eigen::Vector2d> position_history;  // site x, y at the same step ends
     int last_direction = 0;                     // of the last arc driven: +1, -1, 0 none yet
     int limit_cycle_turns = 0;                  // limit-cycle turns taken
     Time last_status;
@@ -260,6 +262,19 @@ class MobilityManager {
   Result<nav_core::ArcEvaluation> Evaluate(const Pose2& from, Time now) const;
   Eigen::Vector2d CurrentGoal() const;
   double DistanceToGoal() const;
+  // [m] of the arc (curvature, direction) from `from` to drive this step (before VO's limit):
+  // step_length, or, when the final goal lies within step_length + tolerance and the planner
+  // checks that far (ArcSelector::ChecksDriveLength), as far as the point of the arc nearest
+  // the goal (the last step ends at the goal, not at its tolerance).
+  double ArcStepLength(const Pose2& from, double curvature, int direction) const;
+  // Appends the distance to the goal and the position to the progress window (at each step
+  // end); ResetProgress starts the window again from here (a new leg, a limit-cycle turn).
+  void RecordProgress();
+  void ResetProgress();
+  // The NOPROGRESS test over the last progress_steps steps: neither the straight-line distance
+  // to the goal nor the planner's cost-to-go (when it keeps one) fell by min_progress_m.
+  // Fills *why with the figures when there was none.
+  bool NoProgress(std::string* why) const;
   bool PoseFresh(Time now, std::string* why) const;
   CameraId CameraFor(const nav_core::ArcEvaluation& eval) const;
   std::vector<Primitive> SplitForVisOdom(const Primitive& p) const;

@@ -15,6 +15,7 @@
 /// seen from above (to the left). Metres, radians.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,10 @@ struct ArcEvaluation {
   /// that plan several segments ahead (the ENav-class tree); empty for single-arc selectors.
   /// Only the first segment (choice()) is driven before the next decision.
   std::vector<Candidate> path;
+  /// [m] the most of the chosen path the planner cleared for this step when that is less than
+  /// the request's drive_length (ENav: a last step cleared only into the goal's tolerance, not
+  /// to the goal); 0 = the request's drive_length.
+  double max_drive = 0.0;
   int candidates_ranked = 0;  ///< paths costed (multi-segment planners; else candidates.size())
   int clearance_checks = 0;   ///< paths whose clearance was checked before one passed
 
@@ -118,6 +123,21 @@ class ArcSelector {
   virtual Result<ArcEvaluation> Plan(const TerrainAssessor& terrain,
                                      const ArcRequest& request) const {
     return Evaluate(terrain.goodness_map(), request);
+  }
+  /// The planner's cost-to-go [m-equivalent] from site point `xy` to `goal` over what it knows
+  /// after its latest Plan() (remembered map, routes around hazards), or nullopt when it keeps
+  /// none for that goal (arc voting) or `xy` is blocked, unreached or off its map. The mobility
+  /// manager measures progress along it: a detour round a rock field gets no nearer the goal
+  /// in a straight line for many steps, yet runs down the cost-to-go.
+  /// Whether Plan() checks the chosen path as far as ArcRequest::drive_length (ENav does; arc
+  /// voting judges its arcs by goodness only). The mobility manager lets only such a planner's
+  /// last step run past step_length, to the goal.
+  virtual bool ChecksDriveLength() const { return false; }
+  virtual std::optional<double> CostToGo(const Eigen::Vector2d& goal,
+                                         const Eigen::Vector2d& xy) const {
+    (void)goal;
+    (void)xy;
+    return std::nullopt;
   }
 };
 
