@@ -55,15 +55,17 @@ Time T(double s) { return Time::FromSeconds(s); }
 // drive length: what the manager does with a planner like ENav, on GESTALT's simple world.
 class ScriptedCostToGo : public nav_core::ArcSelector {
  public:
-  explicit ScriptedCostToGo(bool falls, bool checks_drive_length = false)
-      : falls_(falls), checks_drive_length_(checks_drive_length) {
+  explicit ScriptedCostToGo(bool falls, bool checks_drive_length = false, double max_drive = 0.0)
+      : falls_(falls), checks_drive_length_(checks_drive_length), max_drive_(max_drive) {
     auto arcs = gestalt::ArcEvaluator::Create(gestalt::GestaltOptions{});
     ROVER_DEMAND(arcs.ok());
     arcs_ = std::make_unique<gestalt::ArcEvaluator>(std::move(arcs).value());
   }
   Result<nav_core::ArcEvaluation> Evaluate(const nav_core::GoodnessMap& map,
                                            const nav_core::ArcRequest& request) const override {
-    return arcs_->Evaluate(map, request);
+    auto e = arcs_->Evaluate(map, request);
+    if (e.ok()) e->max_drive = max_drive_;
+    return e;
   }
   std::optional<double> CostToGo(const Eigen::Vector2d& goal,
                                  const Eigen::Vector2d& xy) const override {
@@ -75,6 +77,7 @@ class ScriptedCostToGo : public nav_core::ArcSelector {
  private:
   bool falls_;
   bool checks_drive_length_;
+  double max_drive_;
   std::unique_ptr<gestalt::ArcEvaluator> arcs_;
 };
 
@@ -124,6 +127,27 @@ TEST(MobilityManagerWorld, TheLastStepEndsAtTheGoalNotAtTheEdgeOfItsTolerance) {
     } else {
       EXPECT_GT(s.distance_to_goal, 0.2) << s.message;
       EXPECT_NEAR(w.drives().back().distance, 0.5, 1e-9);
+    }
+  }
+}
+
+// A planner that clears less of its choice than the manager would drive (ArcEvaluation's
+// max_drive: ENav's last step settled into the goal's tolerance) is driven no farther.
+TEST(MobilityManagerWorld, NoStepRunsPastWhatThePlannerCleared) {
+  auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
+  ASSERT_TRUE(map.ok());
+  auto created = MobilityManager::Create(
+      MobilityOptions{}, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
+      std::make_unique<ScriptedCostToGo>(false, true, 0.3));
+  ASSERT_TRUE(created.ok()) << created.status().message();
+  MobilityManager m = std::move(created).value();
+  FakeWorld w(&m);
+  const MobilityStatus s = w.Run(Autonav(1, 2.3, 0.0, 0.5), 2000.0);
+  ASSERT_EQ(s.state, State::kSucceeded) << s.message;
+  ASSERT_FALSE(w.drives().empty());
+  for (const DriveCommand& d : w.drives()) {
+    if (d.primitive != PrimitiveKind::kTurnInPlace) {
+      EXPECT_LE(std::abs(d.distance), 0.3 + 1e-9);
     }
   }
 }

@@ -124,15 +124,15 @@ class ArcSelector {
                                      const ArcRequest& request) const {
     return Evaluate(terrain.goodness_map(), request);
   }
+  /// Whether Plan() checks the chosen path as far as ArcRequest::drive_length (ENav does; arc
+  /// voting judges its arcs by goodness only). The mobility manager lets only such a planner's
+  /// last step run past step_length, to the goal.
+  virtual bool ChecksDriveLength() const { return false; }
   /// The planner's cost-to-go [m-equivalent] from site point `xy` to `goal` over what it knows
   /// after its latest Plan() (remembered map, routes around hazards), or nullopt when it keeps
   /// none for that goal (arc voting) or `xy` is blocked, unreached or off its map. The mobility
   /// manager measures progress along it: a detour round a rock field gets no nearer the goal
   /// in a straight line for many steps, yet runs down the cost-to-go.
-  /// Whether Plan() checks the chosen path as far as ArcRequest::drive_length (ENav does; arc
-  /// voting judges its arcs by goodness only). The mobility manager lets only such a planner's
-  /// last step run past step_length, to the goal.
-  virtual bool ChecksDriveLength() const { return false; }
   virtual std::optional<double> CostToGo(const Eigen::Vector2d& goal,
                                          const Eigen::Vector2d& xy) const {
     (void)goal;
