@@ -81,6 +81,18 @@ class ScriptedCostToGo : public nav_core::ArcSelector {
   std::unique_ptr<gestalt::ArcEvaluator> arcs_;
 };
 
+
+// A manager on GESTALT's terrain map with `selector` (ScriptedCostToGo in these tests).
+MobilityManager MakeManagerWith(const MobilityOptions& options,
+                                std::unique_ptr<nav_core::ArcSelector> selector) {
+  auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
+  ROVER_DEMAND(map.ok());
+  auto created = MobilityManager::Create(
+      options, std::make_unique<gestalt::TerrainMap>(std::move(map).value()), std::move(selector));
+  ROVER_DEMAND(created.ok());
+  return std::move(created).value();
+}
+
 // ---- driving in the fake world ---------------------------------------------------------------
 
 TEST(MobilityManagerWorld, AutonavReachesGoalThroughRocks) {
@@ -108,13 +120,8 @@ TEST(MobilityManagerWorld, AutonavReachesGoalThroughRocks) {
 // fixed steps: its arcs are judged by goodness, not checked over a length.
 TEST(MobilityManagerWorld, TheLastStepEndsAtTheGoalNotAtTheEdgeOfItsTolerance) {
   for (const bool checks : {true, false}) {
-    auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
-    ASSERT_TRUE(map.ok());
-    auto created = MobilityManager::Create(
-        MobilityOptions{}, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
-        std::make_unique<ScriptedCostToGo>(false, checks));
-    ASSERT_TRUE(created.ok()) << created.status().message();
-    MobilityManager m = std::move(created).value();
+    MobilityManager m =
+        MakeManagerWith(MobilityOptions{}, std::make_unique<ScriptedCostToGo>(false, checks));
     FakeWorld w(&m);
     const MobilityStatus s = w.Run(Autonav(1, 2.3, 0.0, 0.5), 2000.0);
     ASSERT_EQ(s.state, State::kSucceeded) << s.message;
@@ -134,13 +141,8 @@ TEST(MobilityManagerWorld, TheLastStepEndsAtTheGoalNotAtTheEdgeOfItsTolerance) {
 // A planner that clears less of its choice than the manager would drive (ArcEvaluation's
 // max_drive: ENav's last step settled into the goal's tolerance) is driven no farther.
 TEST(MobilityManagerWorld, NoStepRunsPastWhatThePlannerCleared) {
-  auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
-  ASSERT_TRUE(map.ok());
-  auto created = MobilityManager::Create(
-      MobilityOptions{}, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
-      std::make_unique<ScriptedCostToGo>(false, true, 0.3));
-  ASSERT_TRUE(created.ok()) << created.status().message();
-  MobilityManager m = std::move(created).value();
+  MobilityManager m =
+      MakeManagerWith(MobilityOptions{}, std::make_unique<ScriptedCostToGo>(false, true, 0.3));
   FakeWorld w(&m);
   const MobilityStatus s = w.Run(Autonav(1, 2.3, 0.0, 0.5), 2000.0);
   ASSERT_EQ(s.state, State::kSucceeded) << s.message;
@@ -387,13 +389,7 @@ TEST(MobilityManagerWorld, ProgressCountsAlongThePlannersCostToGo) {
     o.progress_steps = 4;
     o.limit_cycle_turns = 0;
     o.max_steps = 12;
-    auto map = gestalt::TerrainMap::Create(gestalt::GestaltOptions{});
-    ASSERT_TRUE(map.ok());
-    auto created = MobilityManager::Create(
-        o, std::make_unique<gestalt::TerrainMap>(std::move(map).value()),
-        std::make_unique<ScriptedCostToGo>(falls));
-    ASSERT_TRUE(created.ok()) << created.status().message();
-    MobilityManager m = std::move(created).value();
+    MobilityManager m = MakeManagerWith(o, std::make_unique<ScriptedCostToGo>(falls));
     FakeWorld w(&m);
     // The reported position moves along +y as far as the rover drives along +x: the straight
     // distance to a goal ahead on +x grows.
