@@ -32,13 +32,27 @@ Status ValidateNavigationParams(const ParamSet& params) {
   return enav::ReadEnavOptionsForRover(params).status();
 }
 
-Result<MobilityManager> MakeMobilityManager(const ParamSet& params) {
+namespace {
+Status MergePrior(nav_core::TerrainAssessor& assessor,
+                  const std::vector<nav_core::RangeScan>& scans) {
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    if (auto r = assessor.Update(scans[i]); !r.ok()) {
+      return InvalidArgument("prior scan " + std::to_string(i) + ": " + r.status().message());
+    }
+  }
+  return Status::Ok();
+}
+}  // namespace
+
+Result<MobilityManager> MakeMobilityManager(const ParamSet& params,
+                                            const std::vector<nav_core::RangeScan>& prior_scans) {
   ROVER_ASSIGN_OR_RETURN(const MobilityOptions options,
                          ReadParams<MobilityOptions>(params, "mobility."));
   if (PlannerName(params) == "enav") {
     ROVER_ASSIGN_OR_RETURN(const enav::EnavOptions e, enav::ReadEnavOptionsForRover(params));
     ROVER_ASSIGN_OR_RETURN(enav::HeightTerrain terrain, enav::HeightTerrain::Create(e));
     ROVER_ASSIGN_OR_RETURN(enav::EnavPlanner planner, enav::EnavPlanner::Create(e));
+    ROVER_RETURN_IF_ERROR(MergePrior(terrain, prior_scans));
     return MobilityManager::Create(options,
                                    std::make_unique<enav::HeightTerrain>(std::move(terrain)),
                                    std::make_unique<enav::EnavPlanner>(std::move(planner)));
@@ -47,6 +61,7 @@ Result<MobilityManager> MakeMobilityManager(const ParamSet& params) {
                          gestalt::ReadGestaltOptionsForRover(params));
   ROVER_ASSIGN_OR_RETURN(gestalt::TerrainMap map, gestalt::TerrainMap::Create(g));
   ROVER_ASSIGN_OR_RETURN(gestalt::ArcEvaluator arcs, gestalt::ArcEvaluator::Create(g));
+  ROVER_RETURN_IF_ERROR(MergePrior(map, prior_scans));
   return MobilityManager::Create(options, std::make_unique<gestalt::TerrainMap>(std::move(map)),
                                  std::make_unique<gestalt::ArcEvaluator>(std::move(arcs)));
 }

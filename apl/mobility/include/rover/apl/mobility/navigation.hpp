@@ -9,6 +9,7 @@
 /// geometry.* (the rover description both planners take their geometry from).
 
 #include <string>
+#include <vector>
 
 #include "rover/apl/mobility/mobility_manager.hpp"
 #include "rover/base/params.hpp"
@@ -21,7 +22,11 @@ void DeclareNavigationParams(ParamSet& params);
 Status ValidateNavigationParams(const ParamSet& params);
 /// "gestalt" or "enav".
 std::string PlannerName(const ParamSet& params);
-/// The manager with the chosen planner. Errors: as ValidateNavigationParams.
-Result<MobilityManager> MakeMobilityManager(const ParamSet& params);
+/// The manager with the chosen planner. `prior_scans` are merged into its terrain map before
+/// it is handed over (a map known in advance; autonav-kinematic's --known-field uses it to
+/// judge the planner apart from what the cameras saw). Errors: as ValidateNavigationParams,
+/// or a prior scan the assessor refuses (its message, with the scan's index).
+Result<MobilityManager> MakeMobilityManager(const ParamSet& params,
+                                            const std::vector<nav_core::RangeScan>& prior_scans = {});
 
 }  // namespace rover::apl::mobility
