@@ -48,6 +48,10 @@ Status WheelOdometryOptions::Validate() const {
     return InvalidArgument("WheelOdometryOptions.max_wheel_rate: " + FormatNumber(max_wheel_rate) +
                            " must be > 0");
   }
+  if (!std::isfinite(slip_ratio) || slip_ratio < 0.0 || slip_ratio >= 0.5) {
+    return InvalidArgument("WheelOdometryOptions.slip_ratio: " + FormatNumber(slip_ratio) +
+                           " must be in [0, 0.5)");
+  }
   if (!std::isfinite(max_interval_s) || max_interval_s <= 0.0) {
     return InvalidArgument("WheelOdometryOptions.max_interval_s: " + FormatNumber(max_interval_s) +
                            " must be > 0");
@@ -118,7 +122,7 @@ Result<OdometryIncrement> WheelOdometry::Compute(const msg::JointState& from,
     const Eigen::Vector2d t(std::cos(heading), std::sin(heading));
     const Eigen::Vector2d n(-t.y(), t.x());
     const Eigen::Vector2d jp(-pbar.y(), pbar.x());
-    const double rim = r * dth * std::cos(pitch);
+    const double rim = (1.0 - options_.slip_ratio) * r * dth * std::cos(pitch);
     path += std::abs(rim);
     a.row(2 * i) << t.x(), t.y(), t.dot(jp);
     b(2 * i) = rim - t.dot(dp);
@@ -210,6 +214,11 @@ void DeclareWheelOdometryParams(ParamSet& params, const std::string& prefix) {
       .Range(1e-3, 60.0);
   params.Declare(prefix + "use_suspension", d.use_suspension,
                  "use rocker/bogie angles for the contact geometry");
+  params
+      .Declare(prefix + "slip_ratio", d.slip_ratio,
+               "expected longitudinal wheel slip on the terrain (calibrated there): a rim "
+               "distance d counts as (1 - slip_ratio) d on the ground")
+      .Range(0.0, 0.49);
 }
 
 Result<WheelOdometryOptions> WheelOdometryOptionsFromParams(const ParamSet& params,
@@ -223,6 +232,7 @@ Result<WheelOdometryOptions> WheelOdometryOptionsFromParams(const ParamSet& para
   o.max_interval_s = params.GetDouble(prefix + "max_interval_s");
   o.max_wheel_rate = params.GetDouble(prefix + "max_wheel_rate");
   o.use_suspension = params.GetBool(prefix + "use_suspension");
+  o.slip_ratio = params.GetDouble(prefix + "slip_ratio");
   ROVER_RETURN_IF_ERROR(o.Validate());
   return o;
 }

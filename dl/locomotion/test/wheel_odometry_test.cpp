@@ -247,6 +247,30 @@ TEST(WheelOdometry, SlipShowsInTheResidual) {
   EXPECT_NEAR(inc->dx, 0.05 + 0.4 * g.wheel_radius / 6, 5e-3);
 }
 
+TEST(WheelOdometry, ACalibratedSlipShortensTheDistanceNotTheTurn) {
+  const RoverGeometry g;
+  WheelOdometryOptions o;
+  o.slip_ratio = 0.02;  // the wheels turn 2 % more than the ground they cover
+  WheelOdometry odo = MakeOdometry(g, o);
+  SampleWriter w(g);
+  w.Emit();
+  w.Arc(0.0, 10.0, 200);  // 10 m of rim distance straight ahead
+  const Pose2 p = Integrate(odo, w.samples());
+  EXPECT_NEAR(p.x, 9.8, 1e-9);
+  EXPECT_NEAR(p.y, 0.0, 1e-12);
+  // A turn in place: every wheel slips alike, so the heading scales too (the solve is linear).
+  SampleWriter t(g);
+  t.Emit();
+  t.TurnInPlace(90 * kDegree, 60);
+  EXPECT_NEAR(Integrate(odo, t.samples()).yaw, 0.98 * 90 * kDegree, 1e-9);
+  for (const double bad : {-0.01, 0.5, std::nan("")}) {
+    o.slip_ratio = bad;
+    const Status s = o.Validate();
+    EXPECT_FALSE(s.ok()) << bad;
+    EXPECT_NE(s.message().find("slip_ratio"), std::string::npos) << s.message();
+  }
+}
+
 TEST(WheelOdometry, RejectsBadSamples) {
   WheelOdometry odo = MakeOdometry();
   msg::JointState a;
@@ -290,10 +314,12 @@ TEST(WheelOdometry, RejectsBadSamples) {
 TEST(WheelOdometry, Params) {
   ParamSet p("pose");
   DeclareWheelOdometryParams(p);
-  ASSERT_TRUE(p.LoadYamlString("odometry:\n  along_variance_per_m: 0.002\n", "o.yaml").ok());
+  ASSERT_TRUE(p.LoadYamlString("odometry:\n  along_variance_per_m: 0.002\n  slip_ratio: 0.021\n",
+                               "o.yaml").ok());
   Result<WheelOdometryOptions> o = WheelOdometryOptionsFromParams(p);
   ASSERT_TRUE(o.ok());
   EXPECT_DOUBLE_EQ(o->along_variance_per_m, 0.002);
+  EXPECT_DOUBLE_EQ(o->slip_ratio, 0.021);
   ParamSet q("pose");
   DeclareWheelOdometryParams(q);
   ASSERT_TRUE(q.LoadYamlString("odometry:\n  max_interval_s: -1\n", "o.yaml").ok());

@@ -59,6 +59,12 @@ struct WheelOdometryOptions {
   /// kWheelJumpSlack between two samples is an encoder fault (a flipped bit), not motion
   double max_wheel_rate = kMaxPlausibleWheelRate;
   bool use_suspension = true;          ///< false: ignore rocker/bogie (flat-ground model)
+  /// Expected longitudinal slip s = (rim speed - ground speed) / rim speed on the terrain
+  /// driven, calibrated there (0 = a rigid wheel rolling without slip): each wheel's rim
+  /// distance r dtheta counts as (1 - s) r dtheta on the ground. Even on flat firm soil a
+  /// driven wheel slips enough for its traction to overcome rolling resistance (the simulator's
+  /// firm soil: about 2 %), which uncompensated odometry counts as distance. In [0, 0.5).
+  double slip_ratio = 0.0;
 
   Status Validate() const;
 };
