@@ -17,6 +17,11 @@ constexpr double kBlockedFactor = 10.0;  // [per m] a blocked cell's price when 
 constexpr double kContinueDistance = 0.2;  // [m] the rover counts as on its previous path
 constexpr double kContinueHeading = 0.2;   // [rad] ... heading this close to the path's
 constexpr double kEntryReach = 0.05;  // [m] past the tolerance's edge: far enough to count
+constexpr double kRetraceStep = 0.02;      // [m] poses along the last drive searched
+constexpr double kRetraceMax = 1.5;        // [m] ... this far
+constexpr double kRetraceDistance = 0.15;  // [m] the rover counts as on its last drive
+constexpr double kRetraceHeading = 0.15;   // [rad] ... heading this close
+constexpr double kRetraceMin = 0.1;        // [m] less driven than this: nothing to retrace
 constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not "unseen"
                                          // (the wheels hide their own surroundings)
 
@@ -195,6 +200,30 @@ bool EnavPlanner::Clears(const ClearanceChecker& checker, const geometry::Pose2&
     }
   }
   return true;
+}
+
+std::optional<TreePath> EnavPlanner::Retrace(const geometry::Pose2& start) const {
+  if (!last_drive_) return std::nullopt;
+  // Where along the last drive the rover stands (its arc from where that decision started).
+  double best = kRetraceDistance, best_s = 0.0;
+  for (double s = kRetraceStep; s <= kRetraceMax + 1e-9; s += kRetraceStep) {
+    const geometry::Pose2 p =
+        geometry::AlongArc(last_drive_->start, last_drive_->k, last_drive_->direction * s);
+    const double d = (p.xy() - start.xy()).norm();
+    const double dh = std::abs(geometry::WrapAngle(p.heading - start.heading));
+    if (d < best && dh < kRetraceHeading) {
+      best = d;
+      best_s = s;
+    }
+  }
+  if (best_s < kRetraceMin) return std::nullopt;
+  TreePath r;
+  r.direction = -last_drive_->direction;
+  r.k1 = last_drive_->k;
+  r.length1 = best_s;
+  r.turn_index = -4;
+  r.k1_index = -4;
+  return r;
 }
 
 Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssessor& terrain,
@@ -432,6 +461,26 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     }
   }
   eval.clearance_checks = last_.checks;
+
+  // Nothing passes: back along the last drive if the rover is still on it. The rover's own
+  // parts swept that ground moments ago, so it is clear whatever the map now says (a rock
+  // beside a wheel re-measured from nearer, a stereo artefact under it); from there the next
+  // decision sees the spot from farther back.
+  if (last_.chosen < 0) {
+    if (std::optional<TreePath> r = Retrace(start)) {
+      r->checked = 1;
+      r->why = "retrace: back along the last drive";
+      last_.retrace = true;
+      last_.chosen = static_cast<int>(paths.size());
+      paths.push_back(*r);
+      checked.push_back(last_.chosen);
+    }
+  }
+  last_drive_.reset();
+  if (last_.chosen >= 0 && !last_.retrace) {
+    const TreePath& p = paths[static_cast<std::size_t>(last_.chosen)];
+    if (p.turn == 0.0) last_drive_ = LastDrive{start, p.k1, p.direction};
+  }
 
   // The evaluation: the checked paths' first segments in rank order.
   double best = kNoCost;

@@ -231,5 +231,60 @@ TEST(EnavPlanner, BoxedInByTallRocksThereIsNoChoice) {
   EXPECT_EQ(e->mode, nav_core::GoalMode::kNormal);
 }
 
+// A ring of 0.6 m rocks (radius 1.3 m) about (cx, 0): no path out of it passes.
+HeightTerrain BoxedAt(double cx) {
+  std::vector<Block> ring;
+  for (int a = 0; a < 60; ++a) {
+    const double t = 2.0 * std::numbers::pi * a / 60;
+    ring.push_back({cx + 1.3 * std::cos(t), 1.3 * std::sin(t), 0.1, 0.6});
+  }
+  return TerrainOf(Blocks(ring));
+}
+
+nav_core::ArcRequest From(double x, double y, double heading, const nav_core::ArcRequest& r) {
+  nav_core::ArcRequest out = r;
+  out.site_from_rover = Eigen::Translation3d(x, y, 0.0) *
+                        Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ());
+  return out;
+}
+
+TEST(EnavPlanner, WithNoPathItBacksAlongTheArcItJustDrove) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  const HeightTerrain open = TerrainOf(Blocks({}));
+  auto first = p->Plan(open, Toward(6, 0));
+  ASSERT_TRUE(first.ok() && first->has_choice());
+  ASSERT_EQ(first->choice().kind, nav_core::MotionKind::kArc);
+  ASSERT_DOUBLE_EQ(first->choice().curvature, 0.0);
+  // 0.4 m on, the map now shows it boxed in: back the 0.4 m it came, not a goal error.
+  const HeightTerrain boxed = BoxedAt(0.4);
+  auto back = p->Plan(boxed, From(0.4, 0.0, 0.0, Toward(6, 0)));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ASSERT_TRUE(back->has_choice());
+  EXPECT_TRUE(p->last().retrace);
+  EXPECT_EQ(back->choice().kind, nav_core::MotionKind::kArc);
+  EXPECT_EQ(back->choice().direction, -1);
+  EXPECT_DOUBLE_EQ(back->choice().curvature, 0.0);
+  EXPECT_NEAR(back->choice().length, 0.4, 0.021);
+  // Once: back where it started and still boxed in, nothing left to retrace.
+  auto again = p->Plan(BoxedAt(0.0), Toward(6, 0));
+  ASSERT_TRUE(again.ok());
+  EXPECT_FALSE(again->has_choice());
+  EXPECT_FALSE(p->last().retrace);
+}
+
+TEST(EnavPlanner, OffItsLastDriveThereIsNothingToRetrace) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  auto first = p->Plan(TerrainOf(Blocks({})), Toward(6, 0));
+  ASSERT_TRUE(first.ok() && first->has_choice());
+  // Not where that drive went (0.5 m to the side, or turned 30 deg): no retrace.
+  for (const auto& [y, h] : {std::pair{0.5, 0.0}, std::pair{0.0, 0.52}}) {
+    auto e = p->Plan(BoxedAt(0.4), From(0.4, y, h, Toward(6, 0)));
+    ASSERT_TRUE(e.ok());
+    EXPECT_FALSE(e->has_choice()) << y << " " << h;
+  }
+}
+
 }  // namespace
 }  // namespace rover::apl::enav

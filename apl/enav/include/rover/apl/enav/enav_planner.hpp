@@ -29,7 +29,10 @@
 /// unseen. The first path that passes is the choice; a failing turn or first segment fails
 /// every path that shares it without being checked again. If none of the forward paths passes,
 /// backward arcs of first_length (one per curvature) are checked, ranked by cost-to-go at their
-/// end (a K-turn's first half). No path passing: no choice (the manager's NOPATH).
+/// end (a K-turn's first half). No path passing: if the last decision drove an arc without a
+/// turn and the rover stands on it (within 0.15 m and 0.15 rad, at least 0.1 m along), the
+/// choice is that arc backward to where the decision started, unchecked (the rover's parts swept
+/// that ground; the map beside a wheel is what changed), once; else no choice (NOPATH).
 ///
 /// A goal on a seen rock taller than the belly clearance (a body-class hazard cell) gets no
 /// choice at once, `why` saying so (the manager's NOPATH, a goal error), unless the rover is
@@ -83,6 +86,7 @@ struct PlanRecord {
   int checks = 0;               ///< clearance checks run
   bool escape = false;          ///< chosen with hazards near the footprint ignored
   bool blind = false;           ///< ranked without the cost-to-go (it reached no path)
+  bool retrace = false;         ///< nothing passed: the choice backs along the last drive
 };
 
 class EnavPlanner : public nav_core::ArcSelector {
@@ -130,6 +134,15 @@ class EnavPlanner : public nav_core::ArcSelector {
     TreePath path;
   };
   mutable std::optional<Previous> previous_;  ///< the last choice (forward, not an escape)
+  struct LastDrive {
+    geometry::Pose2 start;  ///< where the decision that chose it started
+    double k = 0.0;         ///< [1/m] its first arc's curvature
+    int direction = 1;
+  };
+  /// The last decision's arc when it had no leading turn (nothing after a retrace).
+  mutable std::optional<LastDrive> last_drive_;
+  // The way back along last_drive_ to its start from `start`, if the rover is on it.
+  std::optional<TreePath> Retrace(const geometry::Pose2& start) const;
 };
 
 }  // namespace rover::apl::enav
