@@ -476,10 +476,12 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       checked.push_back(last_.chosen);
     }
   }
-  last_drive_.reset();
+  // The arc this choice drives (after its turn, if any; the manager drives both before the next
+  // decision). A retrace keeps the arc it backs along: offered again while the rover is on it,
+  // it runs out where that arc began.
   if (last_.chosen >= 0 && !last_.retrace) {
     const TreePath& p = paths[static_cast<std::size_t>(last_.chosen)];
-    if (p.turn == 0.0) last_drive_ = LastDrive{start, p.k1, p.direction};
+    last_drive_ = LastDrive{geometry::Turned(start, p.turn), p.k1, p.direction};
   }
 
   // The evaluation: the checked paths' first segments in rank order.

@@ -266,11 +266,37 @@ TEST(EnavPlanner, WithNoPathItBacksAlongTheArcItJustDrove) {
   EXPECT_EQ(back->choice().direction, -1);
   EXPECT_DOUBLE_EQ(back->choice().curvature, 0.0);
   EXPECT_NEAR(back->choice().length, 0.4, 0.021);
-  // Once: back where it started and still boxed in, nothing left to retrace.
+  // Asked again on the way back (a decision made ahead while driving, then redone): the rest.
+  auto halfway = p->Plan(boxed, From(0.2, 0.0, 0.0, Toward(6, 0)));
+  ASSERT_TRUE(halfway.ok() && halfway->has_choice());
+  EXPECT_EQ(halfway->choice().direction, -1);
+  EXPECT_NEAR(halfway->choice().length, 0.2, 0.021);
+  // Back where the arc began and still boxed in: nothing left to retrace.
   auto again = p->Plan(BoxedAt(0.0), Toward(6, 0));
   ASSERT_TRUE(again.ok());
   EXPECT_FALSE(again->has_choice());
   EXPECT_FALSE(p->last().retrace);
+}
+
+TEST(EnavPlanner, AfterATurnAndAnArcItRetracesTheArcNotTheTurn) {
+  auto p = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(p.ok());
+  // Goal to the left: a turn in place, then an arc.
+  auto first = p->Plan(TerrainOf(Blocks({})), Toward(0, 6));
+  ASSERT_TRUE(first.ok() && first->has_choice());
+  ASSERT_EQ(first->choice().kind, nav_core::MotionKind::kPointTurn);
+  ASSERT_GE(first->path.size(), 2u);
+  const double turn = first->path[0].turn_angle, k = first->path[1].curvature;
+  // The turn and 0.4 m of the arc later, boxed in.
+  const geometry::Pose2 there = geometry::AlongArc({0.0, 0.0, turn}, k, 0.4);
+  auto back = p->Plan(BoxedAt(0.0), From(there.x, there.y, there.heading, Toward(0, 6)));
+  ASSERT_TRUE(back.ok());
+  ASSERT_TRUE(back->has_choice());
+  EXPECT_TRUE(p->last().retrace);
+  EXPECT_EQ(back->choice().kind, nav_core::MotionKind::kArc);
+  EXPECT_EQ(back->choice().direction, -1);
+  EXPECT_DOUBLE_EQ(back->choice().curvature, k);
+  EXPECT_NEAR(back->choice().length, 0.4, 0.021);
 }
 
 TEST(EnavPlanner, OffItsLastDriveThereIsNothingToRetrace) {

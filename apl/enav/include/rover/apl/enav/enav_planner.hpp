@@ -29,10 +29,11 @@
 /// unseen. The first path that passes is the choice; a failing turn or first segment fails
 /// every path that shares it without being checked again. If none of the forward paths passes,
 /// backward arcs of first_length (one per curvature) are checked, ranked by cost-to-go at their
-/// end (a K-turn's first half). No path passing: if the last decision drove an arc without a
-/// turn and the rover stands on it (within 0.15 m and 0.15 rad, at least 0.1 m along), the
-/// choice is that arc backward to where the decision started, unchecked (the rover's parts swept
-/// that ground; the map beside a wheel is what changed), once; else no choice (NOPATH).
+/// end (a K-turn's first half). No path passing: if the rover stands on the arc of the last
+/// choice (after its turn; within 0.15 m and 0.15 rad, at least 0.1 m along), the choice is that
+/// arc backward to where it began, unchecked (the rover's parts swept that ground; the map
+/// beside a wheel is what changed); back there, nothing is left to retrace; else no choice
+/// (NOPATH).
 ///
 /// A goal on a seen rock taller than the belly clearance (a body-class hazard cell) gets no
 /// choice at once, `why` saying so (the manager's NOPATH, a goal error), unless the rover is
@@ -135,11 +136,11 @@ class EnavPlanner : public nav_core::ArcSelector {
   };
   mutable std::optional<Previous> previous_;  ///< the last choice (forward, not an escape)
   struct LastDrive {
-    geometry::Pose2 start;  ///< where the decision that chose it started
+    geometry::Pose2 start;  ///< where its arc starts (after the choice's turn)
     double k = 0.0;         ///< [1/m] its first arc's curvature
     int direction = 1;
   };
-  /// The last decision's arc when it had no leading turn (nothing after a retrace).
+  /// The arc of the last choice that was not a retrace.
   mutable std::optional<LastDrive> last_drive_;
   // The way back along last_drive_ to its start from `start`, if the rover is on it.
   std::optional<TreePath> Retrace(const geometry::Pose2& start) const;
