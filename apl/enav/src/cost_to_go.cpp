@@ -33,11 +33,13 @@ double CostToGoField::Factor(const Eigen::Vector2d& xy) const {
   return factor_[static_cast<std::size_t>(j) * width_ + i];
 }
 
-bool CostToGoField::Update(const HeightTerrain& terrain, const Eigen::Vector2d& goal) {
+bool CostToGoField::Update(const HeightTerrain& terrain, const Eigen::Vector2d& goal,
+                           double tolerance) {
   const nav_core::HeightMap& m = *terrain.height_map();
-  if (m.revision == revision_ && goal == goal_) return false;
+  if (m.revision == revision_ && goal == goal_ && tolerance == tolerance_) return false;
   revision_ = m.revision;
   goal_ = goal;
+  tolerance_ = tolerance;
   searches_ += 1;
   const EnavOptions& o = terrain.options();
   const int f = static_cast<int>(std::lround(o.cost_cell_size / m.resolution));
@@ -102,9 +104,21 @@ bool CostToGoField::Update(const HeightTerrain& terrain, const Eigen::Vector2d& 
     open.push({c, k});
   };
   int gi = 0, gj = 0;
-  if (Cell(goal, &gi, &gj) && std::isfinite(factor_[static_cast<std::size_t>(gj) * width_ + gi])) {
-    seed(gi, gj, 0.0F);
-  } else {
+  bool seeded = false;
+  if (Cell(goal, &gi, &gj)) {
+    // The goal's cell and every cell whose centre lies within the tolerance.
+    const int r = static_cast<int>(std::ceil(tolerance / resolution_));
+    for (int j = std::max(0, gj - r); j <= std::min(height_ - 1, gj + r); ++j) {
+      for (int i = std::max(0, gi - r); i <= std::min(width_ - 1, gi + r); ++i) {
+        const Eigen::Vector2d c = origin_ + resolution_ * Eigen::Vector2d(i + 0.5, j + 0.5);
+        if ((i != gi || j != gj) && (c - goal).norm() > tolerance) continue;
+        if (!std::isfinite(factor_[static_cast<std::size_t>(j) * width_ + i])) continue;
+        seed(i, j, 0.0F);
+        seeded = true;
+      }
+    }
+  }
+  if (!seeded) {
     for (int j = 0; j < height_; ++j) {
       for (int i = 0; i < width_; ++i) {
         if (i != 0 && j != 0 && i != width_ - 1 && j != height_ - 1) continue;

@@ -244,7 +244,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     eval.mode = nav_core::GoalMode::kReached;
     return eval;
   }
-  field_.Update(*ht, request.goal);
+  field_.Update(*ht, request.goal, request.goal_tolerance);
   const double tol2 = request.goal_tolerance * request.goal_tolerance;
   // A goal on a seen rock taller than the belly clearance is refused at once: the rover
   // cannot stand there. (Unseen goals are planned toward; a goal the heading-blind

@@ -45,6 +45,24 @@ TEST(CostToGoField, TallRocksBlockAndTheWayGoesAround) {
   EXPECT_TRUE(std::isfinite(around));
 }
 
+TEST(CostToGoField, ARockOnTheGoalPointLeavesTheRestOfItsToleranceOpen) {
+  auto t = HeightTerrain::Create(TestOptions());
+  ASSERT_TRUE(t.ok());
+  // A 0.5 m rock 0.3 m across on the goal point (3, 0).
+  ASSERT_TRUE(t->Update(ScanOf(Blocks({{3.0, 0.0, 0.15, 0.5}}), -4, 4, -4, 4)).ok());
+  CostToGoField point;
+  point.Update(*t, {3.0, 0.0});
+  CostToGoField region;
+  region.Update(*t, {3.0, 0.0}, 1.5);  // the rover fits no nearer the rock than about 1 m
+  EXPECT_TRUE(std::isinf(region.Cost({3.0, 0.0})));  // the rock itself stays blocked
+  // With a tolerance the open ground about the rock is the goal; without, the goal is cut off
+  // and the field leads to the map's border instead.
+  EXPECT_GT(region.Cost({0.0, 0.0}), 3.0 - 1.5 - 0.1);
+  EXPECT_LT(region.Cost({0.0, 0.0}), 3.0);
+  EXPECT_GT(point.Cost({0.0, 0.0}), 3.0 + 2.0);
+  EXPECT_TRUE(region.Update(*t, {3.0, 0.0}, 0.5));  // a new tolerance: a new search
+}
+
 TEST(CostToGoField, GoalOffTheMapSeedsTheBorder) {
   auto t = HeightTerrain::Create(TestOptions());
   ASSERT_TRUE(t.ok());

@@ -12,9 +12,11 @@
 /// hazard (a rock taller than the belly clearance) are blocked, and so are cells where the
 /// rover's parts (ClearanceChecker without ACE) fit in none of cspace_headings headings: a gap
 /// narrower than the rover is not a route. Unknown cells are priced, never
-/// forbidden. Sources: the goal's cell at cost 0 when it lies on the map and is not blocked;
-/// otherwise every unblocked cell on the map's border at its straight-line distance to the goal
-/// (times unknown_cost_factor: beyond the map nothing is known).
+/// forbidden. Sources: every unblocked cell whose centre lies within the goal's tolerance (and
+/// the goal's own cell) at cost 0, when the goal lies on the map: a rock at the goal point does
+/// not cut the goal off while ground within its tolerance is open; when none is unblocked or the
+/// goal is off the map, every unblocked cell on the map's border at its straight-line distance
+/// to the goal (times unknown_cost_factor: beyond the map nothing is known).
 ///
 /// Updates: Update() recomputes only when the terrain's revision or the goal changed; the search
 /// is a Dijkstra over the map (40 m: 200 x 200 cells, a few milliseconds), run again in whole
@@ -31,9 +33,9 @@ namespace rover::apl::enav {
 
 class CostToGoField {
  public:
-  /// Recomputes the field for `goal` (site x, y) if the terrain or the goal changed since the
-  /// last call; returns whether it did.
-  bool Update(const HeightTerrain& terrain, const Eigen::Vector2d& goal);
+  /// Recomputes the field for `goal` (site x, y) reached within `tolerance` [m] if the terrain,
+  /// the goal or the tolerance changed since the last call; returns whether it did.
+  bool Update(const HeightTerrain& terrain, const Eigen::Vector2d& goal, double tolerance = 0.0);
 
   /// [m-equivalent] cost from site point xy to the goal: +inf when blocked, unreachable or off
   /// the map.
@@ -55,6 +57,7 @@ class CostToGoField {
 
   std::uint64_t revision_ = ~std::uint64_t{0};
   Eigen::Vector2d goal_{std::numeric_limits<double>::quiet_NaN(), 0.0};
+  double tolerance_ = 0.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double resolution_ = 0.2;
   double unknown_factor_ = 1.5;
