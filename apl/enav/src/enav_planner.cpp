@@ -204,7 +204,7 @@ bool EnavPlanner::Clears(const ClearanceChecker& checker, const geometry::Pose2&
 
 std::optional<TreePath> EnavPlanner::Retrace(const geometry::Pose2& start) const {
   if (!last_drive_) return std::nullopt;
-  // Where along the last drive the rover stands (its arc from where that decision started).
+  // Where along the last choice's arc (from where the arc starts) the rover stands.
   double best = kRetraceDistance, best_s = 0.0;
   for (double s = kRetraceStep; s <= kRetraceMax + 1e-9; s += kRetraceStep) {
     const geometry::Pose2 p =
