@@ -183,7 +183,7 @@ TEST_F(RecordingE2e, ScenarioRunRecordsEveryTopicReadableByTheReferenceAndReplay
     }
   });
   auto [rc, rout] = Run({testing::BinDir() + "/roverctl", "replay", file, "--topics", "ddl/*",
-                         "--domain", std::to_string(domain), "--rate", "5"});
+                         "--domain", std::to_string(domain), "--rate", "2"});
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   reading = false;
   t.join();
@@ -193,7 +193,9 @@ TEST_F(RecordingE2e, ScenarioRunRecordsEveryTopicReadableByTheReferenceAndReplay
   ASSERT_GT(n, 100u) << "the fresh dl-pose did not react\n" << testing::ReadFile(dir_ + "/dl-pose.log");
   if (!std::isnan(recorded_x)) {
     // Same inputs, same estimator: it ends where the recorded estimate did (up to the samples
-    // that arrive in another order or are superseded in its keep-last queues at rate 5).
+    // that arrive in another order or are superseded in its keep-last queues at rate 2; at rate
+    // 5 on a loaded 2-core machine, a fresh-clone CI run, 2026-12-07, the replayed estimate
+    // ended at x = 0.2 m against the recorded 4.0 m: dl-pose fell behind).
     EXPECT_NEAR(last.pose.position.x, recorded_x, 0.25);
     EXPECT_NEAR(last.pose.position.y, recorded_y, 0.25);
   } else {
