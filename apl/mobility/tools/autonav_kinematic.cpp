@@ -562,6 +562,11 @@ int main(int argc, char** argv) {
   std::printf("%s: expect %s; speed %.3g m/s, latency %.3g s, noise %.3g m at 1 m\n",
               scenario->name.c_str(), mobility->spec().expect.c_str(), wo.speed,
               wo.image_latency_s, noise);
+  if (known_field && PlannerName(*params) != "enav") {
+    // GESTALT's grid scrolls with the rover over a few metres: a whole field cannot be held.
+    return fail(InvalidArgument("--known-field: nav.planner is '" + PlannerName(*params) +
+                                "'; only enav keeps a map the size of a field"));
+  }
   std::printf("planner %s\n", PlannerName(*params).c_str());
   std::printf("%5s %-12s %4s %8s %6s %6s %8s %8s %9s %9s %9s %9s %7s %6s  %s\n", "seed",
               "outcome", "pass", "driven", "steps", "images", "sim_s", "to_goal", "contacts",
