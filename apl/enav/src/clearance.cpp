@@ -126,6 +126,12 @@ Exempt ClearanceChecker::Touching(const geometry::Pose2& pose, double extra) con
   return e;
 }
 
+bool ClearanceChecker::Fits(const geometry::Pose2& pose, double extra) const {
+  return std::all_of(discs_.begin(), discs_.end(), [&](const PartDisc& d) {
+    return terrain_->DistanceAt(d.layer, pose.ToSite(d.centre)) > d.radius + pad_ + extra;
+  });
+}
+
 PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace,
                                       const Exempt* exempt) const {
   PoseCheck r;

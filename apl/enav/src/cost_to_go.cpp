@@ -77,7 +77,7 @@ bool CostToGoField::Update(const HeightTerrain& terrain, const Eigen::Vector2d& 
       // Configuration space: blocked when the rover fits here in none of the headings tried
       // (only near hazards: farther than every part's reach nothing can touch).
       const Eigen::Vector2d centre = origin_ + resolution_ * Eigen::Vector2d(i + 0.5, j + 0.5);
-      if (o.cspace_headings > 0 && std::min(w, b) < reach) {
+      if (cspace_ && o.cspace_headings > 0 && std::min(w, b) < reach) {
         bool fits = false;
         for (int h = 0; h < o.cspace_headings && !fits; ++h) {
           const double heading = std::numbers::pi * h / o.cspace_headings;

@@ -22,6 +22,10 @@ constexpr double kRetraceMax = 1.5;        // [m] ... this far
 constexpr double kRetraceDistance = 0.15;  // [m] the rover counts as on its last drive
 constexpr double kRetraceHeading = 0.15;   // [rad] ... heading this close
 constexpr double kRetraceMin = 0.1;        // [m] less driven than this: nothing to retrace
+constexpr std::size_t kRouteCostsKept = 256;  // decision points remembered for CostToGo
+constexpr double kRouteMatch = 0.05;  // [m] a point this near a decision point is that point
+constexpr double kMinTurn = 0.02;     // [rad] smaller turns toward a route pose are not made
+constexpr double kMinStep = 0.05;     // [m] nearer route poses are not aimed at
 constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not "unseen"
                                          // (the wheels hide their own surroundings)
 
@@ -75,6 +79,14 @@ EnavPlanner::EnavPlanner(const EnavOptions& options) : options_(options) {
 std::optional<double> EnavPlanner::CostToGo(const Eigen::Vector2d& goal,
                                             const Eigen::Vector2d& xy) const {
   if (field_.goal() != goal) return std::nullopt;
+  if (options_.route_max_expansions > 0 && options_.route_first) {
+    // The route cost found when a decision was made there (a route is over poses: the field's
+    // heading-blind value may rise along a detour the route runs down).
+    for (auto it = route_costs_.rbegin(); it != route_costs_.rend(); ++it) {
+      if ((it->first - xy).norm() <= kRouteMatch) return it->second;
+    }
+    return std::nullopt;
+  }
   const double c = field_.Cost(xy);
   if (!std::isfinite(c)) return std::nullopt;
   return c;
@@ -226,6 +238,56 @@ std::optional<TreePath> EnavPlanner::Retrace(const geometry::Pose2& start) const
   return r;
 }
 
+std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
+                                               const geometry::Pose2& start, const Route& route,
+                                               const Eigen::Vector2d& goal,
+                                               double tolerance) const {
+  // The route's first drive direction, and the poses driven that way before it reverses.
+  int dir = 0;
+  std::vector<std::size_t> targets;
+  double along = 0.0;
+  for (std::size_t k = 1; k < route.nodes.size(); ++k) {
+    const RouteNode& node = route.nodes[k];
+    if (node.move == 0) continue;
+    if (dir == 0) dir = node.move;
+    if (node.move != dir) break;
+    along += (node.pose.xy() - route.nodes[k - 1].pose.xy()).norm();
+    if (along > options_.route_lookahead + 1e-9) break;
+    targets.push_back(k);
+    // A pose within the goal's tolerance is as far as a step aims.
+    if ((node.pose.xy() - goal).norm() <= tolerance) break;
+  }
+  // Farthest first; the nearest few always tried.
+  for (auto it = targets.rbegin(); it != targets.rend(); ++it) {
+    const Eigen::Vector2d d = route.nodes[*it].pose.xy() - start.xy();
+    const double length = d.norm();
+    if (length < kMinStep) continue;
+    const double bearing = std::atan2(d.y(), d.x()) + (dir > 0 ? 0.0 : std::numbers::pi);
+    TreePath p;
+    p.turn = geometry::WrapAngle(bearing - start.heading);
+    if (std::abs(p.turn) < kMinTurn) p.turn = 0.0;
+    p.direction = dir;
+    p.length1 = length;
+    p.turn_index = -5;
+    p.k1_index = -5;
+    p.cost = route.cost;
+    // The line keeps the route's room (it may cut a corner the route went round), then the
+    // clearance check proper.
+    const std::vector<geometry::Pose2> poses = Samples(start, p);
+    if (!std::all_of(poses.begin(), poses.end(), [&](const geometry::Pose2& q) {
+          return checker.Fits(q, options_.route_margin);
+        })) {
+      continue;
+    }
+    if (CheckPath(checker, start, Exempt{}, &p)) {
+      p.checked = 1;
+      p.why = "route";
+      return p;
+    }
+  }
+  return std::nullopt;
+}
+
 Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssessor& terrain,
                                                   const nav_core::ArcRequest& request) const {
   ROVER_RETURN_IF_ERROR(request.Validate());
@@ -257,207 +319,238 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     return eval;
   }
 
-  // The tree and its cheap costs.
-  std::vector<TreePath>& paths = last_.paths;
-  const int nt = options_.num_turns;
-  for (int t = 0; t < nt; ++t) {
-    const double turn = t == 0 ? 0.0 : geometry::WrapAngle(2.0 * std::numbers::pi * t / nt);
-    for (std::size_t a = 0; a < curvatures_.size(); ++a) {
-      for (std::size_t b = 0; b < curvatures_.size(); ++b) {
-        if (options_.second_length == 0.0 && b > 0) break;
-        TreePath p;
-        p.turn = turn;
-        p.turn_index = t;
-        p.k1_index = static_cast<int>(a);
-        p.k1 = curvatures_[a];
-        p.k2 = curvatures_[b];
-        p.length1 = options_.first_length;
-        p.length2 = options_.second_length;
-        paths.push_back(p);
-      }
-    }
-  }
-  // The previous choice, continued from where the rover is now on it (if it is): the same
-  // curvatures, the first shortened by what was driven and the second lengthened as much, so
-  // it reaches as far as a fresh path. It gets commit_bonus off its cost (a plan is kept unless
-  // a clearly better one appears; replanning every half metre otherwise dithers).
-  if (previous_) {
-    const std::vector<geometry::Pose2> prev = Samples(previous_->start, previous_->path);
-    double best_d = kContinueDistance;
-    int best_i = -1;
-    for (int i = 0; i < static_cast<int>(prev.size()); ++i) {
-      const double d = (prev[static_cast<std::size_t>(i)].xy() - start.xy()).norm();
-      const double dh = std::abs(geometry::WrapAngle(prev[static_cast<std::size_t>(i)].heading -
-                                                     start.heading));
-      if (d < best_d && dh < kContinueHeading) {
-        best_d = d;
-        best_i = i;
-      }
-    }
-    const TreePath& q = previous_->path;
-    const double driven = options_.sample_spacing * (best_i + 1);
-    if (best_i >= 0 && driven < q.length1 + q.length2 - options_.sample_spacing) {
-      TreePath c;
-      c.turn_index = -2;
-      c.k1_index = -2;
-      c.direction = 1;
-      if (driven < q.length1) {
-        c.k1 = q.k1;
-        c.length1 = q.length1 - driven;
-        c.k2 = q.k2;
-        c.length2 = q.length2 + driven;
-      } else {
-        c.k1 = q.k2;
-        c.length1 = q.length1 + q.length2 - driven;
-        c.k2 = q.k2;
-        c.length2 = driven;
-      }
-      paths.push_back(c);
-    }
-  }
-  previous_.reset();
-  // Cheap costs. `blind`: the cost-to-go reaches none of the tree (the rover in a pocket the
-  // heading-blind configuration space closes, or the goal cut off): price blocked cells instead
-  // of discarding them and end with the straight-line distance, so the checks still get ranked
-  // candidates to decide on.
-  const double check_to = request.drive_length > 0.0
-                              ? std::min(request.drive_length, eval.distance_to_goal)
-                              : eval.distance_to_goal;
-  auto cost_all = [&](bool blind) {
-    for (TreePath& p : paths) {
-      double j = options_.turn_cost * std::abs(p.turn);
-      if (p.turn_index == -2) j -= options_.commit_bonus;
-      const std::vector<geometry::Pose2> poses = Samples(start, p);
-      double s_prev = 0.0;
-      bool reached = false;
-      p.end_s = 0.0;
-      p.entry_s = 0.0;
-      for (std::size_t i = 0; i < poses.size() && std::isfinite(j); ++i) {
-        const double s = std::min(p.length1 + p.length2, options_.sample_spacing * (i + 1.0));
-        const double ds = s - s_prev;
-        s_prev = s;
-        const double k = s <= p.length1 + 1e-9 ? p.k1 : p.k2;
-        double factor = field_.Factor(poses[i].xy());
-        if (blind) factor = std::min(factor, kBlockedFactor);
-        j += ds * (factor + options_.curvature_cost * std::abs(k));
-        if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
-          // Priced to where it enters the goal's tolerance, but checked as far as the caller
-          // drives it: the mobility manager's last step runs up to the goal's distance (a path
-          // reaches no point farther than its arc length, so that covers the step).
-          p.end_s = std::min(p.length1 + p.length2, std::max(s, check_to));
-          p.entry_s = s;
-          reached = true;
-          break;
-        }
-      }
-      if (!reached && std::isfinite(j) && !poses.empty()) {
-        j += blind ? options_.unknown_cost_factor * (poses.back().xy() - request.goal).norm()
-                   : field_.Cost(poses.back().xy());
-      }
-      p.cost = j;
-    }
-  };
-  cost_all(false);
-  if (std::none_of(paths.begin(), paths.end(),
-                   [](const TreePath& p) { return std::isfinite(p.cost); })) {
-    cost_all(true);
-    last_.blind = true;
-  }
-  std::vector<int> order;
-  for (int i = 0; i < static_cast<int>(paths.size()); ++i) {
-    if (std::isfinite(paths[static_cast<std::size_t>(i)].cost)) order.push_back(i);
-  }
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
-  });
-  last_.ranked = static_cast<int>(order.size());
-  eval.candidates_ranked = last_.ranked;
-
-  // Backward arcs (a K-turn's first half), ranked by cost-to-go at their end: tried when no
-  // forward path passes.
-  std::vector<int> back;
-  for (std::size_t a = 0; a < curvatures_.size(); ++a) {
-    TreePath p;
-    p.direction = -1;
-    p.k1 = curvatures_[a];
-    p.k1_index = static_cast<int>(a);
-    p.turn_index = -1;
-    p.length1 = options_.first_length;
-    const std::vector<geometry::Pose2> poses = Samples(start, p);
-    p.cost = poses.empty() ? kNoCost : field_.Cost(poses.back().xy()) + options_.first_length;
-    if (std::isfinite(p.cost)) back.push_back(static_cast<int>(paths.size()));
-    paths.push_back(p);
-  }
-  std::stable_sort(back.begin(), back.end(), [&](int a, int b) {
-    return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
-  });
-
-  // Clearance checks in rank order; a failed turn + first segment fails its whole subtree. If
-  // nothing passes, once more with hazards near the rover's own footprint ignored (escape: the
-  // map now says the rover stands beside a rock it was cleared to approach).
   const ClearanceChecker checker(*ht);
   std::vector<int> checked;
-  for (const bool escape : {false, true}) {
-    // Normally nothing is exempt. Escaping, the hazard cells the parts touch where the rover
-    // stands (within escape_margin) are, but the path's first segment must leave them behind.
-    const Exempt on = escape ? checker.Touching(start, options_.escape_margin) : Exempt{};
-    std::map<std::pair<int, int>, std::string> failed_prefix;
-    std::map<std::pair<int, int>, bool> passed_prefix;
-    int budget = options_.max_checks;
-    for (const int idx : order) {
-      if (budget <= 0) break;
-      TreePath& p = paths[static_cast<std::size_t>(idx)];
-      const std::pair<int, int> key{p.turn_index, p.k1_index};
-      if (auto it = failed_prefix.find(key); it != failed_prefix.end()) {
-        p.checked = -1;
-        p.why = it->second;
-        continue;
+  std::vector<TreePath>& paths = last_.paths;
+  // The route search first: a straight step along the cheapest route over poses, if one passes
+  // the clearance check; else the tree.
+  auto try_route = [&]() {
+    if (options_.route_max_expansions <= 0) return;
+    relaxed_.Update(*ht, request.goal, request.goal_tolerance);
+    RouteSearchOptions ro;
+    ro.margin = options_.route_margin;
+    ro.backward_factor = options_.route_backward_factor;
+    ro.turn_cost = options_.turn_cost;
+    ro.max_expansions = options_.route_max_expansions;
+    last_.route = search_.Search(*ht, relaxed_, start, request.goal, request.goal_tolerance, ro);
+    if (last_.route) {
+      route_costs_.emplace_back(start.xy(), last_.route->cost);
+      if (route_costs_.size() > kRouteCostsKept) route_costs_.erase(route_costs_.begin());
+      if (std::optional<TreePath> step =
+              RouteStep(checker, start, *last_.route, request.goal, request.goal_tolerance)) {
+        last_.routed = true;
+        last_.chosen = static_cast<int>(paths.size());
+        paths.push_back(*step);
+        checked.push_back(last_.chosen);
+        last_.checks += 1;
       }
-      budget -= 1;
-      last_.checks += 1;
-      checked.push_back(idx);
-      if (!passed_prefix.count(key)) {
-        TreePath prefix = p;
-        prefix.length2 = 0.0;
-        prefix.end_s = p.end_s > 0.0 ? std::min(p.end_s, p.length1) : p.length1;
-        if (!CheckPath(checker, start, on, &prefix)) {
-          if (Settle(checker, start, on, escape, &p)) {
-            last_.chosen = idx;
+    }
+  };
+  if (options_.route_first) try_route();
+  if (!last_.routed) {
+    // The tree and its cheap costs.
+    const int nt = options_.num_turns;
+    for (int t = 0; t < nt; ++t) {
+      const double turn = t == 0 ? 0.0 : geometry::WrapAngle(2.0 * std::numbers::pi * t / nt);
+      for (std::size_t a = 0; a < curvatures_.size(); ++a) {
+        for (std::size_t b = 0; b < curvatures_.size(); ++b) {
+          if (options_.second_length == 0.0 && b > 0) break;
+          TreePath p;
+          p.turn = turn;
+          p.turn_index = t;
+          p.k1_index = static_cast<int>(a);
+          p.k1 = curvatures_[a];
+          p.k2 = curvatures_[b];
+          p.length1 = options_.first_length;
+          p.length2 = options_.second_length;
+          paths.push_back(p);
+        }
+      }
+    }
+    // The previous choice, continued from where the rover is now on it (if it is): the same
+    // curvatures, the first shortened by what was driven and the second lengthened as much, so
+    // it reaches as far as a fresh path. It gets commit_bonus off its cost (a plan is kept unless
+    // a clearly better one appears; replanning every half metre otherwise dithers).
+    if (previous_) {
+      const std::vector<geometry::Pose2> prev = Samples(previous_->start, previous_->path);
+      double best_d = kContinueDistance;
+      int best_i = -1;
+      for (int i = 0; i < static_cast<int>(prev.size()); ++i) {
+        const double d = (prev[static_cast<std::size_t>(i)].xy() - start.xy()).norm();
+        const double dh = std::abs(geometry::WrapAngle(prev[static_cast<std::size_t>(i)].heading -
+                                                       start.heading));
+        if (d < best_d && dh < kContinueHeading) {
+          best_d = d;
+          best_i = i;
+        }
+      }
+      const TreePath& q = previous_->path;
+      const double driven = options_.sample_spacing * (best_i + 1);
+      if (best_i >= 0 && driven < q.length1 + q.length2 - options_.sample_spacing) {
+        TreePath c;
+        c.turn_index = -2;
+        c.k1_index = -2;
+        c.direction = 1;
+        if (driven < q.length1) {
+          c.k1 = q.k1;
+          c.length1 = q.length1 - driven;
+          c.k2 = q.k2;
+          c.length2 = q.length2 + driven;
+        } else {
+          c.k1 = q.k2;
+          c.length1 = q.length1 + q.length2 - driven;
+          c.k2 = q.k2;
+          c.length2 = driven;
+        }
+        paths.push_back(c);
+      }
+    }
+    previous_.reset();
+    // Cheap costs. `blind`: the cost-to-go reaches none of the tree (the rover in a pocket the
+    // heading-blind configuration space closes, or the goal cut off): price blocked cells instead
+    // of discarding them and end with the straight-line distance, so the checks still get ranked
+    // candidates to decide on.
+    const double check_to = request.drive_length > 0.0
+                                ? std::min(request.drive_length, eval.distance_to_goal)
+                                : eval.distance_to_goal;
+    auto cost_all = [&](bool blind) {
+      for (TreePath& p : paths) {
+        double j = options_.turn_cost * std::abs(p.turn);
+        if (p.turn_index == -2) j -= options_.commit_bonus;
+        const std::vector<geometry::Pose2> poses = Samples(start, p);
+        double s_prev = 0.0;
+        bool reached = false;
+        p.end_s = 0.0;
+        p.entry_s = 0.0;
+        for (std::size_t i = 0; i < poses.size() && std::isfinite(j); ++i) {
+          const double s = std::min(p.length1 + p.length2, options_.sample_spacing * (i + 1.0));
+          const double ds = s - s_prev;
+          s_prev = s;
+          const double k = s <= p.length1 + 1e-9 ? p.k1 : p.k2;
+          double factor = field_.Factor(poses[i].xy());
+          if (blind) factor = std::min(factor, kBlockedFactor);
+          j += ds * (factor + options_.curvature_cost * std::abs(k));
+          if ((poses[i].xy() - request.goal).squaredNorm() <= tol2) {
+            // Priced to where it enters the goal's tolerance, but checked as far as the caller
+            // drives it: the mobility manager's last step runs up to the goal's distance (a path
+            // reaches no point farther than its arc length, so that covers the step).
+            p.end_s = std::min(p.length1 + p.length2, std::max(s, check_to));
+            p.entry_s = s;
+            reached = true;
             break;
           }
-          failed_prefix[key] = prefix.why;
+        }
+        if (!reached && std::isfinite(j) && !poses.empty()) {
+          j += blind ? options_.unknown_cost_factor * (poses.back().xy() - request.goal).norm()
+                     : field_.Cost(poses.back().xy());
+        }
+        p.cost = j;
+      }
+    };
+    cost_all(false);
+    if (std::none_of(paths.begin(), paths.end(),
+                     [](const TreePath& p) { return std::isfinite(p.cost); })) {
+      cost_all(true);
+      last_.blind = true;
+    }
+    std::vector<int> order;
+    for (int i = 0; i < static_cast<int>(paths.size()); ++i) {
+      if (std::isfinite(paths[static_cast<std::size_t>(i)].cost)) order.push_back(i);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
+    });
+    last_.ranked = static_cast<int>(order.size());
+    eval.candidates_ranked = last_.ranked;
+
+    // Backward arcs (a K-turn's first half), ranked by cost-to-go at their end: tried when no
+    // forward path passes.
+    std::vector<int> back;
+    for (std::size_t a = 0; a < curvatures_.size(); ++a) {
+      TreePath p;
+      p.direction = -1;
+      p.k1 = curvatures_[a];
+      p.k1_index = static_cast<int>(a);
+      p.turn_index = -1;
+      p.length1 = options_.first_length;
+      const std::vector<geometry::Pose2> poses = Samples(start, p);
+      p.cost = poses.empty() ? kNoCost : field_.Cost(poses.back().xy()) + options_.first_length;
+      if (std::isfinite(p.cost)) back.push_back(static_cast<int>(paths.size()));
+      paths.push_back(p);
+    }
+    std::stable_sort(back.begin(), back.end(), [&](int a, int b) {
+      return paths[static_cast<std::size_t>(a)].cost < paths[static_cast<std::size_t>(b)].cost;
+    });
+
+    // Clearance checks in rank order; a failed turn + first segment fails its whole subtree. If
+    // nothing passes, once more with hazards near the rover's own footprint ignored (escape: the
+    // map now says the rover stands beside a rock it was cleared to approach).
+    for (const bool escape : {false, true}) {
+      if (escape && !last_.routed && !options_.route_first) {
+        try_route();
+        if (last_.routed) break;
+      }
+      // Normally nothing is exempt. Escaping, the hazard cells the parts touch where the rover
+      // stands (within escape_margin) are, but the path's first segment must leave them behind.
+      const Exempt on = escape ? checker.Touching(start, options_.escape_margin) : Exempt{};
+      std::map<std::pair<int, int>, std::string> failed_prefix;
+      std::map<std::pair<int, int>, bool> passed_prefix;
+      int budget = options_.max_checks;
+      for (const int idx : order) {
+        if (budget <= 0) break;
+        TreePath& p = paths[static_cast<std::size_t>(idx)];
+        const std::pair<int, int> key{p.turn_index, p.k1_index};
+        if (auto it = failed_prefix.find(key); it != failed_prefix.end()) {
           p.checked = -1;
-          p.why = prefix.why;
+          p.why = it->second;
           continue;
         }
-        passed_prefix[key] = true;
+        budget -= 1;
+        last_.checks += 1;
+        checked.push_back(idx);
+        if (!passed_prefix.count(key)) {
+          TreePath prefix = p;
+          prefix.length2 = 0.0;
+          prefix.end_s = p.end_s > 0.0 ? std::min(p.end_s, p.length1) : p.length1;
+          if (!CheckPath(checker, start, on, &prefix)) {
+            if (Settle(checker, start, on, escape, &p)) {
+              last_.chosen = idx;
+              break;
+            }
+            failed_prefix[key] = prefix.why;
+            p.checked = -1;
+            p.why = prefix.why;
+            continue;
+          }
+          passed_prefix[key] = true;
+        }
+        if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
+          p.checked = 1;
+          last_.chosen = idx;
+          break;
+        }
+        if (Settle(checker, start, on, escape, &p)) {
+          last_.chosen = idx;
+          break;
+        }
+        p.checked = -1;
       }
-      if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
-        p.checked = 1;
-        last_.chosen = idx;
+      for (const int idx : back) {
+        if (last_.chosen >= 0) break;
+        TreePath& p = paths[static_cast<std::size_t>(idx)];
+        last_.checks += 1;
+        checked.push_back(idx);
+        if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
+          p.checked = 1;
+          last_.chosen = idx;
+          break;
+        }
+        p.checked = -1;
+      }
+      if (last_.chosen >= 0) {
+        last_.escape = escape;
         break;
       }
-      if (Settle(checker, start, on, escape, &p)) {
-        last_.chosen = idx;
-        break;
-      }
-      p.checked = -1;
-    }
-    for (const int idx : back) {
-      if (last_.chosen >= 0) break;
-      TreePath& p = paths[static_cast<std::size_t>(idx)];
-      last_.checks += 1;
-      checked.push_back(idx);
-      if (CheckPath(checker, start, on, &p) && (!escape || Clears(checker, start, on, &p))) {
-        p.checked = 1;
-        last_.chosen = idx;
-        break;
-      }
-      p.checked = -1;
-    }
-    if (last_.chosen >= 0) {
-      last_.escape = escape;
-      break;
     }
   }
   eval.clearance_checks = last_.checks;

@@ -48,6 +48,11 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("hazard_cost_factor", hazard_cost_factor, 0.0, 100.0));
   ROVER_RETURN_IF_ERROR(CheckRange("blocked_radius", blocked_radius, 0.0, 5.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("cspace_headings", cspace_headings, 0, 64));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("route_max_expansions", route_max_expansions, 0, 50000000));
+  ROVER_RETURN_IF_ERROR(CheckRange("route_margin", route_margin, 0.0, 1.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("route_backward_factor", route_backward_factor, 1.0, 100.0));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("route_lookahead", route_lookahead, Bounds::OpenLow(0.0, 20.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_turns", num_turns, 1, 360));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_curvatures", num_curvatures, 1, 101));
   ROVER_RETURN_IF_ERROR(CheckRange("first_length", first_length, Bounds::OpenLow(0.0, 20.0), "m"));
@@ -134,6 +139,22 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
          "cost-to-go cells where the rover fits in none of this many headings are blocked "
          "(0 = off)")
       .Range(0, 64);
+  b.Bind("route_max_expansions", &O::route_max_expansions, "",
+         "poses the route search (x, y, heading lattice to the goal) may expand per decision; "
+         "0 = the path tree alone")
+      .Range(0, 50000000);
+  b.Bind("route_first", &O::route_first,
+         "true: drive along the route whenever a step along it passes the check; false: only "
+         "when no path of the tree passes");
+  b.Bind("route_margin_m", &O::route_margin, "m",
+         "the route keeps this much room beyond the clearance check's planar margin")
+      .Range(0.0, 1.0);
+  b.Bind("route_backward_factor", &O::route_backward_factor, "",
+         "backward moves of a route cost this many times forward ones")
+      .Range(1.0, 100.0);
+  b.Bind("route_lookahead_m", &O::route_lookahead, "m",
+         "a step drives straight at a route pose at most this far along the route")
+      .Range(0.01, 20.0);
   b.Bind("num_turns", &O::num_turns, "",
          "headings of the leading turn in place, evenly over the full circle (1 = none)")
       .Range(1, 360);

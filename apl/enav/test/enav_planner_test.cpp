@@ -314,3 +314,55 @@ TEST(EnavPlanner, OffItsLastDriveThereIsNothingToRetrace) {
 
 }  // namespace
 }  // namespace rover::apl::enav
+
+namespace rover::apl::enav {
+namespace {
+
+TEST(EnavPlanner, WithTheRouteFirstItStepsStraightAlongTheRoute) {
+  // A wall of 0.5 m blocks across x = 2 with a 1.6 m gap centred at y = -1.5: the rover, at the
+  // origin facing north, must line up with the gap off to its right.
+  std::vector<Block> wall;
+  for (double y = -5.0; y <= 5.0 + 1e-9; y += 0.1) {
+    if (std::abs(y + 1.5) < 0.9) continue;
+    wall.push_back({2.0, y, 0.1, 0.5});
+  }
+  const HeightTerrain t = TerrainOf(Blocks(wall));
+  EnavOptions o = TestOptions();
+  o.route_max_expansions = 400000;
+  o.route_first = true;
+  auto p = EnavPlanner::Create(o);
+  ASSERT_TRUE(p.ok());
+  auto e = p->Plan(t, Toward(4, -1.5));
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  ASSERT_TRUE(e->has_choice());
+  const PlanRecord& rec = p->last();
+  ASSERT_TRUE(rec.route.has_value());
+  EXPECT_TRUE(rec.routed);
+  EXPECT_TRUE(rec.route->at_goal);
+  // The step: a turn toward a route pose, then a straight line to it, the whole path offered.
+  const TreePath& chosen = rec.paths[static_cast<std::size_t>(rec.chosen)];
+  EXPECT_DOUBLE_EQ(chosen.k1, 0.0);
+  EXPECT_EQ(chosen.direction, 1);
+  const geometry::Pose2 aim = geometry::AlongArc(geometry::Turned(rec.start, chosen.turn), 0.0,
+                                                 chosen.length1);
+  double nearest = 1e9;
+  for (const RouteNode& n : rec.route->nodes) {
+    nearest = std::min(nearest, (n.pose.xy() - aim.xy()).norm());
+  }
+  EXPECT_LT(nearest, 1e-6);
+  EXPECT_LT(aim.y, 0.0);  // toward the gap, not at the wall straight ahead
+  // Progress is measured along the route: its cost where the decision was made, none elsewhere.
+  const std::optional<double> here = p->CostToGo({4, -1.5}, {0.0, 0.0});
+  ASSERT_TRUE(here.has_value());
+  EXPECT_DOUBLE_EQ(*here, rec.route->cost);
+  EXPECT_FALSE(p->CostToGo({4, -1.5}, {1.0, 1.0}).has_value());
+  // Off by default: the tree alone.
+  auto tree = EnavPlanner::Create(TestOptions());
+  ASSERT_TRUE(tree.ok());
+  ASSERT_TRUE(tree->Plan(t, Toward(4, -1.5)).ok());
+  EXPECT_FALSE(tree->last().route.has_value());
+  EXPECT_FALSE(tree->last().routed);
+}
+
+}  // namespace
+}  // namespace rover::apl::enav

@@ -24,6 +24,16 @@ TEST(EnavOptions, BadValuesNameTheField) {
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.message().find("recentre_distance"), std::string::npos) << s.message();
   o = EnavOptions{};
+  o.route_margin = -0.01;
+  s = o.Validate();
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("route_margin"), std::string::npos) << s.message();
+  o = EnavOptions{};
+  o.route_backward_factor = 0.5;  // backing cheaper than driving forward
+  s = o.Validate();
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("route_backward_factor"), std::string::npos) << s.message();
+  o = EnavOptions{};
   o.sample_spacing = 2.0;  // longer than the first segment
   s = o.Validate();
   ASSERT_FALSE(s.ok());

@@ -87,6 +87,16 @@ cv::Mat DrawDecision(const EnavPlanner& planner, const nav_core::HeightMap& m,
     if (path_px.size() > 1) {
       cv::polylines(*img, path_px, false, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
     }
+    if (rec.route) {
+      // The route over poses: forward moves magenta, backward cyan.
+      const std::vector<RouteNode>& nodes = rec.route->nodes;
+      for (std::size_t k = 1; k < nodes.size(); ++k) {
+        if (nodes[k].move == 0) continue;
+        cv::line(*img, v.Px(nodes[k - 1].pose.xy()), v.Px(nodes[k].pose.xy()),
+                 nodes[k].move > 0 ? cv::Scalar(200, 0, 200) : cv::Scalar(200, 200, 0), 2,
+                 cv::LINE_AA);
+      }
+    }
     if (rec.chosen >= 0) {
       DrawTreePath(planner, rec.start, rec.paths[static_cast<std::size_t>(rec.chosen)], v,
                    cv::Scalar(255, 80, 0), 3, img);

@@ -63,8 +63,9 @@ constexpr char kService[] = "apl-mobility";
 class TerrainScene : public mt::Scene {
  public:
   TerrainScene(const sim::terrain::Terrain& terrain, const hwconfig::RoverDescription& rover,
-               double noise_at_1m, std::uint64_t seed, double traversable_height)
-      : terrain_(terrain), rover_(rover), noise_(noise_at_1m), seed_(seed) {
+               double noise_at_1m, std::uint64_t seed, double traversable_height,
+               bool frozen = false)
+      : terrain_(terrain), rover_(rover), noise_(noise_at_1m), seed_(seed), frozen_(frozen) {
     for (const auto& r : terrain.rocks) {
       if (r.height > traversable_height) hazards_.push_back(&r);
     }
@@ -100,7 +101,18 @@ class TerrainScene : public mt::Scene {
     cam.depression = m.depression;
     cam.noise_at_1m = noise_;
     cam.seed = seed_ * 100003u + static_cast<std::uint64_t>(images_++);
-    return rt::SynthesizeScan(terrain_.ground, cam, SiteFromRover(pose));
+    apl::nav_core::RangeScan scan = rt::SynthesizeScan(terrain_.ground, cam, SiteFromRover(pose));
+    // --frozen-map: the image is taken (the manager's cycle is unchanged) but its one valid
+    // point lies far beyond the planner's reach (a wholly invalid image is an IMG fault), so
+    // the planner's map stays the known field.
+    if (frozen_ && !scan.valid.empty()) {
+      std::fill(scan.valid.begin(), scan.valid.end(), std::uint8_t{0});
+      scan.valid[0] = 1;
+      scan.xyz[0] = 1.0e4F;
+      scan.xyz[1] = 0.0F;
+      scan.xyz[2] = 0.0F;
+    }
+    return scan;
   }
 
   double Clearance(double x, double y) const override {
@@ -118,6 +130,7 @@ class TerrainScene : public mt::Scene {
   const hwconfig::RoverDescription& rover_;
   double noise_;
   std::uint64_t seed_;
+  bool frozen_ = false;
   std::vector<const sim::terrain::Rock*> hazards_;
   mutable int images_ = 0;
   mutable int unsupported_ = 0;
@@ -238,7 +251,8 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
                            std::uint32_t seed, const mt::WorldOptions& wo, double noise,
                            bool verbose, bool votes, std::optional<double> passability_margin,
                            bool passability_rectangle, int map_step,
-                           const std::vector<int>& picture_steps, bool known_field) {
+                           const std::vector<int>& picture_steps, bool known_field,
+                           bool frozen_map) {
   ROVER_ASSIGN_OR_RETURN(const sim::world::World world,
                          deploy::runner::BuildRunWorld(scenario, seed, scenario.file));
   ROVER_ASSIGN_OR_RETURN(const hwconfig::RoverDescription rover,
@@ -248,7 +262,8 @@ Result<SeedResult> RunSeed(const deploy::Scenario& scenario,
       MakeMobilityManager(params, known_field ? KnownFieldScans(world.terrain) :
                                                 std::vector<apl::nav_core::RangeScan>{}));
   ROVER_ASSIGN_OR_RETURN(sim::judge::Judge judge, deploy::runner::MakeJudge(scenario, world));
-  const TerrainScene scene(world.terrain, rover, noise, seed, scenario.criteria.traversable_height);
+  const TerrainScene scene(world.terrain, rover, noise, seed, scenario.criteria.traversable_height,
+                           frozen_map);
   mt::FakeWorld w(&manager, wo, &scene);
   w.pose() = {world.start_x, world.start_y, world.start_yaw};
   if (map_step >= 0) {
@@ -533,7 +548,17 @@ int main(int argc, char** argv) {
   app.add_flag("--known-field", known_field,
                "the planner's map holds the whole field exactly before the run (truth: judges "
                "the planner apart from perception; ENav's map is widened to hold it)");
+  bool frozen_map = false;
+  app.add_flag("--frozen-map", frozen_map,
+               "with --known-field: the HAZCAM images add nothing to the planner's map, and its "
+               "noise allowance is 0 (the field is exact): the planner's search on a true, "
+               "unchanging map");
   CLI11_PARSE(app, argc, argv);
+  if (frozen_map && !known_field) {
+    std::fprintf(stderr, "autonav-kinematic: --frozen-map needs --known-field (the map it keeps)\n");
+    return 2;
+  }
+  if (frozen_map) sets.insert(sets.begin(), "enav.stereo_noise_coeff=0");
   if (known_field) {
     // ENav's map must hold the field seen from its centre (keys before the user's --set).
     sets.insert(sets.begin(), {"enav.map_size_m=100", "enav.max_point_distance_m=30",
@@ -577,7 +602,7 @@ int main(int argc, char** argv) {
   for (const std::uint32_t seed : *seeds) {
     auto r = RunSeed(*scenario, mobility->spec(), *params, seed, wo, noise, verbose, votes,
                      passability_margin, passability_rectangle, map_step, picture_steps,
-                     known_field);
+                     known_field, frozen_map);
     if (!r.ok()) return fail(r.status());
     passed += r->pass ? 1 : 0;
     char free_path[16] = "n/a";

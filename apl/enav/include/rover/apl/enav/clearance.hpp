@@ -77,6 +77,9 @@ class ClearanceChecker {
   /// The part discs check at `pose`, plus the suspension, tilt and belly when `ace`.
   /// Hazard cells in `exempt` (when given) do not count.
   PoseCheck CheckPose(const geometry::Pose2& pose, bool ace, const Exempt* exempt = nullptr) const;
+  /// Whether every part disc passes at `pose` with its reach grown by `extra` [m] (the parts
+  /// check of CheckPose alone, nothing exempt: what a route search needs per pose).
+  bool Fits(const geometry::Pose2& pose, double extra) const;
   /// The hazard cells the parts touch at `pose`, their reach grown by `extra` [m].
   Exempt Touching(const geometry::Pose2& pose, double extra) const;
   const std::vector<PartDisc>& discs() const { return discs_; }

@@ -33,6 +33,10 @@ namespace rover::apl::enav {
 
 class CostToGoField {
  public:
+  /// `cspace` false: no configuration-space blocking whatever the options say (the relaxed
+  /// field RouteSearch takes as its heuristic: it searches headings itself).
+  explicit CostToGoField(bool cspace = true) : cspace_(cspace) {}
+
   /// Recomputes the field for `goal` (site x, y) reached within `tolerance` [m] if the terrain,
   /// the goal or the tolerance changed since the last call; returns whether it did.
   bool Update(const HeightTerrain& terrain, const Eigen::Vector2d& goal, double tolerance = 0.0);
@@ -65,6 +69,7 @@ class CostToGoField {
   std::vector<float> cost_;
   std::vector<float> factor_;
   int searches_ = 0;
+  bool cspace_ = true;
 };
 
 }  // namespace rover::apl::enav

@@ -49,6 +49,7 @@
 
 #include "rover/apl/enav/clearance.hpp"
 #include "rover/apl/enav/cost_to_go.hpp"
+#include "rover/apl/enav/route_search.hpp"
 #include "rover/apl/enav/height_terrain.hpp"
 #include "rover/apl/nav_core/arc_selector.hpp"
 
@@ -88,6 +89,8 @@ struct PlanRecord {
   bool escape = false;          ///< chosen with hazards near the footprint ignored
   bool blind = false;           ///< ranked without the cost-to-go (it reached no path)
   bool retrace = false;         ///< nothing passed: the choice backs along the last drive
+  std::optional<Route> route;   ///< the route search's result, when it ran and found one
+  bool routed = false;          ///< the choice is a straight line along the route
 };
 
 class EnavPlanner : public nav_core::ArcSelector {
@@ -126,9 +129,19 @@ class EnavPlanner : public nav_core::ArcSelector {
   bool Clears(const ClearanceChecker& checker, const geometry::Pose2& start, const Exempt& exempt,
               TreePath* p) const;
 
+  // The step along `route`: a turn in place to face a route pose and a straight line to it,
+  // the farthest (within route_lookahead, before the route reverses) that passes CheckPath.
+  std::optional<TreePath> RouteStep(const ClearanceChecker& checker, const geometry::Pose2& start,
+                                    const Route& route, const Eigen::Vector2d& goal,
+                                    double tolerance) const;
+
   EnavOptions options_;
   std::vector<double> curvatures_;
   mutable CostToGoField field_;
+  mutable CostToGoField relaxed_{false};  ///< the route search's heuristic and step factors
+  RouteSearch search_;
+  /// Route costs found at decision points (site x, y; cost) for CostToGo, newest last.
+  mutable std::vector<std::pair<Eigen::Vector2d, double>> route_costs_;
   mutable PlanRecord last_;
   struct Previous {
     geometry::Pose2 start;

@@ -68,6 +68,18 @@ struct EnavOptions {
   /// rover are not routes). 0 = off.
   int cspace_headings = 8;
 
+  // ---- route search (RouteSearch) ----------------------------------------------------------
+  /// Poses a route search may expand per decision; 0 = no route search (the tree alone).
+  int route_max_expansions = 0;
+  /// true: every decision drives along the route when a step along it passes the check (the
+  /// tree only when none does); false: the route is tried only when no path of the tree passes
+  /// (before the escape pass).
+  bool route_first = false;
+  double route_margin = 0.03;           ///< [m] the route keeps this beyond planar_margin
+  double route_backward_factor = 2.0;   ///< backward lattice moves cost this many times more
+  /// [m] along the route: the farthest route pose a step's straight line may aim at.
+  double route_lookahead = 3.0;
+
   // ---- path tree --------------------------------------------------------------------------
   int num_turns = 24;            ///< headings of the leading turn in place over the full circle
   int num_curvatures = 9;        ///< curvatures per arc segment in [-max, +max]
