@@ -238,6 +238,36 @@ std::optional<TreePath> EnavPlanner::Retrace(const geometry::Pose2& start) const
   return r;
 }
 
+std::optional<Route> EnavPlanner::Kept(const ClearanceChecker& checker,
+                                       const geometry::Pose2& start,
+                                       const Eigen::Vector2d& goal) const {
+  if (!plan_ || plan_goal_ != goal || plan_->nodes.size() < 2) return std::nullopt;
+  // The node nearest the rover, if it is on the route.
+  std::size_t at = 0;
+  double best = kContinueDistance;
+  for (std::size_t k = 0; k < plan_->nodes.size(); ++k) {
+    const geometry::Pose2& q = plan_->nodes[k].pose;
+    const double d = (q.xy() - start.xy()).norm();
+    if (d < best && std::abs(geometry::WrapAngle(q.heading - start.heading)) < kContinueHeading) {
+      best = d;
+      at = k;
+    }
+  }
+  if (best >= kContinueDistance) return std::nullopt;
+  Route kept;
+  kept.at_goal = plan_->at_goal;
+  const double g0 = plan_->nodes[at].g;
+  for (std::size_t k = at; k < plan_->nodes.size(); ++k) {
+    RouteNode n = plan_->nodes[k];
+    if (!checker.Fits(n.pose, options_.route_margin)) return std::nullopt;
+    n.g -= g0;
+    if (k == at) n.move = 0;
+    kept.nodes.push_back(n);
+  }
+  kept.cost = plan_->cost - g0;
+  return kept;
+}
+
 std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
                                                const geometry::Pose2& start, const Route& route,
                                                const Eigen::Vector2d& goal,
@@ -257,7 +287,8 @@ std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
     // A pose within the goal's tolerance is as far as a step aims.
     if ((node.pose.xy() - goal).norm() <= tolerance) break;
   }
-  // Farthest first; the nearest few always tried.
+  const hwconfig::Footprint footprint = options_.rover.GroundFootprint();
+  // Farthest first.
   for (auto it = targets.rbegin(); it != targets.rend(); ++it) {
     const Eigen::Vector2d d = route.nodes[*it].pose.xy() - start.xy();
     const double length = d.norm();
@@ -276,6 +307,19 @@ std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
     const std::vector<geometry::Pose2> poses = Samples(start, p);
     if (!std::all_of(poses.begin(), poses.end(), [&](const geometry::Pose2& q) {
           return checker.Fits(q, options_.route_margin);
+        })) {
+      continue;
+    }
+    // The route may run through unseen ground (priced); a step aims only through seen ground,
+    // backward too (nothing images behind the rover before it backs).
+    if (!std::all_of(poses.begin(), poses.end(), [&](const geometry::Pose2& q) {
+          const std::uint8_t unknown = checker.CheckPose(q, true).unknown_mask;
+          for (int w = 0; w < hwconfig::kNumWheels; ++w) {
+            if ((unknown & (1U << w)) == 0) continue;
+            const Eigen::Vector2d site = q.ToSite(options_.rover.WheelCentre(w).head<2>());
+            if (!OnFootprint(start, footprint, kStandingMargin, site)) return false;
+          }
+          return true;
         })) {
       continue;
     }
@@ -332,13 +376,25 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     ro.backward_factor = options_.route_backward_factor;
     ro.turn_cost = options_.turn_cost;
     ro.max_expansions = options_.route_max_expansions;
-    last_.route = search_.Search(*ht, relaxed_, start, request.goal, request.goal_tolerance, ro);
+    last_.route = Kept(checker, start, request.goal);
+    if (!last_.route) {
+      last_.route =
+          search_.Search(*ht, relaxed_, start, request.goal, request.goal_tolerance, ro);
+    }
+    plan_ = last_.route;
+    plan_goal_ = request.goal;
     if (last_.route) {
       route_costs_.emplace_back(start.xy(), last_.route->cost);
       if (route_costs_.size() > kRouteCostsKept) route_costs_.erase(route_costs_.begin());
       if (std::optional<TreePath> step =
               RouteStep(checker, start, *last_.route, request.goal, request.goal_tolerance)) {
         last_.routed = true;
+        // Ranked: the route's poses (the manager adds no unchecked turn of its own to a
+        // decision that ranked anything).
+        // (a kept route expanded nothing this time: its poses count).
+        last_.ranked = std::max(last_.route->expansions,
+                                static_cast<int>(last_.route->nodes.size()));
+        eval.candidates_ranked = last_.ranked;
         last_.chosen = static_cast<int>(paths.size());
         paths.push_back(*step);
         checked.push_back(last_.chosen);

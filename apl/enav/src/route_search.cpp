@@ -84,15 +84,26 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
   int si = 0, sj = 0;
   m.CellOf(start.x, start.y, &si, &sj);
   if (!m.Contains(si, sj)) return std::nullopt;
-  const std::size_t s0 = index(si, sj, NearestHeading(start.heading));
-  if (!allowed(s0)) return std::nullopt;
   const double h0 = field.Cost(centre(si, sj));
   if (!std::isfinite(h0)) return std::nullopt;
-
+  // The start: its cell at the two lattice headings either side of the rover's, each at the
+  // price of turning to it. The rover stands there, so they are allowed whatever the map says
+  // with the route's margin (a heading snapped by up to 13 deg swings the corner wheels up to
+  // 0.2 m) unless its parts do not fit even at its exact pose with no margin.
+  if (!checker.Fits(start, 0.0)) return std::nullopt;
   using Item = std::pair<float, std::size_t>;  // f, pose
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  g_[s0] = 0.0F;
-  open.push({static_cast<float>(h0), s0});
+  const int hn = NearestHeading(start.heading);
+  const int other = geometry::WrapAngle(start.heading - heading[hn]) >= 0.0
+                        ? (hn + 1) % kHeadings
+                        : (hn + kHeadings - 1) % kHeadings;
+  for (const int h : {hn, other}) {
+    const std::size_t s0 = index(si, sj, h);
+    state_[s0] = kTested | kAllowed;
+    g_[s0] = static_cast<float>(
+        options.turn_cost * std::abs(geometry::WrapAngle(heading[h] - start.heading)));
+    open.push({g_[s0] + static_cast<float>(h0), s0});
+  }
   Route route;
   std::optional<std::size_t> end;
   while (!open.empty() && route.expansions < options.max_expansions) {
@@ -148,6 +159,7 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
        s = parent_[static_cast<std::size_t>(s)]) {
     RouteNode node;
     node.pose = pose_of(static_cast<std::size_t>(s));
+    node.g = g_[static_cast<std::size_t>(s)];
     const std::int32_t p = parent_[static_cast<std::size_t>(s)];
     if (p >= 0) {
       const std::size_t pc = static_cast<std::size_t>(p) / kHeadings;

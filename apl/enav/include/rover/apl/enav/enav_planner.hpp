@@ -140,6 +140,14 @@ class EnavPlanner : public nav_core::ArcSelector {
   mutable CostToGoField field_;
   mutable CostToGoField relaxed_{false};  ///< the route search's heuristic and step factors
   RouteSearch search_;
+  /// The route being followed (and its goal): kept while the rover is on it and every pose of
+  /// it still fits the map, so one decision's route is not swapped for a near-equal one the
+  /// next (the tree's commit_bonus does the same for its paths).
+  mutable std::optional<Route> plan_;
+  mutable Eigen::Vector2d plan_goal_ = Eigen::Vector2d::Zero();
+  // plan_ from the node nearest `start` on, if the rover is on it and it still fits.
+  std::optional<Route> Kept(const ClearanceChecker& checker, const geometry::Pose2& start,
+                            const Eigen::Vector2d& goal) const;
   /// Route costs found at decision points (site x, y; cost) for CostToGo, newest last.
   mutable std::vector<std::pair<Eigen::Vector2d, double>> route_costs_;
   mutable PlanRecord last_;

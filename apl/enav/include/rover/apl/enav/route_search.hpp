@@ -50,6 +50,7 @@ struct RouteSearchOptions {
 struct RouteNode {
   geometry::Pose2 pose;
   int move = 0;
+  double g = 0.0;  ///< [m-equivalent] cost from the route's start to here
 };
 
 struct Route {
@@ -66,10 +67,12 @@ class RouteSearch {
   /// The lattice heading nearest `heading` [rad].
   static int NearestHeading(double heading);
 
-  /// The cheapest route from `start` (snapped to its cell centre and nearest lattice heading)
-  /// over `terrain` to `goal` within `tolerance`, priced by `field` (updated for the same
-  /// terrain and goal with no configuration-space blocking); nullopt when the start pose is not
-  /// allowed, or no pose within the budget ends the search.
+  /// The cheapest route from `start` over `terrain` to `goal` within `tolerance`, priced by
+  /// `field` (updated for the same terrain and goal with no configuration-space blocking). The
+  /// search starts at the start's cell at the two lattice headings either side of its heading
+  /// (priced by the turn to each), allowed whatever the route's margin says: the rover stands
+  /// there. nullopt when its parts do not fit at `start` itself (no margin), or no pose within
+  /// the budget ends the search.
   std::optional<Route> Search(const HeightTerrain& terrain, const CostToGoField& field,
                               const geometry::Pose2& start, const Eigen::Vector2d& goal,
                               double tolerance, const RouteSearchOptions& options) const;
