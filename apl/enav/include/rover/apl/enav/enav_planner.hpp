@@ -35,6 +35,12 @@
 /// beside a wheel is what changed); back there, nothing is left to retrace; else no choice
 /// (NOPATH).
 ///
+/// Route search (route_max_expansions > 0; off by default): RouteSearch's cheapest way over
+/// poses to the goal, tried at every decision (route_first) or only when no tree path passes;
+/// the step is a turn toward the farthest route pose (within route_lookahead, before the route
+/// reverses) whose straight line keeps route_margin, lies on seen ground and passes CheckPath.
+/// The route is kept while the rover is on it and it still fits. apl/enav/README.md.
+///
 /// A goal on a seen rock taller than the belly clearance (a body-class hazard cell) gets no
 /// choice at once, `why` saying so (the manager's NOPATH, a goal error), unless the rover is
 /// within first_length of reaching it.
