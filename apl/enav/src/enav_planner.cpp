@@ -43,6 +43,14 @@ bool OnFootprint(const geometry::Pose2& pose, hwconfig::Footprint f, double marg
 
 
 
+// Whether wheel `w` at `pose` stands on ground the rover covers at `start` (its footprint grown
+// by kStandingMargin): the cameras cannot see there, so that ground does not count as unseen.
+bool OnStandingGround(const hwconfig::RoverDescription& rover, const geometry::Pose2& start,
+                      const geometry::Pose2& pose, int w) {
+  return OnFootprint(start, rover.GroundFootprint(), kStandingMargin,
+                     pose.ToSite(rover.WheelCentre(w).head<2>()));
+}
+
 nav_core::Candidate FirstSegment(const TreePath& p) {
   nav_core::Candidate c;
   if (p.turn != 0.0) {
@@ -123,7 +131,6 @@ std::vector<geometry::Pose2> EnavPlanner::Samples(const geometry::Pose2& start,
 
 bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pose2& start,
                             const Exempt& on, TreePath* p) const {
-  const hwconfig::Footprint footprint = options_.rover.GroundFootprint();
   // The turn in place.
   if (p->turn != 0.0) {
     const int n = std::max(1, static_cast<int>(std::ceil(std::abs(p->turn) / kTurnStep)));
@@ -138,8 +145,7 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
       // looked: every wheel patch off the ground it stands on must have been seen.
       for (int w = 0; w < hwconfig::kNumWheels; ++w) {
         if ((c.unknown_mask & (1U << w)) == 0) continue;
-        const Eigen::Vector2d site = pose.ToSite(options_.rover.WheelCentre(w).head<2>());
-        if (OnFootprint(start, footprint, kStandingMargin, site)) continue;
+        if (OnStandingGround(options_.rover, start, pose, w)) continue;
         p->why = "turn " + FormatNumber(p->turn / kDegree, 3) + " deg: wheel " +
                  hwconfig::WheelName(w) + " over unseen ground";
         return false;
@@ -160,8 +166,7 @@ bool EnavPlanner::CheckPath(const ClearanceChecker& checker, const geometry::Pos
     if (s <= options_.known_length + 1e-9) {
       // Ground the rover stands on now is not "unseen": the cameras cannot see under it.
       for (int w = 0; w < hwconfig::kNumWheels; ++w) {
-        const Eigen::Vector2d site = poses[i].ToSite(options_.rover.WheelCentre(w).head<2>());
-        if (OnFootprint(start, footprint, kStandingMargin, site)) continue;
+        if (OnStandingGround(options_.rover, start, poses[i], w)) continue;
         wheels += 1;
         if ((c.unknown_mask & (1U << w)) != 0) unknown += 1;
       }
@@ -287,7 +292,6 @@ std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
     // A pose within the goal's tolerance is as far as a step aims.
     if ((node.pose.xy() - goal).norm() <= tolerance) break;
   }
-  const hwconfig::Footprint footprint = options_.rover.GroundFootprint();
   // Farthest first.
   for (auto it = targets.rbegin(); it != targets.rend(); ++it) {
     const Eigen::Vector2d d = route.nodes[*it].pose.xy() - start.xy();
@@ -316,8 +320,7 @@ std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
           const std::uint8_t unknown = checker.CheckPose(q, true).unknown_mask;
           for (int w = 0; w < hwconfig::kNumWheels; ++w) {
             if ((unknown & (1U << w)) == 0) continue;
-            const Eigen::Vector2d site = q.ToSite(options_.rover.WheelCentre(w).head<2>());
-            if (!OnFootprint(start, footprint, kStandingMargin, site)) return false;
+            if (!OnStandingGround(options_.rover, start, q, w)) return false;
           }
           return true;
         })) {
@@ -389,11 +392,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       if (std::optional<TreePath> step =
               RouteStep(checker, start, *last_.route, request.goal, request.goal_tolerance)) {
         last_.routed = true;
-        // Ranked: the route's poses (the manager adds no unchecked turn of its own to a
-        // decision that ranked anything).
-        // (a kept route expanded nothing this time: its poses count).
-        last_.ranked = std::max(last_.route->expansions,
-                                static_cast<int>(last_.route->nodes.size()));
+        last_.ranked = last_.route->expansions;  // 0 for a kept route
         eval.candidates_ranked = last_.ranked;
         last_.chosen = static_cast<int>(paths.size());
         paths.push_back(*step);

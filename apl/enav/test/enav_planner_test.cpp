@@ -364,7 +364,8 @@ TEST(EnavPlanner, WithTheRouteFirstItStepsStraightAlongTheRoute) {
   ASSERT_TRUE(kept.ok());
   ASSERT_TRUE(p->last().route.has_value());
   EXPECT_EQ(p->last().route->expansions, 0);
-  EXPECT_GT(kept->candidates_ranked, 0);  // the manager adds no unchecked turn of its own
+  EXPECT_EQ(kept->candidates_ranked, 0);
+  EXPECT_TRUE(p->ChecksTurns());  // the manager adds no unchecked turn of its own
   std::vector<Block> blocked = wall;
   const geometry::Pose2 far = p->last().route->nodes[p->last().route->nodes.size() / 2].pose;
   blocked.push_back({far.x, far.y, 0.15, 0.5});

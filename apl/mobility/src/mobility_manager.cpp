@@ -1031,9 +1031,9 @@ bool MobilityManager::LimitCycleTurn(Time now, MobilityOutput* out) {
   const Pose2 here = PlanarPose(pose_->site_from_rover);
   auto eval = Evaluate(here, now);
   if (!eval.ok()) return false;
-  // Planners that rank whole paths (turns included, each clearance-checked) have already tried
-  // every turn; an unchecked turn here would only risk the rover.
-  if (eval->candidates_ranked > 0) return false;
+  // Planners that check their own turns have already tried every turn; an unchecked turn here
+  // would only risk the rover.
+  if (selector_->ChecksTurns()) return false;
   // The side of the best forward arcs: the mean curvature of those with the top merged vote.
   int top = -1;
   double k_sum = 0.0;
@@ -1116,7 +1116,7 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
   const bool vo = ModeUsesVisOdom(run_->command.mode);
   Primitive p;
   std::optional<double> face;
-  if (eval.candidates_ranked == 0 && c.kind == nav_core::MotionKind::kArc) {
+  if (!selector_->ChecksTurns() && c.kind == nav_core::MotionKind::kArc) {
     face = FaceGoalInsideTurningCircle(eval, PlanarPose(pose_->site_from_rover), CurrentGoal(),
                                        run_->tolerance);
   }

@@ -55,8 +55,12 @@ Time T(double s) { return Time::FromSeconds(s); }
 // drive length: what the manager does with a planner like ENav, on GESTALT's simple world.
 class ScriptedCostToGo : public nav_core::ArcSelector {
  public:
-  explicit ScriptedCostToGo(bool falls, bool checks_drive_length = false, double max_drive = 0.0)
-      : falls_(falls), checks_drive_length_(checks_drive_length), max_drive_(max_drive) {
+  explicit ScriptedCostToGo(bool falls, bool checks_drive_length = false, double max_drive = 0.0,
+                            bool checks_turns = false)
+      : falls_(falls),
+        checks_drive_length_(checks_drive_length),
+        max_drive_(max_drive),
+        checks_turns_(checks_turns) {
     auto arcs = gestalt::ArcEvaluator::Create(gestalt::GestaltOptions{});
     ROVER_DEMAND(arcs.ok());
     arcs_ = std::make_unique<gestalt::ArcEvaluator>(std::move(arcs).value());
@@ -73,11 +77,13 @@ class ScriptedCostToGo : public nav_core::ArcSelector {
     return falls_ ? 100.0 - xy.y() : 100.0;
   }
   bool ChecksDriveLength() const override { return checks_drive_length_; }
+  bool ChecksTurns() const override { return checks_turns_; }
 
  private:
   bool falls_;
   bool checks_drive_length_;
   double max_drive_;
+  bool checks_turns_;
   std::unique_ptr<gestalt::ArcEvaluator> arcs_;
 };
 
@@ -376,6 +382,30 @@ TEST(MobilityManagerWorld, NoProgressTurnsInPlaceBeforeItGivesUp) {
       EXPECT_GE(std::abs(angles[1]), o.limit_cycle_min_bearing);
     }
     EXPECT_EQ(s.message.find("limit-cycle turn") != std::string::npos, turns > 0) << s.message;
+  }
+}
+
+// A planner that checks its own turns (ENav) gets no limit-cycle turn: the same stuck rover
+// ends NOPROGRESS at the first window with no turn in place the planner did not choose, while
+// the same planner not saying so gets the manager's turns.
+TEST(MobilityManagerWorld, APlannerThatChecksItsTurnsGetsNoTurnOfTheManagers) {
+  for (const bool checks_turns : {false, true}) {
+    MobilityOptions o;
+    o.progress_steps = 4;
+    o.limit_cycle_turns = 2;
+    MobilityManager m = MakeManagerWith(
+        o, std::make_unique<ScriptedCostToGo>(false, false, 0.0, checks_turns));
+    FakeWorld w(&m);
+    w.tamper_pose = [](PoseSample* p) { p->site_from_rover.translation().setZero(); };
+    const MobilityStatus s = w.Run(Autonav(1, 8.0, 0.0), 2000.0);
+    EXPECT_EQ(s.fault, Fault::kNoProgress) << s.message;
+    int turns = 0;
+    for (const DriveCommand& d : w.drives()) {
+      turns += d.primitive == PrimitiveKind::kTurnInPlace ? 1 : 0;
+    }
+    EXPECT_EQ(turns, checks_turns ? 0 : 2) << s.message;
+    EXPECT_EQ(s.message.find("limit-cycle turn") != std::string::npos, !checks_turns)
+        << s.message;
   }
 }
 

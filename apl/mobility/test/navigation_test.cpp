@@ -32,6 +32,7 @@ TEST(MakeMobilityManager, BuildsTheChosenPlanner) {
     auto m = MakeMobilityManager(Params(planner));
     ASSERT_TRUE(m.ok()) << planner << ": " << m.status().message();
     EXPECT_EQ(m->selector().ChecksDriveLength(), planner == "enav") << planner;
+    EXPECT_EQ(m->selector().ChecksTurns(), planner == "enav") << planner;
   }
 }
 

@@ -117,6 +117,7 @@ class EnavPlanner : public nav_core::ArcSelector {
   std::optional<double> CostToGo(const Eigen::Vector2d& goal,
                                  const Eigen::Vector2d& xy) const override;
   bool ChecksDriveLength() const override { return true; }
+  bool ChecksTurns() const override { return true; }
 
   const PlanRecord& last() const { return last_; }
   const CostToGoField& cost_to_go() const { return field_; }

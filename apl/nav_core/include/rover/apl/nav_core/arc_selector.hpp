@@ -128,6 +128,11 @@ class ArcSelector {
   /// voting judges its arcs by goodness only). The mobility manager lets only such a planner's
   /// last step run past step_length, to the goal.
   virtual bool ChecksDriveLength() const { return false; }
+  /// Whether Plan() clearance-checks every turn in place it may need itself (ENav: the tree
+  /// holds every turn, a route's turns are checked). The mobility manager then adds no turn of
+  /// its own (MER's limit-cycle turn, the goal-facing turn inside the turning circle): made
+  /// without the planner's check, such a turn only risks the rover.
+  virtual bool ChecksTurns() const { return false; }
   /// The planner's cost-to-go [m-equivalent] from site point `xy` to `goal` over what it knows
   /// after its latest Plan() (remembered map, routes around hazards), or nullopt when it keeps
   /// none for that goal (arc voting) or `xy` is blocked, unreached or off its map. The mobility
