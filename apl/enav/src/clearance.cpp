@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rover/base/format.hpp"
 
@@ -130,6 +131,15 @@ bool ClearanceChecker::Fits(const geometry::Pose2& pose, double extra) const {
   return std::all_of(discs_.begin(), discs_.end(), [&](const PartDisc& d) {
     return terrain_->DistanceAt(d.layer, pose.ToSite(d.centre)) > d.radius + pad_ + extra;
   });
+}
+
+double ClearanceChecker::Room(const geometry::Pose2& pose) const {
+  double room = std::numeric_limits<double>::infinity();
+  for (const PartDisc& d : discs_) {
+    room = std::min(room, static_cast<double>(terrain_->DistanceAt(d.layer, pose.ToSite(d.centre))) -
+                              d.radius - pad_);
+  }
+  return room;
 }
 
 PoseCheck ClearanceChecker::CheckPose(const geometry::Pose2& pose, bool ace,

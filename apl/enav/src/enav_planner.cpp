@@ -22,10 +22,12 @@ constexpr double kRetraceMax = 1.5;        // [m] ... this far
 constexpr double kRetraceDistance = 0.15;  // [m] the rover counts as on its last drive
 constexpr double kRetraceHeading = 0.15;   // [rad] ... heading this close
 constexpr double kRetraceMin = 0.1;        // [m] less driven than this: nothing to retrace
-constexpr std::size_t kRouteCostsKept = 256;  // decision points remembered for CostToGo
-constexpr double kRouteMatch = 0.05;  // [m] a point this near a decision point is that point
+constexpr std::size_t kRouteCostsKept = 4096;  // route points remembered for CostToGo
+constexpr double kRouteMatch = 0.25;  // [m] a point this near a remembered route point is it
 constexpr double kMinTurn = 0.02;     // [rad] smaller turns toward a route pose are not made
 constexpr double kMinStep = 0.05;     // [m] nearer route poses are not aimed at
+constexpr double kOnLine = 0.1;       // [m] off a route step's line: no longer on it
+constexpr double kOnLineHeading = 0.15;  // [rad] turned off a route step's line: no longer on it
 constexpr double kStandingMargin = 0.4;  // [m] around the footprint: ground not "unseen"
                                          // (the wheels hide their own surroundings)
 
@@ -90,9 +92,14 @@ std::optional<double> EnavPlanner::CostToGo(const Eigen::Vector2d& goal,
   if (options_.route_max_expansions > 0 && options_.route_first) {
     // The route cost found when a decision was made there (a route is over poses: the field's
     // heading-blind value may rise along a detour the route runs down).
+    // The newest decision with a point near xy, its nearest point.
+    const RouteCost* best = nullptr;
     for (auto it = route_costs_.rbegin(); it != route_costs_.rend(); ++it) {
-      if ((it->first - xy).norm() <= kRouteMatch) return it->second;
+      if (best != nullptr && it->decision != best->decision) break;
+      const double d = (it->xy - xy).norm();
+      if (d <= kRouteMatch && (best == nullptr || d < (best->xy - xy).norm())) best = &*it;
     }
+    if (best != nullptr) return best->cost;
     return std::nullopt;
   }
   const double c = field_.Cost(xy);
@@ -243,10 +250,58 @@ std::optional<TreePath> EnavPlanner::Retrace(const geometry::Pose2& start) const
   return r;
 }
 
+RouteSearchOptions EnavPlanner::RouteOptions() const {
+  RouteSearchOptions ro;
+  ro.margin = options_.route_margin;
+  ro.backward_factor = options_.route_backward_factor;
+  ro.turn_cost = options_.turn_cost;
+  ro.max_expansions = options_.route_max_expansions;
+  return ro;
+}
+
+bool EnavPlanner::KeepsRouteRoom(const ClearanceChecker& checker, const geometry::Pose2& start,
+                                 double start_room, const geometry::Pose2& pose) const {
+  return checker.Room(pose) >
+         NeededRoom(RouteOptions(), start_room, (pose.xy() - start.xy()).norm());
+}
+
 std::optional<Route> EnavPlanner::Kept(const ClearanceChecker& checker,
                                        const geometry::Pose2& start,
                                        const Eigen::Vector2d& goal) const {
   if (!plan_ || plan_goal_ != goal || plan_->nodes.size() < 2) return std::nullopt;
+  const double start_room = checker.Room(start);
+  // On the line of the last step (up to its end): the rover itself, then the route from the
+  // pose the line aims at (a step is driven a drive length at a time; from halfway along a
+  // line that cut a corner no node of the route may be near, and at its end the rover faces
+  // the line's way, not the route's).
+  if (step_ && step_->target < plan_->nodes.size()) {
+    const Eigen::Vector2d line = step_->to - step_->from;
+    const double length = line.norm();
+    const Eigen::Vector2d u = line / std::max(length, 1e-9);
+    const Eigen::Vector2d rel = start.xy() - step_->from;
+    const double s = rel.dot(u), lateral = std::abs(u.x() * rel.y() - u.y() * rel.x());
+    const double line_heading = std::atan2(step_->dir * u.y(), step_->dir * u.x());
+    if (length > 0.0 && lateral <= kOnLine && s >= -kOnLine && s <= length + kOnLine &&
+        std::abs(geometry::WrapAngle(start.heading - line_heading)) <= kOnLineHeading) {
+      Route kept;
+      kept.at_goal = plan_->at_goal;
+      const double g0 = plan_->nodes[step_->target].g - (length - s);
+      RouteNode here;
+      here.pose = start;
+      kept.nodes.push_back(here);
+      bool fits = true;
+      for (std::size_t k = step_->target; fits && k < plan_->nodes.size(); ++k) {
+        RouteNode n = plan_->nodes[k];
+        fits = KeepsRouteRoom(checker, start, start_room, n.pose);
+        n.g -= g0;
+        kept.nodes.push_back(n);
+      }
+      if (fits) {
+        kept.cost = plan_->cost - g0;
+        return kept;
+      }
+    }
+  }
   // The node nearest the rover, if it is on the route.
   std::size_t at = 0;
   double best = kContinueDistance;
@@ -264,7 +319,7 @@ std::optional<Route> EnavPlanner::Kept(const ClearanceChecker& checker,
   const double g0 = plan_->nodes[at].g;
   for (std::size_t k = at; k < plan_->nodes.size(); ++k) {
     RouteNode n = plan_->nodes[k];
-    if (!checker.Fits(n.pose, options_.route_margin)) return std::nullopt;
+    if (!KeepsRouteRoom(checker, start, start_room, n.pose)) return std::nullopt;
     n.g -= g0;
     if (k == at) n.move = 0;
     kept.nodes.push_back(n);
@@ -275,31 +330,42 @@ std::optional<Route> EnavPlanner::Kept(const ClearanceChecker& checker,
 
 std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
                                                const geometry::Pose2& start, const Route& route,
-                                               const Eigen::Vector2d& goal,
-                                               double tolerance) const {
-  // The route's first drive direction, and the poses driven that way before it reverses.
-  int dir = 0;
-  std::vector<std::size_t> targets;
+                                               const Eigen::Vector2d& goal, double tolerance,
+                                               std::size_t* target) const {
+  // The route's poses within route_lookahead along it (each with the direction it is driven
+  // in), and its first straight run: the moves in the first move's direction and heading.
+  struct Target {
+    std::size_t node;
+    int dir;
+  };
+  std::vector<Target> targets;
+  std::vector<std::size_t> run;
+  int run_dir = 0;
+  bool run_open = true;
   double along = 0.0;
   for (std::size_t k = 1; k < route.nodes.size(); ++k) {
     const RouteNode& node = route.nodes[k];
-    if (node.move == 0) continue;
-    if (dir == 0) dir = node.move;
-    if (node.move != dir) break;
     along += (node.pose.xy() - route.nodes[k - 1].pose.xy()).norm();
     if (along > options_.route_lookahead + 1e-9) break;
-    targets.push_back(k);
+    if (node.move == 0) {
+      run_open = run_open && run.empty();
+      continue;
+    }
+    if (run_dir == 0) run_dir = node.move;
+    if (run_open && node.move == run_dir) {
+      run.push_back(k);
+    } else {
+      run_open = false;
+    }
+    targets.push_back({k, node.move});
     // A pose within the goal's tolerance is as far as a step aims.
     if ((node.pose.xy() - goal).norm() <= tolerance) break;
   }
-  // Farthest first.
-  for (auto it = targets.rbegin(); it != targets.rend(); ++it) {
-    const Eigen::Vector2d d = route.nodes[*it].pose.xy() - start.xy();
-    const double length = d.norm();
-    if (length < kMinStep) continue;
-    const double bearing = std::atan2(d.y(), d.x()) + (dir > 0 ? 0.0 : std::numbers::pi);
+  const double start_room = checker.Room(start);
+  // A turn to `heading`, then `length` straight in the route's direction, if it passes.
+  auto step = [&](double heading, int dir, double length) -> std::optional<TreePath> {
     TreePath p;
-    p.turn = geometry::WrapAngle(bearing - start.heading);
+    p.turn = geometry::WrapAngle(heading - start.heading);
     if (std::abs(p.turn) < kMinTurn) p.turn = 0.0;
     p.direction = dir;
     p.length1 = length;
@@ -310,9 +376,9 @@ std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
     // clearance check proper.
     const std::vector<geometry::Pose2> poses = Samples(start, p);
     if (!std::all_of(poses.begin(), poses.end(), [&](const geometry::Pose2& q) {
-          return checker.Fits(q, options_.route_margin);
+          return KeepsRouteRoom(checker, start, start_room, q);
         })) {
-      continue;
+      return std::nullopt;
     }
     // The route may run through unseen ground (priced); a step aims only through seen ground,
     // backward too (nothing images behind the rover before it backs).
@@ -324,11 +390,35 @@ std::optional<TreePath> EnavPlanner::RouteStep(const ClearanceChecker& checker,
           }
           return true;
         })) {
-      continue;
+      return std::nullopt;
     }
-    if (CheckPath(checker, start, Exempt{}, &p)) {
-      p.checked = 1;
-      p.why = "route";
+    if (!CheckPath(checker, start, Exempt{}, &p)) return std::nullopt;
+    p.checked = 1;
+    p.why = "route";
+    return p;
+  };
+  // Farthest first, straight at the pose (cutting the route's zigzags over lattice headings,
+  // and a short reversal the lattice makes to line up).
+  for (auto it = targets.rbegin(); it != targets.rend(); ++it) {
+    const Eigen::Vector2d d = route.nodes[it->node].pose.xy() - start.xy();
+    const double length = d.norm();
+    if (length < kMinStep) continue;
+    const double bearing = std::atan2(d.y(), d.x()) + (it->dir > 0 ? 0.0 : std::numbers::pi);
+    if (std::optional<TreePath> p = step(bearing, it->dir, length)) {
+      *target = it->node;
+      return p;
+    }
+  }
+  // None: the route's own first straight run (its lattice heading, not the bearing: a line at
+  // the bearing swings the body off the heading the route keeps between rocks), farthest first.
+  if (run.empty()) return std::nullopt;
+  const double heading = route.nodes[run.front()].pose.heading;
+  const Eigen::Vector2d axis(std::cos(heading), std::sin(heading));
+  for (auto it = run.rbegin(); it != run.rend(); ++it) {
+    const double length = run_dir * (route.nodes[*it].pose.xy() - start.xy()).dot(axis);
+    if (length < kMinStep) continue;
+    if (std::optional<TreePath> p = step(heading, run_dir, length)) {
+      *target = *it;
       return p;
     }
   }
@@ -374,11 +464,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
   auto try_route = [&]() {
     if (options_.route_max_expansions <= 0) return;
     relaxed_.Update(*ht, request.goal, request.goal_tolerance);
-    RouteSearchOptions ro;
-    ro.margin = options_.route_margin;
-    ro.backward_factor = options_.route_backward_factor;
-    ro.turn_cost = options_.turn_cost;
-    ro.max_expansions = options_.route_max_expansions;
+    const RouteSearchOptions ro = RouteOptions();
     last_.route = Kept(checker, start, request.goal);
     if (!last_.route) {
       last_.route =
@@ -386,11 +472,29 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     }
     plan_ = last_.route;
     plan_goal_ = request.goal;
+    step_.reset();
     if (last_.route) {
-      route_costs_.emplace_back(start.xy(), last_.route->cost);
-      if (route_costs_.size() > kRouteCostsKept) route_costs_.erase(route_costs_.begin());
-      if (std::optional<TreePath> step =
-              RouteStep(checker, start, *last_.route, request.goal, request.goal_tolerance)) {
+      decisions_ += 1;
+      // The route's cost to go from where the rover stands and from its points ahead (where
+      // the rover will be when the mobility manager weighs its progress).
+      double along = 0.0;
+      const std::vector<RouteNode>& nodes = last_.route->nodes;
+      for (std::size_t k = 0; k < nodes.size() && along <= options_.route_lookahead; ++k) {
+        if (k > 0) along += (nodes[k].pose.xy() - nodes[k - 1].pose.xy()).norm();
+        route_costs_.push_back({k == 0 ? start.xy() : nodes[k].pose.xy(),
+                                last_.route->cost - (nodes[k].g - nodes.front().g), decisions_});
+      }
+      if (route_costs_.size() > kRouteCostsKept) {
+        route_costs_.erase(route_costs_.begin(),
+                           route_costs_.begin() +
+                               static_cast<std::ptrdiff_t>(route_costs_.size() - kRouteCostsKept));
+      }
+      std::size_t target = 0;
+      if (std::optional<TreePath> step = RouteStep(checker, start, *last_.route, request.goal,
+                                                   request.goal_tolerance, &target)) {
+        const geometry::Pose2 from = geometry::Turned(start, step->turn);
+        step_ = RouteLine{from.xy(), last_.route->nodes[target].pose.xy(), step->direction,
+                          target};
         last_.routed = true;
         last_.ranked = last_.route->expansions;  // 0 for a kept route
         eval.candidates_ranked = last_.ranked;

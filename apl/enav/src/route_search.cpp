@@ -8,29 +8,21 @@
 namespace rover::apl::enav {
 namespace {
 
-constexpr int kHeadings = 16;
-// Cell offsets of the 16 lattice headings, counter-clockwise from +x.
-constexpr int kDi[kHeadings] = {1, 2, 1, 1, 0, -1, -1, -2, -1, -2, -1, -1, 0, 1, 1, 2};
-constexpr int kDj[kHeadings] = {0, 1, 1, 2, 1, 2, 1, 1, 0, -1, -1, -2, -1, -2, -1, -1};
+// Cell offsets of the 16 lattice headings, counter-clockwise from the start's heading.
+constexpr int kDi[RouteSearch::kHeadings] = {1, 2, 1, 1, 0, -1, -1, -2, -1, -2, -1, -1, 0, 1, 1, 2};
+constexpr int kDj[RouteSearch::kHeadings] = {0, 1, 1, 2, 1, 2, 1, 1, 0, -1, -1, -2, -1, -2, -1, -1};
 constexpr std::uint8_t kTested = 1, kAllowed = 2, kClosed = 4;
+constexpr double kRoomSlack = 1e-6;  // [m] a pose as near a hazard as the start is allowed
 
 }  // namespace
 
-double RouteSearch::Heading(int h) {
-  return std::atan2(static_cast<double>(kDj[h]), static_cast<double>(kDi[h]));
+double NeededRoom(const RouteSearchOptions& options, double start_room, double distance) {
+  if (distance > options.near_start) return options.margin;
+  return std::min(options.margin, start_room - kRoomSlack);
 }
 
-int RouteSearch::NearestHeading(double heading) {
-  int best = 0;
-  double best_d = 10.0;
-  for (int h = 0; h < kHeadings; ++h) {
-    const double d = std::abs(geometry::WrapAngle(heading - Heading(h)));
-    if (d < best_d) {
-      best_d = d;
-      best = h;
-    }
-  }
-  return best;
+double RouteSearch::Heading(int h) {
+  return std::atan2(static_cast<double>(kDj[h]), static_cast<double>(kDi[h]));
 }
 
 std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const CostToGoField& field,
@@ -39,71 +31,73 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
                                          const RouteSearchOptions& options) const {
   const nav_core::HeightMap& m = *terrain.height_map();
   const ClearanceChecker checker(terrain);
+  // The lattice: the map's cell count and size, centred on the rover and turned to its heading.
   const int w = m.width, hgt = m.height;
+  const int i0 = w / 2, j0 = hgt / 2;
+  const double c = m.resolution;
+  const Eigen::Vector2d ex(std::cos(start.heading), std::sin(start.heading));
+  const Eigen::Vector2d ey(-ex.y(), ex.x());
   const std::size_t n = static_cast<std::size_t>(w) * hgt * kHeadings;
   g_.assign(n, std::numeric_limits<float>::infinity());
   parent_.assign(n, -1);
   state_.assign(n, 0);
   double heading[kHeadings], length[kHeadings], turn[kHeadings];
   for (int h = 0; h < kHeadings; ++h) {
-    heading[h] = Heading(h);
-    length[h] = m.resolution * std::hypot(kDi[h], kDj[h]);
+    heading[h] = geometry::WrapAngle(start.heading + Heading(h));
+    length[h] = c * std::hypot(kDi[h], kDj[h]);
   }
   for (int h = 0; h < kHeadings; ++h) {
-    turn[h] = std::abs(geometry::WrapAngle(heading[(h + 1) % kHeadings] - heading[h]));
+    turn[h] = std::abs(geometry::WrapAngle(Heading((h + 1) % kHeadings) - Heading(h)));
   }
-  auto centre = [&](int i, int j) { return m.CellCenter(i, j); };
+  auto centre = [&](int i, int j) -> Eigen::Vector2d {
+    return start.xy() + (c * (i - i0)) * ex + (c * (j - j0)) * ey;
+  };
   auto index = [&](int i, int j, int h) {
     return (static_cast<std::size_t>(j) * w + i) * kHeadings + static_cast<std::size_t>(h);
   };
   auto pose_of = [&](std::size_t s) {
     const int h = static_cast<int>(s % kHeadings);
-    const std::size_t c = s / kHeadings;
-    const Eigen::Vector2d xy = centre(static_cast<int>(c % w), static_cast<int>(c / w));
+    const std::size_t k = s / kHeadings;
+    const Eigen::Vector2d xy = centre(static_cast<int>(k % w), static_cast<int>(k / w));
     return geometry::Pose2{xy.x(), xy.y(), heading[h]};
+  };
+  const double start_room = checker.Room(start);
+  auto fits = [&](const geometry::Pose2& p) {
+    return checker.Room(p) > NeededRoom(options, start_room, (p.xy() - start.xy()).norm());
   };
   auto allowed = [&](std::size_t s) {
     std::uint8_t& st = state_[s];
     if ((st & kTested) == 0) {
       st |= kTested;
-      if (checker.Fits(pose_of(s), options.margin)) st |= kAllowed;
+      if (fits(pose_of(s))) st |= kAllowed;
     }
     return (st & kAllowed) != 0;
   };
-  const bool goal_on_map = [&] {
-    int i = 0, j = 0;
-    m.CellOf(goal.x(), goal.y(), &i, &j);
-    return m.Contains(i, j);
-  }();
+  auto map_cell = [&](const Eigen::Vector2d& xy, int* i, int* j) {
+    m.CellOf(xy.x(), xy.y(), i, j);
+    return m.Contains(*i, *j);
+  };
+  int gi = 0, gj = 0;
+  const bool goal_on_map = map_cell(goal, &gi, &gj);
   const double tol2 = tolerance * tolerance;
   auto terminal = [&](int i, int j) {
-    if (goal_on_map) return (centre(i, j) - goal).squaredNorm() <= tol2;
-    return i <= 1 || j <= 1 || i >= w - 2 || j >= hgt - 2;
+    const Eigen::Vector2d xy = centre(i, j);
+    if (goal_on_map) return (xy - goal).squaredNorm() <= tol2;
+    int mi = 0, mj = 0;
+    if (!map_cell(xy, &mi, &mj)) return true;
+    return mi <= 1 || mj <= 1 || mi >= w - 2 || mj >= hgt - 2;
   };
 
-  int si = 0, sj = 0;
-  m.CellOf(start.x, start.y, &si, &sj);
-  if (!m.Contains(si, sj)) return std::nullopt;
-  const double h0 = field.Cost(centre(si, sj));
+  const double h0 = field.Cost(start.xy());
   if (!std::isfinite(h0)) return std::nullopt;
-  // The start: its cell at the two lattice headings either side of the rover's, each at the
-  // price of turning to it. The rover stands there, so they are allowed whatever the map says
-  // with the route's margin (a heading snapped by up to 13 deg swings the corner wheels up to
-  // 0.2 m) unless its parts do not fit even at its exact pose with no margin.
-  if (!checker.Fits(start, 0.0)) return std::nullopt;
+  // The rover stands at the start: it is allowed unless its parts touch a hazard there.
+  if (!(start_room > 0.0)) return std::nullopt;
   using Item = std::pair<float, std::size_t>;  // f, pose
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  const int hn = NearestHeading(start.heading);
-  const int other = geometry::WrapAngle(start.heading - heading[hn]) >= 0.0
-                        ? (hn + 1) % kHeadings
-                        : (hn + kHeadings - 1) % kHeadings;
-  for (const int h : {hn, other}) {
-    const std::size_t s0 = index(si, sj, h);
-    state_[s0] = kTested | kAllowed;
-    g_[s0] = static_cast<float>(
-        options.turn_cost * std::abs(geometry::WrapAngle(heading[h] - start.heading)));
-    open.push({g_[s0] + static_cast<float>(h0), s0});
-  }
+  const std::size_t s0 = index(i0, j0, 0);
+  state_[s0] = kTested | kAllowed;
+  g_[s0] = 0.0F;
+  open.push({static_cast<float>(h0), s0});
   Route route;
   std::optional<std::size_t> end;
   while (!open.empty() && route.expansions < options.max_expansions) {
@@ -113,8 +107,8 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
     state_[s] |= kClosed;
     route.expansions += 1;
     const int h = static_cast<int>(s % kHeadings);
-    const std::size_t c = s / kHeadings;
-    const int i = static_cast<int>(c % w), j = static_cast<int>(c / w);
+    const std::size_t k = s / kHeadings;
+    const int i = static_cast<int>(k % w), j = static_cast<int>(k / w);
     if (terminal(i, j)) {
       end = s;
       route.cost = f;
@@ -132,7 +126,7 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
     // Straight moves, forward and backward.
     for (const int dir : {1, -1}) {
       const int ni = i + dir * kDi[h], nj = j + dir * kDj[h];
-      if (!m.Contains(ni, nj)) continue;
+      if (ni < 0 || nj < 0 || ni >= w || nj >= hgt) continue;
       const std::size_t t = index(ni, nj, h);
       if ((state_[t] & kClosed) != 0 || !allowed(t)) continue;
       const Eigen::Vector2d xy = centre(ni, nj);
@@ -146,9 +140,7 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
       if ((state_[t] & kClosed) != 0 || !allowed(t)) continue;
       const double angle = dh == 1 ? turn[h] : turn[nh];
       const geometry::Pose2 p = pose_of(s);
-      if (!checker.Fits(geometry::Turned(p, 0.5 * (dh == 1 ? angle : -angle)), options.margin)) {
-        continue;
-      }
+      if (!fits(geometry::Turned(p, 0.5 * (dh == 1 ? angle : -angle)))) continue;
       relax(t, options.turn_cost * angle, field.Cost(p.xy()));
     }
   }
@@ -175,6 +167,7 @@ std::optional<Route> RouteSearch::Search(const HeightTerrain& terrain, const Cos
     back.push_back(node);
   }
   route.nodes.assign(back.rbegin(), back.rend());
+  route.nodes.front().pose = start;  // the same pose, without the lattice's rounding
   return route;
 }
 

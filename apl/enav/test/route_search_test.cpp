@@ -41,15 +41,22 @@ Searched SearchOver(const HeightTerrain& t, const geometry::Pose2& start,
   return s;
 }
 
-TEST(RouteSearch, LatticeHeadingsAreTheCellOffsetsAndTheNearestIsFound) {
+TEST(RouteSearch, LatticeHeadingsAreTheCellOffsets) {
   EXPECT_DOUBLE_EQ(RouteSearch::Heading(0), 0.0);
   EXPECT_NEAR(RouteSearch::Heading(1), std::atan2(1.0, 2.0), 1e-12);
   EXPECT_NEAR(RouteSearch::Heading(4), 0.5 * kPi, 1e-12);
   EXPECT_NEAR(std::abs(RouteSearch::Heading(8)), kPi, 1e-12);
-  EXPECT_EQ(RouteSearch::NearestHeading(0.1), 0);
-  EXPECT_EQ(RouteSearch::NearestHeading(0.45), 1);  // 26.6 deg is nearer than 0 or 45
-  EXPECT_EQ(RouteSearch::NearestHeading(-0.5 * kPi), 12);
-  EXPECT_EQ(RouteSearch::NearestHeading(3.1), 8);
+  EXPECT_NEAR(RouteSearch::Heading(12), -0.5 * kPi, 1e-12);
+}
+
+TEST(RouteSearch, NearTheStartAPoseNeedsNoMoreRoomThanTheRoverHas) {
+  RouteSearchOptions o;
+  o.margin = 0.03;
+  o.near_start = 0.5;
+  EXPECT_DOUBLE_EQ(NeededRoom(o, 0.2, 0.1), 0.03);   // room to spare: the margin
+  EXPECT_NEAR(NeededRoom(o, 0.01, 0.1), 0.01, 1e-5);  // nearer a rock than the margin
+  EXPECT_LT(NeededRoom(o, 0.01, 0.1), 0.01);           // as near as the start passes
+  EXPECT_DOUBLE_EQ(NeededRoom(o, 0.01, 0.6), 0.03);  // beyond near_start: the margin
 }
 
 TEST(RouteSearch, OnOpenGroundItDrivesStraightToTheGoal) {
@@ -59,7 +66,7 @@ TEST(RouteSearch, OnOpenGroundItDrivesStraightToTheGoal) {
   const Route& r = *s.route;
   EXPECT_TRUE(r.at_goal);
   ASSERT_GE(r.nodes.size(), 2u);
-  EXPECT_NEAR(r.nodes.front().pose.x, 0.05, 1e-9);  // the start's cell centre
+  EXPECT_DOUBLE_EQ(r.nodes.front().pose.x, 0.0);  // the rover's pose itself
   EXPECT_LE((r.nodes.back().pose.xy() - Eigen::Vector2d(3.0, 0.0)).norm(), 0.3);
   for (std::size_t k = 1; k < r.nodes.size(); ++k) {
     EXPECT_EQ(r.nodes[k].move, 1) << "node " << k;
@@ -67,6 +74,60 @@ TEST(RouteSearch, OnOpenGroundItDrivesStraightToTheGoal) {
   }
   // Cost: the distance driven on seen open ground (factor 1) to the tolerance's edge.
   EXPECT_NEAR(r.cost, 3.0 - 0.3, 0.25);  // + the field's coarser cells at the end
+}
+
+TEST(RouteSearch, TheLatticeIsAnchoredAtTheRoversExactPose) {
+  // Off the map's cell centres and off its axes: every move is one the rover drives from
+  // where it stands, so each node lies a whole lattice offset from the start.
+  const HeightTerrain t = TerrainOf(Blocks({}));
+  const geometry::Pose2 start{0.037, -0.021, 0.2};
+  const Searched s = SearchOver(t, start, {3.0, 0.8}, 0.3);
+  ASSERT_TRUE(s.route.has_value());
+  const std::vector<RouteNode>& nodes = s.route->nodes;
+  EXPECT_EQ(nodes.front().pose.xy(), start.xy());
+  EXPECT_EQ(nodes.front().pose.heading, start.heading);
+  const Eigen::Vector2d ex(std::cos(start.heading), std::sin(start.heading));
+  const Eigen::Vector2d ey(-ex.y(), ex.x());
+  for (const RouteNode& n : nodes) {
+    const Eigen::Vector2d d = n.pose.xy() - start.xy();
+    const double i = d.dot(ex) / 0.1, j = d.dot(ey) / 0.1;  // the test terrain's 0.1 m cells
+    EXPECT_NEAR(i, std::round(i), 1e-6);
+    EXPECT_NEAR(j, std::round(j), 1e-6);
+    double dh = geometry::WrapAngle(n.pose.heading - start.heading);
+    bool lattice = false;
+    for (int h = 0; h < RouteSearch::kHeadings; ++h) {
+      lattice = lattice || std::abs(geometry::WrapAngle(dh - RouteSearch::Heading(h))) < 1e-9;
+    }
+    EXPECT_TRUE(lattice) << "heading " << n.pose.heading;
+  }
+}
+
+TEST(RouteSearch, ARoverNearerARockThanTheMarginCanLeave) {
+  // The rover in a corridor of blocks (3 m long) with less room on each side than the route's
+  // margin (but some): within near_start of the start a pose needs only that room, so the route
+  // leaves along the corridor; demanding the margin everywhere (near_start 0) finds none.
+  std::optional<HeightTerrain> t;
+  double room = 0.0;
+  for (double y = 0.6; y < 1.2 && !(room > 0.0); y += 0.05) {
+    std::vector<Block> walls;
+    for (double x = -1.5; x <= 1.5 + 1e-9; x += 0.1) {
+      walls.push_back({x, y, 0.1, 0.5});
+      walls.push_back({x, -y, 0.1, 0.5});
+    }
+    t.emplace(TerrainOf(Blocks(walls)));
+    room = ClearanceChecker(*t).Room({0.0, 0.0, 0.0});
+  }
+  ASSERT_GT(room, 0.0);
+  RouteSearchOptions o;
+  o.margin = room + 0.02;
+  o.near_start = 3.0;
+  const Searched s = SearchOver(*t, {0.0, 0.0, 0.0}, {4.0, 0.0}, 0.3, o);
+  ASSERT_TRUE(s.route.has_value());
+  EXPECT_TRUE(s.route->at_goal);
+  for (const RouteNode& n : s.route->nodes) EXPECT_NE(n.move, -1);
+  RouteSearchOptions strict = o;
+  strict.near_start = 0.0;
+  EXPECT_FALSE(SearchOver(*t, {0.0, 0.0, 0.0}, {4.0, 0.0}, 0.3, strict).route.has_value());
 }
 
 TEST(RouteSearch, ThroughAGapOnlyAlignedWithIt) {

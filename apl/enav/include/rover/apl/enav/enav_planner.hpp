@@ -113,7 +113,9 @@ class EnavPlanner : public nav_core::ArcSelector {
                                        const nav_core::ArcRequest& request) const override;
 
   /// The cost-to-go field's value at xy when its goal is `goal` (nullopt otherwise, or when xy
-  /// is blocked, unreached or off the map).
+  /// is blocked, unreached or off the map). With the route search first: the route cost to go
+  /// from the point nearest xy (within 0.25 m) of the newest route with such a point (its
+  /// decision's pose, or a route pose within route_lookahead ahead of it); nullopt when none.
   std::optional<double> CostToGo(const Eigen::Vector2d& goal,
                                  const Eigen::Vector2d& xy) const override;
   bool ChecksDriveLength() const override { return true; }
@@ -138,9 +140,10 @@ class EnavPlanner : public nav_core::ArcSelector {
 
   // The step along `route`: a turn in place to face a route pose and a straight line to it,
   // the farthest (within route_lookahead, before the route reverses) that passes CheckPath.
+  // *target: the index in `route` of the pose it aims at.
   std::optional<TreePath> RouteStep(const ClearanceChecker& checker, const geometry::Pose2& start,
                                     const Route& route, const Eigen::Vector2d& goal,
-                                    double tolerance) const;
+                                    double tolerance, std::size_t* target) const;
 
   EnavOptions options_;
   std::vector<double> curvatures_;
@@ -152,11 +155,30 @@ class EnavPlanner : public nav_core::ArcSelector {
   /// next (the tree's commit_bonus does the same for its paths).
   mutable std::optional<Route> plan_;
   mutable Eigen::Vector2d plan_goal_ = Eigen::Vector2d::Zero();
+  /// The last route step's line (site, after its turn) and the index in plan_ it aims at.
+  struct RouteLine {
+    Eigen::Vector2d from, to;
+    int dir = 1;
+    std::size_t target = 0;
+  };
+  mutable std::optional<RouteLine> step_;
   // plan_ from the node nearest `start` on, if the rover is on it and it still fits.
+  // The route search's options from options_.
+  RouteSearchOptions RouteOptions() const;
+  // Whether the rover at `pose` keeps the room a route needs there (NeededRoom, from `start`).
+  bool KeepsRouteRoom(const ClearanceChecker& checker, const geometry::Pose2& start,
+                      double start_room, const geometry::Pose2& pose) const;
   std::optional<Route> Kept(const ClearanceChecker& checker, const geometry::Pose2& start,
                             const Eigen::Vector2d& goal) const;
-  /// Route costs found at decision points (site x, y; cost) for CostToGo, newest last.
-  mutable std::vector<std::pair<Eigen::Vector2d, double>> route_costs_;
+  /// Route costs to go (site x, y; cost) at decision points and at their route's points within
+  /// route_lookahead, for CostToGo, newest last.
+  struct RouteCost {
+    Eigen::Vector2d xy;  ///< [m] site
+    double cost;         ///< [m-equivalent] the route's cost to go from xy
+    std::uint64_t decision;
+  };
+  mutable std::vector<RouteCost> route_costs_;
+  mutable std::uint64_t decisions_ = 0;  ///< routed decisions so far
   mutable PlanRecord last_;
   struct Previous {
     geometry::Pose2 start;
