@@ -465,10 +465,15 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
     if (options_.route_max_expansions <= 0) return;
     relaxed_.Update(*ht, request.goal, request.goal_tolerance);
     const RouteSearchOptions ro = RouteOptions();
-    last_.route = Kept(checker, start, request.goal);
-    if (!last_.route) {
-      last_.route =
-          search_.Search(*ht, relaxed_, start, request.goal, request.goal_tolerance, ro);
+    // A search from where the rover stands every decision (the lattice is anchored there, so
+    // what fits differs by a few centimetres from one anchor to the next, and the map grows);
+    // the route being followed is kept unless the new one is cheaper by route_switch_m.
+    std::optional<Route> kept = Kept(checker, start, request.goal);
+    last_.route = search_.Search(*ht, relaxed_, start, request.goal, request.goal_tolerance, ro);
+    if (kept && (!last_.route || last_.route->cost > kept->cost - options_.route_switch)) {
+      const int expansions = last_.route ? last_.route->expansions : 0;
+      last_.route = std::move(kept);
+      last_.route->expansions = expansions;
     }
     plan_ = last_.route;
     plan_goal_ = request.goal;
@@ -496,7 +501,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
         step_ = RouteLine{from.xy(), last_.route->nodes[target].pose.xy(), step->direction,
                           target};
         last_.routed = true;
-        last_.ranked = last_.route->expansions;  // 0 for a kept route
+        last_.ranked = last_.route->expansions;
         eval.candidates_ranked = last_.ranked;
         last_.chosen = static_cast<int>(paths.size());
         paths.push_back(*step);

@@ -314,18 +314,10 @@ void HeightTerrain::Derive() const {
       }
     }
   }
-  // Grow each class over its flanks (breadth first, 4-connected, at most flank_reach).
-  const int reach = static_cast<int>(std::floor(options_.flank_reach / map_.resolution + 1e-9));
-  if (reach > 0) {
-    std::vector<std::uint8_t> flank(cells, 0);
-    for (std::size_t k = 0; k < cells; ++k) {
-      if (map_.count[k] == 0) continue;
-      const double sigma = options_.stereo_noise_coeff * map_.range[k] * map_.range[k] /
-                           std::sqrt(static_cast<double>(map_.count[k]));
-      flank[k] = map_.step[k] - options_.step_noise_sigmas * sigma > options_.flank_step ? 1 : 0;
-    }
-    std::vector<std::size_t> front, next;
-    for (int c = 0; c < 3; ++c) {
+  // Grow each class (breadth first, 4-connected) over `into` cells, at most `reach` cells.
+  std::vector<std::size_t> front, next;
+  auto grow = [&](const std::vector<std::uint8_t>& into, int reach) {
+    for (int c = 0; c < 3 && reach > 0; ++c) {
       std::vector<std::uint8_t>& m = masks[c];
       front.clear();
       for (std::size_t k = 0; k < cells; ++k) {
@@ -340,7 +332,7 @@ void HeightTerrain::Derive() const {
           for (int n = 0; n < 4; ++n) {
             if (ni[n] < 0 || nj[n] < 0 || ni[n] >= w || nj[n] >= h) continue;
             const std::size_t q = static_cast<std::size_t>(nj[n]) * w + ni[n];
-            if (m[q] != 0 || flank[q] == 0) continue;
+            if (m[q] != 0 || into[q] == 0) continue;
             m[q] = 1;
             next.push_back(q);
           }
@@ -348,6 +340,26 @@ void HeightTerrain::Derive() const {
         front.swap(next);
       }
     }
+  };
+  // Over the flanks (at most flank_reach).
+  const int reach = static_cast<int>(std::floor(options_.flank_reach / map_.resolution + 1e-9));
+  if (reach > 0) {
+    std::vector<std::uint8_t> flank(cells, 0);
+    for (std::size_t k = 0; k < cells; ++k) {
+      if (map_.count[k] == 0) continue;
+      const double sigma = options_.stereo_noise_coeff * map_.range[k] * map_.range[k] /
+                           std::sqrt(static_cast<double>(map_.count[k]));
+      flank[k] = map_.step[k] - options_.step_noise_sigmas * sigma > options_.flank_step ? 1 : 0;
+    }
+    grow(flank, reach);
+  }
+  // Into the unseen cells beside a hazard (at most shadow_reach): the side of a rock the
+  // cameras have not seen yet is more likely rock than ground.
+  const int shadow = static_cast<int>(std::floor(options_.shadow_reach / map_.resolution + 1e-9));
+  if (shadow > 0) {
+    std::vector<std::uint8_t> unseen(cells, 0);
+    for (std::size_t k = 0; k < cells; ++k) unseen[k] = map_.count[k] == 0 ? 1 : 0;
+    grow(unseen, shadow);
   }
   for (std::size_t k = 0; k < cells; ++k) {
     map_.hazard[k] = static_cast<std::uint8_t>((masks[0][k] != 0 ? nav_core::kHazardWheel : 0) |

@@ -34,6 +34,7 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("wheel_step", wheel_step, Bounds::OpenLow(0.0, 2.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("flank_step", flank_step, 0.0, wheel_step, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("flank_reach", flank_reach, 0.0, 2.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("shadow_reach", shadow_reach, 0.0, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("clearance_margin", clearance_margin, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("cost_cell_size", cost_cell_size,
                                    Bounds::Closed(cell_size, 2.0), "m"));
@@ -51,6 +52,7 @@ Status EnavOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckIntRange("route_max_expansions", route_max_expansions, 0, 50000000));
   ROVER_RETURN_IF_ERROR(CheckRange("route_margin", route_margin, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("route_backward_factor", route_backward_factor, 1.0, 100.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("route_switch", route_switch, 0.0, 100.0, "m"));
   ROVER_RETURN_IF_ERROR(
       CheckRange("route_lookahead", route_lookahead, Bounds::OpenLow(0.0, 20.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("num_turns", num_turns, 1, 360));
@@ -117,6 +119,9 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
       .Range(0.0, 2.0);
   b.Bind("flank_reach_m", &O::flank_reach, "m", "... up to this far from its cells")
       .Range(0.0, 2.0);
+  b.Bind("shadow_reach_m", &O::shadow_reach, "m",
+         "a hazard also grows this far into unseen cells beside it (0 = off)")
+      .Range(0.0, 2.0);
   b.Bind("clearance_margin_m", &O::clearance_margin, "m",
          "below the rocker links' and the belly's clearances, for articulation and map error")
       .Range(0.0, 1.0);
@@ -152,6 +157,9 @@ void EnavOptions::BindParams(ParamBinder<EnavOptions>& b) {
   b.Bind("route_backward_factor", &O::route_backward_factor, "",
          "backward moves of a route cost this many times forward ones")
       .Range(1.0, 100.0);
+  b.Bind("route_switch_m", &O::route_switch, "m",
+         "the route followed is kept unless a new search finds one this much cheaper")
+      .Range(0.0, 100.0);
   b.Bind("route_lookahead_m", &O::route_lookahead, "m",
          "a step drives straight at a route pose at most this far along the route")
       .Range(0.01, 20.0);

@@ -83,6 +83,35 @@ TEST(HeightTerrain, NoisyFarStepsAreNotHazardsUntilSeenClose) {
   EXPECT_FLOAT_EQ(t->DistanceAt(HazardLayer::kWheel, {4.0, 0.0}), 0.0F);
 }
 
+// A rock whose far side the scan did not reach: with shadow_reach its hazard grows into the
+// unseen cells beside it (up to the reach), never into seen flat ground; without, it stops
+// where the data stop.
+TEST(HeightTerrain, WithShadowReachAHazardGrowsIntoTheUnseenBesideIt) {
+  const auto f = Blocks({{0.9, 0.0, 0.15, 0.25}});  // x 0.75-1.05; the scan ends at x = 1
+  for (const double reach : {0.0, 0.3}) {
+    EnavOptions o = TestOptions();
+    o.shadow_reach = reach;
+    auto t = HeightTerrain::Create(o);
+    ASSERT_TRUE(t.ok());
+    ASSERT_TRUE(t->Update(ScanOf(f, -3, 1.0, -2, 2)).ok());
+    const nav_core::HeightMap& m = *t->height_map();
+    auto wheel = [&](double x, double y) {
+      int i = 0, j = 0;
+      m.CellOf(x, y, &i, &j);
+      return (m.hazard[m.Index(i, j)] & nav_core::kHazardWheel) != 0;
+    };
+    EXPECT_TRUE(wheel(0.85, 0.0));
+    EXPECT_EQ(wheel(1.15, 0.0), reach > 0.0) << reach;  // unseen, 0.1 m past the rock's cells
+    EXPECT_EQ(wheel(1.25, 0.0), reach > 0.0) << reach;
+    EXPECT_FALSE(wheel(1.45, 0.0)) << reach;  // beyond the reach
+    EXPECT_FALSE(wheel(0.85, 0.45)) << reach;  // seen flat ground beside the rock
+    EXPECT_FALSE(wheel(0.5, 0.0)) << reach;
+  }
+  EnavOptions bad = TestOptions();
+  bad.shadow_reach = -0.1;
+  EXPECT_FALSE(bad.Validate().ok());
+}
+
 TEST(HeightTerrain, AStereoHoleBelowTheGroundDoesNotMakeTheFlatAroundItSteps) {
   // Flat ground with a 0.2 m square "hole" 0.2 m deep 2 m ahead, as a stereo mismatch ranged
   // too far gives it (dl-stereo's HAZCAM images hold such holes at 1.5-3 m), and a real 0.25 m

@@ -53,6 +53,9 @@ struct EnavOptions {
   /// below the part's limit is still the rock: the judge counts its whole outline).
   double flank_step = 0.05;
   double flank_reach = 0.2;
+  /// [m] A hazard also grows this far into unseen cells beside it (its unseen side, more
+  /// likely rock than ground, until the cameras see it); 0 = off.
+  double shadow_reach = 0.0;
   /// Height margin below the rocker links' and the belly's clearances (from the rover
   /// description) for articulation and map error [m].
   double clearance_margin = 0.05;
@@ -77,6 +80,8 @@ struct EnavOptions {
   bool route_first = false;
   double route_margin = 0.03;           ///< [m] the route keeps this beyond planar_margin
   double route_backward_factor = 2.0;   ///< backward lattice moves cost this many times more
+  /// [m-equivalent] the route followed is kept unless a new search finds one this much cheaper
+  double route_switch = 1.0;
   /// [m] along the route: the farthest route pose a step's straight line may aim at.
   double route_lookahead = 3.0;
 
