@@ -474,6 +474,7 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       const int expansions = last_.route ? last_.route->expansions : 0;
       last_.route = std::move(kept);
       last_.route->expansions = expansions;
+      last_.route_kept = true;
     }
     plan_ = last_.route;
     plan_goal_ = request.goal;

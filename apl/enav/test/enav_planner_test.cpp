@@ -356,15 +356,17 @@ TEST(EnavPlanner, WithTheRouteFirstItStepsStraightAlongTheRoute) {
   ASSERT_TRUE(here.has_value());
   EXPECT_DOUBLE_EQ(*here, rec.route->cost);
   EXPECT_FALSE(p->CostToGo({4, -1.5}, {1.0, 1.0}).has_value());
-  // The next decision, from where the step leads, keeps the route (nothing expanded) while the
-  // rover is on it and it fits; a rock dropped on it makes the next decision search anew.
+  // The next decision, from where the step leads, searches again but keeps the route while the
+  // rover is on it, it fits and the new one is no cheaper by route_switch_m; a rock dropped on
+  // it makes the new route the one followed.
   const geometry::Pose2 on =
       rec.route->nodes[std::min<std::size_t>(3, rec.route->nodes.size() - 1)].pose;
   auto kept = p->Plan(t, From(on.x, on.y, on.heading, Toward(4, -1.5)));
   ASSERT_TRUE(kept.ok());
   ASSERT_TRUE(p->last().route.has_value());
-  EXPECT_EQ(p->last().route->expansions, 0);
-  EXPECT_EQ(kept->candidates_ranked, 0);
+  EXPECT_TRUE(p->last().route_kept);
+  EXPECT_GT(p->last().route->expansions, 0);
+  EXPECT_EQ(kept->candidates_ranked, p->last().route->expansions);
   EXPECT_TRUE(p->ChecksTurns());  // the manager adds no unchecked turn of its own
   std::vector<Block> blocked = wall;
   const geometry::Pose2 far = p->last().route->nodes[p->last().route->nodes.size() / 2].pose;
@@ -372,7 +374,7 @@ TEST(EnavPlanner, WithTheRouteFirstItStepsStraightAlongTheRoute) {
   const HeightTerrain t2 = TerrainOf(Blocks(blocked));
   ASSERT_TRUE(p->Plan(t2, From(on.x, on.y, on.heading, Toward(4, -1.5))).ok());
   ASSERT_TRUE(p->last().route.has_value());
-  EXPECT_GT(p->last().route->expansions, 0);
+  EXPECT_FALSE(p->last().route_kept);
   // Off by default: the tree alone.
   auto tree = EnavPlanner::Create(TestOptions());
   ASSERT_TRUE(tree.ok());

@@ -97,6 +97,8 @@ struct PlanRecord {
   bool retrace = false;         ///< nothing passed: the choice backs along the last drive
   std::optional<Route> route;   ///< the route search's result, when it ran and found one
   bool routed = false;          ///< the choice is a straight line along the route
+  bool route_kept = false;      ///< `route` is the one followed before (the new search's cost
+                                ///< was not route_switch_m lower); its expansions: the search's
 };
 
 class EnavPlanner : public nav_core::ArcSelector {
