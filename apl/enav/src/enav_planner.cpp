@@ -776,8 +776,11 @@ Result<nav_core::ArcEvaluation> EnavPlanner::Plan(const nav_core::TerrainAssesso
       a.length = p.length2;
       eval.path.push_back(a);
     }
-    // A path settled into the goal's tolerance is cleared no farther than it was checked.
+    // A path settled into the goal's tolerance is cleared no farther than it was checked; a
+    // route step no farther than the route pose it aims at (often nearer than a drive length:
+    // driven on, the rover passed the pose where the route turned).
     if (p.settled) eval.max_drive = p.end_s;
+    if (last_.routed) eval.max_drive = p.length1;
     if (p.direction > 0 && !last_.escape) previous_ = Previous{start, p};
   }
   return eval;

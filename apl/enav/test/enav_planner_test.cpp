@@ -351,6 +351,9 @@ TEST(EnavPlanner, WithTheRouteFirstItStepsStraightAlongTheRoute) {
   }
   EXPECT_LT(nearest, 1e-6);
   EXPECT_LT(aim.y, 0.0);  // toward the gap, not at the wall straight ahead
+  // The manager is cleared to drive no more of it than its line (not a whole drive length past
+  // the route pose it aims at).
+  EXPECT_DOUBLE_EQ(e->max_drive, chosen.length1);
   // Progress is measured along the route: its cost where the decision was made, none elsewhere.
   const std::optional<double> here = p->CostToGo({4, -1.5}, {0.0, 0.0});
   ASSERT_TRUE(here.has_value());

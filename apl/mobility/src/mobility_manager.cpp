@@ -1144,8 +1144,6 @@ void MobilityManager::ChooseAndDrive(Time now, const nav_core::ArcEvaluation& ev
     }
   } else {
     double len = ArcStepLength(PlanarPose(pose_->site_from_rover), c.curvature, c.direction);
-    // Never more of an arc than was evaluated (a planner's short step ends where it checked).
-    if (c.length > 0.0) len = std::min(len, c.length);
     if (eval.max_drive > 0.0) len = std::min(len, eval.max_drive);
     if (vo) len = std::min(len, options_.visodom_max_step);
     p.kind = std::abs(c.curvature) < 1e-9 ? PrimitiveKind::kStraight : PrimitiveKind::kArc;

@@ -55,14 +55,12 @@ Time T(double s) { return Time::FromSeconds(s); }
 // drive length: what the manager does with a planner like ENav, on GESTALT's simple world.
 class ScriptedCostToGo : public nav_core::ArcSelector {
  public:
-  // arc_length > 0: every arc candidate says it was evaluated this far (and no farther).
   explicit ScriptedCostToGo(bool falls, bool checks_drive_length = false, double max_drive = 0.0,
-                            bool checks_turns = false, double arc_length = 0.0)
+                            bool checks_turns = false)
       : falls_(falls),
         checks_drive_length_(checks_drive_length),
         max_drive_(max_drive),
-        checks_turns_(checks_turns),
-        arc_length_(arc_length) {
+        checks_turns_(checks_turns) {
     auto arcs = gestalt::ArcEvaluator::Create(gestalt::GestaltOptions{});
     ROVER_DEMAND(arcs.ok());
     arcs_ = std::make_unique<gestalt::ArcEvaluator>(std::move(arcs).value());
@@ -70,13 +68,7 @@ class ScriptedCostToGo : public nav_core::ArcSelector {
   Result<nav_core::ArcEvaluation> Evaluate(const nav_core::GoodnessMap& map,
                                            const nav_core::ArcRequest& request) const override {
     auto e = arcs_->Evaluate(map, request);
-    if (!e.ok()) return e;
-    e->max_drive = max_drive_;
-    if (arc_length_ > 0.0) {
-      for (nav_core::Candidate& c : e->candidates) {
-        if (c.kind == nav_core::MotionKind::kArc) c.length = arc_length_;
-      }
-    }
+    if (e.ok()) e->max_drive = max_drive_;
     return e;
   }
   std::optional<double> CostToGo(const Eigen::Vector2d& goal,
@@ -92,7 +84,6 @@ class ScriptedCostToGo : public nav_core::ArcSelector {
   bool checks_drive_length_;
   double max_drive_;
   bool checks_turns_;
-  double arc_length_;
   std::unique_ptr<gestalt::ArcEvaluator> arcs_;
 };
 
@@ -165,30 +156,6 @@ TEST(MobilityManagerWorld, NoStepRunsPastWhatThePlannerCleared) {
   for (const DriveCommand& d : w.drives()) {
     if (d.primitive != PrimitiveKind::kTurnInPlace) {
       EXPECT_LE(std::abs(d.distance), 0.3 + 1e-9);
-    }
-  }
-}
-
-// Nor is an arc driven past the length the planner evaluated it over (ENav's route steps are
-// straight lines to a route pose, often shorter than a step): before, a 0.15 m line was driven
-// the whole 0.5 m step, past the pose where the route turned.
-TEST(MobilityManagerWorld, NoArcIsDrivenPastItsEvaluatedLength) {
-  for (const double length : {0.0, 0.2}) {
-    MobilityManager m = MakeManagerWith(
-        MobilityOptions{}, std::make_unique<ScriptedCostToGo>(false, true, 0.0, false, length));
-    FakeWorld w(&m);
-    const MobilityStatus s = w.Run(Autonav(1, 2.3, 0.0, 0.5), 2000.0);
-    ASSERT_EQ(s.state, State::kSucceeded) << s.message;
-    double longest = 0.0;
-    for (const DriveCommand& d : w.drives()) {
-      if (d.primitive != PrimitiveKind::kTurnInPlace) {
-        longest = std::max(longest, std::abs(d.distance));
-      }
-    }
-    if (length > 0.0) {
-      EXPECT_LE(longest, length + 1e-9);
-    } else {
-      EXPECT_GT(longest, 0.4);  // GESTALT's own lengths: whole steps
     }
   }
 }
