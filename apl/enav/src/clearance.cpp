@@ -127,12 +127,6 @@ Exempt ClearanceChecker::Touching(const geometry::Pose2& pose, double extra) con
   return e;
 }
 
-bool ClearanceChecker::Fits(const geometry::Pose2& pose, double extra) const {
-  return std::all_of(discs_.begin(), discs_.end(), [&](const PartDisc& d) {
-    return terrain_->DistanceAt(d.layer, pose.ToSite(d.centre)) > d.radius + pad_ + extra;
-  });
-}
-
 double ClearanceChecker::Room(const geometry::Pose2& pose) const {
   double room = std::numeric_limits<double>::infinity();
   for (const PartDisc& d : discs_) {

@@ -55,6 +55,24 @@ TEST(ClearanceChecker, RockUnderAWheelLineFailsNamingThePart) {
   EXPECT_NE(r.why.find("wheel hazard"), std::string::npos) << r.why;
 }
 
+// Room agrees with the parts check: positive (and large) on open ground, negative where a part
+// touches a hazard, and it falls as the rover moves toward a rock.
+TEST(ClearanceChecker, RoomIsPositiveExactlyWhereThePartsCheckPasses) {
+  const HeightTerrain t = TerrainOf(Blocks({{0.3, 0.5, 0.1, 0.25}}));
+  const ClearanceChecker c(t);
+  EXPECT_LT(c.Room({0.0, 0.0, 0.0}), 0.0);
+  EXPECT_FALSE(c.CheckPose({0.0, 0.0, 0.0}, false).ok);
+  double last = c.Room({0.0, -1.5, 0.0});
+  EXPECT_GT(last, 0.3);
+  for (double y = -1.4; y <= 0.0 + 1e-9; y += 0.1) {
+    const double room = c.Room({0.0, y, 0.0});
+    EXPECT_LE(room, last + 1e-9) << y;
+    EXPECT_EQ(room > 0.0, c.CheckPose({0.0, y, 0.0}, false).ok) << y << " room " << room;
+    last = room;
+  }
+  EXPECT_GT(ClearanceChecker(TerrainOf(Blocks({}))).Room({0.0, 0.0, 0.0}), 1.0);
+}
+
 TEST(ClearanceChecker, RockBetweenTheWheelsPassesUnderTheBelly) {
   // 0.25 m tall, 0.3 m wide, centred under the body: the rover straddles it.
   const HeightTerrain straddle = TerrainOf(Blocks({{0.0, 0.0, 0.15, 0.25}}));

@@ -77,12 +77,10 @@ class ClearanceChecker {
   /// The part discs check at `pose`, plus the suspension, tilt and belly when `ace`.
   /// Hazard cells in `exempt` (when given) do not count.
   PoseCheck CheckPose(const geometry::Pose2& pose, bool ace, const Exempt* exempt = nullptr) const;
-  /// Whether every part disc passes at `pose` with its reach grown by `extra` [m] (the parts
-  /// check of CheckPose alone, nothing exempt: what a route search needs per pose).
-  bool Fits(const geometry::Pose2& pose, double extra) const;
   /// [m] The room the parts have at `pose`: the least, over the part discs, of the distance to
   /// the nearest hazard of the disc's class less its reach (radius and the check's pad).
-  /// Fits(pose, extra) == Room(pose) > extra; negative where a part touches a hazard.
+  /// The parts check of CheckPose (nothing exempt) passes exactly where Room > 0; a route
+  /// search asks Room > its margin. Negative where a part touches a hazard.
   double Room(const geometry::Pose2& pose) const;
   /// The hazard cells the parts touch at `pose`, their reach grown by `extra` [m].
   Exempt Touching(const geometry::Pose2& pose, double extra) const;
