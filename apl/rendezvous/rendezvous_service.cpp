@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "rover/apl/rendezvous/target_tracker.hpp"
 #include "rover/apl/rendezvous/vision_pipeline.hpp"
 #include "rover/base/log.hpp"
 #include "rover/base/param_binder.hpp"
@@ -35,6 +36,7 @@ void RendezvousService::DeclareParameters(ParamSet& params) {
   DeclareParams<LongRangeOptions>(params, "long_range.");
   DeclareParams<StripeDetectorOptions>(params, "stripes.");
   DeclareParams<RampPoseOptions>(params, "ramp_pose.");
+  DeclareParams<TrackerOptions>(params, "tracker.");
   params.Declare(kDetectionDirKey, std::string(),
                  "folder for the drawn sightings (PNG); empty: none");
 }
@@ -45,6 +47,7 @@ Status RendezvousService::ValidateParameters(const ParamSet& params) const {
   ROVER_RETURN_IF_ERROR(ReadParams<LanderDetectorOptions>(params, "lander_detector.").status());
   ROVER_RETURN_IF_ERROR(ReadParams<LongRangeOptions>(params, "long_range.").status());
   ROVER_RETURN_IF_ERROR(ReadParams<StripeDetectorOptions>(params, "stripes.").status());
+  ROVER_RETURN_IF_ERROR(ReadParams<TrackerOptions>(params, "tracker.").status());
   return ReadParams<RampPoseOptions>(params, "ramp_pose.").status();
 }
 
@@ -71,7 +74,10 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
                              detection_dir_ + "': " + ec.message());
     }
   }
+  ROVER_ASSIGN_OR_RETURN(const TrackerOptions tracker, ReadParams<TrackerOptions>(params, "tracker."));
   executor_.emplace(options, lander, std::make_shared<VisionPipeline>(lander, vision));
+  approach_.emplace(options, std::make_shared<TargetTracker>(tracker));
+  held_max_ = static_cast<std::size_t>(options.target_images_kept);
 
   ROVER_ASSIGN_OR_RETURN(mobility_writer_,
                          ctx.MakeWriter<rover_apl_MobilityCommand>("apl/mobility_command"));
@@ -86,13 +92,15 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
         const msg::RendezvousCommand c = msg::RendezvousCommandFromIdl(s.data());
         log::Info("rendezvous command", {{"command_id", c.command_id},
                                          {"target", msg::RendezvousTargetName(c.target)}});
-        Publish(executor_->OnCommand(c, ctx_->Now()));
+        OnCommand(c);
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
         const Result<msg::PoseSample> pose = msg::PoseSampleFromIdl(s.data());
         if (!pose.ok()) return pose.status();
+        last_pose_ = pose->site_from_rover;
         Publish(executor_->OnPose(*pose, ctx_->Now()));
+        Publish(approach_->OnPose(*pose, ctx_->Now()));
         return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_MobilityStatus>(
@@ -100,6 +108,7 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
         const Result<msg::MobilityStatus> st = msg::MobilityStatusFromIdl(s.data());
         if (!st.ok()) return st.status();
         Publish(executor_->OnMobilityStatus(*st, ctx_->Now()));
+        Publish(approach_->OnMobilityStatus(*st, ctx_->Now()));
         return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_MastStatus>(
@@ -107,12 +116,14 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
         const Result<msg::MastStatus> st = msg::MastStatusFromIdl(s.data());
         if (!st.ok()) return st.status();
         Publish(executor_->OnMastStatus(*st, ctx_->Now()));
+        Publish(approach_->OnMastStatus(*st, ctx_->Now()));
         return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_StereoFrame>(
       "ddl/stereo_frame", [this](const dds::Sample<rover_ddl_StereoFrame>& s) {
         const rover_ddl_StereoFrame& m = s.data();
-        if ((m.request_id >> 24) != kCameraRequestPrefix) return Status::Ok();  // not ours
+        const bool ours = (m.request_id >> 24) == kCameraRequestPrefix;
+        if (!ours && m.camera != rover_CAMERA_NAVCAM) return Status::Ok();
         ROVER_ASSIGN_OR_RETURN(const msg::StereoFrame frame, msg::StereoFrameFromIdl(m));
         ROVER_ASSIGN_OR_RETURN(const geometry::CameraModel left_model,
                                msg::CameraModelFromFields(frame.left_model));
@@ -123,6 +134,13 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
                            const_cast<std::uint8_t*>(frame.left.data()));
         const cv::Mat right(frame.height, frame.width, CV_8UC1,
                             const_cast<std::uint8_t*>(frame.right.data()));
+        if (frame.camera == msg::CameraId::kNavcam && last_pose_) {
+          // Kept for science commands that name it (a copy: the sample is gone after this).
+          held_.push_back({frame.request_id, left.clone(), right.clone(), left_model, right_model,
+                           *last_pose_});
+          while (held_.size() > held_max_) held_.pop_front();
+        }
+        if (!ours) return Status::Ok();
         NavcamPair pair;
         pair.stamp = frame.stamp;
         pair.request_id = frame.request_id;
@@ -134,22 +152,79 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
         {
           runtime::ScopedActivity busy(ctx_->activities(), "vision");
           out = executor_->OnStereoPair(pair, ctx_->Now());
+          Publish(out);
+          out = approach_->OnStereoPair(pair, ctx_->Now());
         }
         Publish(out);
         return Status::Ok();
       }));
-  ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz),
-                          [this] { Publish(executor_->Step(ctx_->Now())); });
+  ctx.executor().AddTimer(Seconds(1.0 / kStepRateHz), [this] {
+    Publish(executor_->Step(ctx_->Now()));
+    Publish(approach_->Step(ctx_->Now()));
+  });
   ctx.SetHealth(rover_HEALTH_OK, "");
   return Status::Ok();
 }
 
-Status RendezvousService::OnDeactivate(ServiceContext& ctx) {
-  if (executor_ && executor_->busy()) {
-    msg::RendezvousCommand stop;
-    stop.target = msg::RendezvousTarget::kStop;
-    Publish(executor_->OnCommand(stop, ctx.Now()));
+void RendezvousService::OnCommand(const msg::RendezvousCommand& c) {
+  const Time now = ctx_->Now();
+  if (c.target == msg::RendezvousTarget::kStop) {
+    ExecutorOutput out;
+    if (approach_->Stop(c.command_id, &out)) {
+      Publish(out);
+    } else {
+      Publish(executor_->OnCommand(c, now));
+    }
+    return;
   }
+  // One command at a time across both: the other one's running command makes this one BUSY.
+  const bool science = c.target == msg::RendezvousTarget::kScience;
+  const msg::RendezvousStatus* running = science && executor_->busy()    ? &executor_->status()
+                                         : !science && approach_->busy() ? &approach_->status()
+                                                                        : nullptr;
+  if (running != nullptr) {
+    ExecutorOutput out;
+    msg::RendezvousStatus s = *running;
+    s.command_id = c.command_id;
+    s.phase = msg::RendezvousPhase::kFailed;
+    s.fault = msg::RendezvousFault::kBusy;
+    s.message = "command " + std::to_string(running->command_id) + " is running (phase " +
+                msg::RendezvousPhaseName(running->phase) + ")";
+    out.statuses.push_back(s);
+    out.statuses.push_back(*running);
+    Publish(out);
+    return;
+  }
+  if (!science) {
+    Publish(executor_->OnCommand(c, now));
+    return;
+  }
+  const HeldPair* held = nullptr;
+  for (const HeldPair& h : held_) {
+    if (h.id == c.image_id) held = &h;
+  }
+  NavcamPair pair;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  if (held != nullptr) {
+    pair.request_id = held->id;
+    pair.left = &held->left;
+    pair.right = &held->right;
+    pair.left_model = &held->left_model;
+    pair.right_model = &held->right_model;
+    pose = held->site_from_rover;
+  }
+  runtime::ScopedActivity busy(ctx_->activities(), "vision");
+  Publish(approach_->OnCommand(c, held != nullptr ? &pair : nullptr, pose, now));
+}
+
+Status RendezvousService::OnDeactivate(ServiceContext& ctx) {
+  msg::RendezvousCommand stop;
+  stop.target = msg::RendezvousTarget::kStop;
+  if (approach_) {
+    ExecutorOutput out;
+    if (approach_->Stop(0, &out)) Publish(out);
+  }
+  if (executor_ && executor_->busy()) Publish(executor_->OnCommand(stop, ctx.Now()));
   return Status::Ok();
 }
 

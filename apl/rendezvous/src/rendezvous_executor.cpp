@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "drive_steps.hpp"
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/units.hpp"
@@ -19,8 +20,12 @@ using msg::RendezvousPhase;
 
 constexpr double kMidRangeLimit = 30.0;  // [m] farther: LONG_RANGE
 constexpr double kLookHeight = 0.6;      // [m] aim this far above the ground at the deck centre
-constexpr double kMaxDriveS = 600.0;     // [s] budget of one directed/servo drive
-constexpr int kMaxMobilityRetries = 3;
+using internal::Cm;
+using internal::Deg;
+using internal::kMaxDriveS;
+using internal::kMaxMobilityRetries;
+using internal::Straight;
+using internal::Turn;
 constexpr double kApproachShiftDeg = 20.0;  // [deg] approach point moved per refused leg
 constexpr double kFarRangeFloor = 0.08;    // relative range sigma of an estimate from far fixes
 constexpr double kResetRangeSigma = 0.3;   // ... after far fixes on its bearing kept disagreeing
@@ -28,33 +33,7 @@ constexpr int kMaxRangeConflicts = 2;      // such fixes in a row before the res
 constexpr double kTrustedSigma = 1.0;       // [m] an estimate this good may lead a leg
 constexpr int kMaxBlindLegs = 2;            // legs in a row led by the estimate alone
 
-std::string Cm(double m) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%+.1f cm", 100.0 * m);
-  return buf;
-}
-
-std::string Deg(double rad) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%+.2f deg", rad / kDegree);
-  return buf;
-}
-
 Eigen::Vector2d Unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
-
-msg::MobilityPrimitive Turn(double angle) {
-  msg::MobilityPrimitive p;
-  p.kind = msg::DrivePrimitive::kTurnInPlace;
-  p.angle = angle;
-  return p;
-}
-
-msg::MobilityPrimitive Straight(double distance) {
-  msg::MobilityPrimitive p;
-  p.kind = msg::DrivePrimitive::kStraight;
-  p.distance = distance;
-  return p;
-}
 
 }  // namespace
 

@@ -48,7 +48,27 @@ Status RendezvousOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckIntRange(p + "max_servo_steps", max_servo_steps, 1, 20));
   ROVER_RETURN_IF_ERROR(CheckIntRange(p + "min_stripes", min_stripes, 2, 6));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "hold_at_base_s", hold_at_base_s, 0.0, 60.0, "s"));
-  return CheckRange(p + "climb_max_tilt_deg", climb_max_tilt_deg, 5.0, 45.0, "deg");
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "climb_max_tilt_deg", climb_max_tilt_deg, 5.0, 45.0, "deg"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "target_min_standoff", target_min_standoff, 0.5, 3.0, "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange(p + "target_max_standoff", target_max_standoff, target_min_standoff, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "target_standoff", target_standoff, target_min_standoff,
+                                   target_max_standoff, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "target_max_range", target_max_range, 2.0, 100.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "target_leg", target_leg, 0.2, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange(p + "target_final_approach", target_final_approach, 0.1, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange(p + "target_along_tolerance", target_along_tolerance, 0.005, 0.5, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "target_heading_tolerance_deg",
+                                   target_heading_tolerance_deg, 0.1, 20.0, "deg"));
+  ROVER_RETURN_IF_ERROR(CheckIntRange(p + "target_max_steps", target_max_steps, 1, 200));
+  if (target_leg_mode != "autonav" && target_leg_mode != "goto_waypoint" &&
+      target_leg_mode != "directed") {
+    return InvalidArgument(p + "target_leg_mode: '" + target_leg_mode +
+                           "' is not autonav, goto_waypoint or directed");
+  }
+  return CheckIntRange(p + "target_images_kept", target_images_kept, 1, 64);
 }
 
 void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
@@ -88,6 +108,22 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
   b.Bind("min_stripes", &O::min_stripes, "", "stripes the final servo needs");
   b.Bind("hold_at_base_s", &O::hold_at_base_s, "s", "stand at the ramp base before climbing");
   b.Bind("climb_max_tilt_deg", &O::climb_max_tilt_deg, "deg", "tilt limit while climbing");
+  b.Bind("target_standoff", &O::target_standoff, "m",
+         "science target: rover origin this far from it at the end when the command says 0");
+  b.Bind("target_min_standoff", &O::target_min_standoff, "m", "smallest science standoff asked");
+  b.Bind("target_max_standoff", &O::target_max_standoff, "m", "largest science standoff asked");
+  b.Bind("target_max_range", &O::target_max_range, "m", "a designated target farther is refused");
+  b.Bind("target_leg", &O::target_leg, "m", "science target: drive at most this far between pairs");
+  b.Bind("target_final_approach", &O::target_final_approach, "m",
+         "nearer than standoff + this: directed turn and straight");
+  b.Bind("target_along_tolerance", &O::target_along_tolerance, "m", "done within this of the standoff");
+  b.Bind("target_heading_tolerance_deg", &O::target_heading_tolerance_deg, "deg",
+         "done facing the target within this");
+  b.Bind("target_max_steps", &O::target_max_steps, "", "tracking pairs before PLACEMENT");
+  b.Bind("target_leg_mode", &O::target_leg_mode,
+         "science-target legs: autonav, goto_waypoint (blind) or directed (turn + straight)");
+  b.Bind("target_images_kept", &O::target_images_kept, "",
+         "recent NAVCAM pairs (any requester's) a command may designate in");
 }
 
 }  // namespace rover::apl::rendezvous

@@ -55,11 +55,16 @@ Result<std::unique_ptr<LanderScene>> LanderScene::Create(const LanderSceneOption
     features.outcrops = options.outcrops;
     ROVER_RETURN_IF_ERROR(sim::terrain::PlaceFeatures(&terrain, features));
   }
-  sim::terrain::LanderParams lp;
-  lp.x = options.lander_x;
-  lp.y = options.lander_y;
-  lp.yaw_deg = options.lander_yaw_deg;
-  ROVER_RETURN_IF_ERROR(sim::terrain::PlaceLander(&terrain, lp));
+  if (options.lander) {
+    sim::terrain::LanderParams lp;
+    lp.x = options.lander_x;
+    lp.y = options.lander_y;
+    lp.yaw_deg = options.lander_yaw_deg;
+    ROVER_RETURN_IF_ERROR(sim::terrain::PlaceLander(&terrain, lp));
+  }
+  for (const sim::terrain::ScienceTargetParams& t : options.science_targets) {
+    ROVER_RETURN_IF_ERROR(sim::terrain::AddScienceTarget(&terrain, t).status());
+  }
 
   sim::render::RenderOptions ro;
   ro.seed = options.seed;
@@ -79,14 +84,16 @@ Result<LanderShot> LanderScene::Render(const RoverView& view) {
     return InvalidArgument("view: rover position (" + FormatNumber(view.x) + ", " +
                            FormatNumber(view.y) + ") is off the map");
   }
+  return Render(view, sim::render::RoverPoseOnGround(g, view.x, view.y, view.yaw_deg * kDeg));
+}
+
+Result<LanderShot> LanderScene::Render(const RoverView& view, const Eigen::Isometry3d& site_from_rover) {
   const auto defs = sim::render::DefaultStereoCameras(options_.image_size);
   ROVER_ASSIGN_OR_RETURN(const sim::render::StereoCameraDefinition navcam,
                          sim::render::FindStereoCamera(defs, "navcam"));
   ROVER_ASSIGN_OR_RETURN(
       const sim::render::CameraPairSpec spec,
       sim::render::MakeCameraPairSpec(navcam, {view.pan_deg * kDeg, view.tilt_deg * kDeg}));
-  const Eigen::Isometry3d site_from_rover =
-      sim::render::RoverPoseOnGround(g, view.x, view.y, view.yaw_deg * kDeg);
   ROVER_ASSIGN_OR_RETURN(sim::render::StereoImages pair,
                          renderer_->RenderStereoPair(site_from_rover, spec, view.frame));
   LanderShot shot{.left = pair.left.image,
@@ -98,7 +105,7 @@ Result<LanderShot> LanderScene::Render(const RoverView& view) {
                   .ramps = {},
                   .up_in_rover = site_from_rover.linear().transpose() * Eigen::Vector3d::UnitZ()};
   const Eigen::Isometry3d rover_from_site = site_from_rover.inverse();
-  for (int r = 0; r < 2; ++r) {
+  for (int r = 0; r < 2 && terrain_->lander; ++r) {
     const sim::terrain::LanderRamp& ramp = lander().ramps[static_cast<std::size_t>(r)];
     RampTruth& t = shot.ramps[static_cast<std::size_t>(r)];
     t.rover_from_ramp = rover_from_site * SiteFromRamp(lander(), r);

@@ -51,6 +51,9 @@ struct LanderSceneOptions {
   double resolution = 0.04;      ///< [m] terrain cells (long maps: 0.05, as the scenarios)
   /// Layered outcrops (sim/terrain features.hpp), the long-range search's distractors.
   std::vector<sim::terrain::Outcrop> outcrops;
+  bool lander = true;            ///< place the lander (false: none)
+  /// Science-target rocks (sim/terrain lander.hpp), placed after the lander.
+  std::vector<sim::terrain::ScienceTargetParams> science_targets;
   double lander_x = 0.0;         ///< [m] deck centre, site frame
   double lander_y = 0.0;         ///< [m]
   double lander_yaw_deg = 0.0;   ///< [deg] direction ramp 0 descends, from +x towards +y
@@ -105,6 +108,8 @@ class LanderScene {
   /// Renders the NAVCAM pair for `view` (the rover resting on the ground at (x, y) with heading
   /// yaw). Errors: the position off the map, a render failure.
   Result<LanderShot> Render(const RoverView& view);
+  /// The same for a rover pose given in full (e.g. one driven off the ground's heading).
+  Result<LanderShot> Render(const RoverView& view, const Eigen::Isometry3d& site_from_rover);
 
   /// A view of ramp `ramp` (0/1): the rover `distance` m (horizontal) from the middle of the
   /// ramp's ground edge, `off_axis_deg` around the base from the ramp's axis (+ = counter-
@@ -114,6 +119,7 @@ class LanderScene {
                        double yaw_offset_deg = 0.0) const;
 
   const sim::terrain::Terrain& terrain() const { return *terrain_; }
+  /// Precondition: options().lander.
   const sim::terrain::Lander& lander() const { return *terrain_->lander; }
   /// The lander as the rover knows it (the simulator's lander is built from it).
   hwconfig::LanderDescription description() const;

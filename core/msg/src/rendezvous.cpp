@@ -18,7 +18,8 @@ const char* RendezvousTargetName(RendezvousTarget t) {
 
 const char* RendezvousPhaseName(RendezvousPhase p) {
   static constexpr std::array<const char*, kRendezvousPhaseCount> kNames = {
-      "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED"};
+      "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED",
+      "APPROACH_TARGET", "AT_TARGET"};
   const auto i = static_cast<std::size_t>(p);
   return i < kNames.size() ? kNames[i] : "UNKNOWN";
 }
@@ -26,7 +27,8 @@ const char* RendezvousPhaseName(RendezvousPhase p) {
 const char* RendezvousFaultName(RendezvousFault f) {
   static constexpr std::array<const char*, kRendezvousFaultCount> kNames = {
       "NONE",       "BAD_COMMAND", "BUSY",   "NOT_FOUND", "TOO_FEW_STRIPES", "STALE_POSE",
-      "MOBILITY",   "MAST",        "CAMERA", "STOPPED",   "TIMEOUT",         "PLACEMENT"};
+      "MOBILITY",   "MAST",        "CAMERA", "STOPPED",   "TIMEOUT",         "PLACEMENT",
+      "TARGET_LOST"};
   const auto i = static_cast<std::size_t>(f);
   return i < kNames.size() ? kNames[i] : "UNKNOWN";
 }

@@ -11,8 +11,9 @@ static_assert(rover_apl_TARGET_STOP == static_cast<int>(RendezvousTarget::kStop)
 static_assert(rover_apl_PHASE_IDLE == static_cast<int>(RendezvousPhase::kIdle));
 static_assert(rover_apl_PHASE_AT_RAMP_BASE == static_cast<int>(RendezvousPhase::kAtRampBase));
 static_assert(rover_apl_PHASE_FAILED == static_cast<int>(RendezvousPhase::kFailed));
+static_assert(rover_apl_PHASE_AT_TARGET == static_cast<int>(RendezvousPhase::kAtTarget));
 static_assert(rover_apl_RZFAULT_NONE == static_cast<int>(RendezvousFault::kNone));
-static_assert(rover_apl_RZFAULT_PLACEMENT == static_cast<int>(RendezvousFault::kPlacement));
+static_assert(rover_apl_RZFAULT_TARGET_LOST == static_cast<int>(RendezvousFault::kTargetLost));
 
 RendezvousCommand RendezvousCommandFromIdl(const rover_apl_RendezvousCommand& in) {
   RendezvousCommand c;
@@ -24,6 +25,9 @@ RendezvousCommand RendezvousCommandFromIdl(const rover_apl_RendezvousCommand& in
   c.ramp = in.ramp;
   c.climb = in.climb;
   c.time_budget_s = in.time_budget_s;
+  c.image_id = in.image_id;
+  c.pixel_x = in.pixel_x;
+  c.pixel_y = in.pixel_y;
   return c;
 }
 
@@ -36,6 +40,9 @@ void RendezvousCommandToIdl(const RendezvousCommand& in, rover_apl_RendezvousCom
   out->ramp = static_cast<std::int8_t>(std::clamp(in.ramp, -128, 127));
   out->climb = in.climb;
   out->time_budget_s = in.time_budget_s;
+  out->image_id = in.image_id;
+  out->pixel_x = in.pixel_x;
+  out->pixel_y = in.pixel_y;
 }
 
 Result<RendezvousStatus> RendezvousStatusFromIdl(const rover_apl_RendezvousStatus& in) {
@@ -58,6 +65,7 @@ Result<RendezvousStatus> RendezvousStatusFromIdl(const rover_apl_RendezvousStatu
   s.images = in.images;
   s.features = idl::ReadString(in.features);
   s.message = idl::ReadString(in.message);
+  s.target_in_rover = internal::Vec(in.target_in_rover);
   return s;
 }
 
@@ -76,6 +84,7 @@ void RendezvousStatusToIdl(const RendezvousStatus& in, rover_apl_RendezvousStatu
   out->images = internal::ClampSize(in.images);
   idl::CopyString(out->features, in.features);
   idl::CopyString(out->message, in.message);
+  out->target_in_rover = internal::Vec(in.target_in_rover);
 }
 
 }  // namespace rover::msg

@@ -8,6 +8,7 @@
 #include "rover/deploy/runner/tasks/lander_return_task.hpp"
 #include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/deploy/runner/tasks/planned_tasks.hpp"
+#include "rover/deploy/runner/tasks/science_target_task.hpp"
 
 namespace rover::deploy::runner {
 
@@ -18,6 +19,7 @@ const TaskRegistry& TaskRegistry::Builtin() {
     RegisterDirectedTask(r);
     RegisterMobilityTasks(r);
     RegisterLanderReturnTask(r);
+    RegisterScienceTargetTask(r);
     RegisterPlannedTasks(r);
     return r;
   }();

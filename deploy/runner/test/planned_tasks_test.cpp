@@ -12,7 +12,6 @@ using testing::ScenarioWithTask;
 TEST(PlannedTasks, ValidateTheirSection) {
   EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: long_traverse}\n")).message(),
             "s.yaml:2: task: a 'long_traverse' task needs a 'goal'");
-  EXPECT_TRUE(ValidateTask(ScenarioWithTask("task: {type: science_target}\n")).ok());
   EXPECT_EQ(
       ValidateTask(ScenarioWithTask("task: {type: long_traverse, goal: {x: 1, y: 1}, steps: []}\n"))
           .message(),
@@ -35,9 +34,6 @@ TEST(PlannedTasks, ARunFailsSayingWhichServicesAreMissing) {
   EXPECT_EQ(out.failure,
             "task type 'long_traverse' needs the autonomous-navigation services, which this stack does "
             "not have yet");
-  auto target = TaskRegistry::Builtin().Make(ScenarioWithTask("task: {type: science_target}\n"));
-  ASSERT_TRUE(target.ok());
-  EXPECT_EQ((*target)->PlannedPath(), (std::vector<Eigen::Vector2d>{{1, 2}}));
 }
 
 }  // namespace

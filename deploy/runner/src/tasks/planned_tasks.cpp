@@ -47,8 +47,6 @@ TaskFactory Factory(std::string type, bool needs_goal) {
 void RegisterPlannedTasks(TaskRegistry& registry) {
   registry.Register("long_traverse", "a long autonomous traverse to `goal` (planned)",
                     Factory("long_traverse", true));
-  registry.Register("science_target", "approach a science target (planned)",
-                    Factory("science_target", false));
 }
 
 }  // namespace rover::deploy::runner

@@ -25,7 +25,9 @@ enum class RendezvousPhase : std::int32_t {
   kAtRampBase,
   kClimb,
   kDone,
-  kFailed
+  kFailed,
+  kApproachTarget,
+  kAtTarget
 };
 enum class RendezvousFault : std::int32_t {
   kNone = 0,
@@ -39,10 +41,11 @@ enum class RendezvousFault : std::int32_t {
   kCamera,
   kStopped,
   kTimeout,
-  kPlacement
+  kPlacement,
+  kTargetLost
 };
-inline constexpr int kRendezvousPhaseCount = 8;
-inline constexpr int kRendezvousFaultCount = 12;
+inline constexpr int kRendezvousPhaseCount = 10;
+inline constexpr int kRendezvousFaultCount = 13;
 
 /// "LANDER", "SCIENCE", "STOP"; "UNKNOWN" otherwise.
 const char* RendezvousTargetName(RendezvousTarget t);
@@ -62,6 +65,11 @@ struct RendezvousCommand {
   int ramp = -1;               ///< 0 or 1; -1 = the first one seen (the one facing the rover)
   bool climb = true;           ///< climb onto the deck after the placement
   double time_budget_s = 0.0;  ///< [s] 0 = the service's default
+  /// kScience: the target is at left-image pixel (pixel_x, pixel_y) of the NAVCAM pair with
+  /// this ddl/stereo_frame request_id.
+  std::uint32_t image_id = 0;
+  double pixel_x = 0.0;  ///< [px]
+  double pixel_y = 0.0;  ///< [px]
 };
 
 /// apl/rendezvous_status.
@@ -80,6 +88,8 @@ struct RendezvousStatus {
   int images = 0;
   std::string features;  ///< <= 63 characters on the wire
   std::string message;   ///< <= 127 characters on the wire
+  /// kScience: the target in the rover frame at the last fix [m] (the arm's placement point).
+  Eigen::Vector3d target_in_rover = Eigen::Vector3d::Zero();
 };
 
 }  // namespace rover::msg

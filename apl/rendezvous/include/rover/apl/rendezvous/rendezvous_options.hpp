@@ -57,6 +57,21 @@ struct RendezvousOptions {
   double hold_at_base_s = 2.0;       ///< [s] stopped at the ramp base before climbing
   double climb_max_tilt_deg = 26.0;  ///< [deg] tilt limit of the climb
 
+  // Science-target approach (TARGET_SCIENCE, target_approach.hpp).
+  double target_standoff = 1.05;       ///< [m] rover origin to the target, horizontal, at the end
+  double target_min_standoff = 0.8;    ///< [m] smallest standoff a command may ask
+  double target_max_standoff = 1.5;    ///< [m] largest
+  double target_max_range = 30.0;      ///< [m] a designated target farther than this is refused
+  double target_leg = 1.0;             ///< [m] drive at most this far between tracking pairs
+  /// [m] nearer than standoff + this, the last moves are directed (turn, straight) and short
+  double target_final_approach = 1.2;
+  double target_along_tolerance = 0.03;     ///< [m] done within this of the standoff ...
+  double target_heading_tolerance_deg = 2.0;  ///< [deg] ... facing the target within this
+  int target_max_steps = 25;           ///< tracking pairs after the designation before PLACEMENT
+  /// legs: autonav (hazard avoidance), goto_waypoint (blind) or directed (turn + straight)
+  std::string target_leg_mode = "autonav";
+  int target_images_kept = 8;          ///< recent NAVCAM pairs a command may designate in
+
   Status Validate() const;
   static void BindParams(ParamBinder<RendezvousOptions>& b);
 };

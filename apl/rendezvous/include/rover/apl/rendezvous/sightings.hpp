@@ -69,6 +69,43 @@ struct RampFix {
   std::string why;
 };
 
+/// Why the science-target tracker lost the target (a typed goal error of the approach).
+enum class TargetLoss {
+  kNone,
+  kOutOfView,       ///< the target is outside the new left image
+  kTooFewFeatures,  ///< fewer features about the target than the pose needs
+};
+
+/// "NONE", "OUT_OF_VIEW", "TOO_FEW_FEATURES".
+inline const char* TargetLossName(TargetLoss l) {
+  switch (l) {
+    case TargetLoss::kNone: return "NONE";
+    case TargetLoss::kOutOfView: return "OUT_OF_VIEW";
+    case TargetLoss::kTooFewFeatures: return "TOO_FEW_FEATURES";
+  }
+  return "?";
+}
+
+/// The science target in one NAVCAM pair: where it is in R of that pair, and how it was found.
+struct TargetFix {
+  bool tracked = false;
+  TargetLoss loss = TargetLoss::kNone;
+  Eigen::Vector3d target_rover = Eigen::Vector3d::Zero();  ///< [m] the target point in R
+  double sigma = 0.0;  ///< [m] 1-sigma of target_rover (its stereo range, mostly)
+  /// true: the target's own patch was matched and re-ranged in this pair; false: carried from
+  /// the last pair by the features' rigid motion.
+  bool target_measured = false;
+  int features = 0;  ///< features about the target in the last pair
+  int matched = 0;   ///< of them, found again in this pair and re-ranged
+  int inliers = 0;   ///< of them, consistent with one rigid motion
+  double rms = 0.0;  ///< [m] residual of the rigid motion over the inliers
+  /// Rover motion measured from the last pair to this one: R_this from R_last (identity at
+  /// the designation), and the same from dl/pose (the prediction the search started from).
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d predicted_motion = Eigen::Isometry3d::Identity();
+  std::string why;  ///< when lost: why, with the numbers
+};
+
 /// Detection images the service keeps in the run folder (features drawn on them).
 struct DetectionImage {
   std::string name;                  ///< "lander_03", "stripes_07"
@@ -86,6 +123,23 @@ class RendezvousVision {
   /// A ramp's coded stripes and its pose (close range). Errors only for bad input.
   virtual Result<RampFix> SightRamp(const NavcamPair& pair) = 0;
   /// The image of the last sighting with its features drawn, for the run folder (may be empty).
+  virtual DetectionImage LastDrawing() { return {}; }
+};
+
+/// The science-target approach's vision (target_tracker.hpp in the service; a fake in tests).
+class TargetVision {
+ public:
+  virtual ~TargetVision() = default;
+  /// Starts a track: the target is the surface point seen at left-image `pixel` of `pair`
+  /// (ranged in the pair). `site_from_rover`: dl/pose at the pair's capture. Errors
+  /// (InvalidArgument, naming the pixel and value): the pixel outside the image, without a
+  /// stereo range (sky, no texture), or without features about it; bad images.
+  virtual Result<TargetFix> Designate(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover,
+                                      const Eigen::Vector2d& pixel) = 0;
+  /// The target in a new pair, from the last one (Designate or Track). A lost target is a fix
+  /// with tracked = false and its TargetLoss; errors only for bad input or no track started.
+  virtual Result<TargetFix> Track(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover) = 0;
+  /// The last pair's image with the features and the target drawn (may be empty).
   virtual DetectionImage LastDrawing() { return {}; }
 };
 

@@ -33,6 +33,7 @@
 #include "rover/deploy/runner/run_loop.hpp"
 #include "rover/deploy/scenario.hpp"
 #include "rover/runtime/dds.hpp"
+#include "rover/sim/world/world.hpp"
 
 namespace rover::deploy::runner {
 
@@ -46,6 +47,9 @@ struct TaskContext {
   Recorder& recorder;
   /// Progress notes for the campaign's live line ("step 2/5 arc"); may be empty.
   std::function<void(const std::string& note)> progress;
+  /// The simulated world (truth: only the runner's tasks and the judge read it, never the
+  /// stack); null where a task runs without one (unit tests).
+  const sim::world::World* world = nullptr;
 
   /// Simulated time [s] (sim/clock).
   double Now() const { return loop.now(); }

@@ -1,0 +1,142 @@
+#pragma once
+/// @file
+/// FIDO's science-target tracking (seed 004, section 5, steps 3-13) for the single-command
+/// approach: the target is designated by a pixel of a NAVCAM left image; after each drive the
+/// tracker finds the target and the features about it in the new pair and measures where the
+/// target now is relative to the rover, so wheel slip does not enter the approach.
+///
+/// One step, from the last pair (ref) to a new one (cur), both with camera models in their own
+/// rover frame R and the dl/pose at capture:
+///  1. Predicted motion M = R_cur from R_ref from the two poses (wheel odometry, slip and all).
+///  2. Features: Förstner points (interest_points.hpp) in a window `window_m` wide about the
+///     target in the ref left image, each ranged in the ref pair (ray_stereo.hpp) to X_i in R_ref;
+///     the target itself is one more point, always kept.
+///  3. For each point, its epipolar segment in the cur left image: the ref ray through it at
+///     distances t/(1+range_slack) .. t(1+range_slack), moved by M and projected.
+///  4. A patch of the ref image is projected into the cur image about the segment: every pixel
+///     of a (2 template_half + 1)^2 window in cur is traced back through the local ground plane
+///     (R_ref's x-y plane through X_i) into the ref image (a homography for a pinhole camera).
+///  5. Coarse cross-correlation of that patch over a band `band_px` wide along the segment
+///     (cross-track error of M), the best peak refined by a parabola in x and y.
+///  6. The rover motion from all points' new ranges (10) by RANSAC over 3-point rigid fits and
+///     a least-squares fit over the inliers (11); the patches are projected again with the
+///     measured motion and matched again within +-refine_px (8-9, the homography refinement),
+///     and re-ranged at full resolution (10), and the motion fitted again.
+///  7. The target: its own patch's match re-ranged in the cur pair when it agrees with the
+///     motion (within gate_sigma of its stereo sigma + 2 cm), else carried by the motion (12).
+///  8. The cur pair becomes ref; its features are taken about the new target position.
+/// The target's range error falls with its distance (~1 cm at 2 m for the NAVCAM), so the fix
+/// at the standoff is measured from there, not carried from the designation at 10 m.
+///
+/// Frames: R (x forward, y left, z up, at each pair's capture), the site frame S of dl/pose.
+/// Units: metres, pixels, radians.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rover/apl/rendezvous/interest_points.hpp"
+#include "rover/apl/rendezvous/ray_stereo.hpp"
+#include "rover/apl/rendezvous/sightings.hpp"
+#include "rover/base/status.hpp"
+#include "rover/geometry/camera_model.hpp"
+
+namespace rover {
+template <class Options>
+class ParamBinder;
+}  // namespace rover
+
+namespace rover::apl::rendezvous {
+
+struct TrackerOptions {
+  double window_m = 1.2;       ///< [m] side of the square about the target where features are taken
+  int min_window_px = 96;      ///< [px] least side of that window in the image
+  int max_window_px = 360;     ///< [px] largest side
+  int max_features = 40;       ///< Förstner points kept (strongest first)
+  double min_roundness = 0.4;  ///< Förstner roundness threshold (interest_points.hpp)
+  double min_weight_ratio = 0.2;  ///< Förstner weight threshold, times the window's mean
+  double max_feature_offset_m = 2.0;  ///< [m] features farther than this from the target dropped
+  int template_half = 10;      ///< [px] the projected patch is (2 h + 1)^2
+  double range_slack = 0.4;    ///< relative: the epipolar segment spans t / (1 + s) .. t (1 + s)
+  int band_px = 40;            ///< [px] searched across the segment (heading error of the pose)
+  int refine_px = 3;           ///< [px] search of the refinement with the measured motion
+  double min_ncc = 0.7;        ///< lowest patch correlation of a match
+  int min_inliers = 5;         ///< fewer features consistent with one motion: the target is lost
+  double min_inlier_ratio = 0.4;  ///< ... or fewer than this share of those found again
+  double inlier_m = 0.02;      ///< [m] RANSAC threshold floor ...
+  double inlier_range_ratio = 0.015;  ///< ... or this fraction of the feature's range
+  double gate_sigma = 3.0;     ///< target measurement within this many sigma (+2 cm) of the motion
+  int ransac_iterations = 300;
+  int stereo_half_window = 7;  ///< [px] patch of the range correlation
+  double min_stereo_ncc = 0.7; ///< lowest correlation of a range
+  /// Ok, or InvalidArgument naming the field (prefix "tracker.").
+  Status Validate() const;
+  /// Keys `tracker.<field>` of apl-rendezvous.
+  static void BindParams(ParamBinder<TrackerOptions>& b);
+};
+
+/// One feature of the last step, for drawings and tests.
+struct FeatureTrack {
+  Eigen::Vector2d ref_pixel = Eigen::Vector2d::Zero();  ///< in the ref left image
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();      ///< in the cur left image
+  double ncc = 0.0;
+  bool matched = false;  ///< found and re-ranged in cur
+  bool inlier = false;   ///< consistent with the measured motion
+};
+
+/// Rigid motion B = T A (least squares over the pairs, Kabsch/Umeyama without scale).
+/// Precondition: a.size() == b.size() >= 3.
+Eigen::Isometry3d FitRigid(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
+
+class TargetTracker final : public TargetVision {
+ public:
+  /// Precondition: options.Validate() is ok.
+  explicit TargetTracker(const TrackerOptions& options = {});
+
+  Result<TargetFix> Designate(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover,
+                              const Eigen::Vector2d& pixel) override;
+  Result<TargetFix> Track(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover) override;
+  DetectionImage LastDrawing() override { return drawing_; }
+
+  /// The features of the last step (empty after Designate).
+  const std::vector<FeatureTrack>& tracks() const { return tracks_; }
+  /// The target pixel in the last pair's left image.
+  const Eigen::Vector2d& target_pixel() const { return target_pixel_; }
+  bool started() const { return started_; }
+
+ private:
+  struct Frame {
+    cv::Mat left, right;  // owned copies
+    geometry::CameraModel left_model, right_model;
+    Eigen::Isometry3d site_from_rover;
+  };
+  struct Point {
+    Eigen::Vector2d pixel;
+    Eigen::Vector3d xyz;  // R of the frame
+    double t = 0.0;       // along the left ray
+  };
+  static Result<Frame> CopyFrame(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover);
+  // Features about the target in `f` (ranged), the target first. False: too few.
+  bool TakeFeatures(const Frame& f, const Eigen::Vector3d& target, const Eigen::Vector2d& target_px,
+                    std::vector<Point>* points, std::string* why) const;
+  // The ref patch about p projected into cur with motion m (R_cur from R_ref), matched within
+  // `band` px of the segment, or within `band` px of `near` when given.
+  bool MatchPoint(const Frame& ref, const Point& p, const Frame& cur, const Eigen::Isometry3d& m,
+                  const Eigen::Vector2d* near, int band, Eigen::Vector2d* pixel, double* ncc) const;
+  void Draw(const Frame& cur, const std::string& name, const TargetFix& fix);
+
+  TrackerOptions options_;
+  bool started_ = false;
+  std::optional<Frame> ref_;
+  std::vector<Point> points_;  // [0] the target
+  Eigen::Vector2d target_pixel_ = Eigen::Vector2d::Zero();
+  double ref_sigma_ = 0.0;  // [m] of the target in the reference pair
+  std::vector<FeatureTrack> tracks_;
+  DetectionImage drawing_;
+  int steps_ = 0;
+};
+
+}  // namespace rover::apl::rendezvous

@@ -1,0 +1,363 @@
+#include "rover/apl/rendezvous/target_approach.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+#include "drive_steps.hpp"
+#include "rover/base/check.hpp"
+#include "rover/base/format.hpp"
+#include "rover/base/units.hpp"
+#include "rover/geometry/planar.hpp"
+
+namespace rover::apl::rendezvous {
+namespace {
+
+using msg::RendezvousFault;
+using msg::RendezvousPhase;
+
+// Ids of this executor: the upper half of the rendezvous ranges (the lander's use the lower).
+constexpr std::uint32_t kIdHalf = 0x800000u;
+using internal::Cm;
+using internal::kMaxDriveS;
+using internal::kMaxMobilityRetries;
+using internal::Straight;
+using internal::Turn;
+
+}  // namespace
+
+TargetApproach::TargetApproach(const RendezvousOptions& options, std::shared_ptr<TargetVision> vision)
+    : options_(options), vision_(std::move(vision)) {
+  ROVER_DEMAND(options_.Validate().ok());
+  ROVER_DEMAND(vision_ != nullptr);
+}
+
+void TargetApproach::Reply(ExecutorOutput* out) { out->statuses.push_back(status_); }
+
+void TargetApproach::Fail(RendezvousFault fault, const std::string& message, ExecutorOutput* out) {
+  if (wait_ == Wait::kDrive) {
+    msg::MobilityCommand stop;
+    stop.mode = msg::MobilityMode::kStop;
+    stop.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
+    out->mobility.push_back(stop);
+  }
+  wait_ = Wait::kNone;
+  status_.phase = RendezvousPhase::kFailed;
+  status_.fault = fault;
+  status_.message = message;
+  Reply(out);
+}
+
+bool TargetApproach::PoseFresh(Time now) const {
+  return pose_ && ToSeconds(now - pose_->stamp) <= options_.pose_stale_s;
+}
+
+void TargetApproach::Look(Time now, ExecutorOutput* out) {
+  msg::MastCommand c;
+  c.stamp = now;
+  c.command_id = kMastIdBase | kIdHalf | (++mast_seq_ & (kIdHalf - 1));
+  c.pointing = msg::MastPointing::kLookAt;
+  c.look_at = target_site_;
+  c.timeout_s = options_.mast_timeout_s;
+  out->mast.push_back(c);
+  outstanding_ = c.command_id;
+  wait_ = Wait::kMast;
+  wait_since_ = now;
+}
+
+void TargetApproach::RequestPair(Time now, ExecutorOutput* out) {
+  msg::StereoRequest r;
+  r.stamp = now;
+  r.request_id = (kCameraRequestPrefix << 24) | kIdHalf | (++camera_seq_ & (kIdHalf - 1));
+  r.camera = msg::CameraId::kNavcam;
+  r.width = 0;  // the full frame
+  out->camera.push_back(r);
+  outstanding_ = r.request_id;
+  wait_ = Wait::kFrame;
+  wait_since_ = now;
+}
+
+void TargetApproach::Drive(msg::MobilityCommand c, Time now, ExecutorOutput* out) {
+  c.stamp = now;
+  c.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
+  if (c.time_budget_s <= 0.0) c.time_budget_s = kMaxDriveS;
+  out->mobility.push_back(c);
+  outstanding_ = c.command_id;
+  wait_ = Wait::kDrive;
+  wait_since_ = now;
+}
+
+bool TargetApproach::Stop(std::uint32_t command_id, ExecutorOutput* out) {
+  if (!busy()) return false;
+  Fail(RendezvousFault::kStopped, "stopped by command " + std::to_string(command_id), out);
+  return true;
+}
+
+ExecutorOutput TargetApproach::OnCommand(const msg::RendezvousCommand& c, const NavcamPair* pair,
+                                         const Eigen::Isometry3d& site_from_rover_at_pair,
+                                         Time now) {
+  ExecutorOutput out;
+  auto reject = [&](RendezvousFault fault, const std::string& message) {
+    if (fault == RendezvousFault::kBusy) {
+      msg::RendezvousStatus s = status_;
+      s.command_id = c.command_id;
+      s.phase = RendezvousPhase::kFailed;
+      s.fault = fault;
+      s.message = message;
+      out.statuses.push_back(s);
+      out.statuses.push_back(status_);
+      return out;
+    }
+    status_ = {};
+    status_.command_id = c.command_id;
+    wait_ = Wait::kNone;
+    Fail(fault, message, &out);
+    return out;
+  };
+  if (busy()) {
+    return reject(RendezvousFault::kBusy, "command " + std::to_string(status_.command_id) +
+                                              " is running (phase " +
+                                              msg::RendezvousPhaseName(status_.phase) + ")");
+  }
+  const double standoff = c.standoff == 0.0 ? options_.target_standoff : c.standoff;
+  if (!(standoff >= options_.target_min_standoff && standoff <= options_.target_max_standoff)) {
+    return reject(RendezvousFault::kBadCommand,
+                  "standoff = " + FormatNumber(c.standoff) + " m is outside [" +
+                      FormatNumber(options_.target_min_standoff) + ", " +
+                      FormatNumber(options_.target_max_standoff) + "] for a science target");
+  }
+  if (!(std::isfinite(c.time_budget_s) && c.time_budget_s >= 0.0)) {
+    return reject(RendezvousFault::kBadCommand,
+                  "time_budget_s = " + FormatNumber(c.time_budget_s) + " must be >= 0");
+  }
+  if (pair == nullptr) {
+    return reject(RendezvousFault::kBadCommand,
+                  "image_id = " + std::to_string(c.image_id) +
+                      " is not among the NAVCAM pairs apl-rendezvous holds (the last " +
+                      std::to_string(options_.target_images_kept) + ")");
+  }
+  if (!PoseFresh(now)) {
+    return reject(RendezvousFault::kStalePose,
+                  pose_ ? "dl/pose is " + FormatNumber(ToSeconds(now - pose_->stamp)) +
+                              " s old (limit " + FormatNumber(options_.pose_stale_s) + " s)"
+                        : "no dl/pose received yet");
+  }
+  Result<TargetFix> fix =
+      vision_->Designate(*pair, site_from_rover_at_pair, Eigen::Vector2d(c.pixel_x, c.pixel_y));
+  if (DetectionImage img = vision_->LastDrawing(); img.bgr) out.images.push_back(img);
+  if (!fix.ok()) {
+    return reject(RendezvousFault::kBadCommand,
+                  "image_id = " + std::to_string(c.image_id) + ": " + fix.status().message());
+  }
+  const Eigen::Vector3d site = site_from_rover_at_pair * fix->target_rover;
+  const double range = (site.head<2>() - pose_->site_from_rover.translation().head<2>()).norm();
+  if (range > options_.target_max_range) {
+    return reject(RendezvousFault::kBadCommand,
+                  "the target at pixel (" + FormatNumber(c.pixel_x) + ", " +
+                      FormatNumber(c.pixel_y) + ") is " + FormatNumber(range) +
+                      " m away, beyond target_max_range " + FormatNumber(options_.target_max_range) + " m");
+  }
+  command_ = c;
+  standoff_ = standoff;
+  status_ = {};
+  status_.command_id = c.command_id;
+  status_.images = 0;
+  steps_ = mobility_retries_ = 0;
+  deadline_ = now + Seconds(c.time_budget_s > 0.0 ? c.time_budget_s : options_.default_time_budget_s);
+  status_.phase = RendezvousPhase::kApproachTarget;
+  Accept(*fix, site_from_rover_at_pair);
+  status_.message = "target designated " + FormatNumber(range) + " m away (" +
+                    std::to_string(fix->features) + " features)";
+  Decide(now, &out);
+  return out;
+}
+
+void TargetApproach::Accept(const TargetFix& fix, const Eigen::Isometry3d& site_from_rover) {
+  target_site_ = site_from_rover * fix.target_rover;
+  status_.target_position = target_site_;
+  status_.target_in_rover = fix.target_rover;
+  status_.target_sigma = fix.sigma;
+  status_.range = fix.target_rover.head<2>().norm();
+  status_.range_sigma = fix.sigma;
+  status_.bearing = std::atan2(fix.target_rover.y(), fix.target_rover.x());
+  char text[64];
+  std::snprintf(text, sizeof text, "features %d/%d, inliers %d, rms %.1f mm%s", fix.matched,
+                fix.features, fix.inliers, 1e3 * fix.rms, fix.target_measured ? ", ranged" : "");
+  status_.features = text;
+}
+
+void TargetApproach::Decide(Time now, ExecutorOutput* out) {
+  const Eigen::Vector3d rel = pose_->site_from_rover.inverse() * target_site_;
+  const double d = rel.head<2>().norm();
+  const double along = d - standoff_;
+  const double bearing = std::atan2(rel.y(), rel.x());
+  status_.range = d;
+  status_.bearing = bearing;
+  if (std::abs(along) <= options_.target_along_tolerance &&
+      std::abs(bearing) <= options_.target_heading_tolerance_deg * kDegree) {
+    status_.phase = RendezvousPhase::kAtTarget;
+    status_.target_in_rover = rel;
+    status_.message = "at the target: " + Cm(d) + " ahead (standoff " + Cm(standoff_) +
+                      "), bearing " + FormatNumber(bearing / kDegree) + " deg, after " +
+                      std::to_string(steps_) + " tracking pairs";
+    Reply(out);
+    wait_ = Wait::kHold;
+    wait_since_ = now;
+    return;
+  }
+  if (steps_ >= options_.target_max_steps) {
+    Fail(RendezvousFault::kPlacement, "not at the standoff after " + std::to_string(steps_) +
+                                          " tracking pairs: " + Cm(along) + " along, bearing " +
+                                          FormatNumber(bearing / kDegree) + " deg",
+         out);
+    return;
+  }
+  Reply(out);
+  msg::MobilityCommand c;
+  if (along > options_.target_final_approach && options_.target_leg_mode != "directed") {
+    // A leg of at most target_leg towards the standoff point.
+    const Eigen::Vector2d rover = pose_->site_from_rover.translation().head<2>();
+    const Eigen::Vector2d dir = (target_site_.head<2>() - rover).normalized();
+    const Eigen::Vector2d goal = rover + std::min(options_.target_leg, along) * dir;
+    c.mode = options_.target_leg_mode == "goto_waypoint" ? msg::MobilityMode::kGoToWaypoint
+                                                         : msg::MobilityMode::kAutoNav;
+    c.goal = Eigen::Vector3d(goal.x(), goal.y(), 0.0);
+    c.tolerance = std::max(0.05, 0.1 * options_.target_leg);
+  } else {
+    // Face it, then straight (backwards when too close), at most target_leg.
+    c.mode = msg::MobilityMode::kDirected;
+    if (std::abs(bearing) > 0.05 * kDegree) c.primitives.push_back(Turn(bearing));
+    const double go = std::clamp(along, -options_.target_leg, options_.target_leg);
+    if (std::abs(go) > 0.002) c.primitives.push_back(Straight(go));
+    if (c.primitives.empty()) c.primitives.push_back(Turn(bearing));
+  }
+  Drive(c, now, out);
+}
+
+ExecutorOutput TargetApproach::OnPose(const msg::PoseSample& pose, Time) {
+  pose_ = pose;
+  return {};
+}
+
+ExecutorOutput TargetApproach::OnMastStatus(const msg::MastStatus& s, Time now) {
+  ExecutorOutput out;
+  if (wait_ != Wait::kMast || s.command_id != outstanding_) return out;
+  if (s.state == msg::MastState::kAtGoal) {
+    wait_ = Wait::kSettle;
+    wait_since_ = now;
+  } else if (s.state == msg::MastState::kFault || s.state == msg::MastState::kRejected) {
+    Fail(RendezvousFault::kMast, std::string("dl-mast ") + msg::MastStateName(s.state) + ": " + s.message,
+         &out);
+  }
+  return out;
+}
+
+ExecutorOutput TargetApproach::OnStereoPair(const NavcamPair& pair, Time now) {
+  ExecutorOutput out;
+  if (wait_ != Wait::kFrame || pair.request_id != outstanding_) return out;
+  wait_ = Wait::kNone;
+  ++status_.images;
+  ++steps_;
+  if (!PoseFresh(now)) {
+    Fail(RendezvousFault::kStalePose, "dl/pose is stale at the tracking pair", &out);
+    return out;
+  }
+  const Eigen::Isometry3d site_from_rover = pose_->site_from_rover;
+  Result<TargetFix> fix = vision_->Track(pair, site_from_rover);
+  if (DetectionImage img = vision_->LastDrawing(); img.bgr) out.images.push_back(img);
+  if (!fix.ok()) {
+    Fail(RendezvousFault::kCamera, "NAVCAM pair unusable: " + fix.status().message(), &out);
+    return out;
+  }
+  if (!fix->tracked) {
+    Fail(RendezvousFault::kTargetLost,
+         std::string("target lost (") + TargetLossName(fix->loss) + "): " + fix->why, &out);
+    return out;
+  }
+  Accept(*fix, site_from_rover);
+  const Eigen::Vector3d slip = fix->predicted_motion.translation() - fix->motion.translation();
+  status_.message = "pair " + std::to_string(steps_) + ": target " + Cm(status_.range) +
+                    " ahead; odometry off by " + Cm(slip.head<2>().norm()) + " since the last pair";
+  Decide(now, &out);
+  return out;
+}
+
+ExecutorOutput TargetApproach::OnMobilityStatus(const msg::MobilityStatus& s, Time now) {
+  ExecutorOutput out;
+  if (wait_ != Wait::kDrive || s.command_id != outstanding_) return out;
+  if (s.state == msg::MobilityState::kSucceeded) {
+    wait_ = Wait::kNone;
+    mobility_retries_ = 0;
+    Look(now, &out);
+  } else if (s.state == msg::MobilityState::kFailed || s.state == msg::MobilityState::kRejected) {
+    wait_ = Wait::kNone;
+    const std::string why =
+        "apl-mobility " + std::string(msg::MobilityFaultName(s.fault)) + ": " + s.message;
+    if (s.fault_class != msg::FaultClass::kGoalError || mobility_retries_ >= kMaxMobilityRetries) {
+      Fail(RendezvousFault::kMobility, why, &out);
+      return out;
+    }
+    // A leg that ended short (NOPATH, NOPROGRESS, budget): look again from where the rover is.
+    ++mobility_retries_;
+    status_.message = "leg ended (" + why + "); looking again";
+    Reply(&out);
+    Look(now, &out);
+  }
+  return out;
+}
+
+ExecutorOutput TargetApproach::Step(Time now) {
+  ExecutorOutput out;
+  if (wait_ == Wait::kNone) return out;
+  if (now > deadline_ && wait_ != Wait::kHold) {
+    Fail(RendezvousFault::kTimeout,
+         "time budget of " +
+             FormatNumber(command_.time_budget_s > 0.0 ? command_.time_budget_s
+                                                       : options_.default_time_budget_s) +
+             " s used up after " + std::to_string(steps_) + " tracking pairs",
+         &out);
+    return out;
+  }
+  const double waited = ToSeconds(now - wait_since_);
+  switch (wait_) {
+    case Wait::kMast:
+      if (waited > options_.mast_timeout_s + 5.0) {
+        Fail(RendezvousFault::kMast, "no AT_GOAL from dl-mast within " +
+                                         FormatNumber(options_.mast_timeout_s + 5.0) + " s",
+             &out);
+      }
+      break;
+    case Wait::kSettle:
+      if (waited >= options_.settle_s) RequestPair(now, &out);
+      break;
+    case Wait::kFrame:
+      if (waited > options_.camera_timeout_s) {
+        Fail(RendezvousFault::kCamera, "no NAVCAM pair within " +
+                                           FormatNumber(options_.camera_timeout_s) + " s",
+             &out);
+      }
+      break;
+    case Wait::kHold:
+      if (waited >= options_.hold_at_base_s) {
+        wait_ = Wait::kNone;
+        status_.phase = RendezvousPhase::kDone;
+        Reply(&out);
+      }
+      break;
+    case Wait::kDrive:
+      if (waited > kMaxDriveS + 60.0) {
+        Fail(RendezvousFault::kMobility, "no terminal apl/mobility_status for command " +
+                                             std::to_string(outstanding_) + " within " +
+                                             FormatNumber(kMaxDriveS + 60.0) + " s",
+             &out);
+      }
+      break;
+    case Wait::kNone:
+      break;
+  }
+  return out;
+}
+
+}  // namespace rover::apl::rendezvous
