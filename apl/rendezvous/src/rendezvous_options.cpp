@@ -124,6 +124,8 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
          "science-target legs: autonav, goto_waypoint (blind) or directed (turn + straight)");
   b.Bind("target_images_kept", &O::target_images_kept, "",
          "recent NAVCAM pairs (any requester's) a command may designate in");
+  b.Bind("target_look", &O::target_look,
+         "point the mast at the science target before each tracking pair (false: leave it)");
 }
 
 }  // namespace rover::apl::rendezvous

@@ -55,6 +55,12 @@ bool TargetApproach::PoseFresh(Time now) const {
 }
 
 void TargetApproach::Look(Time now, ExecutorOutput* out) {
+  if (!options_.target_look && !designating_) {
+    // The mast stays where it is (a test of what the tracker does when the target drifts out).
+    wait_ = Wait::kSettle;
+    wait_since_ = now;
+    return;
+  }
   msg::MastCommand c;
   c.stamp = now;
   c.command_id = kMastIdBase | kIdHalf | (++mast_seq_ & (kIdHalf - 1));
@@ -132,7 +138,16 @@ ExecutorOutput TargetApproach::OnCommand(const msg::RendezvousCommand& c, const 
     return reject(RendezvousFault::kBadCommand,
                   "time_budget_s = " + FormatNumber(c.time_budget_s) + " must be >= 0");
   }
-  if (pair == nullptr) {
+  const bool by_point = c.image_id == 0;
+  if (by_point) {
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(c.target_estimate[i])) {
+        return reject(RendezvousFault::kBadCommand,
+                      std::string("target_estimate.") + "xyz"[i] + " = " +
+                          FormatNumber(c.target_estimate[i]) + " is not finite");
+      }
+    }
+  } else if (pair == nullptr) {
     return reject(RendezvousFault::kBadCommand,
                   "image_id = " + std::to_string(c.image_id) +
                       " is not among the NAVCAM pairs apl-rendezvous holds (the last " +
@@ -144,6 +159,30 @@ ExecutorOutput TargetApproach::OnCommand(const msg::RendezvousCommand& c, const 
                               " s old (limit " + FormatNumber(options_.pose_stale_s) + " s)"
                         : "no dl/pose received yet");
   }
+  const Eigen::Vector2d rover_xy = pose_->site_from_rover.translation().head<2>();
+  if (by_point) {
+    const double range = (c.target_estimate.head<2>() - rover_xy).norm();
+    if (range > options_.target_max_range) {
+      return reject(RendezvousFault::kBadCommand,
+                    "target_estimate is " + FormatNumber(range) + " m away, beyond target_max_range " +
+                        FormatNumber(options_.target_max_range) + " m");
+    }
+    // Designation by a site point: look at it, take a pair, designate where it projects.
+    command_ = c;
+    standoff_ = standoff;
+    status_ = {};
+    status_.command_id = c.command_id;
+    steps_ = mobility_retries_ = 0;
+    designating_ = true;
+    target_site_ = c.target_estimate;
+    status_.target_position = target_site_;
+    deadline_ = now + Seconds(c.time_budget_s > 0.0 ? c.time_budget_s : options_.default_time_budget_s);
+    status_.phase = RendezvousPhase::kApproachTarget;
+    status_.message = "designating the target at the site point " + FormatNumber(range) + " m away";
+    Reply(&out);
+    Look(now, &out);
+    return out;
+  }
   Result<TargetFix> fix =
       vision_->Designate(*pair, site_from_rover_at_pair, Eigen::Vector2d(c.pixel_x, c.pixel_y));
   if (DetectionImage img = vision_->LastDrawing(); img.bgr) out.images.push_back(img);
@@ -152,13 +191,14 @@ ExecutorOutput TargetApproach::OnCommand(const msg::RendezvousCommand& c, const 
                   "image_id = " + std::to_string(c.image_id) + ": " + fix.status().message());
   }
   const Eigen::Vector3d site = site_from_rover_at_pair * fix->target_rover;
-  const double range = (site.head<2>() - pose_->site_from_rover.translation().head<2>()).norm();
+  const double range = (site.head<2>() - rover_xy).norm();
   if (range > options_.target_max_range) {
     return reject(RendezvousFault::kBadCommand,
                   "the target at pixel (" + FormatNumber(c.pixel_x) + ", " +
                       FormatNumber(c.pixel_y) + ") is " + FormatNumber(range) +
                       " m away, beyond target_max_range " + FormatNumber(options_.target_max_range) + " m");
   }
+  designating_ = false;
   command_ = c;
   standoff_ = standoff;
   status_ = {};
@@ -259,12 +299,36 @@ ExecutorOutput TargetApproach::OnStereoPair(const NavcamPair& pair, Time now) {
   if (wait_ != Wait::kFrame || pair.request_id != outstanding_) return out;
   wait_ = Wait::kNone;
   ++status_.images;
-  ++steps_;
   if (!PoseFresh(now)) {
     Fail(RendezvousFault::kStalePose, "dl/pose is stale at the tracking pair", &out);
     return out;
   }
   const Eigen::Isometry3d site_from_rover = pose_->site_from_rover;
+  if (designating_) {
+    // The pair taken looking at the commanded site point: the target is where it projects.
+    designating_ = false;
+    const auto px = pair.left_model != nullptr
+                        ? pair.left_model->Project(site_from_rover.inverse() * target_site_)
+                        : std::nullopt;
+    if (!px || px->x() < 0.0 || px->y() < 0.0 || px->x() > pair.left_model->width() - 1.0 ||
+        px->y() > pair.left_model->height() - 1.0) {
+      Fail(RendezvousFault::kBadCommand, "target_estimate is not in the NAVCAM image taken looking at it",
+           &out);
+      return out;
+    }
+    Result<TargetFix> fix = vision_->Designate(pair, site_from_rover, *px);
+    if (DetectionImage img = vision_->LastDrawing(); img.bgr) out.images.push_back(img);
+    if (!fix.ok()) {
+      Fail(RendezvousFault::kBadCommand, "target_estimate: " + fix.status().message(), &out);
+      return out;
+    }
+    Accept(*fix, site_from_rover);
+    status_.message = "target designated at the site point (" + std::to_string(fix->features) +
+                      " features)";
+    Decide(now, &out);
+    return out;
+  }
+  ++steps_;
   Result<TargetFix> fix = vision_->Track(pair, site_from_rover);
   if (DetectionImage img = vision_->LastDrawing(); img.bgr) out.images.push_back(img);
   if (!fix.ok()) {

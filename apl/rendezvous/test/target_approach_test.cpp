@@ -99,7 +99,16 @@ struct ApproachHarness {
   double t = 10.0;
   std::vector<msg::RendezvousStatus> statuses;
   std::vector<msg::MobilityCommand> drives;
-  cv::Mat* no_image = nullptr;
+  // A forward-looking pinhole NAVCAM 1.5 m up (the by-point designation projects into it).
+  geometry::CameraModel model = [] {
+    geometry::PinholeRadial p;
+    p.fx = p.fy = 1000.0;
+    p.cx = p.cy = 511.5;
+    p.width = p.height = 1024;
+    p.pose.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+    p.pose.translation() = Eigen::Vector3d(0.0, 0.0, 1.5);
+    return *geometry::CameraModel::Create(p);
+  }();
 
   Time Now() const { return Time::FromSeconds(t); }
   msg::PoseSample Pose() const {
@@ -143,6 +152,7 @@ struct ApproachHarness {
         exec.OnPose(Pose(), Now());
         NavcamPair pair;
         pair.request_id = r.request_id;
+        pair.left_model = pair.right_model = &model;
         add(exec.OnStereoPair(pair, Now()));
       }
       for (const auto& c : out.mobility) {
@@ -206,6 +216,27 @@ TEST(TargetApproachTest, ReachesTheStandoffFacingTheTargetDespiteSlip) {
   // Autonav legs first, the last moves directed.
   EXPECT_EQ(h.drives.front().mode, msg::MobilityMode::kAutoNav);
   EXPECT_EQ(h.drives.back().mode, msg::MobilityMode::kDirected);
+}
+
+TEST(TargetApproachTest, ASitePointDesignatesInAPairTakenLookingAtIt) {
+  ApproachHarness h;
+  auto c = h.Command();
+  c.image_id = 0;
+  c.target_estimate = h.world.target + Eigen::Vector3d(0.3, -0.2, 0.0);  // roughly there
+  h.Start(c, /*with_pair=*/false);
+  EXPECT_EQ(h.exec.status().phase, RendezvousPhase::kDone) << h.exec.status().message;
+  EXPECT_NEAR(h.world.TargetInRover().head<2>().norm(), 1.05, 0.04);
+  // A point behind the rover never projects into the pair: BAD_COMMAND, nothing drives.
+  ApproachHarness behind;
+  c.target_estimate = Eigen::Vector3d(-5.0, 0.0, 0.0);
+  behind.Start(c, false);
+  EXPECT_EQ(behind.exec.status().fault, RendezvousFault::kBadCommand);
+  EXPECT_THAT(behind.exec.status().message, HasSubstr("target_estimate is not in the NAVCAM image"));
+  EXPECT_TRUE(behind.drives.empty());
+  c.target_estimate.y() = std::nan("");
+  ApproachHarness nan;
+  nan.Start(c, false);
+  EXPECT_THAT(nan.exec.status().message, HasSubstr("target_estimate.y = nan"));
 }
 
 TEST(TargetApproachTest, DirectedLegsWorkToo) {

@@ -19,8 +19,8 @@ const TaskRegistry& TaskRegistry::Builtin() {
     RegisterDirectedTask(r);
     RegisterMobilityTasks(r);
     RegisterLanderReturnTask(r);
-    RegisterScienceTargetTask(r);
     RegisterPlannedTasks(r);
+    RegisterScienceTargetTask(r);
     return r;
   }();
   return registry;

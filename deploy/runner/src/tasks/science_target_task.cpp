@@ -12,7 +12,7 @@
 namespace rover::deploy::runner {
 namespace {
 
-std::vector<std::string> ExpectChoices() {
+std::vector<std::string> ScienceExpectChoices() {
   std::vector<std::string> out = {"at_target"};
   for (int f = 1; f < msg::kRendezvousFaultCount; ++f) {
     out.emplace_back(msg::RendezvousFaultName(static_cast<msg::RendezvousFault>(f)));
@@ -29,7 +29,7 @@ Status ParseXy(const YAML::Node& n, const std::string& key, double lo, double hi
   return yaml::OptionalNumber(v, "y", "task." + key, lo, hi, err, &out->y());
 }
 
-constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotJudged = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
@@ -53,7 +53,7 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
   if (const YAML::Node x = n["expect"]) {
-    ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(x, ExpectChoices(), err));
+    ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(x, ScienceExpectChoices(), err));
   }
   return spec;
 }
@@ -63,7 +63,13 @@ Status ScienceTargetTask::Open(TaskContext& ctx) {
     int seen = 0;
     for (const sim::terrain::Rock& r : ctx.world->terrain.rocks) {
       if (r.science_target && seen++ == spec_.target) {
-        top_ = r.position + Eigen::Vector3d(0.0, 0.0, r.height);
+        // Where an operator clicks on the rock: its face towards the rover, 0.4 radius from
+        // its centre (the top of a low dome seen from 10 m sits on its silhouette).
+        const Eigen::Vector2d c = r.position.head<2>();
+        const Eigen::Vector2d to_rover = Eigen::Vector2d(start_x_, start_y_) - c;
+        const Eigen::Vector2d p =
+            c + 0.2 * r.diameter * (to_rover.norm() > 1e-6 ? to_rover.normalized() : Eigen::Vector2d::UnitX());
+        top_ = Eigen::Vector3d(p.x(), p.y(), ctx.world->terrain.natural.Height(p.x(), p.y()));
       }
     }
     if (!top_) {
@@ -176,7 +182,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
     out.failure = !left_model ? "no NAVCAM pair for the designation within 30 s" : "no sim/truth heard";
     return out;
   }
-  // 2. The operator's pick: the true top projected, plus the scenario's offset.
+  // 2. The operator's pick: the target point projected, plus the scenario's offset.
   const Eigen::Isometry3d truth_at_designation = *truth;
   const std::optional<Eigen::Isometry3d> odometry_at_designation = odometry;
   const Eigen::Vector3d top_rover = truth_at_designation.inverse() * *top_;
@@ -192,7 +198,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
                  ") of " + std::to_string(width) + "x" + std::to_string(height) + ", " +
                  FormatNumber(top_rover.head<2>().norm()) + " m away";
   out.steps.push_back(look);
-  ctx.recorder.AddFigure({"designation_range", top_rover.head<2>().norm(), kNan, "m", true,
+  ctx.recorder.AddFigure({"designation_range", top_rover.head<2>().norm(), kNotJudged, "m", true,
                           "true horizontal distance to the target at the designation"});
 
   // 3. The command, and its statuses.
@@ -239,24 +245,24 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
         // 4. Placement against the truth now (the rover stands still at AT_TARGET).
         const Eigen::Vector3d truth_rover = truth->inverse() * *top_;
         const Eigen::Vector3d e = st->target_in_rover - truth_rover;
-        ctx.recorder.AddFigure({"placement_error", 100.0 * e.norm(), kNan, "cm", true,
+        ctx.recorder.AddFigure({"placement_error", 100.0 * e.norm(), kNotJudged, "cm", true,
                                 "reported target in the rover frame (the arm's aim) against "
-                                "the target's true top, 3-D"});
-        ctx.recorder.AddFigure({"placement_error_horizontal", 100.0 * e.head<2>().norm(), kNan,
+                                "the picked point's truth, 3-D"});
+        ctx.recorder.AddFigure({"placement_error_horizontal", 100.0 * e.head<2>().norm(), kNotJudged,
                                 "cm", true, "the same, horizontal"});
         ctx.recorder.AddFigure({"standoff_error",
                                 100.0 * (truth_rover.head<2>().norm() -
                                          (spec_.standoff > 0 ? spec_.standoff : 1.05)),
-                                kNan, "cm", true, "true distance to the target minus the standoff"});
+                                kNotJudged, "cm", true, "true distance to the target minus the standoff"});
         ctx.recorder.AddFigure({"heading_to_target",
-                                std::atan2(truth_rover.y(), truth_rover.x()) * 180.0 / M_PI, kNan,
+                                std::atan2(truth_rover.y(), truth_rover.x()) * 180.0 / M_PI, kNotJudged,
                                 "deg", true, "true bearing of the target from the rover's heading"});
         if (odometry && odometry_at_designation) {
           // Wheel odometry alone: the designated point carried from the designation pose.
           const Eigen::Vector3d by_odometry = odometry->inverse() * *odometry_at_designation *
                                               truth_at_designation.inverse() * *top_;
           ctx.recorder.AddFigure({"odometry_placement_error",
-                                  100.0 * (by_odometry - truth_rover).norm(), kNan, "cm", true,
+                                  100.0 * (by_odometry - truth_rover).norm(), kNotJudged, "cm", true,
                                   "the target carried by dl/pose_odometry from the designation, "
                                   "against the truth, 3-D"});
         }
@@ -269,7 +275,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
     return terminal.has_value() || ctx.Now() > deadline;
   });
   step.sim_end_s = ctx.Now();
-  ctx.recorder.AddFigure({"tracking_pairs", static_cast<double>(pairs), kNan, "count", true,
+  ctx.recorder.AddFigure({"tracking_pairs", static_cast<double>(pairs), kNotJudged, "count", true,
                           "NAVCAM pairs the approach took after the designation"});
   if (!terminal) {
     msg::RendezvousCommand stop;

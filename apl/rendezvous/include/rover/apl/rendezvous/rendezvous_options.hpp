@@ -71,6 +71,9 @@ struct RendezvousOptions {
   /// legs: autonav (hazard avoidance), goto_waypoint (blind) or directed (turn + straight)
   std::string target_leg_mode = "autonav";
   int target_images_kept = 8;          ///< recent NAVCAM pairs a command may designate in
+  /// point the mast at the target before each tracking pair (false: it stays where it is; the
+  /// lost-target scenario's way to let the target leave the view)
+  bool target_look = true;
 
   Status Validate() const;
   static void BindParams(ParamBinder<RendezvousOptions>& b);

@@ -43,7 +43,9 @@ class TargetApproach {
   TargetApproach(const RendezvousOptions& options, std::shared_ptr<TargetVision> vision);
 
   /// A TARGET_SCIENCE command. `pair` is the NAVCAM pair named by command.image_id with the
-  /// dl/pose at its capture, or null when the caller holds no such pair (BAD_COMMAND).
+  /// dl/pose at its capture, or null when the caller holds no such pair (BAD_COMMAND). With
+  /// image_id 0 the target is the site point command.target_estimate instead: the mast looks
+  /// at it, a pair is taken, and the target is designated where the point projects in it.
   ExecutorOutput OnCommand(const msg::RendezvousCommand& command, const NavcamPair* pair,
                            const Eigen::Isometry3d& site_from_rover_at_pair, Time now);
   /// TARGET_STOP: stops a running approach (STOPPED); false when none runs.
@@ -85,6 +87,7 @@ class TargetApproach {
   Eigen::Vector3d target_site_ = Eigen::Vector3d::Zero();
   int steps_ = 0;
   int mobility_retries_ = 0;
+  bool designating_ = false;  // by a site point: the pair awaited designates
 };
 
 }  // namespace rover::apl::rendezvous

@@ -3,16 +3,18 @@
 /// The science-target task: the operator's part of FIDO's single-command approach (seed 004,
 /// section 5) and the judge's measurement of it.
 ///
-///   1. Points the mast at the target (dl/mast_command LOOK_AT its true top, as an operator
-///      would aim the NAVCAM at the rock of interest) and takes a full NAVCAM pair
-///      (ddl/camera_request, ids kCameraPrefix << 24 | n).
-///   2. Picks the target's pixel in that pair's left image: the true top of the target
-///      projected with the frame's camera model and the true rover pose (sim/truth), plus the
-///      scenario's `pixel_offset` (a person clicking beside it). Only the runner reads truth.
+///   1. Points the mast at the target point (dl/mast_command LOOK_AT, as an operator would aim
+///      the NAVCAM at the rock of interest) and takes a full NAVCAM pair (ddl/camera_request,
+///      ids kCameraPrefix << 24 | n).
+///   2. Picks the target's pixel in that pair's left image: the target point -- on the rock's
+///      surface, on its face towards the rover's start 0.4 radius from its centre, where a
+///      person clicks on the rock (its top sits on the silhouette from afar) -- projected with
+///      the frame's camera model and the true rover pose (sim/truth), plus the scenario's
+///      `pixel_offset`. Only the runner reads truth.
 ///   3. Sends one apl/rendezvous_command TARGET_SCIENCE naming the pair (image_id) and pixel,
 ///      then waits for its terminal apl/rendezvous_status (DONE or FAILED).
 ///   4. At AT_TARGET records, against the truth at that moment: the placement error (the
-///      reported target_in_rover, where the arm would be sent, against the target's true top in
+///      reported target_in_rover, where the arm would be sent, against the target point in
 ///      the true rover frame; horizontal and 3-D), the same for wheel odometry alone (the
 ///      designated point carried by dl/pose_odometry), the standoff error and the heading to
 ///      the target.
@@ -66,7 +68,7 @@ class ScienceTargetTask : public Task {
  private:
   ScienceTargetSpec spec_;
   double start_x_, start_y_;
-  std::optional<Eigen::Vector3d> top_;  // the target's true top (site frame), from the world
+  std::optional<Eigen::Vector3d> top_;  // the target point (site frame), from the world
   dds::Writer<rover_apl_RendezvousCommand> command_;
   dds::Writer<rover_dl_MastCommand> mast_;
   dds::Writer<rover_ddl_StereoRequest> camera_;
