@@ -7,6 +7,7 @@
 #include "rover/msg/mast_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
+#include "rover/msg/rendezvous_idl.hpp"
 #include "rover/msg/sequence_idl.hpp"
 #include "service_links.hpp"
 
@@ -45,6 +46,8 @@ Status SequencerService::OnConfigure(ServiceContext& ctx, const ParamSet& params
   ROVER_ASSIGN_OR_RETURN(mobility_writer_,
                          ctx.MakeWriter<rover_apl_MobilityCommand>("apl/mobility_command"));
   ROVER_ASSIGN_OR_RETURN(mast_writer_, ctx.MakeWriter<rover_dl_MastCommand>("dl/mast_command"));
+  ROVER_ASSIGN_OR_RETURN(rendezvous_writer_,
+                         ctx.MakeWriter<rover_apl_RendezvousCommand>("apl/rendezvous_command"));
   ROVER_ASSIGN_OR_RETURN(status_writer_,
                          ctx.MakeWriter<rover_apl_SequenceStatus>("apl/sequence_status"));
 
@@ -69,6 +72,14 @@ Status SequencerService::OnConfigure(ServiceContext& ctx, const ParamSet& params
         if (!st.ok()) return;  // a state no enumerator has ends nothing
         if (const std::optional<Outcome> o = OutcomeOfMastStatus(*st)) {
           OnResult(st->command_id, Family::kMast, *o);
+        }
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_RendezvousStatus>(
+      "apl/rendezvous_status", [this](const dds::Sample<rover_apl_RendezvousStatus>& s) {
+        const Result<msg::RendezvousStatus> st = msg::RendezvousStatusFromIdl(s.data());
+        if (!st.ok()) return;  // a phase or fault no enumerator has ends nothing
+        if (const std::optional<Outcome> o = OutcomeOfRendezvousStatus(*st)) {
+          OnResult(st->command_id, Family::kRendezvous, *o);
         }
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_PoseEstimate>(
@@ -171,6 +182,13 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
       Check(mast_writer_.Write(out), "dl/mast_command");
       break;
     }
+    case Family::kRendezvous: {
+      rover_apl_RendezvousCommand out{};
+      msg::RendezvousCommandToIdl(RendezvousCommandOf(c, now), &out);
+      ctx_->Stamp(out.header, "site");
+      Check(rendezvous_writer_.Write(out), "apl/rendezvous_command");
+      break;
+    }
     default:  // CheckDispatchable refused these before the start
       return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), "apl-sequencer does not dispatch " +
                                                     std::string(FamilyName(c.family)) +
@@ -184,6 +202,13 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
 
 void SequencerService::Cancel(const Command& c) {
   outstanding_family_.reset();
+  if (c.family == Family::kRendezvous) {
+    rover_apl_RendezvousCommand stop{};
+    msg::RendezvousCommandToIdl(RendezvousStopCommand(c.id, ctx_->Now()), &stop);
+    ctx_->Stamp(stop.header, "site");
+    Check(rendezvous_writer_.Write(stop), "apl/rendezvous_command");
+    return;
+  }
   if (c.family != Family::kMobility) return;  // a mast move ends by itself
   msg::MobilityCommandMessage stop;
   msg::MobilityCommandToIdl(MobilityStopCommand(c.id, ctx_->Now()), &stop);

@@ -68,6 +68,7 @@ class SequencerService final : public Service {
   std::uint32_t last_dispatched_ = 0;
   dds::Writer<rover_apl_MobilityCommand> mobility_writer_;
   dds::Writer<rover_dl_MastCommand> mast_writer_;
+  dds::Writer<rover_apl_RendezvousCommand> rendezvous_writer_;
   dds::Writer<rover_apl_SequenceStatus> status_writer_;
 };
 

@@ -61,6 +61,9 @@ Status TrackerOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_inlier_ratio", min_inlier_ratio, 0.0, 1.0));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_m", inlier_m, Bounds::OpenLow(0.0, 1.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_range_ratio", inlier_range_ratio, 0.0, 0.5));
+  ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_target_alone_ncc", min_target_alone_ncc, -1.0, 1.0));
+  ROVER_RETURN_IF_ERROR(CheckRange("tracker.max_target_alone_jump_m", max_target_alone_jump_m,
+                                   Bounds::OpenLow(0.0, 10.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.gate_sigma", gate_sigma, Bounds::OpenLow(0.0, 100.0)));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.ransac_iterations", ransac_iterations, 1, 100000));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.stereo_half_window", stereo_half_window, 2, 40, "px"));
@@ -87,6 +90,10 @@ void TrackerOptions::BindParams(ParamBinder<TrackerOptions>& b) {
          "fewer inliers than this share of the features found again: TARGET_LOST");
   b.Bind("inlier_m", &O::inlier_m, "m", "RANSAC threshold floor");
   b.Bind("inlier_range_ratio", &O::inlier_range_ratio, "", "RANSAC threshold as a fraction of range");
+  b.Bind("min_target_alone_ncc", &O::min_target_alone_ncc, "",
+         "too few features agree: the target's own match goes on alone when this good");
+  b.Bind("max_target_alone_jump_m", &O::max_target_alone_jump_m, "m",
+         "... and within this of where the pose puts it");
   b.Bind("gate_sigma", &O::gate_sigma, "", "target measurement gate against the motion, in sigma");
   b.Bind("ransac_iterations", &O::ransac_iterations, "", "3-point rigid fits tried");
   b.Bind("stereo_half_window", &O::stereo_half_window, "px", "half side of the range correlation patch");
@@ -157,7 +164,7 @@ bool TargetTracker::TakeFeatures(const Frame& f, const Vector3d& target, const V
   fo.max_points = options_.max_features;
   fo.min_roundness = options_.min_roundness;
   fo.min_weight_ratio = options_.min_weight_ratio;
-  fo.suppression_radius = std::max(4, side / 14);
+  fo.suppression_radius = std::max(4, side / 20);
   auto ips = ForstnerPoints(f.left, roi, fo);
   if (!ips.ok()) {
     *why = "interest points: " + ips.status().message();
@@ -441,11 +448,32 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
   const int need = std::max(options_.min_inliers,
                             static_cast<int>(std::ceil(options_.min_inlier_ratio * matched)));
   if (inliers < need) {
-    fix.loss = TargetLoss::kTooFewFeatures;
-    fix.why = std::to_string(matched) + " of " + std::to_string(n - 1) +
-              " features found again, " + std::to_string(inliers) +
-              " consistent with one motion (need " + std::to_string(need) + ")";
+    // Too few features agree on a motion. The target's own patch, matched and ranged with a
+    // high correlation, still says where it is (on bare sand at 9 m the rock carries nearly all
+    // the texture): keep tracking on it alone, the motion being the prediction moved so that it
+    // carries the target there.
+    const bool alone = ok[0] && ncc[0] >= options_.min_target_alone_ncc &&
+                       (xyz[0] - predicted * target_ref).norm() <=
+                           options_.max_target_alone_jump_m;
+    if (!alone) {
+      fix.loss = TargetLoss::kTooFewFeatures;
+      fix.why = std::to_string(matched) + " of " + std::to_string(n - 1) +
+                " features found again, " + std::to_string(inliers) +
+                " consistent with one motion (need " + std::to_string(need) + ")";
+      Draw(cur, name, fix);
+      return fix;
+    }
+    motion = predicted;
+    motion.translation() += xyz[0] - predicted * target_ref;
+    fix.why = "the target alone: " + std::to_string(inliers) + " of " + std::to_string(matched) +
+              " features consistent with one motion";
+    fix.tracked = true;
+    fix.target_measured = true;
+    fix.motion = motion;
+    fix.target_rover = xyz[0];
+    fix.sigma = std::max(sig[0], 1e-3);
     Draw(cur, name, fix);
+    Rereference(std::move(cur), xyz[0], px[0], &fix);
     return fix;
   }
   fix.motion = motion;
@@ -467,8 +495,15 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
   fix.tracked = true;
   fix.target_rover = target;
   fix.sigma = std::sqrt(var);
-  const Vector2d target_px = fix.target_measured ? px[0] : *cur.left_model.Project(target);
+  const auto carried_px = cur.left_model.Project(target);
+  const Vector2d target_px = fix.target_measured ? px[0] : carried_px ? *carried_px : *tp;
   Draw(cur, name, fix);
+  Rereference(std::move(cur), target, target_px, &fix);
+  return fix;
+}
+
+void TargetTracker::Rereference(Frame cur, const Vector3d& target, const Vector2d& target_px,
+                                TargetFix* fix) {
   // The new pair becomes the reference, its features about the target.
   std::vector<Point> points;
   std::string why;
@@ -477,9 +512,8 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
   points_ = std::move(points);
   if (points_.empty()) points_.push_back({target_px, target, 0.0});
   target_pixel_ = target_px;
-  ref_sigma_ = fix.sigma;
-  if (!enough) fix.why = "next step: " + why;
-  return fix;
+  ref_sigma_ = fix->sigma;
+  if (!enough) fix->why += std::string(fix->why.empty() ? "" : "; ") + "next step: " + why;
 }
 
 void TargetTracker::Draw(const Frame& cur, const std::string& name, const TargetFix& fix) {

@@ -187,7 +187,7 @@ std::vector<CommandSpec> BuildTable() {
                   "lander", "three-phase visual rendezvous with the lander"));
   t.push_back(Row(
       CommandKind::kApproachTarget, "APPROACH_TARGET", Family::kRendezvous,
-      {Needs(NotRequired(Integer("image", Bounds::Closed(0.0, 2147483647.0),
+      {Needs(NotRequired(Integer("image", Bounds::Closed(0.0, 4294967295.0),
                                  "id of the left NAVCAM image the pixel is in")),
              "pixel"),
        Needs(OneOf(Pixel("pixel", "designated pixel (u, v) in that image"), "designation"),

@@ -22,7 +22,9 @@ const CommandCall* FindCommand(const std::vector<Statement>& statements,
 
 }  // namespace
 
-bool ServiceDispatches(Family f) { return f == Family::kMobility || f == Family::kMast; }
+bool ServiceDispatches(Family f) {
+  return f == Family::kMobility || f == Family::kMast || f == Family::kRendezvous;
+}
 
 Status CheckDispatchable(const Sequence& sequence) {
   auto other = [](const CommandCall& c) { return !ServiceDispatches(c.spec().family); };
@@ -75,6 +77,47 @@ msg::MastCommand MastCommandOf(const Command& c, Time stamp) {
     m.tilt = r.tilt;
   }
   return m;
+}
+
+msg::RendezvousCommand RendezvousCommandOf(const Command& c, Time stamp) {
+  const auto& r = std::get<RendezvousRequest>(c.request);
+  msg::RendezvousCommand m;
+  m.stamp = stamp;
+  m.command_id = c.id;
+  m.standoff = r.standoff;
+  m.time_budget_s = r.time_budget_s;
+  if (r.point) m.target_estimate = Eigen::Vector3d(r.point->x, r.point->y, r.point->z);
+  if (r.kind == RendezvousRequest::Kind::kReturnToLander) {
+    m.target = msg::RendezvousTarget::kLander;
+    m.ramp = -1;
+    m.climb = false;
+  } else {
+    m.target = msg::RendezvousTarget::kScience;
+    m.image_id = r.image.value_or(0);
+    m.pixel_x = r.u;
+    m.pixel_y = r.v;
+  }
+  return m;
+}
+
+msg::RendezvousCommand RendezvousStopCommand(std::uint32_t cancel_id, Time stamp) {
+  msg::RendezvousCommand m;
+  m.stamp = stamp;
+  m.command_id = cancel_id | kCancelIdBit;
+  m.target = msg::RendezvousTarget::kStop;
+  return m;
+}
+
+std::optional<Outcome> OutcomeOfRendezvousStatus(const msg::RendezvousStatus& s) {
+  if (s.phase == msg::RendezvousPhase::kDone) return Outcome::Nominal(s.stamp);
+  if (s.phase != msg::RendezvousPhase::kFailed) return std::nullopt;
+  const Fault fault = s.fault == msg::RendezvousFault::kNone ? Fault::Other() : Fault(s.fault);
+  if (s.fault == msg::RendezvousFault::kBadCommand || s.fault == msg::RendezvousFault::kBusy) {
+    return Outcome::Rejected(fault, s.message, s.stamp);
+  }
+  Outcome o = Outcome::Failed(fault, s.message, s.stamp);
+  o.fault_class = msg::FaultClass::kGoalError;
+  return o;
 }
 
 std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s) {

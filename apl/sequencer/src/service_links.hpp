@@ -18,14 +18,16 @@
 #include "rover/msg/mast.hpp"
 #include "rover/msg/mobility.hpp"
 #include "rover/msg/pose.hpp"
+#include "rover/msg/rendezvous.hpp"
 #include "rover/msg/sequence.hpp"
 
 namespace rover::apl::sequencer {
 
 inline constexpr std::uint32_t kCancelIdBit = 0x80000000u;
 
-/// The families apl-sequencer dispatches: mobility (apl/mobility_command) and mast
-/// (dl/mast_command). Rendezvous and arm commands wait for their services.
+/// The families apl-sequencer dispatches: mobility (apl/mobility_command), mast
+/// (dl/mast_command) and rendezvous (apl/rendezvous_command). Arm commands wait for their
+/// service.
 bool ServiceDispatches(Family f);
 /// Ok when every command of the sequence (statements and ON_ABORT block) is of a family the
 /// service dispatches; else InvalidArgument naming the first other one's line and command:
@@ -41,6 +43,12 @@ Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp);
 msg::MobilityCommand MobilityStopCommand(std::uint32_t cancel_id, Time stamp);
 /// The dl/mast_command of a mast command, stamped `stamp`.
 msg::MastCommand MastCommandOf(const Command& c, Time stamp);
+/// The apl/rendezvous_command of a rendezvous command, stamped `stamp`: RETURN_TO_LANDER is
+/// TARGET_LANDER (the lander estimate, the standoff; ramp -1, climb off), APPROACH_TARGET is
+/// TARGET_SCIENCE (image id and pixel, or the site point with image id 0).
+msg::RendezvousCommand RendezvousCommandOf(const Command& c, Time stamp);
+/// apl-rendezvous's TARGET_STOP, as sent to cancel an outstanding rendezvous command.
+msg::RendezvousCommand RendezvousStopCommand(std::uint32_t cancel_id, Time stamp);
 
 /// The outcome a mobility status gives its command: SUCCEEDED -> NOMINAL, FAILED -> FAULT,
 /// REJECTED -> REJECTED (with the fault mapped by name and the status's class), stamped with
@@ -49,6 +57,11 @@ std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s);
 /// The outcome a mast status gives its command: AT_GOAL -> NOMINAL, FAULT -> FAULT OTHER (goal
 /// error), REJECTED -> REJECTED BAD_COMMAND; nullopt while IDLE or MOVING.
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s);
+
+/// The outcome a rendezvous status gives its command: DONE -> NOMINAL; FAILED -> REJECTED for
+/// BAD_COMMAND and BUSY, else FAULT (a goal error), the fault named as apl-rendezvous names it
+/// (TARGET_LOST, NOT_FOUND, ...); nullopt for the phases in between.
+std::optional<Outcome> OutcomeOfRendezvousStatus(const msg::RendezvousStatus& s);
 
 /// dl/pose as the interpreter's pose input (ZYX roll, pitch, yaw of the estimate).
 PoseSample PoseOfEstimate(const msg::PoseEstimate& p);

@@ -25,7 +25,7 @@ Command Built(const std::string& line, std::uint32_t id = 7) {
   return c.ok() ? *c : Command{};
 }
 
-TEST(ServiceLinks, OnlyMobilityAndMastAreDispatched) {
+TEST(ServiceLinks, MobilityMastAndRendezvousAreDispatched) {
   EXPECT_TRUE(CheckDispatchable(MustParse("ON_ABORT\n  STOP\nEND\nMAST LOOK_AT (1, 2, 0)\n"
                                           "IF tilt > 5\n  AUTONAV goal=(3, 0)\nEND\n"))
                   .ok());
@@ -33,11 +33,56 @@ TEST(ServiceLinks, OnlyMobilityAndMastAreDispatched) {
       MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  ARM STOW\nEND\n"));
   EXPECT_EQ(inner.message(),
             "line 5: ARM STOW: apl-sequencer does not dispatch arm commands yet");
-  const Status in_abort = CheckDispatchable(MustParse(
-      "ON_ABORT\n  RETURN_TO_LANDER\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"));
-  EXPECT_EQ(in_abort.message(),
-            "line 2: RETURN_TO_LANDER: apl-sequencer does not dispatch rendezvous commands "
-            "yet");
+  EXPECT_TRUE(CheckDispatchable(MustParse(
+                  "ON_ABORT\n  RETURN_TO_LANDER\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"))
+                  .ok());
+  const Status in_abort =
+      CheckDispatchable(MustParse("ON_ABORT\n  ARM STOW\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"));
+  EXPECT_EQ(in_abort.message(), "line 2: ARM STOW: apl-sequencer does not dispatch arm commands yet");
+}
+
+TEST(ServiceLinks, RendezvousCommandsAndTheirStatuses) {
+  const msg::RendezvousCommand by_pixel =
+      RendezvousCommandOf(Built("APPROACH_TARGET image=3355443201 pixel=(512, 300.5) standoff=1.1"),
+                          Time{5});
+  EXPECT_EQ(by_pixel.command_id, 7u);
+  EXPECT_EQ(by_pixel.target, msg::RendezvousTarget::kScience);
+  EXPECT_EQ(by_pixel.image_id, 3355443201u);
+  EXPECT_DOUBLE_EQ(by_pixel.pixel_x, 512.0);
+  EXPECT_DOUBLE_EQ(by_pixel.pixel_y, 300.5);
+  EXPECT_DOUBLE_EQ(by_pixel.standoff, 1.1);
+  const msg::RendezvousCommand by_point =
+      RendezvousCommandOf(Built("APPROACH_TARGET point=(4, 1, -0.2)"), Time{5});
+  EXPECT_EQ(by_point.image_id, 0u);
+  EXPECT_EQ(by_point.target_estimate, Eigen::Vector3d(4, 1, -0.2));
+  const msg::RendezvousCommand lander =
+      RendezvousCommandOf(Built("RETURN_TO_LANDER lander=(30, 1, 0) timeout=2000 s"), Time{5});
+  EXPECT_EQ(lander.target, msg::RendezvousTarget::kLander);
+  EXPECT_EQ(lander.target_estimate, Eigen::Vector3d(30, 1, 0));
+  EXPECT_DOUBLE_EQ(lander.time_budget_s, 2000.0);
+  EXPECT_FALSE(lander.climb);
+  const msg::RendezvousCommand stop = RendezvousStopCommand(12, Time{5});
+  EXPECT_EQ(stop.target, msg::RendezvousTarget::kStop);
+  EXPECT_EQ(stop.command_id, 12u | kCancelIdBit);
+
+  msg::RendezvousStatus s;
+  s.command_id = 7;
+  s.phase = msg::RendezvousPhase::kApproachTarget;
+  EXPECT_FALSE(OutcomeOfRendezvousStatus(s).has_value());
+  s.phase = msg::RendezvousPhase::kAtTarget;
+  EXPECT_FALSE(OutcomeOfRendezvousStatus(s).has_value());
+  s.phase = msg::RendezvousPhase::kDone;
+  EXPECT_EQ(OutcomeOfRendezvousStatus(s)->termination, Termination::kNominal);
+  s.phase = msg::RendezvousPhase::kFailed;
+  s.fault = msg::RendezvousFault::kTargetLost;
+  s.message = "target lost (OUT_OF_VIEW)";
+  const Outcome lost = *OutcomeOfRendezvousStatus(s);
+  EXPECT_EQ(lost.termination, Termination::kFault);
+  EXPECT_EQ(lost.fault.Name(), "TARGET_LOST");
+  EXPECT_EQ(lost.fault_class, msg::FaultClass::kGoalError);
+  EXPECT_EQ(lost.message, "target lost (OUT_OF_VIEW)");
+  s.fault = msg::RendezvousFault::kBadCommand;
+  EXPECT_EQ(OutcomeOfRendezvousStatus(s)->termination, Termination::kRejected);
 }
 
 TEST(ServiceLinks, MobilityCommandsCarryModeGoalAndOnePrimitive) {

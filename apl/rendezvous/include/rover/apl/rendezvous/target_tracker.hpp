@@ -55,7 +55,7 @@ struct TrackerOptions {
   double window_m = 1.2;       ///< [m] side of the square about the target where features are taken
   int min_window_px = 96;      ///< [px] least side of that window in the image
   int max_window_px = 360;     ///< [px] largest side
-  int max_features = 40;       ///< Förstner points kept (strongest first)
+  int max_features = 50;       ///< Förstner points kept (strongest first)
   double min_roundness = 0.4;  ///< Förstner roundness threshold (interest_points.hpp)
   double min_weight_ratio = 0.2;  ///< Förstner weight threshold, times the window's mean
   double max_feature_offset_m = 2.0;  ///< [m] features farther than this from the target dropped
@@ -69,6 +69,10 @@ struct TrackerOptions {
   double inlier_m = 0.02;      ///< [m] RANSAC threshold floor ...
   double inlier_range_ratio = 0.015;  ///< ... or this fraction of the feature's range
   double gate_sigma = 3.0;     ///< target measurement within this many sigma (+2 cm) of the motion
+  /// Too few features agree on a motion: the target's own match (this correlation or better,
+  /// within max_target_alone_jump_m of where the pose puts it) keeps the track alone.
+  double min_target_alone_ncc = 0.9;
+  double max_target_alone_jump_m = 0.5;
   int ransac_iterations = 300;
   int stereo_half_window = 7;  ///< [px] patch of the range correlation
   double min_stereo_ncc = 0.7; ///< lowest correlation of a range
@@ -127,6 +131,10 @@ class TargetTracker final : public TargetVision {
   bool MatchPoint(const Frame& ref, const Point& p, const Frame& cur, const Eigen::Isometry3d& m,
                   const Eigen::Vector2d* near, int band, Eigen::Vector2d* pixel, double* ncc) const;
   void Draw(const Frame& cur, const std::string& name, const TargetFix& fix);
+  // `cur` becomes the reference, with features taken about the target (why they are too few,
+  // if they are, appended to fix->why).
+  void Rereference(Frame cur, const Eigen::Vector3d& target, const Eigen::Vector2d& target_px,
+                   TargetFix* fix);
 
   TrackerOptions options_;
   bool started_ = false;
