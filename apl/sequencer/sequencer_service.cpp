@@ -135,6 +135,9 @@ void SequencerService::OnSequenceCommand(const msg::SequenceCommand& c) {
   }
   ParseOptions options;
   options.source = "apl/sequence_command " + std::to_string(c.command_id);
+  Result<std::map<std::string, std::string>> overrides = msg::ParseSequenceOverrides(c.overrides);
+  if (!overrides.ok()) return Refuse(c.command_id, options.source + ": " + overrides.status().message());
+  options.overrides = std::move(*overrides);
   Result<Sequence> sequence = ParseSequence(c.text, options);
   if (!sequence.ok()) return Refuse(c.command_id, sequence.status().message());
   if (Status s = CheckDispatchable(*sequence); !s.ok()) {

@@ -265,6 +265,8 @@ void TargetApproach::Decide(Time now, ExecutorOutput* out) {
                                                          : msg::MobilityMode::kAutoNav;
     c.goal = Eigen::Vector3d(goal.x(), goal.y(), 0.0);
     c.tolerance = std::max(0.05, 0.1 * options_.target_leg);
+    // A short leg gets a short budget: a leg that wanders is looked at again, not driven on.
+    c.time_budget_s = 60.0 + 120.0 * (goal - rover).norm();
   } else {
     // Face it, then straight (backwards when too close), at most target_leg.
     c.mode = msg::MobilityMode::kDirected;

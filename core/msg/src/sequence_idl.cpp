@@ -9,12 +9,14 @@ static_assert(rover_apl_SEQUENCE_RUNNING == static_cast<int>(SequenceState::kRun
 static_assert(rover_apl_SEQUENCE_DONE == static_cast<int>(SequenceState::kDone));
 static_assert(rover_apl_SEQUENCE_FAILED == static_cast<int>(SequenceState::kFailed));
 static_assert(sizeof(rover_apl_SequenceCommand::text) == kMaxSequenceTextBytes + 1);
+static_assert(sizeof(rover_apl_SequenceCommand::overrides) == kMaxSequenceOverridesBytes + 1);
 
 SequenceCommand SequenceCommandFromIdl(const rover_apl_SequenceCommand& in) {
   SequenceCommand c;
   c.stamp = Time{in.header.stamp_ns};
   c.command_id = in.command_id;
   c.text = idl::ReadString(in.text);
+  c.overrides = idl::ReadString(in.overrides);
   return c;
 }
 
@@ -24,9 +26,15 @@ Status SequenceCommandToIdl(const SequenceCommand& in, rover_apl_SequenceCommand
                            " bytes; the message carries at most " +
                            std::to_string(kMaxSequenceTextBytes));
   }
+  if (in.overrides.size() > kMaxSequenceOverridesBytes) {
+    return InvalidArgument("apl/sequence_command overrides are " +
+                           std::to_string(in.overrides.size()) + " bytes; the message carries at most " +
+                           std::to_string(kMaxSequenceOverridesBytes));
+  }
   out->header.stamp_ns = in.stamp.ns;
   out->command_id = in.command_id;
   idl::CopyString(out->text, in.text);
+  idl::CopyString(out->overrides, in.overrides);
   return Status::Ok();
 }
 

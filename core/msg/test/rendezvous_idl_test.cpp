@@ -21,6 +21,9 @@ TEST(RendezvousIdl, CommandRoundTripKeepsAnUnknownTargetAndNaN) {
   c.ramp = 1;
   c.climb = false;
   c.time_budget_s = 900;
+  c.image_id = 0xC8000001u;
+  c.pixel_x = 512.25;
+  c.pixel_y = -3.5;
   rover_apl_RendezvousCommand m{};
   RendezvousCommandToIdl(c, &m);
   EXPECT_EQ(m.target, rover_apl_TARGET_LANDER);
@@ -33,6 +36,9 @@ TEST(RendezvousIdl, CommandRoundTripKeepsAnUnknownTargetAndNaN) {
   EXPECT_EQ(back.ramp, 1);
   EXPECT_FALSE(back.climb);
   EXPECT_EQ(back.time_budget_s, 900);
+  EXPECT_EQ(back.image_id, 0xC8000001u);
+  EXPECT_EQ(back.pixel_x, 512.25);
+  EXPECT_EQ(back.pixel_y, -3.5);
   idl::SetRawEnum(&m.target, 7);
   EXPECT_EQ(static_cast<int>(RendezvousCommandFromIdl(m).target), 7);
   EXPECT_STREQ(RendezvousTargetName(RendezvousCommandFromIdl(m).target), "UNKNOWN");
@@ -51,6 +57,7 @@ TEST(RendezvousIdl, StatusRoundTripAndBadEnums) {
   s.images = 70000;
   s.features = std::string(100, 'f');
   s.message = "three stripes";
+  s.target_in_rover = {1.05, -0.01, 0.12};
   rover_apl_RendezvousStatus m{};
   RendezvousStatusToIdl(s, &m);
   const Result<RendezvousStatus> back = RendezvousStatusFromIdl(m);
@@ -62,11 +69,14 @@ TEST(RendezvousIdl, StatusRoundTripAndBadEnums) {
   EXPECT_EQ(back->images, 65535);
   EXPECT_EQ(back->features.size(), 63u);
   EXPECT_EQ(back->message, "three stripes");
+  EXPECT_EQ(back->target_in_rover, s.target_in_rover);
   EXPECT_STREQ(RendezvousPhaseName(back->phase), "AT_RAMP_BASE");
   EXPECT_STREQ(RendezvousFaultName(back->fault), "TOO_FEW_STRIPES");
-  idl::SetRawEnum(&m.phase, 8);
+  m.phase = rover_apl_PHASE_AT_TARGET;
+  EXPECT_EQ(RendezvousStatusFromIdl(m)->phase, RendezvousPhase::kAtTarget);
+  idl::SetRawEnum(&m.phase, 10);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),
-              ::testing::HasSubstr("apl/rendezvous_status phase = 8 is not a RendezvousPhase"));
+              ::testing::HasSubstr("apl/rendezvous_status phase = 10 is not a RendezvousPhase"));
   m.phase = rover_apl_PHASE_DONE;
   idl::SetRawEnum(&m.fault, -1);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),

@@ -15,7 +15,13 @@ TEST(SequenceIdl, CommandRoundTripKeepsTheTextAndRefusesOneTooLong) {
   c.stamp = Time{17};
   c.command_id = 3;
   c.text = "TARGET rock = (5, 1, 0)\nVISODOM TURN TO rock\n";
+  c.overrides = "rock = (6, 1, 0)\n";
   rover_apl_SequenceCommand m{};
+  ASSERT_TRUE(SequenceCommandToIdl(c, &m).ok());
+  EXPECT_EQ(SequenceCommandFromIdl(m).overrides, c.overrides);
+  c.overrides = std::string(kMaxSequenceOverridesBytes + 1, 'x');
+  EXPECT_FALSE(SequenceCommandToIdl(c, &m).ok());
+  c.overrides.clear();
   ASSERT_TRUE(SequenceCommandToIdl(c, &m).ok());
   EXPECT_EQ(m.header.stamp_ns, 17);
   EXPECT_STREQ(m.text, c.text.c_str());

@@ -222,7 +222,8 @@ Result<RunResult> RunScenario(const Scenario& scenario, std::uint32_t seed,
 
   // (c) The task.
   TaskContext ctx{scenario, set->participant(), run_loop, **recorder,
-                  [&](const std::string& n) { progress(n, run_loop.now()); }, &prepared.world};
+                  [&](const std::string& n) { progress(n, run_loop.now()); }, &prepared.world,
+                  seed};
   if (const Status s = task->Open(ctx); !s.ok()) {
     return finish("cannot create the runner's DDS endpoints: " + s.message());
   }

@@ -1,10 +1,16 @@
 #include "rover/deploy/runner/tasks/science_target_task.hpp"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <random>
+#include <sstream>
 
 #include "rover/base/format.hpp"
 #include "rover/msg/camera_idl.hpp"
+#include "rover/msg/mobility_idl.hpp"
+#include "rover/msg/sequence_idl.hpp"
 #include "rover/msg/mast_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
 #include "rover/msg/rendezvous_idl.hpp"
@@ -30,6 +36,8 @@ Status ParseXy(const YAML::Node& n, const std::string& key, double lo, double hi
 }
 
 constexpr double kNotJudged = std::numeric_limits<double>::quiet_NaN();
+// Relative 1-sigma of the ground's stereo range of a picked point (seed 004: 1-2 %).
+constexpr double kGroundRangeSigma = 0.015;
 
 }  // namespace
 
@@ -38,7 +46,9 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
   const yaml::FileErrors& err = source.errors;
   ROVER_RETURN_IF_ERROR(yaml::CheckKeys(
       n, "task",
-      {"type", "target", "standoff", "pixel_offset", "look_offset", "time_budget_s", "expect"}, err));
+      {"type", "target", "standoff", "pixel_offset", "look_offset", "time_budget_s", "expect",
+       "template"},
+      err));
   ScienceTargetSpec spec;
   double target = 0;
   ROVER_RETURN_IF_ERROR(yaml::OptionalNumber(n, "target", "task", 0, 99, err, &target));
@@ -54,6 +64,21 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
   if (const YAML::Node x = n["expect"]) {
     ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(x, ScienceExpectChoices(), err));
+  }
+  if (const YAML::Node t = n["template"]) {
+    ROVER_RETURN_IF_ERROR(yaml::CheckKeys(t, "task.template", {"file", "time_budget_s"}, err));
+    ROVER_RETURN_IF_ERROR(yaml::RequireKey(t, "task.template", "file", err));
+    TemplateSpec ts;
+    ts.file = t["file"].as<std::string>();
+    if (!ts.file.empty() && ts.file.front() != '/') {
+      const std::string dir = std::filesystem::path(source.scenario.file).parent_path().string();
+      ts.file = (dir.empty() ? std::string(".") : dir) + "/" + ts.file;
+    }
+    std::ifstream in(ts.file);
+    if (!in) return err.At(t["file"], "task.template.file: cannot read '" + ts.file + "'");
+    ROVER_RETURN_IF_ERROR(
+        yaml::OptionalNumber(t, "time_budget_s", "task.template", 10, 1e6, err, &ts.time_budget_s));
+    spec.template_approach = ts;
   }
   return spec;
 }
@@ -88,85 +113,88 @@ Status ScienceTargetTask::Open(TaskContext& ctx) {
   ROVER_ASSIGN_OR_RETURN(frames_, ctx.MakeReader<rover_ddl_StereoFrame>("ddl/stereo_frame"));
   ROVER_ASSIGN_OR_RETURN(truth_, ctx.MakeReader<rover_sim_Truth>("sim/truth"));
   ROVER_ASSIGN_OR_RETURN(odometry_, ctx.MakeReader<rover_dl_PoseEstimate>("dl/pose_odometry"));
+  ROVER_ASSIGN_OR_RETURN(estimate_, ctx.MakeReader<rover_dl_PoseEstimate>("dl/pose"));
+  if (spec_.template_approach) {
+    ROVER_ASSIGN_OR_RETURN(sequence_,
+                           ctx.MakeWriter<rover_apl_SequenceCommand>("apl/sequence_command"));
+    ROVER_ASSIGN_OR_RETURN(sequence_status_,
+                           ctx.MakeReader<rover_apl_SequenceStatus>("apl/sequence_status"));
+    ROVER_ASSIGN_OR_RETURN(mobility_,
+                           ctx.MakeWriter<rover_apl_MobilityCommand>("apl/mobility_command"));
+    ROVER_ASSIGN_OR_RETURN(mobility_status_,
+                           ctx.MakeReader<rover_apl_MobilityStatus>("apl/mobility_status"));
+  }
   return Status::Ok();
 }
 
 bool ScienceTargetTask::Ready() const {
   return command_.valid() && command_.MatchedReaders() > 0 && mast_.MatchedReaders() > 0 &&
-         camera_.MatchedReaders() > 0;
+         camera_.MatchedReaders() > 0 &&
+         (!spec_.template_approach ||
+          (sequence_.MatchedReaders() > 0 && mobility_.MatchedReaders() > 0));
 }
 
-TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
-  TaskOutcome out;
-  if (!top_) {
-    out.failure = "science_target needs the simulated world (truth) to pick the target";
-    return out;
-  }
-  std::optional<Eigen::Isometry3d> truth, odometry;
-  auto pump = [&] {
-    truth_.TakeEach([&](const dds::Sample<rover_sim_Truth>& s) {
-      truth = msg::IsometryFromIdl(s->pose);
-    });
-    odometry_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
-      if (auto p = msg::PoseSampleFromIdl(s.data()); p.ok()) odometry = p->site_from_rover;
-    });
-  };
-  // 1. Aim the mast at the target and take the designation pair.
-  StepResult look;
-  look.primitive = "designation_pair";
-  look.sim_start_s = ctx.Now();
-  ctx.Note("science_target: designation pair");
+void ScienceTargetTask::Pump() {
+  truth_.TakeEach([&](const dds::Sample<rover_sim_Truth>& s) {
+    truth_now_ = msg::IsometryFromIdl(s->pose);
+  });
+  odometry_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
+    if (auto p = msg::PoseSampleFromIdl(s.data()); p.ok()) odometry_now_ = p->site_from_rover;
+  });
+  estimate_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
+    if (auto p = msg::PoseSampleFromIdl(s.data()); p.ok()) estimate_now_ = p->site_from_rover;
+  });
+}
+
+std::string ScienceTargetTask::Designate(TaskContext& ctx, std::uint32_t n, StepResult* step,
+                                         Designation* d) {
+  step->primitive = "designation_pair";
+  step->sim_start_s = ctx.Now();
+  ctx.Note("science_target: designation pair " + std::to_string(n));
   msg::MastCommand m;
   m.stamp = Time::FromSeconds(ctx.Now());
-  m.command_id = kMastId;
+  m.command_id = kMastId + n - 1;
   m.pointing = msg::MastPointing::kLookAt;
   m.look_at = *top_ + Eigen::Vector3d(spec_.look_offset.x(), spec_.look_offset.y(), 0.0);
   rover_dl_MastCommand mw{};
   msg::MastCommandToIdl(m, &mw);
   dds::CopyString(mw.header.frame_id, "site");
-  if (!mast_.Write(mw).ok()) {
-    out.failure = "cannot send the mast command";
-    return out;
-  }
+  if (!mast_.Write(mw).ok()) return "cannot send the mast command";
   std::string mast_failure;
   bool at_goal = false;
-  out.failure = ctx.WaitUntil([&] {
-    pump();
+  std::string failure = ctx.WaitUntil([&] {
+    Pump();
     mast_status_.TakeEach([&](const dds::Sample<rover_dl_MastStatus>& s) {
       auto st = msg::MastStatusFromIdl(s.data());
-      if (!st.ok() || st->command_id != kMastId) return;
+      if (!st.ok() || st->command_id != m.command_id) return;
       if (st->state == msg::MastState::kAtGoal) at_goal = true;
       if (st->state == msg::MastState::kFault || st->state == msg::MastState::kRejected) {
         mast_failure = std::string("dl-mast ") + msg::MastStateName(st->state) + ": " + st->message;
       }
     });
-    return at_goal || !mast_failure.empty() || ctx.Now() - look.sim_start_s > 60.0;
+    return at_goal || !mast_failure.empty() || ctx.Now() - step->sim_start_s > 60.0;
   });
-  if (!out.failure.empty()) return out;
+  if (!failure.empty()) return failure;
   if (!at_goal) {
-    out.failure = mast_failure.empty() ? "dl-mast did not reach the designation pointing in 60 s"
-                                       : mast_failure;
-    return out;
+    return mast_failure.empty() ? "dl-mast did not reach the designation pointing in 60 s"
+                                : mast_failure;
   }
-  const std::uint32_t image_id = (kCameraPrefix << 24) | 1u;
+  d->image_id = (kCameraPrefix << 24) | n;
   msg::StereoRequest r;
   r.stamp = Time::FromSeconds(ctx.Now());
-  r.request_id = image_id;
+  r.request_id = d->image_id;
   r.camera = msg::CameraId::kNavcam;
   rover_ddl_StereoRequest rw{};
   msg::StereoRequestToIdl(r, &rw);
   dds::CopyString(rw.header.frame_id, "rover");
-  if (!camera_.Write(rw).ok()) {
-    out.failure = "cannot send the camera request";
-    return out;
-  }
+  if (!camera_.Write(rw).ok()) return "cannot send the camera request";
   std::optional<geometry::CameraModel> left_model;
   int width = 0, height = 0;
   const double asked = ctx.Now();
-  out.failure = ctx.WaitUntil([&] {
-    pump();
+  failure = ctx.WaitUntil([&] {
+    Pump();
     frames_.TakeEach([&](const dds::Sample<rover_ddl_StereoFrame>& s) {
-      if (s->request_id != image_id) return;
+      if (s->request_id != d->image_id) return;
       auto f = msg::StereoFrameFromIdl(s.data());
       if (!f.ok()) return;
       auto lm = msg::CameraModelFromFields(f->left_model);
@@ -177,29 +205,207 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
     });
     return left_model.has_value() || ctx.Now() - asked > 30.0;
   });
-  if (!out.failure.empty()) return out;
-  if (!left_model || !truth) {
-    out.failure = !left_model ? "no NAVCAM pair for the designation within 30 s" : "no sim/truth heard";
-    return out;
+  if (!failure.empty()) return failure;
+  if (!left_model || !truth_now_) {
+    return !left_model ? "no NAVCAM pair for the designation within 30 s" : "no sim/truth heard";
   }
-  // 2. The operator's pick: the target point projected, plus the scenario's offset.
-  const Eigen::Isometry3d truth_at_designation = *truth;
-  const std::optional<Eigen::Isometry3d> odometry_at_designation = odometry;
-  const Eigen::Vector3d top_rover = truth_at_designation.inverse() * *top_;
+  // The operator's pick: the target point projected with the true pose, plus the offset.
+  d->truth = *truth_now_;
+  d->estimate = estimate_now_;
+  d->odometry = odometry_now_;
+  const Eigen::Vector3d top_rover = d->truth.inverse() * *top_;
   const auto px = left_model->Project(top_rover);
-  if (!px) {
-    out.failure = "the target is behind the designation camera";
+  if (!px) return "the target is behind the designation camera";
+  d->pixel = *px + spec_.pixel_offset;
+  // The site point MER's operators would send (seed 003): the ground's stereo range of the
+  // picked point, 1-2 % off (seed 004: kGroundRangeSigma, drawn with the run's seed) along the
+  // camera's ray, placed in the site frame with the rover's own pose (dl/pose).
+  if (d->estimate) {
+    const Eigen::Vector3d c = d->truth * left_model->Center();
+    const Eigen::Vector3d ray = *top_ - c;
+    std::mt19937 rng(0x6e0u + ctx.seed);
+    std::normal_distribution<double> unit(0.0, 1.0);
+    const Eigen::Vector3d ranged = *top_ + kGroundRangeSigma * unit(rng) * ray;
+    d->ground_point = *d->estimate * (d->truth.inverse() * ranged);
+  }
+  step->sim_end_s = ctx.Now();
+  step->state = "succeeded";
+  step->message = "target at pixel (" + FormatNumber(d->pixel.x()) + ", " +
+                  FormatNumber(d->pixel.y()) + ") of " + std::to_string(width) + "x" +
+                  std::to_string(height) + ", " + FormatNumber(top_rover.head<2>().norm()) +
+                  " m away";
+  return "";
+}
+
+void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, TaskOutcome* out) {
+  const double standoff = spec_.standoff > 0 ? spec_.standoff : 1.05;
+  StepResult step;
+  step.primitive = "template_approach";
+  step.command_id = kSequenceId;
+  step.sim_start_s = ctx.Now();
+  auto done_with = [&](const std::string& state, const std::string& message) {
+    step.sim_end_s = ctx.Now();
+    step.state = state;
+    step.message = message;
+    out->steps.push_back(step);
+  };
+  if (!d.ground_point) {
+    done_with("failed", "the picked pixel has no ground range: no template approach");
+    ctx.recorder.AddFigure({"template_done", 0.0, kNotJudged, "", true, "no ground range"});
+    return;
+  }
+  std::ifstream in(spec_.template_approach->file);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const Eigen::Vector3d g = *d.ground_point;
+  Result<std::string> overrides = msg::FormatSequenceOverrides(
+      {{"target", "(" + FormatNumber(g.x(), 6) + ", " + FormatNumber(g.y(), 6) + ", " +
+                      FormatNumber(g.z(), 6) + ")"}});
+  if (!overrides.ok()) {
+    out->failure = "template: " + overrides.status().message();
+    done_with("failed", out->failure);
+    return;
+  }
+  msg::SequenceCommand c;
+  c.stamp = Time::FromSeconds(ctx.Now());
+  c.command_id = kSequenceId;
+  c.text = buffer.str();
+  c.overrides = *overrides;
+  rover_apl_SequenceCommand cw{};
+  if (Status s = msg::SequenceCommandToIdl(c, &cw); !s.ok()) {
+    out->failure = "template: " + s.message();
+    done_with("failed", out->failure);
+    return;
+  }
+  dds::CopyString(cw.header.frame_id, "site");
+  ctx.Note("science_target: template approach");
+  if (!sequence_.Write(cw).ok()) {
+    out->failure = "cannot send the template sequence";
+    done_with("failed", out->failure);
+    return;
+  }
+  std::optional<msg::SequenceStatus> end;
+  const double deadline = step.sim_start_s + spec_.template_approach->time_budget_s;
+  std::string failure = ctx.WaitUntil([&] {
+    Pump();
+    sequence_status_.TakeEach([&](const dds::Sample<rover_apl_SequenceStatus>& s) {
+      auto st = msg::SequenceStatusFromIdl(s.data());
+      if (!st.ok() || st->command_id != kSequenceId) return;
+      if (st->state == msg::SequenceState::kDone || st->state == msg::SequenceState::kFailed) end = *st;
+    });
+    return end.has_value() || ctx.Now() > deadline;
+  });
+  if (!failure.empty()) {
+    out->failure = failure;
+    done_with("interrupted", failure);
+    return;
+  }
+  const bool done = end && end->state == msg::SequenceState::kDone;
+  ctx.recorder.AddFigure({"template_done", done ? 1.0 : 0.0, kNotJudged, "", true,
+                          end ? end->message : "no terminal apl/sequence_status in the budget"});
+  if (done && truth_now_ && estimate_now_) {
+    // The arm would be sent to the target as the rover believes it: TARGET through dl/pose.
+    const Eigen::Vector3d believed = estimate_now_->inverse() * g;
+    const Eigen::Vector3d truth_rover = truth_now_->inverse() * *top_;
+    const Eigen::Vector3d e = believed - truth_rover;
+    ctx.recorder.AddFigure({"template_placement_error", 100.0 * e.norm(), kNotJudged, "cm", true,
+                            "template approach: the target point through dl/pose against the "
+                            "truth in the rover frame, 3-D"});
+    ctx.recorder.AddFigure({"template_placement_error_horizontal", 100.0 * e.head<2>().norm(),
+                            kNotJudged, "cm", true, "the same, horizontal"});
+    ctx.recorder.AddFigure({"template_standoff_error",
+                            100.0 * (truth_rover.head<2>().norm() - standoff), kNotJudged, "cm",
+                            true, "template approach: true distance to the target minus the standoff"});
+  }
+  done_with(done ? "succeeded" : "failed", end ? end->message : "over its budget");
+  if (!end) {
+    // Over budget: stop the sequence's motion before going back.
+    msg::MobilityCommand stop;
+    stop.command_id = kReturnDriveId - 1;
+    stop.mode = msg::MobilityMode::kStop;
+    msg::MobilityCommandMessage sm;
+    msg::MobilityCommandToIdl(stop, &sm);
+    (void)mobility_.Write(sm.msg);
+  }
+  // Back to the start for the tracked approach (DIRECTED, by dl/pose).
+  if (!estimate_now_) return;
+  const Eigen::Vector2d at = estimate_now_->translation().head<2>();
+  const double yaw = std::atan2((*estimate_now_).linear()(1, 0), (*estimate_now_).linear()(0, 0));
+  const Eigen::Vector2d to = Eigen::Vector2d(start_x_, start_y_) - at;
+  msg::MobilityCommand back;
+  back.stamp = Time::FromSeconds(ctx.Now());
+  back.command_id = kReturnDriveId;
+  back.mode = msg::MobilityMode::kDirected;
+  back.time_budget_s = 900.0;
+  const double face = std::remainder(std::atan2(to.y(), to.x()) - yaw, 2.0 * M_PI);
+  back.primitives.push_back({msg::DrivePrimitive::kTurnInPlace, 0.0, 0.0, face});
+  back.primitives.push_back({msg::DrivePrimitive::kStraight, 0.0, to.norm(), 0.0});
+  back.primitives.push_back({msg::DrivePrimitive::kTurnInPlace, 0.0, 0.0,
+                             std::remainder(start_yaw_ - (yaw + face), 2.0 * M_PI)});
+  msg::MobilityCommandMessage bm;
+  msg::MobilityCommandToIdl(back, &bm);
+  dds::CopyString(bm.msg.header.frame_id, "site");
+  StepResult ret;
+  ret.primitive = "return_to_start";
+  ret.command_id = kReturnDriveId;
+  ret.sim_start_s = ctx.Now();
+  ctx.Note("science_target: back to the start");
+  if (!mobility_.Write(bm.msg).ok()) {
+    out->failure = "cannot send the return drive";
+    return;
+  }
+  std::optional<msg::MobilityStatus> ended;
+  failure = ctx.WaitUntil([&] {
+    Pump();
+    mobility_status_.TakeEach([&](const dds::Sample<rover_apl_MobilityStatus>& s) {
+      auto st = msg::MobilityStatusFromIdl(s.data());
+      if (!st.ok() || st->command_id != kReturnDriveId) return;
+      if (st->state == msg::MobilityState::kSucceeded || st->state == msg::MobilityState::kFailed ||
+          st->state == msg::MobilityState::kRejected) {
+        ended = *st;
+      }
+    });
+    return ended.has_value() || ctx.Now() - ret.sim_start_s > 960.0;
+  });
+  ret.sim_end_s = ctx.Now();
+  ret.state = ended && ended->state == msg::MobilityState::kSucceeded ? "succeeded" : "failed";
+  ret.message = ended ? ended->message : "no end of the return drive";
+  out->steps.push_back(ret);
+  if (!failure.empty()) out->failure = failure;
+}
+
+TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
+  TaskOutcome out;
+  if (!top_) {
+    out.failure = "science_target needs the simulated world (truth) to pick the target";
     return out;
   }
-  const Eigen::Vector2d pixel = *px + spec_.pixel_offset;
-  look.sim_end_s = ctx.Now();
-  look.state = "succeeded";
-  look.message = "target at pixel (" + FormatNumber(pixel.x()) + ", " + FormatNumber(pixel.y()) +
-                 ") of " + std::to_string(width) + "x" + std::to_string(height) + ", " +
-                 FormatNumber(top_rover.head<2>().norm()) + " m away";
+  std::uint32_t pair_n = 1;
+  if (spec_.template_approach) {
+    StepResult look;
+    Designation first;
+    out.failure = Designate(ctx, pair_n++, &look, &first);
+    out.steps.push_back(look);
+    if (!out.failure.empty()) return out;
+    RunTemplate(ctx, first, &out);
+    if (!out.failure.empty()) return out;
+  }
+  // 1-2. The designation pair and the operator's pixel.
+  StepResult look;
+  Designation d;
+  out.failure = Designate(ctx, pair_n, &look, &d);
   out.steps.push_back(look);
+  if (!out.failure.empty()) return out;
+  const Eigen::Isometry3d truth_at_designation = d.truth;
+  const std::optional<Eigen::Isometry3d> odometry_at_designation = d.odometry;
+  const Eigen::Vector2d pixel = d.pixel;
+  const std::uint32_t image_id = d.image_id;
+  const Eigen::Vector3d top_rover = truth_at_designation.inverse() * *top_;
   ctx.recorder.AddFigure({"designation_range", top_rover.head<2>().norm(), kNotJudged, "m", true,
                           "true horizontal distance to the target at the designation"});
+  std::optional<Eigen::Isometry3d>& truth = truth_now_;
+  std::optional<Eigen::Isometry3d>& odometry = odometry_now_;
+  auto pump = [&] { Pump(); };
 
   // 3. The command, and its statuses.
   msg::RendezvousCommand c;
@@ -324,7 +530,7 @@ void RegisterScienceTargetTask(TaskRegistry& registry) {
         ROVER_ASSIGN_OR_RETURN(ScienceTargetSpec spec, ParseScienceTargetTask(source));
         const Scenario& s = source.scenario;
         return std::unique_ptr<Task>(
-            std::make_unique<ScienceTargetTask>(std::move(spec), s.start_x, s.start_y));
+            std::make_unique<ScienceTargetTask>(std::move(spec), s.start_x, s.start_y, s.start_yaw));
       });
 }
 

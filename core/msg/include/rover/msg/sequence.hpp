@@ -7,14 +7,18 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 
+#include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 
 namespace rover::msg {
 
 /// The longest sequence text apl/sequence_command carries [bytes].
 inline constexpr std::size_t kMaxSequenceTextBytes = 4095;
+/// The longest overrides text apl/sequence_command carries [bytes].
+inline constexpr std::size_t kMaxSequenceOverridesBytes = 1023;
 
 enum class SequenceState : std::int32_t {
   kIdle = 0,     ///< nothing has run yet
@@ -31,7 +35,17 @@ struct SequenceCommand {
   Time stamp;
   std::uint32_t command_id = 0;
   std::string text;  ///< <= kMaxSequenceTextBytes on the wire
+  /// "name = value" lines (FormatSequenceOverrides): values replacing the text's TARGET and
+  /// CONST definitions; <= kMaxSequenceOverridesBytes on the wire.
+  std::string overrides;
 };
+
+/// "name = value" lines of `overrides` (in name order), for SequenceCommand::overrides.
+/// Errors: a name that is not a word (letters, digits, '_'), a value with a line break.
+Result<std::string> FormatSequenceOverrides(const std::map<std::string, std::string>& overrides);
+/// The map of SequenceCommand::overrides; blank lines are skipped. Errors name the line:
+/// "overrides line 2: 'step 10 cm' has no '='", a name that is not a word, a name given twice.
+Result<std::map<std::string, std::string>> ParseSequenceOverrides(const std::string& text);
 
 /// apl/sequence_status: the latched status of the latest sequence.
 struct SequenceStatus {

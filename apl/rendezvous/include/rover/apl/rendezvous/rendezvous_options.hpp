@@ -64,7 +64,7 @@ struct RendezvousOptions {
   double target_max_range = 30.0;      ///< [m] a designated target farther than this is refused
   double target_leg = 1.0;             ///< [m] drive at most this far between tracking pairs
   /// [m] nearer than standoff + this, the last moves are directed (turn, straight) and short
-  double target_final_approach = 1.2;
+  double target_final_approach = 2.0;
   double target_along_tolerance = 0.03;     ///< [m] done within this of the standoff ...
   double target_heading_tolerance_deg = 2.0;  ///< [deg] ... facing the target within this
   int target_max_steps = 25;           ///< tracking pairs after the designation before PLACEMENT

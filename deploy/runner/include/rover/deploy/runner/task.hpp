@@ -50,6 +50,8 @@ struct TaskContext {
   /// The simulated world (truth: only the runner's tasks and the judge read it, never the
   /// stack); null where a task runs without one (unit tests).
   const sim::world::World* world = nullptr;
+  /// The run's seed (seeded randomness of a task, e.g. an operator's measurement error).
+  std::uint32_t seed = 0;
 
   /// Simulated time [s] (sim/clock).
   double Now() const { return loop.now(); }

@@ -27,8 +27,21 @@
 ///     look_offset: {x: 0, y: 0}   # [m] the mast aims this far off the target (site frame)
 ///     time_budget_s: 2400      # [s] the command's budget; 0 = the service's
 ///     expect: at_target        # | a fault: TARGET_LOST, BAD_COMMAND, ...
+///     template:                # optional: MER's conditional-sequence approach first
+///       file: ../sequences/approach_template.seq   # relative to the scenario file
+///       time_budget_s: 1500
 ///
 /// `at_target` passes on DONE after AT_TARGET; a fault name on FAILED with that fault.
+///
+/// With `template`, each run first approaches the same target as MER did (seed 003): the
+/// target's site point is ranged on the ground from the designation pair (the picked pixel by
+/// correlation along its ray, ray_stereo.hpp, with the dl/pose of the pair), written into the
+/// sequence's TARGET `target` (apl/sequencer ApplyOverrides) and sent on apl/sequence_command to
+/// apl-sequencer; at its end the runner measures where the rover believes the target is
+/// (dl/pose) against the truth (`template_placement_error`, ...), drives the rover back to the
+/// start (a DIRECTED turn, straight, turn from dl/pose) and takes a fresh designation pair for
+/// the tracked approach. The template's outcome is measured, not judged; the run's pass is the
+/// tracked approach's.
 
 #include <optional>
 #include <string>
@@ -37,6 +50,11 @@
 
 namespace rover::deploy::runner {
 
+struct TemplateSpec {
+  std::string file;  ///< resolved against the scenario's folder
+  double time_budget_s = 1500.0;
+};
+
 struct ScienceTargetSpec {
   int target = 0;
   double standoff = 0.0;
@@ -44,6 +62,7 @@ struct ScienceTargetSpec {
   Eigen::Vector2d look_offset = Eigen::Vector2d::Zero();
   double time_budget_s = 0.0;
   std::string expect = "at_target";
+  std::optional<TemplateSpec> template_approach;
 };
 
 /// Parses and checks the section (names file, line and key on error; a target index the
@@ -57,17 +76,38 @@ class ScienceTargetTask : public Task {
   static constexpr std::uint32_t kCameraPrefix = 200;
   static constexpr std::uint32_t kMastId = 0xC8000001u;
   static constexpr double kGraceS = 60.0;
+  static constexpr std::uint32_t kSequenceId = 100;
+  static constexpr std::uint32_t kReturnDriveId = 0xC8000101u;
 
-  ScienceTargetTask(ScienceTargetSpec spec, double start_x, double start_y)
-      : spec_(std::move(spec)), start_x_(start_x), start_y_(start_y) {}
+  ScienceTargetTask(ScienceTargetSpec spec, double start_x, double start_y, double start_yaw)
+      : spec_(std::move(spec)), start_x_(start_x), start_y_(start_y), start_yaw_(start_yaw) {}
   Status Open(TaskContext& ctx) override;
   bool Ready() const override;
   TaskOutcome Run(TaskContext& ctx) override;
   std::vector<Eigen::Vector2d> PlannedPath() const override;
 
  private:
+  struct Designation {
+    Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+    std::uint32_t image_id = 0;
+    Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();  // sim/truth at the pair
+    std::optional<Eigen::Isometry3d> estimate, odometry;      // dl/pose, dl/pose_odometry
+    std::optional<Eigen::Vector3d> ground_point;  // the pixel ranged on the ground, site frame
+  };
+  // Looks at the target, takes pair `n`, picks the pixel; "" or the failure.
+  std::string Designate(TaskContext& ctx, std::uint32_t n, StepResult* step, Designation* d);
+  // MER's template approach to the ground-ranged point, then back to the start.
+  void RunTemplate(TaskContext& ctx, const Designation& d, TaskOutcome* out);
+  void Pump();
+
+  std::optional<Eigen::Isometry3d> truth_now_, estimate_now_, odometry_now_;
+  dds::Writer<rover_apl_SequenceCommand> sequence_;
+  dds::Reader<rover_apl_SequenceStatus> sequence_status_;
+  dds::Writer<rover_apl_MobilityCommand> mobility_;
+  dds::Reader<rover_apl_MobilityStatus> mobility_status_;
+  dds::Reader<rover_dl_PoseEstimate> estimate_;
   ScienceTargetSpec spec_;
-  double start_x_, start_y_;
+  double start_x_, start_y_, start_yaw_;
   std::optional<Eigen::Vector3d> top_;  // the target point (site frame), from the world
   dds::Writer<rover_apl_RendezvousCommand> command_;
   dds::Writer<rover_dl_MastCommand> mast_;
