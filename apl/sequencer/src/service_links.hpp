@@ -31,7 +31,7 @@ inline constexpr std::uint32_t kCancelIdBit = 0x80000000u;
 bool ServiceDispatches(Family f);
 /// Ok when every command of the sequence (statements and ON_ABORT block) is of a family the
 /// service dispatches; else InvalidArgument naming the first other one's line and command:
-/// "line 5: APPROACH_TARGET: apl-sequencer does not dispatch rendezvous commands yet".
+/// "line 5: ARM STOW: apl-sequencer does not dispatch arm commands yet".
 Status CheckDispatchable(const Sequence& sequence);
 
 /// The apl/mobility_command of a mobility command, stamped `stamp`. Errors: a speed other than 0

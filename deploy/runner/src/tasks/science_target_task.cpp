@@ -327,7 +327,18 @@ void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, Task
     msg::MobilityCommandToIdl(stop, &sm);
     (void)mobility_.Write(sm.msg);
   }
-  // Back to the start for the tracked approach (DIRECTED, by dl/pose).
+  // Back to the start for the tracked approach (DIRECTED, by dl/pose), after clearing a motion
+  // error the template may have latched (its own run is measured above).
+  {
+    msg::MobilityCommand clear;
+    clear.stamp = Time::FromSeconds(ctx.Now());
+    clear.command_id = kReturnDriveId - 2;
+    clear.mode = msg::MobilityMode::kClearFault;
+    msg::MobilityCommandMessage cm;
+    msg::MobilityCommandToIdl(clear, &cm);
+    dds::CopyString(cm.msg.header.frame_id, "site");
+    (void)mobility_.Write(cm.msg);
+  }
   if (!estimate_now_) return;
   const Eigen::Vector2d at = estimate_now_->translation().head<2>();
   const double yaw = std::atan2((*estimate_now_).linear()(1, 0), (*estimate_now_).linear()(0, 0));
