@@ -40,6 +40,7 @@
 #include "rover/deploy/fault_campaign.hpp"
 #include "rover/deploy/compose.hpp"
 #include "rover/deploy/fault_commands.hpp"
+#include "rover/deploy/seq_commands.hpp"
 #include "rover/deploy/run_report.hpp"
 #include "rover/deploy/scenario.hpp"
 #include "rover/deploy/security.hpp"
@@ -1190,6 +1191,22 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{4294967295}));
   fault_clear_cmd->add_option("-p,--project", fault_project, "project (default: the only one up)");
 
+  auto* seq_cmd = app.add_subcommand("seq", "run command sequences on a running set");
+  seq_cmd->require_subcommand(1);
+  rover::deploy::SeqRunArgs seq_run;
+  std::string seq_project;
+  auto* seq_run_cmd = seq_cmd->add_subcommand(
+      "run", "send a sequence file to apl-sequencer and follow it to DONE or FAILED "
+             "(docs/services/apl-sequencer.md)");
+  seq_run_cmd->add_option("file", seq_run.file, "the sequence (apl/sequencer/README.md)")->required();
+  seq_run_cmd->add_option("--set", seq_run.sets,
+                          "name=value: replaces the text's TARGET or CONST definition (repeatable), "
+                          "e.g. --set 'target=(5.2, 0.4, 0)'");
+  seq_run_cmd->add_option("-p,--project", seq_project, "project (default: the only one up)");
+  seq_run_cmd->add_flag("--no-wait", seq_run.no_wait, "return after the first status");
+  seq_run_cmd->add_option("--timeout", seq_run.timeout_s, "[s] wall: stop waiting after this (0 = never)")
+      ->check(CLI::NonNegativeNumber);
+
   // Usage errors are exit code 2 (docs/roverctl.md), not CLI11's own codes; --help is 0.
   try {
     app.parse(argc, argv);
@@ -1281,6 +1298,13 @@ int main(int argc, char** argv) {
         fault_clear_id > 0 ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(fault_clear_id))
                            : std::nullopt;
     return rover::deploy::RunFaultClear(*target, id, std::cout, std::cerr);
+  }
+  if (*seq_cmd) {
+    auto set = ResolveLiveSet(state_root, seq_project);
+    if (!set.ok()) return Fail(set.status().message());
+    setenv("CYCLONEDDS_URI", DdsConfigUri().c_str(), 0);  // the set's own configuration
+    JoinAs(set->state.value("security_dir", ""), "sequence-operator");
+    return rover::deploy::RunSeqRun(set->domain, seq_run, std::cout, std::cerr);
   }
   if (*record_cmd) {
     auto target = ResolveTarget(state_root, project, rec_domain, true);
