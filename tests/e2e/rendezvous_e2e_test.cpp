@@ -63,5 +63,50 @@ TEST(RendezvousE2e, ShortLanderReturnEndsOnTheDeckAfterAPlacementAtTheRampBase) 
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
 }
 
+// FIDO's single-command science-target approach (TARGET_SCIENCE), short: the target picked in
+// a NAVCAM image, tracked to the standoff, the arm's aim within 2 cm of the truth; then a target
+// that leaves the view ends in its typed goal error with nothing driven after the lost pair.
+TEST(RendezvousE2e, ShortScienceTargetApproachAndALostTarget) {
+  testing::UseLoopbackDds();
+  const std::string dir = testing::MakeTempDir("science-e2e");
+  testing::RoverctlRunner roverctl(dir);
+  const auto [e, out] = roverctl.Run(
+      {"run", testing::SourceDir() + "/tests/e2e/scenarios/short_science_target.yaml", "--out",
+       dir + "/out"},
+      std::chrono::minutes(8));
+  roverctl.KillLeftovers();
+  const std::string run = dir + "/out/short-science-target-seed1";
+  ASSERT_TRUE(fs::exists(run + "/result.json")) << out;
+  std::ifstream in(run + "/result.json");
+  const nlohmann::json result = nlohmann::json::parse(in);
+  EXPECT_TRUE(result["pass"].get<bool>()) << result.value("failure", "") << "\n" << out;
+  const nlohmann::json placement = Entry(result, "figures", "placement_error");
+  ASSERT_FALSE(placement.is_null()) << result.dump(2);
+  EXPECT_LT(placement["measured"].get<double>(), 2.0) << "[cm]";
+  const nlohmann::json odometry = Entry(result, "figures", "odometry_placement_error");
+  ASSERT_FALSE(odometry.is_null());
+  EXPECT_TRUE(fs::exists(run + "/detections/target_00.png"));
+  EXPECT_EQ(e.code, 0) << out;
+
+  const auto [e2, out2] = roverctl.Run(
+      {"run", testing::SourceDir() + "/deploy/scenarios/science_target_lost.yaml", "--out",
+       dir + "/lost"},
+      std::chrono::minutes(6));
+  roverctl.KillLeftovers();
+  const std::string lost = dir + "/lost/science-target-lost-seed1";
+  ASSERT_TRUE(fs::exists(lost + "/result.json")) << out2;
+  std::ifstream in2(lost + "/result.json");
+  const nlohmann::json r2 = nlohmann::json::parse(in2);
+  EXPECT_TRUE(r2["pass"].get<bool>()) << r2.value("failure", "") << "\n" << out2;
+  ASSERT_EQ(r2["steps"].size(), 2u) << r2.dump(2);
+  EXPECT_EQ(r2["steps"][1].value("termination", ""), "TARGET_LOST");
+  EXPECT_NE(r2["steps"][1].value("message", "").find("OUT_OF_VIEW"), std::string::npos);
+  EXPECT_LT(r2["distance_driven_m"].get<double>(), 1.2) << "nothing driven after the lost pair";
+  EXPECT_EQ(e2.code, 0) << out2;
+
+  std::error_code ec;
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
+}
+
 }  // namespace
 }  // namespace rover

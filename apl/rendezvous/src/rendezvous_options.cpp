@@ -56,6 +56,7 @@ Status RendezvousOptions::Validate() const {
                                    target_max_standoff, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "target_max_range", target_max_range, 2.0, 100.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange(p + "target_leg", target_leg, 0.2, 5.0, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "target_max_step_fraction", target_max_step_fraction, 0.05, 0.9));
   ROVER_RETURN_IF_ERROR(
       CheckRange(p + "target_final_approach", target_final_approach, 0.1, 5.0, "m"));
   ROVER_RETURN_IF_ERROR(
@@ -114,6 +115,8 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
   b.Bind("target_max_standoff", &O::target_max_standoff, "m", "largest science standoff asked");
   b.Bind("target_max_range", &O::target_max_range, "m", "a designated target farther is refused");
   b.Bind("target_leg", &O::target_leg, "m", "science target: drive at most this far between pairs");
+  b.Bind("target_max_step_fraction", &O::target_max_step_fraction, "",
+         "science target: no step longer than this fraction of the distance to it");
   b.Bind("target_final_approach", &O::target_final_approach, "m",
          "nearer than standoff + this: directed turn and straight");
   b.Bind("target_along_tolerance", &O::target_along_tolerance, "m", "done within this of the standoff");

@@ -255,12 +255,15 @@ void TargetApproach::Decide(Time now, ExecutorOutput* out) {
     return;
   }
   Reply(out);
+  // No step longer than a fraction of the distance: the target's image grows by at most
+  // 1 / (1 - fraction) between pairs, which its patch and features are matched through.
+  const double step = std::min(options_.target_leg, options_.target_max_step_fraction * d);
   msg::MobilityCommand c;
   if (along > options_.target_final_approach && options_.target_leg_mode != "directed") {
     // A leg of at most target_leg towards the standoff point.
     const Eigen::Vector2d rover = pose_->site_from_rover.translation().head<2>();
     const Eigen::Vector2d dir = (target_site_.head<2>() - rover).normalized();
-    const Eigen::Vector2d goal = rover + std::min(options_.target_leg, along) * dir;
+    const Eigen::Vector2d goal = rover + std::min(step, along) * dir;
     c.mode = options_.target_leg_mode == "goto_waypoint" ? msg::MobilityMode::kGoToWaypoint
                                                          : msg::MobilityMode::kAutoNav;
     c.goal = Eigen::Vector3d(goal.x(), goal.y(), 0.0);
@@ -271,7 +274,7 @@ void TargetApproach::Decide(Time now, ExecutorOutput* out) {
     // Face it, then straight (backwards when too close), at most target_leg.
     c.mode = msg::MobilityMode::kDirected;
     if (std::abs(bearing) > 0.05 * kDegree) c.primitives.push_back(Turn(bearing));
-    const double go = std::clamp(along, -options_.target_leg, options_.target_leg);
+    const double go = std::clamp(along, -options_.target_leg, step);
     if (std::abs(go) > 0.002) c.primitives.push_back(Straight(go));
     if (c.primitives.empty()) c.primitives.push_back(Turn(bearing));
   }

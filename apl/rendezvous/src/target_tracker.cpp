@@ -65,6 +65,7 @@ Status TrackerOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.max_target_alone_jump_m", max_target_alone_jump_m,
                                    Bounds::OpenLow(0.0, 10.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.gate_sigma", gate_sigma, Bounds::OpenLow(0.0, 100.0)));
+  ROVER_RETURN_IF_ERROR(CheckRange("tracker.gate_floor_m", gate_floor_m, 0.0, 1.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.ransac_iterations", ransac_iterations, 1, 100000));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.stereo_half_window", stereo_half_window, 2, 40, "px"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_stereo_ncc", min_stereo_ncc, -1.0, 1.0));
@@ -94,6 +95,7 @@ void TrackerOptions::BindParams(ParamBinder<TrackerOptions>& b) {
          "too few features agree: the target's own match goes on alone when this good");
   b.Bind("max_target_alone_jump_m", &O::max_target_alone_jump_m, "m",
          "... and within this of where the pose puts it");
+  b.Bind("gate_floor_m", &O::gate_floor_m, "m", "... plus this (a repeating texture's next cell is not the target)");
   b.Bind("gate_sigma", &O::gate_sigma, "", "target measurement gate against the motion, in sigma");
   b.Bind("ransac_iterations", &O::ransac_iterations, "", "3-point rigid fits tried");
   b.Bind("stereo_half_window", &O::stereo_half_window, "px", "half side of the range correlation patch");
@@ -485,7 +487,7 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
   double var = var_c;
   if (ok[0]) {
     const double var_m = std::max(sig[0] * sig[0], 1e-6);
-    const double gate = options_.gate_sigma * std::sqrt(var_m + var_c) + 0.02;
+    const double gate = options_.gate_sigma * std::sqrt(var_m + var_c) + options_.gate_floor_m;
     if ((xyz[0] - carried).norm() <= gate) {
       target = (xyz[0] / var_m + carried / var_c) / (1.0 / var_m + 1.0 / var_c);
       var = 1.0 / (1.0 / var_m + 1.0 / var_c);

@@ -63,6 +63,9 @@ struct RendezvousOptions {
   double target_max_standoff = 1.5;    ///< [m] largest
   double target_max_range = 30.0;      ///< [m] a designated target farther than this is refused
   double target_leg = 1.0;             ///< [m] drive at most this far between tracking pairs
+  /// ... and at most this fraction of the distance to the target (the image grows by at most
+  /// 1 / (1 - fraction) between pairs)
+  double target_max_step_fraction = 0.35;
   /// [m] nearer than standoff + this, the last moves are directed (turn, straight) and short
   double target_final_approach = 2.0;
   double target_along_tolerance = 0.03;     ///< [m] done within this of the standoff ...

@@ -23,7 +23,7 @@
 ///     measured motion and matched again within +-refine_px (8-9, the homography refinement),
 ///     and re-ranged at full resolution (10), and the motion fitted again.
 ///  7. The target: its own patch's match re-ranged in the cur pair when it agrees with the
-///     motion (within gate_sigma of its stereo sigma + 2 cm), else carried by the motion (12).
+///     motion (within gate_sigma sigma + gate_floor_m), else carried by the motion (12).
 ///  8. The cur pair becomes ref; its features are taken about the new target position.
 /// The target's range error falls with its distance (~1 cm at 2 m for the NAVCAM), so the fix
 /// at the standoff is measured from there, not carried from the designation at 10 m.
@@ -68,7 +68,8 @@ struct TrackerOptions {
   double min_inlier_ratio = 0.4;  ///< ... or fewer than this share of those found again
   double inlier_m = 0.02;      ///< [m] RANSAC threshold floor ...
   double inlier_range_ratio = 0.015;  ///< ... or this fraction of the feature's range
-  double gate_sigma = 3.0;     ///< target measurement within this many sigma (+2 cm) of the motion
+  double gate_sigma = 3.0;     ///< target measurement within this many sigma ...
+  double gate_floor_m = 0.005; ///< ... + this [m] of where the features' motion carries it
   /// Too few features agree on a motion: the target's own match (this correlation or better,
   /// within max_target_alone_jump_m of where the pose puts it) keeps the track alone.
   double min_target_alone_ncc = 0.9;
