@@ -77,6 +77,7 @@ Status JointsService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   const double max_future = p.GetDouble("max_future_s");
   telemetry_.emplace("hw/motor_telemetry", options_.stale_after_s, max_future);
   pots_.emplace("hw/suspension_pots", options_.stale_after_s, max_future);
+  contact_.emplace("hw/arm_contact", options_.stale_after_s, max_future);
 
   auto w = ctx.MakeWriter<rover_ddl_JointState>("ddl/joint_state");
   if (!w.ok()) return w.status();
@@ -87,6 +88,9 @@ Status JointsService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_SuspensionPots>(
       "hw/suspension_pots",
       [this](const dds::Sample<rover_hw_SuspensionPots>& s) { return OnPots(s.data()); }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_ArmContact>(
+      "hw/arm_contact",
+      [this](const dds::Sample<rover_hw_ArmContact>& s) { return OnContact(s.data()); }));
   ctx.executor().AddTimer(Seconds(1.0 / p.GetDouble("rate_hz")), [this] { OnTimer(); });
   ctx.SetHealth(rover_HEALTH_STALE, telemetry_->StaleReason(ctx.Now()));
   return Status::Ok();
@@ -102,6 +106,7 @@ Time JointsService::Now() {
     reader_.emplace(std::move(*fresh));
     telemetry_->Reset();
     pots_->Reset();
+    contact_->Reset();
   }
   return now;
 }
@@ -125,6 +130,17 @@ Status JointsService::OnPots(const rover_hw_SuspensionPots& p) {
     return s;
   }
   reader_->OnSuspensionPots(msg::SuspensionPotsFromIdl(p));
+  return Status::Ok();
+}
+
+Status JointsService::OnContact(const rover_hw_ArmContact& c) {
+  const Time now = Now();
+  const Status s = contact_->Accept(c.header.stamp_ns, now, ctx_->clock().valid());
+  if (!s.ok()) {
+    WarnDropped(*contact_, s);
+    return s;
+  }
+  reader_->OnArmContact(msg::ArmContactFromIdl(c));
   return Status::Ok();
 }
 

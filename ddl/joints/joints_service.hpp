@@ -33,6 +33,7 @@ class JointsService final : public Service {
   Time Now();
   Status OnTelemetry(const rover_hw_MotorTelemetry& t);
   Status OnPots(const rover_hw_SuspensionPots& p);
+  Status OnContact(const rover_hw_ArmContact& c);
   void OnTimer();
 
   ServiceContext* ctx_ = nullptr;
@@ -41,6 +42,7 @@ class JointsService final : public Service {
   std::optional<JointReader> reader_;
   std::optional<driver_support::InputMonitor> telemetry_;
   std::optional<driver_support::InputMonitor> pots_;
+  std::optional<driver_support::InputMonitor> contact_;  // not part of the health (joint_reader.hpp)
   driver_support::ClockJumpDetector clock_jump_;
   dds::Writer<rover_ddl_JointState> writer_;
   std::optional<std::int64_t> last_stamp_ns_;  // header.stamp_ns of the last ddl/joint_state

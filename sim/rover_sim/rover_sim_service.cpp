@@ -89,6 +89,7 @@ class RoverSim final : public rover::Service {
     ROVER_RETURN_IF_ERROR(Make(ctx, "sim/truth", &truth_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/motor_telemetry", &telemetry_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/suspension_pots", &pots_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/arm_contact", &contact_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/imu", &imu_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/sun_sensor", &sun_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/camera_frame", &frame_w_));
@@ -293,6 +294,7 @@ class RoverSim final : public rover::Service {
     if (s.motor_telemetry)
       Send(telemetry_w_, *s.motor_telemetry, &msg::MotorTelemetryToIdl, "rover");
     if (s.suspension_pots) Send(pots_w_, *s.suspension_pots, &msg::SuspensionPotsToIdl, "rover");
+    if (s.arm_contact) Send(contact_w_, *s.arm_contact, &msg::ArmContactToIdl, "rover");
     if (s.imu) Send(imu_w_, *s.imu, &msg::ImuRawToIdl, "imu");
     if (s.sun_sensor) Send(sun_w_, *s.sun_sensor, &msg::SunSensorRawToIdl, "sun_sensor");
     if (o.truth) Send(truth_w_, *o.truth, &rs::TruthToIdl, "site");
@@ -411,6 +413,7 @@ class RoverSim final : public rover::Service {
   dds::Writer<rover_sim_Truth> truth_w_;
   dds::Writer<rover_hw_MotorTelemetry> telemetry_w_;
   dds::Writer<rover_hw_SuspensionPots> pots_w_;
+  dds::Writer<rover_hw_ArmContact> contact_w_;
   dds::Writer<rover_hw_ImuRaw> imu_w_;
   dds::Writer<rover_hw_SunSensorRaw> sun_w_;
   dds::Writer<rover_hw_CameraFrame> frame_w_;

@@ -14,8 +14,10 @@
 namespace rover {
 namespace {
 
-constexpr MotorKind kKinds[] = {MotorKind::kDrive, MotorKind::kSteer, MotorKind::kMastPan,
-                                MotorKind::kMastTilt};
+constexpr MotorKind kKinds[] = {MotorKind::kDrive,      MotorKind::kSteer,
+                                MotorKind::kMastPan,    MotorKind::kMastTilt,
+                                MotorKind::kArmAzimuth, MotorKind::kArmShoulder,
+                                MotorKind::kArmElbow,   MotorKind::kArmWrist};
 
 std::string Join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
@@ -85,7 +87,9 @@ MotorKind MotorKindOf(int motor) {
   ROVER_DEMAND(motor >= 0 && motor < hw::kNumMotors);
   if (motor <= hw::kDriveRR) return MotorKind::kDrive;
   if (motor <= hw::kSteerRR) return MotorKind::kSteer;
-  return motor == hw::kMastPan ? MotorKind::kMastPan : MotorKind::kMastTilt;
+  if (motor == hw::kMastPan) return MotorKind::kMastPan;
+  if (motor == hw::kMastTilt) return MotorKind::kMastTilt;
+  return static_cast<MotorKind>(static_cast<int>(MotorKind::kArmAzimuth) + motor - hw::kArmAzimuth);
 }
 
 const char* MotorKindName(MotorKind kind) {
@@ -98,6 +102,14 @@ const char* MotorKindName(MotorKind kind) {
       return "mast_pan";
     case MotorKind::kMastTilt:
       return "mast_tilt";
+    case MotorKind::kArmAzimuth:
+      return "arm_azimuth";
+    case MotorKind::kArmShoulder:
+      return "arm_shoulder";
+    case MotorKind::kArmElbow:
+      return "arm_elbow";
+    case MotorKind::kArmWrist:
+      return "arm_wrist";
   }
   return "?";
 }
@@ -194,6 +206,24 @@ MotorSpec DefaultMotorSpec(MotorKind kind) {
       s.current_limit = 0.9;
       s.position_tolerance = 0.003;
       break;
+    case MotorKind::kArmAzimuth:
+    case MotorKind::kArmShoulder:
+    case MotorKind::kArmElbow:
+    case MotorKind::kArmWrist: {
+      // The joint limits are the arm description's (rover_description.hpp: arm).
+      const hwconfig::ArmDescription arm;
+      const auto j = static_cast<std::size_t>(static_cast<int>(kind) -
+                                              static_cast<int>(MotorKind::kArmAzimuth));
+      s.gear_ratio = 1500.0;
+      s.max_rate = 0.5;
+      s.default_rate = 0.25;
+      s.max_acceleration = 1.0;
+      s.min_angle = arm.min_angle[j];
+      s.max_angle = arm.max_angle[j];
+      s.current_limit = 0.9;
+      s.position_tolerance = 0.002;
+      break;
+    }
   }
   return s;
 }

@@ -5,7 +5,8 @@ namespace rover::hw {
 const char* MotorName(int motor) {
   static constexpr const char* kNames[kNumMotors] = {
       "drive_lf", "drive_lm", "drive_lr", "drive_rf", "drive_rm", "drive_rr",
-      "steer_lf", "steer_lr", "steer_rf", "steer_rr", "mast_pan", "mast_tilt"};
+      "steer_lf", "steer_lr", "steer_rf", "steer_rr", "mast_pan", "mast_tilt",
+      "arm_azimuth", "arm_shoulder", "arm_elbow", "arm_wrist"};
   return (motor >= 0 && motor < kNumMotors) ? kNames[motor] : "?";
 }
 

@@ -155,6 +155,24 @@ void RoverDescription::BindParams(Binder& b) {
   BindMount(b, "navcam", &D::navcam, "NAVCAM, mast-head frame");
   BindMount(b, "front_hazcam", &D::front_hazcam, "front HAZCAM, rover frame");
   BindMount(b, "rear_hazcam", &D::rear_hazcam, "rear HAZCAM, rover frame");
+  BindPoint(
+      b, "arm.shoulder", [](auto& d) -> auto& { return d.arm.shoulder; },
+      "arm shoulder pivot (the azimuth axis is vertical through it)");
+  BindNumber(
+      b, "arm.upper_arm", [](auto& d) -> auto& { return d.arm.upper_arm; }, 1.0, "m",
+      "arm shoulder to elbow");
+  BindNumber(
+      b, "arm.forearm", [](auto& d) -> auto& { return d.arm.forearm; }, 1.0, "m",
+      "arm elbow to wrist");
+  BindNumber(
+      b, "arm.tool_length", [](auto& d) -> auto& { return d.arm.tool_length; }, 1.0, "m",
+      "arm wrist to the instrument's face centre");
+  BindNumber(
+      b, "arm.link_radius", [](auto& d) -> auto& { return d.arm.link_radius; }, 1.0, "m",
+      "radius of the capsule about each arm link (swept-volume checks)");
+  BindNumber(
+      b, "arm.clearance", [](auto& d) -> auto& { return d.arm.clearance; }, 1.0, "m",
+      "distance every arm pose keeps from the rover's keep-out boxes");
   b.BindDegrees("max_steer_angle_deg", &D::max_steer_angle,
                 "corner-wheel steering limit for driving");
   b.Bind("min_turn_radius", &D::min_turn_radius, "m",
@@ -164,6 +182,7 @@ void RoverDescription::BindParams(Binder& b) {
 }
 
 Status RoverDescription::Validate() const {
+  ROVER_RETURN_IF_ERROR(arm.Validate());
   ROVER_RETURN_IF_ERROR(CheckRange("wheel_radius", wheel_radius, 0.01, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("wheel_width", wheel_width, 0.005, 2.0, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("front_wheel_x", front_wheel_x, -5.0, 5.0, "m"));
@@ -352,6 +371,80 @@ TurnCircle RoverDescription::TurnInPlaceCircle() const {
 
 Eigen::Isometry3d RoverDescription::NavcamPose(double pan, double tilt) const {
   return mast.HeadPose(pan, tilt) * navcam.Pose();
+}
+
+
+std::vector<KeepOutBox> RoverDescription::ArmKeepOut() const {
+  std::vector<KeepOutBox> out;
+  const Eigen::Vector3d half_body = 0.5 * body_size;
+  out.push_back({"body", body_centre - half_body, body_centre + half_body});
+  // The front HAZCAM pair's housing: 6 cm deep, 8 cm tall, the baseline plus 6 cm wide.
+  const Eigen::Vector3d hazcam_half(0.03, 0.5 * front_hazcam.baseline + 0.03, 0.04);
+  out.push_back({"front_hazcam", front_hazcam.position - hazcam_half,
+                 front_hazcam.position + hazcam_half});
+  // The mast column, 10 cm square, from the pan joint up to the head.
+  out.push_back({"mast", mast.pan_joint - Eigen::Vector3d(0.05, 0.05, 0.0),
+                 mast.pan_joint + Eigen::Vector3d(0.05, 0.05, mast.head_height)});
+  for (int w = 0; w < kNumWheels; ++w) {
+    const Eigen::Vector3d c = WheelCentre(w);
+    const Eigen::Vector3d half(wheel_radius, 0.5 * wheel_width, wheel_radius);
+    out.push_back({std::string("wheel_") + WheelName(w), c - half, c + half});
+  }
+  return out;
+}
+
+Status RoverDescription::CheckArmPose(const ArmAngles& q) const {
+  const ArmPoints p = arm.Forward(q);
+  const double need = arm.link_radius + arm.clearance;
+  struct Link {
+    const char* name;
+    Eigen::Vector3d a, b;
+    bool ground;
+  };
+  const Link links[] = {{"upper arm", p.shoulder, p.elbow, true},
+                        {"forearm", p.elbow, p.wrist, true},
+                        {"instrument", p.wrist, p.face, false}};
+  const std::vector<KeepOutBox> boxes = ArmKeepOut();
+  for (const Link& l : links) {
+    const int n = std::max(2, static_cast<int>(std::ceil((l.b - l.a).norm() / 0.01)) + 1);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d x = l.a + (l.b - l.a) * (static_cast<double>(i) / (n - 1));
+      if (l.ground && x.z() < need) {
+        return FailedPrecondition(std::string("the arm's ") + l.name + " would be " +
+                                  FormatNumber(x.z()) + " m above the ground plane (needs " +
+                                  FormatNumber(need) + ")");
+      }
+      for (const KeepOutBox& box : boxes) {
+        const double d = box.DistanceTo(x);
+        if (d < need) {
+          return FailedPrecondition(std::string("the arm's ") + l.name + " would come " +
+                                    FormatNumber(d) + " m from the rover's " + box.name +
+                                    " (needs " + FormatNumber(need) + ")");
+        }
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+Status RoverDescription::CheckArmMove(const ArmAngles& from, const ArmAngles& to) const {
+  double largest = 0.0;
+  for (int j = 0; j < kArmJoints; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    largest = std::max(largest, std::abs(to[k] - from[k]));
+  }
+  const int steps = std::max(1, static_cast<int>(std::ceil(largest / arm.check_step)));
+  for (int i = 0; i <= steps; ++i) {
+    const double s = static_cast<double>(i) / steps;
+    ArmAngles q;
+    for (std::size_t k = 0; k < q.size(); ++k) q[k] = from[k] + s * (to[k] - from[k]);
+    const Status st = CheckArmPose(q);
+    if (!st.ok()) {
+      return FailedPrecondition("arm move refused at " + FormatNumber(100.0 * s) +
+                                " % of the way: " + st.message());
+    }
+  }
+  return Status::Ok();
 }
 
 }  // namespace rover::hwconfig

@@ -81,6 +81,15 @@ void SuspensionPotsToIdl(const hw::SuspensionPots& in, rover_hw_SuspensionPots* 
   for (std::size_t i = 0; i < in.adc.size(); ++i) out->adc[i] = in.adc[i];
 }
 
+hw::ArmContact ArmContactFromIdl(const rover_hw_ArmContact& in) {
+  return {in.header.stamp_ns, in.closed};
+}
+
+void ArmContactToIdl(const hw::ArmContact& in, rover_hw_ArmContact* out) {
+  out->header.stamp_ns = in.stamp_ns;
+  out->closed = in.closed;
+}
+
 hw::ImuRaw ImuRawFromIdl(const rover_hw_ImuRaw& in) {
   hw::ImuRaw r;
   r.stamp_ns = in.header.stamp_ns;

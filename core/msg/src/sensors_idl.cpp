@@ -66,6 +66,8 @@ void JointStateToIdl(const JointState& in, rover_ddl_JointState* out) {
   Copy(in.bogie_angle, out->bogie_angle);
   out->mast_pan = in.mast_pan;
   out->mast_tilt = in.mast_tilt;
+  Copy(in.arm_angle, out->arm_angle);
+  out->arm_contact = in.arm_contact;
   out->health = HealthToIdl(in.health);
 }
 
@@ -79,6 +81,8 @@ Result<JointState> JointStateFromIdl(const rover_ddl_JointState& in) {
   Copy(in.bogie_angle, j.bogie_angle);
   j.mast_pan = in.mast_pan;
   j.mast_tilt = in.mast_tilt;
+  Copy(in.arm_angle, j.arm_angle);
+  j.arm_contact = in.arm_contact;
   ROVER_ASSIGN_OR_RETURN(j.health, HealthFromIdl(in.health, "ddl/joint_state health"));
   return j;
 }

@@ -11,6 +11,7 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"hw/motor_goals", "rover_hw_MotorGoals", P::kCommand},
       {"hw/motor_telemetry", "rover_hw_MotorTelemetry", P::kStream},
       {"hw/suspension_pots", "rover_hw_SuspensionPots", P::kStream},
+      {"hw/arm_contact", "rover_hw_ArmContact", P::kStream},
       {"hw/imu", "rover_hw_ImuRaw", P::kStream},
       {"hw/sun_sensor", "rover_hw_SunSensorRaw", P::kStream},
       {"hw/camera_request", "rover_hw_CameraRequest", P::kCommand},
@@ -35,6 +36,8 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"dl/range_image", "rover_dl_RangeImage", P::kState},
       {"dl/mast_command", "rover_dl_MastCommand", P::kCommand},
       {"dl/mast_status", "rover_dl_MastStatus", P::kLatched},
+      {"dl/arm_command", "rover_dl_ArmCommand", P::kCommand},
+      {"dl/arm_status", "rover_dl_ArmStatus", P::kLatched},
       // apl/: goals and decisions
       {"apl/mobility_command", "rover_apl_MobilityCommand", P::kCommand},
       {"apl/mobility_status", "rover_apl_MobilityStatus", P::kLatched},

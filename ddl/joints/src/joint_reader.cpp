@@ -66,6 +66,11 @@ void JointReader::OnSuspensionPots(const hw::SuspensionPots& p) {
   last_pots_ = p;
 }
 
+void JointReader::OnArmContact(const hw::ArmContact& c) {
+  if (last_contact_ && c.stamp_ns <= last_contact_->stamp_ns) return;
+  last_contact_ = c;
+}
+
 JointState JointReader::State(Time now) const {
   JointState s;
   s.health = msg::SensorHealth::kOk;
@@ -93,6 +98,11 @@ JointState JointReader::State(Time now) const {
         static_cast<double>(counts_[hw::kMastPan]) / config_.motors[hw::kMastPan].CountsPerRad();
     s.mast_tilt =
         static_cast<double>(counts_[hw::kMastTilt]) / config_.motors[hw::kMastTilt].CountsPerRad();
+    for (int j = 0; j < 4; ++j) {
+      const auto k = static_cast<std::size_t>(hw::kArmAzimuth + j);
+      s.arm_angle[static_cast<std::size_t>(j)] =
+          static_cast<double>(counts_[k]) / config_.motors[k].CountsPerRad();
+    }
     for (int m = hw::kSteerLF; m < hw::kNumMotors; ++m) {
       const MotorSpec& spec = config_.motors[static_cast<std::size_t>(m)];
       const double a =
@@ -107,6 +117,8 @@ JointState JointReader::State(Time now) const {
     }
   }
 
+  s.arm_contact = last_contact_ && last_contact_->closed &&
+                  static_cast<double>(now.ns - last_contact_->stamp_ns) <= stale_ns;
   if (!last_pots_) {
     Worsen(msg::SensorHealth::kStale, "no suspension pots yet", &s);
   } else {

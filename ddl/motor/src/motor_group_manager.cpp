@@ -175,7 +175,7 @@ ManagerOutput MotorGroupManager::HandleCommand(const MotorCommand& c, Time now) 
   }
 
   const std::uint16_t mask =
-      c.mode == GroupMode::kStop && c.motor_mask == 0 ? std::uint16_t{0x0FFF} : c.motor_mask;
+      c.mode == GroupMode::kStop && c.motor_mask == 0 ? hw::kAllMotorsMask : c.motor_mask;
 
   if (c.mode == GroupMode::kStop) {
     for (std::size_t i = groups_.size(); i-- > 0;) {

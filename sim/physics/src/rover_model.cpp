@@ -80,12 +80,24 @@ MotorParams DefaultMastTiltMotorParams() {
   return p;
 }
 
+MotorParams DefaultArmMotorParams(int joint) {
+  MotorParams p = DefaultMastPanMotorParams();
+  const hwconfig::ArmDescription arm;
+  p.gear_ratio = 1500.0;
+  p.max_speed = 0.5;
+  p.max_acceleration = 1.0;
+  p.min_angle = arm.min_angle[static_cast<std::size_t>(joint)];
+  p.max_angle = arm.max_angle[static_cast<std::size_t>(joint)];
+  return p;
+}
+
 std::array<MotorParams, kNumMotors> RoverModelParams::DefaultMotors() {
   std::array<MotorParams, kNumMotors> m;
   for (int i = hw::kDriveLF; i <= hw::kDriveRR; ++i) m[i] = DefaultDriveMotorParams();
   for (int i = hw::kSteerLF; i <= hw::kSteerRR; ++i) m[i] = DefaultSteerMotorParams();
   m[hw::kMastPan] = DefaultMastPanMotorParams();
   m[hw::kMastTilt] = DefaultMastTiltMotorParams();
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) m[hw::kArmAzimuth + j] = DefaultArmMotorParams(j);
   return m;
 }
 

@@ -203,6 +203,9 @@ class DifferentialForce : public SimTK::Force::Custom::Implementation {
 
 }  // namespace
 
+// Motors 0..kBodyMotors-1 turn Simbody joints; the rest are the kinematic arm's.
+constexpr int kBodyMotors = hw::kArmAzimuth;
+
 // ------------------------------------------------------------------------------------------
 struct RoverSimulation::Impl {
   Impl(const RoverModelParams& p, std::shared_ptr<const HeightField> t)
@@ -227,8 +230,21 @@ struct RoverSimulation::Impl {
   std::array<MobilizedBodyIndex, 2> rocker_ix, bogie_ix;  // left, right
   std::array<MobilizedBodyIndex, kNumWheels> wheel_ix;
   std::array<MobilizedBodyIndex, hwconfig::kNumSteered> steer_ix;  // LF LR RF RR
-  std::array<MobilizedBodyIndex, kNumMotors> joint_ix;    // joint driven by each motor
-  std::array<const MobilizedBody*, kNumMotors> joints{};  // the same, cached after Build()
+  std::array<MobilizedBodyIndex, kBodyMotors> joint_ix;    // joint driven by each motor
+  std::array<const MobilizedBody*, kBodyMotors> joints{};  // the same, cached after Build()
+  // The kinematic arm (motors kBodyMotors..): angles and rates, and its instrument's contact.
+  std::array<double, hwconfig::kArmJoints> arm_q{}, arm_u{};
+  bool arm_contact = false;
+  double ArmQ(int motor) const { return arm_q[static_cast<std::size_t>(motor - kBodyMotors)]; }
+  double ArmU(int motor) const { return arm_u[static_cast<std::size_t>(motor - kBodyMotors)]; }
+  double JointQ(const SimTK::State& s, int motor) const {
+    return motor < kBodyMotors ? Joint(motor).getOneQ(s, 0) : ArmQ(motor);
+  }
+  double JointU(const SimTK::State& s, int motor) const {
+    return motor < kBodyMotors ? Joint(motor).getOneU(s, 0) : ArmU(motor);
+  }
+  Eigen::Vector3d ToolPoint(const SimTK::State& s, const hwconfig::ArmAngles& q) const;
+  void ArmTick(const SimTK::State& s);
   MobilizedBodyIndex tilt_ix;
   const TerrainForce* terrain_force = nullptr;
   std::unique_ptr<SimTK::Integrator> integ;
@@ -371,7 +387,7 @@ void RoverSimulation::Impl::Build() {
 
   for (int i = 0; i < kNumMotors; ++i) counts_per_rad[i] = params.motors[i].CountsPerRad();
   system.realizeTopology();
-  for (int i = 0; i < kNumMotors; ++i) joints[i] = &matter.getMobilizedBody(joint_ix[i]);
+  for (int i = 0; i < kBodyMotors; ++i) joints[i] = &matter.getMobilizedBody(joint_ix[i]);
 }
 
 void RoverSimulation::Impl::InitializeIntegrator(const SimTK::State& s) {
@@ -459,9 +475,11 @@ Status RoverSimulation::Impl::Place(const StartPose& start) {
   motor_forces.clearAllForces(s);
   system.realize(s, SimTK::Stage::Position);
 
+  arm_q = params.geometry.arm.stow;
+  arm_u = {};
+  arm_contact = false;
   for (int i = 0; i < kNumMotors; ++i) {
-    motors[i] = MotorController(params.motors[i], params.ambient_temperature_c,
-                                Body(joint_ix[i]).getOneQ(s, 0));
+    motors[i] = MotorController(params.motors[i], params.ambient_temperature_c, JointQ(s, i));
   }
   tick = 0;
   broken = false;
@@ -481,15 +499,51 @@ Status RoverSimulation::Impl::Place(const StartPose& start) {
 void RoverSimulation::Impl::ControlTick() {
   SimTK::State& s = integ->updAdvancedState();
   std::array<double, kNumMotors> torque{};
-  for (int i = 0; i < kNumMotors; ++i) {
+  for (int i = 0; i < kBodyMotors; ++i) {
     const MobilizedBody& b = Joint(i);
     torque[i] = motors[i].Update(b.getOneQ(s, 0), b.getOneU(s, 0), period);
   }
-  for (int i = 0; i < kNumMotors; ++i) {
+  for (int i = 0; i < kBodyMotors; ++i) {
     motor_forces.setOneMobilityForce(s, Joint(i), SimTK::MobilizerUIndex(0), torque[i]);
   }
+  ArmTick(s);
   integ->reinitialize(SimTK::Stage::Dynamics, false);
   ++stats.control_ticks;
+}
+
+Eigen::Vector3d RoverSimulation::Impl::ToolPoint(const SimTK::State& s,
+                                                 const hwconfig::ArmAngles& q) const {
+  const Eigen::Isometry3d site_from_rover = ToIsometry(Body(chassis_ix).getBodyTransform(s));
+  return site_from_rover * params.geometry.arm.Forward(q).face;
+}
+
+void RoverSimulation::Impl::ArmTick(const SimTK::State& s) {
+  // The arm's joints integrate their motors' torques; a step that would push the instrument's
+  // face into the terrain is undone (the face rests on what it touched).
+  hwconfig::ArmAngles q = arm_q;
+  hwconfig::ArmAngles u = arm_u;
+  bool moving = false;
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const int m = kBodyMotors + j;
+    const double tau = motors[m].Update(arm_q[k], arm_u[k], period);
+    const double inertia = params.motors[m].ReflectedInertia() + kArmLinkInertia;
+    u[k] = arm_u[k] + tau / inertia * period;
+    q[k] = arm_q[k] + u[k] * period;
+    moving = moving || u[k] != 0.0 || arm_u[k] != 0.0;
+  }
+  if (!moving && (tick % 20) != 0) return;  // at rest: the contact is re-checked at 50 Hz
+  const Eigen::Vector3d face = ToolPoint(s, q);
+  const double ground = terrain->Height(face.x(), face.y());
+  if (face.z() < ground) {
+    arm_u = {};
+    const Eigen::Vector3d held = ToolPoint(s, arm_q);
+    arm_contact = held.z() - terrain->Height(held.x(), held.y()) < kArmContactBand;
+    return;
+  }
+  arm_q = q;
+  arm_u = u;
+  arm_contact = face.z() - ground < kArmContactBand;
 }
 
 void RoverSimulation::Impl::AdvanceTo(double t_end) {
@@ -542,7 +596,8 @@ Status RoverSimulation::Reset(const StartPose& start) {
 Status RoverSimulation::SetMotorGoal(int motor, MotorMode mode, double position_counts,
                                      double velocity_counts_per_s, double current_limit_a) {
   if (motor < 0 || motor >= kNumMotors) {
-    return OutOfRange("motor index " + std::to_string(motor) + " is outside [0, 11]");
+    return OutOfRange("motor index " + std::to_string(motor) + " is outside [0, " +
+                       std::to_string(kNumMotors - 1) + "]");
   }
   const Status st =
       impl_->motors[motor].SetGoal(mode, position_counts, velocity_counts_per_s, current_limit_a);
@@ -552,7 +607,8 @@ Status RoverSimulation::SetMotorGoal(int motor, MotorMode mode, double position_
 
 Status RoverSimulation::ClearMotorFaults(int motor) {
   if (motor < 0 || motor >= kNumMotors) {
-    return OutOfRange("motor index " + std::to_string(motor) + " is outside [0, 11]");
+    return OutOfRange("motor index " + std::to_string(motor) + " is outside [0, " +
+                       std::to_string(kNumMotors - 1) + "]");
   }
   impl_->motors[motor].ClearFaults();
   return Status::Ok();
@@ -607,9 +663,8 @@ MotorReading RoverSimulation::Motor(int motor) const {
   ROVER_DEMAND(motor >= 0 && motor < kNumMotors);
   const SimTK::State& s = impl_->integ->getState();
   MotorReading r = impl_->motors[motor].Reading();
-  const MobilizedBody& b = impl_->Joint(motor);
-  r.position_counts = b.getOneQ(s, 0) * impl_->counts_per_rad[motor];
-  r.velocity_counts_per_s = b.getOneU(s, 0) * impl_->counts_per_rad[motor];
+  r.position_counts = impl_->JointQ(s, motor) * impl_->counts_per_rad[motor];
+  r.velocity_counts_per_s = impl_->JointU(s, motor) * impl_->counts_per_rad[motor];
   return r;
 }
 
@@ -620,8 +675,9 @@ RoverReadings RoverSimulation::Readings() const {
   out.time_s = s.getTime();
   for (int i = 0; i < kNumMotors; ++i) {
     out.motors[i] = Motor(i);
-    out.joint_angle_rad[i] = im.Joint(i).getOneQ(s, 0);
+    out.joint_angle_rad[i] = im.JointQ(s, i);
   }
+  out.tool_contact = im.arm_contact;
   if (im.broken) return out;  // the state is not trustworthy; Advance() reported why
   try {
     im.system.realize(s, SimTK::Stage::Acceleration);
@@ -657,6 +713,7 @@ RoverReadings RoverSimulation::Readings() const {
   const Eigen::Vector3d a =
       ToEigen(chassis.findStationAccelerationInGround(s, ToVec3(im.params.geometry.imu_position)));
   c.specific_force_body = r_gc.transpose() * (a + Eigen::Vector3d(0, 0, im.params.gravity));
+  out.tool_point = c.pose_site * im.params.geometry.arm.Forward(im.arm_q).face;
 
   out.bodies = im.Poses(s);
 

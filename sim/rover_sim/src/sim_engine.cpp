@@ -190,6 +190,8 @@ TruthSample SimEngine::MakeTruth(const RoverReadings& r) {
   t.bogie_angle[0] = r.bogie_left_rad;
   t.bogie_angle[1] = r.bogie_right_rad;
   t.odometer = odometer_;
+  t.tool_point = r.tool_point;
+  t.tool_contact = r.tool_contact;
   t.rock_contacts = rock_contacts_;
   t.max_contact_rock_height = max_contact_height_;
   return t;
@@ -236,6 +238,7 @@ Result<StepOutput> SimEngine::Step() {
     p.over_temp = (m.faults & kMotorFaultOverTemperature) != 0;
   }
   st.suspension = {r.rocker_left_rad, r.rocker_right_rad, r.bogie_left_rad, r.bogie_right_rad};
+  st.arm_contact = r.tool_contact;
   // The gyro integrates, as the LN-200's delta-angle output does: its rate is the mean over the
   // engine step, taken from the attitude change, so the chassis' contact vibration cannot alias
   // into a heading drift. This is the mean over the IMU's sample period when the IMU samples

@@ -27,6 +27,8 @@ void TruthToIdl(const TruthSample& in, rover_sim_Truth* out) {
   out->odometer = in.odometer;
   out->rock_contacts = in.rock_contacts;
   out->max_contact_rock_height = in.max_contact_rock_height;
+  out->tool_point = ToIdl(in.tool_point);
+  out->tool_contact = in.tool_contact;
 }
 
 TruthSample TruthFromIdl(const rover_sim_Truth& in) {
@@ -49,6 +51,8 @@ TruthSample TruthFromIdl(const rover_sim_Truth& in) {
   t.odometer = in.odometer;
   t.rock_contacts = in.rock_contacts;
   t.max_contact_rock_height = in.max_contact_rock_height;
+  t.tool_point = FromIdl(in.tool_point);
+  t.tool_contact = in.tool_contact;
   return t;
 }
 

@@ -41,6 +41,7 @@ SensorSamples SensorSuite::Step(const SensorTruth& truth) {
   }
   if (pot_clock_.Due(truth.stamp)) {
     out.suspension_pots = pots_.Sample(truth.suspension, truth.stamp);
+    out.arm_contact = hw::ArmContact{truth.stamp.ns, truth.arm_contact};
   }
   if (imu_clock_.Due(truth.stamp)) out.imu = imu_.Sample(truth.imu, truth.stamp);
   if (sun_clock_.Due(truth.stamp)) {

@@ -38,11 +38,21 @@
 
 namespace rover {
 
-/// The four kinds of actuator; each has one block of parameters in the YAML.
-enum class MotorKind { kDrive, kSteer, kMastPan, kMastTilt };
-/// Kind of motor index 0..11 (rover_hw.idl order). Precondition: 0 <= motor < 12.
+/// The kinds of actuator; each has one block of parameters in the YAML.
+enum class MotorKind {
+  kDrive,
+  kSteer,
+  kMastPan,
+  kMastTilt,
+  kArmAzimuth,
+  kArmShoulder,
+  kArmElbow,
+  kArmWrist
+};
+/// Kind of motor index 0..15 (rover_hw.idl order). Precondition: 0 <= motor < 16.
 MotorKind MotorKindOf(int motor);
-/// "drive", "steer", "mast_pan", "mast_tilt".
+/// "drive", "steer", "mast_pan", "mast_tilt", "arm_azimuth", "arm_shoulder", "arm_elbow",
+/// "arm_wrist".
 const char* MotorKindName(MotorKind kind);
 
 /// One actuator: gearhead, encoder, motion limits, protection limits.

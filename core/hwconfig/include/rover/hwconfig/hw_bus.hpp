@@ -15,8 +15,8 @@
 
 namespace rover::hw {
 
-/// Motor indices (rover_hw.idl): every array of 12 uses this order.
-inline constexpr int kNumMotors = 12;
+/// Motor indices (rover_hw.idl): every array of 16 uses this order.
+inline constexpr int kNumMotors = 16;
 enum MotorIndex : int {
   kDriveLF = 0,
   kDriveLM = 1,
@@ -30,8 +30,14 @@ enum MotorIndex : int {
   kSteerRR = 9,
   kMastPan = 10,
   kMastTilt = 11,
+  kArmAzimuth = 12,
+  kArmShoulder = 13,
+  kArmElbow = 14,
+  kArmWrist = 15,
 };
-/// "drive_lf", ..., "mast_tilt"; "?" outside 0..11.
+/// Every motor (bit i = motor i).
+inline constexpr std::uint16_t kAllMotorsMask = 0xFFFF;
+/// "drive_lf", ..., "arm_wrist"; "?" outside 0..15.
 const char* MotorName(int motor);
 
 /// Full scale of the 12-bit ADCs (pots, motor current and temperature, sun intensity).
@@ -99,6 +105,12 @@ inline constexpr std::uint16_t kImuAccelSaturated = 2;
 inline constexpr std::uint16_t kImuSelfTestFail = 4;
 /// ImuRaw::temperature scale [deg C per LSB].
 inline constexpr double kImuTemperatureLsb = 0.01;
+
+/// hw/arm_contact (stream, 50 Hz): the switch behind the arm instrument's face.
+struct ArmContact {
+  std::int64_t stamp_ns = 0;
+  bool closed = false;
+};
 
 /// hw/imu (stream, 100 Hz). Raw sample in the IMU case frame.
 struct ImuRaw {

@@ -80,6 +80,7 @@
 
 #include "rover/base/status.hpp"
 #include "rover/base/units.hpp"
+#include "rover/hwconfig/arm_description.hpp"
 #include "rover/hwconfig/hw_bus.hpp"
 
 namespace rover {
@@ -220,6 +221,8 @@ struct RoverDescription {
   StereoMount front_hazcam = {Eigen::Vector3d(0.52, 0.0, 0.50), 0.0, 45.0 * kDegree, 0.10};
   StereoMount rear_hazcam = {Eigen::Vector3d(-0.52, 0.0, 0.50), 180.0 * kDegree, 45.0 * kDegree,
                              0.10};
+  /// The instrument arm (arm_description.hpp).
+  ArmDescription arm;
 
   // Driving limits (locomotion enforces them; planners choose within them).
   double max_steer_angle = 70.0 * kDegree;  ///< [rad] corner-wheel steering limit for driving
@@ -261,6 +264,17 @@ struct RoverDescription {
   std::vector<ContactPart> ContactParts() const;
   /// rover_from_pair of the NAVCAM pair at mast angles `pan`, `tilt` [rad].
   Eigen::Isometry3d NavcamPose(double pan, double tilt) const;
+
+  /// The boxes the arm must keep out of (arm_description.hpp): "body", "front_hazcam", "mast",
+  /// "wheel_LF" .. "wheel_RR".
+  std::vector<KeepOutBox> ArmKeepOut() const;
+  /// OK when every link of the arm at `q` keeps arm.link_radius + arm.clearance from every
+  /// keep-out box (and the upper arm and forearm from the ground plane); otherwise
+  /// kFailedPrecondition naming the link, the part and the distance. Limits are not checked here.
+  Status CheckArmPose(const ArmAngles& q) const;
+  /// CheckArmPose along the straight joint-space line from `from` to `to` (both ends included,
+  /// steps of at most arm.check_step); the message says where along the move it fails.
+  Status CheckArmMove(const ArmAngles& from, const ArmAngles& to) const;
 };
 
 }  // namespace rover::hwconfig

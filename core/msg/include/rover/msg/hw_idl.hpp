@@ -21,6 +21,8 @@ void MotorGoalsToIdl(const hw::MotorGoals& in, rover_hw_MotorGoals* out);
 
 hw::SuspensionPots SuspensionPotsFromIdl(const rover_hw_SuspensionPots& in);
 void SuspensionPotsToIdl(const hw::SuspensionPots& in, rover_hw_SuspensionPots* out);
+hw::ArmContact ArmContactFromIdl(const rover_hw_ArmContact& in);
+void ArmContactToIdl(const hw::ArmContact& in, rover_hw_ArmContact* out);
 
 hw::ImuRaw ImuRawFromIdl(const rover_hw_ImuRaw& in);
 void ImuRawToIdl(const hw::ImuRaw& in, rover_hw_ImuRaw* out);

@@ -50,6 +50,8 @@ struct JointState {
   std::array<double, 2> bogie_angle{};            ///< [rad] left, right, relative to the rocker
   double mast_pan = 0.0;                          ///< [rad]
   double mast_tilt = 0.0;                         ///< [rad]
+  std::array<double, 4> arm_angle{};  ///< [rad] azimuth, shoulder, elbow, wrist (arm_description.hpp)
+  bool arm_contact = false;           ///< the arm instrument's contact switch is closed
   SensorHealth health = SensorHealth::kOk;
 
   /// True when every wheel, steering and suspension angle and rate is finite (the mast angles

@@ -9,7 +9,11 @@
 ///    origin, so the angle equals the controller's absolute angle).
 ///  * wheel_rate [rad/s]: RateEstimator over `rate_window_s` of counts (not the controller's
 ///    velocity field).
-///  * steer_angle, mast_pan, mast_tilt [rad]: register / counts_per_rad (absolute joints).
+///  * steer_angle, mast_pan, mast_tilt, arm_angle [rad]: register / counts_per_rad (absolute
+///    joints).
+///  * arm_contact: the newest hw/arm_contact sample's switch, when it is at most stale_after_s
+///    old; false without one (the contact switch does not count in the health: a set without an
+///    arm still has joint states; dl-arm treats a descent that never closes it as a fault).
 ///  * rocker/bogie [rad]: (adc - offset) / gain with the nominal PotSpec calibration.
 /// Health (worst wins, the reason names the joint):
 ///  * STALE   no telemetry or no pots yet, or the newest is older than stale_after_s (run clock);
@@ -54,6 +58,7 @@ class JointReader {
 
   void OnMotorTelemetry(const hw::MotorTelemetry& telemetry);
   void OnSuspensionPots(const hw::SuspensionPots& pots);
+  void OnArmContact(const hw::ArmContact& contact);
   /// The joint state as of `now` (run clock; only used for staleness).
   JointState State(Time now) const;
 
@@ -66,6 +71,7 @@ class JointReader {
   std::array<std::int64_t, hw::kNumMotors> counts_{};  // unwrapped
   std::vector<RateEstimator> wheel_rates_;
   std::optional<hw::SuspensionPots> last_pots_;
+  std::optional<hw::ArmContact> last_contact_;
 };
 
 }  // namespace rover::ddl::joints

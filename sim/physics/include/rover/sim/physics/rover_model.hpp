@@ -66,6 +66,8 @@ MotorParams DefaultDriveMotorParams();
 MotorParams DefaultSteerMotorParams();
 MotorParams DefaultMastPanMotorParams();
 MotorParams DefaultMastTiltMotorParams();
+/// Arm joint j (0 azimuth .. 3 wrist): the joint limits are the arm description's.
+MotorParams DefaultArmMotorParams(int joint);
 
 struct RoverModelParams {
   hwconfig::RoverDescription geometry;  ///< validated with "geometry." before the field names

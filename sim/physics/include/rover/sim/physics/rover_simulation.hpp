@@ -12,6 +12,14 @@
 /// about z); a pan/tilt mast. Motor rotor inertia (reflected through the gearheads) is part of
 /// the driven bodies. Gravity along -z of the site frame (Simbody Ground = site frame).
 ///
+/// The instrument arm (motors hw::kArmAzimuth..kArmWrist, core/hwconfig arm_description.hpp) is
+/// kinematic, outside Simbody: each joint is a rigid inertia J = J_motor N^2 + kArmLinkInertia
+/// driven by its motor controller's torque (semi-implicit Euler at the control rate), with no
+/// gravity load and no reaction on the chassis. Its instrument's face cannot enter the terrain:
+/// a control tick that would put the face centre below the terrain height under it is undone
+/// (the joints keep their angles, their rates go to zero), so a commanded push stalls the
+/// motors as a real arm's would. The arm is not drawn by the renderer.
+///
 /// Time: Advance(dt) integrates with Simbody's error-controlled semi-explicit Euler
 /// (SemiExplicitEuler2, accuracy IntegratorParams::accuracy; or a fixed 1 ms semi-explicit
 /// Euler, IntegratorParams::method). At every control tick (t = k / control_rate_hz,
@@ -85,6 +93,11 @@ struct BodyPoses {
   Eigen::Isometry3d mast_pan = Eigen::Isometry3d::Identity();  ///< origin at the pan joint
 };
 
+/// Inertia of each arm link about its joint [kg m^2], added to the reflected motor inertia.
+inline constexpr double kArmLinkInertia = 0.05;
+/// The contact switch closes when the face centre is within this height of the terrain [m].
+inline constexpr double kArmContactBand = 0.003;
+
 struct RoverReadings {
   double time_s = 0.0;
   std::array<MotorReading, kNumMotors> motors;  ///< counts, counts/s, A, deg C, faults
@@ -93,6 +106,11 @@ struct RoverReadings {
   double rocker_left_rad = 0.0, rocker_right_rad = 0.0;
   double bogie_left_rad = 0.0, bogie_right_rad = 0.0;  ///< [rad] relative to the rocker
   std::array<double, kNumMotors> joint_angle_rad{};  ///< joint angle of each motor's joint
+  /// The instrument arm (kinematic: its joints follow their motors, it pushes on nothing but
+  /// what its face touches). Centre of the instrument's face in S, and whether that face
+  /// touches the terrain (the contact switch's truth; it closes within kArmContactBand).
+  Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();
+  bool tool_contact = false;
   ChassisReading chassis;
   CameraFrames cameras;
   BodyPoses bodies;

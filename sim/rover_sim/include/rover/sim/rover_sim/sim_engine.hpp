@@ -51,6 +51,8 @@ struct TruthSample {
   double odometer = 0;  ///< [m] horizontal path length of the rover origin
   std::uint32_t rock_contacts = 0;
   double max_contact_rock_height = 0;
+  Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();  ///< arm instrument's face centre, site
+  bool tool_contact = false;
 };
 
 /// What one Step() produced.

@@ -30,6 +30,7 @@ struct SensorTruth {
   std::uint32_t applied_command_id = 0;                ///< last hw MotorGoals::command_id applied
   /// [rad] left rocker, right rocker, left bogie, right bogie; + raises the front.
   std::array<double, hw::kNumPots> suspension{};
+  bool arm_contact = false;  ///< the arm instrument's face touches something
   ImuTruth imu;  ///< rover-frame rate and specific force
   Eigen::Matrix3d site_from_rover = Eigen::Matrix3d::Identity();  ///< attitude
 };
@@ -38,6 +39,7 @@ struct SensorTruth {
 struct SensorSamples {
   std::optional<hw::MotorTelemetry> motor_telemetry;
   std::optional<hw::SuspensionPots> suspension_pots;
+  std::optional<hw::ArmContact> arm_contact;  ///< sampled with the pots (a switch: no noise)
   std::optional<hw::ImuRaw> imu;
   std::optional<hw::SunSensorRaw> sun_sensor;
   std::optional<geometry::SunState> sun;  ///< the true sun when sun_sensor sampled (for the judge)

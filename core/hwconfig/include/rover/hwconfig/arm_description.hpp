@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// The instrument arm: a 4-DOF arm (FIDO's) on the front of the body, its kinematics and the
+/// volumes it must not sweep through. Read by the simulator (the kinematic arm, its contact
+/// switch), dl/arm (placement, refusals) and the runner (the instrument's truth).
+///
+/// Joints (motors hw::kArmAzimuth .. hw::kArmWrist, arm angles q0..q3 in ddl/joint_state order):
+///   q0 azimuth  about the vertical axis through `shoulder`; + turns the arm to the left;
+///   q1 shoulder elevation of the upper arm above the rover's x-y plane; + raises it;
+///   q2 elbow    of the forearm relative to the upper arm; + raises the forearm;
+///   q3 wrist    of the instrument relative to the forearm; + raises the instrument.
+/// All pitch joints turn about the same horizontal axis h = (-sin q0, cos q0, 0), so the arm
+/// stays in the vertical plane through the azimuth axis with in-plane direction
+/// u = (cos q0, sin q0, 0). With d(a) = cos(a) u + sin(a) z (rover frame R):
+///   S (shoulder pivot) = shoulder
+///   E (elbow)          = S + upper_arm d(q1)
+///   W (wrist)          = E + forearm d(q1 + q2)
+///   F (instrument face centre, the reach point) = W + tool_length d(q1 + q2 + q3)
+/// and the instrument looks along d(q1 + q2 + q3): placements use q1 + q2 + q3 = -pi/2 (face
+/// down). The links sit side by side at the elbow, so they never meet each other.
+///
+/// Inverse kinematics for a face-down placement at F: W = F + tool_length z; q0 = atan2 of W
+/// about the azimuth axis; in the arm plane (r, z) = (horizontal distance from the axis,
+/// height above S) the two-link solution with the elbow above the line S-W:
+///   c2 = (r^2 + z^2 - upper^2 - fore^2) / (2 upper fore),  q2 = -acos(c2),
+///   q1 = atan2(z, r) + atan2(fore sin|q2|, upper + fore cos q2),  q3 = -pi/2 - q1 - q2.
+///
+/// Swept volumes. Each link is a capsule of radius `link_radius` about its segment (S-E, E-W,
+/// W-F). The rover's own volumes are axis-aligned boxes of R (ArmKeepOut()): the body, the
+/// front HAZCAM mount, the mast column and the six wheels at zero suspension and steering
+/// angles; and the ground plane z = 0 for the upper arm and forearm (the instrument may touch
+/// the ground: that is its job). A pose is clear when every capsule stays `clearance` away
+/// from every box; a move is clear when every pose on the straight joint-space line between
+/// its ends is (ddl-motor's synchronised moves follow that line to within its profile shape),
+/// checked at steps of at most `check_step` rad of the largest joint change.
+///
+/// Units: metres, radians. Compiles as C++17 (rover_description.hpp includes it).
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "rover/base/status.hpp"
+
+namespace rover::hwconfig {
+
+inline constexpr int kArmJoints = 4;
+using ArmAngles = std::array<double, kArmJoints>;
+
+/// "azimuth", "shoulder", "elbow", "wrist"; "?" outside 0..3.
+const char* ArmJointName(int joint);
+
+/// A box of the rover frame with sides along its axes [m].
+struct KeepOutBox {
+  std::string name;
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+  /// Distance from p to the box, 0 inside [m].
+  double DistanceTo(const Eigen::Vector3d& p) const {
+    return (p - p.cwiseMax(min).cwiseMin(max)).norm();
+  }
+};
+
+/// The arm's four points for some joint angles (see the file comment).
+struct ArmPoints {
+  Eigen::Vector3d shoulder, elbow, wrist, face;
+  Eigen::Vector3d look;  ///< unit direction the instrument looks along
+};
+
+struct ArmDescription {
+  Eigen::Vector3d shoulder{0.62, 0.0, 0.45};  ///< [m] shoulder pivot in R (on the azimuth axis)
+  double upper_arm = 0.35;                    ///< [m] shoulder to elbow
+  double forearm = 0.35;                      ///< [m] elbow to wrist
+  double tool_length = 0.10;                  ///< [m] wrist to the instrument's face centre
+  double link_radius = 0.035;                 ///< [m] capsule radius of every link
+  double clearance = 0.01;                    ///< [m] extra distance a pose keeps from keep-outs
+  double check_step = 0.02;                   ///< [rad] swept-volume sampling step
+  /// Joint limits [rad], azimuth, shoulder, elbow, wrist.
+  ArmAngles min_angle{-1.6, -1.0, -3.05, -3.1};
+  ArmAngles max_angle{1.6, 1.65, 0.3, 3.1};
+  /// Stowed pose: upper arm up, forearm folded down beside it, instrument up; inside the
+  /// rover's ground footprint and above the belly, so driving with it stowed changes nothing.
+  ArmAngles stow{0.0, 1.5, -3.0, 3.0};
+
+  /// Positive lengths below 2 m, link_radius and clearance in [0, 0.2] m, check_step in
+  /// (0, 0.2] rad, min < max, stow inside the limits. Messages start with "arm." + the field.
+  Status Validate() const;
+  ArmPoints Forward(const ArmAngles& q) const;
+  /// Face-down placement of the instrument's face at `face` (R). Errors (kOutOfRange) name the
+  /// point and why: out of reach (too far / too near), on the azimuth axis, or a joint beyond
+  /// its limit (named, with the value).
+  Result<ArmAngles> FaceDown(const Eigen::Vector3d& face) const;
+  /// kOutOfRange naming the joint and value when any angle is outside its limits or not finite.
+  Status CheckLimits(const ArmAngles& q) const;
+};
+
+}  // namespace rover::hwconfig
