@@ -11,6 +11,7 @@
 #include "rover/base/log.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/msg/camera_idl.hpp"
+#include "rover/msg/arm_idl.hpp"
 #include "rover/msg/mast_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
@@ -82,6 +83,7 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
   ROVER_ASSIGN_OR_RETURN(mobility_writer_,
                          ctx.MakeWriter<rover_apl_MobilityCommand>("apl/mobility_command"));
   ROVER_ASSIGN_OR_RETURN(mast_writer_, ctx.MakeWriter<rover_dl_MastCommand>("dl/mast_command"));
+  ROVER_ASSIGN_OR_RETURN(arm_writer_, ctx.MakeWriter<rover_dl_ArmCommand>("dl/arm_command"));
   ROVER_ASSIGN_OR_RETURN(camera_writer_,
                          ctx.MakeWriter<rover_ddl_StereoRequest>("ddl/camera_request"));
   ROVER_ASSIGN_OR_RETURN(status_writer_,
@@ -117,6 +119,13 @@ Status RendezvousService::OnConfigure(ServiceContext& ctx, const ParamSet& param
         if (!st.ok()) return st.status();
         Publish(executor_->OnMastStatus(*st, ctx_->Now()));
         Publish(approach_->OnMastStatus(*st, ctx_->Now()));
+        return Status::Ok();
+      }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_ArmStatus>(
+      "dl/arm_status", [this](const dds::Sample<rover_dl_ArmStatus>& s) {
+        const Result<msg::ArmStatus> st = msg::ArmStatusFromIdl(s.data());
+        if (!st.ok()) return st.status();
+        Publish(approach_->OnArmStatus(*st, ctx_->Now()));
         return Status::Ok();
       }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_StereoFrame>(
@@ -240,6 +249,12 @@ void RendezvousService::Publish(const ExecutorOutput& out) {
     msg::MastCommandToIdl(c, &m);
     ctx_->Stamp(m.header, "site");
     Check(mast_writer_.Write(m), "dl/mast_command");
+  }
+  for (const msg::ArmCommand& c : out.arm) {
+    rover_dl_ArmCommand m{};
+    msg::ArmCommandToIdl(c, &m);
+    ctx_->Stamp(m.header, "rover");
+    Check(arm_writer_.Write(m), "dl/arm_command");
   }
   for (const msg::StereoRequest& r : out.camera) {
     rover_ddl_StereoRequest m{};

@@ -6,8 +6,10 @@
 ///   in:  apl/rendezvous_command -> OnCommand        dl/pose          -> OnPose
 ///        apl/mobility_status    -> OnMobilityStatus dl/mast_status   -> OnMastStatus
 ///        ddl/stereo_frame       -> OnStereoPair (only its own request ids, prefix 3)
+///        dl/arm_status          -> TargetApproach::OnArmStatus
 ///   out: apl/mobility_command (every motion goes through apl-mobility), dl/mast_command,
-///        ddl/camera_request (full NAVCAM frames), apl/rendezvous_status (latched)
+///        dl/arm_command (stow, placement), ddl/camera_request (full NAVCAM frames),
+///        apl/rendezvous_status (latched)
 /// TARGET_SCIENCE commands go to the TargetApproach (target_approach.hpp, with the
 /// TargetTracker), the others to the RendezvousExecutor; one command runs at a time (BUSY).
 /// The service keeps the last `rendezvous.target_images_kept` NAVCAM pairs of any requester,
@@ -66,6 +68,7 @@ class RendezvousService final : public Service {
   int detections_written_ = 0;
   dds::Writer<rover_apl_MobilityCommand> mobility_writer_;
   dds::Writer<rover_dl_MastCommand> mast_writer_;
+  dds::Writer<rover_dl_ArmCommand> arm_writer_;
   dds::Writer<rover_ddl_StereoRequest> camera_writer_;
   dds::Writer<rover_apl_RendezvousStatus> status_writer_;
 };

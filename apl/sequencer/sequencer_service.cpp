@@ -4,6 +4,7 @@
 
 #include "rover/apl/sequencer/parser.hpp"
 #include "rover/base/log.hpp"
+#include "rover/msg/arm_idl.hpp"
 #include "rover/msg/mast_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
@@ -46,6 +47,7 @@ Status SequencerService::OnConfigure(ServiceContext& ctx, const ParamSet& params
   ROVER_ASSIGN_OR_RETURN(mobility_writer_,
                          ctx.MakeWriter<rover_apl_MobilityCommand>("apl/mobility_command"));
   ROVER_ASSIGN_OR_RETURN(mast_writer_, ctx.MakeWriter<rover_dl_MastCommand>("dl/mast_command"));
+  ROVER_ASSIGN_OR_RETURN(arm_writer_, ctx.MakeWriter<rover_dl_ArmCommand>("dl/arm_command"));
   ROVER_ASSIGN_OR_RETURN(rendezvous_writer_,
                          ctx.MakeWriter<rover_apl_RendezvousCommand>("apl/rendezvous_command"));
   ROVER_ASSIGN_OR_RETURN(status_writer_,
@@ -74,6 +76,14 @@ Status SequencerService::OnConfigure(ServiceContext& ctx, const ParamSet& params
           OnResult(st->command_id, Family::kMast, *o);
         }
       }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_dl_ArmStatus>(
+      "dl/arm_status", [this](const dds::Sample<rover_dl_ArmStatus>& s) {
+        const Result<msg::ArmStatus> st = msg::ArmStatusFromIdl(s.data());
+        if (!st.ok()) return;
+        if (const std::optional<Outcome> o = OutcomeOfArmStatus(*st)) {
+          OnResult(st->command_id, Family::kArm, *o);
+        }
+      }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_apl_RendezvousStatus>(
       "apl/rendezvous_status", [this](const dds::Sample<rover_apl_RendezvousStatus>& s) {
         const Result<msg::RendezvousStatus> st = msg::RendezvousStatusFromIdl(s.data());
@@ -86,6 +96,10 @@ Status SequencerService::OnConfigure(ServiceContext& ctx, const ParamSet& params
       "dl/pose", [this](const dds::Sample<rover_dl_PoseEstimate>& s) {
         const Result<msg::PoseEstimate> p = msg::PoseEstimateFromIdl(s.data());
         if (!p.ok()) return;
+        Eigen::Isometry3d x = Eigen::Isometry3d::Identity();
+        x.linear() = p->orientation.toRotationMatrix();
+        x.translation() = p->position;
+        site_from_rover_ = x;
         interpreter_->OnPose(PoseOfEstimate(*p));
         if (interpreter_->busy()) Handle(interpreter_->Step(ctx_->Now()));
       }));
@@ -192,6 +206,15 @@ std::optional<Outcome> SequencerService::Send(const Command& c) {
       Check(rendezvous_writer_.Write(out), "apl/rendezvous_command");
       break;
     }
+    case Family::kArm: {
+      Result<msg::ArmCommand> m = ArmCommandOf(c, site_from_rover_, now);
+      if (!m.ok()) return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), m.status().message(), now);
+      rover_dl_ArmCommand out{};
+      msg::ArmCommandToIdl(*m, &out);
+      ctx_->Stamp(out.header, "rover");
+      Check(arm_writer_.Write(out), "dl/arm_command");
+      break;
+    }
     default:  // CheckDispatchable refused these before the start
       return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), "apl-sequencer does not dispatch " +
                                                     std::string(FamilyName(c.family)) +
@@ -210,6 +233,13 @@ void SequencerService::Cancel(const Command& c) {
     msg::RendezvousCommandToIdl(RendezvousStopCommand(c.id, ctx_->Now()), &stop);
     ctx_->Stamp(stop.header, "site");
     Check(rendezvous_writer_.Write(stop), "apl/rendezvous_command");
+    return;
+  }
+  if (c.family == Family::kArm) {
+    rover_dl_ArmCommand stop{};
+    msg::ArmCommandToIdl(ArmStopCommand(c.id, ctx_->Now()), &stop);
+    ctx_->Stamp(stop.header, "rover");
+    Check(arm_writer_.Write(stop), "dl/arm_command");
     return;
   }
   if (c.family != Family::kMobility) return;  // a mast move ends by itself

@@ -5,8 +5,10 @@
 ///
 ///   in:  apl/sequence_command -> parse, check, Start      apl/mobility_status -> result
 ///        dl/mast_status       -> result                   dl/pose             -> OnPose
+///        apl/rendezvous_status, dl/arm_status -> result
 ///        dl/relative_pose     -> VisOdom failures (visual-odometry samples not CONVERGED)
 ///   out: apl/mobility_command (mobility commands, and a STOP to cancel one), dl/mast_command,
+///        apl/rendezvous_command, dl/arm_command (ARM MOVE, PLACE, STOW; a STOP to cancel),
 ///        apl/sequence_status (latched: on every change of state, step or message)
 ///
 /// A run-clock timer at 10 Hz and every input call Interpreter::Step; nothing sleeps. Inputs
@@ -14,7 +16,7 @@
 /// stamp, so a condition after a drive waits for a pose from after it ended.
 ///
 /// Bad input: a text that does not parse, names a command the service does not dispatch
-/// (arm, until its service exists), or arrives while a sequence runs is
+/// (ARM UNSTOW, AUTOFOCUS), or arrives while a sequence runs is
 /// answered by a FAILED status for its command_id whose message gives the reason (the first
 /// parse error with line and column); nothing of it runs. A running sequence's status is
 /// published again at its next change. A mobility command the manager's message cannot carry (a speed) ends its
@@ -24,6 +26,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "rover/apl/sequencer/interpreter.hpp"
 #include "rover/msg/sequence.hpp"
@@ -69,6 +73,8 @@ class SequencerService final : public Service {
   dds::Writer<rover_apl_MobilityCommand> mobility_writer_;
   dds::Writer<rover_dl_MastCommand> mast_writer_;
   dds::Writer<rover_apl_RendezvousCommand> rendezvous_writer_;
+  dds::Writer<rover_dl_ArmCommand> arm_writer_;
+  std::optional<Eigen::Isometry3d> site_from_rover_;  // the latest dl/pose (ARM PLACE)
   dds::Writer<rover_apl_SequenceStatus> status_writer_;
 };
 

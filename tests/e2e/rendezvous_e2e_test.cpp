@@ -64,7 +64,8 @@ TEST(RendezvousE2e, ShortLanderReturnEndsOnTheDeckAfterAPlacementAtTheRampBase) 
 }
 
 // FIDO's single-command science-target approach (TARGET_SCIENCE), short: the target picked in
-// a NAVCAM image, tracked to the standoff, the arm's aim within 2 cm of the truth; then a target
+// a NAVCAM image, tracked to the standoff, the arm's instrument put on it within 2 cm of the
+// picked point and touching; then a target
 // that leaves the view ends in its typed goal error with nothing driven after the lost pair.
 TEST(RendezvousE2e, ShortScienceTargetApproachAndALostTarget) {
   testing::UseLoopbackDds();
@@ -83,6 +84,10 @@ TEST(RendezvousE2e, ShortScienceTargetApproachAndALostTarget) {
   const nlohmann::json placement = Entry(result, "figures", "placement_error");
   ASSERT_FALSE(placement.is_null()) << result.dump(2);
   EXPECT_LT(placement["measured"].get<double>(), 2.0) << "[cm]";
+  const nlohmann::json contact = Entry(result, "figures", "instrument_contact");
+  ASSERT_FALSE(contact.is_null()) << result.dump(2);
+  EXPECT_EQ(contact["measured"].get<double>(), 1.0);
+  EXPECT_FALSE(Entry(result, "figures", "aim_error").is_null());
   const nlohmann::json odometry = Entry(result, "figures", "odometry_placement_error");
   ASSERT_FALSE(odometry.is_null());
   EXPECT_TRUE(fs::exists(run + "/detections/target_00.png"));

@@ -69,6 +69,7 @@ Status RendezvousOptions::Validate() const {
     return InvalidArgument(p + "target_leg_mode: '" + target_leg_mode +
                            "' is not autonav, goto_waypoint or directed");
   }
+  ROVER_RETURN_IF_ERROR(CheckRange(p + "arm_timeout_s", arm_timeout_s, 1.0, 3600.0, "s"));
   return CheckIntRange(p + "target_images_kept", target_images_kept, 1, 64);
 }
 
@@ -129,6 +130,8 @@ void RendezvousOptions::BindParams(ParamBinder<RendezvousOptions>& b) {
          "recent NAVCAM pairs (any requester's) a command may designate in");
   b.Bind("target_look", &O::target_look,
          "point the mast at the science target before each tracking pair (false: leave it)");
+  b.Bind("arm_timeout_s", &O::arm_timeout_s, "s",
+         "a dl/arm_command (stow before driving, placement on the target) must end within this");
 }
 
 }  // namespace rover::apl::rendezvous

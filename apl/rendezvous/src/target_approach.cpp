@@ -43,6 +43,13 @@ void TargetApproach::Fail(RendezvousFault fault, const std::string& message, Exe
     stop.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
     out->mobility.push_back(stop);
   }
+  if (wait_ == Wait::kStow || wait_ == Wait::kPlace) {
+    msg::ArmCommand stop;
+    stop.mode = msg::ArmMode::kStop;
+    stop.command_id = kArmIdBase | kIdHalf | (++arm_seq_ & (kIdHalf - 1));
+    out->arm.push_back(stop);
+  }
+  after_stow_.reset();
   wait_ = Wait::kNone;
   status_.phase = RendezvousPhase::kFailed;
   status_.fault = fault;
@@ -85,7 +92,27 @@ void TargetApproach::RequestPair(Time now, ExecutorOutput* out) {
   wait_since_ = now;
 }
 
+void TargetApproach::Arm(msg::ArmCommand c, Wait wait, Time now, ExecutorOutput* out) {
+  c.stamp = now;
+  c.command_id = kArmIdBase | kIdHalf | (++arm_seq_ & (kIdHalf - 1));
+  c.timeout_s = options_.arm_timeout_s;
+  out->arm.push_back(c);
+  outstanding_ = c.command_id;
+  wait_ = wait;
+  wait_since_ = now;
+}
+
 void TargetApproach::Drive(msg::MobilityCommand c, Time now, ExecutorOutput* out) {
+  if (arm_ && !arm_->stowed) {
+    // The arm is out (dl-arm says so): stow it before the rover moves.
+    after_stow_ = c;
+    msg::ArmCommand stow;
+    stow.mode = msg::ArmMode::kStow;
+    status_.message = "stowing the arm before driving";
+    Reply(out);
+    Arm(stow, Wait::kStow, now, out);
+    return;
+  }
   c.stamp = now;
   c.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
   if (c.time_budget_s <= 0.0) c.time_budget_s = kMaxDriveS;
@@ -243,6 +270,18 @@ void TargetApproach::Decide(Time now, ExecutorOutput* out) {
                       "), bearing " + FormatNumber(bearing / kDegree) + " deg, after " +
                       std::to_string(steps_) + " tracking pairs";
     Reply(out);
+    if (command_.place_instrument) {
+      // The instrument on the target where the last pair measured it, in the rover frame.
+      msg::ArmCommand place;
+      place.mode = msg::ArmMode::kPlace;
+      place.target = rel;
+      status_.phase = RendezvousPhase::kPlacing;
+      status_.message = "placing the instrument at (" + Cm(rel.x()) + ", " + Cm(rel.y()) + ", " +
+                        Cm(rel.z()) + ") in the rover frame";
+      Reply(out);
+      Arm(place, Wait::kPlace, now, out);
+      return;
+    }
     wait_ = Wait::kHold;
     wait_since_ = now;
     return;
@@ -295,6 +334,31 @@ ExecutorOutput TargetApproach::OnMastStatus(const msg::MastStatus& s, Time now) 
   } else if (s.state == msg::MastState::kFault || s.state == msg::MastState::kRejected) {
     Fail(RendezvousFault::kMast, std::string("dl-mast ") + msg::MastStateName(s.state) + ": " + s.message,
          &out);
+  }
+  return out;
+}
+
+ExecutorOutput TargetApproach::OnArmStatus(const msg::ArmStatus& s, Time now) {
+  ExecutorOutput out;
+  arm_ = s;
+  if ((wait_ != Wait::kStow && wait_ != Wait::kPlace) || s.command_id != outstanding_) return out;
+  if (s.state == msg::ArmState::kFault || s.state == msg::ArmState::kRejected) {
+    const std::string why = std::string("dl-arm ") + msg::ArmStateName(s.state) + ": " + s.message;
+    wait_ = Wait::kNone;  // dl-arm has stopped already
+    Fail(RendezvousFault::kArm, why, &out);
+    return out;
+  }
+  if (wait_ == Wait::kStow && s.state == msg::ArmState::kStowed) {
+    wait_ = Wait::kNone;
+    const msg::MobilityCommand leg = *after_stow_;
+    after_stow_.reset();
+    Drive(leg, now, &out);
+  } else if (wait_ == Wait::kPlace && s.state == msg::ArmState::kPlaced) {
+    status_.phase = RendezvousPhase::kPlaced;
+    status_.message = "instrument placed: " + s.message;
+    Reply(&out);
+    wait_ = Wait::kHold;
+    wait_since_ = now;
   }
   return out;
 }
@@ -405,6 +469,15 @@ ExecutorOutput TargetApproach::Step(Time now) {
       if (waited > options_.camera_timeout_s) {
         Fail(RendezvousFault::kCamera, "no NAVCAM pair within " +
                                            FormatNumber(options_.camera_timeout_s) + " s",
+             &out);
+      }
+      break;
+    case Wait::kStow:
+    case Wait::kPlace:
+      if (waited > options_.arm_timeout_s + 5.0) {
+        Fail(RendezvousFault::kArm, std::string("no ") + (wait_ == Wait::kStow ? "STOWED" : "PLACED") +
+                                        " from dl-arm within " +
+                                        FormatNumber(options_.arm_timeout_s + 5.0) + " s",
              &out);
       }
       break;

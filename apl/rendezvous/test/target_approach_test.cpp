@@ -99,6 +99,10 @@ struct ApproachHarness {
   double t = 10.0;
   std::vector<msg::RendezvousStatus> statuses;
   std::vector<msg::MobilityCommand> drives;
+  // A fake dl-arm: STOW -> STOWED; PLACE -> `place_reply` (the arm is then out).
+  std::vector<msg::ArmCommand> arm_commands;
+  msg::ArmState place_reply = msg::ArmState::kPlaced;
+  bool arm_stowed = true;
   // A forward-looking pinhole NAVCAM 1.5 m up (the by-point designation projects into it).
   geometry::CameraModel model = [] {
     geometry::PinholeRadial p;
@@ -139,8 +143,27 @@ struct ApproachHarness {
         for (auto& x : o.mobility) next.mobility.push_back(x);
         for (auto& x : o.mast) next.mast.push_back(x);
         for (auto& x : o.camera) next.camera.push_back(x);
+        for (auto& x : o.arm) next.arm.push_back(x);
         for (auto& x : o.statuses) next.statuses.push_back(x);
       };
+      for (const auto& a : out.arm) {
+        arm_commands.push_back(a);
+        if (a.mode == msg::ArmMode::kStop) continue;
+        msg::ArmStatus s;
+        s.command_id = a.command_id;
+        if (a.mode == msg::ArmMode::kStow) {
+          arm_stowed = true;
+          s.state = msg::ArmState::kStowed;
+        } else {
+          arm_stowed = false;
+          s.state = place_reply;
+          s.message = place_reply == msg::ArmState::kPlaced ? "face 2 mm above the target"
+                                                             : "no contact within 0.03 m below the target";
+        }
+        s.stowed = arm_stowed;
+        t += 20.0;
+        add(exec.OnArmStatus(s, Now()));
+      }
       for (const auto& m : out.mast) {
         msg::MastStatus s;
         s.command_id = m.command_id;
@@ -169,7 +192,8 @@ struct ApproachHarness {
       exec.OnPose(Pose(), Now());
       add(exec.Step(Now()));
       out = std::move(next);
-      if (!exec.busy() && out.mobility.empty() && out.mast.empty() && out.camera.empty()) {
+      if (!exec.busy() && out.mobility.empty() && out.mast.empty() && out.camera.empty() &&
+          out.arm.empty()) {
         for (const auto& s : out.statuses) statuses.push_back(s);
         return;
       }
@@ -237,6 +261,73 @@ TEST(TargetApproachTest, ASitePointDesignatesInAPairTakenLookingAtIt) {
   ApproachHarness nan;
   nan.Start(c, false);
   EXPECT_THAT(nan.exec.status().message, HasSubstr("target_estimate.y = nan"));
+}
+
+TEST(TargetApproachTest, PlacesTheInstrumentWhereTheLastPairSawTheTarget) {
+  ApproachHarness h;
+  auto c = h.Command();
+  c.place_instrument = true;
+  h.Start(c);
+  const msg::RendezvousStatus& s = h.exec.status();
+  ASSERT_EQ(s.phase, RendezvousPhase::kDone) << s.message;
+  EXPECT_TRUE(h.Saw(RendezvousPhase::kAtTarget));
+  EXPECT_TRUE(h.Saw(RendezvousPhase::kPlacing));
+  EXPECT_TRUE(h.Saw(RendezvousPhase::kPlaced));
+  ASSERT_EQ(h.arm_commands.size(), 1u);
+  const msg::ArmCommand& place = h.arm_commands[0];
+  EXPECT_EQ(place.mode, msg::ArmMode::kPlace);
+  EXPECT_EQ(place.target, s.target_in_rover);  // the target as the last pair measured it
+  EXPECT_LT((place.target - h.world.TargetInRover()).head<2>().norm(), 0.015);
+  // Without place_instrument the arm is left alone.
+  ApproachHarness plain;
+  plain.Start(plain.Command());
+  EXPECT_TRUE(plain.arm_commands.empty());
+  EXPECT_FALSE(plain.Saw(RendezvousPhase::kPlacing));
+}
+
+TEST(TargetApproachTest, ArmFaultsAreTypedAndAnArmLeftOutIsStowedBeforeDriving) {
+  ApproachHarness h;
+  h.place_reply = msg::ArmState::kFault;
+  auto c = h.Command();
+  c.place_instrument = true;
+  h.Start(c);
+  EXPECT_EQ(h.exec.status().phase, RendezvousPhase::kFailed);
+  EXPECT_EQ(h.exec.status().fault, RendezvousFault::kArm);
+  EXPECT_THAT(h.exec.status().message, HasSubstr("dl-arm FAULT: no contact"));
+  // The next approach starts with the arm out (dl-arm said so): STOW before the first leg.
+  const std::size_t drives_before = h.drives.size();
+  h.world = ApproachWorld{};
+  c.command_id = 10;
+  c.place_instrument = false;
+  h.Start(c);
+  EXPECT_EQ(h.exec.status().phase, RendezvousPhase::kDone) << h.exec.status().message;
+  ASSERT_GE(h.arm_commands.size(), 2u);
+  EXPECT_EQ(h.arm_commands[1].mode, msg::ArmMode::kStow);
+  EXPECT_GT(h.drives.size(), drives_before);
+  // No answer from dl-arm: ARM after arm_timeout_s, and the arm is told to stop.
+  RendezvousOptions quick;
+  quick.arm_timeout_s = 10.0;
+  ApproachWorld far;  // 10 m from the target again
+  TargetApproach silent(quick, std::make_shared<FakeTracker>(&far));
+  msg::PoseSample p;
+  p.stamp = Time::FromSeconds(1.0);
+  p.site_from_rover = far.odometry.Pose();
+  silent.OnPose(p, p.stamp);
+  msg::ArmStatus out_arm;
+  out_arm.stowed = false;
+  silent.OnArmStatus(out_arm, p.stamp);
+  NavcamPair pair;
+  pair.request_id = c.image_id;
+  ExecutorOutput o = silent.OnCommand(c, &pair, far.odometry.Pose(), p.stamp);
+  ASSERT_EQ(o.arm.size(), 1u) << msg::RendezvousPhaseName(silent.status().phase) << ": "
+                              << silent.status().message;
+  EXPECT_EQ(o.arm[0].mode, msg::ArmMode::kStow);
+  EXPECT_TRUE(o.mobility.empty()) << "no leg before the arm is stowed";
+  o = silent.Step(Time::FromSeconds(20.0));
+  EXPECT_EQ(silent.status().fault, RendezvousFault::kArm);
+  EXPECT_THAT(silent.status().message, HasSubstr("no STOWED from dl-arm"));
+  ASSERT_EQ(o.arm.size(), 1u);
+  EXPECT_EQ(o.arm[0].mode, msg::ArmMode::kStop);
 }
 
 TEST(TargetApproachTest, DirectedLegsWorkToo) {

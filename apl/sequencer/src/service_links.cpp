@@ -23,18 +23,29 @@ const CommandCall* FindCommand(const std::vector<Statement>& statements,
 }  // namespace
 
 bool ServiceDispatches(Family f) {
-  return f == Family::kMobility || f == Family::kMast || f == Family::kRendezvous;
+  return f == Family::kMobility || f == Family::kMast || f == Family::kRendezvous ||
+         f == Family::kArm;
 }
 
+namespace {
+// Why apl-sequencer does not dispatch a command, or "" when it does.
+std::string NotDispatched(const CommandSpec& s) {
+  if (!ServiceDispatches(s.family)) return std::string(FamilyName(s.family)) + " commands";
+  if (s.kind == CommandKind::kArmUnstow) return "it (dl-arm has no unstowed pose; ARM MOVE names one)";
+  if (s.kind == CommandKind::kAutofocus) return "it (the microscopic imager is not built yet)";
+  return "";
+}
+}  // namespace
+
 Status CheckDispatchable(const Sequence& sequence) {
-  auto other = [](const CommandCall& c) { return !ServiceDispatches(c.spec().family); };
+  auto other = [](const CommandCall& c) { return !NotDispatched(c.spec()).empty(); };
   const CommandCall* c = FindCommand(sequence.on_abort, other);
   const CommandCall* first = FindCommand(sequence.statements, other);
   if (first != nullptr && (c == nullptr || first->pos.line < c->pos.line)) c = first;
   if (c == nullptr) return Status::Ok();
   return InvalidArgument("line " + std::to_string(c->pos.line) + ": " +
                          std::string(c->spec().name) + ": apl-sequencer does not dispatch " +
-                         FamilyName(c->spec().family) + " commands yet");
+                         NotDispatched(c->spec()));
 }
 
 Result<msg::MobilityCommand> MobilityCommandOf(const Command& c, Time stamp) {
@@ -141,6 +152,58 @@ std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s) {
   if (o.fault.IsNone()) o.fault = Fault::Other();  // an end off nominal names a fault
   o.fault_class = s.fault_class == msg::FaultClass::kNone ? o.fault.DefaultClass() : s.fault_class;
   return o;
+}
+
+Result<msg::ArmCommand> ArmCommandOf(const Command& c,
+                                     const std::optional<Eigen::Isometry3d>& site_from_rover,
+                                     Time stamp) {
+  const auto& r = std::get<ArmRequest>(c.request);
+  msg::ArmCommand m;
+  m.stamp = stamp;
+  m.command_id = c.id;
+  switch (r.kind) {
+    case ArmRequest::Kind::kMove:
+      m.mode = msg::ArmMode::kJoints;
+      m.joints = r.joints;
+      return m;
+    case ArmRequest::Kind::kStow:
+      m.mode = msg::ArmMode::kStow;
+      return m;
+    case ArmRequest::Kind::kPlace:
+      if (r.hover != 0.0) {
+        return InvalidArgument("hover = " + FormatNumber(r.hover) +
+                               " m: dl-arm places the instrument until its contact switch "
+                               "closes; leave hover at 0");
+      }
+      if (!site_from_rover) return FailedPrecondition("ARM PLACE needs dl/pose; none heard yet");
+      m.mode = msg::ArmMode::kPlace;
+      m.target = site_from_rover->inverse() * Eigen::Vector3d(r.point.x, r.point.y, r.point.z);
+      return m;
+    case ArmRequest::Kind::kUnstow:
+    case ArmRequest::Kind::kAutofocus:
+      break;
+  }
+  return InvalidArgument(std::string(c.text) + ": apl-sequencer does not dispatch it");
+}
+
+msg::ArmCommand ArmStopCommand(std::uint32_t cancel_id, Time stamp) {
+  msg::ArmCommand m;
+  m.stamp = stamp;
+  m.command_id = cancel_id | kCancelIdBit;
+  m.mode = msg::ArmMode::kStop;
+  return m;
+}
+
+std::optional<Outcome> OutcomeOfArmStatus(const msg::ArmStatus& s) {
+  switch (s.state) {
+    case msg::ArmState::kAtGoal:
+    case msg::ArmState::kPlaced:
+    case msg::ArmState::kStowed: return Outcome::Nominal(s.stamp);
+    case msg::ArmState::kFault: return Outcome::Failed(Fault::Other(), s.message, s.stamp);
+    case msg::ArmState::kRejected:
+      return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), s.message, s.stamp);
+    default: return std::nullopt;
+  }
 }
 
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s) {

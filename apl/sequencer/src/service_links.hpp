@@ -15,6 +15,7 @@
 
 #include "rover/apl/sequencer/commands.hpp"
 #include "rover/apl/sequencer/interpreter.hpp"
+#include "rover/msg/arm.hpp"
 #include "rover/msg/mast.hpp"
 #include "rover/msg/mobility.hpp"
 #include "rover/msg/pose.hpp"
@@ -26,12 +27,12 @@ namespace rover::apl::sequencer {
 inline constexpr std::uint32_t kCancelIdBit = 0x80000000u;
 
 /// The families apl-sequencer dispatches: mobility (apl/mobility_command), mast
-/// (dl/mast_command) and rendezvous (apl/rendezvous_command). Arm commands wait for their
-/// service.
+/// (dl/mast_command), rendezvous (apl/rendezvous_command) and arm (dl/arm_command).
 bool ServiceDispatches(Family f);
-/// Ok when every command of the sequence (statements and ON_ABORT block) is of a family the
-/// service dispatches; else InvalidArgument naming the first other one's line and command:
-/// "line 5: ARM STOW: apl-sequencer does not dispatch arm commands yet".
+/// Ok when every command of the sequence (statements and ON_ABORT block) is one the service
+/// dispatches; else InvalidArgument naming the first other one's line and command. Not
+/// dispatched: ARM UNSTOW (dl-arm has no unstowed pose; ARM MOVE names one) and AUTOFOCUS (no
+/// microscopic imager yet): "line 5: AUTOFOCUS: apl-sequencer does not dispatch it (...)".
 Status CheckDispatchable(const Sequence& sequence);
 
 /// The apl/mobility_command of a mobility command, stamped `stamp`. Errors: a speed other than 0
@@ -49,6 +50,14 @@ msg::MastCommand MastCommandOf(const Command& c, Time stamp);
 msg::RendezvousCommand RendezvousCommandOf(const Command& c, Time stamp);
 /// apl-rendezvous's TARGET_STOP, as sent to cancel an outstanding rendezvous command.
 msg::RendezvousCommand RendezvousStopCommand(std::uint32_t cancel_id, Time stamp);
+/// The dl/arm_command of an arm command, stamped `stamp`: ARM MOVE is JOINTS, ARM STOW is STOW,
+/// ARM PLACE is PLACE with the site-frame point moved into the rover frame by `site_from_rover`
+/// (the latest dl/pose). Errors: ARM PLACE without a pose, or with hover other than 0 (dl-arm
+/// places the instrument until its contact switch closes), naming the value.
+Result<msg::ArmCommand> ArmCommandOf(const Command& c, const std::optional<Eigen::Isometry3d>& site_from_rover,
+                                     Time stamp);
+/// dl-arm's STOP, as sent to cancel an outstanding arm command.
+msg::ArmCommand ArmStopCommand(std::uint32_t cancel_id, Time stamp);
 
 /// The outcome a mobility status gives its command: SUCCEEDED -> NOMINAL, FAILED -> FAULT,
 /// REJECTED -> REJECTED (with the fault mapped by name and the status's class), stamped with
@@ -57,6 +66,11 @@ std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s);
 /// The outcome a mast status gives its command: AT_GOAL -> NOMINAL, FAULT -> FAULT OTHER (goal
 /// error), REJECTED -> REJECTED BAD_COMMAND; nullopt while IDLE or MOVING.
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s);
+
+/// The outcome an arm status gives its command: AT_GOAL, PLACED, STOWED -> NOMINAL; FAULT ->
+/// FAULT OTHER (goal error, dl-arm's message); REJECTED -> REJECTED BAD_COMMAND; nullopt while
+/// IDLE or MOVING.
+std::optional<Outcome> OutcomeOfArmStatus(const msg::ArmStatus& s);
 
 /// The outcome a rendezvous status gives its command: DONE -> NOMINAL; FAILED -> REJECTED for
 /// BAD_COMMAND and BUSY, else FAULT (a goal error), the fault named as apl-rendezvous names it

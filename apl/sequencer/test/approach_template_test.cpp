@@ -92,7 +92,8 @@ class FakeRover {
 
 struct Approach {
   SequenceStatus status;
-  std::vector<Command> commands;
+  std::vector<Command> commands;  // the mobility commands
+  std::vector<Command> arm;       // the arm commands (answered NOMINAL by a fake dl-arm)
 };
 
 Approach RunApproach(const Vec3& target, FakeRover& rover) {
@@ -103,7 +104,11 @@ Approach RunApproach(const Vec3& target, FakeRover& rover) {
   it->OnPose(rover.Pose());
   for (int guard = 0; guard < 500 && it->busy(); ++guard) {
     StepOutput o = it->Step(rover.Now());
-    if (o.command) {
+    if (o.command && std::holds_alternative<ArmRequest>(o.command->request)) {
+      out.arm.push_back(*o.command);
+      rover.Wait(30.0);
+      EXPECT_TRUE(it->OnCommandResult(o.command->id, Outcome::Nominal(rover.Now())).ok());
+    } else if (o.command) {
       out.commands.push_back(*o.command);
       const Outcome result = rover.Execute(*o.command);
       it->OnPose(rover.Pose());  // the estimator publishes after the motion
@@ -148,6 +153,10 @@ TEST(ApproachTemplate, EndsWithinTheArmsSweetSpotDespiteSlip) {
     EXPECT_LT(std::abs(rover.TrueBearingOf(target)), 1e-9);  // facing it
     ASSERT_FALSE(a.commands.empty());
     EXPECT_EQ(a.commands.back().kind, CommandKind::kVisodomTurnTo);
+    // Then the instrument on the target, where the rover believes it is.
+    ASSERT_EQ(a.arm.size(), 1u);
+    EXPECT_EQ(a.arm[0].kind, CommandKind::kArmPlace);
+    EXPECT_EQ(std::get<ArmRequest>(a.arm[0].request).point, target);
     // 4.7 m of 30 cm steps at 0-40 % slip, then a few 10 cm steps.
     int coarse = 0, fine = 0;
     for (const Command& c : a.commands) {

@@ -25,20 +25,64 @@ Command Built(const std::string& line, std::uint32_t id = 7) {
   return c.ok() ? *c : Command{};
 }
 
-TEST(ServiceLinks, MobilityMastAndRendezvousAreDispatched) {
+TEST(ServiceLinks, MobilityMastRendezvousAndArmAreDispatched) {
   EXPECT_TRUE(CheckDispatchable(MustParse("ON_ABORT\n  STOP\nEND\nMAST LOOK_AT (1, 2, 0)\n"
                                           "IF tilt > 5\n  AUTONAV goal=(3, 0)\nEND\n"))
                   .ok());
+  EXPECT_TRUE(CheckDispatchable(MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  ARM STOW\nEND\n"
+                                          "ARM PLACE (1, 0, 0)\nARM MOVE joints_deg=(0, 80, -170, 170)\n"))
+                  .ok());
   const Status inner = CheckDispatchable(
-      MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  ARM STOW\nEND\n"));
-  EXPECT_EQ(inner.message(),
-            "line 5: ARM STOW: apl-sequencer does not dispatch arm commands yet");
+      MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  AUTOFOCUS\nEND\n"));
+  EXPECT_EQ(inner.message(), "line 5: AUTOFOCUS: apl-sequencer does not dispatch it (the "
+                             "microscopic imager is not built yet)");
   EXPECT_TRUE(CheckDispatchable(MustParse(
                   "ON_ABORT\n  RETURN_TO_LANDER\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"))
                   .ok());
   const Status in_abort =
-      CheckDispatchable(MustParse("ON_ABORT\n  ARM STOW\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"));
-  EXPECT_EQ(in_abort.message(), "line 2: ARM STOW: apl-sequencer does not dispatch arm commands yet");
+      CheckDispatchable(MustParse("ON_ABORT\n  ARM UNSTOW\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"));
+  EXPECT_EQ(in_abort.message(), "line 2: ARM UNSTOW: apl-sequencer does not dispatch it (dl-arm "
+                                "has no unstowed pose; ARM MOVE names one)");
+}
+
+TEST(ServiceLinks, ArmCommandsAndTheirStatuses) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(2.0, 1.0, 0.0);
+  pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Result<msg::ArmCommand> place = ArmCommandOf(Built("ARM PLACE (2, 2.05, 0.1)", 9), pose, Time{5});
+  ASSERT_TRUE(place.ok()) << place.status().ToString();
+  EXPECT_EQ(place->mode, msg::ArmMode::kPlace);
+  EXPECT_EQ(place->command_id, 9u);
+  // 1.05 m ahead of a rover facing +y (site), 10 cm up: the rover frame's (1.05, 0, 0.1).
+  EXPECT_TRUE(place->target.isApprox(Eigen::Vector3d(1.05, 0.0, 0.1), 1e-12)) << place->target.transpose();
+  EXPECT_FALSE(ArmCommandOf(Built("ARM PLACE (2, 2.05, 0.1)"), std::nullopt, Time{5}).ok());
+  const Result<msg::ArmCommand> hover = ArmCommandOf(Built("ARM PLACE (2, 2, 0) hover=5 mm"), pose, Time{5});
+  ASSERT_FALSE(hover.ok());
+  EXPECT_NE(hover.status().message().find("hover = 0.005"), std::string::npos) << hover.status().ToString();
+  const Result<msg::ArmCommand> move = ArmCommandOf(Built("ARM MOVE joints_deg=(0, 90, -90, 0)"), std::nullopt, Time{5});
+  ASSERT_TRUE(move.ok());
+  EXPECT_EQ(move->mode, msg::ArmMode::kJoints);
+  EXPECT_NEAR(move->joints[1], M_PI / 2, 1e-12);
+  EXPECT_EQ(ArmCommandOf(Built("ARM STOW"), std::nullopt, Time{5})->mode, msg::ArmMode::kStow);
+  const msg::ArmCommand stop = ArmStopCommand(12, Time{6});
+  EXPECT_EQ(stop.mode, msg::ArmMode::kStop);
+  EXPECT_EQ(stop.command_id, 12u | kCancelIdBit);
+
+  msg::ArmStatus s;
+  s.state = msg::ArmState::kMoving;
+  EXPECT_FALSE(OutcomeOfArmStatus(s).has_value());
+  for (msg::ArmState done : {msg::ArmState::kAtGoal, msg::ArmState::kPlaced, msg::ArmState::kStowed}) {
+    s.state = done;
+    ASSERT_TRUE(OutcomeOfArmStatus(s).has_value());
+    EXPECT_EQ(OutcomeOfArmStatus(s)->termination, Termination::kNominal);
+  }
+  s.state = msg::ArmState::kFault;
+  s.message = "no contact within 0.03 m below the target";
+  ASSERT_TRUE(OutcomeOfArmStatus(s).has_value());
+  EXPECT_EQ(OutcomeOfArmStatus(s)->termination, Termination::kFault);
+  EXPECT_EQ(OutcomeOfArmStatus(s)->message, s.message);
+  s.state = msg::ArmState::kRejected;
+  EXPECT_EQ(OutcomeOfArmStatus(s)->termination, Termination::kRejected);
 }
 
 TEST(ServiceLinks, RendezvousCommandsAndTheirStatuses) {

@@ -100,7 +100,7 @@ TEST(ArmDescription, ValidateNamesTheField) {
 TEST(ArmDescription, MovesFromStowToThePlacementsAheadAreClear) {
   const RoverDescription d;
   for (const Eigen::Vector3d& target : {Eigen::Vector3d(1.05, 0.0, 0.0), Eigen::Vector3d(1.05, 0.2, 0.1),
-                                        Eigen::Vector3d(1.0, -0.2, -0.1), Eigen::Vector3d(1.15, 0.0, 0.3)}) {
+                                        Eigen::Vector3d(1.0, -0.2, -0.05), Eigen::Vector3d(1.15, 0.0, 0.3)}) {
     const Result<ArmAngles> q = d.arm.FaceDown(target);
     ASSERT_TRUE(q.ok()) << q.status().ToString();
     EXPECT_TRUE(d.CheckArmMove(d.arm.stow, *q).ok()) << target.transpose() << ": "

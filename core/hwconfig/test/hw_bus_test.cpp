@@ -13,7 +13,9 @@ TEST(HwBus, NamesFollowTheIdlOrder) {
   EXPECT_EQ(std::string(MotorName(kDriveLF)), "drive_lf");
   EXPECT_EQ(std::string(MotorName(kSteerRR)), "steer_rr");
   EXPECT_EQ(std::string(MotorName(kMastTilt)), "mast_tilt");
-  EXPECT_EQ(std::string(MotorName(12)), "?");
+  EXPECT_EQ(std::string(MotorName(kArmAzimuth)), "arm_azimuth");
+  EXPECT_EQ(std::string(MotorName(kArmWrist)), "arm_wrist");
+  EXPECT_EQ(std::string(MotorName(16)), "?");
   EXPECT_EQ(std::string(MotorName(-1)), "?");
   EXPECT_EQ(std::string(PotName(kRightBogie)), "right_bogie");
   EXPECT_EQ(std::string(MotorModeName(MotorMode::kBrake)), "brake");

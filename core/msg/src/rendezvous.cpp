@@ -19,7 +19,7 @@ const char* RendezvousTargetName(RendezvousTarget t) {
 const char* RendezvousPhaseName(RendezvousPhase p) {
   static constexpr std::array<const char*, kRendezvousPhaseCount> kNames = {
       "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED",
-      "APPROACH_TARGET", "AT_TARGET"};
+      "APPROACH_TARGET", "AT_TARGET", "PLACING", "PLACED"};
   const auto i = static_cast<std::size_t>(p);
   return i < kNames.size() ? kNames[i] : "UNKNOWN";
 }
@@ -28,7 +28,7 @@ const char* RendezvousFaultName(RendezvousFault f) {
   static constexpr std::array<const char*, kRendezvousFaultCount> kNames = {
       "NONE",       "BAD_COMMAND", "BUSY",   "NOT_FOUND", "TOO_FEW_STRIPES", "STALE_POSE",
       "MOBILITY",   "MAST",        "CAMERA", "STOPPED",   "TIMEOUT",         "PLACEMENT",
-      "TARGET_LOST"};
+      "TARGET_LOST", "ARM"};
   const auto i = static_cast<std::size_t>(f);
   return i < kNames.size() ? kNames[i] : "UNKNOWN";
 }

@@ -14,6 +14,8 @@ static_assert(rover_apl_PHASE_FAILED == static_cast<int>(RendezvousPhase::kFaile
 static_assert(rover_apl_PHASE_AT_TARGET == static_cast<int>(RendezvousPhase::kAtTarget));
 static_assert(rover_apl_RZFAULT_NONE == static_cast<int>(RendezvousFault::kNone));
 static_assert(rover_apl_RZFAULT_TARGET_LOST == static_cast<int>(RendezvousFault::kTargetLost));
+static_assert(rover_apl_PHASE_PLACED == static_cast<int>(RendezvousPhase::kPlaced));
+static_assert(rover_apl_RZFAULT_ARM == static_cast<int>(RendezvousFault::kArm));
 
 RendezvousCommand RendezvousCommandFromIdl(const rover_apl_RendezvousCommand& in) {
   RendezvousCommand c;
@@ -28,6 +30,7 @@ RendezvousCommand RendezvousCommandFromIdl(const rover_apl_RendezvousCommand& in
   c.image_id = in.image_id;
   c.pixel_x = in.pixel_x;
   c.pixel_y = in.pixel_y;
+  c.place_instrument = in.place_instrument;
   return c;
 }
 
@@ -43,6 +46,7 @@ void RendezvousCommandToIdl(const RendezvousCommand& in, rover_apl_RendezvousCom
   out->image_id = in.image_id;
   out->pixel_x = in.pixel_x;
   out->pixel_y = in.pixel_y;
+  out->place_instrument = in.place_instrument;
 }
 
 Result<RendezvousStatus> RendezvousStatusFromIdl(const rover_apl_RendezvousStatus& in) {

@@ -74,9 +74,11 @@ TEST(RendezvousIdl, StatusRoundTripAndBadEnums) {
   EXPECT_STREQ(RendezvousFaultName(back->fault), "TOO_FEW_STRIPES");
   m.phase = rover_apl_PHASE_AT_TARGET;
   EXPECT_EQ(RendezvousStatusFromIdl(m)->phase, RendezvousPhase::kAtTarget);
-  idl::SetRawEnum(&m.phase, 10);
+  m.phase = rover_apl_PHASE_PLACED;
+  EXPECT_EQ(RendezvousStatusFromIdl(m)->phase, RendezvousPhase::kPlaced);
+  idl::SetRawEnum(&m.phase, 12);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),
-              ::testing::HasSubstr("apl/rendezvous_status phase = 10 is not a RendezvousPhase"));
+              ::testing::HasSubstr("apl/rendezvous_status phase = 12 is not a RendezvousPhase"));
   m.phase = rover_apl_PHASE_DONE;
   idl::SetRawEnum(&m.fault, -1);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),

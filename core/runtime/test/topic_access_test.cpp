@@ -55,7 +55,7 @@ TEST(TopicAccess, OnlyTheRunnerAndRecorderReadTruth) {
 TEST(TopicAccess, EveryServiceFolderHasARole) {
   for (const char* svc : {"apl-mobility", "apl-rendezvous", "apl-sequencer", "ddl-camera",
                           "ddl-imu", "ddl-joints", "ddl-motor", "ddl-sun-sensor",
-                          "dl-locomotion", "dl-mast", "dl-pose", "dl-stereo", "dl-vo",
+                          "dl-arm", "dl-locomotion", "dl-mast", "dl-pose", "dl-stereo", "dl-vo",
                           "rover-sim"}) {
     EXPECT_TRUE(FindRole(svc).has_value()) << svc;
   }

@@ -42,7 +42,8 @@ TEST(JointReader, ConvertsCountsToAnglesWithTheCalibration) {
   ASSERT_TRUE(reader.ok());
   std::array<double, hw::kNumMotors> a{0.5, -1.0, 2.0, 3.0,  -4.0, 5.0,  // wheels
                                        0.3, -0.2, 0.1, -0.4,             // steering
-                                       1.2, -0.3};                       // mast
+                                       1.2, -0.3,                        // mast
+                                       0.4, 1.1, -2.5, 0.9};             // arm
   reader->OnMotorTelemetry(Telemetry(c, 1'000'000, a));
   reader->OnSuspensionPots(Pots(c, 2'000'000, {0.12, -0.12, -0.3, 0.25}));
   const JointState s = reader->State(Time{3'000'000});
@@ -56,10 +57,32 @@ TEST(JointReader, ConvertsCountsToAnglesWithTheCalibration) {
   }
   EXPECT_NEAR(s.mast_pan, 1.2, 0.5 / c.motors[10].CountsPerRad());
   EXPECT_NEAR(s.mast_tilt, -0.3, 0.5 / c.motors[11].CountsPerRad());
+  for (std::size_t j = 0; j < 4; ++j) {
+    EXPECT_NEAR(s.arm_angle[j], a[12 + j], 0.5 / c.motors[12 + j].CountsPerRad());
+  }
+  EXPECT_FALSE(s.arm_contact);  // no hw/arm_contact yet: open, and the health does not mind
   EXPECT_NEAR(s.rocker_angle[0], 0.12, 0.5 / 690.0 + 1e-12);
   EXPECT_NEAR(s.rocker_angle[1], -0.12, 0.5 / 690.0 + 1e-12);
   EXPECT_NEAR(s.bogie_angle[0], -0.3, 0.5 / 690.0 + 1e-12);
   EXPECT_NEAR(s.bogie_angle[1], 0.25, 0.5 / 690.0 + 1e-12);
+}
+
+TEST(JointReader, TheContactSwitchIsReportedWhileFresh) {
+  const HardwareConfig c;
+  auto reader = JointReader::Create(c);
+  ASSERT_TRUE(reader.ok());
+  reader->OnMotorTelemetry(Telemetry(c, 1'000'000, {}));
+  reader->OnSuspensionPots(Pots(c, 1'000'000, {0.0, 0.0, 0.0, 0.0}));
+  reader->OnArmContact({1'000'000, true});
+  EXPECT_TRUE(reader->State(Time{1'100'000}).arm_contact);
+  reader->OnArmContact({900'000, false});  // older: ignored
+  EXPECT_TRUE(reader->State(Time{1'100'000}).arm_contact);
+  reader->OnArmContact({1'020'000'000, false});
+  EXPECT_FALSE(reader->State(Time{1'030'000'000}).arm_contact);
+  reader->OnArmContact({1'040'000'000, true});
+  // Stale (older than stale_after_s): reported open, never a stale "closed".
+  EXPECT_TRUE(reader->State(Time{1'100'000'000}).arm_contact);
+  EXPECT_FALSE(reader->State(Time{1'040'000'000 + 300'000'000}).arm_contact);
 }
 
 TEST(JointReader, WheelAnglesAreWrapFreeAndRatesComeFromCounts) {

@@ -104,7 +104,8 @@ CommandError MotorGroupManager::Check(const MotorCommand& c, std::string* messag
   for (int bit = hw::kNumMotors; bit < 16; ++bit) {
     if ((c.motor_mask >> bit) & 1u) {
       *motor = bit;
-      *message = "motor_mask bit " + std::to_string(bit) + " selects no motor (0..11)";
+      *message = "motor_mask bit " + std::to_string(bit) + " selects no motor (0.." +
+                 std::to_string(hw::kNumMotors - 1) + ")";
       return CommandError::kUnknownMotor;
     }
   }

@@ -108,12 +108,13 @@ recording::RecordOptions DefaultRunRecording() {
   // pairs as the stack used them (ddl/stereo_frame) stay, so dl-stereo and dl-vo can be replayed.
   // Strict lock-step's acknowledgements (one per service per tick) were 60 % of the remaining
   // bytes and say nothing a replay needs. The simulator's 100 Hz and 50 Hz hardware streams
-  // (hw/imu, hw/motor_telemetry, hw/suspension_pots) reach the stack through their drivers,
+  // (hw/imu, hw/motor_telemetry, hw/suspension_pots, hw/arm_contact) reach the stack through
+  // their drivers,
   // whose outputs (ddl/imu, ddl/motor_status, ddl/joint_state) stay: every service above the
   // drivers can be replayed. Recording them cost the simulator a send per sample to one more
   // reader (about a tenth of a campaign's wall time).
   o.topics.exclude = {"hw/camera_frame", "sim/clock_ack", "hw/imu", "hw/motor_telemetry",
-                      "hw/suspension_pots"};
+                      "hw/suspension_pots", "hw/arm_contact"};
   return o;
 }
 

@@ -161,7 +161,8 @@ TEST_F(ScenarioTest, LockstepIsStrictByDefaultAndChecked) {
   // stay out of the recording unless asked for.
   EXPECT_EQ(s->record.topics.exclude,
             (std::vector<std::string>{"hw/camera_frame", "sim/clock_ack", "hw/imu",
-                                      "hw/motor_telemetry", "hw/suspension_pots"}));
+                                      "hw/motor_telemetry", "hw/suspension_pots",
+                                      "hw/arm_contact"}));
   std::string text = kGood;
   const std::string sim = "sim: {real_time_factor: 0, time_budget_s: 200}";
   auto with = [&](const std::string& replacement) {

@@ -286,6 +286,74 @@ TEST(RoverSimulation, SteersCornerWheelsToCommandedAngles) {
       0.05);
 }
 
+// Moves the four arm joints to `q` along a straight joint-space line, the joint with the
+// largest travel at `rate` [rad/s] (as ddl-motor synchronises a group).
+void ArmTo(RoverSimulation& sim, const hwconfig::ArmAngles& q, double rate) {
+  const RoverReadings now = sim.Readings();
+  double largest = 1e-9;
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    largest = std::max(largest, std::abs(q[static_cast<std::size_t>(j)] -
+                                         now.joint_angle_rad[hw::kArmAzimuth + j]));
+  }
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    const int m = hw::kArmAzimuth + j;
+    const double cpr = CountsPerRad(sim, m);
+    const double travel = std::abs(q[static_cast<std::size_t>(j)] - now.joint_angle_rad[m]);
+    ASSERT_TRUE(sim.SetMotorGoal(m, MotorMode::kPosition, q[static_cast<std::size_t>(j)] * cpr,
+                                 std::max(1e-3, rate * travel / largest) * cpr, 0.8)
+                    .ok());
+  }
+}
+
+TEST(RoverSimulation, TheKinematicArmFollowsItsMotorsAndItsFaceStopsOnTheGround) {
+  // Flat ground with a 10 cm step 1.05 m ahead: the instrument comes down on it.
+  auto sim = MakeSim(MakeTerrain(-3, 6, 4, 0.02, Soil::kFirmSoil,
+                                 [](double x, double) { return x > 0.95 && x < 1.3 ? 0.10 : 0.0; }));
+  ASSERT_NE(sim, nullptr);
+  const hwconfig::RoverDescription& g = sim->params().geometry;
+  RoverReadings r = sim->Readings();
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    EXPECT_NEAR(r.joint_angle_rad[hw::kArmAzimuth + j], g.arm.stow[static_cast<std::size_t>(j)], 1e-6);
+  }
+  EXPECT_FALSE(r.tool_contact);
+  const Eigen::Isometry3d site_from_rover = r.chassis.pose_site;
+  // Above the step, face down, 5 cm clear of it.
+  const Eigen::Vector3d above_site(1.05, 0.0, 0.15);
+  const Result<hwconfig::ArmAngles> hover = g.arm.FaceDown(site_from_rover.inverse() * above_site);
+  ASSERT_TRUE(hover.ok()) << hover.status().ToString();
+  ArmTo(*sim, *hover, 0.4);
+  ASSERT_TRUE(sim->Advance(12.0).ok());
+  r = sim->Readings();
+  EXPECT_LT((r.tool_point - above_site).norm(), 0.01) << r.tool_point.transpose();
+  EXPECT_FALSE(r.tool_contact);
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    EXPECT_TRUE(r.motors[hw::kArmAzimuth + j].goal_reached) << j;
+  }
+  // Then aimed 5 cm into the step: the face rests on it, the switch closes, the joints stop
+  // short of their goals and the motors, still pushing, stall.
+  const Result<hwconfig::ArmAngles> into =
+      g.arm.FaceDown(site_from_rover.inverse() * Eigen::Vector3d(1.05, 0.0, 0.05));
+  ASSERT_TRUE(into.ok());
+  ArmTo(*sim, *into, 0.05);
+  bool contact = false;
+  for (int i = 0; i < 100 && !contact; ++i) {
+    ASSERT_TRUE(sim->Advance(0.1).ok());
+    contact = sim->Readings().tool_contact;
+  }
+  ASSERT_TRUE(contact);
+  r = sim->Readings();
+  EXPECT_NEAR(r.tool_point.z(), 0.10, kArmContactBand + 1e-3) << r.tool_point.transpose();
+  EXPECT_NEAR(r.tool_point.x(), 1.05, 0.01);
+  ASSERT_TRUE(sim->Advance(3.0).ok());
+  r = sim->Readings();
+  EXPECT_GE(r.tool_point.z(), 0.10 - 1e-6);  // never into the ground
+  bool stalled = false;
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    stalled = stalled || (r.motors[hw::kArmAzimuth + j].faults & kMotorFaultStall) != 0;
+  }
+  EXPECT_TRUE(stalled);
+}
+
 TEST(RoverSimulation, SameInputsGiveTheSameTrajectory) {
   auto terrain = Slope(8.0, Soil::kLooseSand);
   auto a = MakeSim(terrain);
@@ -319,7 +387,8 @@ TEST(RoverSimulation, RejectsBadInput) {
             StatusCode::kOutOfRange);
   auto sim = MakeSim(terrain);
   ASSERT_NE(sim, nullptr);
-  EXPECT_EQ(sim->SetMotorGoal(12, MotorMode::kVelocity, 0, 0, 1).code(), StatusCode::kOutOfRange);
+  EXPECT_EQ(sim->SetMotorGoal(hw::kNumMotors, MotorMode::kVelocity, 0, 0, 1).code(),
+            StatusCode::kOutOfRange);
   EXPECT_EQ(sim->SetMotorGoal(-1, MotorMode::kVelocity, 0, 0, 1).code(), StatusCode::kOutOfRange);
   EXPECT_EQ(sim->SetMotorGoal(hw::kSteerLF, MotorMode::kPosition, 1e9, 100, 0.5).code(),
             StatusCode::kOutOfRange);

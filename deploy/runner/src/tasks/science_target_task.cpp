@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "rover/base/format.hpp"
+#include "rover/msg/arm_idl.hpp"
 #include "rover/msg/camera_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
 #include "rover/msg/sequence_idl.hpp"
@@ -47,7 +48,7 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(yaml::CheckKeys(
       n, "task",
       {"type", "target", "standoff", "pixel_offset", "look_offset", "time_budget_s", "expect",
-       "template"},
+       "place", "template"},
       err));
   ScienceTargetSpec spec;
   double target = 0;
@@ -62,6 +63,12 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(ParseXy(n, "look_offset", -50, 50, err, &spec.look_offset));
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
+  if (const YAML::Node p = n["place"]) {
+    if (!p.IsScalar() || (p.Scalar() != "true" && p.Scalar() != "false")) {
+      return err.At(p, "task.place: " + yaml::ScalarText(p) + " is not true or false");
+    }
+    spec.place = p.Scalar() == "true";
+  }
   if (const YAML::Node x = n["expect"]) {
     ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(x, ScienceExpectChoices(), err));
   }
@@ -114,6 +121,8 @@ Status ScienceTargetTask::Open(TaskContext& ctx) {
   ROVER_ASSIGN_OR_RETURN(truth_, ctx.MakeReader<rover_sim_Truth>("sim/truth"));
   ROVER_ASSIGN_OR_RETURN(odometry_, ctx.MakeReader<rover_dl_PoseEstimate>("dl/pose_odometry"));
   ROVER_ASSIGN_OR_RETURN(estimate_, ctx.MakeReader<rover_dl_PoseEstimate>("dl/pose"));
+  ROVER_ASSIGN_OR_RETURN(arm_, ctx.MakeWriter<rover_dl_ArmCommand>("dl/arm_command"));
+  ROVER_ASSIGN_OR_RETURN(arm_status_, ctx.MakeReader<rover_dl_ArmStatus>("dl/arm_status"));
   if (spec_.template_approach) {
     ROVER_ASSIGN_OR_RETURN(sequence_,
                            ctx.MakeWriter<rover_apl_SequenceCommand>("apl/sequence_command"));
@@ -137,6 +146,11 @@ bool ScienceTargetTask::Ready() const {
 void ScienceTargetTask::Pump() {
   truth_.TakeEach([&](const dds::Sample<rover_sim_Truth>& s) {
     truth_now_ = msg::IsometryFromIdl(s->pose);
+    tool_now_ = Eigen::Vector3d(s->tool_point.x, s->tool_point.y, s->tool_point.z);
+    tool_contact_now_ = s->tool_contact;
+  });
+  arm_status_.TakeEach([&](const dds::Sample<rover_dl_ArmStatus>& s) {
+    if (auto a = msg::ArmStatusFromIdl(s.data()); a.ok()) arm_now_ = *a;
   });
   odometry_.TakeEach([&](const dds::Sample<rover_dl_PoseEstimate>& s) {
     if (auto p = msg::PoseSampleFromIdl(s.data()); p.ok()) odometry_now_ = p->site_from_rover;
@@ -304,13 +318,18 @@ void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, Task
   ctx.recorder.AddFigure({"template_done", done ? 1.0 : 0.0, kNotJudged, "", true,
                           end ? end->message : "no terminal apl/sequence_status in the budget"});
   if (done && truth_now_ && estimate_now_) {
-    // The arm would be sent to the target as the rover believes it: TARGET through dl/pose.
+    // The arm is sent to the target as the rover believes it: TARGET through dl/pose. When the
+    // template ends with ARM PLACE the instrument touched it: measured there.
     const Eigen::Vector3d believed = estimate_now_->inverse() * g;
     const Eigen::Vector3d truth_rover = truth_now_->inverse() * *top_;
-    const Eigen::Vector3d e = believed - truth_rover;
+    const Eigen::Vector3d e =
+        tool_contact_now_ ? Eigen::Vector3d(tool_now_ - *top_) : Eigen::Vector3d(believed - truth_rover);
     ctx.recorder.AddFigure({"template_placement_error", 100.0 * e.norm(), kNotJudged, "cm", true,
-                            "template approach: the target point through dl/pose against the "
-                            "truth in the rover frame, 3-D"});
+                            tool_contact_now_
+                                ? "template approach: the instrument on the target (ARM PLACE at "
+                                  "the target through dl/pose) against the picked point, 3-D"
+                                : "template approach: the target point through dl/pose against "
+                                  "the truth in the rover frame, 3-D"});
     ctx.recorder.AddFigure({"template_placement_error_horizontal", 100.0 * e.head<2>().norm(),
                             kNotJudged, "cm", true, "the same, horizontal"});
     ctx.recorder.AddFigure({"template_standoff_error",
@@ -328,7 +347,11 @@ void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, Task
     (void)mobility_.Write(sm.msg);
   }
   // Back to the start for the tracked approach (DIRECTED, by dl/pose), after clearing a motion
-  // error the template may have latched (its own run is measured above).
+  // error the template may have latched (its own run is measured above), the arm stowed.
+  if (std::string why = StowArm(ctx); !why.empty()) {
+    out->failure = why;
+    return;
+  }
   {
     msg::MobilityCommand clear;
     clear.stamp = Time::FromSeconds(ctx.Now());
@@ -385,6 +408,37 @@ void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, Task
   if (!failure.empty()) out->failure = failure;
 }
 
+std::string ScienceTargetTask::StowArm(TaskContext& ctx) {
+  Pump();
+  if (!arm_now_ || arm_now_->stowed) return "";
+  msg::ArmCommand stow;
+  stow.stamp = Time::FromSeconds(ctx.Now());
+  stow.command_id = kStowId;
+  stow.mode = msg::ArmMode::kStow;
+  rover_dl_ArmCommand w{};
+  msg::ArmCommandToIdl(stow, &w);
+  dds::CopyString(w.header.frame_id, "rover");
+  ctx.Note("science_target: stowing the arm");
+  if (!arm_.Write(w).ok()) return "cannot send the arm STOW";
+  const double start = ctx.Now();
+  std::optional<msg::ArmStatus> end;
+  std::string failure = ctx.WaitUntil([&] {
+    Pump();
+    if (arm_now_ && arm_now_->command_id == kStowId &&
+        (arm_now_->state == msg::ArmState::kStowed || arm_now_->state == msg::ArmState::kFault ||
+         arm_now_->state == msg::ArmState::kRejected)) {
+      end = arm_now_;
+    }
+    return end.has_value() || ctx.Now() - start > 300.0;
+  });
+  if (!failure.empty()) return failure;
+  if (!end || end->state != msg::ArmState::kStowed) {
+    return "the arm did not stow: " + (end ? std::string(msg::ArmStateName(end->state)) + " " + end->message
+                                           : std::string("no answer within 300 s"));
+  }
+  return "";
+}
+
 TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   TaskOutcome out;
   if (!top_) {
@@ -428,6 +482,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   c.image_id = image_id;
   c.pixel_x = pixel.x();
   c.pixel_y = pixel.y();
+  c.place_instrument = spec_.place;
   rover_apl_RendezvousCommand cw{};
   msg::RendezvousCommandToIdl(c, &cw);
   dds::CopyString(cw.header.frame_id, "site");
@@ -442,6 +497,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   }
   std::optional<msg::RendezvousStatus> terminal;
   bool at_target = false;
+  bool placed = false;
   int pairs = 0;
   const double deadline = spec_.time_budget_s > 0
                               ? step.sim_start_s + spec_.time_budget_s + kGraceS
@@ -457,16 +513,29 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
       const std::string phase = msg::RendezvousPhaseName(st->phase);
       if (phase != last_phase) ctx.Note("science_target " + phase);
       last_phase = phase;
-      if (st->phase == msg::RendezvousPhase::kAtTarget && !at_target && truth) {
-        at_target = true;
-        // 4. Placement against the truth now (the rover stands still at AT_TARGET).
-        const Eigen::Vector3d truth_rover = truth->inverse() * *top_;
-        const Eigen::Vector3d e = st->target_in_rover - truth_rover;
+      if (st->phase == msg::RendezvousPhase::kPlaced && !placed && truth) {
+        placed = true;
+        // 5. The instrument on the target: its face centre (sim/truth) against the picked point.
+        const Eigen::Vector3d e = tool_now_ - *top_;
         ctx.recorder.AddFigure({"placement_error", 100.0 * e.norm(), kNotJudged, "cm", true,
-                                "reported target in the rover frame (the arm's aim) against "
-                                "the picked point's truth, 3-D"});
+                                "the instrument's face centre (arm placed, contact) against the "
+                                "picked point, 3-D"});
         ctx.recorder.AddFigure({"placement_error_horizontal", 100.0 * e.head<2>().norm(), kNotJudged,
                                 "cm", true, "the same, horizontal"});
+        ctx.recorder.AddFigure({"instrument_contact", tool_contact_now_ ? 1.0 : 0.0, kNotJudged, "",
+                                true, "the instrument's face touches the terrain at PLACED"});
+      }
+      if (st->phase == msg::RendezvousPhase::kAtTarget && !at_target && truth) {
+        at_target = true;
+        // 4. The aim against the truth now (the rover stands still at AT_TARGET).
+        const Eigen::Vector3d truth_rover = truth->inverse() * *top_;
+        const Eigen::Vector3d e = st->target_in_rover - truth_rover;
+        const char* aim = spec_.place ? "aim_error" : "placement_error";
+        ctx.recorder.AddFigure({aim, 100.0 * e.norm(), kNotJudged, "cm", true,
+                                "reported target in the rover frame (the arm's aim) against "
+                                "the picked point's truth, 3-D"});
+        ctx.recorder.AddFigure({std::string(aim) + "_horizontal", 100.0 * e.head<2>().norm(),
+                                kNotJudged, "cm", true, "the same, horizontal"});
         ctx.recorder.AddFigure({"standoff_error",
                                 100.0 * (truth_rover.head<2>().norm() -
                                          (spec_.standoff > 0 ? spec_.standoff : 1.05)),
@@ -517,7 +586,8 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   step.termination = done ? "at_target" : fault;
   step.message = terminal->message;
   out.steps.push_back(step);
-  const bool ok = spec_.expect == "at_target" ? done && at_target : fault == spec_.expect;
+  const bool ok = spec_.expect == "at_target" ? done && at_target && (placed || !spec_.place)
+                                              : fault == spec_.expect;
   if (!ok) {
     out.failure = "science_target ended " + std::string(msg::RendezvousPhaseName(terminal->phase)) +
                   (done ? "" : " " + fault) + ", expected " + spec_.expect + ": " +

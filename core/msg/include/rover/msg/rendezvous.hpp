@@ -27,7 +27,9 @@ enum class RendezvousPhase : std::int32_t {
   kDone,
   kFailed,
   kApproachTarget,
-  kAtTarget
+  kAtTarget,
+  kPlacing,
+  kPlaced
 };
 enum class RendezvousFault : std::int32_t {
   kNone = 0,
@@ -42,17 +44,19 @@ enum class RendezvousFault : std::int32_t {
   kStopped,
   kTimeout,
   kPlacement,
-  kTargetLost
+  kTargetLost,
+  kArm
 };
-inline constexpr int kRendezvousPhaseCount = 10;
-inline constexpr int kRendezvousFaultCount = 13;
+inline constexpr int kRendezvousPhaseCount = 12;
+inline constexpr int kRendezvousFaultCount = 14;
 
 /// "LANDER", "SCIENCE", "STOP"; "UNKNOWN" otherwise.
 const char* RendezvousTargetName(RendezvousTarget t);
-/// "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED".
+/// "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED",
+/// "APPROACH_TARGET", "AT_TARGET", "PLACING", "PLACED"; "UNKNOWN" otherwise.
 const char* RendezvousPhaseName(RendezvousPhase p);
 /// "NONE", "BAD_COMMAND", "BUSY", "NOT_FOUND", "TOO_FEW_STRIPES", "STALE_POSE", "MOBILITY",
-/// "MAST", "CAMERA", "STOPPED", "TIMEOUT", "PLACEMENT"; "UNKNOWN" otherwise.
+/// "MAST", "CAMERA", "STOPPED", "TIMEOUT", "PLACEMENT", "TARGET_LOST", "ARM"; "UNKNOWN" otherwise.
 const char* RendezvousFaultName(RendezvousFault f);
 
 /// apl/rendezvous_command.
@@ -70,6 +74,8 @@ struct RendezvousCommand {
   std::uint32_t image_id = 0;
   double pixel_x = 0.0;  ///< [px]
   double pixel_y = 0.0;  ///< [px]
+  /// kScience: at the standoff, put the arm's instrument on the target (PLACING, PLACED).
+  bool place_instrument = false;
 };
 
 /// apl/rendezvous_status.

@@ -51,6 +51,7 @@
 #include "rover/apl/rendezvous/sightings.hpp"
 #include "rover/base/time.hpp"
 #include "rover/hwconfig/lander_description.hpp"
+#include "rover/msg/arm.hpp"
 #include "rover/msg/camera.hpp"
 #include "rover/msg/mast.hpp"
 #include "rover/msg/mobility.hpp"
@@ -62,12 +63,14 @@ namespace rover::apl::rendezvous {
 /// Id ranges of what the executor sends (other requesters use other prefixes).
 inline constexpr std::uint32_t kMobilityIdBase = 0x52000000u;  ///< apl/mobility_command
 inline constexpr std::uint32_t kMastIdBase = 0x52000000u;      ///< dl/mast_command
+inline constexpr std::uint32_t kArmIdBase = 0x52000000u;       ///< dl/arm_command
 inline constexpr std::uint32_t kCameraRequestPrefix = 3;       ///< ddl/camera_request ids 3 << 24
 
 struct ExecutorOutput {
   std::vector<msg::MobilityCommand> mobility;
   std::vector<msg::MastCommand> mast;
   std::vector<msg::StereoRequest> camera;
+  std::vector<msg::ArmCommand> arm;
   std::vector<msg::RendezvousStatus> statuses;
   std::vector<DetectionImage> images;
 };

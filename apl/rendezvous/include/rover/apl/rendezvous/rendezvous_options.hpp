@@ -77,6 +77,8 @@ struct RendezvousOptions {
   /// point the mast at the target before each tracking pair (false: it stays where it is; the
   /// lost-target scenario's way to let the target leave the view)
   bool target_look = true;
+  /// [s] a dl/arm_command (stow before the first leg, placement at the target) must end within
+  double arm_timeout_s = 240.0;
 
   Status Validate() const;
   static void BindParams(ParamBinder<RendezvousOptions>& b);

@@ -10,7 +10,12 @@
 /// to the target point) facing it, where the arm reaches it.
 ///
 /// Steps: designate (in the named pair) -> [leg -> look at the target -> pair -> track]* ->
-/// AT_TARGET (stands `hold_at_base_s`) -> DONE. Legs: farther than standoff +
+/// AT_TARGET -> (with place_instrument: PLACING -> PLACED) -> stands `hold_at_base_s` -> DONE.
+/// Placement: one dl/arm_command PLACE at target_in_rover (the target measured in the last pair,
+/// in the rover frame where the rover now stands); dl-arm goes above it and descends until its
+/// contact switch closes (dl/arm/README.md). The arm is never out while the rover drives: when
+/// dl-arm has said the arm is not stowed, the first leg waits for a STOW (an approach that
+/// never hears from dl-arm drives as before). Legs: farther than standoff +
 /// `target_final_approach`, a `target_leg_mode` drive (autonav by default) of at most
 /// `target_leg` towards the point `standoff` before the target; nearer, a directed turn to face
 /// it and a straight (backwards when too close). Done when within `target_along_tolerance` of
@@ -20,7 +25,9 @@
 /// BAD_COMMAND (standoff, time budget, image id, pixel, target too far: the field and value
 /// named), BUSY, STALE_POSE, TARGET_LOST (out of view, too few features: the tracker's reason),
 /// MOBILITY, MAST, CAMERA, STOPPED, TIMEOUT, PLACEMENT (not at the standoff after
-/// `target_max_steps` pairs). Every one stops what the executor started.
+/// `target_max_steps` pairs), ARM (dl-arm refused, faulted or did not answer within
+/// `arm_timeout_s`; its message included). Every one stops what the executor started (a
+/// running arm move gets an ARM STOP).
 ///
 /// Frames: site S (dl/pose), rover R. The status carries the target in S (target_position, for
 /// the legs and the mast) and in R at the last fix (target_in_rover, for the arm: measured
@@ -53,6 +60,9 @@ class TargetApproach {
   ExecutorOutput OnPose(const msg::PoseSample& pose, Time now);
   ExecutorOutput OnMobilityStatus(const msg::MobilityStatus& status, Time now);
   ExecutorOutput OnMastStatus(const msg::MastStatus& status, Time now);
+  /// dl/arm_status: remembered (is the arm stowed?) and, for this executor's arm commands,
+  /// the end of a stow or a placement.
+  ExecutorOutput OnArmStatus(const msg::ArmStatus& status, Time now);
   /// A NAVCAM pair; pairs that do not answer the outstanding request are ignored.
   ExecutorOutput OnStereoPair(const NavcamPair& pair, Time now);
   ExecutorOutput Step(Time now);
@@ -61,7 +71,7 @@ class TargetApproach {
   bool busy() const { return wait_ != Wait::kNone; }
 
  private:
-  enum class Wait { kNone, kMast, kSettle, kFrame, kDrive, kHold };
+  enum class Wait { kNone, kMast, kSettle, kFrame, kDrive, kHold, kStow, kPlace };
 
   void Reply(ExecutorOutput* out);
   void Fail(msg::RendezvousFault fault, const std::string& message, ExecutorOutput* out);
@@ -69,6 +79,7 @@ class TargetApproach {
   void Look(Time now, ExecutorOutput* out);
   void RequestPair(Time now, ExecutorOutput* out);
   void Drive(msg::MobilityCommand c, Time now, ExecutorOutput* out);
+  void Arm(msg::ArmCommand c, Wait wait, Time now, ExecutorOutput* out);
   // From the target estimate and the pose: done, or the next move.
   void Decide(Time now, ExecutorOutput* out);
   void Accept(const TargetFix& fix, const Eigen::Isometry3d& site_from_rover);
@@ -88,6 +99,9 @@ class TargetApproach {
   int steps_ = 0;
   int mobility_retries_ = 0;
   bool designating_ = false;  // by a site point: the pair awaited designates
+  std::optional<msg::ArmStatus> arm_;          // the latest dl/arm_status, anyone's
+  std::optional<msg::MobilityCommand> after_stow_;  // the leg that waits for the stow
+  std::uint32_t arm_seq_ = 0;
 };
 
 }  // namespace rover::apl::rendezvous

@@ -13,11 +13,14 @@
 ///      `pixel_offset`. Only the runner reads truth.
 ///   3. Sends one apl/rendezvous_command TARGET_SCIENCE naming the pair (image_id) and pixel,
 ///      then waits for its terminal apl/rendezvous_status (DONE or FAILED).
-///   4. At AT_TARGET records, against the truth at that moment: the placement error (the
-///      reported target_in_rover, where the arm would be sent, against the target point in
-///      the true rover frame; horizontal and 3-D), the same for wheel odometry alone (the
-///      designated point carried by dl/pose_odometry), the standoff error and the heading to
-///      the target.
+///   4. At AT_TARGET records, against the truth at that moment: the aim error (the reported
+///      target_in_rover, where the arm is sent, against the target point in the true rover
+///      frame; horizontal and 3-D; called placement_error when `place` is off), the same for
+///      wheel odometry alone (the designated point carried by dl/pose_odometry), the standoff
+///      error and the heading to the target.
+///   5. With `place: true` the command asks for the instrument on the target; at PLACED records
+///      placement_error: the instrument's face centre (sim/truth tool_point, the arm's reach
+///      point) against the target point, and whether it touches (instrument_contact).
 ///
 ///   task:
 ///     type: science_target
@@ -27,18 +30,21 @@
 ///     look_offset: {x: 0, y: 0}   # [m] the mast aims this far off the target (site frame)
 ///     time_budget_s: 2400      # [s] the command's budget; 0 = the service's
 ///     expect: at_target        # | a fault: TARGET_LOST, BAD_COMMAND, ...
+///     place: false             # put the arm's instrument on the target at the end
 ///     template:                # optional: MER's conditional-sequence approach first
 ///       file: ../sequences/approach_template.seq   # relative to the scenario file
 ///       time_budget_s: 1500
 ///
-/// `at_target` passes on DONE after AT_TARGET; a fault name on FAILED with that fault.
+/// `at_target` passes on DONE after AT_TARGET (and PLACED with `place`); a fault name on FAILED
+/// with that fault.
 ///
 /// With `template`, each run first approaches the same target as MER did (seed 003): the
 /// target's site point is ranged on the ground from the designation pair (the picked pixel by
 /// correlation along its ray, ray_stereo.hpp, with the dl/pose of the pair), written into the
 /// sequence's TARGET `target` (apl/sequencer ApplyOverrides) and sent on apl/sequence_command to
 /// apl-sequencer; at its end the runner measures where the rover believes the target is
-/// (dl/pose) against the truth (`template_placement_error`, ...), drives the rover back to the
+/// (dl/pose) against the truth (`template_placement_error`, ...; at the instrument when the
+/// template ends with ARM PLACE), stows the arm, drives the rover back to the
 /// start (a DIRECTED turn, straight, turn from dl/pose) and takes a fresh designation pair for
 /// the tracked approach. The template's outcome is measured, not judged; the run's pass is the
 /// tracked approach's.
@@ -47,6 +53,7 @@
 #include <string>
 
 #include "rover/deploy/runner/task.hpp"
+#include "rover/msg/arm.hpp"
 
 namespace rover::deploy::runner {
 
@@ -62,6 +69,9 @@ struct ScienceTargetSpec {
   Eigen::Vector2d look_offset = Eigen::Vector2d::Zero();
   double time_budget_s = 0.0;
   std::string expect = "at_target";
+  /// place the arm's instrument on the target at the end (command place_instrument); the
+  /// placement error is then measured at the instrument (sim/truth tool_point)
+  bool place = false;
   std::optional<TemplateSpec> template_approach;
 };
 
@@ -78,6 +88,7 @@ class ScienceTargetTask : public Task {
   static constexpr double kGraceS = 60.0;
   static constexpr std::uint32_t kSequenceId = 100;
   static constexpr std::uint32_t kReturnDriveId = 0xC8000101u;
+  static constexpr std::uint32_t kStowId = 0xC8000201u;
 
   ScienceTargetTask(ScienceTargetSpec spec, double start_x, double start_y, double start_yaw)
       : spec_(std::move(spec)), start_x_(start_x), start_y_(start_y), start_yaw_(start_yaw) {}
@@ -99,8 +110,15 @@ class ScienceTargetTask : public Task {
   // MER's template approach to the ground-ranged point, then back to the start.
   void RunTemplate(TaskContext& ctx, const Designation& d, TaskOutcome* out);
   void Pump();
+  // Stows the arm (dl/arm_command STOW) when dl-arm said it is out; "" or the failure.
+  std::string StowArm(TaskContext& ctx);
 
   std::optional<Eigen::Isometry3d> truth_now_, estimate_now_, odometry_now_;
+  Eigen::Vector3d tool_now_ = Eigen::Vector3d::Zero();  // sim/truth: the instrument's face
+  bool tool_contact_now_ = false;
+  std::optional<msg::ArmStatus> arm_now_;
+  dds::Writer<rover_dl_ArmCommand> arm_;
+  dds::Reader<rover_dl_ArmStatus> arm_status_;
   dds::Writer<rover_apl_SequenceCommand> sequence_;
   dds::Reader<rover_apl_SequenceStatus> sequence_status_;
   dds::Writer<rover_apl_MobilityCommand> mobility_;

@@ -1,0 +1,407 @@
+#include "rover/dl/arm/arm_executor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <utility>
+
+#include "rover/base/format.hpp"
+#include "rover/base/range_check.hpp"
+
+namespace rover::dl::arm {
+namespace {
+
+// After the motor driver reports a leg DONE, the joints have this long to show its goal [s]
+// (ddl/joint_state and ddl/motor_status come from different services).
+constexpr double kArmSettleS = 1.0;
+// The instrument counts as face down when its look direction has z below this.
+constexpr double kFaceDownLookZ = -0.9;
+
+std::string ArmPointText(const Eigen::Vector3d& p) {
+  return "(" + FormatNumber(p.x(), 4) + ", " + FormatNumber(p.y(), 4) + ", " +
+         FormatNumber(p.z(), 4) + ")";
+}
+
+std::string ArmAnglesText(const ArmAngles& q) { return FormatList(std::span(q), 4); }
+
+// `why` with `context` appended, same code.
+Status WithContext(const Status& why, const std::string& context) {
+  return Status(why.code(), why.message() + " (" + context + ")");
+}
+
+}  // namespace
+
+Result<ArmExecutor> ArmExecutor::Create(const hwconfig::RoverDescription& rover,
+                                        const ArmOptions& options) {
+  ROVER_RETURN_IF_ERROR(rover.Validate());
+  ROVER_RETURN_IF_ERROR(options.Validate());
+  return ArmExecutor(rover, options);
+}
+
+bool ArmExecutor::JointsFresh(Time now) const {
+  return joints_.has_value() && ToSeconds(now - joints_->stamp) <= options_.joint_stale_s;
+}
+
+bool ArmExecutor::WithinTolerance(const ArmAngles& goal) const {
+  if (!joints_.has_value()) return false;
+  for (std::size_t k = 0; k < goal.size(); ++k) {
+    if (!(std::abs(joints_->q[k] - goal[k]) <= options_.tolerance)) return false;
+  }
+  return true;
+}
+
+std::uint32_t ArmExecutor::NextMotorId() {
+  const std::uint32_t id = next_motor_id_++;
+  if (next_motor_id_ == 0) next_motor_id_ = kMotorIdBase;  // wrapped: start the range again
+  return id;
+}
+
+void ArmExecutor::Fill(ArmStatus* s) const {
+  if (!joints_.has_value()) return;
+  s->joints = joints_->q;
+  s->tool_point = rover_.arm.Forward(joints_->q).face;
+  s->contact = joints_->contact;
+  bool stowed = true;
+  for (std::size_t k = 0; k < joints_->q.size(); ++k) {
+    stowed = stowed && std::abs(joints_->q[k] - rover_.arm.stow[k]) <= options_.tolerance;
+  }
+  s->stowed = stowed;
+}
+
+void ArmExecutor::SetStatus(ArmState state, std::string message, Time now, ArmOutput* out) {
+  status_.stamp = now;
+  status_.state = state;
+  status_.message = std::move(message);
+  Fill(&status_);
+  last_status_ = now;
+  out->statuses.push_back(status_);
+}
+
+void ArmExecutor::Reject(const ArmCommand& c, const Status& why, Time now, ArmOutput* out) {
+  // The status of the rejected command; a running command keeps its goal and carries on, and
+  // its next periodic status reports it again.
+  ArmStatus s = status_;
+  Fill(&s);
+  s.stamp = now;
+  s.command_id = c.command_id;
+  s.state = ArmState::kRejected;
+  s.message = "rejected: " + why.message();
+  out->statuses.push_back(s);
+  if (!moving()) {
+    status_ = s;
+    last_status_ = now;
+  }
+}
+
+msg::MotorCommand ArmExecutor::MotorCommand(msg::GroupMode mode, Time now) {
+  msg::MotorCommand m;
+  m.stamp = now;
+  m.command_id = NextMotorId();
+  m.motor_mask = kArmMotorMask;
+  m.mode = mode;
+  m.timeout_s = 0.0;  // the motor driver derives it from the planned move
+  return m;
+}
+
+void ArmExecutor::Fault(std::string message, Time now, ArmOutput* out) {
+  out->motor_commands.push_back(MotorCommand(msg::GroupMode::kStop, now));
+  motor_id_ = 0;
+  SetStatus(ArmState::kFault, std::move(message), now, out);
+}
+
+double ArmExecutor::DescentRate(const ArmAngles& from, const ArmAngles& to) const {
+  const double distance = (rover_.arm.Forward(to).face - rover_.arm.Forward(from).face).norm();
+  double travel = 0.0;
+  for (std::size_t k = 0; k < from.size(); ++k)
+    travel = std::max(travel, std::abs(to[k] - from[k]));
+  if (distance < 1e-6 || travel <= 0.0) return options_.speed;
+  // The synchronised move takes travel / rate = distance / descent_speed.
+  return std::min(options_.speed, travel * options_.descent_speed / distance);
+}
+
+Result<ArmExecutor::Plan> ArmExecutor::PlacePlan(const Eigen::Vector3d& target) const {
+  const Eigen::Vector3d up(0.0, 0.0, options_.hover_height);
+  const Eigen::Vector3d down(0.0, 0.0, options_.overdrive);
+  const Result<ArmAngles> hover = rover_.arm.FaceDown(target + up);
+  if (!hover.ok()) {
+    return Status(hover.status().code(), "hover point " + FormatNumber(options_.hover_height) +
+                                             " m above the target: " + hover.status().message());
+  }
+  const Result<ArmAngles> end = rover_.arm.FaceDown(target - down);
+  if (!end.ok()) {
+    return Status(end.status().code(), "descent end " + FormatNumber(options_.overdrive) +
+                                           " m below the target: " + end.status().message());
+  }
+  Status st = rover_.CheckArmMove(joints_->q, *hover);
+  if (!st.ok()) return WithContext(st, "move above the target");
+  st = rover_.CheckArmMove(*hover, *end);
+  if (!st.ok()) {
+    return WithContext(st,
+                       "descent to " + FormatNumber(options_.overdrive) + " m below the target");
+  }
+  Plan plan;
+  plan.legs = {{Stage::kHover, *hover}, {Stage::kDescent, *end}};
+  plan.target = target;
+  return plan;
+}
+
+Result<ArmExecutor::Plan> ArmExecutor::StowPlan() const {
+  const ArmAngles& q = joints_->q;
+  const hwconfig::ArmPoints p = rover_.arm.Forward(q);
+  Plan plan;
+  ArmAngles from = q;
+  if (p.look.z() < kFaceDownLookZ && p.face.z() < rover_.arm.shoulder.z()) {
+    // Face down and low: lift the instrument straight off whatever it touches first.
+    const Result<ArmAngles> lift =
+        rover_.arm.FaceDown(p.face + Eigen::Vector3d(0.0, 0.0, options_.hover_height));
+    if (lift.ok()) {
+      const Status st = rover_.CheckArmMove(q, *lift);
+      if (!st.ok()) return WithContext(st, "lift before stowing");
+      plan.legs.push_back({Stage::kLift, *lift});
+      from = *lift;
+    }
+  }
+  const Status st = rover_.CheckArmMove(from, rover_.arm.stow);
+  if (!st.ok()) return WithContext(st, "move to stow");
+  plan.legs.push_back({Stage::kStow, rover_.arm.stow});
+  return plan;
+}
+
+Result<ArmExecutor::Plan> ArmExecutor::PlanOf(const ArmCommand& c, Time now) const {
+  if (!msg::IsKnownArmMode(c.mode)) {
+    return InvalidArgument("mode = " + std::to_string(static_cast<std::int32_t>(c.mode)) +
+                           " is not an ArmMode value (0 JOINTS, 1 PLACE, 2 STOW, 3 STOP)");
+  }
+  ROVER_RETURN_IF_ERROR(CheckFinite("timeout_s", c.timeout_s));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("timeout_s", c.timeout_s, Bounds::Closed(0.0, options_.max_timeout_s), "s"));
+  if (c.mode == ArmMode::kJoints) {
+    ROVER_RETURN_IF_ERROR(CheckAllFinite("joints", std::span(c.joints)));
+  } else if (c.mode == ArmMode::kPlace) {
+    ROVER_RETURN_IF_ERROR(CheckAllFinite("target", std::span(c.target.data(), 3)));
+  }
+  if (!JointsFresh(now)) {
+    return InvalidArgument(
+        joints_.has_value()
+            ? "ddl/joint_state is stale (latest " +
+                  FormatNumber(ToSeconds(now - joints_->stamp), 3) +
+                  " s old, joint_stale_s = " + FormatNumber(options_.joint_stale_s) + " s)"
+            : "no ddl/joint_state received yet: the arm angles are unknown");
+  }
+  switch (c.mode) {
+    case ArmMode::kJoints: {
+      ROVER_RETURN_IF_ERROR(rover_.arm.CheckLimits(c.joints));
+      const Status st = rover_.CheckArmMove(joints_->q, c.joints);
+      if (!st.ok()) return WithContext(st, "move to joints " + ArmAnglesText(c.joints));
+      Plan plan;
+      plan.legs = {{Stage::kJoints, c.joints}};
+      return plan;
+    }
+    case ArmMode::kPlace:
+      return PlacePlan(c.target);
+    case ArmMode::kStow:
+      return StowPlan();
+    case ArmMode::kStop:
+      break;  // Submit handles it
+  }
+  return InvalidArgument("mode " + std::string(msg::ArmModeName(c.mode)) + " has no plan");
+}
+
+void ArmExecutor::StartLeg(std::size_t index, Time now, std::string message, ArmOutput* out) {
+  leg_ = index;
+  const Leg& l = leg();
+  double rate = options_.speed;
+  if (l.stage == Stage::kDescent) {
+    if (joints_->contact) {
+      Fault("contact switch closed " + FormatNumber(options_.hover_height) +
+                " m above the target, before the descent: face at " +
+                ArmPointText(rover_.arm.Forward(joints_->q).face) + " m",
+            now, out);
+      return;
+    }
+    rate = DescentRate(joints_->q, l.goal);
+  }
+  msg::MotorCommand m = MotorCommand(msg::GroupMode::kPosition, now);
+  for (int j = 0; j < hwconfig::kArmJoints; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const auto motor = static_cast<std::size_t>(hw::kArmAzimuth + j);
+    m.goal[motor] = l.goal[k];
+    m.max_rate[motor] = rate;
+  }
+  out->motor_commands.push_back(m);
+  motor_id_ = m.command_id;
+  motors_done_ = false;
+  status_.joint_goals = l.goal;
+  SetStatus(ArmState::kMoving, std::move(message), now, out);
+}
+
+void ArmExecutor::CheckArrival(Time now, ArmOutput* out) {
+  if (!moving() || !motors_done_ || !WithinTolerance(leg().goal)) return;
+  if (leg_ + 1 < plan_.legs.size()) {
+    const Stage next = plan_.legs[leg_ + 1].stage;
+    StartLeg(leg_ + 1, now,
+             next == Stage::kDescent
+                 ? "descending at " + FormatNumber(options_.descent_speed) + " m/s to " +
+                       FormatNumber(options_.overdrive) + " m below the target " +
+                       ArmPointText(plan_.target) + " m"
+                 : std::string("stowing"),
+             out);
+    return;
+  }
+  switch (leg().stage) {
+    case Stage::kJoints:
+      SetStatus(ArmState::kAtGoal, "at goal", now, out);
+      break;
+    case Stage::kStow:
+      SetStatus(ArmState::kStowed, "stowed", now, out);
+      break;
+    default:  // the descent ended without the contact switch closing
+      Fault("no contact within " + FormatNumber(options_.overdrive) +
+                " m below the target: face at " +
+                ArmPointText(rover_.arm.Forward(joints_->q).face) + " m",
+            now, out);
+      break;
+  }
+}
+
+void ArmExecutor::OnContact(Time now, ArmOutput* out) {
+  const Eigen::Vector3d face = rover_.arm.Forward(joints_->q).face;
+  const double dz = face.z() - plan_.target.z();
+  const std::string where = "face at " + ArmPointText(face) + " m, " +
+                            FormatNumber(std::abs(dz) * 1000.0, 3) + " mm " +
+                            (dz >= 0.0 ? "above" : "below") + " the target";
+  if (leg().stage == Stage::kDescent) {
+    out->motor_commands.push_back(MotorCommand(msg::GroupMode::kStop, now));
+    motor_id_ = 0;
+    SetStatus(ArmState::kPlaced, "placed: " + where, now, out);
+  } else if (leg().stage == Stage::kHover && contact_seen_open_) {
+    Fault("unexpected contact on the way above the target: " + where, now, out);
+  }
+}
+
+ArmOutput ArmExecutor::OnJoints(const msg::JointState& j) {
+  ArmOutput out;
+  if (!msg::IsUsable(j.health)) return out;
+  for (const double a : j.arm_angle) {
+    if (!std::isfinite(a)) return out;
+  }
+  if (joints_.has_value() && j.stamp < joints_->stamp) return out;
+  joints_ = Joints{j.stamp, j.arm_angle, j.arm_contact};
+  Fill(&status_);
+  if (!j.arm_contact) contact_seen_open_ = true;
+  if (moving() && j.arm_contact) OnContact(j.stamp, &out);
+  return out;
+}
+
+ArmOutput ArmExecutor::Submit(const ArmCommand& c, Time now) {
+  ArmOutput out;
+  const std::uint32_t superseded = moving() ? status_.command_id : 0;
+  if (c.mode == ArmMode::kStop) {
+    status_.command_id = c.command_id;
+    Fault("stopped by command " + std::to_string(c.command_id), now, &out);
+    plan_ = Plan{};
+    return out;
+  }
+  Result<Plan> plan = PlanOf(c, now);
+  if (!plan.ok()) {
+    Reject(c, plan.status(), now, &out);
+    return out;
+  }
+  plan_ = std::move(*plan);
+  contact_seen_open_ = !joints_->contact;
+  move_start_ = now;
+  move_timeout_s_ = c.timeout_s > 0.0 ? c.timeout_s : options_.timeout_s;
+  status_.command_id = c.command_id;
+  std::string message;
+  switch (plan_.legs.front().stage) {
+    case Stage::kHover:
+      message = "moving " + FormatNumber(options_.hover_height) + " m above the target " +
+                ArmPointText(plan_.target) + " m";
+      break;
+    case Stage::kLift:
+      message =
+          "lifting the instrument " + FormatNumber(options_.hover_height) + " m before stowing";
+      break;
+    case Stage::kStow:
+      message = "stowing";
+      break;
+    default:
+      message = "moving to joints " + ArmAnglesText(plan_.legs.front().goal) + " rad";
+      break;
+  }
+  if (superseded != 0) message += " (supersedes command " + std::to_string(superseded) + ")";
+  StartLeg(0, now, std::move(message), &out);
+  return out;
+}
+
+ArmOutput ArmExecutor::OnMotorStatus(const msg::MotorStatus& r, Time now) {
+  ArmOutput out;
+  if (!moving() || r.command_id != motor_id_) return out;
+  if (r.state == msg::GroupState::kFault || r.state == msg::GroupState::kRejected) {
+    std::string why = std::string("motor driver ") + msg::GroupStateName(r.state);
+    if (r.fault != msg::MotorFault::kNone) why += std::string(" ") + msg::MotorFaultName(r.fault);
+    if (r.fault_motor >= 0) why += " on " + std::string(hw::MotorName(r.fault_motor));
+    if (!r.message.empty()) why += ": " + r.message;
+    motor_id_ = 0;  // the driver has braked the group already
+    SetStatus(ArmState::kFault, std::move(why), now, &out);
+    return out;
+  }
+  if (r.state == msg::GroupState::kDone) {
+    if (!motors_done_) done_at_ = now;
+    motors_done_ = true;
+    CheckArrival(now, &out);
+  }
+  return out;
+}
+
+ArmOutput ArmExecutor::Step(Time now) {
+  ArmOutput out;
+  if (!moving()) return out;
+  if (!JointsFresh(now)) {
+    Fault("ddl/joint_state went stale during the move (" +
+              (joints_.has_value() ? FormatNumber(ToSeconds(now - joints_->stamp), 3) + " s old"
+                                   : std::string("none")) +
+              ", joint_stale_s = " + FormatNumber(options_.joint_stale_s) + " s)",
+          now, &out);
+    return out;
+  }
+  CheckArrival(now, &out);
+  if (!out.statuses.empty()) return out;
+  const double elapsed = ToSeconds(now - move_start_);
+  if (elapsed > move_timeout_s_) {
+    static constexpr const char* kLegName[] = {"move to the joint goal", "move above the target",
+                                               "descent", "lift", "move to stow"};
+    Fault("timeout after " + FormatNumber(elapsed, 4) +
+              " s (timeout_s = " + FormatNumber(move_timeout_s_) + ") in the " +
+              kLegName[static_cast<int>(leg().stage)] + ": face at " +
+              ArmPointText(rover_.arm.Forward(joints_->q).face) + " m",
+          now, &out);
+    return out;
+  }
+  if (motors_done_ && ToSeconds(now - done_at_) > kArmSettleS) {
+    std::size_t worst = 0;
+    for (std::size_t k = 1; k < leg().goal.size(); ++k) {
+      if (std::abs(joints_->q[k] - leg().goal[k]) >
+          std::abs(joints_->q[worst] - leg().goal[worst])) {
+        worst = k;
+      }
+    }
+    Fault("motors done but the " + std::string(hwconfig::ArmJointName(static_cast<int>(worst))) +
+              " is " + FormatNumber(std::abs(joints_->q[worst] - leg().goal[worst]), 3) +
+              " rad from its goal (tolerance " + FormatNumber(options_.tolerance) + " rad)",
+          now, &out);
+    return out;
+  }
+  if (ToSeconds(now - last_status_) >= 1.0 / options_.status_rate_hz - 1e-9) {
+    SetStatus(ArmState::kMoving, status_.message, now, &out);
+  }
+  return out;
+}
+
+ArmOutput ArmExecutor::Stop(const std::string& why, Time now) {
+  ArmOutput out;
+  if (moving()) Fault("stopped: " + why, now, &out);
+  return out;
+}
+
+}  // namespace rover::dl::arm
