@@ -355,7 +355,7 @@ ExecutorOutput TargetApproach::OnArmStatus(const msg::ArmStatus& s, Time now) {
     Drive(leg, now, &out);
   } else if (wait_ == Wait::kPlace && s.state == msg::ArmState::kPlaced) {
     status_.phase = RendezvousPhase::kPlaced;
-    status_.message = "instrument placed: " + s.message;
+    status_.message = "instrument on the target (dl-arm " + s.message + ")";
     Reply(&out);
     wait_ = Wait::kHold;
     wait_since_ = now;
