@@ -9,6 +9,7 @@
 #include "rover/deploy/runner/tasks/mobility_task.hpp"
 #include "rover/deploy/runner/tasks/planned_tasks.hpp"
 #include "rover/deploy/runner/tasks/science_target_task.hpp"
+#include "rover/deploy/runner/tasks/sequence_task.hpp"
 
 namespace rover::deploy::runner {
 
@@ -21,6 +22,7 @@ const TaskRegistry& TaskRegistry::Builtin() {
     RegisterLanderReturnTask(r);
     RegisterPlannedTasks(r);
     RegisterScienceTargetTask(r);
+    RegisterSequenceTask(r);
     return r;
   }();
   return registry;

@@ -317,13 +317,22 @@ void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, Task
   const bool done = end && end->state == msg::SequenceState::kDone;
   ctx.recorder.AddFigure({"template_done", done ? 1.0 : 0.0, kNotJudged, "", true,
                           end ? end->message : "no terminal apl/sequence_status in the budget"});
-  if (done && truth_now_ && estimate_now_) {
+  // The approach itself ended when the sequence is DONE or failed only at its ARM PLACE (the
+  // arm found nothing to touch where the rover believed the target: measured, not excused).
+  const bool approached = done || (end && end->message.find("ARM PLACE") != std::string::npos);
+  if (approached && truth_now_ && estimate_now_) {
     // The arm is sent to the target as the rover believes it: TARGET through dl/pose. When the
-    // template ends with ARM PLACE the instrument touched it: measured there.
+    // template's ARM PLACE touched, the instrument is measured; otherwise that aim.
     const Eigen::Vector3d believed = estimate_now_->inverse() * g;
     const Eigen::Vector3d truth_rover = truth_now_->inverse() * *top_;
-    const Eigen::Vector3d e =
-        tool_contact_now_ ? Eigen::Vector3d(tool_now_ - *top_) : Eigen::Vector3d(believed - truth_rover);
+    const Eigen::Vector3d aim = believed - truth_rover;
+    ctx.recorder.AddFigure({"template_aim_error", 100.0 * aim.norm(), kNotJudged, "cm", true,
+                            "template approach: the target point through dl/pose against the "
+                            "truth in the rover frame, 3-D"});
+    ctx.recorder.AddFigure({"template_instrument_contact", tool_contact_now_ ? 1.0 : 0.0,
+                            kNotJudged, "", true,
+                            "the template's ARM PLACE left the instrument touching the terrain"});
+    const Eigen::Vector3d e = tool_contact_now_ ? Eigen::Vector3d(tool_now_ - *top_) : aim;
     ctx.recorder.AddFigure({"template_placement_error", 100.0 * e.norm(), kNotJudged, "cm", true,
                             tool_contact_now_
                                 ? "template approach: the instrument on the target (ARM PLACE at "

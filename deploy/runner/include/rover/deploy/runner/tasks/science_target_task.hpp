@@ -43,8 +43,9 @@
 /// correlation along its ray, ray_stereo.hpp, with the dl/pose of the pair), written into the
 /// sequence's TARGET `target` (apl/sequencer ApplyOverrides) and sent on apl/sequence_command to
 /// apl-sequencer; at its end the runner measures where the rover believes the target is
-/// (dl/pose) against the truth (`template_placement_error`, ...; at the instrument when the
-/// template ends with ARM PLACE), stows the arm, drives the rover back to the
+/// (dl/pose) against the truth (`template_aim_error`; `template_placement_error` at the
+/// instrument when the template's ARM PLACE touched, else the aim; `template_instrument_contact`;
+/// measured also when only the ARM PLACE failed), stows the arm, drives the rover back to the
 /// start (a DIRECTED turn, straight, turn from dl/pose) and takes a fresh designation pair for
 /// the tracked approach. The template's outcome is measured, not judged; the run's pass is the
 /// tracked approach's.
