@@ -333,6 +333,19 @@ DriveOutput DriveExecutor::Submit(const DriveCommand& command, Time now) {
            &out);
     return out;
   }
+  if (options_.require_arm_stowed && joint_) {
+    for (std::size_t j = 0; j < geometry_.arm_stow.size(); ++j) {
+      const double off = joint_->arm_angle[j] - geometry_.arm_stow[j];
+      if (!(std::abs(off) <= options_.arm_stow_tolerance)) {
+        static constexpr const char* kJoint[] = {"azimuth", "shoulder", "elbow", "wrist"};
+        Reject(command, now, DriveTermination::kRejectedInvalid, InvalidReason::kArmNotStowed,
+               std::string("rejected: the arm is not stowed (") + kJoint[j] + " " +
+                   FormatNumber(off, 3) + " rad from its stowed angle): stow it first",
+               &out);
+        return out;
+      }
+    }
+  }
 
   const double speed = command.speed > 0.0 ? command.speed : options_.default_speed;
   Result<DrivePlan> plan = Internal("no plan");
@@ -578,6 +591,11 @@ void DeclareDriveParams(ParamSet& params, const std::string& prefix) {
   decl("timeout_factor", d.timeout_factor, "derived time-out = factor * duration + margin")
       .Range(1.0, 100.0);
   decl("timeout_margin_s", d.timeout_margin_s, "[s] derived time-out margin").Range(0.0, 3600.0);
+  params.Declare(prefix + "require_arm_stowed", d.require_arm_stowed,
+                 "refuse drive primitives while an arm joint is off its stowed angle");
+  decl("arm_stow_tolerance", d.arm_stow_tolerance,
+       "[rad] an arm joint this close to its stowed angle counts as stowed")
+      .Range(0.001, 1.0);
 }
 
 Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params, const std::string& prefix) {
@@ -611,6 +629,8 @@ Result<DriveOptions> DriveOptionsFromParams(const ParamSet& params, const std::s
   o.attitude_stale_s = params.GetDouble(prefix + "attitude_stale_s");
   o.timeout_factor = params.GetDouble(prefix + "timeout_factor");
   o.timeout_margin_s = params.GetDouble(prefix + "timeout_margin_s");
+  o.require_arm_stowed = params.GetBool(prefix + "require_arm_stowed");
+  o.arm_stow_tolerance = params.GetDouble(prefix + "arm_stow_tolerance");
   if (o.default_speed > o.max_speed) {
     return InvalidArgument(where("default_speed") + FormatNumber(o.default_speed) +
                            " exceeds max_speed " + FormatNumber(o.max_speed));

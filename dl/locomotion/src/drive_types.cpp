@@ -20,6 +20,8 @@ const char* InvalidReasonName(InvalidReason r) {
       return "speed_out_of_range";
     case InvalidReason::kTimeoutOutOfRange:
       return "timeout_out_of_range";
+    case InvalidReason::kArmNotStowed:
+      return "arm_not_stowed";
   }
   return "unknown";
 }

@@ -36,7 +36,8 @@ RoverGeometry::RoverGeometry(const hwconfig::RoverDescription& rover)
       bogie_pivot(rover.bogie_pivot_x, rover.bogie_pivot_z),
       max_steer_angle(rover.max_steer_angle),
       min_turn_radius(rover.min_turn_radius),
-      max_wheel_speed(rover.max_wheel_speed) {
+      max_wheel_speed(rover.max_wheel_speed),
+      arm_stow(rover.arm.stow) {
   for (int i = 0; i < kNumWheels; ++i) {
     wheel_centre[static_cast<std::size_t>(i)] = rover.WheelCentre(i);
   }

@@ -97,8 +97,10 @@ class Plant {
     s.steer_angle = steer;
     s.rocker_angle = rocker;
     s.bogie_angle = bogie;
+    s.arm_angle = arm;
     return s;
   }
+  std::array<double, 4> arm = hwconfig::RoverDescription{}.arm.stow;  // stowed unless a test moves it
   msg::AttitudeSample Attitude(Time t) const {
     msg::AttitudeSample a;
     a.stamp = t;
@@ -241,6 +243,36 @@ TEST_F(DriveExecutorTest, StraightBackwards) {
   EXPECT_NEAR(end.distance_done, -0.4, 0.01);
   EXPECT_NEAR(plant_.x, -0.4, 0.01);
   EXPECT_NEAR(plant_.y, 0.0, 1e-9);
+}
+
+TEST_F(DriveExecutorTest, TheRoverDoesNotDriveWithItsArmOut) {
+  plant_.arm[1] -= 0.3;  // shoulder lowered from the stow
+  for (int n = 0; n < 4; ++n) Tick();
+  DriveCommand c;
+  c.primitive = DrivePrimitive::kStraight;
+  c.distance = 0.5;
+  Submit(c);
+  ASSERT_FALSE(statuses_.empty());
+  EXPECT_EQ(statuses_.back().termination, DriveTermination::kRejectedInvalid);
+  EXPECT_NE(statuses_.back().message.find("the arm is not stowed (shoulder -0.3 rad"), std::string::npos)
+      << statuses_.back().message;
+  EXPECT_FALSE(ex_->busy());
+  EXPECT_NEAR(plant_.x, 0.0, 1e-12);
+  // Stowed again (within the tolerance), it drives.
+  plant_.arm[1] += 0.29;
+  for (int n = 0; n < 4; ++n) Tick();
+  Submit(c);
+  EXPECT_EQ(RunUntilIdle().termination, DriveTermination::kNominal);
+  EXPECT_NEAR(plant_.x, 0.5, 0.01);
+  // An operator may switch the interlock off.
+  DriveOptions o;
+  o.require_arm_stowed = false;
+  Build(o);
+  plant_.arm[0] = 1.0;
+  for (int n = 0; n < 4; ++n) Tick();
+  c.distance = 0.2;
+  Submit(c);
+  EXPECT_EQ(RunUntilIdle().termination, DriveTermination::kNominal);
 }
 
 TEST_F(DriveExecutorTest, SteerOnlySteers) {

@@ -42,7 +42,11 @@
 /// braked): a new primitive while one runs -> REJECTED_BUSY (the running one continues, as MER);
 /// unknown primitive, NaN/inf, |k| > 1/min_turn_radius, |s| > max_distance, |a| >
 /// max_turn_angle, speed outside [0, max_speed], timeout_s outside [0, max_timeout_s] ->
-/// REJECTED_INVALID with an InvalidReason; inputs already stale at submission -> STALE_SENSOR.
+/// REJECTED_INVALID with an InvalidReason; inputs already stale at submission -> STALE_SENSOR;
+/// with require_arm_stowed, an arm joint of the latest joint state more than arm_stow_tolerance
+/// off its stowed angle (RoverGeometry::arm_stow) -> REJECTED_INVALID (arm_not_stowed, the
+/// message names the joint and how far): the rover does not drive with its arm out. (Checked
+/// when a primitive is accepted; dl-arm is not told to keep the arm still during a drive.)
 /// A status with state DONE always has termination NOMINAL; FAILED has an off-nominal reason.
 
 #include <cstdint>
@@ -82,6 +86,8 @@ struct DriveOptions {
   double attitude_stale_s = 1.0;       ///< [s] attitude older than this is stale
   double timeout_factor = 2.0;         ///< derived time-out = factor * planned duration + margin
   double timeout_margin_s = 10.0;      ///< [s]
+  bool require_arm_stowed = true;      ///< refuse to drive while the arm is out
+  double arm_stow_tolerance = 0.05;    ///< [rad] an arm joint this close to its stowed angle
 
   Status Validate() const;
 };

@@ -61,6 +61,7 @@ enum class InvalidReason : std::int32_t {
   kAngleOutOfRange,      ///< |angle| > max_turn_angle
   kSpeedOutOfRange,      ///< speed < 0 or > max_speed
   kTimeoutOutOfRange,    ///< timeout_s < 0 or > max_timeout_s
+  kArmNotStowed,         ///< ddl/joint_state puts an arm joint off its stowed angle
 };
 
 const char* InvalidReasonName(InvalidReason r);

@@ -56,6 +56,8 @@ struct RoverGeometry {
   double max_steer_angle = 0.0;  ///< [rad] |steer| limit of the corner wheels
   double min_turn_radius = 0.0;  ///< [m] smallest arc radius (of the reference point)
   double max_wheel_speed = 0.0;  ///< [m/s] fastest rim speed a drive motor may be asked for
+  /// [rad] the instrument arm's stowed joint angles (azimuth, shoulder, elbow, wrist)
+  std::array<double, 4> arm_stow{};
 
   /// Checks finiteness, the wheel layout (left y > 0, right y < 0, front > middle > rear per side,
   /// LM and RM on one axle), pivot placement, min_turn_radius > every |y_i| (so no wheel is

@@ -59,6 +59,8 @@ class FakeRover {
     j.header.stamp_ns = t.ns;
     for (std::size_t i = 0; i < 6; ++i) j.wheel_angle[i] = wheel_[i];
     for (std::size_t i = 0; i < 4; ++i) j.steer_angle[i] = steer_[i];
+    const hwconfig::ArmAngles stow = hwconfig::RoverDescription{}.arm.stow;  // the arm stays stowed
+    for (std::size_t i = 0; i < stow.size(); ++i) j.arm_angle[i] = stow[i];
     j.health = rover_HEALTH_OK;
     return j;
   }
