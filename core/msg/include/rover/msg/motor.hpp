@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The motor-group messages as plain values (idl/rover_ddl.idl): ddl/motor_command (DL -> the
-/// DDL motor driver, after MER's MOT) and ddl/motor_status. Arrays of 12 follow the hw motor
+/// DDL motor driver, after MER's MOT) and ddl/motor_status. Arrays of 16 follow the hw motor
 /// order (rover/hwconfig/hw_bus.hpp MotorIndex). rover/msg/motor_idl.hpp converts them.
 ///
 /// Enumerator values equal the IDL ordinals. A command read from the wire keeps whatever mode
