@@ -16,7 +16,7 @@
 /// stamp, so a condition after a drive waits for a pose from after it ended.
 ///
 /// Bad input: a text that does not parse, names a command the service does not dispatch
-/// (ARM UNSTOW, AUTOFOCUS), or arrives while a sequence runs is
+/// (ARM UNSTOW), or arrives while a sequence runs is
 /// answered by a FAILED status for its command_id whose message gives the reason (the first
 /// parse error with line and column); nothing of it runs. A running sequence's status is
 /// published again at its next change. A mobility command the manager's message cannot carry (a speed) ends its

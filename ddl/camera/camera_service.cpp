@@ -77,6 +77,7 @@ Status CameraService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   const double max_future = p.GetDouble("max_future_s");
   joints_.emplace("ddl/joint_state", p.GetDouble("joint_state_stale_s"), max_future);
   frames_.emplace("hw/camera_frame", o.request_timeout_s, max_future);
+  mi_frames_.emplace("hw/mi_frame", o.request_timeout_s, max_future);
 
   auto rw = ctx.MakeWriter<rover_hw_CameraRequest>("hw/camera_request");
   if (!rw.ok()) return rw.status();
@@ -84,6 +85,17 @@ Status CameraService::OnConfigure(ServiceContext& ctx, const ParamSet& p) {
   auto fw = ctx.MakeWriter<rover_ddl_StereoFrame>("ddl/stereo_frame");
   if (!fw.ok()) return fw.status();
   frame_writer_ = std::move(*fw);
+  auto mw = ctx.MakeWriter<rover_hw_MiRequest>("hw/mi_request");
+  if (!mw.ok()) return mw.status();
+  mi_request_writer_ = std::move(*mw);
+  auto mf = ctx.MakeWriter<rover_ddl_MiFrame>("ddl/mi_frame");
+  if (!mf.ok()) return mf.status();
+  mi_frame_writer_ = std::move(*mf);
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_MiRequest>(
+      "ddl/mi_request",
+      [this](const dds::Sample<rover_ddl_MiRequest>& s) { OnMiRequest(s.data()); }));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MiFrame>(
+      "hw/mi_frame", [this](const dds::Sample<rover_hw_MiFrame>& s) { return OnMiFrame(s.data()); }));
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_StereoRequest>(
       "ddl/camera_request",
       [this](const dds::Sample<rover_ddl_StereoRequest>& s) { OnRequest(s.data()); }));
@@ -106,6 +118,7 @@ Time CameraService::Now() {
     driver_->Reset();
     joints_->Reset();
     frames_->Reset();
+    mi_frames_->Reset();
   }
   return now;
 }
@@ -126,6 +139,52 @@ void CameraService::OnRequest(const rover_ddl_StereoRequest& request) {
     write_error_ = s.message();
     log::Error("cannot send the camera request", {{"error", s.message()}});
   }
+}
+
+void CameraService::OnMiRequest(const rover_ddl_MiRequest& request) {
+  const Time now = Now();
+  auto hw = driver_->HandleMiRequest(msg::MiRequestFromIdl(request), now);
+  if (!hw.ok()) {
+    log::Warn("microscopic-imager request rejected; no frame will be sent",
+              {{"request_id", request.request_id}, {"reason", hw.status().message()}});
+    return;
+  }
+  rover_hw_MiRequest out{};
+  ctx_->Stamp(out.header, "rover");
+  msg::MiRequestToIdl(*hw, &out);
+  const Status s = mi_request_writer_.Write(out);
+  if (!s.ok()) {
+    write_error_ = s.message();
+    log::Error("cannot send the microscopic-imager request", {{"error", s.message()}});
+  }
+}
+
+Status CameraService::OnMiFrame(const rover_hw_MiFrame& frame) {
+  const Time now = Now();
+  const Status s = mi_frames_->Accept(frame.header.stamp_ns, now, ctx_->clock().valid());
+  if (!s.ok()) {
+    log::Warn("hw/mi_frame dropped", {{"reason", s.message()}});
+    return s;
+  }
+  auto data = driver_->HandleMiFrame(msg::MiFrameFromIdl(frame));
+  if (!data.ok()) {
+    if (data.status().code() == StatusCode::kNotFound) {
+      log::Info("hw/mi_frame ignored", {{"reason", data.status().message()}});
+      return Status::Ok();
+    }
+    camera_error_ = data.status().message();
+    log::Warn("hw/mi_frame rejected; no frame will be sent", {{"reason", data.status().message()}});
+    return data.status();
+  }
+  rover_ddl_MiFrame out{};
+  ctx_->Stamp(out.header, "mi");
+  msg::MiFrameToIdl(*data, &out);  // stamp = capture time; image borrowed
+  const Status w = mi_frame_writer_.Write(out);
+  if (!w.ok()) {
+    write_error_ = w.message();
+    log::Error("cannot publish the microscopic-imager frame", {{"error", w.message()}});
+  }
+  return Status::Ok();
 }
 
 Status CameraService::OnJointState(const rover_ddl_JointState& joints) {
@@ -195,6 +254,12 @@ void CameraService::OnWatchdog() {
     log::Warn(
         "camera request timed out; no frame will be sent",
         {{"request_id", p.request.request_id}, {"camera", msg::CameraName(p.request.camera)}});
+  }
+  for (const msg::MiRequest& r : driver_->ExpireMiRequests(now)) {
+    camera_error_ = "microscopic imager did not answer request " + std::to_string(r.request_id) +
+                    " within " + FormatNumber(driver_->options().request_timeout_s, 3) + " s";
+    log::Warn("microscopic-imager request timed out; no frame will be sent",
+              {{"request_id", r.request_id}});
   }
   HealthSummary h;
   if (joints_->Stale(now)) {

@@ -4,6 +4,8 @@
 ///   in:  ddl/camera_request (command), hw/camera_frame (state, on request),
 ///        ddl/joint_state (stream, 50 Hz; mast pan/tilt for the NAVCAM models)
 ///   out: hw/camera_request (command), ddl/stereo_frame (state, one per answered request)
+///   and the microscopic imager on the arm: ddl/mi_request -> hw/mi_request, hw/mi_frame ->
+///   ddl/mi_frame (checked sizes, the requester's id; no model: its pose follows the arm)
 /// A valid request goes to the camera head with the driver's own request id; its frame is
 /// downsampled to the requested width (0 = full) and published with the left/right models in
 /// the rover frame at capture time (calibration from `camera_file`; NAVCAM models follow the
@@ -47,16 +49,21 @@ class CameraService final : public Service {
   void OnRequest(const rover_ddl_StereoRequest& request);
   Status OnJointState(const rover_ddl_JointState& joints);
   Status OnFrame(const rover_hw_CameraFrame& frame);
+  void OnMiRequest(const rover_ddl_MiRequest& request);
+  Status OnMiFrame(const rover_hw_MiFrame& frame);
   void OnWatchdog();
 
   ServiceContext* ctx_ = nullptr;
   std::optional<CameraDriver> driver_;
   std::optional<driver_support::InputMonitor> joints_;
   std::optional<driver_support::InputMonitor> frames_;
+  std::optional<driver_support::InputMonitor> mi_frames_;
   driver_support::ClockJumpDetector clock_jump_;
   std::string camera_error_;  // last unanswered request or corrupt frame; cleared by a good frame
   std::string write_error_;
   dds::Writer<rover_hw_CameraRequest> request_writer_;
+  dds::Writer<rover_hw_MiRequest> mi_request_writer_;
+  dds::Writer<rover_ddl_MiFrame> mi_frame_writer_;
   dds::Writer<rover_ddl_StereoFrame> frame_writer_;
 };
 

@@ -1,5 +1,5 @@
-// dl-arm: binds ArmExecutor to dl/arm_command, ddl/joint_state and ddl/motor_status; publishes
-// ddl/motor_command and dl/arm_status. See arm_service.hpp and docs/services/dl-arm.md.
+// dl-arm: binds ArmExecutor to dl/arm_command, ddl/joint_state, ddl/motor_status and
+// ddl/mi_frame; publishes ddl/motor_command, ddl/mi_request and dl/arm_status. See arm_service.hpp and docs/services/dl-arm.md.
 #include "arm_service.hpp"
 
 #include <string>
@@ -8,6 +8,7 @@
 #include "rover/base/log.hpp"
 #include "rover/base/param_binder.hpp"
 #include "rover/msg/arm_idl.hpp"
+#include "rover/msg/camera_idl.hpp"
 #include "rover/msg/motor_idl.hpp"
 #include "rover/msg/sensors_idl.hpp"
 
@@ -37,6 +38,14 @@ Status ArmService::OnConfigure(ServiceContext& ctx, const ParamSet& params) {
   ROVER_ASSIGN_OR_RETURN(motor_writer_,
                          ctx.MakeWriter<rover_ddl_MotorCommand>("ddl/motor_command"));
   ROVER_ASSIGN_OR_RETURN(status_writer_, ctx.MakeWriter<rover_dl_ArmStatus>("dl/arm_status"));
+  ROVER_ASSIGN_OR_RETURN(mi_writer_, ctx.MakeWriter<rover_ddl_MiRequest>("ddl/mi_request"));
+  ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_MiFrame>(
+      "ddl/mi_frame", [this](const dds::Sample<rover_ddl_MiFrame>& s) {
+        const auto frame = msg::MiFrameFromIdl(s.data());
+        if (!frame.ok()) return frame.status();  // on sys/health through the input monitor
+        Publish(executor_->OnMiFrame(*frame, ctx_->Now()));
+        return Status::Ok();
+      }));
 
   ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_ddl_JointState>(
       "ddl/joint_state", [this](const dds::Sample<rover_ddl_JointState>& s) {
@@ -90,6 +99,14 @@ void ArmService::Publish(const ArmOutput& out) {
     m.header.stamp_ns = c.stamp.ns;
     const Status s = motor_writer_.Write(m);
     if (!s.ok()) log::Error("ddl/motor_command write failed", {{"error", s.message()}});
+  }
+  for (const msg::MiRequest& r : out.mi_requests) {
+    rover_ddl_MiRequest m{};
+    msg::MiRequestToIdl(r, &m);
+    ctx_->Stamp(m.header, "rover");
+    m.header.stamp_ns = r.stamp.ns;
+    const Status s = mi_writer_.Write(m);
+    if (!s.ok()) log::Error("ddl/mi_request write failed", {{"error", s.message()}});
   }
   for (const ArmStatus& st : out.statuses) {
     rover_dl_ArmStatus m{};

@@ -7,8 +7,10 @@
 ///        ddl/joint_state  (stream)  -> ArmExecutor::OnJoints (arm_angle, arm_contact); a
 ///                                      contact that ends a descent is acted on at once
 ///        ddl/motor_status (latched) -> ArmExecutor::OnMotorStatus (only the arm's groups)
+///        ddl/mi_frame     (command) -> ArmExecutor::OnMiFrame (only its own request ids)
 ///   out: ddl/motor_command (command) position / stop commands for motors 12..15 (azimuth,
 ///                                    shoulder, elbow, wrist)
+///        ddl/mi_request    (command) microscopic-imager frames of an AUTOFOCUS sweep
 ///        dl/arm_status     (latched) on every change and at arm.status_rate_hz while moving;
 ///                                    the IDLE status once at activation
 /// A run-clock timer at arm.check_rate_hz steps the executor; nothing sleeps.
@@ -57,6 +59,7 @@ class ArmService final : public Service {
   std::optional<ArmExecutor> executor_;
   dds::Writer<rover_ddl_MotorCommand> motor_writer_;
   dds::Writer<rover_dl_ArmStatus> status_writer_;
+  dds::Writer<rover_ddl_MiRequest> mi_writer_;
   std::optional<Time> last_timer_;
 };
 

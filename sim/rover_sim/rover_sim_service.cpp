@@ -4,6 +4,7 @@
 //              hw/imu, hw/sun_sensor, sim/truth (judge and tests only); <- hw/motor_goals
 //   Pacer      (real-time factor, pause, lock-step on sim/clock_ack)   <- sim/control
 //   CameraHead (rendered stereo pairs)            <- hw/camera_request -> hw/camera_frame
+//   CameraHead (microscopic imager on the arm)    <- hw/mi_request -> hw/mi_frame
 // and publishes sim/clock every step. Its run clock is its own simulated time; it never follows
 // sim/clock itself. See docs/services/rover-sim.md.
 #include <algorithm>
@@ -93,6 +94,10 @@ class RoverSim final : public rover::Service {
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/imu", &imu_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/sun_sensor", &sun_w_));
     ROVER_RETURN_IF_ERROR(Make(ctx, "hw/camera_frame", &frame_w_));
+    ROVER_RETURN_IF_ERROR(Make(ctx, "hw/mi_frame", &mi_w_));
+    ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_MiRequest>(
+        "hw/mi_request",
+        [this](const dds::Sample<rover_hw_MiRequest>& s) { OnMicroscope(s.data()); }));
     ROVER_RETURN_IF_ERROR(ctx.Subscribe<rover_hw_CameraRequest>(
         "hw/camera_request",
         [this](const dds::Sample<rover_hw_CameraRequest>& s) { OnCamera(s.data()); }));
@@ -392,6 +397,44 @@ class RoverSim final : public rover::Service {
                       {"sim_time", engine_->time()}});
   }
 
+  // The microscopic imager, likewise taken with the rover and arm holding still.
+  void OnMicroscope(const rover_hw_MiRequest& in) {
+    const rover::hw::MiRequest req = msg::MiRequestFromIdl(in);
+    const auto readings = engine_->physics().Readings();
+    rover::hwconfig::ArmAngles arm{};
+    for (int j = 0; j < rover::hwconfig::kArmJoints; ++j) {
+      arm[static_cast<std::size_t>(j)] = readings.joint_angle_rad[rover::hw::kArmAzimuth + j];
+    }
+    const rover::Time t0 = rover::MonotonicNow();
+    rover::runtime::ScopedActivity rendering(ctx_->activities(), "render");
+    auto shot = camera_->TakeMicroscope(req.exposure_us, readings.chassis.pose_site, arm,
+                                        engine_->SunDirectionSite());
+    if (!shot.ok()) {
+      rover::log::Error("no microscopic-imager frame",
+                        {{"request_id", req.request_id}, {"error", shot.status().message()}});
+      if (shot.status().code() == rover::StatusCode::kUnavailable) {
+        ctx_->SetHealth(rover_HEALTH_DEGRADED, shot.status().message());
+      }
+      return;
+    }
+    if (!shot->exposure_refused.empty()) {
+      rover::log::Warn("hw/mi_request: exposure rejected; using auto-exposure",
+                       {{"exposure_us", req.exposure_us}, {"error", shot->exposure_refused}});
+    }
+    const cv::Mat& img = shot->image.image;
+    rover::hw::MiFrame frame;
+    frame.request_id = req.request_id;
+    frame.exposure_us = shot->exposure_us;
+    frame.width = img.cols;
+    frame.height = img.rows;
+    frame.image = {img.ptr<std::uint8_t>(), img.total()};
+    Send(mi_w_, frame, &msg::MiFrameToIdl, "mi");
+    rover::log::Info("microscopic-imager frame",
+                     {{"request_id", req.request_id},
+                      {"render_ms", rover::ToSeconds(rover::MonotonicNow() - t0) * 1e3},
+                      {"sim_time", engine_->time()}});
+  }
+
   rover::ServiceContext* ctx_ = nullptr;
   rover::ManualClock run_clock_{rover::Time{0}};  // simulated time, for the fault agent
   std::unique_ptr<rs::SimEngine> engine_;
@@ -417,6 +460,7 @@ class RoverSim final : public rover::Service {
   dds::Writer<rover_hw_ImuRaw> imu_w_;
   dds::Writer<rover_hw_SunSensorRaw> sun_w_;
   dds::Writer<rover_hw_CameraFrame> frame_w_;
+  dds::Writer<rover_hw_MiFrame> mi_w_;
 };
 
 }  // namespace

@@ -213,12 +213,14 @@ std::vector<CommandSpec> BuildTable() {
   t.push_back(Row(CommandKind::kArmUnstow, "ARM UNSTOW", Family::kArm, {}, "",
                   "unstow the arm"));
   t.push_back(Row(CommandKind::kAutofocus, "AUTOFOCUS", Family::kArm,
-                  {Optional(Integer("steps", Bounds::Closed(2.0, 50.0), "imager positions"),
+                  {Point("point", ArgType::kPoint3,
+                         "site-frame surface point the microscopic imager focuses on"),
+                   Optional(Integer("steps", Bounds::Closed(3.0, 30.0), "frames in the sweep"),
                             10.0),
                    Optional(Number("step", "m", Bounds::OpenLow(0.0, 0.02),
-                                   "lowering between positions"),
-                            0.005)},
-                  "", "auto-focus the microscopic imager (FIDO)"));
+                                   "lowering between frames"),
+                            0.0067)},
+                  "point", "auto-focus the microscopic imager on a point (FIDO)"));
   for (std::size_t i = 0; i < t.size(); ++i) {
     ROVER_DEMAND_MSG(static_cast<std::size_t>(t[i].kind) == i, "table out of CommandKind order");
   }

@@ -133,6 +133,7 @@ Result<Request> BuildRequest(const CommandCall& call, const PoseSample* pose) {
     case K::kAutofocus: {
       ArmRequest r;
       r.kind = ArmRequest::Kind::kAutofocus;
+      r.point = PointOf(call.Get("point"));
       r.focus_steps = static_cast<int>(Num(call, "steps"));
       r.focus_step = Num(call, "step");
       return Request{r};

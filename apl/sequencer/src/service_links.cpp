@@ -32,7 +32,6 @@ namespace {
 std::string NotDispatched(const CommandSpec& s) {
   if (!ServiceDispatches(s.family)) return std::string(FamilyName(s.family)) + " commands";
   if (s.kind == CommandKind::kArmUnstow) return "it (dl-arm has no unstowed pose; ARM MOVE names one)";
-  if (s.kind == CommandKind::kAutofocus) return "it (the microscopic imager is not built yet)";
   return "";
 }
 }  // namespace
@@ -179,8 +178,21 @@ Result<msg::ArmCommand> ArmCommandOf(const Command& c,
       m.mode = msg::ArmMode::kPlace;
       m.target = site_from_rover->inverse() * Eigen::Vector3d(r.point.x, r.point.y, r.point.z);
       return m;
+    case ArmRequest::Kind::kAutofocus: {
+      if (!site_from_rover) return FailedPrecondition("AUTOFOCUS needs dl/pose; none heard yet");
+      const double span = (r.focus_steps - 1) * r.focus_step;
+      if (span > 0.3) {
+        return InvalidArgument("steps = " + std::to_string(r.focus_steps) + " of step = " +
+                               FormatNumber(r.focus_step) + " m sweep " + FormatNumber(span) +
+                               " m; dl-arm sweeps at most 0.3 m");
+      }
+      m.mode = msg::ArmMode::kAutofocus;
+      m.target = site_from_rover->inverse() * Eigen::Vector3d(r.point.x, r.point.y, r.point.z);
+      m.focus_steps = r.focus_steps;
+      m.focus_span = span;
+      return m;
+    }
     case ArmRequest::Kind::kUnstow:
-    case ArmRequest::Kind::kAutofocus:
       break;
   }
   return InvalidArgument(std::string(c.text) + ": apl-sequencer does not dispatch it");
@@ -198,7 +210,8 @@ std::optional<Outcome> OutcomeOfArmStatus(const msg::ArmStatus& s) {
   switch (s.state) {
     case msg::ArmState::kAtGoal:
     case msg::ArmState::kPlaced:
-    case msg::ArmState::kStowed: return Outcome::Nominal(s.stamp);
+    case msg::ArmState::kStowed:
+    case msg::ArmState::kFocused: return Outcome::Nominal(s.stamp);
     case msg::ArmState::kFault: return Outcome::Failed(Fault::Other(), s.message, s.stamp);
     case msg::ArmState::kRejected:
       return Outcome::Rejected(Fault(msg::MobilityFault::kBadCommand), s.message, s.stamp);

@@ -31,8 +31,8 @@ inline constexpr std::uint32_t kCancelIdBit = 0x80000000u;
 bool ServiceDispatches(Family f);
 /// Ok when every command of the sequence (statements and ON_ABORT block) is one the service
 /// dispatches; else InvalidArgument naming the first other one's line and command. Not
-/// dispatched: ARM UNSTOW (dl-arm has no unstowed pose; ARM MOVE names one) and AUTOFOCUS (no
-/// microscopic imager yet): "line 5: AUTOFOCUS: apl-sequencer does not dispatch it (...)".
+/// dispatched: ARM UNSTOW (dl-arm has no unstowed pose; ARM MOVE names one): "line 5: ARM
+/// UNSTOW: apl-sequencer does not dispatch it (...)".
 Status CheckDispatchable(const Sequence& sequence);
 
 /// The apl/mobility_command of a mobility command, stamped `stamp`. Errors: a speed other than 0
@@ -52,8 +52,10 @@ msg::RendezvousCommand RendezvousCommandOf(const Command& c, Time stamp);
 msg::RendezvousCommand RendezvousStopCommand(std::uint32_t cancel_id, Time stamp);
 /// The dl/arm_command of an arm command, stamped `stamp`: ARM MOVE is JOINTS, ARM STOW is STOW,
 /// ARM PLACE is PLACE with the site-frame point moved into the rover frame by `site_from_rover`
-/// (the latest dl/pose). Errors: ARM PLACE without a pose, or with hover other than 0 (dl-arm
-/// places the instrument until its contact switch closes), naming the value.
+/// (the latest dl/pose), AUTOFOCUS is AUTOFOCUS likewise with focus_steps = steps and
+/// focus_span = (steps - 1) step. Errors: ARM PLACE or AUTOFOCUS without a pose, ARM PLACE
+/// with hover other than 0 (dl-arm places the instrument until its contact switch closes), an
+/// AUTOFOCUS sweep longer than 0.3 m, naming the value.
 Result<msg::ArmCommand> ArmCommandOf(const Command& c, const std::optional<Eigen::Isometry3d>& site_from_rover,
                                      Time stamp);
 /// dl-arm's STOP, as sent to cancel an outstanding arm command.
@@ -67,7 +69,7 @@ std::optional<Outcome> OutcomeOfMobilityStatus(const msg::MobilityStatus& s);
 /// error), REJECTED -> REJECTED BAD_COMMAND; nullopt while IDLE or MOVING.
 std::optional<Outcome> OutcomeOfMastStatus(const msg::MastStatus& s);
 
-/// The outcome an arm status gives its command: AT_GOAL, PLACED, STOWED -> NOMINAL; FAULT ->
+/// The outcome an arm status gives its command: AT_GOAL, PLACED, STOWED, FOCUSED -> NOMINAL; FAULT ->
 /// FAULT OTHER (goal error, dl-arm's message); REJECTED -> REJECTED BAD_COMMAND; nullopt while
 /// IDLE or MOVING.
 std::optional<Outcome> OutcomeOfArmStatus(const msg::ArmStatus& s);

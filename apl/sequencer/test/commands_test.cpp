@@ -139,10 +139,11 @@ TEST(BuildCommand, MastRendezvousAndArmRequests) {
   const auto place = std::get<ArmRequest>(Build("ARM PLACE (1, 0, -0.3) hover=5 mm").request);
   EXPECT_EQ(place.kind, ArmRequest::Kind::kPlace);
   EXPECT_DOUBLE_EQ(place.hover, 0.005);
-  const auto focus = std::get<ArmRequest>(Build("AUTOFOCUS").request);
+  const auto focus = std::get<ArmRequest>(Build("AUTOFOCUS (1.1, 0, 0.02)").request);
   EXPECT_EQ(focus.kind, ArmRequest::Kind::kAutofocus);
+  EXPECT_DOUBLE_EQ(focus.point.x, 1.1);
   EXPECT_EQ(focus.focus_steps, 10);
-  EXPECT_DOUBLE_EQ(focus.focus_step, 0.005);
+  EXPECT_DOUBLE_EQ(focus.focus_step, 0.0067);
   EXPECT_EQ(std::get<ArmRequest>(Build("ARM STOW").request).kind, ArmRequest::Kind::kStow);
   EXPECT_EQ(std::get<ArmRequest>(Build("ARM UNSTOW").request).kind, ArmRequest::Kind::kUnstow);
 }

@@ -69,8 +69,8 @@ TEST(ParserErrors, ValuesOutOfRangeNameTheUnit) {
               {1, 33, "standoff = 0.5 m is outside [0.8, 3]"});
   ExpectError("APPROACH_TARGET image=1 pixel=(-3, 10)\n",
               {1, 25, "pixel[0] = -3 px is outside [0, inf)"});
-  ExpectError("AUTOFOCUS steps=1\n", {1, 11, "steps = 1 is outside [2, 50]"});
-  ExpectError("AUTOFOCUS steps=2.5\n", {1, 11, "steps = 2.5 is not a whole number"});
+  ExpectError("AUTOFOCUS (1, 0, 0) steps=1\n", {1, 21, "steps = 1 is outside [3, 30]"});
+  ExpectError("AUTOFOCUS (1, 0, 0) steps=3.5\n", {1, 21, "steps = 3.5 is not a whole number"});
   ExpectError("WAIT 2 h\nWAIT 25 h\n", {2, 6, "WAIT = 90000 s is outside [0, 86400]"});
   ExpectError("WAIT -1\n", {1, 6, "WAIT = -1 s is outside [0, 86400]"});
   // Positional: at the value, which is where the argument is written.

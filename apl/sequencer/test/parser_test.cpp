@@ -84,7 +84,7 @@ TEST(Parser, EveryFamilyAndTheLongestCommandName) {
       "RETURN_TO_LANDER (0, 0, 0) standoff=1.5\n"
       "APPROACH_TARGET image=3 pixel=(512, 384) standoff=1.05\n"
       "APPROACH_TARGET point=(6, 0, 0)\n"
-      "ARM UNSTOW\nARM PLACE (1, 0, -0.4)\nAUTOFOCUS steps=12 step=4 mm\nARM STOW\n"
+      "ARM UNSTOW\nARM PLACE (1, 0, -0.4)\nAUTOFOCUS (1, 0, -0.4) steps=12 step=4 mm\nARM STOW\n"
       "CLEAR_FAULT\nSTOP\n");
   std::vector<CommandKind> kinds;
   for (const auto& st : s.statements) kinds.push_back(st.command.kind);

@@ -202,9 +202,9 @@ TEST_F(SequencerServiceTest, BadSequencesAreRefusedAndNothingMoves) {
        "'angle_deg'?)"},
       {"WHILE tilt < 5\n  STOP\nEND\n",
        "apl/sequence_command 4:1:1: unbounded loop: WHILE needs MAX n"},
-      {"STOP\nAUTOFOCUS\n",
-       "apl/sequence_command 5: line 2: AUTOFOCUS: apl-sequencer does not dispatch it (the "
-       "microscopic imager is not built yet)"},
+      {"STOP\nARM UNSTOW\n",
+       "apl/sequence_command 5: line 2: ARM UNSTOW: apl-sequencer does not dispatch it (dl-arm "
+       "has no unstowed pose"},  // the wire's 127 characters end within the reason
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     SCOPED_TRACE(cases[k].text);

@@ -32,10 +32,13 @@ TEST(ServiceLinks, MobilityMastRendezvousAndArmAreDispatched) {
   EXPECT_TRUE(CheckDispatchable(MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  ARM STOW\nEND\n"
                                           "ARM PLACE (1, 0, 0)\nARM MOVE joints_deg=(0, 80, -170, 170)\n"))
                   .ok());
+  EXPECT_TRUE(CheckDispatchable(
+                  MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  AUTOFOCUS (1, 0, 0)\nEND\n"))
+                  .ok());
   const Status inner = CheckDispatchable(
-      MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  AUTOFOCUS\nEND\n"));
-  EXPECT_EQ(inner.message(), "line 5: AUTOFOCUS: apl-sequencer does not dispatch it (the "
-                             "microscopic imager is not built yet)");
+      MustParse("STOP\nIF tilt > 5\n  TURN angle_deg=5\nELSE\n  ARM UNSTOW\nEND\n"));
+  EXPECT_EQ(inner.message(), "line 5: ARM UNSTOW: apl-sequencer does not dispatch it (dl-arm "
+                             "has no unstowed pose; ARM MOVE names one)");
   EXPECT_TRUE(CheckDispatchable(MustParse(
                   "ON_ABORT\n  RETURN_TO_LANDER\nEND\nAPPROACH_TARGET point=(3, 0, 0)\n"))
                   .ok());
@@ -64,6 +67,18 @@ TEST(ServiceLinks, ArmCommandsAndTheirStatuses) {
   EXPECT_EQ(move->mode, msg::ArmMode::kJoints);
   EXPECT_NEAR(move->joints[1], M_PI / 2, 1e-12);
   EXPECT_EQ(ArmCommandOf(Built("ARM STOW"), std::nullopt, Time{5})->mode, msg::ArmMode::kStow);
+  const Result<msg::ArmCommand> focus =
+      ArmCommandOf(Built("AUTOFOCUS (2, 2.05, 0.1) steps=12 step=5 mm"), pose, Time{5});
+  ASSERT_TRUE(focus.ok()) << focus.status().ToString();
+  EXPECT_EQ(focus->mode, msg::ArmMode::kAutofocus);
+  EXPECT_TRUE(focus->target.isApprox(Eigen::Vector3d(1.05, 0.0, 0.1), 1e-12));
+  EXPECT_EQ(focus->focus_steps, 12);
+  EXPECT_NEAR(focus->focus_span, 0.055, 1e-12);
+  EXPECT_FALSE(ArmCommandOf(Built("AUTOFOCUS (2, 2, 0)"), std::nullopt, Time{5}).ok());
+  const Result<msg::ArmCommand> long_sweep =
+      ArmCommandOf(Built("AUTOFOCUS (2, 2, 0) steps=30 step=15 mm"), pose, Time{5});
+  ASSERT_FALSE(long_sweep.ok());
+  EXPECT_NE(long_sweep.status().message().find("at most 0.3 m"), std::string::npos);
   const msg::ArmCommand stop = ArmStopCommand(12, Time{6});
   EXPECT_EQ(stop.mode, msg::ArmMode::kStop);
   EXPECT_EQ(stop.command_id, 12u | kCancelIdBit);

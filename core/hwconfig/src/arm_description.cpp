@@ -27,6 +27,29 @@ const char* ArmJointName(int joint) {
   return joint >= 0 && joint < kArmJoints ? kNames[joint] : "?";
 }
 
+Eigen::Isometry3d ArmDescription::ImagerPose(const ArmAngles& q) const {
+  const ArmPoints p = Forward(q);
+  const Eigen::Vector3d h(-std::sin(q[0]), std::cos(q[0]), 0.0);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear().col(0) = h;
+  pose.linear().col(1) = p.look.cross(h).normalized();
+  pose.linear().col(2) = p.look;
+  pose.translation() = p.face;
+  return pose;
+}
+
+double MicroscopeOptics::BlurDiameterPx(double distance) const {
+  const double s = working_distance;
+  return focal_px * aperture * std::abs(distance - s) / (distance * s);
+}
+
+double MicroscopeOptics::DepthOfFieldHalf() const {
+  // c(d) = k (s - d) / (d s) on the near side, k = focal_px * aperture: solve c = c_max.
+  const double s = working_distance, k = focal_px * aperture;
+  const double d = k * s / (k + max_sharp_blur_px * s);
+  return s - d;
+}
+
 Status ArmDescription::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckAllInRange("arm.shoulder", std::span<const double>(shoulder.data(), 3),
                                         Bounds::Closed(-10, 10), "m"));
@@ -35,6 +58,16 @@ Status ArmDescription::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("arm.tool_length", tool_length, Bounds::OpenLow(0.0, 2.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("arm.link_radius", link_radius, 0.0, 0.2, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("arm.clearance", clearance, 0.0, 0.2, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("arm.face_radius", face_radius, 0.0, 0.2, "m"));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("arm.imager.image_size", imager.image_size, 16, 2048));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("arm.imager.focal_px", imager.focal_px, Bounds::OpenLow(0.0, 1e5), "px"));
+  ROVER_RETURN_IF_ERROR(CheckRange("arm.imager.working_distance", imager.working_distance,
+                                   Bounds::OpenLow(0.0, 0.5), "m"));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("arm.imager.aperture", imager.aperture, Bounds::OpenLow(0.0, 0.05), "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("arm.imager.max_sharp_blur_px", imager.max_sharp_blur_px,
+                                   Bounds::OpenLow(0.0, 20.0), "px"));
   ROVER_RETURN_IF_ERROR(CheckRange("arm.check_step", check_step, Bounds::OpenLow(0.0, 0.2), "rad"));
   for (int j = 0; j < kArmJoints; ++j) {
     const auto k = static_cast<std::size_t>(j);

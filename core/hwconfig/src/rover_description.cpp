@@ -173,6 +173,19 @@ void RoverDescription::BindParams(Binder& b) {
   BindNumber(
       b, "arm.clearance", [](auto& d) -> auto& { return d.arm.clearance; }, 1.0, "m",
       "distance every arm pose keeps from the rover's keep-out boxes");
+  BindNumber(
+      b, "arm.face_radius", [](auto& d) -> auto& { return d.arm.face_radius; }, 1.0, "m",
+      "radius of the instrument face's contact ring");
+  BindNumber(
+      b, "arm.imager.focal_px", [](auto& d) -> auto& { return d.arm.imager.focal_px; }, 1.0,
+      "px", "microscopic imager focal length in pixels");
+  BindNumber(
+      b, "arm.imager.working_distance",
+      [](auto& d) -> auto& { return d.arm.imager.working_distance; }, 1.0, "m",
+      "instrument face to the microscopic imager's plane of best focus");
+  BindNumber(
+      b, "arm.imager.aperture", [](auto& d) -> auto& { return d.arm.imager.aperture; }, 1.0,
+      "m", "microscopic imager entrance-pupil diameter (depth of field)");
   b.BindDegrees("max_steer_angle_deg", &D::max_steer_angle,
                 "corner-wheel steering limit for driving");
   b.Bind("min_turn_radius", &D::min_turn_radius, "m",

@@ -12,6 +12,8 @@ const char* ArmModeName(ArmMode m) {
       return "STOW";
     case ArmMode::kStop:
       return "STOP";
+    case ArmMode::kAutofocus:
+      return "AUTOFOCUS";
   }
   return "UNKNOWN";
 }
@@ -32,12 +34,15 @@ const char* ArmStateName(ArmState s) {
       return "FAULT";
     case ArmState::kRejected:
       return "REJECTED";
+    case ArmState::kFocused:
+      return "FOCUSED";
   }
   return "UNKNOWN";
 }
 
 bool IsKnownArmMode(ArmMode m) {
-  return m == ArmMode::kJoints || m == ArmMode::kPlace || m == ArmMode::kStow || m == ArmMode::kStop;
+  return m == ArmMode::kJoints || m == ArmMode::kPlace || m == ArmMode::kStow || m == ArmMode::kStop ||
+         m == ArmMode::kAutofocus;
 }
 
 }  // namespace rover::msg

@@ -234,4 +234,23 @@ Status CheckStereoFrame(const StereoFrame& frame) {
   return Status::Ok();
 }
 
+Status CheckMiFrame(const MiFrame& frame) {
+  if (frame.width < 1 || frame.height < 1) {
+    return InvalidArgument("microscopic-imager frame size " +
+                           SizeText(frame.width, frame.height) + " is empty");
+  }
+  if (frame.stamp.ns <= 0) {
+    return InvalidArgument("microscopic-imager frame stamp " + std::to_string(frame.stamp.ns) +
+                           " ns is not positive");
+  }
+  const std::size_t n =
+      static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
+  if (frame.image.size() != n) {
+    return InvalidArgument("microscopic-imager image has " + std::to_string(frame.image.size()) +
+                           " bytes; expected " + SizeText(frame.width, frame.height) + " = " +
+                           std::to_string(n));
+  }
+  return Status::Ok();
+}
+
 }  // namespace rover::msg

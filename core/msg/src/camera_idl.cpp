@@ -130,4 +130,44 @@ void StereoFrameToIdl(const StereoFrame& in, rover_ddl_StereoFrame* out) {
   out->health = HealthToIdl(in.health);
 }
 
+MiRequest MiRequestFromIdl(const rover_ddl_MiRequest& in) {
+  MiRequest r;
+  r.stamp = Time{in.header.stamp_ns};
+  r.request_id = in.request_id;
+  r.exposure_us = in.exposure_us;
+  return r;
+}
+
+void MiRequestToIdl(const MiRequest& in, rover_ddl_MiRequest* out) {
+  out->header.stamp_ns = in.stamp.ns;
+  out->request_id = in.request_id;
+  out->exposure_us = in.exposure_us;
+}
+
+Result<MiFrame> MiFrameFromIdl(const rover_ddl_MiFrame& in) {
+  MiFrame f;
+  f.stamp = Time{in.header.stamp_ns};
+  f.request_id = in.request_id;
+  f.exposure_us = in.exposure_us;
+  f.width = in.width;
+  f.height = in.height;
+  if (in.image._length > 0 && in.image._buffer == nullptr) {
+    return InvalidArgument("microscopic-imager frame image buffer is null");
+  }
+  f.image = idl::View(in.image);
+  ROVER_ASSIGN_OR_RETURN(f.health, HealthFromIdl(in.health));
+  ROVER_RETURN_IF_ERROR(CheckMiFrame(f));
+  return f;
+}
+
+void MiFrameToIdl(const MiFrame& in, rover_ddl_MiFrame* out) {
+  out->header.stamp_ns = in.stamp.ns;
+  out->request_id = in.request_id;
+  out->exposure_us = in.exposure_us;
+  out->width = ClampSize(in.width);
+  out->height = ClampSize(in.height);
+  idl::BorrowSequence(out->image, in.image);
+  out->health = HealthToIdl(in.health);
+}
+
 }  // namespace rover::msg

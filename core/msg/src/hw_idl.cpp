@@ -156,4 +156,28 @@ void CameraFrameToIdl(const hw::CameraFrame& in, rover_hw_CameraFrame* out) {
   idl::BorrowSequence(out->right, in.right);
 }
 
+hw::MiRequest MiRequestFromIdl(const rover_hw_MiRequest& in) {
+  return {in.header.stamp_ns, in.request_id, in.exposure_us};
+}
+
+void MiRequestToIdl(const hw::MiRequest& in, rover_hw_MiRequest* out) {
+  out->header.stamp_ns = in.stamp_ns;
+  out->request_id = in.request_id;
+  out->exposure_us = in.exposure_us;
+}
+
+hw::MiFrame MiFrameFromIdl(const rover_hw_MiFrame& in) {
+  return {in.header.stamp_ns, in.request_id, in.exposure_us, in.width, in.height,
+          idl::View(in.image)};
+}
+
+void MiFrameToIdl(const hw::MiFrame& in, rover_hw_MiFrame* out) {
+  out->header.stamp_ns = in.stamp_ns;
+  out->request_id = in.request_id;
+  out->exposure_us = in.exposure_us;
+  out->width = ClampSize(in.width);
+  out->height = ClampSize(in.height);
+  idl::BorrowSequence(out->image, in.image);
+}
+
 }  // namespace rover::msg

@@ -64,7 +64,8 @@ TEST(ArmIdl, StatusRoundTripTruncatesTheMessageAndRefusesAnUnknownState) {
   EXPECT_FALSE(back->stowed);
   EXPECT_EQ(back->message.size(), 127u);
   EXPECT_STREQ(ArmStateName(ArmState::kStowed), "STOWED");
-  idl::SetRawEnum(&m.state, 7);
+  EXPECT_STREQ(ArmStateName(ArmState::kFocused), "FOCUSED");
+  idl::SetRawEnum(&m.state, 8);
   back = ArmStatusFromIdl(m);
   ASSERT_FALSE(back.ok());
   EXPECT_NE(back.status().message().find("dl/arm_status state"), std::string::npos);

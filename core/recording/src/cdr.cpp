@@ -70,6 +70,16 @@ Result<std::uint32_t> CdrReader::Uint32(const char* field) {
   return Load<std::uint32_t>(b.data(), little_);
 }
 
+Result<std::uint16_t> CdrReader::Uint16(const char* field) {
+  ROVER_ASSIGN_OR_RETURN(ByteSpan b, Take(2, 2, field));
+  return Load<std::uint16_t>(b.data(), little_);
+}
+
+Result<ByteSpan> CdrReader::Octets(const char* field) {
+  ROVER_ASSIGN_OR_RETURN(const std::uint32_t length, Uint32(field));
+  return Take(length, 1, field);
+}
+
 Result<double> CdrReader::Double(const char* field) {
   ROVER_ASSIGN_OR_RETURN(ByteSpan b, Take(8, 8, field));
   return Load<double>(b.data(), little_);

@@ -63,6 +63,23 @@ TEST(Cdr, BigEndianAndXcdr2Alignment) {
   EXPECT_FALSE(c->paused);
 }
 
+TEST(Cdr, Uint16AndOctetSequences) {
+  // XCDR1 little-endian: uint32 1, uint16 300 at 4, pad to 8, sequence<octet> {7, 8, 9}.
+  const Bytes b = {0x00, 0x01, 0x00, 0x00, 1, 0, 0, 0, 0x2c, 0x01, 0, 0, 3, 0, 0, 0, 7, 8, 9};
+  auto r = CdrReader::Open(b);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(*r->Uint32("a"), 1u);
+  EXPECT_EQ(*r->Uint16("b"), 300u);
+  const auto o = r->Octets("c");
+  ASSERT_TRUE(o.ok()) << o.status().message();
+  ASSERT_EQ(o->size(), 3u);
+  EXPECT_EQ((*o)[2], 9);
+  // A sequence longer than the sample is named.
+  const Bytes short_seq = {0x00, 0x01, 0x00, 0x00, 9, 0, 0, 0, 1, 2};
+  auto s = CdrReader::Open(short_seq);
+  EXPECT_NE(s->Octets("image").status().message().find("'image'"), std::string::npos);
+}
+
 TEST(Cdr, MalformedSamplesNameWhatIsWrong) {
   EXPECT_NE(ReadSampleHeader(Bytes{0, 1}).status().message().find("shorter than its 4-byte"),
             std::string::npos);

@@ -28,8 +28,10 @@ const std::vector<RoleAccess>& RoleAccessTable() {
           "dl/relative_pose", "apl/rendezvous_status", "dl/arm_status"}},
         {"apl-smoke", "smoke set's application", true, {"apl/mobility_status"}, {"dl/pose"}},
         // ddl/
-        {"ddl-camera", "camera driver", true, {"ddl/stereo_frame", "hw/camera_request"},
-         {"ddl/camera_request", "ddl/joint_state", "hw/camera_frame"}},
+        {"ddl-camera", "camera driver", true,
+         {"ddl/stereo_frame", "hw/camera_request", "ddl/mi_frame", "hw/mi_request"},
+         {"ddl/camera_request", "ddl/joint_state", "hw/camera_frame", "ddl/mi_request",
+          "hw/mi_frame"}},
         {"ddl-imu", "IMU driver", true, {"ddl/imu"}, {"hw/imu"}},
         {"ddl-joints", "encoder, potentiometer and contact-switch reader", true,
          {"ddl/joint_state"}, {"hw/motor_telemetry", "hw/suspension_pots", "hw/arm_contact"}},
@@ -40,8 +42,9 @@ const std::vector<RoleAccess>& RoleAccessTable() {
         // dl/
         {"dl-locomotion", "drive primitives", true, {"dl/drive_status", "ddl/motor_command"},
          {"dl/drive_command", "ddl/joint_state", "ddl/motor_status", "dl/pose"}},
-        {"dl-arm", "instrument arm", true, {"dl/arm_status", "ddl/motor_command"},
-         {"dl/arm_command", "ddl/joint_state", "ddl/motor_status"}},
+        {"dl-arm", "instrument arm and microscopic imager", true,
+         {"dl/arm_status", "ddl/motor_command", "ddl/mi_request"},
+         {"dl/arm_command", "ddl/joint_state", "ddl/motor_status", "ddl/mi_frame"}},
         {"dl-mast", "mast pointing", true, {"dl/mast_status", "ddl/motor_command"},
          {"dl/mast_command", "ddl/joint_state", "ddl/motor_status", "dl/pose"}},
         {"dl-pose", "pose estimator", true,
@@ -55,8 +58,9 @@ const std::vector<RoleAccess>& RoleAccessTable() {
         // the simulator
         {"rover-sim", "simulator", true,
          {"hw/motor_telemetry", "hw/suspension_pots", "hw/arm_contact", "hw/imu", "hw/sun_sensor",
-          "hw/camera_frame", "sim/clock", "sim/truth"},
-         {"hw/motor_goals", "hw/camera_request", "sim/clock_ack", "sim/control"}},
+          "hw/camera_frame", "hw/mi_frame", "sim/clock", "sim/truth"},
+         {"hw/motor_goals", "hw/camera_request", "hw/mi_request", "sim/clock_ack",
+          "sim/control"}},
         // operator tools
         {"rover-drive", "operator drive tool", false, {"dl/drive_command"},
          {"dl/drive_status", "sim/clock"}},

@@ -16,6 +16,8 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"hw/sun_sensor", "rover_hw_SunSensorRaw", P::kStream},
       {"hw/camera_request", "rover_hw_CameraRequest", P::kCommand},
       {"hw/camera_frame", "rover_hw_CameraFrame", P::kCommand},
+      {"hw/mi_request", "rover_hw_MiRequest", P::kCommand},
+      {"hw/mi_frame", "rover_hw_MiFrame", P::kCommand},
       // ddl/: engineering units (DDL <-> DL)
       {"ddl/motor_command", "rover_ddl_MotorCommand", P::kCommand},
       {"ddl/motor_status", "rover_ddl_MotorStatus", P::kLatched},
@@ -24,6 +26,8 @@ const std::vector<TopicInfo>& TopicCatalog() {
       {"ddl/sun_sensor", "rover_ddl_SunSensor", P::kState},
       {"ddl/camera_request", "rover_ddl_StereoRequest", P::kCommand},
       {"ddl/stereo_frame", "rover_ddl_StereoFrame", P::kCommand},
+      {"ddl/mi_request", "rover_ddl_MiRequest", P::kCommand},
+      {"ddl/mi_frame", "rover_ddl_MiFrame", P::kCommand},
       // dl/: rover-level state and primitives (DL <-> APL)
       {"dl/drive_command", "rover_dl_DriveCommand", P::kCommand},
       {"dl/drive_status", "rover_dl_DriveStatus", P::kLatched},

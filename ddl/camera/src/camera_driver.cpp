@@ -75,8 +75,8 @@ Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& 
                            " is out of range [0, " + std::to_string(options_.max_exposure_us) +
                            "] (0 = auto)");
   }
-  if (pending_.size() >= static_cast<std::size_t>(options_.max_pending)) {
-    return Busy(id + ": " + std::to_string(pending_.size()) +
+  if (pending() >= static_cast<std::size_t>(options_.max_pending)) {
+    return Busy(id + ": " + std::to_string(pending()) +
                 " requests already wait for the camera head (max_pending)");
   }
   PendingRequest p{next_hw_id_++, r, now};
@@ -246,8 +246,62 @@ std::vector<PendingRequest> CameraDriver::ExpireRequests(Time now) {
   return expired;
 }
 
+Result<hw::MiRequest> CameraDriver::HandleMiRequest(const msg::MiRequest& r, Time now) {
+  const std::string id = "microscopic-imager request " + std::to_string(r.request_id);
+  if (r.exposure_us > options_.max_exposure_us) {
+    return InvalidArgument(id + ": exposure_us " + std::to_string(r.exposure_us) +
+                           " is out of range [0, " + std::to_string(options_.max_exposure_us) +
+                           "] (0 = auto)");
+  }
+  if (pending() >= static_cast<std::size_t>(options_.max_pending)) {
+    return Busy(id + ": " + std::to_string(pending()) +
+                " requests already wait for the cameras (max_pending)");
+  }
+  PendingMi p{next_hw_id_++, r, now};
+  if (next_hw_id_ == 0) next_hw_id_ = 1;
+  pending_mi_.push_back(p);
+  return hw::MiRequest{now.ns, p.hw_request_id, r.exposure_us};
+}
+
+Result<msg::MiFrame> CameraDriver::HandleMiFrame(const hw::MiFrame& f) {
+  auto it = std::find_if(pending_mi_.begin(), pending_mi_.end(),
+                         [&](const PendingMi& p) { return p.hw_request_id == f.request_id; });
+  if (it == pending_mi_.end()) {
+    return NotFound("hw/mi_frame " + std::to_string(f.request_id) +
+                    " answers no pending microscopic-imager request (late, duplicate or not ours)");
+  }
+  const PendingMi req = *it;
+  pending_mi_.erase(it);
+  msg::MiFrame m;
+  m.stamp = Time{f.stamp_ns};
+  m.request_id = req.request.request_id;
+  m.exposure_us = f.exposure_us;
+  m.width = f.width;
+  m.height = f.height;
+  m.image = f.image;
+  const Status ok = msg::CheckMiFrame(m);
+  if (!ok.ok()) {
+    return InvalidArgument("hw/mi_frame " + std::to_string(f.request_id) + ": " + ok.message());
+  }
+  return m;
+}
+
+std::vector<msg::MiRequest> CameraDriver::ExpireMiRequests(Time now) {
+  std::vector<msg::MiRequest> expired;
+  for (auto it = pending_mi_.begin(); it != pending_mi_.end();) {
+    if (ToSeconds(now - it->issued) > options_.request_timeout_s) {
+      expired.push_back(it->request);
+      it = pending_mi_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return expired;
+}
+
 void CameraDriver::Reset() {
   pending_.clear();
+  pending_mi_.clear();
   mast_.clear();
 }
 

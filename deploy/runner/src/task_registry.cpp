@@ -4,6 +4,7 @@
 
 #include "rover/base/check.hpp"
 #include "rover/deploy/runner/task.hpp"
+#include "rover/deploy/runner/tasks/autofocus_task.hpp"
 #include "rover/deploy/runner/tasks/directed_task.hpp"
 #include "rover/deploy/runner/tasks/lander_return_task.hpp"
 #include "rover/deploy/runner/tasks/mobility_task.hpp"
@@ -23,6 +24,7 @@ const TaskRegistry& TaskRegistry::Builtin() {
     RegisterPlannedTasks(r);
     RegisterScienceTargetTask(r);
     RegisterSequenceTask(r);
+    RegisterAutofocusTask(r);
     return r;
   }();
   return registry;

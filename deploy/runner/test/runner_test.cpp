@@ -33,7 +33,7 @@ TEST_F(RunnerTest, LoadScenarioChecksTheTaskWithItsOwnKeysAndLines) {
             dir_ +
                 "/s.yaml:13: task.type: 'directd' is not one of: directed, autonav, "
                 "goto_waypoint, guarded, guarded_arc, lander_return, long_traverse, "
-                "science_target, sequence (did you mean 'directed'?)");
+                "science_target, sequence, autofocus (did you mean 'directed'?)");
   text = runner::testing::kSmallScenario;
   text.replace(text.find("distance: 2"), 11, "distance: 200");
   EXPECT_EQ(Load(text).status().message(),

@@ -22,7 +22,7 @@ TEST(TaskRegistry, BuiltinTypesInOrder) {
   EXPECT_EQ(TaskRegistry::Builtin().Types(),
             (std::vector<std::string>{"directed", "autonav", "goto_waypoint", "guarded",
                                       "guarded_arc", "lander_return", "long_traverse",
-                                      "science_target", "sequence"}));
+                                      "science_target", "sequence", "autofocus"}));
   EXPECT_NE(TaskRegistry::Builtin().Describe().find("directed "), std::string::npos);
 }
 
@@ -32,11 +32,11 @@ TEST(TaskRegistry, UnknownTypeNamesFileLineAndTheKnownTypes) {
   ASSERT_FALSE(t.ok());
   EXPECT_EQ(t.status().message(),
             "s.yaml:3: task.type: 'directd' is not one of: directed, autonav, goto_waypoint, "
-            "guarded, guarded_arc, lander_return, long_traverse, science_target, sequence (did you "
-            "mean 'directed'?)");
+            "guarded, guarded_arc, lander_return, long_traverse, science_target, sequence, "
+            "autofocus (did you mean 'directed'?)");
   EXPECT_EQ(ValidateTask(ScenarioWithTask("task: {type: fly}\n")).message(),
             "s.yaml:2: task.type: 'fly' is not one of: directed, autonav, goto_waypoint, guarded, "
-            "guarded_arc, lander_return, long_traverse, science_target, sequence");
+            "guarded_arc, lander_return, long_traverse, science_target, sequence, autofocus");
 }
 
 TEST(TaskRegistry, AFactoryGetsItsSectionAndOwnsItsKeys) {

@@ -1,6 +1,7 @@
 #include "rover/dl/arm/arm_executor.hpp"
 
 #include <algorithm>
+#include <opencv2/core.hpp>
 #include <cmath>
 #include <span>
 #include <utility>
@@ -167,18 +168,50 @@ Result<ArmExecutor::Plan> ArmExecutor::StowPlan() const {
   return plan;
 }
 
+Result<ArmExecutor::Plan> ArmExecutor::AutofocusPlan(const ArmCommand& c) const {
+  const int n = c.focus_steps > 0 ? c.focus_steps : options_.focus_steps;
+  const double span = c.focus_span > 0.0 ? c.focus_span : options_.focus_span;
+  const double s = rover_.arm.imager.working_distance;
+  Plan plan;
+  plan.target = c.target;
+  ArmAngles from = joints_->q;
+  for (int k = 0; k < n; ++k) {
+    const double h = s + 0.5 * span - k * span / (n - 1);
+    const Result<ArmAngles> q = rover_.arm.FaceDown(c.target + Eigen::Vector3d(0.0, 0.0, h));
+    if (!q.ok()) {
+      return Status(q.status().code(), "focus frame " + std::to_string(k + 1) + " of " +
+                                           std::to_string(n) + ", face " + FormatNumber(h, 4) +
+                                           " m above the target: " + q.status().message());
+    }
+    const Status st = rover_.CheckArmMove(from, *q);
+    if (!st.ok()) {
+      return WithContext(st, k == 0 ? std::string("move to the top of the focus sweep")
+                                    : "focus step " + std::to_string(k + 1));
+    }
+    plan.legs.push_back({k == 0 ? Stage::kFocusMove : Stage::kFocusStep, *q, Frame::kSweep});
+    from = *q;
+  }
+  return plan;
+}
+
 Result<ArmExecutor::Plan> ArmExecutor::PlanOf(const ArmCommand& c, Time now) const {
   if (!msg::IsKnownArmMode(c.mode)) {
     return InvalidArgument("mode = " + std::to_string(static_cast<std::int32_t>(c.mode)) +
-                           " is not an ArmMode value (0 JOINTS, 1 PLACE, 2 STOW, 3 STOP)");
+                           " is not an ArmMode value (0 JOINTS, 1 PLACE, 2 STOW, 3 STOP, "
+                           "4 AUTOFOCUS)");
   }
   ROVER_RETURN_IF_ERROR(CheckFinite("timeout_s", c.timeout_s));
   ROVER_RETURN_IF_ERROR(
       CheckRange("timeout_s", c.timeout_s, Bounds::Closed(0.0, options_.max_timeout_s), "s"));
   if (c.mode == ArmMode::kJoints) {
     ROVER_RETURN_IF_ERROR(CheckAllFinite("joints", std::span(c.joints)));
-  } else if (c.mode == ArmMode::kPlace) {
+  } else if (c.mode == ArmMode::kPlace || c.mode == ArmMode::kAutofocus) {
     ROVER_RETURN_IF_ERROR(CheckAllFinite("target", std::span(c.target.data(), 3)));
+  }
+  if (c.mode == ArmMode::kAutofocus) {
+    if (c.focus_steps != 0) ROVER_RETURN_IF_ERROR(CheckIntRange("focus_steps", c.focus_steps, 3, 30));
+    ROVER_RETURN_IF_ERROR(CheckFinite("focus_span", c.focus_span));
+    ROVER_RETURN_IF_ERROR(CheckRange("focus_span", c.focus_span, 0.0, 0.3, "m"));
   }
   if (!JointsFresh(now)) {
     return InvalidArgument(
@@ -201,6 +234,8 @@ Result<ArmExecutor::Plan> ArmExecutor::PlanOf(const ArmCommand& c, Time now) con
       return PlacePlan(c.target);
     case ArmMode::kStow:
       return StowPlan();
+    case ArmMode::kAutofocus:
+      return AutofocusPlan(c);
     case ArmMode::kStop:
       break;  // Submit handles it
   }
@@ -220,6 +255,12 @@ void ArmExecutor::StartLeg(std::size_t index, Time now, std::string message, Arm
       return;
     }
     rate = DescentRate(joints_->q, l.goal);
+  } else if (l.stage == Stage::kFocusStep) {
+    if (joints_->contact) {
+      FocusOnContact(now, out);
+      return;
+    }
+    rate = DescentRate(joints_->q, l.goal);
   }
   msg::MotorCommand m = MotorCommand(msg::GroupMode::kPosition, now);
   for (int j = 0; j < hwconfig::kArmJoints; ++j) {
@@ -236,7 +277,11 @@ void ArmExecutor::StartLeg(std::size_t index, Time now, std::string message, Arm
 }
 
 void ArmExecutor::CheckArrival(Time now, ArmOutput* out) {
-  if (!moving() || !motors_done_ || !WithinTolerance(leg().goal)) return;
+  if (!moving() || awaiting_frame_ != 0 || !motors_done_ || !WithinTolerance(leg().goal)) return;
+  if (leg().frame != Frame::kNone) {
+    RequestFrame(now, out);
+    return;
+  }
   if (leg_ + 1 < plan_.legs.size()) {
     const Stage next = plan_.legs[leg_ + 1].stage;
     StartLeg(leg_ + 1, now,
@@ -274,6 +319,8 @@ void ArmExecutor::OnContact(Time now, ArmOutput* out) {
     out->motor_commands.push_back(MotorCommand(msg::GroupMode::kStop, now));
     motor_id_ = 0;
     SetStatus(ArmState::kPlaced, "placed: " + where, now, out);
+  } else if (leg().stage == Stage::kFocusStep && awaiting_frame_ == 0) {
+    FocusOnContact(now, out);
   } else if (leg().stage == Stage::kHover && contact_seen_open_) {
     Fault("unexpected contact on the way above the target: " + where, now, out);
   }
@@ -309,6 +356,20 @@ ArmOutput ArmExecutor::Submit(const ArmCommand& c, Time now) {
   }
   plan_ = std::move(*plan);
   contact_seen_open_ = !joints_->contact;
+  awaiting_frame_ = 0;
+  focus_samples_.clear();
+  focus_extra_steps_ = 0;
+  focus_predicted_ = false;
+  status_.focus_height = 0.0;
+  status_.focus_predicted = false;
+  status_.focus_images = 0;
+  status_.focus_image_id = 0;
+  status_.focus_measure = 0.0;
+  if (c.mode == ArmMode::kAutofocus) {
+    const int n = static_cast<int>(plan_.legs.size());
+    const double span = c.focus_span > 0.0 ? c.focus_span : options_.focus_span;
+    focus_step_ = span / (n - 1);
+  }
   move_start_ = now;
   move_timeout_s_ = c.timeout_s > 0.0 ? c.timeout_s : options_.timeout_s;
   status_.command_id = c.command_id;
@@ -324,6 +385,13 @@ ArmOutput ArmExecutor::Submit(const ArmCommand& c, Time now) {
       break;
     case Stage::kStow:
       message = "stowing";
+      break;
+    case Stage::kFocusMove:
+      message = "auto-focus on " + ArmPointText(plan_.target) + " m: " +
+                std::to_string(plan_.legs.size()) + " frames from " +
+                FormatNumber((rover_.arm.Forward(plan_.legs.front().goal).face.z() -
+                              plan_.target.z()) * 1000.0, 3) +
+                " mm above it";
       break;
     default:
       message = "moving to joints " + ArmAnglesText(plan_.legs.front().goal) + " rad";
@@ -365,12 +433,21 @@ ArmOutput ArmExecutor::Step(Time now) {
           now, &out);
     return out;
   }
+  if (awaiting_frame_ != 0 &&
+      ToSeconds(now - frame_requested_) > options_.focus_image_timeout_s) {
+    Fault("microscopic-imager frame " + std::to_string(awaiting_frame_) + " not received within " +
+              FormatNumber(options_.focus_image_timeout_s) + " s (focus_image_timeout_s)",
+          now, &out);
+    awaiting_frame_ = 0;
+    return out;
+  }
   CheckArrival(now, &out);
   if (!out.statuses.empty()) return out;
   const double elapsed = ToSeconds(now - move_start_);
   if (elapsed > move_timeout_s_) {
     static constexpr const char* kLegName[] = {"move to the joint goal", "move above the target",
-                                               "descent", "lift", "move to stow"};
+                                               "descent", "lift", "move to stow",
+                                               "auto-focus move", "auto-focus step"};
     Fault("timeout after " + FormatNumber(elapsed, 4) +
               " s (timeout_s = " + FormatNumber(move_timeout_s_) + ") in the " +
               kLegName[static_cast<int>(leg().stage)] + ": face at " +
@@ -378,7 +455,7 @@ ArmOutput ArmExecutor::Step(Time now) {
           now, &out);
     return out;
   }
-  if (motors_done_ && ToSeconds(now - done_at_) > kArmSettleS) {
+  if (awaiting_frame_ == 0 && motors_done_ && ToSeconds(now - done_at_) > kArmSettleS) {
     std::size_t worst = 0;
     for (std::size_t k = 1; k < leg().goal.size(); ++k) {
       if (std::abs(joints_->q[k] - leg().goal[k]) >
@@ -396,6 +473,151 @@ ArmOutput ArmExecutor::Step(Time now) {
     SetStatus(ArmState::kMoving, status_.message, now, &out);
   }
   return out;
+}
+
+double ArmExecutor::FaceHeight() const {
+  return rover_.arm.Forward(joints_->q).face.z() - plan_.target.z();
+}
+
+void ArmExecutor::RequestFrame(Time now, ArmOutput* out) {
+  msg::MiRequest r;
+  r.stamp = now;
+  r.request_id = next_mi_id_++;
+  if (next_mi_id_ == 0) next_mi_id_ = kMiRequestIdBase;
+  out->mi_requests.push_back(r);
+  awaiting_frame_ = r.request_id;
+  frame_requested_ = now;
+  frame_height_ = FaceHeight();
+  const int k = static_cast<int>(focus_samples_.size()) + 1;
+  SetStatus(ArmState::kMoving,
+            (leg().frame == Frame::kFinal ? std::string("final focus frame")
+                                          : "focus frame " + std::to_string(k)) +
+                " at " + FormatNumber(frame_height_ * 1000.0, 3) + " mm above the target",
+            now, out);
+}
+
+ArmOutput ArmExecutor::OnMiFrame(const msg::MiFrame& frame, Time now) {
+  ArmOutput out;
+  if (!moving() || awaiting_frame_ == 0 || frame.request_id != awaiting_frame_) return out;
+  awaiting_frame_ = 0;
+  if (!msg::IsUsable(frame.health)) {
+    Fault("microscopic-imager frame " + std::to_string(frame.request_id) + " is " +
+              msg::SensorHealthName(frame.health),
+          now, &out);
+    return out;
+  }
+  const cv::Mat image(frame.height, frame.width, CV_8UC1,
+                      const_cast<std::uint8_t*>(frame.image.data()));
+  const Result<double> measure = WaveletFocusMeasure(image);
+  if (!measure.ok()) {
+    Fault("microscopic-imager frame " + std::to_string(frame.request_id) + ": " +
+              measure.status().message(),
+          now, &out);
+    return out;
+  }
+  focus_samples_.push_back({frame_height_, *measure});
+  status_.focus_images = static_cast<int>(focus_samples_.size());
+  if (leg().frame == Frame::kFinal) {
+    status_.focus_height = frame_height_;
+    status_.focus_predicted = focus_predicted_;
+    status_.focus_image_id = frame.request_id;
+    status_.focus_measure = *measure;
+    SetStatus(ArmState::kFocused,
+              std::string(focus_predicted_ ? "focused (predicted from the contact)" : "focused") +
+                  ": face " + FormatNumber(frame_height_ * 1000.0, 3) +
+                  " mm above the target, measure " + FormatNumber(*measure, 4) + " after " +
+                  std::to_string(focus_samples_.size()) + " frames",
+              now, &out);
+    return out;
+  }
+  if (leg_ + 1 < plan_.legs.size()) {
+    StartLeg(leg_ + 1, now,
+             "focus step " + std::to_string(leg_ + 2) + " of " +
+                 std::to_string(plan_.legs.size()) + " (frame " +
+                 std::to_string(focus_samples_.size()) + " measured " +
+                 FormatNumber(*measure, 4) + ")",
+             &out);
+    return out;
+  }
+  DecideFocus(now, &out);
+  return out;
+}
+
+void ArmExecutor::DecideFocus(Time now, ArmOutput* out) {
+  std::vector<FocusSample> by_height = focus_samples_;
+  std::sort(by_height.begin(), by_height.end(),
+            [](const FocusSample& a, const FocusSample& b) { return a.height < b.height; });
+  const Result<FocusPeak> peak = FindFocusPeak(by_height);
+  if (!peak.ok()) {
+    Fault("auto-focus: " + peak.status().message(), now, out);
+    return;
+  }
+  if (peak->contrast < options_.focus_min_contrast) {
+    Fault("no focus signal: the sharpest of " + std::to_string(by_height.size()) +
+              " frames measures only " + FormatNumber(peak->contrast, 3) +
+              " times the blurriest (focus_min_contrast " +
+              FormatNumber(options_.focus_min_contrast) + ")",
+          now, out);
+    return;
+  }
+  if (peak->bracketed) {
+    FocusLegTo(peak->best_height, Frame::kFinal, now,
+               "moving to best focus, " + FormatNumber(peak->best_height * 1000.0, 3) +
+                   " mm above the target",
+               out);
+    return;
+  }
+  const bool lowest = peak->peak_index == 0;
+  const double edge = lowest ? by_height.front().height : by_height.back().height;
+  if (focus_extra_steps_ >= options_.focus_max_extra_steps) {
+    Fault("no focus peak: the sharpest of " + std::to_string(by_height.size()) +
+              " frames is the " + (lowest ? "lowest" : "highest") + ", face " +
+              FormatNumber(edge * 1000.0, 3) + " mm above the target, after " +
+              std::to_string(focus_extra_steps_) + " extra steps (focus_max_extra_steps)",
+          now, out);
+    return;
+  }
+  ++focus_extra_steps_;
+  const double next = lowest ? edge - focus_step_ : edge + focus_step_;
+  FocusLegTo(next, Frame::kSweep, now,
+             std::string("sharpest frame at the ") + (lowest ? "bottom" : "top") +
+                 " of the sweep: one more step to " + FormatNumber(next * 1000.0, 3) +
+                 " mm above the target",
+             out);
+}
+
+void ArmExecutor::FocusLegTo(double height, Frame frame, Time now, std::string message,
+                             ArmOutput* out) {
+  const Result<ArmAngles> q =
+      rover_.arm.FaceDown(plan_.target + Eigen::Vector3d(0.0, 0.0, height));
+  if (!q.ok()) {
+    Fault("auto-focus: face " + FormatNumber(height * 1000.0, 3) +
+              " mm above the target: " + q.status().message(),
+          now, out);
+    return;
+  }
+  const Status st = rover_.CheckArmMove(joints_->q, *q);
+  if (!st.ok()) {
+    Fault("auto-focus: " + st.message(), now, out);
+    return;
+  }
+  const Stage stage = height < FaceHeight() ? Stage::kFocusStep : Stage::kFocusMove;
+  plan_.legs.push_back({stage, *q, frame});
+  StartLeg(plan_.legs.size() - 1, now, std::move(message), out);
+}
+
+void ArmExecutor::FocusOnContact(Time now, ArmOutput* out) {
+  // The surface is where the face touched it: best focus one working distance above.
+  out->motor_commands.push_back(MotorCommand(msg::GroupMode::kStop, now));
+  motor_id_ = 0;
+  const double contact = FaceHeight();
+  const double best = contact + rover_.arm.imager.working_distance;
+  focus_predicted_ = true;
+  FocusLegTo(best, Frame::kFinal, now,
+             "contact " + FormatNumber(contact * 1000.0, 3) +
+                 " mm above the target (higher than estimated): best focus predicted " +
+                 FormatNumber(best * 1000.0, 3) + " mm above it",
+             out);
 }
 
 ArmOutput ArmExecutor::Stop(const std::string& why, Time now) {

@@ -18,7 +18,14 @@ Status ArmOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckPositive("joint_stale_s", joint_stale_s, "s"));
   ROVER_RETURN_IF_ERROR(
       CheckRange("check_rate_hz", check_rate_hz, Bounds::OpenLow(0.0, 100.0), "Hz"));
-  return CheckRange("status_rate_hz", status_rate_hz, Bounds::OpenLow(0.0, check_rate_hz), "Hz");
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("status_rate_hz", status_rate_hz, Bounds::OpenLow(0.0, check_rate_hz), "Hz"));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("focus_steps", focus_steps, 3, 30));
+  ROVER_RETURN_IF_ERROR(CheckRange("focus_span", focus_span, Bounds::OpenLow(0.0, 0.3), "m"));
+  ROVER_RETURN_IF_ERROR(CheckIntRange("focus_max_extra_steps", focus_max_extra_steps, 0, 20));
+  ROVER_RETURN_IF_ERROR(CheckRange("focus_image_timeout_s", focus_image_timeout_s,
+                                   Bounds::OpenLow(0.0, 120.0), "s"));
+  return CheckRange("focus_min_contrast", focus_min_contrast, 1.0, 100.0, "");
 }
 
 void ArmOptions::BindParams(ParamBinder<ArmOptions>& b) {
@@ -54,6 +61,23 @@ void ArmOptions::BindParams(ParamBinder<ArmOptions>& b) {
   b.Bind("status_rate_hz", &ArmOptions::status_rate_hz, "Hz",
          "dl/arm_status rate while moving (it is also sent on every change)")
       .Range(0.0, 100.0);
+  b.Bind("focus_steps", &ArmOptions::focus_steps, "",
+         "auto-focus: microscopic-imager frames in the stepped sweep (FIDO: 10)")
+      .Range(3, 30);
+  b.Bind("focus_span", &ArmOptions::focus_span, "m",
+         "auto-focus: length of the sweep, centred where the target's estimated height puts "
+         "best focus")
+      .Range(0.0, 0.3);
+  b.Bind("focus_max_extra_steps", &ArmOptions::focus_max_extra_steps, "",
+         "auto-focus: steps added beyond the end of the sweep while the sharpest frame is "
+         "the last one there")
+      .Range(0, 20);
+  b.Bind("focus_image_timeout_s", &ArmOptions::focus_image_timeout_s, "s",
+         "auto-focus: a microscopic-imager frame not back within this (run clock) is a FAULT")
+      .Range(0.0, 120.0);
+  b.Bind("focus_min_contrast", &ArmOptions::focus_min_contrast, "",
+         "auto-focus: best over worst focus measure below this is no focus signal (FAULT)")
+      .Range(1.0, 100.0);
 }
 
 }  // namespace rover::dl::arm

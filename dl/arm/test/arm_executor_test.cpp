@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -136,6 +138,7 @@ class ArmExecutorTest : public ::testing::Test {
       arm_->Apply(m);
       motor_commands_.push_back(m);
     }
+    for (const msg::MiRequest& r : out.mi_requests) mi_requests_.push_back(r);
     statuses_.insert(statuses_.end(), out.statuses.begin(), out.statuses.end());
   }
 
@@ -158,6 +161,7 @@ class ArmExecutorTest : public ::testing::Test {
         next_step_ += 1.0 / exec_->options().check_rate_hz;
         Take(exec_->Step(t));
       }
+      AnswerFrames(t);
       if (until && until()) return true;
     }
     return false;
@@ -180,7 +184,52 @@ class ArmExecutorTest : public ::testing::Test {
     ASSERT_EQ(exec_->status().state, ArmState::kPlaced) << exec_->status().message;
   }
 
+  // The microscopic imager: a fixed texture blurred by the thin lens's disc for the face's
+  // height above the surface (MicroscopeOptics::BlurDiameterPx, sigma = disc / 4), answered
+  // 0.2 s after the request; `texture_contrast` 0 gives a featureless image.
+  void AnswerFrames(Time t) {
+    if (!answer_frames_) return;
+    while (!mi_requests_.empty() && ToSeconds(t - mi_requests_.front().stamp) >= 0.2) {
+      const msg::MiRequest r = mi_requests_.front();
+      mi_requests_.erase(mi_requests_.begin());
+      if (texture_.empty()) {
+        cv::Mat noise(64, 64, CV_32FC1);
+        cv::RNG rng(7);
+        rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
+        cv::resize(noise, texture_, cv::Size(256, 256), 0, 0, cv::INTER_CUBIC);
+      }
+      const double d = arm_->surface ? arm_->Face().z() - *arm_->surface : 1.0;
+      const double sigma =
+          std::min(24.0, rover_.arm.imager.BlurDiameterPx(std::max(d, 1e-3)) / 4.0);
+      cv::Mat blurred = texture_.clone();
+      if (sigma > 0.05) cv::GaussianBlur(texture_, blurred, cv::Size(0, 0), sigma);
+      cv::Mat image;
+      blurred.convertTo(image, CV_8U, 40.0 * texture_contrast, 120.0);
+      frames_.push_back(image);
+      msg::MiFrame f;
+      f.stamp = t;
+      f.request_id = r.request_id;
+      f.width = image.cols;
+      f.height = image.rows;
+      f.image = {image.ptr<std::uint8_t>(), image.total()};
+      Take(exec_->OnMiFrame(f, t));
+    }
+  }
+
+  ArmCommand AutofocusCommand(std::uint32_t id, const Vector3d& target) {
+    ArmCommand c;
+    c.command_id = id;
+    c.mode = ArmMode::kAutofocus;
+    c.target = target;
+    return c;
+  }
+
   const RoverDescription rover_;
+  std::vector<msg::MiRequest> mi_requests_;
+  std::vector<cv::Mat> frames_;
+  cv::Mat texture_;
+  double texture_contrast = 1.0;
+  bool answer_frames_ = true;
   std::optional<ArmExecutor> exec_;
   std::optional<KinematicArm> arm_;
   std::vector<msg::MotorCommand> motor_commands_;
@@ -391,7 +440,7 @@ TEST_F(ArmExecutorTest, RejectsBadCommandsNamingFieldAndValue) {
   exec_->OnJoints(arm_->Sample(ArmT(now())));
 
   reject(ModeCommand(3, static_cast<ArmMode>(7)),
-         "mode = 7 is not an ArmMode value (0 JOINTS, 1 PLACE, 2 STOW, 3 STOP)");
+         "mode = 7 is not an ArmMode value (0 JOINTS, 1 PLACE, 2 STOW, 3 STOP, 4 AUTOFOCUS)");
   ArmAngles bad = stow;
   bad[2] = std::nan("");
   reject(JointsCommand(4, bad), "joints[2] is nan");
@@ -585,6 +634,100 @@ TEST(ArmExecutor, CreateRefusesInvalidOptionsAndDescriptions) {
   e = ArmExecutor::Create(rover, ArmOptions{});
   ASSERT_FALSE(e.ok());
   EXPECT_EQ(e.status().message().rfind("arm.upper_arm", 0), 0u) << e.status().message();
+}
+
+
+// ---- auto-focus ----------------------------------------------------------------------------
+
+TEST_F(ArmExecutorTest, AutofocusSweepsTenFramesAndSettlesAtBestFocus) {
+  arm_->surface = kTarget.z();
+  Run(0.1);
+  const ArmOutput first = Submit(AutofocusCommand(7, kTarget));
+  ASSERT_EQ(first.statuses.at(0).state, ArmState::kMoving) << first.statuses.at(0).message;
+  EXPECT_TRUE(Contains(first.statuses.at(0).message, "10 frames from 90 mm above it"))
+      << first.statuses.at(0).message;
+  ASSERT_TRUE(Run(200.0, [&] { return !exec_->moving(); })) << exec_->status().message;
+  const ArmStatus& s = exec_->status();
+  ASSERT_EQ(s.state, ArmState::kFocused) << s.message;
+  const double wd = rover_.arm.imager.working_distance;
+  EXPECT_NEAR(s.focus_height, wd, 0.0025) << s.message;
+  EXPECT_FALSE(s.focus_predicted);
+  EXPECT_EQ(s.focus_images, 11);  // ten in the sweep and the final one
+  EXPECT_EQ(s.focus_image_id, kMiRequestIdBase + 10);
+  ASSERT_EQ(exec_->focus_samples().size(), 11u);
+  // The sweep: 90 mm down to 30 mm above the target in 6.7 mm steps.
+  EXPECT_NEAR(exec_->focus_samples().front().height, 0.09, 0.002);
+  EXPECT_NEAR(exec_->focus_samples()[9].height, 0.03, 0.002);
+  for (const FocusSample& f : exec_->focus_samples()) EXPECT_LE(f.measure, s.focus_measure * 1.001);
+  EXPECT_NEAR(arm_->Face().z() - kTarget.z(), wd, 0.0025);
+}
+
+TEST_F(ArmExecutorTest, AutofocusPredictsBestFocusFromTheContactWhenTheSurfaceIsHigher) {
+  // The surface is 4.5 cm above the designated point: the face touches it in the sweep.
+  arm_->surface = kTarget.z() + 0.045;
+  Run(0.1);
+  Submit(AutofocusCommand(8, kTarget));
+  ASSERT_TRUE(Run(200.0, [&] { return !exec_->moving(); })) << exec_->status().message;
+  const ArmStatus& s = exec_->status();
+  ASSERT_EQ(s.state, ArmState::kFocused) << s.message;
+  EXPECT_TRUE(s.focus_predicted);
+  EXPECT_TRUE(Contains(s.message, "predicted from the contact")) << s.message;
+  EXPECT_NEAR(arm_->Face().z() - *arm_->surface, rover_.arm.imager.working_distance, 0.0025);
+  EXPECT_LT(s.focus_images, 10);
+}
+
+TEST_F(ArmExecutorTest, AutofocusStepsBeyondTheSweepWhenTheSurfaceIsLower) {
+  // 4 cm below the designated point: the sharpest frame is the lowest of the sweep, so it
+  // steps on until best focus is bracketed.
+  arm_->surface = kTarget.z() - 0.04;
+  Run(0.1);
+  Submit(AutofocusCommand(9, kTarget));
+  ASSERT_TRUE(Run(300.0, [&] { return !exec_->moving(); })) << exec_->status().message;
+  const ArmStatus& s = exec_->status();
+  ASSERT_EQ(s.state, ArmState::kFocused) << s.message;
+  EXPECT_FALSE(s.focus_predicted);
+  EXPECT_GT(s.focus_images, 11);
+  EXPECT_NEAR(arm_->Face().z() - *arm_->surface, rover_.arm.imager.working_distance, 0.0025);
+}
+
+TEST_F(ArmExecutorTest, AutofocusWithoutTextureOrFramesFaults) {
+  arm_->surface = kTarget.z();
+  texture_contrast = 0.0;  // a featureless image: no focus signal
+  Run(0.1);
+  Submit(AutofocusCommand(10, kTarget));
+  ASSERT_TRUE(Run(200.0, [&] { return !exec_->moving(); }));
+  EXPECT_EQ(exec_->status().state, ArmState::kFault);
+  EXPECT_TRUE(Contains(exec_->status().message, "no focus signal")) << exec_->status().message;
+
+  texture_contrast = 1.0;
+  answer_frames_ = false;  // the imager never answers
+  Submit(AutofocusCommand(11, kTarget));
+  ASSERT_TRUE(Run(200.0, [&] { return !exec_->moving(); }));
+  EXPECT_EQ(exec_->status().state, ArmState::kFault);
+  EXPECT_TRUE(Contains(exec_->status().message, "not received within 15 s"))
+      << exec_->status().message;
+}
+
+TEST_F(ArmExecutorTest, AutofocusBadInputIsRejectedByName) {
+  Run(0.1);
+  ArmCommand c = AutofocusCommand(12, kTarget);
+  c.focus_steps = 2;
+  ArmOutput out = Submit(c);
+  ASSERT_EQ(out.statuses.at(0).state, ArmState::kRejected);
+  EXPECT_TRUE(Contains(out.statuses[0].message, "focus_steps")) << out.statuses[0].message;
+  c = AutofocusCommand(13, Vector3d(1.0, 0.1, std::nan("")));
+  out = Submit(c);
+  ASSERT_EQ(out.statuses.at(0).state, ArmState::kRejected);
+  EXPECT_TRUE(Contains(out.statuses[0].message, "target")) << out.statuses[0].message;
+  c = AutofocusCommand(14, kTarget);
+  c.focus_span = 0.5;
+  out = Submit(c);
+  EXPECT_TRUE(Contains(out.statuses.at(0).message, "focus_span")) << out.statuses[0].message;
+  // Out of reach: 3 m ahead.
+  out = Submit(AutofocusCommand(15, Vector3d(3.0, 0.0, 0.0)));
+  ASSERT_EQ(out.statuses.at(0).state, ArmState::kRejected);
+  EXPECT_TRUE(Contains(out.statuses[0].message, "focus frame 1 of 10")) << out.statuses[0].message;
+  EXPECT_TRUE(out.motor_commands.empty());
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <exception>
 #include <string>
 #include <utility>
@@ -244,6 +245,8 @@ struct RoverSimulation::Impl {
     return motor < kBodyMotors ? Joint(motor).getOneU(s, 0) : ArmU(motor);
   }
   Eigen::Vector3d ToolPoint(const SimTK::State& s, const hwconfig::ArmAngles& q) const;
+  // Lowest height of the face's centre and contact ring above the terrain [m].
+  double FaceClearance(const SimTK::State& s, const hwconfig::ArmAngles& q) const;
   void ArmTick(const SimTK::State& s);
   MobilizedBodyIndex tilt_ix;
   const TerrainForce* terrain_force = nullptr;
@@ -533,17 +536,34 @@ void RoverSimulation::Impl::ArmTick(const SimTK::State& s) {
     moving = moving || u[k] != 0.0 || arm_u[k] != 0.0;
   }
   if (!moving && (tick % 20) != 0) return;  // at rest: the contact is re-checked at 50 Hz
-  const Eigen::Vector3d face = ToolPoint(s, q);
-  const double ground = terrain->Height(face.x(), face.y());
-  if (face.z() < ground) {
+  if (FaceClearance(s, q) < 0.0) {
     arm_u = {};
-    const Eigen::Vector3d held = ToolPoint(s, arm_q);
-    arm_contact = held.z() - terrain->Height(held.x(), held.y()) < kArmContactBand;
+    arm_contact = FaceClearance(s, arm_q) < kArmContactBand;
     return;
   }
   arm_q = q;
   arm_u = u;
-  arm_contact = face.z() - ground < kArmContactBand;
+  arm_contact = FaceClearance(s, q) < kArmContactBand;
+}
+
+double RoverSimulation::Impl::FaceClearance(const SimTK::State& s,
+                                            const hwconfig::ArmAngles& q) const {
+  // The face's centre and eight points of its contact ring, each against the terrain below
+  // it: the ring is what touches first on a rock's edge.
+  const Eigen::Isometry3d site_from_rover = ToIsometry(Body(chassis_ix).getBodyTransform(s));
+  const hwconfig::ArmDescription& arm = params.geometry.arm;
+  const Eigen::Isometry3d imager = site_from_rover * arm.ImagerPose(q);
+  double clearance = std::numeric_limits<double>::infinity();
+  for (int k = -1; k < 8; ++k) {
+    Eigen::Vector3d local = Eigen::Vector3d::Zero();
+    if (k >= 0) {
+      const double a = k * 0.78539816339744831;  // pi / 4
+      local = arm.face_radius * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
+    }
+    const Eigen::Vector3d p = imager * local;
+    clearance = std::min(clearance, p.z() - terrain->Height(p.x(), p.y()));
+  }
+  return clearance;
 }
 
 void RoverSimulation::Impl::AdvanceTo(double t_end) {

@@ -16,6 +16,7 @@
 #include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
 #include "rover/base/units.hpp"
+#include "rover/sim/render/depth_of_field.hpp"
 #include "rover/sim/terrain/noise.hpp"
 #include "rover/sim/terrain/random.hpp"
 #include "shaders.hpp"
@@ -45,6 +46,7 @@ namespace {
 
 constexpr double kNear = 0.05;    // [m] camera near plane
 constexpr double kFar = 4000.0;   // [m] camera far plane
+constexpr double kCloseUpFar = 50.0;  // [m] far plane of close-up renders (depth precision)
 constexpr int kDetailSize = 1024;
 constexpr int kRockTexSize = 512;
 // Texture units.
@@ -53,6 +55,25 @@ constexpr int kUnitSurface = 0, kUnitMaterial = 1, kUnitRockId = 2, kUnitRocks =
 
 Status BadOption(const std::string& field, double value, const std::string& what) {
   return InvalidArgument("render." + field + ": " + FormatNumber(value) + " " + what);
+}
+
+// Range along each pixel's ray -> distance along the camera's optical axis (0 stays 0).
+cv::Mat AxialDepth(const cv::Mat& range, const geometry::CameraModel& model) {
+  cv::Mat depth(range.size(), CV_32FC1, cv::Scalar(0));
+  // The optical axis as the ray of the image centre (the close-up camera's principal point).
+  const auto centre = model.Unproject(Eigen::Vector2d(0.5 * (range.cols - 1), 0.5 * (range.rows - 1)));
+  const Eigen::Vector3d axis = centre ? centre->direction : Eigen::Vector3d::UnitZ();
+  for (int r = 0; r < range.rows; ++r) {
+    const float* g = range.ptr<float>(r);
+    float* d = depth.ptr<float>(r);
+    for (int c = 0; c < range.cols; ++c) {
+      if (g[c] <= 0.0F) continue;
+      const auto ray = model.Unproject(Eigen::Vector2d(c, r));
+      if (!ray) continue;
+      d[c] = static_cast<float>(g[c] * std::max(0.0, ray->direction.dot(axis)));
+    }
+  }
+  return depth;
 }
 
 double Ms(std::chrono::steady_clock::time_point a) {
@@ -122,14 +143,14 @@ struct PlacedCamera {
 
 // Projection of a view (see the README): camera-frame point -> clip, pixel-centre convention,
 // image row v at window row v (so glReadPixels returns the image top row first).
-Eigen::Matrix4d ViewProjection(const VirtualView& v) {
+Eigen::Matrix4d ViewProjection(const VirtualView& v, double near, double far) {
   Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
   p(0, 0) = 2.0 * v.f / v.width;
   p(0, 2) = 2.0 * (v.cx + 0.5) / v.width - 1.0;
   p(1, 1) = 2.0 * v.f / v.height;
   p(1, 2) = 2.0 * (v.cy + 0.5) / v.height - 1.0;
-  p(2, 2) = (kFar + kNear) / (kFar - kNear);
-  p(2, 3) = -2.0 * kFar * kNear / (kFar - kNear);
+  p(2, 2) = (far + near) / (far - near);
+  p(2, 3) = -2.0 * far * near / (far - near);
   p(3, 2) = 1.0;
   return p;
 }
@@ -221,9 +242,17 @@ class Renderer::Impl {
   Status Init();
   ~Impl();
   void InvalidateShadows() { global_valid_ = false; }
+  // A render's clipping planes and extras: the close-up camera (depth of field) renders with
+  // a near plane of millimetres and always needs the range.
+  struct Pass {
+    double near = kNear;
+    double far = kFar;
+    bool want_range = false;
+    const DepthOfField* dof = nullptr;
+  };
   Result<StereoImages> Render(const Eigen::Isometry3d& site_from_rover,
                               const std::vector<geometry::CameraModel>& models_in_rover,
-                              std::uint64_t frame);
+                              std::uint64_t frame, const Pass& pass);
 
  private:
   Result<std::shared_ptr<const WarpPlan>> Plan(const geometry::CameraModel& model_site);
@@ -246,7 +275,7 @@ class Renderer::Impl {
   Eigen::Matrix3d LightFrame(Eigen::Vector3d* box_min, Eigen::Vector3d* box_max) const;
   Eigen::Matrix4d LightClip(const Eigen::Matrix3d& light_from_render, double xmin, double xmax,
                             double ymin, double ymax, double zmin, double zmax) const;
-  Result<cv::Mat> RenderAtlas(const PlacedCamera& cam, cv::Mat* range_atlas);
+  Result<cv::Mat> RenderAtlas(const PlacedCamera& cam, const Pass& pass, cv::Mat* range_atlas);
 
   internal::TerrainMesh mesh_;  // vertices/indices freed after upload; tiles kept
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
@@ -930,7 +959,8 @@ void Renderer::Impl::RenderShadows(const std::vector<PlacedCamera>& cams,
   stats.shadow_ms += Ms(t0);
 }
 
-Result<cv::Mat> Renderer::Impl::RenderAtlas(const PlacedCamera& cam, cv::Mat* range_atlas) {
+Result<cv::Mat> Renderer::Impl::RenderAtlas(const PlacedCamera& cam, const Pass& pass,
+                                            cv::Mat* range_atlas) {
   const WarpPlan& plan = *cam.plan;
   ROVER_RETURN_IF_ERROR(EnsureAtlas(plan.atlas_width, plan.atlas_height));
   glBindFramebuffer(GL_FRAMEBUFFER, atlas_fbo_);
@@ -950,7 +980,8 @@ Result<cv::Mat> Renderer::Impl::RenderAtlas(const PlacedCamera& cam, cv::Mat* ra
     ++stats.views;
     glViewport(0, v.atlas_y, v.width, v.height);
     const Eigen::Matrix3d render_from_view = cam.render_from_cam * v.cam_from_view;
-    const Eigen::Matrix4d mvp = ViewProjection(v) * RigidInverse(render_from_view, cam.center);
+    const Eigen::Matrix4d mvp =
+        ViewProjection(v, pass.near, pass.far) * RigidInverse(render_from_view, cam.center);
     const Planes planes = FrustumPlanes(mvp);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -1004,8 +1035,9 @@ Result<cv::Mat> Renderer::Impl::RenderAtlas(const PlacedCamera& cam, cv::Mat* ra
 
 Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_rover,
                                             const std::vector<geometry::CameraModel>& models,
-                                            std::uint64_t frame) {
+                                            std::uint64_t frame, const Pass& pass) {
   stats = RenderStats{};
+  const bool want_range = options.output_range || pass.want_range || pass.dof != nullptr;
   if (!site_from_rover.matrix().allFinite()) {
     return InvalidArgument("rover pose: not finite");
   }
@@ -1044,7 +1076,7 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
     const WarpPlan& plan = *cams[c].plan;
     auto t0 = std::chrono::steady_clock::now();
     cv::Mat range_atlas;
-    auto atlas = RenderAtlas(cams[c], options.output_range ? &range_atlas : nullptr);
+    auto atlas = RenderAtlas(cams[c], pass, want_range ? &range_atlas : nullptr);
     if (!atlas.ok()) return atlas.status();
     stats.gl_ms += Ms(t0);
     t0 = std::chrono::steady_clock::now();
@@ -1052,14 +1084,17 @@ Result<StereoImages> Renderer::Impl::Render(const Eigen::Isometry3d& site_from_r
     cv::Mat radiance;
     cv::remap(*atlas, radiance, plan.map1, plan.map2, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
               cv::Scalar(0));
-    if (options.output_range) {
+    if (want_range) {
       cv::remap(range_atlas, img.range, plan.map_x, plan.map_y, cv::INTER_NEAREST,
                 cv::BORDER_CONSTANT, cv::Scalar(0));
     }
     if (super > 1) {
       const cv::Size size(models[c].width(), models[c].height());
       cv::resize(radiance, radiance, size, 0, 0, cv::INTER_AREA);
-      if (options.output_range) cv::resize(img.range, img.range, size, 0, 0, cv::INTER_NEAREST);
+      if (want_range) cv::resize(img.range, img.range, size, 0, 0, cv::INTER_NEAREST);
+    }
+    if (pass.dof != nullptr) {
+      radiance = ApplyDepthOfField(radiance, AxialDepth(img.range, models[c]), *pass.dof);
     }
     stats.warp_ms += Ms(t0);
     t0 = std::chrono::steady_clock::now();
@@ -1127,13 +1162,27 @@ Result<StereoImages> Renderer::RenderStereoPair(const Eigen::Isometry3d& site_fr
   if (!pair.rover_from_head.matrix().allFinite()) {
     return InvalidArgument("camera pair: rover_from_head is not finite");
   }
-  return impl_->Render(site_from_rover, {pair.LeftInRover(), pair.RightInRover()}, frame);
+  return impl_->Render(site_from_rover, {pair.LeftInRover(), pair.RightInRover()}, frame, {});
 }
 
 Result<CameraImage> Renderer::RenderCamera(const Eigen::Isometry3d& site_from_rover,
                                            const geometry::CameraModel& model_in_rover,
                                            std::uint64_t frame) {
-  auto r = impl_->Render(site_from_rover, {model_in_rover}, frame);
+  auto r = impl_->Render(site_from_rover, {model_in_rover}, frame, {});
+  if (!r.ok()) return r.status();
+  return std::move(r->left);
+}
+
+Result<CameraImage> Renderer::RenderCloseUp(const Eigen::Isometry3d& site_from_rover,
+                                            const geometry::CameraModel& model_in_rover,
+                                            const DepthOfField& dof, std::uint64_t frame) {
+  ROVER_RETURN_IF_ERROR(dof.Validate());
+  Impl::Pass pass;
+  pass.near = dof.near;
+  pass.far = kCloseUpFar;
+  pass.want_range = true;
+  pass.dof = &dof;
+  auto r = impl_->Render(site_from_rover, {model_in_rover}, frame, pass);
   if (!r.ok()) return r.status();
   return std::move(r->left);
 }

@@ -108,6 +108,32 @@ vec3 Bump(vec3 n, vec3 slope_world, float k) {
   return normalize(n - k * b);
 }
 
+// Grain below the textures' resolution (sand grains, crystals: 0.15 and 0.4 mm value noise),
+// seen only by a close-up camera: its weight is 1 at a pixel footprint of 0.15 mm and 0 from
+// 0.6 mm, so the NAVCAM and HAZCAM images (footprints of a millimetre and more) do not change.
+float GrainHash(ivec2 c, uint salt) {
+  uint h = (uint(c.x) * 0x8da6b343u) ^ (uint(c.y) * 0xd8163841u) ^ (salt * 0xcb1ab31fu);
+  h ^= h >> 13;
+  h *= 0x5bd1e995u;
+  h ^= h >> 15;
+  return float(h & 0xffffffu) / 16777215.0;
+}
+float GrainNoise(vec2 x, uint salt) {
+  vec2 i = floor(x);
+  vec2 f = x - i;
+  vec2 u = f * f * (3.0 - 2.0 * f);
+  ivec2 c = ivec2(i);
+  float a = GrainHash(c, salt), b = GrainHash(c + ivec2(1, 0), salt);
+  float d = GrainHash(c + ivec2(0, 1), salt), e = GrainHash(c + ivec2(1, 1), salt);
+  return mix(mix(a, b, u.x), mix(d, e, u.x), u.y);
+}
+// Albedo factor of the grain at p [m]; `salt` 1 soil, 2 rock.
+float Grain(vec2 p, float weight, uint salt) {
+  if (weight <= 0.0) return 1.0;
+  float g = 0.6 * GrainNoise(p / 0.00015, salt) + 0.4 * GrainNoise(p / 0.0004, salt + 7u) - 0.5;
+  return 1.0 + 0.6 * g * weight * u_contrast;
+}
+
 void main() {
   vec2 g = (v_world.xy - u_grid_min) / u_grid_res;
   vec2 uv = (g + 0.5) / vec2(u_grid_n);
@@ -117,6 +143,8 @@ void main() {
   float macro = surf.w;
   vec2 mat = texture(u_material, uv).rg;
   if (u_apron == 1) { n = vec3(0.0, 0.0, 1.0); relief = 0.0; }
+  float footprint = length(fwidth(v_world));
+  float w_grain = 1.0 - smoothstep(0.00015, 0.0006, footprint);
 
   // Soil: detail at two scales (1 m period, and 0.29 m rotated by 37 deg) breaks up tiling.
   const mat2 R = mat2(0.7986, 0.6018, -0.6018, 0.7986);  // columns: rotation by 37 deg
@@ -137,6 +165,7 @@ void main() {
   vec3 s_soil = (firm + 0.3 * sand) * slope + bed * vec3(bslope * 0.5 + 0.3 * d1.yz, 0.0);
   vec3 n_soil = Bump(n, s_soil, 0.5);
 
+  a_soil *= Grain(v_world.xy, w_grain, 1u);
   float albedo = a_soil;
   vec3 n_shade = n_soil;
   float w_rock = smoothstep(0.004, 0.02, relief);
@@ -160,7 +189,7 @@ void main() {
     vec2 sz = (tz.gb - 0.5) * (2.0 * kSlopeRange);
     vec3 b = w.x * vec3(0.0, sx.x, sx.y) + w.y * vec3(sy.x, 0.0, sy.y) + w.z * vec3(sz.x, sz.y, 0.0);
     vec3 n_rock = Bump(n, b * u_contrast, 0.5);
-    float a_rock = rp.x * f;
+    float a_rock = rp.x * f * Grain(v_world.xy + vec2(0.61, 0.29) * v_world.z, w_grain, 2u);
     // Dust settles on the upward-facing tops of rocks.
     float dust = 0.55 * smoothstep(0.82, 0.98, n.z);
     a_rock = mix(a_rock, u_soil_albedo * macro * (0.8 + 0.2 * d1.x), dust);

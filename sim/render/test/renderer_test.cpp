@@ -435,6 +435,51 @@ TEST(RendererTest, LanderIsDrawn) {
   EXPECT_NEAR(r, (Eigen::Vector3d(5.0 - 1.3, 0.0, terrain->lander->deck_z - 0.1) - m.Center()).norm(), 0.3);
 }
 
+// The microscopic imager's close-up: a camera looking straight down from the focus distance
+// sees the soil's texture sharp; 2 cm higher the same patch is blurred by the depth of field.
+TEST(RendererTest, CloseUpHasDepthOfField) {
+  auto terrain = MakeTerrain(8.0, 0.0, RockPreset::kNone);
+  RenderOptions o;
+  o.sensor.noise = false;
+  CREATE_OR_SKIP(r, terrain, o);
+  const double ground = terrain->natural.Height(1.0, 0.5);
+  DepthOfField dof;  // in focus 6 cm ahead
+  auto shoot = [&](double above) {
+    geometry::PinholeRadial p;
+    p.fx = p.fy = 750.0;
+    p.cx = p.cy = 127.5;
+    p.width = p.height = 256;
+    p.pose.linear().col(0) = Eigen::Vector3d(0, -1, 0);  // right
+    p.pose.linear().col(1) = Eigen::Vector3d(-1, 0, 0);  // down
+    p.pose.linear().col(2) = Eigen::Vector3d(0, 0, -1);  // forward: straight down
+    p.pose.translation() = Eigen::Vector3d(1.0, 0.5, ground + above);
+    auto img = r.RenderCloseUp(Eigen::Isometry3d::Identity(), *CameraModel::Create(p), dof, 1);
+    EXPECT_TRUE(img.ok()) << img.status().message();
+    return *img;
+  };
+  const CameraImage sharp = shoot(0.06);
+  const CameraImage blurred = shoot(0.08);
+  // The range is returned: the ground at the image centre 6 cm away.
+  EXPECT_NEAR(sharp.range.at<float>(128, 128), 0.06, 0.002);
+  auto detail = [](const cv::Mat& img) {
+    cv::Mat f, lap;
+    img.convertTo(f, CV_32F);
+    cv::Laplacian(f, lap, CV_32F, 3);
+    cv::Scalar mean, sd;
+    cv::meanStdDev(lap, mean, sd);
+    return sd[0];
+  };
+  cv::Scalar mean, sd;
+  cv::meanStdDev(sharp.image, mean, sd);
+  EXPECT_GT(sd[0], 3.0) << "no texture at the close-up scale";
+  EXPECT_GT(detail(sharp.image), 2.0 * detail(blurred.image));
+  DepthOfField bad;
+  bad.near = 0.1;
+  EXPECT_FALSE(r.RenderCloseUp(Eigen::Isometry3d::Identity(),
+                               PinholeAt({1, 0.5, 1}, {1, 0, -1}, 300, 64), bad)
+                   .ok());
+}
+
 TEST(RendererTest, BadInputIsReported) {
   auto terrain = MakeTerrain(8.0, 0.0, RockPreset::kNone);
   RenderOptions o;

@@ -32,6 +32,7 @@ CameraHead::CameraHead(const CameraHeadOptions& options,
     : options_(options),
       terrain_(std::move(terrain)),
       mast_geometry_(rover.mast),
+      arm_(rover.arm),
       cameras_(render::DefaultStereoCameras(options.image_size, rover)) {
   ROVER_DEMAND(terrain_ != nullptr);
 }
@@ -98,21 +99,61 @@ Result<CameraShot> CameraHead::Take(const std::string& camera, std::uint32_t exp
   UpdateSun(sun_site);
 
   CameraShot shot;
-  render::SensorOptions sensor = renderer_->options().sensor;
-  sensor.auto_exposure = exposure_us == 0;
   // A binned readout sums b x b pixels' charge before one read, and the renderer integrates
   // the light over them (render::SensorOptions::binning, RenderOptions::binned_supersample).
-  sensor.binning = readout_width == 0 ? 1 : sensor_width / readout_width;
-  if (exposure_us != 0) sensor.exposure = exposure_us / kExposureUnitUs;
-  if (const Status st = renderer_->SetSensor(sensor); !st.ok()) {
-    shot.exposure_refused = st.message();
-    sensor.auto_exposure = true;
-    ROVER_RETURN_IF_ERROR(renderer_->SetSensor(sensor));
-  }
+  ROVER_RETURN_IF_ERROR(SetExposure(
+      exposure_us, readout_width == 0 ? 1 : sensor_width / readout_width, &shot.exposure_refused));
   ROVER_ASSIGN_OR_RETURN(shot.images,
                          renderer_->RenderStereoPair(site_from_rover, spec, ++frames_));
   shot.exposure_us = static_cast<std::uint32_t>(
       std::clamp(std::lround(shot.images.left.exposure * kExposureUnitUs), 1L, 4000000000L));
+  return shot;
+}
+
+Status CameraHead::SetExposure(std::uint32_t exposure_us, int binning, std::string* refused) {
+  render::SensorOptions sensor = renderer_->options().sensor;
+  sensor.auto_exposure = exposure_us == 0;
+  sensor.binning = binning;
+  if (exposure_us != 0) sensor.exposure = exposure_us / kExposureUnitUs;
+  if (const Status st = renderer_->SetSensor(sensor); !st.ok()) {
+    *refused = st.message();
+    sensor.auto_exposure = true;
+    ROVER_RETURN_IF_ERROR(renderer_->SetSensor(sensor));
+  }
+  return Status::Ok();
+}
+
+geometry::CameraModel CameraHead::MicroscopeModel(const hwconfig::ArmAngles& arm) const {
+  const hwconfig::MicroscopeOptics& o = arm_.imager;
+  geometry::PinholeRadial p;
+  p.fx = p.fy = o.focal_px;
+  p.cx = p.cy = 0.5 * (o.image_size - 1);
+  p.width = p.height = o.image_size;
+  p.pose = arm_.ImagerPose(arm);
+  auto model = geometry::CameraModel::Create(p);
+  ROVER_DEMAND(model.ok());  // a valid description gives a valid pinhole
+  return *model;
+}
+
+Result<MicroscopeShot> CameraHead::TakeMicroscope(std::uint32_t exposure_us,
+                                                  const Eigen::Isometry3d& site_from_rover,
+                                                  const hwconfig::ArmAngles& arm,
+                                                  const Eigen::Vector3d& sun_site) {
+  for (double a : arm) {
+    if (!std::isfinite(a)) return InvalidArgument("arm angles are not finite");
+  }
+  ROVER_RETURN_IF_ERROR(StartRenderer());
+  UpdateSun(sun_site);
+  MicroscopeShot shot;
+  ROVER_RETURN_IF_ERROR(SetExposure(exposure_us, 1, &shot.exposure_refused));
+  render::DepthOfField dof;
+  dof.focus_distance = arm_.imager.working_distance;
+  dof.blur_constant = arm_.imager.focal_px * arm_.imager.aperture;
+  dof.near = std::min(0.002, 0.5 * dof.focus_distance);
+  ROVER_ASSIGN_OR_RETURN(shot.image, renderer_->RenderCloseUp(site_from_rover,
+                                                              MicroscopeModel(arm), dof, ++frames_));
+  shot.exposure_us = static_cast<std::uint32_t>(
+      std::clamp(std::lround(shot.image.exposure * kExposureUnitUs), 1L, 4000000000L));
   return shot;
 }
 

@@ -37,6 +37,7 @@
 /// Units: metres, radians. Compiles as C++17 (rover_description.hpp includes it).
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <string>
 #include <vector>
@@ -68,12 +69,37 @@ struct ArmPoints {
   Eigen::Vector3d look;  ///< unit direction the instrument looks along
 };
 
+/// The microscopic imager on the instrument face (FIDO's colour microscopic imager, here
+/// monochrome): a pinhole camera at the face centre looking along ArmPoints::look, image +x
+/// along the arm's horizontal direction u when face down, focused on the plane
+/// `working_distance` ahead of the face. Defocus follows a thin lens with entrance pupil
+/// `aperture`: a surface at distance d [m] along the look direction is blurred into a disc of
+///   c(d) = focal_px * aperture * |d - s| / (d * s)   pixels,  s = working_distance,
+/// so the depth of field (c <= max_sharp_blur_px) is about s +- DepthOfFieldHalf().
+struct MicroscopeOptics {
+  int image_size = 256;            ///< [px] square image
+  double focal_px = 750.0;         ///< [px] 0.08 mm per pixel at the working distance
+  double working_distance = 0.06;  ///< [m] face to the plane of best focus
+  double aperture = 0.004;         ///< [m] entrance-pupil diameter
+  double max_sharp_blur_px = 2.0;  ///< [px] blur disc still counted as in focus
+
+  /// Blur-disc diameter [px] of a surface `distance` [m] from the lens (> 0).
+  double BlurDiameterPx(double distance) const;
+  /// [m] half the depth of field: the defocus nearer than the working distance at which the
+  /// blur reaches max_sharp_blur_px (the farther side is slightly deeper).
+  double DepthOfFieldHalf() const;
+};
+
 struct ArmDescription {
   Eigen::Vector3d shoulder{0.62, 0.0, 0.45};  ///< [m] shoulder pivot in R (on the azimuth axis)
   double upper_arm = 0.35;                    ///< [m] shoulder to elbow
   double forearm = 0.35;                      ///< [m] elbow to wrist
   double tool_length = 0.10;                  ///< [m] wrist to the instrument's face centre
   double link_radius = 0.035;                 ///< [m] capsule radius of every link
+  /// [m] radius of the instrument face's contact ring: the contact switch closes when any
+  /// point of the ring (or the centre) reaches a surface.
+  double face_radius = 0.02;
+  MicroscopeOptics imager;
   double clearance = 0.01;                    ///< [m] extra distance a pose keeps from keep-outs
   double check_step = 0.02;                   ///< [rad] swept-volume sampling step
   /// Joint limits [rad], azimuth, shoulder, elbow, wrist.
@@ -83,10 +109,16 @@ struct ArmDescription {
   /// rover's ground footprint and above the belly, so driving with it stowed changes nothing.
   ArmAngles stow{0.0, 1.5, -3.0, 3.0};
 
-  /// Positive lengths below 2 m, link_radius and clearance in [0, 0.2] m, check_step in
-  /// (0, 0.2] rad, min < max, stow inside the limits. Messages start with "arm." + the field.
+  /// Positive lengths below 2 m, link_radius, face_radius and clearance in [0, 0.2] m,
+  /// check_step in (0, 0.2] rad, min < max, stow inside the limits; imager: image_size
+  /// [16, 2048] px, focal_px (0, 1e5], working_distance (0, 0.5] m, aperture (0, 0.05] m,
+  /// max_sharp_blur_px (0, 20]. Messages start with "arm." + the field.
   Status Validate() const;
   ArmPoints Forward(const ArmAngles& q) const;
+  /// The microscopic imager's camera frame in R (columns x = image right, y = image down,
+  /// z = the look direction; origin the face centre): x = h (the pitch axis, rover left when
+  /// q0 = 0), y = look x h (away from the rover when face down). See MicroscopeOptics.
+  Eigen::Isometry3d ImagerPose(const ArmAngles& q) const;
   /// Face-down placement of the instrument's face at `face` (R). Errors (kOutOfRange) name the
   /// point and why: out of reach (too far / too near), on the azimuth axis, or a joint beyond
   /// its limit (named, with the value).

@@ -154,7 +154,25 @@ struct CameraFrame {
   std::span<const std::uint8_t> left;  ///< width * height bytes (checked by the receiver)
   std::span<const std::uint8_t> right;
 };
+
+/// hw/mi_frame (microscopic imager -> DDL): one 8-bit mono image, row-major, taken at
+/// stamp_ns. The image VIEWS the sample's (or the sender's) buffer.
+struct MiFrame {
+  std::int64_t stamp_ns = 0;           ///< capture time
+  std::uint32_t request_id = 0;        ///< echo of MiRequest::request_id
+  std::uint32_t exposure_us = 0;       ///< [us] exposure actually used
+  int width = 0;                       ///< [px]
+  int height = 0;                      ///< [px]
+  std::span<const std::uint8_t> image; ///< width * height bytes (checked by the receiver)
+};
 #endif
+
+/// hw/mi_request (command, DDL camera driver -> microscopic imager on the arm's face).
+struct MiRequest {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t request_id = 0;   ///< the driver's own id, echoed in the frame
+  std::uint32_t exposure_us = 0;  ///< [us] 0 = auto exposure
+};
 
 /// The int32 counter value of an unbounded count: two's-complement wrap (what a 32-bit
 /// hardware counter shows after `count` increments from 0).

@@ -23,13 +23,18 @@ enum class ArmMode : std::int32_t {
   kPlace = 1,   ///< put the instrument's face on `target`: above it, then a guarded descent
   kStow = 2,    ///< fold into the stowed pose
   kStop = 3,    ///< brake where it is
+  kAutofocus = 4,  ///< image `target` with the microscopic imager through best focus
 };
 
-enum class ArmState : std::int32_t { kIdle = 0, kMoving, kAtGoal, kPlaced, kStowed, kFault, kRejected };
+enum class ArmState : std::int32_t {
+  kIdle = 0, kMoving, kAtGoal, kPlaced, kStowed, kFault, kRejected, kFocused
+};
+inline constexpr int kNumArmStates = 8;
 
-/// "JOINTS", "PLACE", "STOW", "STOP"; "UNKNOWN" for a value no enumerator has.
+/// "JOINTS", "PLACE", "STOW", "STOP", "AUTOFOCUS"; "UNKNOWN" for a value no enumerator has.
 const char* ArmModeName(ArmMode m);
-/// "IDLE", "MOVING", "AT_GOAL", "PLACED", "STOWED", "FAULT", "REJECTED"; "UNKNOWN" otherwise.
+/// "IDLE", "MOVING", "AT_GOAL", "PLACED", "STOWED", "FAULT", "REJECTED", "FOCUSED"; "UNKNOWN"
+/// otherwise.
 const char* ArmStateName(ArmState s);
 bool IsKnownArmMode(ArmMode m);
 
@@ -39,8 +44,11 @@ struct ArmCommand {
   std::uint32_t command_id = 0;
   ArmMode mode = ArmMode::kStow;
   std::array<double, 4> joints{};                    ///< [rad] kJoints
-  Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< [m] rover frame, kPlace
+  /// [m] rover frame: kPlace the face centre wanted, kAutofocus the estimated surface point
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
   double timeout_s = 0.0;                            ///< [s] run clock; 0 = the service's
+  int focus_steps = 0;     ///< kAutofocus: images in the sweep; 0 = the service's
+  double focus_span = 0.0; ///< [m] kAutofocus: length of the sweep; 0 = the service's
 };
 
 /// dl/arm_status: the latched status of the latest command.
@@ -53,6 +61,12 @@ struct ArmStatus {
   Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();  ///< [m] rover frame, from `joints`
   bool contact = false;                                  ///< the contact switch
   bool stowed = false;  ///< every joint within tolerance of the stowed pose
+  // kAutofocus results (kFocused; zero before):
+  double focus_height = 0.0;      ///< [m] the face above the target at best focus
+  bool focus_predicted = false;   ///< best focus placed from the contact point
+  int focus_images = 0;           ///< microscopic-imager frames taken
+  std::uint32_t focus_image_id = 0;  ///< request id of the final frame (ddl/mi_frame)
+  double focus_measure = 0.0;     ///< focus measure of that frame
   std::string message;  ///< <= 127 characters on the wire
 };
 

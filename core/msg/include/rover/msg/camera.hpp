@@ -120,4 +120,27 @@ struct StereoFrame {
 /// models sized width x height. Errors name the image or model and the sizes.
 Status CheckStereoFrame(const StereoFrame& frame);
 
+/// ddl/mi_request: take one microscopic-imager frame.
+struct MiRequest {
+  Time stamp;
+  std::uint32_t request_id = 0;
+  std::uint32_t exposure_us = 0;  ///< [us] 0 = auto
+};
+
+/// ddl/mi_frame: one 8-bit mono microscopic-imager frame, width x height, row-major. The image
+/// is a VIEW (of the received sample or the producer's buffer), as StereoFrame's.
+struct MiFrame {
+  Time stamp;  ///< capture time on the run clock
+  std::uint32_t request_id = 0;
+  std::uint32_t exposure_us = 0;
+  int width = 0;   ///< [px]
+  int height = 0;  ///< [px]
+  std::span<const std::uint8_t> image;
+  SensorHealth health = SensorHealth::kOk;
+};
+
+/// Checks width, height >= 1, a positive stamp and an image of width x height bytes; errors
+/// name the size and the byte count.
+Status CheckMiFrame(const MiFrame& frame);
+
 }  // namespace rover::msg

@@ -44,4 +44,12 @@ Result<StereoFrame> StereoFrameFromIdl(const rover_ddl_StereoFrame& in);
 /// `left`/`right` borrow the frame's views (they must outlive the write).
 void StereoFrameToIdl(const StereoFrame& in, rover_ddl_StereoFrame* out);
 
+MiRequest MiRequestFromIdl(const rover_ddl_MiRequest& in);
+void MiRequestToIdl(const MiRequest& in, rover_ddl_MiRequest* out);
+/// Errors: a health value out of range, a null image buffer, those of CheckMiFrame. The image
+/// views `in`'s buffer.
+Result<MiFrame> MiFrameFromIdl(const rover_ddl_MiFrame& in);
+/// Borrows in.image's bytes (keep them alive until the sample is written).
+void MiFrameToIdl(const MiFrame& in, rover_ddl_MiFrame* out);
+
 }  // namespace rover::msg

@@ -37,5 +37,11 @@ void CameraRequestToIdl(const hw::CameraRequest& in, rover_hw_CameraRequest* out
 hw::CameraFrame CameraFrameFromIdl(const rover_hw_CameraFrame& in);
 /// `left`/`right` borrow the frame's views (they must outlive the write).
 void CameraFrameToIdl(const hw::CameraFrame& in, rover_hw_CameraFrame* out);
+hw::MiRequest MiRequestFromIdl(const rover_hw_MiRequest& in);
+void MiRequestToIdl(const hw::MiRequest& in, rover_hw_MiRequest* out);
+/// The image views `in`'s buffer (valid while `in` lives).
+hw::MiFrame MiFrameFromIdl(const rover_hw_MiFrame& in);
+/// Borrows in.image's bytes (keep them alive until the sample is written).
+void MiFrameToIdl(const hw::MiFrame& in, rover_hw_MiFrame* out);
 
 }  // namespace rover::msg

@@ -31,10 +31,13 @@ class CdrReader {
 
   Result<std::int64_t> Int64(const char* field);
   Result<std::uint32_t> Uint32(const char* field);
+  Result<std::uint16_t> Uint16(const char* field);
   Result<double> Double(const char* field);
   Result<bool> Bool(const char* field);
   /// A string of at most `bound` characters (0 = unbounded), NUL terminated.
   Result<std::string> String(const char* field, std::uint32_t bound = 0);
+  /// A sequence<octet>: its uint32 length, then the bytes (a view into the sample).
+  Result<ByteSpan> Octets(const char* field);
 
   bool little_endian() const { return little_; }
   int xcdr_version() const { return xcdr_; }

@@ -27,6 +27,11 @@
 ///     Health of the frame: OK; DEGRADED if the nearest mast sample is more than mast_max_age_s
 ///     from the capture time (the models may not match the head's pose); FAILED for a
 ///     mast-head pair when no mast sample was ever received (models unknown: do not use).
+///  MI. The microscopic imager on the arm: HandleMiRequest checks the exposure and the pending
+///     count (shared with the stereo requests) and returns the hw/mi_request (own hardware ids,
+///     as above); HandleMiFrame matches a hw/mi_frame to it and checks its size and byte count;
+///     the ddl/mi_frame carries no model (the imager's pose follows the arm angles,
+///     core/hwconfig ArmDescription::ImagerPose). ExpireMiRequests drops unanswered ones.
 ///  4. ExpireRequests drops requests the camera head has not answered within
 ///     request_timeout_s (run clock).
 /// Errors never throw; every message names the field, the value and the allowed range.
@@ -119,13 +124,23 @@ class CameraDriver {
   /// the calibrated one) — the request is dropped; Internal if a model conversion fails.
   Result<StereoFrameData> HandleFrame(const hw::CameraFrame& frame);
 
+  /// Checks a ddl/mi_request; on success it is pending and the hw request is returned.
+  /// Errors: InvalidArgument (exposure too long), Busy (max_pending requests already wait).
+  Result<hw::MiRequest> HandleMiRequest(const msg::MiRequest& request, Time now);
+  /// The ddl/mi_frame for a hw/mi_frame (its image views `frame`'s). Errors: NotFound (not a
+  /// pending request of ours), InvalidArgument (empty size or a byte count that does not match;
+  /// the request is dropped).
+  Result<msg::MiFrame> HandleMiFrame(const hw::MiFrame& frame);
+  /// Removes and returns the microscopic-imager requests older than request_timeout_s.
+  std::vector<msg::MiRequest> ExpireMiRequests(Time now);
+
   /// Removes and returns the requests issued more than request_timeout_s before `now`.
   std::vector<PendingRequest> ExpireRequests(Time now);
 
   /// Forgets pending requests and mast samples (the run clock went back).
   void Reset();
 
-  std::size_t pending() const { return pending_.size(); }
+  std::size_t pending() const { return pending_.size() + pending_mi_.size(); }
   const CameraCalibration& calibration() const { return calibration_; }
   const CameraDriverOptions& options() const { return options_; }
 
@@ -137,6 +152,12 @@ class CameraDriver {
   CameraCalibration calibration_;
   CameraDriverOptions options_;
   std::vector<PendingRequest> pending_;
+  struct PendingMi {
+    std::uint32_t hw_request_id = 0;
+    msg::MiRequest request;
+    Time issued;
+  };
+  std::vector<PendingMi> pending_mi_;
   std::uint32_t next_hw_id_ = 1;
   std::deque<MastSample> mast_;
 };

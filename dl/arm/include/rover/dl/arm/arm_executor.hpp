@@ -34,6 +34,25 @@
 ///           (F_z < ArmDescription::shoulder z: it may rest on or hang just above a surface),
 ///           leg 1 lifts it straight up: FaceDown(F(q) + hover_height z), used only when it is
 ///           reachable; then a leg to ArmDescription::stow at `speed` -> STOWED.
+///   AUTOFOCUS (target = the surface point as estimated, e.g. from stereo; FIDO's auto-focus
+///           with the microscopic imager, core/hwconfig MicroscopeOptics, working distance s):
+///           the face goes face down to heights h_k = s + span/2 - k span/(n - 1) above the
+///           target, k = 0..n-1 (n = focus_steps, span = focus_span: the sweep brackets best
+///           focus when the estimate is within span/2), the first at `speed`, each next one a
+///           guarded step down at descent_speed; at each a ddl/mi_request, and the frame's
+///           WaveletFocusMeasure (focus.hpp) is paired with the face height measured when it
+///           was requested. After the sweep FindFocusPeak over the frames by height:
+///             - the sharpest frame inside the sweep -> best focus at the parabola's vertex;
+///             - the sharpest at an end -> one more step beyond that end (down guarded, up
+///               plain), up to focus_max_extra_steps, then FAULT "no focus peak ...";
+///             - best / worst measure < focus_min_contrast -> FAULT "no focus signal".
+///           The contact switch closing during a step down (the surface is higher than
+///           estimated by more than span/2 - about 3 cm with the defaults, FIDO's case):
+///           GROUP_STOP, and best focus is predicted from the contact: the face at
+///           (face height at contact + s), focus_predicted. Then a move to best focus, a
+///           final frame, and FOCUSED with focus_height (measured face above the target),
+///           focus_images, focus_image_id and focus_measure. A frame not back within
+///           focus_image_timeout_s -> FAULT.
 ///   STOP    GROUP_STOP of the arm motors, FAULT "stopped by command <id>". Never refused (its
 ///           other fields are ignored); it ends any running command.
 /// A leg is done when the motor driver reported its group DONE and every measured joint is
@@ -83,8 +102,10 @@
 #include "rover/base/status.hpp"
 #include "rover/base/time.hpp"
 #include "rover/dl/arm/arm_options.hpp"
+#include "rover/dl/arm/focus.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/arm.hpp"
+#include "rover/msg/camera.hpp"
 #include "rover/msg/motor.hpp"
 #include "rover/msg/sensors.hpp"
 
@@ -111,7 +132,11 @@ inline constexpr std::uint16_t kArmMotorMask =
 struct ArmOutput {
   std::vector<msg::MotorCommand> motor_commands;
   std::vector<ArmStatus> statuses;
+  std::vector<msg::MiRequest> mi_requests;  ///< microscopic-imager frames to take (AUTOFOCUS)
 };
+
+/// First ddl/mi_request id of the arm's auto-focus.
+inline constexpr std::uint32_t kMiRequestIdBase = 0x41A00000u;
 
 class ArmExecutor {
  public:
@@ -123,6 +148,9 @@ class ArmExecutor {
   /// Uses arm_angle, arm_contact, health and stamp of ddl/joint_state.
   ArmOutput OnJoints(const msg::JointState& joints);
   ArmOutput OnMotorStatus(const msg::MotorStatus& report, Time now);
+  /// A ddl/mi_frame; only the frame the running AUTOFOCUS waits for counts (others ignored). A
+  /// frame that is not healthy, or whose focus measure cannot be computed, is a FAULT.
+  ArmOutput OnMiFrame(const msg::MiFrame& frame, Time now);
   ArmOutput Step(Time now);
   /// Stops a running command (GROUP_STOP of the arm motors, FAULT naming `why`); nothing if idle.
   ArmOutput Stop(const std::string& why, Time now);
@@ -131,14 +159,20 @@ class ArmExecutor {
   const ArmStatus& status() const { return status_; }
   bool moving() const { return status_.state == ArmState::kMoving; }
   const ArmOptions& options() const { return options_; }
+  /// The frames of the running or latest AUTOFOCUS: face height above its target [m] and the
+  /// focus measure, in the order taken (the final frame included).
+  const std::vector<FocusSample>& focus_samples() const { return focus_samples_; }
   /// True when the latest usable ddl/joint_state is at most joint_stale_s old at `now`.
   bool JointsFresh(Time now) const;
 
  private:
-  enum class Stage { kJoints, kHover, kDescent, kLift, kStow };
+  enum class Stage { kJoints, kHover, kDescent, kLift, kStow, kFocusMove, kFocusStep };
+  // What follows a leg's arrival in AUTOFOCUS: a sweep frame or the final frame.
+  enum class Frame { kNone, kSweep, kFinal };
   struct Leg {
     Stage stage = Stage::kJoints;
     ArmAngles goal{};
+    Frame frame = Frame::kNone;
   };
   struct Plan {
     std::vector<Leg> legs;
@@ -156,6 +190,13 @@ class ArmExecutor {
   Result<Plan> PlanOf(const ArmCommand& command, Time now) const;
   Result<Plan> PlacePlan(const Eigen::Vector3d& target) const;
   Result<Plan> StowPlan() const;
+  Result<Plan> AutofocusPlan(const ArmCommand& command) const;
+  // AUTOFOCUS: appends a leg putting the face `height` above the target and starts it.
+  void FocusLegTo(double height, Frame frame, Time now, std::string message, ArmOutput* out);
+  void RequestFrame(Time now, ArmOutput* out);
+  void DecideFocus(Time now, ArmOutput* out);
+  void FocusOnContact(Time now, ArmOutput* out);
+  double FaceHeight() const;  // measured face above plan_.target [m]
   void StartLeg(std::size_t leg, Time now, std::string message, ArmOutput* out);
   void CheckArrival(Time now, ArmOutput* out);
   void OnContact(Time now, ArmOutput* out);
@@ -183,6 +224,15 @@ class ArmExecutor {
   Time move_start_;
   double move_timeout_s_ = 0.0;
   Time last_status_;
+  // AUTOFOCUS state.
+  std::vector<FocusSample> focus_samples_;
+  double focus_step_ = 0.0;          // [m] sweep step
+  int focus_extra_steps_ = 0;        // steps added beyond the sweep so far
+  bool focus_predicted_ = false;
+  std::uint32_t next_mi_id_ = kMiRequestIdBase;
+  std::uint32_t awaiting_frame_ = 0;  // ddl/mi_request id being waited for; 0 = none
+  Time frame_requested_;
+  double frame_height_ = 0.0;        // face height when that frame was requested
 };
 
 }  // namespace rover::dl::arm

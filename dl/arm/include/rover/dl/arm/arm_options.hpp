@@ -23,11 +23,19 @@ struct ArmOptions {
   double joint_stale_s = 0.5;    ///< [s] ddl/joint_state older than this is stale
   double check_rate_hz = 8.0;    ///< [Hz] state-machine step (timeouts, arrival)
   double status_rate_hz = 2.0;   ///< [Hz] dl/arm_status while moving (also on change)
+  // Auto-focus (ARM_MODE_AUTOFOCUS; the imager's optics are core/hwconfig MicroscopeOptics).
+  int focus_steps = 10;            ///< images in the sweep (FIDO: ten)
+  double focus_span = 0.06;        ///< [m] sweep length, centred on the expected best focus
+  int focus_max_extra_steps = 6;   ///< steps added beyond an end of the sweep that holds the peak
+  double focus_image_timeout_s = 15.0;  ///< [s] run clock; a frame not back by then: FAULT
+  double focus_min_contrast = 1.3; ///< best / worst focus measure below this: no focus signal
 
   /// speed in (0, 2] rad/s, descent_speed in (0, 0.1] m/s, hover_height in (0, 0.5] m,
   /// overdrive in (0, 0.2] m, tolerance in (0, 0.2] rad, 0 < timeout_s <= max_timeout_s,
   /// positive joint_stale_s, check_rate_hz in (0, 100] Hz, status_rate_hz in
-  /// (0, check_rate_hz]. Messages start with the field.
+  /// (0, check_rate_hz], focus_steps [3, 30], focus_span (0, 0.3] m, focus_max_extra_steps
+  /// [0, 20], focus_image_timeout_s (0, 120] s, focus_min_contrast [1, 100]. Messages start
+  /// with the field.
   Status Validate() const;
   static void BindParams(ParamBinder<ArmOptions>& b);
 };

@@ -37,6 +37,7 @@
 #include "rover/base/status.hpp"
 #include "rover/geometry/camera_model.hpp"
 #include "rover/sim/render/cameras.hpp"
+#include "rover/sim/render/depth_of_field.hpp"
 #include "rover/sim/render/sensor_model.hpp"
 #include "rover/sim/terrain/terrain.hpp"
 
@@ -159,6 +160,13 @@ class Renderer {
   Result<CameraImage> RenderCamera(const Eigen::Isometry3d& site_from_rover,
                                    const geometry::CameraModel& model_in_rover,
                                    std::uint64_t frame = 0);
+
+  /// Renders one close-up camera (model in the rover frame) with a shallow depth of field
+  /// (depth_of_field.hpp) and a near plane of dof.near: the microscopic imager. The image's
+  /// range is always returned. Errors: dof.Validate(), and those of RenderCamera.
+  Result<CameraImage> RenderCloseUp(const Eigen::Isometry3d& site_from_rover,
+                                    const geometry::CameraModel& model_in_rover,
+                                    const DepthOfField& dof, std::uint64_t frame = 0);
 
   /// Changes the sun (the next render recomputes the shadow maps).
   Status SetSun(const SunOptions& sun);

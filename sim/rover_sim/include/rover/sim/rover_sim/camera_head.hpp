@@ -49,6 +49,13 @@ struct CameraShot {
   std::string exposure_refused;
 };
 
+/// One microscopic-imager frame as taken.
+struct MicroscopeShot {
+  render::CameraImage image;  ///< image and its range [m] (ray length; 0 = nothing)
+  std::uint32_t exposure_us = 0;
+  std::string exposure_refused;
+};
+
 class CameraHead {
  public:
   /// Preconditions: options.Validate() is Ok; `terrain` is not null.
@@ -69,6 +76,16 @@ class CameraHead {
                           const Eigen::Isometry3d& site_from_rover, const render::MastState& mast,
                           const Eigen::Vector3d& sun_site, int readout_width = 0);
 
+  /// Takes one microscopic-imager frame with the arm at `arm` (core/hwconfig MicroscopeOptics:
+  /// a pinhole at the instrument face, ArmDescription::ImagerPose, rendered with the lens's
+  /// depth of field). Errors as Take's (bad pose, renderer unavailable, GL failure).
+  Result<MicroscopeShot> TakeMicroscope(std::uint32_t exposure_us,
+                                        const Eigen::Isometry3d& site_from_rover,
+                                        const hwconfig::ArmAngles& arm,
+                                        const Eigen::Vector3d& sun_site);
+  /// The imager's camera model in the rover frame for arm angles `arm`.
+  geometry::CameraModel MicroscopeModel(const hwconfig::ArmAngles& arm) const;
+
   /// Ok when `readout_width` is a readout a `sensor_width`-px sensor can produce (see Take).
   static Status CheckReadout(int readout_width, int sensor_width, const std::string& camera);
 
@@ -77,11 +94,15 @@ class CameraHead {
 
  private:
   Status StartRenderer();
+  // Sets the sensor's exposure (0 = auto); a refused one falls back to auto, the reason in
+  // *refused.
+  Status SetExposure(std::uint32_t exposure_us, int binning, std::string* refused);
   void UpdateSun(const Eigen::Vector3d& sun_site);
 
   CameraHeadOptions options_;
   std::shared_ptr<const terrain::Terrain> terrain_;
   hwconfig::MastDescription mast_geometry_;
+  hwconfig::ArmDescription arm_;
   std::vector<render::StereoCameraDefinition> cameras_;
   std::unique_ptr<render::Renderer> renderer_;
   Status renderer_error_;
