@@ -59,6 +59,7 @@ Status ArmDescription::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("arm.link_radius", link_radius, 0.0, 0.2, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("arm.clearance", clearance, 0.0, 0.2, "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("arm.face_radius", face_radius, 0.0, 0.2, "m"));
+  ROVER_RETURN_IF_ERROR(CheckRange("arm.contact_standoff", contact_standoff, 0.0, 0.02, "m"));
   ROVER_RETURN_IF_ERROR(CheckIntRange("arm.imager.image_size", imager.image_size, 16, 2048));
   ROVER_RETURN_IF_ERROR(
       CheckRange("arm.imager.focal_px", imager.focal_px, Bounds::OpenLow(0.0, 1e5), "px"));

@@ -177,6 +177,9 @@ void RoverDescription::BindParams(Binder& b) {
       b, "arm.face_radius", [](auto& d) -> auto& { return d.arm.face_radius; }, 1.0, "m",
       "radius of the instrument face's contact ring");
   BindNumber(
+      b, "arm.contact_standoff", [](auto& d) -> auto& { return d.arm.contact_standoff; }, 1.0,
+      "m", "the contact switch closes when the face comes within this of a surface");
+  BindNumber(
       b, "arm.imager.focal_px", [](auto& d) -> auto& { return d.arm.imager.focal_px; }, 1.0,
       "px", "microscopic imager focal length in pixels");
   BindNumber(

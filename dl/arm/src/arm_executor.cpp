@@ -552,7 +552,12 @@ void ArmExecutor::DecideFocus(Time now, ArmOutput* out) {
     Fault("auto-focus: " + peak.status().message(), now, out);
     return;
   }
-  if (peak->contrast < options_.focus_min_contrast) {
+  // An end of the sweep holding the sharpest frame is followed while the measure shows a trend
+  // (at least the square root of focus_min_contrast): a flat, featureless view is not.
+  const bool extend = !peak->bracketed &&
+                      focus_extra_steps_ < options_.focus_max_extra_steps &&
+                      peak->contrast >= std::sqrt(options_.focus_min_contrast);
+  if (!extend && peak->contrast < options_.focus_min_contrast) {
     Fault("no focus signal: the sharpest of " + std::to_string(by_height.size()) +
               " frames measures only " + FormatNumber(peak->contrast, 3) +
               " times the blurriest (focus_min_contrast " +
@@ -610,8 +615,10 @@ void ArmExecutor::FocusOnContact(Time now, ArmOutput* out) {
   // The surface is where the face touched it: best focus one working distance above.
   out->motor_commands.push_back(MotorCommand(msg::GroupMode::kStop, now));
   motor_id_ = 0;
+  // The switch closes contact_standoff above the surface.
   const double contact = FaceHeight();
-  const double best = contact + rover_.arm.imager.working_distance;
+  const double best =
+      contact - rover_.arm.contact_standoff + rover_.arm.imager.working_distance;
   focus_predicted_ = true;
   FocusLegTo(best, Frame::kFinal, now,
              "contact " + FormatNumber(contact * 1000.0, 3) +

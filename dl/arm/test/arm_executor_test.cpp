@@ -67,7 +67,7 @@ class KinematicArm {
     msg::JointState j;
     j.stamp = t;
     j.arm_angle = q_;
-    j.arm_contact = surface.has_value() && Face().z() <= *surface;
+    j.arm_contact = surface.has_value() && Face().z() <= *surface + standoff;
     return j;
   }
 
@@ -82,6 +82,7 @@ class KinematicArm {
   int commands() const { return commands_; }
 
   std::optional<double> surface;  ///< [m] height of a horizontal surface under the face
+  double standoff = 0.0;          ///< [m] the switch closes this far above the surface
   bool jammed = false;
 
  private:
@@ -665,6 +666,7 @@ TEST_F(ArmExecutorTest, AutofocusSweepsTenFramesAndSettlesAtBestFocus) {
 TEST_F(ArmExecutorTest, AutofocusPredictsBestFocusFromTheContactWhenTheSurfaceIsHigher) {
   // The surface is 4.5 cm above the designated point: the face touches it in the sweep.
   arm_->surface = kTarget.z() + 0.045;
+  arm_->standoff = rover_.arm.contact_standoff;  // as the real switch: it closes 3 mm above
   Run(0.1);
   Submit(AutofocusCommand(8, kTarget));
   ASSERT_TRUE(Run(200.0, [&] { return !exec_->moving(); })) << exec_->status().message;

@@ -538,12 +538,12 @@ void RoverSimulation::Impl::ArmTick(const SimTK::State& s) {
   if (!moving && (tick % 20) != 0) return;  // at rest: the contact is re-checked at 50 Hz
   if (FaceClearance(s, q) < 0.0) {
     arm_u = {};
-    arm_contact = FaceClearance(s, arm_q) < kArmContactBand;
+    arm_contact = FaceClearance(s, arm_q) < params.geometry.arm.contact_standoff;
     return;
   }
   arm_q = q;
   arm_u = u;
-  arm_contact = FaceClearance(s, q) < kArmContactBand;
+  arm_contact = FaceClearance(s, q) < params.geometry.arm.contact_standoff;
 }
 
 double RoverSimulation::Impl::FaceClearance(const SimTK::State& s,

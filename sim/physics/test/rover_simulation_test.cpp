@@ -342,7 +342,7 @@ TEST(RoverSimulation, TheKinematicArmFollowsItsMotorsAndItsFaceStopsOnTheGround)
   }
   ASSERT_TRUE(contact);
   r = sim->Readings();
-  EXPECT_NEAR(r.tool_point.z(), 0.10, kArmContactBand + 1e-3) << r.tool_point.transpose();
+  EXPECT_NEAR(r.tool_point.z(), 0.10, hwconfig::ArmDescription{}.contact_standoff + 1e-3) << r.tool_point.transpose();
   EXPECT_NEAR(r.tool_point.x(), 1.05, 0.01);
   ASSERT_TRUE(sim->Advance(3.0).ok());
   r = sim->Readings();

@@ -189,10 +189,11 @@ void main() {
     vec2 sz = (tz.gb - 0.5) * (2.0 * kSlopeRange);
     vec3 b = w.x * vec3(0.0, sx.x, sx.y) + w.y * vec3(sy.x, 0.0, sy.y) + w.z * vec3(sz.x, sz.y, 0.0);
     vec3 n_rock = Bump(n, b * u_contrast, 0.5);
-    float a_rock = rp.x * f * Grain(v_world.xy + vec2(0.61, 0.29) * v_world.z, w_grain, 2u);
+    float a_rock = rp.x * f;
     // Dust settles on the upward-facing tops of rocks.
     float dust = 0.55 * smoothstep(0.82, 0.98, n.z);
     a_rock = mix(a_rock, u_soil_albedo * macro * (0.8 + 0.2 * d1.x), dust);
+    a_rock *= Grain(v_world.xy + vec2(0.61, 0.29) * v_world.z, w_grain, 2u);
     albedo = mix(a_soil, a_rock, w_rock);
     n_shade = normalize(mix(n_soil, n_rock, w_rock));
   }

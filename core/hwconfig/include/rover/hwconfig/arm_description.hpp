@@ -99,6 +99,9 @@ struct ArmDescription {
   /// [m] radius of the instrument face's contact ring: the contact switch closes when any
   /// point of the ring (or the centre) reaches a surface.
   double face_radius = 0.02;
+  /// [m] the contact switch closes when the face's centre or a point of its ring comes within
+  /// this of a surface (its travel): a face stopped on contact stands about this high above it.
+  double contact_standoff = 0.003;
   MicroscopeOptics imager;
   double clearance = 0.01;                    ///< [m] extra distance a pose keeps from keep-outs
   double check_step = 0.02;                   ///< [rad] swept-volume sampling step
@@ -110,6 +113,7 @@ struct ArmDescription {
   ArmAngles stow{0.0, 1.5, -3.0, 3.0};
 
   /// Positive lengths below 2 m, link_radius, face_radius and clearance in [0, 0.2] m,
+  /// contact_standoff in [0, 0.02] m,
   /// check_step in (0, 0.2] rad, min < max, stow inside the limits; imager: image_size
   /// [16, 2048] px, focal_px (0, 1e5], working_distance (0, 0.5] m, aperture (0, 0.05] m,
   /// max_sharp_blur_px (0, 20]. Messages start with "arm." + the field.

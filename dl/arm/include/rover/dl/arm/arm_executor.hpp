@@ -43,13 +43,15 @@
 ///           WaveletFocusMeasure (focus.hpp) is paired with the face height measured when it
 ///           was requested. After the sweep FindFocusPeak over the frames by height:
 ///             - the sharpest frame inside the sweep -> best focus at the parabola's vertex;
-///             - the sharpest at an end -> one more step beyond that end (down guarded, up
-///               plain), up to focus_max_extra_steps, then FAULT "no focus peak ...";
-///             - best / worst measure < focus_min_contrast -> FAULT "no focus signal".
+///             - the sharpest at an end, with best / worst at least sqrt(focus_min_contrast)
+///               -> one more step beyond that end (down guarded, up plain), up to
+///               focus_max_extra_steps, then FAULT "no focus peak ...";
+///             - best / worst measure < focus_min_contrast (once no more steps are due) ->
+///               FAULT "no focus signal".
 ///           The contact switch closing during a step down (the surface is higher than
 ///           estimated by more than span/2 - about 3 cm with the defaults, FIDO's case):
 ///           GROUP_STOP, and best focus is predicted from the contact: the face at
-///           (face height at contact + s), focus_predicted. Then a move to best focus, a
+///           (face height at contact - ArmDescription::contact_standoff + s), focus_predicted. Then a move to best focus, a
 ///           final frame, and FOCUSED with focus_height (measured face above the target),
 ///           focus_images, focus_image_id and focus_measure. A frame not back within
 ///           focus_image_timeout_s -> FAULT.

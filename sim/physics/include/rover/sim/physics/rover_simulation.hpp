@@ -96,7 +96,6 @@ struct BodyPoses {
 /// Inertia of each arm link about its joint [kg m^2], added to the reflected motor inertia.
 inline constexpr double kArmLinkInertia = 0.05;
 /// The contact switch closes when the face centre is within this height of the terrain [m].
-inline constexpr double kArmContactBand = 0.003;
 
 struct RoverReadings {
   double time_s = 0.0;
@@ -108,7 +107,7 @@ struct RoverReadings {
   std::array<double, kNumMotors> joint_angle_rad{};  ///< joint angle of each motor's joint
   /// The instrument arm (kinematic: its joints follow their motors, it pushes on nothing but
   /// what its face touches). Centre of the instrument's face in S, and whether that face
-  /// touches the terrain (the contact switch's truth; it closes within kArmContactBand).
+  /// touches the terrain (the contact switch's truth; it closes within the description's arm.contact_standoff).
   Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();
   bool tool_contact = false;
   ChassisReading chassis;
