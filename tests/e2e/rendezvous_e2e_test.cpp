@@ -113,5 +113,37 @@ TEST(RendezvousE2e, ShortScienceTargetApproachAndALostTarget) {
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
 }
 
+// FIDO's auto-focus through the whole set: the runner designates one rock top and one soil spot
+// with a height error, dl-arm sweeps the microscopic imager (frames rendered by rover-sim with
+// the lens's depth of field, through ddl-camera) and ends FOCUSED within the depth of field.
+TEST(RendezvousE2e, ShortAutofocusOnRockAndSoil) {
+  testing::UseLoopbackDds();
+  const std::string dir = testing::MakeTempDir("autofocus-e2e");
+  testing::RoverctlRunner roverctl(dir);
+  const auto [e, out] = roverctl.Run(
+      {"run", testing::SourceDir() + "/tests/e2e/scenarios/short_autofocus.yaml", "--out",
+       dir + "/out"},
+      std::chrono::minutes(6));
+  roverctl.KillLeftovers();
+  const std::string run = dir + "/out/short-autofocus-seed1";
+  ASSERT_TRUE(fs::exists(run + "/result.json")) << out;
+  std::ifstream in(run + "/result.json");
+  const nlohmann::json result = nlohmann::json::parse(in);
+  EXPECT_TRUE(result["pass"].get<bool>()) << result.value("failure", "") << "\n" << out;
+  ASSERT_EQ(result["steps"].size(), 2u) << result.dump(2);
+  for (const auto& step : result["steps"]) {
+    EXPECT_EQ(step.value("state", ""), "succeeded") << step.dump();
+    EXPECT_EQ(step.value("termination", ""), "in_focus") << step.dump();
+  }
+  const nlohmann::json worst = Entry(result, "figures", "focus_error_worst");
+  ASSERT_FALSE(worst.is_null()) << result.dump(2);
+  EXPECT_LT(worst["measured"].get<double>(), 2.31) << "[mm] the depth of field";
+  EXPECT_EQ(Entry(result, "figures", "focus_failed")["measured"].get<double>(), 0.0);
+  EXPECT_EQ(e.code, 0) << out;
+
+  std::error_code ec;
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
+}
+
 }  // namespace
 }  // namespace rover
