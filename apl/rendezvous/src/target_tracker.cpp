@@ -61,7 +61,6 @@ Status TrackerOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_inlier_ratio", min_inlier_ratio, 0.0, 1.0));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_m", inlier_m, Bounds::OpenLow(0.0, 1.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_range_ratio", inlier_range_ratio, 0.0, 0.5));
-  ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_range_sigma", inlier_range_sigma, 0.0, 10.0));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_target_alone_ncc", min_target_alone_ncc, -1.0, 1.0));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.max_target_alone_jump_m", max_target_alone_jump_m,
                                    Bounds::OpenLow(0.0, 10.0), "m"));
@@ -92,8 +91,6 @@ void TrackerOptions::BindParams(ParamBinder<TrackerOptions>& b) {
          "fewer inliers than this share of the features found again: TARGET_LOST");
   b.Bind("inlier_m", &O::inlier_m, "m", "RANSAC threshold floor");
   b.Bind("inlier_range_ratio", &O::inlier_range_ratio, "", "RANSAC threshold as a fraction of range");
-  b.Bind("inlier_range_sigma", &O::inlier_range_sigma, "",
-         "along the ref ray the threshold grows to this many sigma of the two ranges (0: a sphere)");
   b.Bind("min_target_alone_ncc", &O::min_target_alone_ncc, "",
          "too few features agree: the target's own match goes on alone when this good");
   b.Bind("max_target_alone_jump_m", &O::max_target_alone_jump_m, "m",
@@ -156,7 +153,7 @@ bool TargetTracker::TakeFeatures(const Frame& f, const Vector3d& target, const V
     return false;
   }
   const double t_target = (target - ray->origin).norm();
-  points->push_back({target_px, target, t_target, 0.0, ray->direction});
+  points->push_back({target_px, target, t_target});
   // Window side: window_m across the line of sight at the target, in pixels.
   const Vector3d across = ray->direction.cross(Vector3d::UnitZ()).normalized();
   const auto p1 = f.left_model.Project(target + 0.1 * across);
@@ -188,8 +185,7 @@ bool TargetTracker::TakeFeatures(const Frame& f, const Vector3d& target, const V
       ++unranged;
       continue;
     }
-    const auto r = f.left_model.Unproject(ip.pixel);
-    points->push_back({ip.pixel, m->point, m->t, m->sigma_t, r ? r->direction : ray->direction});
+    points->push_back({ip.pixel, m->point, m->t});
   }
   const int n = static_cast<int>(points->size()) - 1;
   if (n < options_.min_inliers) {
@@ -384,18 +380,6 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
     auto thr = [&](std::size_t i) {
       return std::max(options_.inlier_m, options_.inlier_range_ratio * points_[i].t);
     };
-    // Feature q consistent with motion t: within the sphere of thr(q), or with
-    // inlier_range_sigma, the ellipsoid about the moved ref ray whose axis along it is stretched
-    // to that many sigma of the two ranges.
-    auto consistent = [&](const Isometry3d& t, std::size_t q) {
-      const Vector3d r = t * points_[q].xyz - xyz[q];
-      const double b = thr(q);
-      if (options_.inlier_range_sigma <= 0.0) return r.norm() <= b;
-      const double a = std::max(b, options_.inlier_range_sigma * std::hypot(points_[q].sigma, sig[q]));
-      const double along = r.dot(t.linear() * points_[q].ray);
-      const double across2 = std::max(0.0, r.squaredNorm() - along * along);
-      return (along * along) / (a * a) + across2 / (b * b) <= 1.0;
-    };
     std::mt19937 rng(0x5c1e7a26u + static_cast<unsigned>(steps_));
     std::uniform_int_distribution<std::size_t> pick(0, idx.size() - 1);
     std::vector<std::size_t> best_set;
@@ -407,7 +391,7 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
       const Isometry3d t = FitRigid({points_[i].xyz, points_[j].xyz, points_[k].xyz},
                                     {xyz[i], xyz[j], xyz[k]});
       std::vector<std::size_t> set;
-      for (std::size_t q : idx) if (consistent(t, q)) set.push_back(q);
+      for (std::size_t q : idx) if ((t * points_[q].xyz - xyz[q]).norm() <= thr(q)) set.push_back(q);
       if (set.size() > best_set.size()) best_set = std::move(set);
     }
     if (static_cast<int>(best_set.size()) < 3) return 0;
@@ -419,7 +403,7 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
       }
       *motion = FitRigid(a, b);
       best_set.clear();
-      for (std::size_t q : idx) if (consistent(*motion, q)) best_set.push_back(q);
+      for (std::size_t q : idx) if ((*motion * points_[q].xyz - xyz[q]).norm() <= thr(q)) best_set.push_back(q);
       if (best_set.size() < 3) return 0;
     }
     double ss = 0.0;
@@ -460,8 +444,7 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
   fix.rms = rms;
   tracks_.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    tracks_.push_back({points_[i].pixel, px[i], ncc[i], ok[i] != 0, inl[i] != 0, points_[i].xyz,
-                       ok[i] ? xyz[i] : Vector3d::Zero(), points_[i].sigma, ok[i] ? sig[i] : 0.0});
+    tracks_.push_back({points_[i].pixel, px[i], ncc[i], ok[i] != 0, inl[i] != 0});
   }
   const std::string name = "target_" + std::string(steps_ < 10 ? "0" : "") + std::to_string(steps_);
   const int need = std::max(options_.min_inliers,
@@ -529,7 +512,7 @@ void TargetTracker::Rereference(Frame cur, const Vector3d& target, const Vector2
   const bool enough = TakeFeatures(cur, target, target_px, &points, &why);
   ref_ = std::move(cur);
   points_ = std::move(points);
-  if (points_.empty()) points_.push_back({target_px, target, 0.0, fix->sigma, Vector3d::UnitX()});
+  if (points_.empty()) points_.push_back({target_px, target, 0.0});
   target_pixel_ = target_px;
   ref_sigma_ = fix->sigma;
   if (!enough) fix->why += std::string(fix->why.empty() ? "" : "; ") + "next step: " + why;

@@ -68,11 +68,6 @@ struct TrackerOptions {
   double min_inlier_ratio = 0.4;  ///< ... or fewer than this share of those found again
   double inlier_m = 0.02;      ///< [m] RANSAC threshold floor ...
   double inlier_range_ratio = 0.015;  ///< ... or this fraction of the feature's range
-  /// Along its rays a feature's stereo range is far worse than across them (sigma ~ t^2: 7-9 cm
-  /// at 9 m with the NAVCAM, millimetres across): a feature is an inlier within an ellipsoid
-  /// about its ref ray, the threshold above across it and, along it, the larger of that and this
-  /// many sigma of its two ranges (ref and cur) combined. 0: the sphere of the threshold alone.
-  double inlier_range_sigma = 0.0;
   double gate_sigma = 3.0;     ///< target measurement within this many sigma ...
   double gate_floor_m = 0.005; ///< ... + this [m] of where the features' motion carries it
   /// Too few features agree on a motion: the target's own match (this correlation or better,
@@ -95,10 +90,6 @@ struct FeatureTrack {
   double ncc = 0.0;
   bool matched = false;  ///< found and re-ranged in cur
   bool inlier = false;   ///< consistent with the measured motion
-  Eigen::Vector3d ref_point = Eigen::Vector3d::Zero();  ///< [m] ranged in the ref pair, R_ref
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();      ///< [m] re-ranged in cur, R_cur (matched)
-  double ref_sigma = 0.0;  ///< [m] 1-sigma of ref_point along its ref ray
-  double sigma = 0.0;      ///< [m] 1-sigma of point along its cur ray (matched)
 };
 
 /// Rigid motion B = T A (least squares over the pairs, Kabsch/Umeyama without scale).
@@ -131,8 +122,6 @@ class TargetTracker final : public TargetVision {
     Eigen::Vector2d pixel;
     Eigen::Vector3d xyz;  // R of the frame
     double t = 0.0;       // along the left ray
-    double sigma = 0.0;   // [m] 1-sigma of t
-    Eigen::Vector3d ray = Eigen::Vector3d::UnitX();  // unit direction of the left ray
   };
   static Result<Frame> CopyFrame(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover);
   // Features about the target in `f` (ranged), the target first. False: too few.
