@@ -58,6 +58,25 @@ Result<CameraDriver> CameraDriver::Create(CameraCalibration calibration,
 CameraDriver::CameraDriver(CameraCalibration calibration, const CameraDriverOptions& options)
     : calibration_(std::move(calibration)), options_(options) {}
 
+Status CameraDriver::Admit(const std::string& id, std::uint32_t exposure_us) const {
+  if (exposure_us > options_.max_exposure_us) {
+    return InvalidArgument(id + ": exposure_us " + std::to_string(exposure_us) +
+                           " is out of range [0, " + std::to_string(options_.max_exposure_us) +
+                           "] (0 = auto)");
+  }
+  if (pending() >= static_cast<std::size_t>(options_.max_pending)) {
+    return Busy(id + ": " + std::to_string(pending()) +
+                " requests already wait for the camera head (max_pending)");
+  }
+  return Status::Ok();
+}
+
+std::uint32_t CameraDriver::NextHwId() {
+  const std::uint32_t id = next_hw_id_++;
+  if (next_hw_id_ == 0) next_hw_id_ = 1;
+  return id;
+}
+
 Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& r, Time now) {
   const std::string id = "request " + std::to_string(r.request_id);
   if (!msg::IsKnownCamera(r.camera)) {
@@ -70,17 +89,8 @@ Result<hw::CameraRequest> CameraDriver::HandleRequest(const msg::StereoRequest& 
                            std::to_string(cam.left.width()) + "] for " + cam.name +
                            " (0 = full size; no upsampling)");
   }
-  if (r.exposure_us > options_.max_exposure_us) {
-    return InvalidArgument(id + ": exposure_us " + std::to_string(r.exposure_us) +
-                           " is out of range [0, " + std::to_string(options_.max_exposure_us) +
-                           "] (0 = auto)");
-  }
-  if (pending() >= static_cast<std::size_t>(options_.max_pending)) {
-    return Busy(id + ": " + std::to_string(pending()) +
-                " requests already wait for the camera head (max_pending)");
-  }
-  PendingRequest p{next_hw_id_++, r, now};
-  if (next_hw_id_ == 0) next_hw_id_ = 1;
+  ROVER_RETURN_IF_ERROR(Admit(id, r.exposure_us));
+  PendingRequest p{NextHwId(), r, now};
   pending_.push_back(p);
   return hw::CameraRequest{now.ns, p.hw_request_id, static_cast<int>(r.camera), r.exposure_us,
                            ReadoutFor(r.width, cam.left.width())};
@@ -247,18 +257,9 @@ std::vector<PendingRequest> CameraDriver::ExpireRequests(Time now) {
 }
 
 Result<hw::MiRequest> CameraDriver::HandleMiRequest(const msg::MiRequest& r, Time now) {
-  const std::string id = "microscopic-imager request " + std::to_string(r.request_id);
-  if (r.exposure_us > options_.max_exposure_us) {
-    return InvalidArgument(id + ": exposure_us " + std::to_string(r.exposure_us) +
-                           " is out of range [0, " + std::to_string(options_.max_exposure_us) +
-                           "] (0 = auto)");
-  }
-  if (pending() >= static_cast<std::size_t>(options_.max_pending)) {
-    return Busy(id + ": " + std::to_string(pending()) +
-                " requests already wait for the cameras (max_pending)");
-  }
-  PendingMi p{next_hw_id_++, r, now};
-  if (next_hw_id_ == 0) next_hw_id_ = 1;
+  ROVER_RETURN_IF_ERROR(
+      Admit("microscopic-imager request " + std::to_string(r.request_id), r.exposure_us));
+  PendingMi p{NextHwId(), r, now};
   pending_mi_.push_back(p);
   return hw::MiRequest{now.ns, p.hw_request_id, r.exposure_us};
 }

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "rover/base/format.hpp"
+#include "rover/deploy/runner/tasks/arm_steps.hpp"
 #include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/arm_idl.hpp"
 #include "rover/msg/pose_idl.hpp"
@@ -133,33 +134,7 @@ std::string AutofocusTask::PickTargets(const TaskContext& ctx,
 }
 
 std::string AutofocusTask::Stow(TaskContext& ctx) {
-  Pump();
-  if (arm_now_ && arm_now_->stowed) return "";
-  msg::ArmCommand stow;
-  stow.stamp = Time::FromSeconds(ctx.Now());
-  stow.command_id = kStowId;
-  stow.mode = msg::ArmMode::kStow;
-  rover_dl_ArmCommand w{};
-  msg::ArmCommandToIdl(stow, &w);
-  dds::CopyString(w.header.frame_id, "rover");
-  if (!arm_.Write(w).ok()) return "cannot send the arm STOW";
-  const double start = ctx.Now();
-  std::optional<msg::ArmStatus> end;
-  std::string failure = ctx.WaitUntil([&] {
-    Pump();
-    if (arm_now_ && arm_now_->command_id == kStowId &&
-        (arm_now_->state == msg::ArmState::kStowed || arm_now_->state == msg::ArmState::kFault ||
-         arm_now_->state == msg::ArmState::kRejected)) {
-      end = arm_now_;
-    }
-    return end.has_value() || ctx.Now() - start > 120.0;
-  });
-  if (!failure.empty()) return failure;
-  if (!end) return "the arm did not stow within 120 s";
-  if (end->state != msg::ArmState::kStowed) {
-    return std::string("arm STOW ended ") + msg::ArmStateName(end->state) + ": " + end->message;
-  }
-  return "";
+  return StowArmAndWait(ctx, arm_, [&] { Pump(); return arm_now_; }, kStowId, 120.0);
 }
 
 TaskOutcome AutofocusTask::Run(TaskContext& ctx) {
@@ -210,25 +185,16 @@ TaskOutcome AutofocusTask::Run(TaskContext& ctx) {
     c.command_id = step.command_id;
     c.mode = msg::ArmMode::kAutofocus;
     c.target = truth_now_->inverse() * t.point + Eigen::Vector3d(0.0, 0.0, e);
-    rover_dl_ArmCommand w{};
-    msg::ArmCommandToIdl(c, &w);
-    dds::CopyString(w.header.frame_id, "rover");
     ctx.Note("autofocus " + std::to_string(i + 1) + "/" + std::to_string(targets.size()) + " (" +
              kind_name + ", height off by " + FormatNumber(e * 100.0, 3) + " cm)");
-    if (!arm_.Write(w).ok()) {
-      out.failure = "cannot send the AUTOFOCUS command";
+    if (std::string why = SendArmCommand(arm_, c); !why.empty()) {
+      out.failure = why;
       return out;
     }
-    std::optional<msg::ArmStatus> end;
-    std::string failure = ctx.WaitUntil([&] {
-      Pump();
-      if (arm_now_ && arm_now_->command_id == c.command_id &&
-          (arm_now_->state == msg::ArmState::kFocused || arm_now_->state == msg::ArmState::kFault ||
-           arm_now_->state == msg::ArmState::kRejected)) {
-        end = arm_now_;
-      }
-      return end.has_value() || ctx.Now() - step.sim_start_s > spec_.target_timeout_s;
-    });
+    const ArmWait wait = WaitForArm(ctx, [&] { Pump(); return arm_now_; }, c.command_id,
+                                    msg::ArmState::kFocused, spec_.target_timeout_s);
+    const std::string& failure = wait.failure;
+    const std::optional<msg::ArmStatus>& end = wait.end;
     step.sim_end_s = ctx.Now();
     if (!failure.empty()) {
       step.state = "interrupted";

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "rover/base/format.hpp"
+#include "rover/deploy/runner/tasks/arm_steps.hpp"
 #include "rover/msg/arm_idl.hpp"
 #include "rover/msg/camera_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
@@ -418,34 +419,8 @@ void ScienceTargetTask::RunTemplate(TaskContext& ctx, const Designation& d, Task
 }
 
 std::string ScienceTargetTask::StowArm(TaskContext& ctx) {
-  Pump();
-  if (!arm_now_ || arm_now_->stowed) return "";
-  msg::ArmCommand stow;
-  stow.stamp = Time::FromSeconds(ctx.Now());
-  stow.command_id = kStowId;
-  stow.mode = msg::ArmMode::kStow;
-  rover_dl_ArmCommand w{};
-  msg::ArmCommandToIdl(stow, &w);
-  dds::CopyString(w.header.frame_id, "rover");
   ctx.Note("science_target: stowing the arm");
-  if (!arm_.Write(w).ok()) return "cannot send the arm STOW";
-  const double start = ctx.Now();
-  std::optional<msg::ArmStatus> end;
-  std::string failure = ctx.WaitUntil([&] {
-    Pump();
-    if (arm_now_ && arm_now_->command_id == kStowId &&
-        (arm_now_->state == msg::ArmState::kStowed || arm_now_->state == msg::ArmState::kFault ||
-         arm_now_->state == msg::ArmState::kRejected)) {
-      end = arm_now_;
-    }
-    return end.has_value() || ctx.Now() - start > 300.0;
-  });
-  if (!failure.empty()) return failure;
-  if (!end || end->state != msg::ArmState::kStowed) {
-    return "the arm did not stow: " + (end ? std::string(msg::ArmStateName(end->state)) + " " + end->message
-                                           : std::string("no answer within 300 s"));
-  }
-  return "";
+  return StowArmAndWait(ctx, arm_, [&] { Pump(); return arm_now_; }, kStowId, 300.0);
 }
 
 TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {

@@ -146,6 +146,10 @@ class CameraDriver {
 
  private:
   CameraDriver(CameraCalibration calibration, const CameraDriverOptions& options);
+  // Any request (stereo or microscopic imager): the exposure limit and max_pending; `id` names
+  // the request in the message.
+  Status Admit(const std::string& id, std::uint32_t exposure_us) const;
+  std::uint32_t NextHwId();  // the driver's own hardware ids, 1, 2, ... (0 skipped on wrap)
   /// Mast angles at `stamp_ns`; false if no sample. `gap_s` = distance to the nearest sample.
   bool MastAt(std::int64_t stamp_ns, double* pan, double* tilt, double* gap_s) const;
 
