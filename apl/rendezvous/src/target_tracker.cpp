@@ -7,6 +7,7 @@
 #include <random>
 #include <utility>
 
+#include <Eigen/Cholesky>
 #include <Eigen/SVD>
 #include <opencv2/imgproc.hpp>
 
@@ -41,6 +42,129 @@ double Vertex(double ym, double y0, double yp) {
   return std::abs(den) > 1e-12 ? std::clamp(0.5 * (ym - yp) / den, -0.5, 0.5) : 0.0;
 }
 
+// Information (inverse covariance) of a feature's residual m * ref - cur: its two ranges along
+// the ref ray moved by `rotation`, the pixel precision across it.
+Eigen::Matrix3d RayInformation(const RangedFeature& f, const Eigen::Matrix3d& rotation) {
+  const Vector3d d = rotation * f.ref_ray;
+  const double along2 = f.ref_sigma * f.ref_sigma + f.cur_sigma * f.cur_sigma + 1e-8;
+  const double across = std::max(5e-4, f.across_sigma);
+  const Eigen::Matrix3d dd = d * d.transpose();
+  return dd / along2 + (Eigen::Matrix3d::Identity() - dd) / (across * across);
+}
+
+// The motion minimising the sum of the features' residuals weighted by RayInformation (Gauss-
+// Newton from `start`, the rotation perturbed on the left).
+Isometry3d WeightedRigidFit(const std::vector<RangedFeature>& f,
+                            const std::vector<std::size_t>& set, const Isometry3d& start) {
+  Isometry3d t = start;
+  std::vector<Eigen::Matrix3d> w;
+  for (std::size_t q : set) w.push_back(RayInformation(f[q], start.linear()));
+  for (int iteration = 0; iteration < 10; ++iteration) {
+    Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+    for (std::size_t k = 0; k < set.size(); ++k) {
+      const RangedFeature& p = f[set[k]];
+      const Vector3d rx = t.linear() * p.ref;
+      const Vector3d r = rx + t.translation() - p.cur;
+      Eigen::Matrix<double, 3, 6> j;
+      j.leftCols<3>() << 0.0, rx.z(), -rx.y(), -rx.z(), 0.0, rx.x(), rx.y(), -rx.x(), 0.0;
+      j.rightCols<3>().setIdentity();
+      h += j.transpose() * w[k] * j;
+      g += j.transpose() * w[k] * r;
+    }
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(h);
+    if (ldlt.info() != Eigen::Success) break;
+    const Eigen::Matrix<double, 6, 1> dx = -ldlt.solve(g);
+    if (!dx.allFinite()) break;
+    const double angle = dx.head<3>().norm();
+    if (angle > 1e-12) {
+      t.linear() = Eigen::AngleAxisd(angle, dx.head<3>() / angle).toRotationMatrix() * t.linear();
+    }
+    t.translation() += dx.tail<3>();
+    if (dx.norm() < 1e-9) break;
+  }
+  return t;
+}
+
+// Step 6's RANSAC and fit, with the sphere (along_rays false: a 3-point rigid fit each, Kabsch)
+// or the ellipsoids about the rays (also one feature each with the predicted rotation, the
+// weighted fit).
+MotionEstimate RansacMotion(const std::vector<RangedFeature>& f, const Isometry3d& predicted,
+                            const TrackerOptions& o, unsigned seed, bool along_rays) {
+  MotionEstimate e;
+  e.inlier.assign(f.size(), false);
+  if (f.size() < 3) return e;
+  auto consistent = [&](const Isometry3d& t, const RangedFeature& p) {
+    const Vector3d r = t * p.ref - p.cur;
+    const double b = std::max(o.inlier_m, o.inlier_range_ratio * p.ref_t);
+    if (!along_rays) return r.norm() <= b;
+    const double a = std::max(b, o.inlier_range_sigma * std::hypot(p.ref_sigma, p.cur_sigma));
+    const double along = r.dot(t.linear() * p.ref_ray);
+    const double across2 = std::max(0.0, r.squaredNorm() - along * along);
+    return along * along / (a * a) + across2 / (b * b) <= 1.0;
+  };
+  auto agreeing = [&](const Isometry3d& t) {
+    std::vector<std::size_t> set;
+    for (std::size_t q = 0; q < f.size(); ++q) {
+      if (consistent(t, f[q])) set.push_back(q);
+    }
+    return set;
+  };
+  std::vector<std::size_t> best_set;
+  Isometry3d best = predicted;
+  if (along_rays) {
+    // The rotation of dl/pose is good (IMU attitude, a heading drift of a fraction of a degree a
+    // leg), its translation is what slips: one feature each with the predicted rotation.
+    for (const RangedFeature& p : f) {
+      Isometry3d t = predicted;
+      t.translation() = p.cur - predicted.linear() * p.ref;
+      std::vector<std::size_t> set = agreeing(t);
+      if (set.size() > best_set.size()) {
+        best_set = std::move(set);
+        best = t;
+      }
+    }
+  }
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, f.size() - 1);
+  for (int it = 0; it < o.ransac_iterations; ++it) {
+    const std::size_t i = pick(rng), j = pick(rng), k = pick(rng);
+    if (i == j || j == k || i == k) continue;
+    const Vector3d& a = f[i].ref;
+    if ((f[j].ref - a).cross(f[k].ref - a).norm() < 1e-3) continue;
+    const Isometry3d t = FitRigid({f[i].ref, f[j].ref, f[k].ref}, {f[i].cur, f[j].cur, f[k].cur});
+    std::vector<std::size_t> set = agreeing(t);
+    if (set.size() > best_set.size()) {
+      best_set = std::move(set);
+      best = t;
+    }
+  }
+  if (best_set.size() < 3) return e;
+  for (int round = 0; round < 2; ++round) {
+    if (along_rays) {
+      best = WeightedRigidFit(f, best_set, best);
+    } else {
+      std::vector<Vector3d> a, b;
+      for (std::size_t q : best_set) {
+        a.push_back(f[q].ref);
+        b.push_back(f[q].cur);
+      }
+      best = FitRigid(a, b);
+    }
+    best_set = agreeing(best);
+    if (best_set.size() < 3) return e;
+  }
+  double ss = 0.0;
+  for (std::size_t q : best_set) {
+    e.inlier[q] = true;
+    ss += (best * f[q].ref - f[q].cur).squaredNorm();
+  }
+  e.motion = best;
+  e.inliers = static_cast<int>(best_set.size());
+  e.rms = std::sqrt(ss / static_cast<double>(best_set.size()));
+  return e;
+}
+
 }  // namespace
 
 Status TrackerOptions::Validate() const {
@@ -61,6 +185,9 @@ Status TrackerOptions::Validate() const {
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_inlier_ratio", min_inlier_ratio, 0.0, 1.0));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_m", inlier_m, Bounds::OpenLow(0.0, 1.0), "m"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_range_ratio", inlier_range_ratio, 0.0, 0.5));
+  ROVER_RETURN_IF_ERROR(CheckRange("tracker.inlier_range_sigma", inlier_range_sigma, 0.0, 10.0));
+  ROVER_RETURN_IF_ERROR(
+      CheckRange("tracker.across_sigma_px", across_sigma_px, Bounds::OpenLow(0.0, 10.0), "px"));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.min_target_alone_ncc", min_target_alone_ncc, -1.0, 1.0));
   ROVER_RETURN_IF_ERROR(CheckRange("tracker.max_target_alone_jump_m", max_target_alone_jump_m,
                                    Bounds::OpenLow(0.0, 10.0), "m"));
@@ -91,6 +218,10 @@ void TrackerOptions::BindParams(ParamBinder<TrackerOptions>& b) {
          "fewer inliers than this share of the features found again: TARGET_LOST");
   b.Bind("inlier_m", &O::inlier_m, "m", "RANSAC threshold floor");
   b.Bind("inlier_range_ratio", &O::inlier_range_ratio, "", "RANSAC threshold as a fraction of range");
+  b.Bind("inlier_range_sigma", &O::inlier_range_sigma, "",
+         "inliers within ellipsoids this many range sigma long along the rays (0: the sphere)");
+  b.Bind("across_sigma_px", &O::across_sigma_px, "px",
+         "a feature's 1-sigma across its ray, its weight in the motion fit");
   b.Bind("min_target_alone_ncc", &O::min_target_alone_ncc, "",
          "too few features agree: the target's own match goes on alone when this good");
   b.Bind("max_target_alone_jump_m", &O::max_target_alone_jump_m, "m",
@@ -120,6 +251,12 @@ Isometry3d FitRigid(const std::vector<Vector3d>& a, const std::vector<Vector3d>&
   t.linear() = svd.matrixV() * d * svd.matrixU().transpose();
   t.translation() = cb - t.linear() * ca;
   return t;
+}
+
+MotionEstimate EstimateMotion(const std::vector<RangedFeature>& features,
+                              const Isometry3d& predicted, const TrackerOptions& options,
+                              unsigned seed) {
+  return RansacMotion(features, predicted, options, seed, options.inlier_range_sigma > 0.0);
 }
 
 TargetTracker::TargetTracker(const TrackerOptions& options) : options_(options) {
@@ -153,7 +290,11 @@ bool TargetTracker::TakeFeatures(const Frame& f, const Vector3d& target, const V
     return false;
   }
   const double t_target = (target - ray->origin).norm();
-  points->push_back({target_px, target, t_target});
+  // The angle of one pixel there (the features' precision across their rays).
+  const auto ray1 = f.left_model.Unproject(target_px + Vector2d(1.0, 0.0));
+  const double rad_per_px =
+      ray1 ? std::acos(std::clamp(ray->direction.dot(ray1->direction), -1.0, 1.0)) : 0.0;
+  points->push_back({target_px, target, t_target, 0.0, ray->direction, rad_per_px});
   // Window side: window_m across the line of sight at the target, in pixels.
   const Vector3d across = ray->direction.cross(Vector3d::UnitZ()).normalized();
   const auto p1 = f.left_model.Project(target + 0.1 * across);
@@ -185,7 +326,9 @@ bool TargetTracker::TakeFeatures(const Frame& f, const Vector3d& target, const V
       ++unranged;
       continue;
     }
-    points->push_back({ip.pixel, m->point, m->t});
+    const auto r = f.left_model.Unproject(ip.pixel);
+    points->push_back(
+        {ip.pixel, m->point, m->t, m->sigma_t, r ? r->direction : ray->direction, rad_per_px});
   }
   const int n = static_cast<int>(points->size()) - 1;
   if (n < options_.min_inliers) {
@@ -371,48 +514,26 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
     sig[i] = r->sigma_t;
     return true;
   };
-  // RANSAC over the features (not the target) for R_cur from R_ref.
+  // Step 6 over the features found again (not the target) for R_cur from R_ref.
   auto fit = [&](Isometry3d* motion, double* rms) {
     std::vector<std::size_t> idx;
-    for (std::size_t i = 1; i < n; ++i) if (ok[i]) idx.push_back(i);
+    std::vector<RangedFeature> features;
+    for (std::size_t i = 1; i < n; ++i) {
+      if (!ok[i]) continue;
+      idx.push_back(i);
+      const Point& p = points_[i];
+      features.push_back({p.xyz, xyz[i], p.ray, p.t, p.sigma, sig[i],
+                          options_.across_sigma_px * p.rad_per_px * p.t});
+    }
     std::fill(inl.begin(), inl.end(), 0);
     if (static_cast<int>(idx.size()) < options_.min_inliers) return 0;
-    auto thr = [&](std::size_t i) {
-      return std::max(options_.inlier_m, options_.inlier_range_ratio * points_[i].t);
-    };
-    std::mt19937 rng(0x5c1e7a26u + static_cast<unsigned>(steps_));
-    std::uniform_int_distribution<std::size_t> pick(0, idx.size() - 1);
-    std::vector<std::size_t> best_set;
-    for (int it = 0; it < options_.ransac_iterations; ++it) {
-      const std::size_t i = idx[pick(rng)], j = idx[pick(rng)], k = idx[pick(rng)];
-      if (i == j || j == k || i == k) continue;
-      const Vector3d& a = points_[i].xyz;
-      if ((points_[j].xyz - a).cross(points_[k].xyz - a).norm() < 1e-3) continue;
-      const Isometry3d t = FitRigid({points_[i].xyz, points_[j].xyz, points_[k].xyz},
-                                    {xyz[i], xyz[j], xyz[k]});
-      std::vector<std::size_t> set;
-      for (std::size_t q : idx) if ((t * points_[q].xyz - xyz[q]).norm() <= thr(q)) set.push_back(q);
-      if (set.size() > best_set.size()) best_set = std::move(set);
-    }
-    if (static_cast<int>(best_set.size()) < 3) return 0;
-    for (int round = 0; round < 2; ++round) {
-      std::vector<Vector3d> a, b;
-      for (std::size_t q : best_set) {
-        a.push_back(points_[q].xyz);
-        b.push_back(xyz[q]);
-      }
-      *motion = FitRigid(a, b);
-      best_set.clear();
-      for (std::size_t q : idx) if ((*motion * points_[q].xyz - xyz[q]).norm() <= thr(q)) best_set.push_back(q);
-      if (best_set.size() < 3) return 0;
-    }
-    double ss = 0.0;
-    for (std::size_t q : best_set) {
-      inl[q] = 1;
-      ss += (*motion * points_[q].xyz - xyz[q]).squaredNorm();
-    }
-    *rms = std::sqrt(ss / static_cast<double>(best_set.size()));
-    return static_cast<int>(best_set.size());
+    const MotionEstimate e =
+        EstimateMotion(features, predicted, options_, 0x5c1e7a26u + static_cast<unsigned>(steps_));
+    if (e.inliers == 0) return 0;
+    for (std::size_t k = 0; k < idx.size(); ++k) inl[idx[k]] = e.inlier[k] ? 1 : 0;
+    *motion = e.motion;
+    *rms = e.rms;
+    return e.inliers;
   };
   // Pass 1: along the epipolar segments of the predicted motion.
   for (std::size_t i = 0; i < n; ++i) {
@@ -444,7 +565,9 @@ Result<TargetFix> TargetTracker::Track(const NavcamPair& pair, const Isometry3d&
   fix.rms = rms;
   tracks_.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    tracks_.push_back({points_[i].pixel, px[i], ncc[i], ok[i] != 0, inl[i] != 0});
+    tracks_.push_back({points_[i].pixel, px[i], ncc[i], ok[i] != 0, inl[i] != 0, points_[i].xyz,
+                       ok[i] ? xyz[i] : Vector3d::Zero(), i == 0 ? ref_sigma_ : points_[i].sigma,
+                       ok[i] ? sig[i] : 0.0});
   }
   const std::string name = "target_" + std::string(steps_ < 10 ? "0" : "") + std::to_string(steps_);
   const int need = std::max(options_.min_inliers,
@@ -512,7 +635,8 @@ void TargetTracker::Rereference(Frame cur, const Vector3d& target, const Vector2
   const bool enough = TakeFeatures(cur, target, target_px, &points, &why);
   ref_ = std::move(cur);
   points_ = std::move(points);
-  if (points_.empty()) points_.push_back({target_px, target, 0.0});
+  if (points_.empty())
+    points_.push_back({target_px, target, 0.0, fix->sigma, Vector3d::UnitX(), 0.0});
   target_pixel_ = target_px;
   ref_sigma_ = fix->sigma;
   if (!enough) fix->why += std::string(fix->why.empty() ? "" : "; ") + "next step: " + why;

@@ -19,9 +19,11 @@
 ///  5. Coarse cross-correlation of that patch over a band `band_px` wide along the segment
 ///     (cross-track error of M), the best peak refined by a parabola in x and y.
 ///  6. The rover motion from all points' new ranges (10) by RANSAC over 3-point rigid fits and
-///     a least-squares fit over the inliers (11); the patches are projected again with the
-///     measured motion and matched again within +-refine_px (8-9, the homography refinement),
-///     and re-ranged at full resolution (10), and the motion fitted again.
+///     a least-squares fit over the inliers (11), an inlier within an ellipsoid about its ray
+///     that is as long as its range error (inlier_range_sigma; EstimateMotion); the patches are
+///     projected again with the measured motion and matched again within +-refine_px (8-9, the
+///     homography refinement), and re-ranged at full resolution (10), and the motion fitted
+///     again.
 ///  7. The target: its own patch's match re-ranged in the cur pair when it agrees with the
 ///     motion (within gate_sigma sigma + gate_floor_m), else carried by the motion (12).
 ///  8. The cur pair becomes ref; its features are taken about the new target position.
@@ -68,6 +70,19 @@ struct TrackerOptions {
   double min_inlier_ratio = 0.4;  ///< ... or fewer than this share of those found again
   double inlier_m = 0.02;      ///< [m] RANSAC threshold floor ...
   double inlier_range_ratio = 0.015;  ///< ... or this fraction of the feature's range
+  /// A feature's stereo range is far worse along its ray than across it (sigma ~ t^2: 7-9 cm at
+  /// 9 m with the NAVCAM's 0.20 m baseline, millimetres across), so at long range the sphere
+  /// above rejects correct features and lets wrong motions gather as many. With this > 0 a
+  /// feature is an inlier within an ellipsoid about its ref ray (moved by the motion): the
+  /// sphere's radius across the ray and, along it, the larger of that and this many sigma of the
+  /// feature's two ranges combined; hypotheses come also from one feature each with dl/pose's
+  /// rotation, and the motion is fitted weighting each feature by the covariance of its ranges
+  /// (along) and across_sigma_px (across). Where this many sigma are under the sphere's radius
+  /// (within ~3 m) the test is the sphere. 0: the sphere and a plain least-squares fit.
+  double inlier_range_sigma = 3.0;
+  /// [px] 1-sigma of a feature's position across its ray (both images): its weight across the
+  /// ray in the motion fit (inlier_range_sigma > 0)
+  double across_sigma_px = 0.5;
   double gate_sigma = 3.0;     ///< target measurement within this many sigma ...
   double gate_floor_m = 0.005; ///< ... + this [m] of where the features' motion carries it
   /// Too few features agree on a motion: the target's own match (this correlation or better,
@@ -90,11 +105,45 @@ struct FeatureTrack {
   double ncc = 0.0;
   bool matched = false;  ///< found and re-ranged in cur
   bool inlier = false;   ///< consistent with the measured motion
+  Eigen::Vector3d ref_point = Eigen::Vector3d::Zero();  ///< [m] ranged in the ref pair, R_ref
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();      ///< [m] re-ranged in cur, R_cur (matched)
+  double ref_sigma = 0.0;  ///< [m] 1-sigma of ref_point along its ref ray
+  double sigma = 0.0;      ///< [m] 1-sigma of point along its cur ray (matched)
 };
 
 /// Rigid motion B = T A (least squares over the pairs, Kabsch/Umeyama without scale).
 /// Precondition: a.size() == b.size() >= 3.
 Eigen::Isometry3d FitRigid(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
+
+/// One feature ranged in the ref pair and found and re-ranged in the cur pair (step 6's input).
+struct RangedFeature {
+  Eigen::Vector3d ref = Eigen::Vector3d::Zero();  ///< [m] in R_ref
+  Eigen::Vector3d cur = Eigen::Vector3d::Zero();  ///< [m] in R_cur
+  Eigen::Vector3d ref_ray =
+      Eigen::Vector3d::UnitX();  ///< unit direction of its ref left ray, R_ref
+  double ref_t = 0.0;            ///< [m] its distance along that ray
+  double ref_sigma = 0.0;        ///< [m] 1-sigma of the ref range along the ref ray
+  double cur_sigma = 0.0;        ///< [m] 1-sigma of the cur range along the cur ray
+  double across_sigma = 0.0;     ///< [m] 1-sigma across the rays (the pixel precision at its range)
+};
+
+/// The rover's motion from the features (step 6).
+struct MotionEstimate {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  ///< R_cur from R_ref
+  std::vector<bool> inlier;                                  ///< per feature
+  int inliers = 0;                                           ///< 0 when no motion was found
+  double rms = 0.0;                                          ///< [m] residual over the inliers, 3-D
+};
+
+/// Step 6: RANSAC and a least-squares fit over the inliers, two rounds. With
+/// options.inlier_range_sigma = 0 a 3-point rigid fit per hypothesis, an inlier within
+/// max(inlier_m, inlier_range_ratio ref_t) of where the motion carries it, and a plain (Kabsch)
+/// fit; with > 0 also one hypothesis per feature with `predicted`'s rotation, the ellipsoids about
+/// the rays and the covariance-weighted fit (TrackerOptions::inlier_range_sigma). `seed`: the
+/// RANSAC's. inliers = 0 when fewer than 3 features or no motion with 3 inliers.
+MotionEstimate EstimateMotion(const std::vector<RangedFeature>& features,
+                              const Eigen::Isometry3d& predicted, const TrackerOptions& options,
+                              unsigned seed);
 
 class TargetTracker final : public TargetVision {
  public:
@@ -122,6 +171,9 @@ class TargetTracker final : public TargetVision {
     Eigen::Vector2d pixel;
     Eigen::Vector3d xyz;  // R of the frame
     double t = 0.0;       // along the left ray
+    double sigma = 0.0;   // [m] 1-sigma of t
+    Eigen::Vector3d ray = Eigen::Vector3d::UnitX();  // unit direction of the left ray
+    double rad_per_px = 0.0;  // [rad] angle of one pixel of the left image there
   };
   static Result<Frame> CopyFrame(const NavcamPair& pair, const Eigen::Isometry3d& site_from_rover);
   // Features about the target in `f` (ranged), the target first. False: too few.
