@@ -88,6 +88,14 @@ TEST(RendezvousE2e, ShortScienceTargetApproachAndALostTarget) {
   ASSERT_FALSE(contact.is_null()) << result.dump(2);
   EXPECT_EQ(contact["measured"].get<double>(), 1.0);
   EXPECT_FALSE(Entry(result, "figures", "aim_error").is_null());
+  // FIDO's single command ends with the microscopic imager focused on the target. The
+  // target is on the rock's flank, whose relief across the 20 mm field moves the whole frame's
+  // best focus off the centre's: within twice the depth of field (+-2.31 mm) is asked here; the
+  // share in focus is a campaign figure (docs/status.md).
+  EXPECT_FALSE(Entry(result, "figures", "in_focus").is_null()) << result.dump(2);
+  const nlohmann::json focus = Entry(result, "figures", "focus_error");
+  ASSERT_FALSE(focus.is_null()) << result.dump(2);
+  EXPECT_LT(focus["measured"].get<double>(), 4.6) << "[mm]";
   const nlohmann::json odometry = Entry(result, "figures", "odometry_placement_error");
   ASSERT_FALSE(odometry.is_null());
   EXPECT_TRUE(fs::exists(run + "/detections/target_00.png"));

@@ -43,13 +43,14 @@ void TargetApproach::Fail(RendezvousFault fault, const std::string& message, Exe
     stop.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
     out->mobility.push_back(stop);
   }
-  if (wait_ == Wait::kStow || wait_ == Wait::kPlace) {
+  if (wait_ == Wait::kStow || wait_ == Wait::kPlace || wait_ == Wait::kFocus) {
     msg::ArmCommand stop;
     stop.mode = msg::ArmMode::kStop;
     stop.command_id = kArmIdBase | kIdHalf | (++arm_seq_ & (kIdHalf - 1));
     out->arm.push_back(stop);
   }
   after_stow_.reset();
+  focus_at_.reset();
   wait_ = Wait::kNone;
   status_.phase = RendezvousPhase::kFailed;
   status_.fault = fault;
@@ -100,6 +101,18 @@ void TargetApproach::Arm(msg::ArmCommand c, Wait wait, Time now, ExecutorOutput*
   outstanding_ = c.command_id;
   wait_ = wait;
   wait_since_ = now;
+}
+
+void TargetApproach::Focus(const Eigen::Vector3d& target, const std::string& from, Time now,
+                           ExecutorOutput* out) {
+  msg::ArmCommand focus;
+  focus.mode = msg::ArmMode::kAutofocus;
+  focus.target = target;
+  status_.phase = RendezvousPhase::kFocusing;
+  status_.message = "auto-focus on (" + Cm(target.x()) + ", " + Cm(target.y()) + ", " +
+                    Cm(target.z()) + ") in the rover frame, " + from;
+  Reply(out);
+  Arm(focus, Wait::kFocus, now, out);
 }
 
 void TargetApproach::Drive(msg::MobilityCommand c, Time now, ExecutorOutput* out) {
@@ -282,6 +295,10 @@ void TargetApproach::Decide(Time now, ExecutorOutput* out) {
       Arm(place, Wait::kPlace, now, out);
       return;
     }
+    if (command_.autofocus) {
+      Focus(rel, "the target measured in the last pair", now, out);
+      return;
+    }
     wait_ = Wait::kHold;
     wait_since_ = now;
     return;
@@ -341,7 +358,10 @@ ExecutorOutput TargetApproach::OnMastStatus(const msg::MastStatus& s, Time now) 
 ExecutorOutput TargetApproach::OnArmStatus(const msg::ArmStatus& s, Time now) {
   ExecutorOutput out;
   arm_ = s;
-  if ((wait_ != Wait::kStow && wait_ != Wait::kPlace) || s.command_id != outstanding_) return out;
+  if ((wait_ != Wait::kStow && wait_ != Wait::kPlace && wait_ != Wait::kFocus) ||
+      s.command_id != outstanding_) {
+    return out;
+  }
   if (s.state == msg::ArmState::kFault || s.state == msg::ArmState::kRejected) {
     const std::string why = std::string("dl-arm ") + msg::ArmStateName(s.state) + ": " + s.message;
     wait_ = Wait::kNone;  // dl-arm has stopped already
@@ -356,6 +376,18 @@ ExecutorOutput TargetApproach::OnArmStatus(const msg::ArmStatus& s, Time now) {
   } else if (wait_ == Wait::kPlace && s.state == msg::ArmState::kPlaced) {
     status_.phase = RendezvousPhase::kPlaced;
     status_.message = "instrument on the target (dl-arm " + s.message + ")";
+    Reply(&out);
+    // With autofocus the instrument stays on the target `settle_s` (the contact read), then the
+    // sweep is centred on the face where it touched: the contact measured the surface.
+    if (command_.autofocus) focus_at_ = s.tool_point;
+    wait_ = Wait::kHold;
+    wait_since_ = now;
+  } else if (wait_ == Wait::kFocus && s.state == msg::ArmState::kFocused) {
+    status_.phase = RendezvousPhase::kFocused;
+    status_.message = "in focus " + FormatNumber(s.focus_height * 1000.0, 3) +
+                      " mm above the target after " + std::to_string(s.focus_images) +
+                      " frames" + (s.focus_predicted ? ", predicted from the contact" : "") +
+                      " (ddl/mi_frame " + std::to_string(s.focus_image_id) + ")";
     Reply(&out);
     wait_ = Wait::kHold;
     wait_since_ = now;
@@ -474,15 +506,23 @@ ExecutorOutput TargetApproach::Step(Time now) {
       break;
     case Wait::kStow:
     case Wait::kPlace:
+    case Wait::kFocus:
       if (waited > options_.arm_timeout_s + 5.0) {
-        Fail(RendezvousFault::kArm, std::string("no ") + (wait_ == Wait::kStow ? "STOWED" : "PLACED") +
+        const char* end = wait_ == Wait::kStow    ? "STOWED"
+                          : wait_ == Wait::kPlace ? "PLACED"
+                                                  : "FOCUSED";
+        Fail(RendezvousFault::kArm, std::string("no ") + end +
                                         " from dl-arm within " +
                                         FormatNumber(options_.arm_timeout_s + 5.0) + " s",
              &out);
       }
       break;
     case Wait::kHold:
-      if (waited >= options_.hold_at_base_s) {
+      if (focus_at_ && waited >= options_.settle_s) {
+        const Eigen::Vector3d at = *focus_at_;
+        focus_at_.reset();
+        Focus(at, "where the instrument touched it", now, &out);
+      } else if (!focus_at_ && waited >= options_.hold_at_base_s) {
         wait_ = Wait::kNone;
         status_.phase = RendezvousPhase::kDone;
         Reply(&out);

@@ -99,9 +99,11 @@ struct ApproachHarness {
   double t = 10.0;
   std::vector<msg::RendezvousStatus> statuses;
   std::vector<msg::MobilityCommand> drives;
-  // A fake dl-arm: STOW -> STOWED; PLACE -> `place_reply` (the arm is then out).
+  // A fake dl-arm: STOW -> STOWED; PLACE -> `place_reply` with the face 2 mm above the
+  // target; AUTOFOCUS -> `focus_reply` (the arm is then out).
   std::vector<msg::ArmCommand> arm_commands;
   msg::ArmState place_reply = msg::ArmState::kPlaced;
+  msg::ArmState focus_reply = msg::ArmState::kFocused;
   bool arm_stowed = true;
   // A forward-looking pinhole NAVCAM 1.5 m up (the by-point designation projects into it).
   geometry::CameraModel model = [] {
@@ -154,9 +156,17 @@ struct ApproachHarness {
         if (a.mode == msg::ArmMode::kStow) {
           arm_stowed = true;
           s.state = msg::ArmState::kStowed;
+        } else if (a.mode == msg::ArmMode::kAutofocus) {
+          arm_stowed = false;
+          s.state = focus_reply;
+          s.focus_height = 0.0605;
+          s.focus_images = 11;
+          s.focus_image_id = 77;
+          s.message = focus_reply == msg::ArmState::kFocused ? "best focus" : "no focus peak";
         } else {
           arm_stowed = false;
           s.state = place_reply;
+          s.tool_point = a.target + Eigen::Vector3d(0.0, 0.0, 0.002);
           s.message = place_reply == msg::ArmState::kPlaced ? "face 2 mm above the target"
                                                              : "no contact within 0.03 m below the target";
         }
@@ -283,6 +293,50 @@ TEST(TargetApproachTest, PlacesTheInstrumentWhereTheLastPairSawTheTarget) {
   plain.Start(plain.Command());
   EXPECT_TRUE(plain.arm_commands.empty());
   EXPECT_FALSE(plain.Saw(RendezvousPhase::kPlacing));
+}
+
+TEST(TargetApproachTest, AutofocusFollowsThePlacementAboutTheContactPoint) {
+  ApproachHarness h;
+  auto c = h.Command();
+  c.place_instrument = true;
+  c.autofocus = true;
+  h.Start(c);
+  const msg::RendezvousStatus& s = h.exec.status();
+  ASSERT_EQ(s.phase, RendezvousPhase::kDone) << s.message;
+  EXPECT_TRUE(h.Saw(RendezvousPhase::kPlaced));
+  EXPECT_TRUE(h.Saw(RendezvousPhase::kFocusing));
+  EXPECT_TRUE(h.Saw(RendezvousPhase::kFocused));
+  ASSERT_EQ(h.arm_commands.size(), 2u);
+  EXPECT_EQ(h.arm_commands[0].mode, msg::ArmMode::kPlace);
+  EXPECT_EQ(h.arm_commands[1].mode, msg::ArmMode::kAutofocus);
+  // About the face where it touched (the contact measured the surface), not the pair's point.
+  EXPECT_EQ(h.arm_commands[1].target, h.arm_commands[0].target + Eigen::Vector3d(0.0, 0.0, 0.002));
+  bool focused_said = false;
+  for (const auto& st : h.statuses) {
+    if (st.phase == RendezvousPhase::kFocused) {
+      EXPECT_THAT(st.message, HasSubstr("60.5 mm above the target after 11 frames"));
+      EXPECT_THAT(st.message, HasSubstr("ddl/mi_frame 77"));
+      focused_said = true;
+    }
+  }
+  EXPECT_TRUE(focused_said);
+  // Without the placement: about the target the last pair measured.
+  ApproachHarness only;
+  auto f = only.Command();
+  f.autofocus = true;
+  only.Start(f);
+  ASSERT_EQ(only.exec.status().phase, RendezvousPhase::kDone) << only.exec.status().message;
+  ASSERT_EQ(only.arm_commands.size(), 1u);
+  EXPECT_EQ(only.arm_commands[0].mode, msg::ArmMode::kAutofocus);
+  EXPECT_EQ(only.arm_commands[0].target, only.exec.status().target_in_rover);
+  EXPECT_FALSE(only.Saw(RendezvousPhase::kPlacing));
+  // A sweep that ends in a fault: ARM, dl-arm's reason named.
+  ApproachHarness bad;
+  bad.focus_reply = msg::ArmState::kFault;
+  bad.Start(c);
+  EXPECT_EQ(bad.exec.status().phase, RendezvousPhase::kFailed);
+  EXPECT_EQ(bad.exec.status().fault, RendezvousFault::kArm);
+  EXPECT_THAT(bad.exec.status().message, HasSubstr("dl-arm FAULT: no focus peak"));
 }
 
 TEST(TargetApproachTest, ArmFaultsAreTypedAndAnArmLeftOutIsStowedBeforeDriving) {

@@ -73,6 +73,17 @@ ArgSpec Needs(ArgSpec a, std::string_view other) {
   return a;
 }
 
+ArgSpec Word(std::string_view name, std::vector<std::string_view> choices,
+             std::string_view default_word, std::string_view doc) {
+  ArgSpec a;
+  a.name = name;
+  a.type = ArgType::kWord;
+  a.choices = std::move(choices);
+  a.default_word = default_word;
+  a.doc = doc;
+  return a;
+}
+
 ArgSpec OnFault() {
   ArgSpec a;
   a.name = kOnFaultArg;
@@ -196,6 +207,9 @@ std::vector<CommandSpec> BuildTable() {
        Optional(Number("standoff", "m", Bounds::Closed(0.8, 3.0),
                        "target this far ahead of the rover centre at the end"),
                 1.05),
+       Word("then", {"NONE", "PLACE", "FOCUS", "PLACE_FOCUS"}, "NONE",
+            "at the standoff: PLACE the instrument on the target, FOCUS the microscopic imager "
+            "on it (auto-focus), or PLACE_FOCUS both, in that order"),
        Timeout()},
       "", "single-command science-target approach with visual tracking (FIDO)"));
   // Arm and microscopic imager.

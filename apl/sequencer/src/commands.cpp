@@ -111,6 +111,11 @@ Result<Request> BuildRequest(const CommandCall& call, const PoseSample* pose) {
       }
       r.standoff = Num(call, "standoff");
       r.time_budget_s = Num(call, "timeout");
+      if (call.Has("then")) {
+        const std::string& then = call.Get("then").word;
+        r.place = then == "PLACE" || then == "PLACE_FOCUS";
+        r.focus = then == "FOCUS" || then == "PLACE_FOCUS";
+      }
       return Request{r};
     }
     case K::kArmMove: {

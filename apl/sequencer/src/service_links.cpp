@@ -106,6 +106,8 @@ msg::RendezvousCommand RendezvousCommandOf(const Command& c, Time stamp) {
     m.image_id = r.image.value_or(0);
     m.pixel_x = r.u;
     m.pixel_y = r.v;
+    m.place_instrument = r.place;
+    m.autofocus = r.focus;
   }
   return m;
 }

@@ -128,6 +128,16 @@ TEST(BuildCommand, MastRendezvousAndArmRequests) {
   EXPECT_FALSE(p.image.has_value());
   EXPECT_EQ(*p.point, (Vec3{4, 1, -0.2}));
   EXPECT_DOUBLE_EQ(p.standoff, 1.1);
+  EXPECT_FALSE(p.place);
+  EXPECT_FALSE(p.focus);
+  const auto both = std::get<RendezvousRequest>(
+      Build("APPROACH_TARGET point=(4, 1, -0.2) then=place_focus").request);
+  EXPECT_TRUE(both.place);
+  EXPECT_TRUE(both.focus);
+  const auto focus_only = std::get<RendezvousRequest>(
+      Build("APPROACH_TARGET point=(4, 1, -0.2) then=FOCUS").request);
+  EXPECT_FALSE(focus_only.place);
+  EXPECT_TRUE(focus_only.focus);
   const auto lander = std::get<RendezvousRequest>(Build("RETURN_TO_LANDER").request);
   EXPECT_EQ(lander.kind, RendezvousRequest::Kind::kReturnToLander);
   EXPECT_FALSE(lander.point.has_value());

@@ -69,6 +69,8 @@ TEST(ParserErrors, ValuesOutOfRangeNameTheUnit) {
               {1, 33, "standoff = 0.5 m is outside [0.8, 3]"});
   ExpectError("APPROACH_TARGET image=1 pixel=(-3, 10)\n",
               {1, 25, "pixel[0] = -3 px is outside [0, inf)"});
+  ExpectError("APPROACH_TARGET point=(1, 0, 0) then=DRILL\n",
+              {1, 38, "then must be one of NONE, PLACE, FOCUS, PLACE_FOCUS, got 'DRILL'"});
   ExpectError("AUTOFOCUS (1, 0, 0) steps=1\n", {1, 21, "steps = 1 is outside [3, 30]"});
   ExpectError("AUTOFOCUS (1, 0, 0) steps=3.5\n", {1, 21, "steps = 3.5 is not a whole number"});
   ExpectError("WAIT 2 h\nWAIT 25 h\n", {2, 6, "WAIT = 90000 s is outside [0, 86400]"});

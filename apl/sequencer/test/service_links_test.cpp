@@ -114,6 +114,12 @@ TEST(ServiceLinks, RendezvousCommandsAndTheirStatuses) {
       RendezvousCommandOf(Built("APPROACH_TARGET point=(4, 1, -0.2)"), Time{5});
   EXPECT_EQ(by_point.image_id, 0u);
   EXPECT_EQ(by_point.target_estimate, Eigen::Vector3d(4, 1, -0.2));
+  EXPECT_FALSE(by_point.place_instrument);
+  EXPECT_FALSE(by_point.autofocus);
+  const msg::RendezvousCommand fido = RendezvousCommandOf(
+      Built("APPROACH_TARGET point=(4, 1, -0.2) then=PLACE_FOCUS"), Time{5});
+  EXPECT_TRUE(fido.place_instrument);
+  EXPECT_TRUE(fido.autofocus);
   const msg::RendezvousCommand lander =
       RendezvousCommandOf(Built("RETURN_TO_LANDER lander=(30, 1, 0) timeout=2000 s"), Time{5});
   EXPECT_EQ(lander.target, msg::RendezvousTarget::kLander);

@@ -19,7 +19,7 @@ const char* RendezvousTargetName(RendezvousTarget t) {
 const char* RendezvousPhaseName(RendezvousPhase p) {
   static constexpr std::array<const char*, kRendezvousPhaseCount> kNames = {
       "IDLE", "LONG_RANGE", "MID_RANGE", "CLOSE_RANGE", "AT_RAMP_BASE", "CLIMB", "DONE", "FAILED",
-      "APPROACH_TARGET", "AT_TARGET", "PLACING", "PLACED"};
+      "APPROACH_TARGET", "AT_TARGET", "PLACING", "PLACED", "FOCUSING", "FOCUSED"};
   const auto i = static_cast<std::size_t>(p);
   return i < kNames.size() ? kNames[i] : "UNKNOWN";
 }

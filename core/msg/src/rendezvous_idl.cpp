@@ -15,6 +15,7 @@ static_assert(rover_apl_PHASE_AT_TARGET == static_cast<int>(RendezvousPhase::kAt
 static_assert(rover_apl_RZFAULT_NONE == static_cast<int>(RendezvousFault::kNone));
 static_assert(rover_apl_RZFAULT_TARGET_LOST == static_cast<int>(RendezvousFault::kTargetLost));
 static_assert(rover_apl_PHASE_PLACED == static_cast<int>(RendezvousPhase::kPlaced));
+static_assert(rover_apl_PHASE_FOCUSED == static_cast<int>(RendezvousPhase::kFocused));
 static_assert(rover_apl_RZFAULT_ARM == static_cast<int>(RendezvousFault::kArm));
 
 RendezvousCommand RendezvousCommandFromIdl(const rover_apl_RendezvousCommand& in) {
@@ -31,6 +32,7 @@ RendezvousCommand RendezvousCommandFromIdl(const rover_apl_RendezvousCommand& in
   c.pixel_x = in.pixel_x;
   c.pixel_y = in.pixel_y;
   c.place_instrument = in.place_instrument;
+  c.autofocus = in.autofocus;
   return c;
 }
 
@@ -47,6 +49,7 @@ void RendezvousCommandToIdl(const RendezvousCommand& in, rover_apl_RendezvousCom
   out->pixel_x = in.pixel_x;
   out->pixel_y = in.pixel_y;
   out->place_instrument = in.place_instrument;
+  out->autofocus = in.autofocus;
 }
 
 Result<RendezvousStatus> RendezvousStatusFromIdl(const rover_apl_RendezvousStatus& in) {

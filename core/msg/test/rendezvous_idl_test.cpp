@@ -24,6 +24,8 @@ TEST(RendezvousIdl, CommandRoundTripKeepsAnUnknownTargetAndNaN) {
   c.image_id = 0xC8000001u;
   c.pixel_x = 512.25;
   c.pixel_y = -3.5;
+  c.place_instrument = true;
+  c.autofocus = true;
   rover_apl_RendezvousCommand m{};
   RendezvousCommandToIdl(c, &m);
   EXPECT_EQ(m.target, rover_apl_TARGET_LANDER);
@@ -39,6 +41,8 @@ TEST(RendezvousIdl, CommandRoundTripKeepsAnUnknownTargetAndNaN) {
   EXPECT_EQ(back.image_id, 0xC8000001u);
   EXPECT_EQ(back.pixel_x, 512.25);
   EXPECT_EQ(back.pixel_y, -3.5);
+  EXPECT_TRUE(back.place_instrument);
+  EXPECT_TRUE(back.autofocus);
   idl::SetRawEnum(&m.target, 7);
   EXPECT_EQ(static_cast<int>(RendezvousCommandFromIdl(m).target), 7);
   EXPECT_STREQ(RendezvousTargetName(RendezvousCommandFromIdl(m).target), "UNKNOWN");
@@ -76,9 +80,11 @@ TEST(RendezvousIdl, StatusRoundTripAndBadEnums) {
   EXPECT_EQ(RendezvousStatusFromIdl(m)->phase, RendezvousPhase::kAtTarget);
   m.phase = rover_apl_PHASE_PLACED;
   EXPECT_EQ(RendezvousStatusFromIdl(m)->phase, RendezvousPhase::kPlaced);
-  idl::SetRawEnum(&m.phase, 12);
+  m.phase = rover_apl_PHASE_FOCUSED;
+  EXPECT_STREQ(RendezvousPhaseName(RendezvousStatusFromIdl(m)->phase), "FOCUSED");
+  idl::SetRawEnum(&m.phase, 14);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),
-              ::testing::HasSubstr("apl/rendezvous_status phase = 12 is not a RendezvousPhase"));
+              ::testing::HasSubstr("apl/rendezvous_status phase = 14 is not a RendezvousPhase"));
   m.phase = rover_apl_PHASE_DONE;
   idl::SetRawEnum(&m.fault, -1);
   EXPECT_THAT(RendezvousStatusFromIdl(m).status().message(),

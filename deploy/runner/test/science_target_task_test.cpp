@@ -29,6 +29,12 @@ TEST(ScienceTargetTask, ParsesAndChecksItsSection) {
               HasSubstr("task.pixel_offset: unknown key 'z'"));
   EXPECT_THAT(ValidateTask(ScenarioWithTask("task: {type: science_target, expect: touched}\n")).message(),
               HasSubstr("task.expect: 'touched' is not one of: at_target, BAD_COMMAND"));
+  EXPECT_TRUE(ValidateTask(ScenarioWithTask(
+                  "task: {type: science_target, place: true, autofocus: true}\n"))
+                  .ok());
+  EXPECT_THAT(ValidateTask(ScenarioWithTask("task: {type: science_target, autofocus: yes}\n"))
+                  .message(),
+              HasSubstr("task.autofocus: yes is not true or false"));
 }
 
 TEST(ScienceTargetTask, WithoutTheWorldItSaysItNeedsTheTruthAndSendsNothing) {

@@ -1,6 +1,8 @@
 #include "rover/deploy/runner/tasks/arm_steps.hpp"
 
+#include "rover/base/check.hpp"
 #include "rover/base/format.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/arm_idl.hpp"
 
 namespace rover::deploy::runner {
@@ -49,6 +51,12 @@ std::string StowArmAndWait(TaskContext& ctx, dds::Writer<rover_dl_ArmCommand>& w
            w.end->message;
   }
   return "";
+}
+
+double FocusErrorFromTruth(const TaskContext& ctx, const Eigen::Vector3d& face_site) {
+  ROVER_DEMAND(ctx.world != nullptr);
+  const double surface = ctx.world->terrain.natural.Height(face_site.x(), face_site.y());
+  return face_site.z() - (surface + hwconfig::RoverDescription{}.arm.imager.working_distance);
 }
 
 }  // namespace rover::deploy::runner

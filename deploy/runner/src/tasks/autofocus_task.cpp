@@ -220,8 +220,7 @@ TaskOutcome AutofocusTask::Run(TaskContext& ctx) {
     ++focused;
     Pump();
     // The truth: the face against the surface under the imager's axis (straight down).
-    const double surface = ctx.world->terrain.natural.Height(tool_now_.x(), tool_now_.y());
-    const double error = tool_now_.z() - (surface + optics.working_distance);
+    const double error = FocusErrorFromTruth(ctx, tool_now_);
     const bool ok = std::abs(error) <= dof_half;
     right[kind] += ok ? 1 : 0;
     predicted += end->focus_predicted ? 1 : 0;

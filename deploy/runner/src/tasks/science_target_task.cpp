@@ -9,6 +9,7 @@
 
 #include "rover/base/format.hpp"
 #include "rover/deploy/runner/tasks/arm_steps.hpp"
+#include "rover/hwconfig/rover_description.hpp"
 #include "rover/msg/arm_idl.hpp"
 #include "rover/msg/camera_idl.hpp"
 #include "rover/msg/mobility_idl.hpp"
@@ -49,7 +50,7 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(yaml::CheckKeys(
       n, "task",
       {"type", "target", "standoff", "pixel_offset", "look_offset", "time_budget_s", "expect",
-       "place", "template"},
+       "place", "autofocus", "template"},
       err));
   ScienceTargetSpec spec;
   double target = 0;
@@ -64,11 +65,14 @@ Result<ScienceTargetSpec> ParseScienceTargetTask(const TaskSource& source) {
   ROVER_RETURN_IF_ERROR(ParseXy(n, "look_offset", -50, 50, err, &spec.look_offset));
   ROVER_RETURN_IF_ERROR(
       yaml::OptionalNumber(n, "time_budget_s", "task", 0, 1e6, err, &spec.time_budget_s));
-  if (const YAML::Node p = n["place"]) {
-    if (!p.IsScalar() || (p.Scalar() != "true" && p.Scalar() != "false")) {
-      return err.At(p, "task.place: " + yaml::ScalarText(p) + " is not true or false");
+  for (auto [key, flag] : {std::pair{"place", &spec.place}, {"autofocus", &spec.autofocus}}) {
+    if (const YAML::Node p = n[key]) {
+      if (!p.IsScalar() || (p.Scalar() != "true" && p.Scalar() != "false")) {
+        return err.At(p, "task." + std::string(key) + ": " + yaml::ScalarText(p) +
+                             " is not true or false");
+      }
+      *flag = p.Scalar() == "true";
     }
-    spec.place = p.Scalar() == "true";
   }
   if (const YAML::Node x = n["expect"]) {
     ROVER_ASSIGN_OR_RETURN(spec.expect, ParseTaskExpect(x, ScienceExpectChoices(), err));
@@ -467,6 +471,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   c.pixel_x = pixel.x();
   c.pixel_y = pixel.y();
   c.place_instrument = spec_.place;
+  c.autofocus = spec_.autofocus;
   rover_apl_RendezvousCommand cw{};
   msg::RendezvousCommandToIdl(c, &cw);
   dds::CopyString(cw.header.frame_id, "site");
@@ -481,7 +486,7 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   }
   std::optional<msg::RendezvousStatus> terminal;
   bool at_target = false;
-  bool placed = false;
+  bool placed = false, focused = false;
   int pairs = 0;
   const double deadline = spec_.time_budget_s > 0
                               ? step.sim_start_s + spec_.time_budget_s + kGraceS
@@ -508,6 +513,18 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
                                 "cm", true, "the same, horizontal"});
         ctx.recorder.AddFigure({"instrument_contact", tool_contact_now_ ? 1.0 : 0.0, kNotJudged, "",
                                 true, "the instrument's face touches the terrain at PLACED"});
+      }
+      if (st->phase == msg::RendezvousPhase::kFocused && !focused && truth) {
+        focused = true;
+        // 6. The microscopic imager at best focus: its face against the terrain under it.
+        const double error = FocusErrorFromTruth(ctx, tool_now_);
+        const double dof = hwconfig::RoverDescription{}.arm.imager.DepthOfFieldHalf();
+        ctx.recorder.AddFigure({"focus_error", 1000.0 * std::abs(error), kNotJudged, "mm", true,
+                                "|face height - (terrain under it + working distance)| at "
+                                "FOCUSED; depth of field +-" + FormatNumber(1000.0 * dof, 3) +
+                                    " mm"});
+        ctx.recorder.AddFigure({"in_focus", std::abs(error) <= dof ? 1.0 : 0.0, kNotJudged, "",
+                                true, "the final frame in focus at its centre"});
       }
       if (st->phase == msg::RendezvousPhase::kAtTarget && !at_target && truth) {
         at_target = true;
@@ -570,8 +587,10 @@ TaskOutcome ScienceTargetTask::Run(TaskContext& ctx) {
   step.termination = done ? "at_target" : fault;
   step.message = terminal->message;
   out.steps.push_back(step);
-  const bool ok = spec_.expect == "at_target" ? done && at_target && (placed || !spec_.place)
-                                              : fault == spec_.expect;
+  const bool ok = spec_.expect == "at_target"
+                      ? done && at_target && (placed || !spec_.place) &&
+                            (focused || !spec_.autofocus)
+                      : fault == spec_.expect;
   if (!ok) {
     out.failure = "science_target ended " + std::string(msg::RendezvousPhaseName(terminal->phase)) +
                   (done ? "" : " " + fault) + ", expected " + spec_.expect + ": " +

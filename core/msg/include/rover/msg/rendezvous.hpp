@@ -29,7 +29,9 @@ enum class RendezvousPhase : std::int32_t {
   kApproachTarget,
   kAtTarget,
   kPlacing,
-  kPlaced
+  kPlaced,
+  kFocusing,  ///< kScience: dl-arm's auto-focus sweep over the target
+  kFocused    ///< kScience: the microscopic imager at best focus over it
 };
 enum class RendezvousFault : std::int32_t {
   kNone = 0,
@@ -47,7 +49,7 @@ enum class RendezvousFault : std::int32_t {
   kTargetLost,
   kArm
 };
-inline constexpr int kRendezvousPhaseCount = 12;
+inline constexpr int kRendezvousPhaseCount = 14;
 inline constexpr int kRendezvousFaultCount = 14;
 
 /// "LANDER", "SCIENCE", "STOP"; "UNKNOWN" otherwise.
@@ -76,6 +78,9 @@ struct RendezvousCommand {
   double pixel_y = 0.0;  ///< [px]
   /// kScience: at the standoff, put the arm's instrument on the target (PLACING, PLACED).
   bool place_instrument = false;
+  /// kScience: then focus the microscopic imager on the target (dl-arm AUTOFOCUS; after a
+  /// placement, about the height the contact measured) (FOCUSING, FOCUSED).
+  bool autofocus = false;
 };
 
 /// apl/rendezvous_status.

@@ -10,12 +10,15 @@
 /// to the target point) facing it, where the arm reaches it.
 ///
 /// Steps: designate (in the named pair) -> [leg -> look at the target -> pair -> track]* ->
-/// AT_TARGET -> (with place_instrument: PLACING -> PLACED) -> stands `hold_at_base_s` -> DONE.
+/// AT_TARGET -> (with place_instrument: PLACING -> PLACED) -> (with autofocus: FOCUSING ->
+/// FOCUSED) -> stands `hold_at_base_s` -> DONE.
 /// Placement: one dl/arm_command PLACE at target_in_rover (the target measured in the last pair,
 /// in the rover frame where the rover now stands); dl-arm goes above it and descends until its
 /// contact switch closes (dl/arm/README.md). The arm is never out while the rover drives: when
 /// dl-arm has said the arm is not stowed, the first leg waits for a STOW (an approach that
-/// never hears from dl-arm drives as before). Legs: farther than standoff +
+/// never hears from dl-arm drives as before). Auto-focus: one dl/arm_command AUTOFOCUS (FIDO's
+/// ten-frame sweep, dl/arm/README.md) about the face's contact point when the instrument was
+/// placed (the contact measured the surface), else about target_in_rover. Legs: farther than standoff +
 /// `target_final_approach`, a `target_leg_mode` drive (autonav by default) of at most
 /// `target_leg` towards the point `standoff` before the target; nearer, a directed turn to face
 /// it and a straight (backwards when too close). Done when within `target_along_tolerance` of
@@ -71,7 +74,7 @@ class TargetApproach {
   bool busy() const { return wait_ != Wait::kNone; }
 
  private:
-  enum class Wait { kNone, kMast, kSettle, kFrame, kDrive, kHold, kStow, kPlace };
+  enum class Wait { kNone, kMast, kSettle, kFrame, kDrive, kHold, kStow, kPlace, kFocus };
 
   void Reply(ExecutorOutput* out);
   void Fail(msg::RendezvousFault fault, const std::string& message, ExecutorOutput* out);
@@ -80,6 +83,9 @@ class TargetApproach {
   void RequestPair(Time now, ExecutorOutput* out);
   void Drive(msg::MobilityCommand c, Time now, ExecutorOutput* out);
   void Arm(msg::ArmCommand c, Wait wait, Time now, ExecutorOutput* out);
+  // dl-arm AUTOFOCUS on `target` (rover frame); `from` says where the point comes from.
+  void Focus(const Eigen::Vector3d& target, const std::string& from, Time now,
+             ExecutorOutput* out);
   // From the target estimate and the pose: done, or the next move.
   void Decide(Time now, ExecutorOutput* out);
   void Accept(const TargetFix& fix, const Eigen::Isometry3d& site_from_rover);
@@ -102,6 +108,8 @@ class TargetApproach {
   std::optional<msg::ArmStatus> arm_;          // the latest dl/arm_status, anyone's
   std::optional<msg::MobilityCommand> after_stow_;  // the leg that waits for the stow
   std::uint32_t arm_seq_ = 0;
+  std::optional<Eigen::Vector3d> focus_at_;  // placed: the contact point the sweep follows
 };
+
 
 }  // namespace rover::apl::rendezvous

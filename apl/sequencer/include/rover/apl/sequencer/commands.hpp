@@ -61,6 +61,8 @@ struct RendezvousRequest {
   double v = 0.0;                       ///< [px]
   double standoff = 0.0;                ///< [m]
   double time_budget_s = 0.0;           ///< [s] 0 = the service's default
+  bool place = false;                   ///< APPROACH_TARGET: the instrument on it at the end
+  bool focus = false;                   ///< APPROACH_TARGET: then the imager's auto-focus
 };
 
 struct ArmRequest {

@@ -3,6 +3,7 @@
 /// The runner's arm steps, shared by the tasks that move dl-arm (science_target, autofocus):
 /// one dl/arm_command sent as an operator would, and the wait for its end on dl/arm_status.
 
+#include <Eigen/Core>
 #include <functional>
 #include <optional>
 #include <string>
@@ -31,5 +32,10 @@ ArmWait WaitForArm(TaskContext& ctx, const std::function<std::optional<msg::ArmS
 std::string StowArmAndWait(TaskContext& ctx, dds::Writer<rover_dl_ArmCommand>& writer,
                            const std::function<std::optional<msg::ArmStatus>()>& pump,
                            std::uint32_t command_id, double timeout_s);
+
+/// The microscopic imager's focus error from truth [m]: the face's height (site frame, the
+/// imager looking straight down its axis) less the terrain under it plus the working distance;
+/// positive = too high. Needs ctx.world (the runner's own truth).
+double FocusErrorFromTruth(const TaskContext& ctx, const Eigen::Vector3d& face_site);
 
 }  // namespace rover::deploy::runner

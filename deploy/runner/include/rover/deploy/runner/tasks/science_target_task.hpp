@@ -73,6 +73,9 @@ struct ScienceTargetSpec {
   /// place the arm's instrument on the target at the end (command place_instrument); the
   /// placement error is then measured at the instrument (sim/truth tool_point)
   bool place = false;
+  /// then focus the microscopic imager on it (command autofocus; FIDO's single command ends
+  /// so); judged from truth at FOCUSED
+  bool autofocus = false;
   std::optional<TemplateSpec> template_approach;
 };
 
