@@ -221,6 +221,13 @@ Result<ArmExecutor::Plan> ArmExecutor::PlanOf(const ArmCommand& c, Time now) con
                   " s old, joint_stale_s = " + FormatNumber(options_.joint_stale_s) + " s)"
             : "no ddl/joint_state received yet: the arm angles are unknown");
   }
+  if (c.mode != ArmMode::kStow) {
+    if (const std::string driving = Driving(); !driving.empty()) {
+      return FailedPrecondition("the rover is driving (" + driving +
+                                "): the arm moves out only while the wheels stand still (STOW "
+                                "and STOP are accepted)");
+    }
+  }
   switch (c.mode) {
     case ArmMode::kJoints: {
       ROVER_RETURN_IF_ERROR(rover_.arm.CheckLimits(c.joints));
@@ -333,11 +340,38 @@ ArmOutput ArmExecutor::OnJoints(const msg::JointState& j) {
     if (!std::isfinite(a)) return out;
   }
   if (joints_.has_value() && j.stamp < joints_->stamp) return out;
-  joints_ = Joints{j.stamp, j.arm_angle, j.arm_contact};
+  Joints now{j.stamp, j.arm_angle, j.arm_contact};
+  for (int w = 0; w < static_cast<int>(j.wheel_rate.size()); ++w) {
+    const double r = std::abs(j.wheel_rate[w]);
+    if (std::isfinite(r) && r > now.wheel_rate) {
+      now.wheel_rate = r;
+      now.fastest_wheel = w;
+    }
+  }
+  joints_ = now;
   Fill(&status_);
   if (!j.arm_contact) contact_seen_open_ = true;
+  if (MovingOut()) {
+    if (const std::string driving = Driving(); !driving.empty()) {
+      Fault("the rover started driving during the move (" + driving + "): arm stopped", j.stamp,
+            &out);
+      return out;
+    }
+  }
   if (moving() && j.arm_contact) OnContact(j.stamp, &out);
   return out;
+}
+
+std::string ArmExecutor::Driving() const {
+  if (!joints_ || joints_->wheel_rate <= options_.max_wheel_rate) return "";
+  return std::string("wheel ") + hwconfig::WheelName(joints_->fastest_wheel) + " turning at " +
+         FormatNumber(joints_->wheel_rate, 3) + " rad/s, max_wheel_rate " +
+         FormatNumber(options_.max_wheel_rate) + " rad/s";
+}
+
+bool ArmExecutor::MovingOut() const {
+  if (!moving() || plan_.legs.empty()) return false;
+  return plan_.legs.back().stage != Stage::kStow;
 }
 
 ArmOutput ArmExecutor::Submit(const ArmCommand& c, Time now) {

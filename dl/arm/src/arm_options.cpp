@@ -17,6 +17,8 @@ Status ArmOptions::Validate() const {
       CheckRange("timeout_s", timeout_s, Bounds::OpenLow(0.0, max_timeout_s), "s"));
   ROVER_RETURN_IF_ERROR(CheckPositive("joint_stale_s", joint_stale_s, "s"));
   ROVER_RETURN_IF_ERROR(
+      CheckRange("max_wheel_rate", max_wheel_rate, Bounds::OpenLow(0.0, 10.0), "rad/s"));
+  ROVER_RETURN_IF_ERROR(
       CheckRange("check_rate_hz", check_rate_hz, Bounds::OpenLow(0.0, 100.0), "Hz"));
   ROVER_RETURN_IF_ERROR(
       CheckRange("status_rate_hz", status_rate_hz, Bounds::OpenLow(0.0, check_rate_hz), "Hz"));
@@ -75,6 +77,10 @@ void ArmOptions::BindParams(ParamBinder<ArmOptions>& b) {
   b.Bind("focus_image_timeout_s", &ArmOptions::focus_image_timeout_s, "s",
          "auto-focus: a microscopic-imager frame not back within this (run clock) is a FAULT")
       .Range(0.0, 120.0);
+  b.Bind("max_wheel_rate", &ArmOptions::max_wheel_rate, "rad/s",
+         "a drive wheel turning faster than this means the rover is driving: the arm does not "
+         "move out (JOINTS, PLACE, AUTOFOCUS refused, a running one faults); STOW and STOP run")
+      .Range(0.0, 10.0);
   b.Bind("focus_min_contrast", &ArmOptions::focus_min_contrast, "",
          "auto-focus: best over worst focus measure below this is no focus signal (FAULT)")
       .Range(1.0, 100.0);

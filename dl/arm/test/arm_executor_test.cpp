@@ -1,5 +1,6 @@
 #include "rover/dl/arm/arm_executor.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
@@ -17,6 +18,7 @@ namespace {
 
 using Eigen::Vector3d;
 using hwconfig::RoverDescription;
+using ::testing::HasSubstr;
 
 Time ArmT(double s) { return Time::FromSeconds(s); }
 
@@ -68,6 +70,7 @@ class KinematicArm {
     j.stamp = t;
     j.arm_angle = q_;
     j.arm_contact = surface.has_value() && Face().z() <= *surface + standoff;
+    j.wheel_rate[2] = wheel_rate;
     return j;
   }
 
@@ -83,6 +86,7 @@ class KinematicArm {
 
   std::optional<double> surface;  ///< [m] height of a horizontal surface under the face
   double standoff = 0.0;          ///< [m] the switch closes this far above the surface
+  double wheel_rate = 0.0;        ///< [rad/s] of wheel LR (the rover driving)
   bool jammed = false;
 
  private:
@@ -595,6 +599,37 @@ TEST_F(ArmExecutorTest, StopCommandBrakesTheArm) {
   EXPECT_EQ(Submit(stop).statuses.at(0).message, "stopped by command 10");
   // Stop() (deactivation) only acts on a running command.
   EXPECT_TRUE(exec_->Stop("service deactivated", ArmT(now())).statuses.empty());
+}
+
+TEST_F(ArmExecutorTest, TheArmDoesNotMoveOutWhileTheRoverDrives) {
+  arm_->wheel_rate = -0.8;
+  Run(0.1);
+  const ArmOutput refused = Submit(PlaceCommand(1, kTarget));
+  ASSERT_EQ(refused.statuses.size(), 1u);
+  EXPECT_EQ(refused.statuses[0].state, ArmState::kRejected);
+  EXPECT_THAT(refused.statuses[0].message,
+              HasSubstr("the rover is driving (wheel LR turning at 0.8 rad/s, max_wheel_rate "
+                        "0.05 rad/s)"));
+  EXPECT_TRUE(refused.motor_commands.empty());
+  EXPECT_EQ(Submit(AutofocusCommand(2, kTarget)).statuses.at(0).state, ArmState::kRejected);
+  EXPECT_EQ(Submit(JointsCommand(3, rover_.arm.stow)).statuses.at(0).state, ArmState::kRejected);
+  // Creeping below the threshold is standing still: the placement starts ...
+  arm_->wheel_rate = 0.04;
+  Run(0.1);
+  ASSERT_EQ(Submit(PlaceCommand(4, kTarget)).statuses.at(0).state, ArmState::kMoving);
+  Run(1.0);
+  // ... and faults, braking the arm, when the rover starts to drive.
+  arm_->wheel_rate = 0.5;
+  motor_commands_.clear();
+  Run(0.1);
+  EXPECT_EQ(exec_->status().state, ArmState::kFault);
+  EXPECT_THAT(exec_->status().message, HasSubstr("the rover started driving during the move"));
+  ASSERT_FALSE(motor_commands_.empty());
+  EXPECT_EQ(motor_commands_.back().mode, msg::GroupMode::kStop);
+  // A stow runs while it drives.
+  ASSERT_EQ(Submit(ModeCommand(5, ArmMode::kStow)).statuses.at(0).state, ArmState::kMoving);
+  ASSERT_TRUE(Run(60.0, [&] { return !exec_->moving(); }));
+  EXPECT_EQ(exec_->status().state, ArmState::kStowed) << exec_->status().message;
 }
 
 TEST_F(ArmExecutorTest, IgnoresBadJointSamples) {

@@ -184,6 +184,8 @@ class ArmExecutor {
     Time stamp;
     ArmAngles q{};
     bool contact = false;
+    int fastest_wheel = 0;      // of ddl/joint_state's wheel_rate
+    double wheel_rate = 0.0;    // [rad/s] its |rate|
   };
 
   ArmExecutor(const hwconfig::RoverDescription& rover, const ArmOptions& options)
@@ -208,6 +210,10 @@ class ArmExecutor {
   void Fill(ArmStatus* s) const;
   msg::MotorCommand MotorCommand(msg::GroupMode mode, Time now);
   bool WithinTolerance(const ArmAngles& goal) const;
+  // "" while the wheels stand still (|rate| <= max_wheel_rate), else which turns how fast.
+  std::string Driving() const;
+  // A move that is not a stow (stows may run while the rover drives).
+  bool MovingOut() const;
   double DescentRate(const ArmAngles& from, const ArmAngles& to) const;
   const Leg& leg() const { return plan_.legs[leg_]; }
   std::uint32_t NextMotorId();

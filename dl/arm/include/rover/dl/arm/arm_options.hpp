@@ -22,6 +22,9 @@ struct ArmOptions {
   double max_timeout_s = 600.0;  ///< [s] largest timeout_s a command may ask for
   double joint_stale_s = 0.5;    ///< [s] ddl/joint_state older than this is stale
   double check_rate_hz = 8.0;    ///< [Hz] state-machine step (timeouts, arrival)
+  /// [rad/s] a drive wheel turning faster than this (ddl/joint_state) means the rover drives:
+  /// JOINTS, PLACE and AUTOFOCUS are refused and a running one faults; STOW and STOP still run.
+  double max_wheel_rate = 0.05;
   double status_rate_hz = 2.0;   ///< [Hz] dl/arm_status while moving (also on change)
   // Auto-focus (ARM_MODE_AUTOFOCUS; the imager's optics are core/hwconfig MicroscopeOptics).
   int focus_steps = 10;            ///< images in the sweep (FIDO: ten)
@@ -32,7 +35,7 @@ struct ArmOptions {
 
   /// speed in (0, 2] rad/s, descent_speed in (0, 0.1] m/s, hover_height in (0, 0.5] m,
   /// overdrive in (0, 0.2] m, tolerance in (0, 0.2] rad, 0 < timeout_s <= max_timeout_s,
-  /// positive joint_stale_s, check_rate_hz in (0, 100] Hz, status_rate_hz in
+  /// positive joint_stale_s, max_wheel_rate (0, 10] rad/s, check_rate_hz in (0, 100] Hz, status_rate_hz in
   /// (0, check_rate_hz], focus_steps [3, 30], focus_span (0, 0.3] m, focus_max_extra_steps
   /// [0, 20], focus_image_timeout_s (0, 120] s, focus_min_contrast [1, 100]. Messages start
   /// with the field.
