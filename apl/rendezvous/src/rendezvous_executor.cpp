@@ -62,10 +62,7 @@ void RendezvousExecutor::SetPhase(RendezvousPhase phase, ExecutorOutput* out) {
 void RendezvousExecutor::Fail(RendezvousFault fault, const std::string& message,
                               ExecutorOutput* out) {
   if (wait_ == Wait::kDrive) {  // stop the drive we started
-    msg::MobilityCommand stop;
-    stop.command_id = kMobilityIdBase + (++mobility_seq_ & 0xFFFFFF);
-    stop.mode = msg::MobilityMode::kStop;
-    out->mobility.push_back(stop);
+    out->mobility.push_back(internal::StopDriveCommand(ids_.Mobility()));
   }
   wait_ = Wait::kNone;
   status_.phase = RendezvousPhase::kFailed;
@@ -92,38 +89,24 @@ double RendezvousExecutor::OrbitRadius() const {
 
 void RendezvousExecutor::LookAt(const Eigen::Vector3d& site_point, Time now,
                                 ExecutorOutput* out) {
-  msg::MastCommand c;
-  c.stamp = now;
-  c.command_id = kMastIdBase + (++mast_seq_ & 0xFFFFFF);
-  c.pointing = msg::MastPointing::kLookAt;
-  c.look_at = site_point;
-  c.timeout_s = options_.mast_timeout_s;
-  out->mast.push_back(c);
-  outstanding_ = c.command_id;
+  out->mast.push_back(
+      internal::LookAtCommand(site_point, options_.mast_timeout_s, now, ids_.Mast()));
+  outstanding_ = out->mast.back().command_id;
   wait_ = Wait::kMast;
   wait_since_ = now;
 }
 
 void RendezvousExecutor::RequestPair(Time now, ExecutorOutput* out) {
-  msg::StereoRequest r;
-  r.stamp = now;
-  r.request_id = (kCameraRequestPrefix << 24) | (++camera_seq_ & 0xFFFFFF);
-  if ((r.request_id & 0xFFFFFF) == 0) r.request_id = (kCameraRequestPrefix << 24) | (++camera_seq_ & 0xFFFFFF);
-  r.camera = msg::CameraId::kNavcam;
-  r.width = 0;  // the full frame
-  out->camera.push_back(r);
-  outstanding_ = r.request_id;
+  out->camera.push_back(internal::NavcamPairRequest(now, ids_.Camera()));
+  outstanding_ = out->camera.back().request_id;
   wait_ = Wait::kFrame;
   wait_since_ = now;
 }
 
 void RendezvousExecutor::Drive(msg::MobilityCommand c, DriveKind kind, Time now,
                                ExecutorOutput* out) {
-  c.stamp = now;
-  c.command_id = kMobilityIdBase + (++mobility_seq_ & 0xFFFFFF);
-  if (c.time_budget_s <= 0.0) c.time_budget_s = kMaxDriveS;
-  out->mobility.push_back(c);
-  outstanding_ = c.command_id;
+  out->mobility.push_back(internal::StampedDrive(std::move(c), now, ids_.Mobility()));
+  outstanding_ = out->mobility.back().command_id;
   drive_kind_ = kind;
   wait_ = Wait::kDrive;
   wait_since_ = now;

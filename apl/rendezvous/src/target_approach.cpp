@@ -18,8 +18,6 @@ namespace {
 using msg::RendezvousFault;
 using msg::RendezvousPhase;
 
-// Ids of this executor: the upper half of the rendezvous ranges (the lander's use the lower).
-constexpr std::uint32_t kIdHalf = 0x800000u;
 using internal::Cm;
 using internal::kMaxDriveS;
 using internal::kMaxMobilityRetries;
@@ -37,16 +35,11 @@ TargetApproach::TargetApproach(const RendezvousOptions& options, std::shared_ptr
 void TargetApproach::Reply(ExecutorOutput* out) { out->statuses.push_back(status_); }
 
 void TargetApproach::Fail(RendezvousFault fault, const std::string& message, ExecutorOutput* out) {
-  if (wait_ == Wait::kDrive) {
-    msg::MobilityCommand stop;
-    stop.mode = msg::MobilityMode::kStop;
-    stop.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
-    out->mobility.push_back(stop);
-  }
+  if (wait_ == Wait::kDrive) out->mobility.push_back(internal::StopDriveCommand(ids_.Mobility()));
   if (wait_ == Wait::kStow || wait_ == Wait::kPlace || wait_ == Wait::kFocus) {
     msg::ArmCommand stop;
     stop.mode = msg::ArmMode::kStop;
-    stop.command_id = kArmIdBase | kIdHalf | (++arm_seq_ & (kIdHalf - 1));
+    stop.command_id = ids_.Arm();
     out->arm.push_back(stop);
   }
   after_stow_.reset();
@@ -69,33 +62,23 @@ void TargetApproach::Look(Time now, ExecutorOutput* out) {
     wait_since_ = now;
     return;
   }
-  msg::MastCommand c;
-  c.stamp = now;
-  c.command_id = kMastIdBase | kIdHalf | (++mast_seq_ & (kIdHalf - 1));
-  c.pointing = msg::MastPointing::kLookAt;
-  c.look_at = target_site_;
-  c.timeout_s = options_.mast_timeout_s;
-  out->mast.push_back(c);
-  outstanding_ = c.command_id;
+  out->mast.push_back(
+      internal::LookAtCommand(target_site_, options_.mast_timeout_s, now, ids_.Mast()));
+  outstanding_ = out->mast.back().command_id;
   wait_ = Wait::kMast;
   wait_since_ = now;
 }
 
 void TargetApproach::RequestPair(Time now, ExecutorOutput* out) {
-  msg::StereoRequest r;
-  r.stamp = now;
-  r.request_id = (kCameraRequestPrefix << 24) | kIdHalf | (++camera_seq_ & (kIdHalf - 1));
-  r.camera = msg::CameraId::kNavcam;
-  r.width = 0;  // the full frame
-  out->camera.push_back(r);
-  outstanding_ = r.request_id;
+  out->camera.push_back(internal::NavcamPairRequest(now, ids_.Camera()));
+  outstanding_ = out->camera.back().request_id;
   wait_ = Wait::kFrame;
   wait_since_ = now;
 }
 
 void TargetApproach::Arm(msg::ArmCommand c, Wait wait, Time now, ExecutorOutput* out) {
   c.stamp = now;
-  c.command_id = kArmIdBase | kIdHalf | (++arm_seq_ & (kIdHalf - 1));
+  c.command_id = ids_.Arm();
   c.timeout_s = options_.arm_timeout_s;
   out->arm.push_back(c);
   outstanding_ = c.command_id;
@@ -126,11 +109,8 @@ void TargetApproach::Drive(msg::MobilityCommand c, Time now, ExecutorOutput* out
     Arm(stow, Wait::kStow, now, out);
     return;
   }
-  c.stamp = now;
-  c.command_id = kMobilityIdBase | kIdHalf | (++mobility_seq_ & (kIdHalf - 1));
-  if (c.time_budget_s <= 0.0) c.time_budget_s = kMaxDriveS;
-  out->mobility.push_back(c);
-  outstanding_ = c.command_id;
+  out->mobility.push_back(internal::StampedDrive(std::move(c), now, ids_.Mobility()));
+  outstanding_ = out->mobility.back().command_id;
   wait_ = Wait::kDrive;
   wait_since_ = now;
 }

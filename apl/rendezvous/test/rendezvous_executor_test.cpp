@@ -565,3 +565,25 @@ TEST(RendezvousExecutorTest, ADriveWithoutATerminalStatusIsAMobilityFault) {
 
 }  // namespace
 }  // namespace rover::apl::rendezvous
+
+namespace rover::apl::rendezvous {
+namespace {
+
+TEST(CommandIds, CountPerTopicInTheirHalfAndSkipZero) {
+  CommandIds lander(0), science(kScienceIdHalf);
+  EXPECT_EQ(lander.Mobility(), 0x52000001u);
+  EXPECT_EQ(lander.Mobility(), 0x52000002u);
+  EXPECT_EQ(lander.Mast(), 0x52000001u);
+  EXPECT_EQ(lander.Camera(), 0x03000001u);
+  EXPECT_EQ(science.Mobility(), 0x52800001u);
+  EXPECT_EQ(science.Arm(), 0x52800001u);
+  EXPECT_EQ(science.Camera(), 0x03800001u);
+  // After 2^23 - 1 ids the count wraps past 0 and stays in its half.
+  std::uint32_t id = 0;
+  for (std::uint32_t i = 1; i < kScienceIdHalf; ++i) id = science.Mast();
+  EXPECT_EQ(id, 0x52FFFFFFu);
+  EXPECT_EQ(science.Mast(), 0x52800001u);
+}
+
+}  // namespace
+}  // namespace rover::apl::rendezvous

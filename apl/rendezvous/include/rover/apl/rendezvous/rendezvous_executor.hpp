@@ -66,6 +66,29 @@ inline constexpr std::uint32_t kMastIdBase = 0x52000000u;      ///< dl/mast_comm
 inline constexpr std::uint32_t kArmIdBase = 0x52000000u;       ///< dl/arm_command
 inline constexpr std::uint32_t kCameraRequestPrefix = 3;       ///< ddl/camera_request ids 3 << 24
 
+/// The ids an executor gives what it sends, one count per topic: `half` 0 for the lander
+/// rendezvous (RendezvousExecutor), kScienceIdHalf for the science approach (TargetApproach), so
+/// that neither takes the other's answer. The low 23 bits count from 1 and skip 0 on wrapping.
+inline constexpr std::uint32_t kScienceIdHalf = 0x800000u;
+class CommandIds {
+ public:
+  explicit CommandIds(std::uint32_t half) : half_(half) {}
+  std::uint32_t Mobility() { return Next(kMobilityIdBase, &mobility_); }
+  std::uint32_t Mast() { return Next(kMastIdBase, &mast_); }
+  std::uint32_t Arm() { return Next(kArmIdBase, &arm_); }
+  std::uint32_t Camera() { return Next(kCameraRequestPrefix << 24, &camera_); }
+
+ private:
+  std::uint32_t Next(std::uint32_t base, std::uint32_t* count) {
+    std::uint32_t low = ++*count & (kScienceIdHalf - 1);
+    if (low == 0) low = ++*count & (kScienceIdHalf - 1);
+    return base | half_ | low;
+  }
+  std::uint32_t half_;
+  std::uint32_t mobility_ = 0, mast_ = 0, arm_ = 0, camera_ = 0;
+};
+
+
 struct ExecutorOutput {
   std::vector<msg::MobilityCommand> mobility;
   std::vector<msg::MastCommand> mast;
@@ -145,7 +168,7 @@ class RendezvousExecutor {
   Wait wait_ = Wait::kNone;
   Time wait_since_;
   Time deadline_;
-  std::uint32_t mobility_seq_ = 0, mast_seq_ = 0, camera_seq_ = 0;
+  CommandIds ids_{0};
   std::uint32_t outstanding_ = 0;  // id of the mast command, camera request or drive awaited
   DriveKind drive_kind_ = DriveKind::kLeg;
   double standoff_ = 1.0;

@@ -98,7 +98,7 @@ class TargetApproach {
   Wait wait_ = Wait::kNone;
   Time wait_since_;
   Time deadline_;
-  std::uint32_t mobility_seq_ = 0, mast_seq_ = 0, camera_seq_ = 0;
+  CommandIds ids_{kScienceIdHalf};
   std::uint32_t outstanding_ = 0;
   double standoff_ = 1.05;
   Eigen::Vector3d target_site_ = Eigen::Vector3d::Zero();
@@ -107,7 +107,6 @@ class TargetApproach {
   bool designating_ = false;  // by a site point: the pair awaited designates
   std::optional<msg::ArmStatus> arm_;          // the latest dl/arm_status, anyone's
   std::optional<msg::MobilityCommand> after_stow_;  // the leg that waits for the stow
-  std::uint32_t arm_seq_ = 0;
   std::optional<Eigen::Vector3d> focus_at_;  // placed: the contact point the sweep follows
 };
 
